@@ -1,0 +1,53 @@
+"""rsm-lrg: design of experiments and response-surface methodology for the linear rolling
+guide (LRG) study of Su, Zhang & Yang (2023), *Machines* 11(3), 358.
+
+Layers, each importing only from those before it::
+
+    physics -> surrogate;  factors -> design -> model -> optimize -> report -> cli
+
+The names below are imported lazily, so ``import rsm_lrg`` (and ``rsm-lrg --help``) stays
+fast and does not pull in statsmodels, scipy or matplotlib.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+__version__ = "0.1.0"
+
+# public name -> module that defines it
+_LAZY = {
+    "Factor": "rsm_lrg.factors",
+    "FactorSpace": "rsm_lrg.factors",
+    "load_table4": "rsm_lrg.datasets",
+    "load_table3": "rsm_lrg.datasets",
+    "load_table5": "rsm_lrg.datasets",
+    "load_equation19": "rsm_lrg.datasets",
+}
+
+
+def _register(module: str, *names: str) -> None:
+    for n in names:
+        _LAZY[n] = module
+
+
+# Filled in by the layers as they land (kept here so the top-level API is in one place).
+_register("rsm_lrg.design", "Design", "box_behnken", "central_composite", "full_factorial")
+_register("rsm_lrg.model", "fit", "FitResult")
+_register("rsm_lrg.optimize", "optimize", "OptimumResult")
+_register("rsm_lrg.surrogate", "simulate")
+
+__all__ = sorted(_LAZY) + ["__version__"]
+
+
+def __getattr__(name: str):
+    mod = _LAZY.get(name)
+    if mod is None:
+        raise AttributeError(f"module 'rsm_lrg' has no attribute {name!r}")
+    value = getattr(importlib.import_module(mod), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return __all__

@@ -1,0 +1,111 @@
+"""The ``rsm-lrg`` command line: argument parsing only.
+
+Each sub-command lives in a module ``rsm_lrg/cli/cmd_<name>.py`` that defines
+
+``NAME``       the sub-command (``"fit"``),
+``HELP``       one line for ``rsm-lrg --help``,
+``add_arguments(parser)``  its options, and
+``run(args) -> int``       the thin call into the library (imports it lazily).
+
+Modules are found by name, so adding a command touches no shared file. Nothing heavy
+(statsmodels, scipy, matplotlib, pandas) is imported before a command runs, which keeps
+``rsm-lrg --help`` fast.
+
+Exit status: 0 success; 2 bad usage or bad input, reported as one ``error:`` line on stderr
+(``--debug`` adds the traceback); 1 an internal fault.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import pkgutil
+import sys
+import traceback
+
+__all__ = ["main", "build_parser", "UsageError"]
+
+#: Order in which commands are listed in ``--help`` (others follow alphabetically).
+ORDER = [
+    "design", "simulate", "fit", "optimize", "physics", "report", "reproduce",
+    "calibrate", "fit-summary", "ridge", "confirm", "evaluate",
+]
+
+
+class UsageError(Exception):
+    """Raised by argument parsing: printed as one ``error:`` line, exit status 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str):  # one line, no usage dump
+        raise UsageError(f"{self.prog}: {message}")
+
+
+def _command_modules():
+    from . import __path__ as here
+
+    mods = []
+    for info in pkgutil.iter_modules(here):
+        if info.name.startswith("cmd_"):
+            mods.append(importlib.import_module(f"{__name__}.{info.name}"))
+    rank = {n: i for i, n in enumerate(ORDER)}
+    mods.sort(key=lambda m: (rank.get(m.NAME, len(ORDER)), m.NAME))
+    return mods
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from .. import __version__
+
+    parser = _Parser(
+        prog="rsm-lrg",
+        description=(
+            "Design of experiments and response-surface methodology for the linear rolling "
+            "guide study of Su, Zhang & Yang (2023)."
+        ),
+    )
+    parser.add_argument("--version", action="version", version=f"rsm-lrg {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show a traceback on errors")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for mod in _command_modules():
+        p = sub.add_parser(mod.NAME, help=mod.HELP, description=getattr(mod, "DESCRIPTION", mod.HELP))
+        p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show a traceback on errors")
+        mod.add_arguments(p)
+        p.set_defaults(_run=mod.run)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``rsm-lrg`` and ``python -m rsm_lrg``; returns the exit status."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    debug = "--debug" in argv
+    try:
+        parser = build_parser()
+        args = parser.parse_args(argv)
+        if not getattr(args, "command", None):
+            parser.print_help()
+            return 2
+        status = args._run(args)
+        return int(status or 0)
+    except SystemExit as exc:  # --help, --version
+        return int(exc.code or 0) if isinstance(exc.code, int) else 0
+    except KeyboardInterrupt:
+        print("error: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+    except (UsageError, ValueError, TypeError, FileNotFoundError, KeyError) as exc:
+        # Bad input: the library raises ValueError/TypeError with a sentence for the user
+        # (rsm_lrg.io.InputError is a ValueError that already names the file).
+        if debug:
+            traceback.print_exc()
+        msg = str(exc).strip().replace("\n", " ") or type(exc).__name__
+        if isinstance(exc, KeyError):
+            msg = f"not found: {msg}"
+        print(f"error: {msg}", file=sys.stderr)
+        return 2
+    except Exception as exc:  # an internal fault
+        if debug:
+            traceback.print_exc()
+        msg = str(exc).strip().replace("\n", " ")
+        print(f"error: internal error ({type(exc).__name__}: {msg}); rerun with --debug for details", file=sys.stderr)
+        return 1
