@@ -1,0 +1,111 @@
+"""Convection from the moving carriage to the air (Eqs. 10-12).
+
+Su, Zhang & Yang (2023), *Machines* 11(3), 358, Section 2.2.3. SI floats or NumPy arrays in
+and out.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "reynolds", "prandtl", "nusselt_parallel_plate", "nusselt_normal_plate",
+    "heat_transfer_coefficient", "h_side", "h_front",
+]
+
+
+def reynolds(velocity, length, kinematic_viscosity):
+    """Reynolds number ``Re = ω·L_c/φ`` [-] (Section 2.2.3).
+
+    Examples
+    --------
+    >>> round(float(reynolds(0.3, 0.015, 15.5e-6)), 1)
+    290.3
+    """
+    return np.asarray(velocity, dtype=float) * np.asarray(length, dtype=float) / np.asarray(kinematic_viscosity, dtype=float)
+
+
+def prandtl(specific_heat, dynamic_viscosity, conductivity):
+    """Prandtl number ``Pr = c·η/λ`` [-] (Section 2.2.3).
+
+    Examples
+    --------
+    Air at 300 K (c 1005 J/(kg·K), η 18.4e-6 Pa·s, λ 0.0263 W/(m·K)):
+
+    >>> round(float(prandtl(1005.0, 18.4e-6, 0.0263)), 3)
+    0.703
+    """
+    return np.asarray(specific_heat, dtype=float) * np.asarray(dynamic_viscosity, dtype=float) / np.asarray(conductivity, dtype=float)
+
+
+def nusselt_parallel_plate(re, pr):
+    """Mean Nusselt number of a laminar flat plate in parallel flow (Blasius/Pohlhausen),
+    ``Nu = 0.332·Re^(1/2)·Pr^(1/3)`` (Eq. 11): top and side faces of the carriage.
+
+    Valid for laminar flow (Re < 5e5) and Pr ≳ 0.6. (The textbook *mean* Nusselt number over a
+    plate has 0.664; 0.332 is the local value. The paper uses 0.332; kept as written.)
+
+    Examples
+    --------
+    >>> round(float(nusselt_parallel_plate(290.32, 0.7031)), 3)
+    5.03
+
+    References
+    ----------
+    Su, Zhang & Yang (2023), Eq. 11; Incropera et al., Fundamentals of Heat and Mass
+    Transfer, 6th ed., Eq. 7.23.
+    """
+    return 0.332 * np.sqrt(np.asarray(re, dtype=float)) * np.cbrt(np.asarray(pr, dtype=float))
+
+
+def nusselt_normal_plate(re, pr):
+    """Nusselt number of a plate normal to the flow ``Nu = 0.228·Re^0.731·Pr^(1/3)`` (Eq. 12):
+    front faces of the carriage (perpendicular to the motion).
+
+    Examples
+    --------
+    >>> round(float(nusselt_normal_plate(290.32, 0.7031)), 2)
+    12.8
+
+    References
+    ----------
+    Su, Zhang & Yang (2023), Eq. 12 (their refs. [11, 26]).
+    """
+    return 0.228 * np.asarray(re, dtype=float) ** 0.731 * np.cbrt(np.asarray(pr, dtype=float))
+
+
+def heat_transfer_coefficient(nu, conductivity, length):
+    """Convection coefficient ``h = Nu·λ/L_c`` [W/(m²·K)] (Eq. 10)."""
+    return np.asarray(nu, dtype=float) * np.asarray(conductivity, dtype=float) / np.asarray(length, dtype=float)
+
+
+def h_side(air_velocity=0.3, length=0.015, kinematic_viscosity=15.5e-6, dynamic_viscosity=18.4e-6,
+           conductivity=0.0263, specific_heat=1005.0):
+    """h of the top and side faces [W/(m²·K)] (Eqs. 10-11); defaults: the paper.
+
+    Examples
+    --------
+    The paper's 8.82 W/(m²·K):
+
+    >>> round(float(h_side()), 2)
+    8.82
+    """
+    re = reynolds(air_velocity, length, kinematic_viscosity)
+    pr = prandtl(specific_heat, dynamic_viscosity, conductivity)
+    return heat_transfer_coefficient(nusselt_parallel_plate(re, pr), conductivity, length)
+
+
+def h_front(air_velocity=0.3, length=0.015, kinematic_viscosity=15.5e-6, dynamic_viscosity=18.4e-6,
+            conductivity=0.0263, specific_heat=1005.0):
+    """h of the front faces [W/(m²·K)] (Eqs. 10, 12); defaults: the paper.
+
+    Examples
+    --------
+    The paper's 22.45 W/(m²·K):
+
+    >>> round(float(h_front()), 2)
+    22.45
+    """
+    re = reynolds(air_velocity, length, kinematic_viscosity)
+    pr = prandtl(specific_heat, dynamic_viscosity, conductivity)
+    return heat_transfer_coefficient(nusselt_normal_plate(re, pr), conductivity, length)

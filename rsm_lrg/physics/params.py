@@ -1,0 +1,335 @@
+"""Parameters of the guide (THK SHS15V) and the motion stage, with units and sources.
+
+The defaults live in ``data/lrg_shs15v.toml`` (shipped as ``rsm_lrg/data/lrg_shs15v.toml``):
+one table per parameter with ``value``, ``unit``, ``source`` and, for the values the paper
+does not give, ``assumption`` (the rationale). :class:`LRGParams` reads its defaults from
+that file, so the file is the single source of the numbers.
+
+Every name is flat and carries its unit (``preload_n``, ``hinge_width_m``, ``mu_k`` ...), so
+the same names work as ``--param NAME=VALUE`` on the command line, as keys of a TOML
+override file, and as DataFrame columns in the surrogate (:func:`check_values` validates a
+whole column at once).
+
+>>> p = LRGParams()
+>>> round(p.normal_load_n, 2), round(p.f_mu_max_n, 3)
+(173.65, 5.209)
+>>> p.with_overrides(mu_k=0.01).mu_k
+0.01
+>>> LRGParams(mu_s=1.5)
+Traceback (most recent call last):
+...
+ValueError: parameter mu_s must lie in [0, 1], got 1.5
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Iterable, Mapping
+
+import numpy as np
+
+from ..datasets import data_path
+
+__all__ = [
+    "LRGParams", "PARAM_INFO", "ASSUMPTIONS", "param_names", "load_params", "check_values",
+    "parse_assignments", "DEFAULTS_FILE",
+]
+
+#: Name of the shipped defaults file.
+DEFAULTS_FILE = "lrg_shs15v.toml"
+
+
+def _read_spec(path: Path) -> dict[str, dict[str, Any]]:
+    with open(path, "rb") as fh:
+        raw = tomllib.load(fh)
+    spec = {}
+    for name, entry in raw.items():
+        if not isinstance(entry, dict) or "value" not in entry:
+            raise ValueError(f"{path}: table [{name}] has no 'value'")
+        spec[name] = dict(entry)
+    return spec
+
+
+#: name -> {"value", "unit", "source", ["assumption"]} as shipped.
+PARAM_INFO: dict[str, dict[str, Any]] = _read_spec(data_path(DEFAULTS_FILE))
+
+#: name -> rationale, for the values the paper does not give.
+ASSUMPTIONS: dict[str, str] = {k: v["assumption"] for k, v in PARAM_INFO.items() if "assumption" in v}
+
+
+def _d(name: str):
+    return field(default=PARAM_INFO[name]["value"], metadata={"unit": PARAM_INFO[name]["unit"]})
+
+
+# Validation rules (name -> (kind, low, high)); every other float must be > 0.
+_CLOSED_UNIT = {"mu_s", "mu_k"}
+_OPEN_UNIT = {"frame_mass_fraction"}
+_NONNEG = {"dwell_s", "hinge_damping_ratio", "preload_n"}
+_INTS = {"hinge_count", "ball_rows", "balls_per_row"}
+_BOOLS = {"heat_in_calories"}
+
+
+@dataclass(frozen=True)
+class LRGParams:
+    """All inputs of the physics chain, SI units (degrees only for the contact angle, °C for
+    the ambient, HB for the hardness). Defaults: the paper (Tables 1-3, Sections 2-4), the THK
+    SHS15V catalog, and documented assumptions (:data:`ASSUMPTIONS`).
+
+    Build a variant with :meth:`with_overrides` (or ``dataclasses.replace``), from a TOML file
+    with :func:`load_params`, or from ``NAME=VALUE`` strings with :func:`parse_assignments`.
+    Invalid values raise ``ValueError`` naming the parameter.
+    """
+
+    # load and friction
+    preload_n: float = _d("preload_n")
+    stage_mass_kg: float = _d("stage_mass_kg")
+    gravity_m_s2: float = _d("gravity_m_s2")
+    mu_s: float = _d("mu_s")
+    mu_k: float = _d("mu_k")
+    # flexure hinges
+    hinge_count: int = _d("hinge_count")
+    hinge_thickness_m: float = _d("hinge_thickness_m")
+    hinge_width_m: float = _d("hinge_width_m")
+    hinge_length_m: float = _d("hinge_length_m")
+    hinge_modulus_pa: float = _d("hinge_modulus_pa")
+    hinge_damping_ratio: float = _d("hinge_damping_ratio")
+    frame_mass_fraction: float = _d("frame_mass_fraction")
+    carriage_mass_kg: float = _d("carriage_mass_kg")
+    # balls
+    ball_radius_m: float = _d("ball_radius_m")
+    raceway_radius_m: float = _d("raceway_radius_m")
+    ball_rows: int = _d("ball_rows")
+    balls_per_row: int = _d("balls_per_row")
+    contact_angle_deg: float = _d("contact_angle_deg")
+    # heat
+    velocity_m_s: float = _d("velocity_m_s")
+    thermal_equivalent_j_per_cal: float = _d("thermal_equivalent_j_per_cal")
+    heat_in_calories: bool = _d("heat_in_calories")
+    # convection
+    air_velocity_m_s: float = _d("air_velocity_m_s")
+    char_length_m: float = _d("char_length_m")
+    air_kinematic_viscosity_m2_s: float = _d("air_kinematic_viscosity_m2_s")
+    air_dynamic_viscosity_pa_s: float = _d("air_dynamic_viscosity_pa_s")
+    air_conductivity_w_mk: float = _d("air_conductivity_w_mk")
+    air_specific_heat_j_kgk: float = _d("air_specific_heat_j_kgk")
+    # wear
+    wear_coefficient: float = _d("wear_coefficient")
+    hardness_hb: float = _d("hardness_hb")
+    # motion
+    stroke_m: float = _d("stroke_m")
+    acceleration_m_s2: float = _d("acceleration_m_s2")
+    dwell_s: float = _d("dwell_s")
+    # thermal environment and test
+    ambient_c: float = _d("ambient_c")
+    test_duration_min: float = _d("test_duration_min")
+    # geometry
+    block_width_m: float = _d("block_width_m")
+    block_length_m: float = _d("block_length_m")
+    block_height_m: float = _d("block_height_m")
+    rail_width_m: float = _d("rail_width_m")
+    rail_height_m: float = _d("rail_height_m")
+    rail_mass_kg_per_m: float = _d("rail_mass_kg_per_m")
+    rail_length_m: float = _d("rail_length_m")
+    thermocouple_height_m: float = _d("thermocouple_height_m")
+    # materials
+    guide_density_kg_m3: float = _d("guide_density_kg_m3")
+    guide_conductivity_w_mk: float = _d("guide_conductivity_w_mk")
+    guide_specific_heat_j_kgk: float = _d("guide_specific_heat_j_kgk")
+    ball_density_kg_m3: float = _d("ball_density_kg_m3")
+    stage_density_kg_m3: float = _d("stage_density_kg_m3")
+    stage_conductivity_w_mk: float = _d("stage_conductivity_w_mk")
+    stage_specific_heat_j_kgk: float = _d("stage_specific_heat_j_kgk")
+
+    def __post_init__(self):
+        for f in dataclasses.fields(self):
+            object.__setattr__(self, f.name, _coerce(f.name, getattr(self, f.name)))
+
+    # ---- construction ------------------------------------------------------------------
+    def with_overrides(self, **overrides: Any) -> "LRGParams":
+        """A copy with some values replaced; unknown names raise ``ValueError``."""
+        _check_names(overrides)
+        return dataclasses.replace(self, **overrides)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain ``{name: value}`` (JSON-safe)."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    def to_frame(self):
+        """Tidy table: name, value, unit, source, assumption."""
+        import pandas as pd
+
+        rows = []
+        for name, value in self.to_dict().items():
+            info = PARAM_INFO[name]
+            rows.append({"name": name, "value": value, "unit": info["unit"], "source": info["source"],
+                         "assumption": info.get("assumption", "")})
+        return pd.DataFrame(rows)
+
+    # ---- derived quantities (the paper's symbols) --------------------------------------
+    @property
+    def normal_load_n(self) -> float:
+        """F_z = F0 + m_t·g [N] (Section 2.1, Eq. 2 and Eq. 8)."""
+        return self.preload_n + self.stage_mass_kg * self.gravity_m_s2
+
+    @property
+    def f_mu_max_n(self) -> float:
+        """f_µmax = µ_s·(F0 + m_t·g) [N] (Eq. 2)."""
+        return self.mu_s * self.normal_load_n
+
+    @property
+    def n_balls(self) -> int:
+        """Balls in the carriage (rows × balls per row)."""
+        return self.ball_rows * self.balls_per_row
+
+    @property
+    def hinge_stiffness_n_m(self) -> float:
+        """K_n of one hinge [N/m] (Eq. 1)."""
+        return self.hinge_modulus_pa * self.hinge_width_m * self.hinge_thickness_m ** 3 / self.hinge_length_m ** 3
+
+    @property
+    def frame_mass_kg(self) -> float:
+        """Moving mass on the guide side of the hinges: frame share of m_t + carriage [kg]."""
+        return self.frame_mass_fraction * self.stage_mass_kg + self.carriage_mass_kg
+
+    @property
+    def working_stage_mass_kg(self) -> float:
+        """m_ws: the working-stage share of m_t [kg]."""
+        return (1.0 - self.frame_mass_fraction) * self.stage_mass_kg
+
+
+def param_names() -> list[str]:
+    """The parameter names, in declaration order."""
+    return [f.name for f in dataclasses.fields(LRGParams)]
+
+
+_FIELDS = {f.name: f for f in dataclasses.fields(LRGParams)}
+
+
+def _check_names(mapping: Mapping[str, Any], where: str = "") -> None:
+    for k in mapping:
+        if k not in _FIELDS:
+            import difflib
+
+            close = difflib.get_close_matches(str(k), list(_FIELDS), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise ValueError(f"{where}unknown parameter {k!r}{hint}")
+
+
+def _coerce(name: str, value: Any) -> Any:
+    """Convert one scalar value to its field's type and validate it."""
+    if name in _BOOLS:
+        if isinstance(value, (bool, np.bool_)):
+            return bool(value)
+        if isinstance(value, str) and value.strip().lower() in {"true", "1", "yes", "false", "0", "no"}:
+            return value.strip().lower() in {"true", "1", "yes"}
+        if isinstance(value, (int, np.integer)) and value in (0, 1):
+            return bool(value)
+        raise ValueError(f"parameter {name} must be true or false, got {value!r}")
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"parameter {name} must be a number, got {value!r}")
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"parameter {name} must be a number, got {value!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"parameter {name} must be finite, got {value!r}")
+    if name in _INTS:
+        if x != int(x) or x < 1:
+            raise ValueError(f"parameter {name} must be a whole number >= 1, got {value!r}")
+        return int(x)
+    check_values(name, x)
+    return x
+
+
+def check_values(name: str, values) -> None:
+    """Validate a scalar or a whole column of values of parameter ``name``.
+
+    Raises ``ValueError`` naming the parameter (and, for arrays, the first bad row, 0-based).
+
+    >>> check_values("stroke_m", [0.04, 0.06])
+    >>> check_values("stroke_m", [0.04, -0.06])
+    Traceback (most recent call last):
+    ...
+    ValueError: parameter stroke_m must be > 0, got -0.06 (row 1)
+    """
+    if name not in _FIELDS:
+        _check_names({name: None})
+    if name in _BOOLS:
+        return
+    a = np.asarray(values, dtype=float)
+    scalar = a.ndim == 0
+    a = np.atleast_1d(a)
+
+    def fail(mask, rule):
+        i = int(np.flatnonzero(mask)[0])
+        where = "" if scalar else f" (row {i})"
+        raise ValueError(f"parameter {name} must {rule}, got {a[i]:g}{where}")
+
+    bad = ~np.isfinite(a)
+    if bad.any():
+        fail(bad, "be finite")
+    if name in _CLOSED_UNIT:
+        rule, bad = "lie in [0, 1]", (a < 0) | (a > 1)
+    elif name in _OPEN_UNIT:
+        rule, bad = "lie strictly between 0 and 1", (a <= 0) | (a >= 1)
+    elif name in _NONNEG:
+        rule, bad = "be >= 0", a < 0
+    elif name == "ambient_c":
+        rule, bad = "be above absolute zero (-273.15 degC)", a <= -273.15
+    elif name == "contact_angle_deg":
+        rule, bad = "lie strictly between 0 and 90 degrees", (a <= 0) | (a >= 90)
+    elif name in _INTS:
+        rule, bad = "be a whole number >= 1", (a < 1) | (a != np.round(a))
+    else:
+        rule, bad = "be > 0", a <= 0
+    if bad.any():
+        fail(bad, rule)
+
+
+def parse_assignments(items: Iterable[str]) -> dict[str, Any]:
+    """``["mu_k=0.01", "hinge_count=2"]`` -> ``{"mu_k": 0.01, "hinge_count": 2}``, validated.
+
+    >>> parse_assignments(["mu_k=0.01", "heat_in_calories=false"])
+    {'mu_k': 0.01, 'heat_in_calories': False}
+    """
+    out: dict[str, Any] = {}
+    for item in items:
+        if "=" not in item:
+            raise ValueError(f"--param {item!r}: expected NAME=VALUE")
+        name, _, text = item.partition("=")
+        name, text = name.strip(), text.strip()
+        _check_names({name: None})
+        out[name] = _coerce(name, text)
+    return out
+
+
+def load_params(path: str | Path | None = None, base: LRGParams | None = None, **overrides: Any) -> LRGParams:
+    """Parameters from a TOML file (flat ``name = value`` or ``[name] value = ...`` tables).
+
+    Values not in the file keep those of ``base`` (default: the shipped defaults);
+    ``overrides`` are applied last.
+    """
+    p = base or LRGParams()
+    values: dict[str, Any] = {}
+    if path is not None:
+        path = Path(path)
+        if not path.exists():
+            raise ValueError(f"{path}: no such file")
+        try:
+            with open(path, "rb") as fh:
+                raw = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{path}: not valid TOML ({exc})") from None
+        for k, v in raw.items():
+            values[k] = v["value"] if isinstance(v, dict) and "value" in v else v
+        try:
+            _check_names(values)
+            values = {k: _coerce(k, v) for k, v in values.items()}
+        except ValueError as exc:
+            raise ValueError(f"{path}: {exc}") from None
+    values.update(overrides)
+    return p.with_overrides(**values)
