@@ -1,0 +1,18 @@
+"""The model layer: polynomial response-surface models fitted by OLS in coded units.
+
+``terms`` (model terms and the design matrix), ``fit`` (:func:`fit`, :class:`FitResult`),
+``anova`` (Design-Expert ANOVA, Table 5), ``statistics`` (R², PRESS, adequate precision),
+``canonical`` (stationary point and eigen-analysis), ``text`` (the summary text).
+"""
+
+from .anova import ANOVA_COLUMNS, PureError, partial_ss, pure_error
+from .canonical import StationaryPoint, canonical_analysis
+from .fit import COEF_COLUMNS, FitResult, actual_coefficients, fit
+from .statistics import FitStatistics
+from .terms import MODELS, Term, design_matrix, model_terms, parse_term
+
+__all__ = [
+    "fit", "FitResult", "FitStatistics", "StationaryPoint", "PureError", "Term", "MODELS",
+    "model_terms", "design_matrix", "parse_term", "partial_ss", "pure_error",
+    "canonical_analysis", "actual_coefficients", "ANOVA_COLUMNS", "COEF_COLUMNS",
+]

@@ -1,0 +1,141 @@
+"""The analysis of variance as Design-Expert prints it (the paper's Table 5).
+
+Everything here works from one least-squares factorisation: the coefficient vector ``b``
+and the unscaled covariance ``C = (X'X)^-1``. The partial (Type III) sum of squares of a
+term with columns ``S`` is the extra sum of squares for dropping it,
+
+    SS_S = b_S' (C_SS)^-1 b_S          (a 1-df term: b_j^2 / C_jj),
+
+so no term needs a refit. Blocks enter first (sequential SS) and are kept out of the model
+row; pure error comes from runs with identical factor settings in the same block, and lack
+of fit is the rest of the residual.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+__all__ = ["partial_ss", "pure_error", "PureError", "anova_table", "ANOVA_COLUMNS"]
+
+#: Columns of :attr:`FitResult.anova`.
+ANOVA_COLUMNS = ["source", "sum_sq", "df", "mean_sq", "f", "p"]
+
+
+def partial_ss(beta: np.ndarray, cov_unscaled: np.ndarray, idx: Sequence[int] | int) -> float:
+    """Partial (Type III) sum of squares of the columns ``idx`` [response units^2].
+
+    Parameters
+    ----------
+    beta : (p,) array
+        Least-squares coefficients.
+    cov_unscaled : (p, p) array
+        ``(X'X)^-1``.
+    idx : int or sequence of int
+        Column(s) of the term.
+    """
+    idx = np.atleast_1d(np.asarray(idx, dtype=int))
+    b = beta[idx]
+    if idx.size == 1:
+        c = cov_unscaled[idx[0], idx[0]]
+        return float(b[0] ** 2 / c)
+    sub = cov_unscaled[np.ix_(idx, idx)]
+    return float(b @ np.linalg.solve(sub, b))
+
+
+@dataclass(frozen=True)
+class PureError:
+    """Replicate groups and the pure-error sum of squares.
+
+    Attributes
+    ----------
+    groups : ndarray of int
+        Group number of each run (runs with the same settings in the same block share one).
+    n_groups : int
+        Number of distinct settings (per block).
+    ss : float
+        Pure-error sum of squares [response units^2].
+    df : int
+        ``n - n_groups``.
+    """
+
+    groups: np.ndarray
+    n_groups: int
+    ss: float
+    df: int
+
+
+def pure_error(keys: np.ndarray, y: np.ndarray) -> PureError:
+    """Pure error from replicate groups.
+
+    Parameters
+    ----------
+    keys : (n, m) array
+        What makes two runs replicates: the coded settings and (when blocked) the block
+        code, one row per run. Coded values are rounded by :class:`FactorSpace`, so equal
+        settings compare equal.
+    y : (n,) array
+        Response.
+    """
+    import pandas as pd
+
+    keys = np.asarray(keys, dtype=float)
+    if keys.ndim == 1:
+        keys = keys[:, None]
+    frame = pd.DataFrame(keys)
+    groups = frame.groupby(list(frame.columns), sort=False).ngroup().to_numpy()
+    n_groups = int(groups.max()) + 1 if groups.size else 0
+    counts = np.bincount(groups, minlength=n_groups)
+    sums = np.bincount(groups, weights=y, minlength=n_groups)
+    means = sums / counts
+    ss = float(np.sum((y - means[groups]) ** 2))
+    return PureError(groups=groups, n_groups=n_groups, ss=ss, df=int(y.size - n_groups))
+
+
+def _row(source, ss, df, ms=np.nan, f=np.nan, p=np.nan):
+    return {"source": source, "sum_sq": float(ss), "df": int(df), "mean_sq": float(ms), "f": float(f), "p": float(p)}
+
+
+def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, ss_res, df_res,
+                ss_total, df_total, pe: PureError | None):
+    """Assemble the Design-Expert ANOVA rows (a DataFrame with :data:`ANOVA_COLUMNS`).
+
+    F of a term or of the model is its mean square over the residual mean square; F of
+    lack of fit is MS(lack of fit) / MS(pure error). Numbers that do not apply are NaN
+    (``null`` in JSON).
+    """
+    import pandas as pd
+    from scipy import stats
+
+    ms_res = ss_res / df_res if df_res > 0 else np.nan
+
+    def test(ss, df):
+        ms = ss / df if df > 0 else np.nan
+        if df_res > 0 and ms_res > 0:
+            f = ms / ms_res
+            return ms, f, float(stats.f.sf(f, df, df_res))
+        return ms, np.nan, np.nan
+
+    rows = [_row("Model", ss_model, df_model, *test(ss_model, df_model))]
+    for name, ss in zip(term_names, term_ss):
+        rows.append(_row(name, ss, 1, *test(ss, 1)))
+    if df_block:
+        rows.append(_row("Block", ss_block, df_block, ss_block / df_block))
+    rows.append(_row("Residual", ss_res, df_res, ms_res))
+    if pe is not None and pe.df > 0:
+        df_lof = df_res - pe.df
+        ss_lof = max(ss_res - pe.ss, 0.0)
+        ms_pe = pe.ss / pe.df
+        if df_lof > 0:
+            ms_lof = ss_lof / df_lof
+            if ms_pe > 0:
+                f = ms_lof / ms_pe
+                p = float(stats.f.sf(f, df_lof, pe.df))
+            else:
+                f = p = np.nan
+            rows.append(_row("Lack of Fit", ss_lof, df_lof, ms_lof, f, p))
+        rows.append(_row("Pure Error", pe.ss, pe.df, ms_pe))
+    rows.append(_row("Cor Total", ss_total, df_total))
+    return pd.DataFrame(rows, columns=ANOVA_COLUMNS)

@@ -1,0 +1,588 @@
+"""Fitting a response-surface model: :func:`fit` and its result :class:`FitResult`.
+
+The model (linear, 2FI, quadratic — the paper's Eq. 19 — or cubic) is fitted by ordinary
+least squares on statsmodels (``sm.OLS`` on the coded design matrix), in coded units
+``x = (actual - centre) / half_range``. Everything else — the Design-Expert ANOVA
+(Table 5), PRESS, VIF, intervals — comes from that one factorisation: the coefficients,
+``(X'X)^-1`` and the hat diagonal ``h_i = x_i'(X'X)^-1 x_i`` (read off the pseudo-inverse
+statsmodels already holds). No term is refitted, so a fit of 10^6 runs costs a small
+multiple of one least-squares solve.
+
+Blocks (optional) are sum-to-zero effects, as Design-Expert shows them; they enter the
+ANOVA first (sequential SS) and stay out of the model row. Predictions and the optimum are
+for the average block (block effect 0).
+
+>>> import rsm_lrg
+>>> r = rsm_lrg.fit(rsm_lrg.load_table4(), "tcr_c_per_min")
+>>> round(r.statistics.r2, 3), round(r.coefficients.loc["C", "coded"], 5)
+(0.968, 0.0075)
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from ..factors import FactorSpace, _numeric
+from .anova import PureError, anova_table, partial_ss, pure_error
+from .canonical import StationaryPoint, canonical_analysis
+from .statistics import FitStatistics, fit_statistics
+from .terms import MODELS, Term, design_matrix, model_terms, term_name
+
+__all__ = ["fit", "FitResult", "actual_coefficients", "COEF_COLUMNS"]
+
+#: Columns of :attr:`FitResult.coefficients`.
+COEF_COLUMNS = ["coded", "std_error", "t", "p", "ci_low", "ci_high", "vif", "actual"]
+
+
+# ----------------------------------------------------------------------------------------
+# coded -> actual coefficients (exact algebra)
+# ----------------------------------------------------------------------------------------
+def actual_coefficients(coded: Mapping[str, float], terms: Sequence[Term], space: FactorSpace) -> dict:
+    """Coefficients of the same polynomial in actual units (no refit).
+
+    Each coded monomial ``prod ((x_i - c_i) / h_i) ** e_i`` is expanded by the binomial
+    theorem into monomials of the actual ``x_i``; the coefficients are collected by
+    monomial and returned under the same term names (``"A"`` is then the coefficient of
+    the actual thickness, and so on). For a hierarchical model (every standard model) the
+    keys are exactly the coded keys.
+    """
+    from math import comb
+
+    k = len(space)
+    centres = [f.center for f in space.factors]
+    halves = [f.half_range for f in space.factors]
+    acc: dict[tuple, float] = {}
+    for t in terms:
+        c = float(coded[t.name])
+        # expand factor by factor: list of (powers, coefficient)
+        parts = [((), c)]
+        for i in range(k):
+            e = t.powers[i]
+            new = []
+            for pw, v in parts:
+                for m in range(e + 1):
+                    coef = comb(e, m) * (-centres[i]) ** (e - m) / halves[i] ** e
+                    new.append((pw + (m,), v * coef))
+            parts = new
+        for pw, v in parts:
+            acc[pw] = acc.get(pw, 0.0) + v
+    letters = space.letters
+    names = {t.powers: t.name for t in terms}
+    out = {t.name: acc.get(t.powers, 0.0) for t in terms}
+    for pw, v in acc.items():
+        if pw not in names and v != 0.0:
+            out[term_name(pw, letters)] = v
+    return out
+
+
+# ----------------------------------------------------------------------------------------
+# the result
+# ----------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class FitResult:
+    """A fitted response-surface model (frozen).
+
+    Attributes
+    ----------
+    response : str
+        Response column.
+    model : str
+        ``"linear"``, ``"2fi"``, ``"quadratic"`` or ``"cubic"``.
+    block : str or None
+        Block column, if any.
+    space : FactorSpace
+        Factors with their coding (letters A, B, ...).
+    terms : tuple of Term
+        Model terms in order (``terms[0]`` is the intercept).
+    data : pandas.DataFrame
+        The data as given (a copy).
+    coded : pandas.DataFrame
+        Coded factor settings, columns = letters.
+    y : ndarray
+        Response [response units].
+    design_matrix : ndarray
+        Full model matrix (intercept, block contrasts, terms), n x p.
+    column_names : tuple of str
+        Names of the ``design_matrix`` columns (blocks are ``"Block[B1]"``, ...).
+    coefficients : pandas.DataFrame
+        Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``
+        (std_error, t, p, CI and VIF refer to the coded coefficient; 95 % CI).
+    anova : pandas.DataFrame
+        Columns ``source, sum_sq, df, mean_sq, f, p``; rows Model, each term (Type III),
+        Block, Residual, Lack of Fit, Pure Error, Cor Total (as Table 5).
+    statistics : FitStatistics
+    stationary_point : StationaryPoint
+    fitted, residuals, hat : ndarray
+        ŷ, e = y - ŷ, leverage h_ii.
+    cov_unscaled : ndarray
+        ``(X'X)^-1`` of ``design_matrix``.
+    sigma2 : float
+        Residual mean square [response units²].
+    df_resid : int
+    block_effects : dict or None
+        ``{"B1": effect, ...}`` (sum to zero) [response units].
+    block_levels : dict or None
+        ``{"B1": original label, ...}``.
+    pure_error : PureError or None
+        Replicate groups (``None`` when no run is replicated).
+    actual_coefficients : dict
+        ``{term: coefficient in actual units}``.
+    ols : statsmodels RegressionResults
+        The statsmodels fit behind it all.
+    notes : tuple of str
+        Remarks for the text output (e.g. why there is no lack-of-fit test).
+    """
+
+    response: str
+    model: str
+    block: str | None
+    space: FactorSpace
+    terms: tuple
+    data: Any = field(repr=False)
+    coded: Any = field(repr=False)
+    y: np.ndarray = field(repr=False)
+    design_matrix: np.ndarray = field(repr=False)
+    column_names: tuple = field(repr=False)
+    coefficients: Any = field(repr=False)
+    anova: Any = field(repr=False)
+    statistics: FitStatistics = field(repr=False)
+    stationary_point: StationaryPoint = field(repr=False)
+    fitted: np.ndarray = field(repr=False)
+    residuals: np.ndarray = field(repr=False)
+    hat: np.ndarray = field(repr=False)
+    cov_unscaled: np.ndarray = field(repr=False)
+    sigma2: float = field(repr=False)
+    df_resid: int = field(repr=False)
+    block_effects: dict | None = field(repr=False)
+    block_levels: dict | None = field(repr=False)
+    pure_error: PureError | None = field(repr=False)
+    actual_coefficients: dict = field(repr=False)
+    ols: Any = field(repr=False)
+    notes: tuple = field(default=(), repr=False)
+
+    # -- views -----------------------------------------------------------------------
+    @property
+    def n(self) -> int:
+        """Number of runs."""
+        return int(self.y.size)
+
+    @property
+    def term_names(self) -> list[str]:
+        return [t.name for t in self.terms]
+
+    @property
+    def factors(self) -> list[str]:
+        """Factor column names in letter order."""
+        return self.space.names
+
+    @property
+    def _term_index(self) -> np.ndarray:
+        """Positions of the model terms in ``design_matrix`` (blocks skipped)."""
+        nb = len(self.column_names) - len(self.terms)
+        return np.r_[0, np.arange(1 + nb, len(self.column_names))] if nb else np.arange(len(self.terms))
+
+    @property
+    def studentized_residuals(self) -> np.ndarray:
+        """Internally studentized residuals e_i / (σ √(1 - h_ii)) [-]."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return self.residuals / np.sqrt(self.sigma2 * (1.0 - self.hat))
+
+    @property
+    def externally_studentized_residuals(self) -> np.ndarray:
+        """Externally studentized (deleted) residuals, Design-Expert's "externally studentized" [-]."""
+        p = self.design_matrix.shape[1]
+        r = self.studentized_residuals
+        dfe = self.df_resid
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return r * np.sqrt((dfe - 1) / (dfe - r ** 2))
+
+    @property
+    def cooks_distance(self) -> np.ndarray:
+        """Cook's distance D_i = r_i² h_ii / (p (1 - h_ii)) [-]."""
+        p = self.design_matrix.shape[1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return self.studentized_residuals ** 2 * self.hat / (p * (1.0 - self.hat))
+
+    def canonical(self, threshold: float | None = None) -> StationaryPoint:
+        """Canonical analysis; ``threshold`` reproduces R ``rsm``'s ``canonical(threshold=)``."""
+        coefs = dict(zip(self.coefficients.index, self.coefficients["coded"]))
+        return canonical_analysis(coefs, self.terms, self.space, threshold=threshold)
+
+    # -- prediction ------------------------------------------------------------------
+    def _coded_points(self, points, coded: bool) -> np.ndarray:
+        import pandas as pd
+
+        if isinstance(points, Mapping):
+            vals = {k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in points.items()}
+            points = pd.DataFrame(vals)
+        if isinstance(points, pd.Series):
+            points = points.to_frame().T
+        if isinstance(points, pd.DataFrame):
+            cols = self.space.letters if coded else self.space.names
+            missing = [c for c in cols if c not in points.columns]
+            if missing:
+                raise ValueError(f"prediction points lack the factor column(s) {', '.join(map(repr, missing))}")
+            if coded:
+                return np.column_stack([_numeric(points, c).to_numpy() for c in cols])
+            return self.space.encode(points[cols]).to_numpy(dtype=float)
+        arr = np.asarray(points, dtype=float)
+        if arr.ndim == 1:
+            arr = arr[None, :]
+        if arr.shape[-1] != len(self.space):
+            raise ValueError(f"prediction points need {len(self.space)} columns (one per factor), got {arr.shape[-1]}")
+        if not np.isfinite(arr).all():
+            raise ValueError("prediction points must be finite numbers")
+        return arr if coded else self.space.encode(arr)
+
+    def predict_coded(self, coded: np.ndarray) -> np.ndarray:
+        """ŷ at coded settings (n x k array), average block [response units]."""
+        Xt = design_matrix(coded, self.terms)
+        return Xt @ self.coefficients["coded"].to_numpy()
+
+    def predict(self, points, interval: str | None = None, alpha: float = 0.05, *, coded: bool = False):
+        """Predicted response, optionally with a confidence or prediction interval.
+
+        Parameters
+        ----------
+        points : DataFrame, mapping or array
+            Settings in actual units: a frame (or ``{name: values}``) with the factor
+            columns, or an (n, k) array in factor order. With ``coded=True`` the frame
+            columns are the letters and values are coded.
+        interval : {None, "confidence", "prediction", "both"}
+            Which interval to add (``ci_low/ci_high``, ``pi_low/pi_high``).
+        alpha : float
+            1 - confidence level (0.05 gives 95 % intervals).
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns ``predicted`` and ``se_fit`` [response units] and the interval bounds;
+            predictions are for the average block.
+        """
+        import pandas as pd
+        from scipy import stats
+
+        if interval not in (None, "confidence", "prediction", "both"):
+            raise ValueError(f"interval must be None, 'confidence', 'prediction' or 'both', not {interval!r}")
+        if not 0.0 < alpha < 1.0:
+            raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
+        index = points.index if isinstance(points, pd.DataFrame) else None
+        x = self._coded_points(points, coded)
+        Xt = design_matrix(x, self.terms)
+        beta = self.coefficients["coded"].to_numpy()
+        pred = Xt @ beta
+        idx = self._term_index
+        C = self.cov_unscaled[np.ix_(idx, idx)]
+        q = np.einsum("ij,jk,ik->i", Xt, C, Xt)
+        se = np.sqrt(q * self.sigma2)
+        out = pd.DataFrame({"predicted": pred, "se_fit": se}, index=index)
+        if interval:
+            tq = stats.t.ppf(1 - alpha / 2, self.df_resid) if self.df_resid > 0 else np.nan
+            if interval in ("confidence", "both"):
+                out["ci_low"] = pred - tq * se
+                out["ci_high"] = pred + tq * se
+            if interval in ("prediction", "both"):
+                spi = np.sqrt((1.0 + q) * self.sigma2)
+                out["pi_low"] = pred - tq * spi
+                out["pi_high"] = pred + tq * spi
+        return out
+
+    # -- optimisation ------------------------------------------------------------------
+    def optimize(self, goal="minimize", bounds=None, **kwargs):
+        """Optimum of the fitted response in the factor box; see :func:`rsm_lrg.optimize.optimize`."""
+        from ..optimize import optimize as _optimize
+
+        return _optimize(self, goal=goal, bounds=bounds, **kwargs)
+
+    # -- faces -------------------------------------------------------------------------
+    def summary(self) -> str:
+        """Design-Expert style text: ANOVA (Table 5 layout), statistics, coefficients,
+        equations in coded and actual units, canonical analysis."""
+        from .text import format_summary
+
+        return format_summary(self)
+
+    def __str__(self) -> str:
+        return self.summary()
+
+    def to_dict(self) -> dict:
+        """The fit JSON of INTERFACE.md (plain Python; NaN becomes ``null`` in JSON)."""
+        coef = self.coefficients
+        out = {
+            "response": self.response,
+            "n": self.n,
+            "model": self.model,
+            "block": self.block,
+            "factors": self.space.to_list(),
+            "coefficients": {
+                "coded": {k: _f(v) for k, v in coef["coded"].items()},
+                "actual": {k: _f(v) for k, v in self.actual_coefficients.items()},
+            },
+            "std_errors": {"coded": {k: _f(v) for k, v in coef["std_error"].items()}},
+        }
+        if self.block is not None:
+            out["block_effects"] = {k: _f(v) for k, v in (self.block_effects or {}).items()}
+        out["anova"] = [
+            {"source": r.source, "sum_sq": _f(r.sum_sq), "df": int(r.df), "mean_sq": _f(r.mean_sq), "f": _f(r.f), "p": _f(r.p)}
+            for r in self.anova.itertuples(index=False)
+        ]
+        out["statistics"] = {k: _f(v) for k, v in self.statistics.to_dict().items()}
+        out["stationary_point"] = self.stationary_point.to_dict()
+        return out
+
+    def to_frame(self):
+        """Per-run diagnostics: actual and coded settings, response, fitted, residual,
+        leverage, studentized residuals, Cook's distance."""
+        import pandas as pd
+
+        df = pd.DataFrame({f.name: self.data[f.name].to_numpy(dtype=float) for f in self.space.factors})
+        for L in self.space.letters:
+            df[f"coded_{L}"] = self.coded[L].to_numpy()
+        if self.block is not None:
+            df[self.block] = self.data[self.block].to_numpy()
+        df[self.response] = self.y
+        df["fitted"] = self.fitted
+        df["residual"] = self.residuals
+        df["leverage"] = self.hat
+        df["studentized"] = self.studentized_residuals
+        df["externally_studentized"] = self.externally_studentized_residuals
+        df["cooks_distance"] = self.cooks_distance
+        return df
+
+
+def _f(v):
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        return None
+    return x if math.isfinite(x) else None
+
+
+# ----------------------------------------------------------------------------------------
+# fit()
+# ----------------------------------------------------------------------------------------
+def _block_codes(data, block: str):
+    """Integer codes 0..b-1 (levels sorted), keys "B1".., level labels."""
+    import pandas as pd
+
+    col = data[block]
+    if col.isna().any():
+        i = int(np.flatnonzero(col.isna().to_numpy())[0])
+        raise ValueError(f"block column {block!r}, row {i + 1}: is empty")
+    num = pd.to_numeric(col, errors="coerce")
+    if not num.isna().any():
+        labels = num.to_numpy(dtype=float)
+        levels = np.unique(labels)
+        codes = np.searchsorted(levels, labels)
+        shown = [int(v) if float(v).is_integer() else float(v) for v in levels]
+    else:
+        labels = col.astype(str).str.strip().to_numpy()
+        levels = np.unique(labels)
+        codes = np.searchsorted(levels, labels)
+        shown = [str(v) for v in levels]
+    if len(levels) < 2:
+        raise ValueError(f"block column {block!r} has a single level ({shown[0]!r}); a block column needs at least two")
+    keys = [f"B{i + 1}" for i in range(len(levels))]
+    return codes.astype(int), keys, dict(zip(keys, shown))
+
+
+def _aliased_terms(X: np.ndarray, names: Sequence[str]) -> list[str]:
+    """Columns that are (numerically) linear combinations of earlier columns."""
+    R = np.linalg.qr(X, mode="r")
+    norms = np.linalg.norm(X, axis=0)
+    d = np.abs(np.diag(R))
+    bad = [names[j] for j in range(X.shape[1]) if norms[j] == 0 or d[j] <= 1e-9 * max(norms[j], 1.0)]
+    return bad
+
+
+def fit(data, response: str, factors=None, block: str | None = None, model: str = "quadratic") -> FitResult:
+    """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        One row per run.
+    response : str
+        Response column (e.g. ``"tcr_c_per_min"`` [°C/min]).
+    factors : None, sequence or FactorSpace
+        ``None``: every numeric column except the response, the block and bookkeeping
+        columns. Or names, ``"NAME=LOW:HIGH"`` strings (levels coded -1 and +1), or a
+        :class:`~rsm_lrg.factors.FactorSpace`. A name without levels is coded from the
+        observed minimum and maximum.
+    block : str, optional
+        Block column (any labels); block effects sum to zero.
+    model : {"linear", "2fi", "quadratic", "cubic"}
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    ValueError
+        Unknown or non-numeric columns (naming the row), a constant factor, fewer runs
+        than model terms, aliased terms (naming them).
+    """
+    import pandas as pd
+    import statsmodels.api as sm
+    from scipy import stats
+
+    if not isinstance(data, pd.DataFrame):
+        raise TypeError("data must be a pandas DataFrame")
+    if model not in MODELS:
+        raise ValueError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
+    if response not in data.columns:
+        raise ValueError(f"response column {response!r} not found (columns: {', '.join(map(str, data.columns))})")
+    if block is not None and block not in data.columns:
+        raise ValueError(f"block column {block!r} not found (columns: {', '.join(map(str, data.columns))})")
+    if block is not None and block == response:
+        raise ValueError(f"column {response!r} cannot be both the response and the block")
+    exclude = [response] + ([block] if block is not None else [])
+    space = FactorSpace.from_data(data, factors, exclude=exclude)
+    y = _numeric(data, response).to_numpy(dtype=float)
+    coded = space.encode(data)
+    for f in space.factors:
+        if np.unique(coded[f.letter].to_numpy()).size < 2:
+            raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")
+
+    terms = tuple(model_terms(space.letters, model))
+    Xt = design_matrix(coded.to_numpy(dtype=float), terms)
+    n = y.size
+    names = [t.name for t in terms]
+    if block is not None:
+        bcodes, bkeys, blevels = _block_codes(data, block)
+        nb = len(bkeys)
+        Bm = np.zeros((n, nb - 1))
+        for j in range(nb - 1):
+            Bm[bcodes == j, j] = 1.0
+        Bm[bcodes == nb - 1, :] = -1.0
+        X = np.hstack([Xt[:, :1], Bm, Xt[:, 1:]])
+        col_names = ["Intercept"] + [f"Block[{k}]" for k in bkeys[:-1]] + names[1:]
+    else:
+        bcodes, bkeys, blevels, nb = None, None, None, 1
+        X = Xt
+        col_names = names
+    p = X.shape[1]
+    if n < p:
+        what = f"{len(terms)} terms" + (f" and {nb - 1} block effects" if nb > 1 else "")
+        raise ValueError(f"{n} runs cannot fit {p} terms (the {model} model in {len(space)} factors has {what})")
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ols = sm.OLS(y, X).fit()
+    if int(ols.model.rank) < p:
+        bad = _aliased_terms(X, col_names) or ["(unidentified)"]
+        raise ValueError(
+            f"the {model} model cannot be estimated from this design: term(s) {', '.join(bad)} "
+            f"are aliased with earlier terms (the design matrix has rank {int(ols.model.rank)} < {p})"
+        )
+    beta = np.asarray(ols.params, dtype=float)
+    C = np.asarray(ols.model.normalized_cov_params, dtype=float)
+    pinv = ols.model.pinv_wexog
+    hat = np.einsum("ij,ji->i", X, pinv)
+    fitted = X @ beta
+    resid = y - fitted
+    df_res = n - p
+    ss_res = float(resid @ resid)
+    ybar = float(np.mean(y))
+    ss_total = float(np.sum((y - ybar) ** 2))
+    sigma2 = ss_res / df_res if df_res > 0 else math.nan
+
+    # Blocks entered first: SS between block means.
+    if nb > 1:
+        cnt = np.bincount(bcodes, minlength=nb)
+        means = np.bincount(bcodes, weights=y, minlength=nb) / cnt
+        ss_block = float(np.sum(cnt * (means - ybar) ** 2))
+    else:
+        ss_block = 0.0
+    ss_model = max(ss_total - ss_block - ss_res, 0.0)
+    df_model = len(terms) - 1
+
+    tidx = np.r_[0, np.arange(nb, p)] if nb > 1 else np.arange(p)
+    term_ss = [partial_ss(beta, C, j) for j in tidx[1:]]
+
+    keys = coded.to_numpy(dtype=float)
+    if nb > 1:
+        keys = np.column_stack([keys, bcodes])
+    pe = pure_error(keys, y)
+    notes = []
+    if pe.df == 0:
+        pe_used = None
+        notes.append("No lack-of-fit test: no factor setting is replicated"
+                     + (" within a block" if nb > 1 else "") + ", so there is no pure error.")
+    else:
+        pe_used = pe
+        if df_res - pe.df == 0:
+            notes.append("No lack-of-fit test: the model uses every degree of freedom beyond pure error.")
+    if df_res == 0:
+        notes.append("The model is saturated (no residual degrees of freedom): no F tests.")
+
+    anova = anova_table(term_names=names[1:], term_ss=term_ss, ss_model=ss_model, df_model=df_model,
+                        ss_block=ss_block, df_block=nb - 1, ss_res=ss_res, df_res=df_res,
+                        ss_total=ss_total, df_total=n - 1, pe=pe_used)
+
+    # coefficients (coded), errors, VIF, actual
+    b_t = beta[tidx]
+    se = np.sqrt(np.diag(C)[tidx] * sigma2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tval = b_t / se
+    if df_res > 0:
+        pval = 2 * stats.t.sf(np.abs(tval), df_res)
+        tq = stats.t.ppf(0.975, df_res)
+    else:
+        pval = np.full_like(b_t, np.nan)
+        tq = np.nan
+    vif = _vif(C, tidx, X, n)
+    coded_coefs = dict(zip(names, b_t.tolist()))
+    actual = actual_coefficients(coded_coefs, terms, space)
+    coef = pd.DataFrame(
+        {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se,
+         "ci_high": b_t + tq * se, "vif": vif, "actual": [actual[nm] for nm in names]},
+        index=pd.Index(names, name="term"),
+    )
+    statistics = fit_statistics(y=y, fitted=fitted, residuals=resid, hat=hat, ss_res=ss_res, df_res=df_res,
+                                ss_total=ss_total, ss_block=ss_block, df_model=df_model, n_params=p)
+    sp = canonical_analysis(coded_coefs, terms, space)
+    if nb > 1:
+        eff = beta[1:nb].tolist()
+        eff.append(-float(np.sum(eff)))
+        block_effects = dict(zip(bkeys, eff))
+    else:
+        block_effects = None
+    return FitResult(
+        response=response, model=model, block=block, space=space, terms=terms, data=data.copy(),
+        coded=coded, y=y, design_matrix=X, column_names=tuple(col_names), coefficients=coef,
+        anova=anova, statistics=statistics, stationary_point=sp, fitted=fitted, residuals=resid,
+        hat=hat, cov_unscaled=C, sigma2=float(sigma2), df_resid=int(df_res),
+        block_effects=block_effects, block_levels=blevels, pure_error=pe_used,
+        actual_coefficients=actual, ols=ols, notes=tuple(notes),
+    )
+
+
+def _vif(C: np.ndarray, tidx: np.ndarray, X: np.ndarray, n: int) -> np.ndarray:
+    """Variance inflation factors of the model terms (NaN for the intercept).
+
+    Design-Expert's definition: the diagonal of the inverse correlation matrix of the
+    non-intercept term columns of the coded design matrix. ``X'X`` is recovered as
+    ``C^-1`` (p x p) so no pass over the n rows beyond the column means is needed.
+    """
+    cols = tidx[1:]
+    out = np.full(tidx.size, np.nan)
+    if cols.size == 0:
+        return out
+    G = np.linalg.inv(C)[np.ix_(cols, cols)]
+    m = X.mean(axis=0)[cols]
+    S = G - n * np.outer(m, m)
+    d = np.sqrt(np.diag(S))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        R = S / np.outer(d, d)
+        try:
+            out[1:] = np.diag(np.linalg.inv(R))
+        except np.linalg.LinAlgError:
+            pass
+    return out

@@ -1,0 +1,164 @@
+"""Model terms and the design matrix of a polynomial response-surface model.
+
+A term is a monomial in the coded factors, held as a tuple of exponents (one per
+factor). Names follow Design-Expert: ``"Intercept"``, ``"A"``, ``"AB"`` (letters in factor
+order), ``"A^2"``; higher orders are ready for a cubic model (``"A^3"``, ``"A^2B"``,
+``"ABC"``).
+
+Term order is the one Design-Expert prints (and Table 5 of the paper): intercept, main
+effects, two-factor interactions, pure quadratics, then cubic terms.
+
+>>> [t.name for t in model_terms(["A", "B"], "quadratic")]
+['Intercept', 'A', 'B', 'AB', 'A^2', 'B^2']
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+__all__ = ["Term", "MODELS", "model_terms", "design_matrix", "design_gradient", "term_name", "parse_term"]
+
+#: Model names accepted by :func:`model_terms`.
+MODELS = ("linear", "2fi", "quadratic", "cubic")
+
+
+def term_name(powers: Sequence[int], letters: Sequence[str]) -> str:
+    """Design-Expert name of the monomial with exponents ``powers``.
+
+    >>> term_name((1, 0, 1), "ABC"), term_name((0, 2, 0), "ABC"), term_name((0, 0, 0), "ABC")
+    ('AC', 'B^2', 'Intercept')
+    """
+    parts = []
+    for p, L in zip(powers, letters):
+        if p == 1:
+            parts.append(L)
+        elif p > 1:
+            parts.append(f"{L}^{p}")
+    return "".join(parts) if parts else "Intercept"
+
+
+@dataclass(frozen=True)
+class Term:
+    """One model term: a monomial ``prod(x_i ** powers[i])`` in coded units."""
+
+    powers: tuple[int, ...]
+    name: str
+
+    @property
+    def order(self) -> int:
+        """Total degree (0 intercept, 1 main effect, 2 interaction or square, ...)."""
+        return int(sum(self.powers))
+
+    @property
+    def kind(self) -> str:
+        """``"intercept"``, ``"linear"``, ``"interaction"``, ``"quadratic"`` (pure square) or ``"cubic"``."""
+        o = self.order
+        if o == 0:
+            return "intercept"
+        if o == 1:
+            return "linear"
+        if o == 2:
+            return "quadratic" if max(self.powers) == 2 else "interaction"
+        return "cubic" if o == 3 else f"order{o}"
+
+
+def _term(powers, letters) -> Term:
+    powers = tuple(int(p) for p in powers)
+    return Term(powers, term_name(powers, letters))
+
+
+def model_terms(letters: Sequence[str], model: str = "quadratic") -> list[Term]:
+    """Terms of a standard model in Design-Expert order.
+
+    Parameters
+    ----------
+    letters : sequence of str
+        Factor letters (``["A", "B", ...]``).
+    model : {"linear", "2fi", "quadratic", "cubic"}
+        ``"2fi"`` is main effects plus two-factor interactions; ``"quadratic"`` adds the
+        pure squares (the paper's Eq. 19); ``"cubic"`` adds all third-order monomials.
+    """
+    if model not in MODELS:
+        raise ValueError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
+    k = len(letters)
+    if k < 1:
+        raise ValueError("a model needs at least one factor")
+    unit = np.eye(k, dtype=int)
+    out = [_term([0] * k, letters)]
+    out += [_term(unit[i], letters) for i in range(k)]
+    if model in ("2fi", "quadratic", "cubic"):
+        out += [_term(unit[i] + unit[j], letters) for i, j in itertools.combinations(range(k), 2)]
+    if model in ("quadratic", "cubic"):
+        out += [_term(2 * unit[i], letters) for i in range(k)]
+    if model == "cubic":
+        cub = [tuple(p) for p in itertools.product(range(4), repeat=k) if sum(p) == 3]
+        # Design-Expert order: ABC-type, then A^2B-type, then A^3
+        cub.sort(key=lambda p: (max(p), [-x for x in p]))
+        out += [_term(p, letters) for p in cub]
+    return out
+
+
+def parse_term(name: str, letters: Sequence[str]) -> Term:
+    """The :class:`Term` called ``name`` (``"AB"``, ``"A^2"``, ``"Intercept"``).
+
+    >>> parse_term("A^2B", "ABC").powers
+    (2, 1, 0)
+    """
+    import re
+
+    letters = list(letters)
+    powers = [0] * len(letters)
+    if name != "Intercept":
+        pat = "|".join(sorted(map(re.escape, letters), key=len, reverse=True))
+        pos = 0
+        for m in re.finditer(rf"({pat})(?:\^(\d+))?", name):
+            if m.start() != pos:
+                break
+            powers[letters.index(m.group(1))] += int(m.group(2) or 1)
+            pos = m.end()
+        if pos != len(name) or not any(powers):
+            raise ValueError(f"cannot read model term {name!r} (factors {', '.join(letters)})")
+    return _term(powers, letters)
+
+
+def design_matrix(coded: np.ndarray, terms: Sequence[Term]) -> np.ndarray:
+    """Model matrix ``X`` (n x p) for coded settings ``coded`` (n x k).
+
+    Column j holds ``prod_i coded[:, i] ** terms[j].powers[i]``.
+    """
+    x = np.asarray(coded, dtype=float)
+    if x.ndim == 1:
+        x = x[None, :]
+    n = x.shape[0]
+    X = np.empty((n, len(terms)), dtype=float)
+    for j, t in enumerate(terms):
+        col = np.ones(n)
+        for i, p in enumerate(t.powers):
+            if p == 1:
+                col = col * x[:, i]
+            elif p > 1:
+                col = col * x[:, i] ** p
+        X[:, j] = col
+    return X
+
+
+def design_gradient(point: np.ndarray, terms: Sequence[Term]) -> np.ndarray:
+    """Jacobian (p x k) of the model row ``x(point)`` with respect to the coded factors."""
+    x = np.asarray(point, dtype=float).ravel()
+    k = x.size
+    G = np.zeros((len(terms), k))
+    for j, t in enumerate(terms):
+        for i in range(k):
+            p = t.powers[i]
+            if p == 0:
+                continue
+            v = p * x[i] ** (p - 1)
+            for m, q in enumerate(t.powers):
+                if m != i and q:
+                    v *= x[m] ** q
+            G[j, i] = v
+    return G
