@@ -193,8 +193,9 @@ class FactorSpace:
         ----------
         data : pandas.DataFrame
         factors : sequence, FactorSpace or None
-            ``None``: every numeric column not in ``exclude`` and not a bookkeeping
-            column (``run``, ``order``, ``std``, ``std_order``, ``run_order``). Otherwise
+            ``None``: every numeric column not in ``exclude``, not a bookkeeping
+            column (``run``, ``order``, ``std``, ``std_order``, ``run_order``) and not a
+            coded column of a design CSV (name starting ``coded_``). Otherwise
             items that are names, ``"NAME=LOW:HIGH"`` strings, ``(name, low, high)``
             tuples or :class:`Factor` objects; a name without levels takes the observed
             minimum and maximum of its column.
@@ -213,6 +214,7 @@ class FactorSpace:
             names = [
                 c for c in data.columns
                 if c not in exclude and str(c).lower() not in BOOKKEEPING
+                and not str(c).lower().startswith(CODED_COLUMN_PREFIX)
                 and pd.api.types.is_numeric_dtype(data[c]) and not pd.api.types.is_bool_dtype(data[c])
             ]
             items: list[Any] = list(names)
@@ -312,6 +314,10 @@ class FactorSpace:
 
 #: Column names that are never factors (case-insensitive).
 BOOKKEEPING = frozenset({"run", "order", "std", "std_order", "run_order"})
+
+#: Columns whose lower-cased name starts with this are a design CSV's coded copies of the
+#: factors (``coded_A``, ...); never picked as factors by default.
+CODED_COLUMN_PREFIX = "coded_"
 
 
 def _numeric(data, name: str):

@@ -1,0 +1,543 @@
+"""The :class:`Design` object shared by every generator, randomisation, and the CSV layout.
+
+A design is a table of runs over a :class:`~rsm_lrg.factors.FactorSpace`. Each run keeps
+its *standard order* (the order in which the generator lists it, ``std_order`` 1..N) and
+gets a *run order* (the order in which it is to be run, ``run_order`` 1..N), randomised
+from a seed so that the same seed gives the same order. Rows are held in run order.
+
+The CSV layout (what ``rsm-lrg design`` writes and what later commands read)::
+
+    std_order, run_order, [block,] coded_A, coded_B, ..., <factor name>, <factor name>, ...
+
+The coded columns carry the prefix ``coded_`` so that ``fit`` skips them when it picks the
+factor columns by default (see :meth:`rsm_lrg.factors.FactorSpace.from_data`).
+"""
+
+from __future__ import annotations
+
+import math
+import secrets
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+import numpy as np
+
+from ..factors import BOOKKEEPING, Factor, FactorSpace, _numeric, letters_for, parse_factor_spec
+
+__all__ = [
+    "Design",
+    "read_design",
+    "as_factor_space",
+    "resolve_seed",
+    "randomized_run_order",
+    "CODED_PREFIX",
+    "BLOCK_COLUMN",
+]
+
+#: Prefix of the coded columns in a design CSV (``coded_A``, ``coded_B``, ...).
+CODED_PREFIX = "coded_"
+#: Name of the block column in a design CSV.
+BLOCK_COLUMN = "block"
+
+# Relative tolerance when reading the coding back from coded + actual columns.
+_READ_RTOL = 1e-9
+
+
+def as_factor_space(factors: Any) -> FactorSpace:
+    """A :class:`FactorSpace` from a FactorSpace, ``{name: (low, high)}``, or specs.
+
+    Parameters
+    ----------
+    factors : FactorSpace, mapping, or sequence
+        A ready :class:`FactorSpace`; a mapping ``{name: (low, high)}`` (in order); or a
+        sequence whose items are ``"NAME=LOW:HIGH"`` strings, ``(name, low, high)``
+        tuples or :class:`Factor` objects.
+
+    >>> as_factor_space(["x=0:10", "y=1:2"]).names
+    ['x', 'y']
+    """
+    if isinstance(factors, FactorSpace):
+        return factors
+    if isinstance(factors, Mapping):
+        items = []
+        for name, rng in factors.items():
+            try:
+                low, high = rng
+            except (TypeError, ValueError):
+                raise ValueError(f"factor {name!r}: expected a (low, high) pair, got {rng!r}") from None
+            items.append((name, low, high))
+        return FactorSpace.from_ranges(items)
+    if isinstance(factors, (str, bytes)):
+        raise TypeError("factors must be a list of 'NAME=LOW:HIGH' strings, not a single string")
+    try:
+        seq = list(factors)
+    except TypeError:
+        raise TypeError(
+            "factors must be a FactorSpace, a mapping {name: (low, high)} or a list of "
+            f"'NAME=LOW:HIGH' strings, not {type(factors).__name__}"
+        ) from None
+    items = []
+    for it in seq:
+        if isinstance(it, Factor):
+            items.append((it.name, it.low, it.high))
+        elif isinstance(it, str):
+            name, low, high = parse_factor_spec(it)
+            if low is None:
+                raise ValueError(f"factor {name!r}: levels are needed here; write {name}=LOW:HIGH")
+            items.append((name, low, high))
+        else:
+            try:
+                name, low, high = it
+            except (TypeError, ValueError):
+                raise ValueError(f"factor {it!r}: expected 'NAME=LOW:HIGH' or (name, low, high)") from None
+            items.append((name, low, high))
+    return FactorSpace.from_ranges(items)
+
+
+def resolve_seed(seed: Any) -> tuple[np.random.Generator, int | None]:
+    """A NumPy generator for ``seed`` and the integer seed to record (if there is one).
+
+    ``None`` draws a fresh 32-bit seed (from :mod:`secrets`) and returns it, so that a
+    design made without a seed can still be reproduced from the seed it records.
+    """
+    if isinstance(seed, np.random.Generator):
+        return seed, None
+    if seed is None:
+        seed = secrets.randbits(32)
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
+        raise TypeError(f"seed must be an integer or a numpy.random.Generator, not {type(seed).__name__}")
+    if seed < 0:
+        raise ValueError(f"seed must not be negative (got {seed})")
+    return np.random.default_rng(int(seed)), int(seed)
+
+
+def randomized_run_order(blocks: np.ndarray | None, n: int, rng: np.random.Generator | None) -> np.ndarray:
+    """Run order (1..n) for runs given in standard order.
+
+    With ``rng=None`` the run order is the standard order. Otherwise runs are shuffled,
+    within each block when ``blocks`` is given (blocks keep their order: all of block 1
+    runs first, then block 2, ...), as R ``rsm``'s ``bbd``/``ccd`` randomise.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``perm`` such that ``perm[j]`` is the 0-based standard-order index of the run made
+        ``j``-th.
+    """
+    idx = np.arange(n)
+    if rng is None:
+        if blocks is not None:
+            return idx[np.argsort(blocks, kind="stable")]
+        return idx
+    if blocks is None:
+        return rng.permutation(n)
+    out = []
+    for b in sorted(set(blocks.tolist())):
+        members = idx[blocks == b]
+        out.append(members[rng.permutation(len(members))])
+    return np.concatenate(out)
+
+
+def _clean_actual(f: Factor, coded: np.ndarray) -> np.ndarray:
+    """Decode, keeping low/high exact and trimming float noise off the other levels.
+
+    ``(0.0001 + 0.0005) / 2`` is ``0.00030000000000000003`` in binary floating point; a
+    design CSV should say ``0.0003``. A value is rounded to 12 significant digits only when
+    the rounded value still codes to the same coded value (coded values are themselves
+    kept to 12 decimals, see :mod:`rsm_lrg.factors`).
+    """
+    x = np.asarray(f.decode(coded), dtype=float)
+    out = x.copy()
+    for i, (c, v) in enumerate(zip(np.asarray(coded, dtype=float), x)):
+        if c in (-1.0, 1.0) or v == 0.0:
+            continue
+        r = float(f"{v:.12g}")
+        if r != v and f.encode(r) == f.encode(v):
+            out[i] = r
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class Design:
+    """An experimental design: factor space, generator, options and the run table.
+
+    Rows are in run order. Build one with a generator (:func:`~rsm_lrg.design.box_behnken`,
+    :func:`~rsm_lrg.design.central_composite`, :func:`~rsm_lrg.design.full_factorial`) or
+    read one back with :func:`read_design` / :meth:`Design.from_frame`.
+
+    Attributes
+    ----------
+    factors : FactorSpace
+        The factors, their low/high levels (coded -1/+1) and letters.
+    kind : str
+        ``"box-behnken"``, ``"central-composite"``, ``"full-factorial"`` or ``"custom"``
+        (read from a file).
+    coded_runs : numpy.ndarray, shape (n, k)
+        Coded settings [-], rows in run order, columns in factor order.
+    std_order : numpy.ndarray of int, shape (n,)
+        Standard order (1..n) of each row.
+    run_order : numpy.ndarray of int, shape (n,)
+        Run order (1..n) of each row; increasing, since rows are held in run order.
+    blocks : numpy.ndarray of int or None
+        Block (1..b) of each row, or ``None`` for an unblocked design.
+    options : dict
+        The generator's options (centre points, alpha, seed, ...), JSON-safe.
+    """
+
+    factors: FactorSpace
+    kind: str
+    coded_runs: np.ndarray
+    std_order: np.ndarray
+    run_order: np.ndarray
+    blocks: np.ndarray | None = None
+    options: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        coded = np.array(self.coded_runs, dtype=float)
+        k = len(self.factors)
+        if coded.ndim != 2 or coded.shape[1] != k:
+            raise ValueError(f"coded runs must be an (n, {k}) array, got shape {coded.shape}")
+        n = coded.shape[0]
+        if n == 0:
+            raise ValueError("a design needs at least one run")
+        if not np.all(np.isfinite(coded)):
+            raise ValueError("coded runs must be finite numbers")
+        std = np.asarray(self.std_order, dtype=int)
+        run = np.asarray(self.run_order, dtype=int)
+        for name, arr in (("std_order", std), ("run_order", run)):
+            if arr.shape != (n,) or sorted(arr.tolist()) != list(range(1, n + 1)):
+                raise ValueError(f"{name} must hold each of 1..{n} exactly once")
+        blocks = None
+        if self.blocks is not None:
+            blocks = np.asarray(self.blocks, dtype=int)
+            if blocks.shape != (n,) or blocks.min() < 1:
+                raise ValueError("blocks must give a block number >= 1 for every run")
+        order = np.argsort(run, kind="stable")
+        coded = np.round(coded[order], 12) + 0.0
+        std, run = std[order], run[order]
+        blocks = None if blocks is None else blocks[order]
+        for a in (coded, std, run) + (() if blocks is None else (blocks,)):
+            a.setflags(write=False)
+        object.__setattr__(self, "coded_runs", coded)
+        object.__setattr__(self, "std_order", std)
+        object.__setattr__(self, "run_order", run)
+        object.__setattr__(self, "blocks", blocks)
+        object.__setattr__(self, "options", dict(self.options))
+
+    # -- sizes ----------------------------------------------------------------------------
+    @property
+    def n_runs(self) -> int:
+        """Number of runs."""
+        return int(self.coded_runs.shape[0])
+
+    @property
+    def n_factors(self) -> int:
+        return len(self.factors)
+
+    @property
+    def n_blocks(self) -> int:
+        """Number of blocks (1 for an unblocked design)."""
+        return 1 if self.blocks is None else int(len(set(self.blocks.tolist())))
+
+    @property
+    def n_center(self) -> int:
+        """Number of centre runs (every coded value 0)."""
+        return int(np.sum(np.all(self.coded_runs == 0.0, axis=1)))
+
+    def __len__(self) -> int:
+        return self.n_runs
+
+    # -- views ----------------------------------------------------------------------------
+    @property
+    def coded(self):
+        """Coded settings [-] as a DataFrame keyed by letter (``A``, ``B``, ...), in run order."""
+        import pandas as pd
+
+        return pd.DataFrame(self.coded_runs.copy(), columns=self.factors.letters)
+
+    @property
+    def actual(self):
+        """Actual settings [factor units] as a DataFrame keyed by factor name, in run order."""
+        import pandas as pd
+
+        return pd.DataFrame(
+            {f.name: _clean_actual(f, self.coded_runs[:, i]) for i, f in enumerate(self.factors)}
+        )
+
+    def to_frame(self):
+        """The design CSV layout as a DataFrame (rows in run order).
+
+        Columns: ``std_order``, ``run_order``, ``block`` (only when blocked), ``coded_A``,
+        ``coded_B``, ... and then the actual columns named after the factors.
+        """
+        import pandas as pd
+
+        cols: dict[str, Any] = {"std_order": self.std_order.copy(), "run_order": self.run_order.copy()}
+        if self.blocks is not None:
+            cols[BLOCK_COLUMN] = self.blocks.copy()
+        for i, L in enumerate(self.factors.letters):
+            c = self.coded_runs[:, i]
+            cols[CODED_PREFIX + L] = c.astype(int) if np.all(c == np.round(c)) else c.copy()
+        actual = self.actual
+        for f in self.factors:
+            cols[f.name] = actual[f.name].to_numpy()
+        return pd.DataFrame(cols)
+
+    def standard_order(self):
+        """:meth:`to_frame` sorted by ``std_order``."""
+        return self.to_frame().sort_values("std_order", kind="stable").reset_index(drop=True)
+
+    def to_csv(self, path, force: bool = False):
+        """Write the design CSV atomically (see :func:`rsm_lrg.io.write_output`).
+
+        An existing file is kept (``InputError``) unless ``force=True``.
+        """
+        from ..io import write_output
+
+        text = self.to_frame().to_csv(index=False, lineterminator="\n")
+        return write_output(path, text, force=force)
+
+    def to_dict(self) -> dict:
+        """Plain, JSON-safe summary: kind, factors, options and the runs (run order)."""
+        from ..io import to_jsonable
+
+        return to_jsonable(
+            {
+                "kind": self.kind,
+                "n_runs": self.n_runs,
+                "n_blocks": self.n_blocks,
+                "n_center": self.n_center,
+                "factors": self.factors.to_list(),
+                "options": self.options,
+                "runs": self.to_frame().to_dict(orient="records"),
+            }
+        )
+
+    def summary(self) -> str:
+        """A few lines for people: kind, factors, runs, blocks, seed."""
+        seed = self.options.get("seed")
+        rnd = self.options.get("randomize", True)
+        lines = [
+            f"{self.kind} design: {self.n_factors} factors, {self.n_runs} runs "
+            f"({self.n_runs - self.n_center} non-centre + {self.n_center} centre), "
+            f"{self.n_blocks} block{'s' if self.n_blocks != 1 else ''}",
+        ]
+        if self.kind == "central-composite" and "alpha" in self.options:
+            lines.append(f"alpha {self.options['alpha']:.6g} ({self.options.get('alpha_rule')}), "
+                         f"face {self.options.get('face')}")
+        if not rnd:
+            lines.append("run order: standard order (not randomised)")
+        elif seed is not None:
+            lines.append(f"run order: randomised{' within blocks' if self.blocks is not None else ''}, seed {seed}")
+        else:
+            lines.append("run order: randomised from a numpy Generator")
+        for f in self.factors:
+            lines.append(f"  {f.letter} {f.name}: {f.low:g} .. {f.high:g}")
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        return (f"Design(kind={self.kind!r}, factors={self.factors.names!r}, n_runs={self.n_runs}, "
+                f"n_blocks={self.n_blocks})")
+
+    # -- construction helpers -------------------------------------------------------------
+    @classmethod
+    def from_standard(
+        cls,
+        factors: FactorSpace,
+        kind: str,
+        coded_std: np.ndarray,
+        *,
+        blocks_std: np.ndarray | None = None,
+        seed: Any = None,
+        randomize: bool = True,
+        options: Mapping | None = None,
+    ) -> "Design":
+        """Build from runs listed in standard order: assign ``std_order`` and a run order.
+
+        Parameters
+        ----------
+        coded_std : array, shape (n, k)
+            Coded runs in standard order.
+        blocks_std : array of int or None
+            Block of each standard-order run.
+        seed : int, numpy.random.Generator or None
+            Randomisation seed (ignored when ``randomize`` is false).
+        randomize : bool
+            ``False``: run order = standard order (block by block when blocked).
+        """
+        coded_std = np.asarray(coded_std, dtype=float)
+        n = coded_std.shape[0]
+        opts = dict(options or {})
+        if randomize:
+            rng, used = resolve_seed(seed)
+            opts["seed"] = used
+        else:
+            rng = None
+            opts["seed"] = None
+        opts["randomize"] = bool(randomize)
+        bstd = None if blocks_std is None else np.asarray(blocks_std, dtype=int)
+        perm = randomized_run_order(bstd, n, rng)
+        run_order = np.empty(n, dtype=int)
+        run_order[perm] = np.arange(1, n + 1)
+        return cls(
+            factors=factors,
+            kind=kind,
+            coded_runs=coded_std,
+            std_order=np.arange(1, n + 1),
+            run_order=run_order,
+            blocks=bstd,
+            options=opts,
+        )
+
+    def with_runs_of(self, data, run_order: str | None = None) -> "Design":
+        """Match the runs of ``data`` to this design's runs and adopt ``data``'s order.
+
+        Each row of ``data`` (actual settings in the factor columns) is matched to a run of
+        this design with the same coded settings (as a multiset: replicated settings such as
+        centre runs are matched in standard order). The result keeps this design's
+        ``std_order`` for each matched run and takes the run order from the column
+        ``run_order`` of ``data`` (or the row order when ``None``).
+
+        Raises
+        ------
+        ValueError
+            If the settings of ``data`` are not the same multiset as this design's (the
+            message names the first row with no partner).
+        """
+        if len(data) != self.n_runs:
+            raise ValueError(f"the data have {len(data)} runs but the design has {self.n_runs}")
+        coded = self.factors.encode(data[self.factors.names]).to_numpy(dtype=float)
+        std_sorted = np.argsort(self.std_order, kind="stable")
+        pool: dict[tuple, list[int]] = {}
+        for i in std_sorted:
+            pool.setdefault(tuple(self.coded_runs[i]), []).append(i)
+        std = np.empty(len(data), dtype=int)
+        blocks = None if self.blocks is None else np.empty(len(data), dtype=int)
+        for r, row in enumerate(coded):
+            key = tuple(np.round(row, 12) + 0.0)
+            if not pool.get(key):
+                setting = ", ".join(f"{f.name}={v:g}" for f, v in zip(self.factors, data[self.factors.names].iloc[r]))
+                raise ValueError(f"row {r + 1} ({setting}) is not a run of the {self.kind} design (or is one too many)")
+            i = pool[key].pop(0)
+            std[r] = self.std_order[i]
+            if blocks is not None:
+                blocks[r] = self.blocks[i]
+        if run_order is None:
+            ro = np.arange(1, len(data) + 1)
+        else:
+            ro = _numeric(data, run_order).to_numpy()
+            if not np.all(ro == np.round(ro)):
+                raise ValueError(f"column {run_order!r} must hold whole numbers")
+            ro = ro.astype(int)
+        opts = dict(self.options)
+        opts.update(seed=None, randomize=False, run_order_from="data")
+        return Design(self.factors, self.kind, coded, std, ro, blocks, opts)
+
+    @classmethod
+    def from_frame(cls, df, *, kind: str = "custom") -> "Design":
+        """Read a design back from its CSV layout (see :meth:`to_frame`).
+
+        The factors are the columns that follow the coded columns, one per coded column
+        (``coded_A`` pairs with the first, ``coded_B`` with the second, ...). Each factor's
+        low and high levels are recovered from the coded/actual pairs (actual = centre +
+        half-range × coded), which must agree on every row to 1e-9 relative. Columns after
+        the actual ones (responses added by ``simulate``, say) are ignored here.
+        ``std_order``/``run_order`` default to the row order when absent.
+        """
+        cols = [str(c) for c in df.columns]
+        coded_cols = [c for c in cols if c.lower().startswith(CODED_PREFIX)]
+        if not coded_cols:
+            raise ValueError(
+                "no coded columns (coded_A, coded_B, ...) found; a design CSV carries the coded "
+                "columns followed by the actual factor columns"
+            )
+        last = max(cols.index(c) for c in coded_cols)
+        first = min(cols.index(c) for c in coded_cols)
+        if cols[first:last + 1] != coded_cols:
+            raise ValueError("the coded columns (coded_A, coded_B, ...) must stand next to each other")
+        k = len(coded_cols)
+        after = [c for c in cols[last + 1:] if c.lower() not in BOOKKEEPING and c != BLOCK_COLUMN]
+        if len(after) < k:
+            raise ValueError(
+                f"found {k} coded columns but only {len(after)} factor columns after them; "
+                "each coded column needs its actual column"
+            )
+        names = after[:k]
+        factors = []
+        coded_all = []
+        letters = letters_for(k)
+        for L, cc, name in zip(letters, coded_cols, names):
+            expect = CODED_PREFIX + L
+            if cc != expect:
+                raise ValueError(f"coded column {cc!r} found where {expect!r} was expected")
+            c = _numeric(df, cc).to_numpy()
+            x = _numeric(df, name).to_numpy()
+            low, high = _levels_from_pairs(c, x, cc, name)
+            factors.append((name, low, high))
+            coded_all.append(c)
+        space = FactorSpace.from_ranges(factors)
+        coded = np.column_stack(coded_all)
+        n = len(df)
+
+        def _order(col):
+            if col not in cols:
+                return np.arange(1, n + 1)
+            v = _numeric(df, col).to_numpy()
+            if not np.all(v == np.round(v)):
+                raise ValueError(f"column {col!r} must hold whole numbers")
+            return v.astype(int)
+
+        blocks = None
+        if BLOCK_COLUMN in cols:
+            b = df[BLOCK_COLUMN]
+            codes = {v: i + 1 for i, v in enumerate(sorted(set(b.tolist()), key=lambda v: (str(type(v)), v)))}
+            blocks = np.array([codes[v] for v in b.tolist()], dtype=int)
+        return cls(space, kind, coded, _order("std_order"), _order("run_order"), blocks,
+                   {"source": "file"})
+
+
+def _levels_from_pairs(c: np.ndarray, x: np.ndarray, ccol: str, xcol: str) -> tuple[float, float]:
+    """Low/high levels from coded values ``c`` and actual values ``x`` (x = m + h c)."""
+    uniq = np.unique(c)
+    if len(uniq) < 2:
+        raise ValueError(f"column {ccol!r} holds a single level; a factor needs at least two")
+    A = np.column_stack([np.ones_like(c), c])
+    (m, h), *_ = np.linalg.lstsq(A, x, rcond=None)
+    if not h > 0:
+        raise ValueError(f"columns {ccol!r} and {xcol!r} do not increase together; they are not a coding pair")
+    scale = max(abs(m) + abs(h), np.max(np.abs(x)), 1e-300)
+    resid = np.abs(x - (m + h * c))
+    bad = np.flatnonzero(resid > _READ_RTOL * scale)
+    if bad.size:
+        i = int(bad[0])
+        raise ValueError(
+            f"row {i + 1}: {xcol}={x[i]:g} does not match {ccol}={c[i]:g} under the coding "
+            f"of the other rows (centre {m:g}, half-range {h:g})"
+        )
+    # The exact actual values where the design has runs at -1/+1 (a CSV written by
+    # Design.to_csv stores them exactly); otherwise the fitted coding, trimmed of float noise.
+    low = float(x[c == -1.0][0]) if np.any(c == -1.0) else _tidy(m - h)
+    high = float(x[c == 1.0][0]) if np.any(c == 1.0) else _tidy(m + h)
+    return low, high
+
+
+def _tidy(v: float) -> float:
+    r = float(f"{v:.12g}")
+    return r if math.isclose(r, v, rel_tol=1e-11, abs_tol=0.0) else v
+
+
+def read_design(path) -> Design:
+    """Read a design CSV written by ``rsm-lrg design`` (or :meth:`Design.to_csv`).
+
+    Errors name the file (:class:`rsm_lrg.io.InputError`).
+    """
+    from ..io import InputError, read_table
+
+    df = read_table(path)
+    try:
+        return Design.from_frame(df)
+    except InputError:
+        raise
+    except ValueError as exc:
+        raise InputError(f"{path}: {exc}") from None
+
