@@ -14,7 +14,7 @@ Composite Designs") and Myers, Montgomery & Anderson-Cook, *Response Surface Met
     Unblocked: the α that makes the quadratic columns uncorrelated (an orthogonal design),
     α = (Q F / 4)^(1/4) with Q = (√(F + T) − √F)², T = 2k + n0 (n0 all centre runs)
     [Myers, Montgomery & Anderson-Cook, Eq. 7.13]; e.g. k = 2, n0 = 1 gives α = 1 (the
-    3² factorial) and k = 3, n0 = 1 gives α = 1.2158.
+    3² factorial) and k = 3, n0 = 1 gives α = 1.2154.
     Blocked into cube and star blocks: the α that blocks orthogonally,
     α = √( F (2k + n_s0) / (2 (F + n_c0)) ) [Box & Hunter 1957; Montgomery, *Design and
     Analysis of Experiments*, section 11.4.3] — this is the formula pyDOE3's ``ccdesign``

@@ -144,16 +144,24 @@ def _clean_actual(f: Factor, coded: np.ndarray) -> np.ndarray:
     ``(0.0001 + 0.0005) / 2`` is ``0.00030000000000000003`` in binary floating point; a
     design CSV should say ``0.0003``. A value is rounded to 12 significant digits only when
     the rounded value still codes to the same coded value (coded values are themselves
-    kept to 12 decimals, see :mod:`rsm_lrg.factors`).
+    kept to 12 decimals, see :mod:`rsm_lrg.factors`); otherwise the neighbouring float
+    that codes back exactly is taken when there is one. When the range is very narrow
+    compared with the levels (e.g. 128 to 128.001) no float may code back exactly; the
+    round trip is then exact only to float resolution, about
+    ``eps * max(|low|, |high|) / half_range`` in coded units.
     """
     x = np.asarray(f.decode(coded), dtype=float)
     out = x.copy()
     for i, (c, v) in enumerate(zip(np.asarray(coded, dtype=float), x)):
-        if c in (-1.0, 1.0) or v == 0.0:
+        if c in (-1.0, 1.0):
             continue
-        r = float(f"{v:.12g}")
-        if r != v and f.encode(r) == f.encode(v):
-            out[i] = r
+        target = f.encode(v) if f.encode(v) == c else c
+        cands = [float(f"{v:.12g}"), v]
+        cands += [float(np.nextafter(v, d * np.inf)) for d in (-1, 1)]
+        for cand in cands:
+            if f.encode(cand) == target:
+                out[i] = cand
+                break
     return out
 
 
@@ -501,24 +509,32 @@ def _levels_from_pairs(c: np.ndarray, x: np.ndarray, ccol: str, xcol: str) -> tu
     uniq = np.unique(c)
     if len(uniq) < 2:
         raise ValueError(f"column {ccol!r} holds a single level; a factor needs at least two")
-    A = np.column_stack([np.ones_like(c), c])
-    (m, h), *_ = np.linalg.lstsq(A, x, rcond=None)
+    at_lo, at_hi = x[c == -1.0], x[c == 1.0]
+    if at_lo.size and at_hi.size:
+        # the most common actual value at coded -1 and +1 fixes the coding
+        low, high = _mode(at_lo), _mode(at_hi)
+        m, h = (low + high) / 2.0, (high - low) / 2.0
+    else:
+        A = np.column_stack([np.ones_like(c), c])
+        (m, h), *_ = np.linalg.lstsq(A, x, rcond=None)
+        low, high = _tidy(m - h), _tidy(m + h)
     if not h > 0:
         raise ValueError(f"columns {ccol!r} and {xcol!r} do not increase together; they are not a coding pair")
-    scale = max(abs(m) + abs(h), np.max(np.abs(x)), 1e-300)
+    scale = max(abs(m) + abs(h), float(np.max(np.abs(x))), 1e-300)
     resid = np.abs(x - (m + h * c))
     bad = np.flatnonzero(resid > _READ_RTOL * scale)
     if bad.size:
         i = int(bad[0])
         raise ValueError(
             f"row {i + 1}: {xcol}={x[i]:g} does not match {ccol}={c[i]:g} under the coding "
-            f"of the other rows (centre {m:g}, half-range {h:g})"
+            f"of the other rows (low {low:g}, high {high:g})"
         )
-    # The exact actual values where the design has runs at -1/+1 (a CSV written by
-    # Design.to_csv stores them exactly); otherwise the fitted coding, trimmed of float noise.
-    low = float(x[c == -1.0][0]) if np.any(c == -1.0) else _tidy(m - h)
-    high = float(x[c == 1.0][0]) if np.any(c == 1.0) else _tidy(m + h)
-    return low, high
+    return float(low), float(high)
+
+
+def _mode(v: np.ndarray) -> float:
+    vals, counts = np.unique(v, return_counts=True)
+    return float(vals[np.argmax(counts)])
 
 
 def _tidy(v: float) -> float:
