@@ -14,7 +14,7 @@ for the average block (block effect 0).
 
 >>> import rsm_lrg
 >>> r = rsm_lrg.fit(rsm_lrg.load_table4(), "tcr_c_per_min")
->>> round(r.statistics.r2, 3), round(r.coefficients.loc["C", "coded"], 5)
+>>> round(r.statistics.r2, 3), round(float(r.coefficients.loc["C", "coded"]), 5)
 (0.968, 0.0075)
 """
 
@@ -410,8 +410,8 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     response : str
         Response column (e.g. ``"tcr_c_per_min"`` [°C/min]).
     factors : None, sequence or FactorSpace
-        ``None``: every numeric column except the response, the block and bookkeeping
-        columns. Or names, ``"NAME=LOW:HIGH"`` strings (levels coded -1 and +1), or a
+        ``None``: every numeric column except the response, the block, bookkeeping
+        columns and a design CSV's ``coded_*`` columns. Or names, ``"NAME=LOW:HIGH"`` strings (levels coded -1 and +1), or a
         :class:`~rsm_lrg.factors.FactorSpace`. A name without levels is coded from the
         observed minimum and maximum.
     block : str, optional
@@ -443,6 +443,8 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     if block is not None and block == response:
         raise ValueError(f"column {response!r} cannot be both the response and the block")
     exclude = [response] + ([block] if block is not None else [])
+    if factors is None:  # a design CSV's coded_A, coded_B, ... copies are not factors
+        exclude += [c for c in data.columns if str(c).lower().startswith("coded_")]
     space = FactorSpace.from_data(data, factors, exclude=exclude)
     y = _numeric(data, response).to_numpy(dtype=float)
     coded = space.encode(data)
