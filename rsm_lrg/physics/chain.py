@@ -1,0 +1,238 @@
+"""The paper's physics chain for one parameter set: what ``rsm-lrg physics`` prints.
+
+load (Eq. 2) → friction heat and source (Eqs. 8-9) → convection (Eqs. 10-12) → hinges at the
+three Table 3 thicknesses (Eqs. 1-2) → thermal model (Eqs. 6-7, :mod:`.thermal`) → wear of the
+RFCMS against the RMS (Eqs. 13-17 with the stage dynamics of :mod:`.dynamics`).
+
+>>> r = physics_chain(thermal=False)
+>>> round(r.normal_load_n, 2), round(r.f_mu_max_n, 3), round(r.heat_w, 4)
+(173.65, 5.209, 0.415)
+>>> sorted(r.to_dict())[:3]
+['f_mu_max_n', 'h_front_w_m2k', 'h_side_w_m2k']
+"""
+
+from __future__ import annotations
+
+import inspect
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from . import convection, dynamics, heat, hinge, motion, wear
+from .params import LRGParams
+
+__all__ = ["PhysicsResult", "HingeRow", "physics_chain", "TABLE3_THICKNESSES_M", "PAPER_VALUES",
+           "PAPER_WEAR_RATIO"]
+
+#: Hinge thicknesses of Table 3 (low, centre, high) [m].
+TABLE3_THICKNESSES_M = (0.0001, 0.0003, 0.0005)
+
+#: RFCMS/RMS wear volume per unit time from the paper's FEM (Section 3.2).
+PAPER_WEAR_RATIO = 0.5893
+
+#: The paper's numbers (Sections 2-3), for side-by-side printing.
+PAPER_VALUES = {
+    "normal_load_n": 173.65, "f_mu_max_n": 5.209, "heat_w": 0.4150, "heat_source_w_m3": 5.6e5,
+    "reynolds": 290.3, "prandtl": 0.703, "h_side_w_m2k": 8.82, "h_front_w_m2k": 22.45,
+    "steady_rise_k_fv": 4.038, "steady_rise_k_network": 4.038, "rfcms_over_rms": PAPER_WEAR_RATIO,
+}
+
+_THERMAL_KEYS = ("steady_rise_k_fv", "steady_rise_k_network", "time_to_95_percent_h", "tcr_c_per_min")
+
+
+@dataclass(frozen=True)
+class HingeRow:
+    """One hinge thickness: stiffness of one hinge K_n [N/m] (Eq. 1) and deflection at
+    breakaway Δδ = f_µmax/(n·K_n) [m] (Eq. 2)."""
+
+    thickness_m: float
+    stiffness_n_m: float
+    deflection_m: float
+
+    def to_dict(self) -> dict[str, float]:
+        return {"thickness_m": self.thickness_m, "stiffness_n_m": self.stiffness_n_m,
+                "deflection_m": self.deflection_m}
+
+
+@dataclass(frozen=True)
+class PhysicsResult:
+    """The chain's numbers. ``to_dict()`` is the ``physics --json`` document of INTERFACE.md
+    (exactly those keys); ``details`` holds the rest (wear volumes, the Eq. 14 and quasi-static
+    readings, the inverse question, dynamics per cycle) and ``to_dict(extended=True)`` adds it.
+    """
+
+    normal_load_n: float
+    f_mu_max_n: float
+    heat_w: float
+    heat_source_w_m3: float
+    reynolds: float
+    prandtl: float
+    h_side_w_m2k: float
+    h_front_w_m2k: float
+    hinge: tuple[HingeRow, ...]
+    thermal: dict[str, float | None]
+    rfcms_over_rms: float
+    params: LRGParams = field(repr=False)
+    details: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    def to_dict(self, extended: bool = False) -> dict[str, Any]:
+        out = {
+            "normal_load_n": self.normal_load_n, "f_mu_max_n": self.f_mu_max_n,
+            "heat_w": self.heat_w, "heat_source_w_m3": self.heat_source_w_m3,
+            "reynolds": self.reynolds, "prandtl": self.prandtl,
+            "h_side_w_m2k": self.h_side_w_m2k, "h_front_w_m2k": self.h_front_w_m2k,
+            "hinge": [h.to_dict() for h in self.hinge],
+            "thermal": {k: self.thermal.get(k) for k in _THERMAL_KEYS},
+            "wear": {"rfcms_over_rms": self.rfcms_over_rms},
+        }
+        if extended:
+            out["details"] = dict(self.details)
+        return out
+
+    def to_frame(self):
+        """Tidy table: quantity, value, unit, paper."""
+        import pandas as pd
+
+        return pd.DataFrame(self._rows(), columns=["quantity", "value", "unit", "paper"])
+
+    def _rows(self):
+        P = PAPER_VALUES
+        rows = [
+            ("normal_load_n", self.normal_load_n, "N", P["normal_load_n"]),
+            ("f_mu_max_n", self.f_mu_max_n, "N", P["f_mu_max_n"]),
+            ("heat_w", self.heat_w, "cal/s (paper's W)" if self.params.heat_in_calories else "W", P["heat_w"]),
+            ("heat_source_w_m3", self.heat_source_w_m3, "W/m^3", P["heat_source_w_m3"]),
+            ("reynolds", self.reynolds, "-", P["reynolds"]),
+            ("prandtl", self.prandtl, "-", P["prandtl"]),
+            ("h_side_w_m2k", self.h_side_w_m2k, "W/(m^2 K)", P["h_side_w_m2k"]),
+            ("h_front_w_m2k", self.h_front_w_m2k, "W/(m^2 K)", P["h_front_w_m2k"]),
+        ]
+        for h in self.hinge:
+            mm = f"{h.thickness_m * 1e3:g} mm"
+            rows.append((f"hinge {mm}: stiffness_n_m", h.stiffness_n_m, "N/m", None))
+            rows.append((f"hinge {mm}: deflection_m", h.deflection_m, "m", None))
+        units = {"steady_rise_k_fv": "K", "steady_rise_k_network": "K", "time_to_95_percent_h": "h",
+                 "tcr_c_per_min": "degC/min"}
+        for k in _THERMAL_KEYS:
+            rows.append((f"thermal: {k}", self.thermal.get(k), units[k], P.get(k)))
+        rows.append(("wear: rfcms_over_rms", self.rfcms_over_rms, "-", P["rfcms_over_rms"]))
+        d = self.details
+        for k, unit in (("rfcms_over_rms_eq14", "-"), ("rfcms_over_rms_quasi_static", "-"),
+                        ("sliding_rfcms_m_per_cycle", "m"), ("sliding_rms_m_per_cycle", "m"),
+                        ("wear_rfcms_m3_per_h", "m^3/h"), ("wear_rms_m3_per_h", "m^3/h"),
+                        ("peak_hinge_deflection_m", "m"), ("hinge_natural_frequency_hz", "Hz"),
+                        ("deflection_for_paper_ratio_m", "m"), ("thickness_for_paper_ratio_m", "m")):
+            if k in d:
+                rows.append((f"wear: {k}", d[k], unit, 0.0308 if k == "deflection_for_paper_ratio_m" else None))
+        return rows
+
+    def to_text(self) -> str:
+        """A readable table (quantity, value, unit, the paper's value)."""
+        rows = self._rows()
+        w = max(len(r[0]) for r in rows)
+        lines = [f"{'quantity':<{w}}  {'value':>12}  {'unit':<18}  paper",
+                 f"{'-' * w}  {'-' * 12}  {'-' * 18}  -----"]
+        for name, value, unit, paper in rows:
+            val = "n/a" if value is None else f"{value:12.5g}"
+            pap = "" if paper is None else f"{paper:g}"
+            lines.append(f"{name:<{w}}  {val:>12}  {unit:<18}  {pap}")
+        if any(self.thermal.get(k) is None for k in _THERMAL_KEYS):
+            lines.append("(thermal: n/a = rsm_lrg.physics.thermal.thermal_summary is not available)")
+        lines.append("heat_w follows Eq. 8 as written (divided by J = 4.184)" if self.params.heat_in_calories
+                     else "heat_w is the friction power in W (heat_in_calories = false)")
+        return "\n".join(lines)
+
+
+def _thermal(p: LRGParams, heat_w: float, h_side: float, h_front: float) -> dict[str, float | None]:
+    try:
+        from .thermal import thermal_summary
+    except ImportError:
+        return {k: None for k in _THERMAL_KEYS}
+    sig = inspect.signature(thermal_summary)
+    extra = {name: value for name, value in p.to_dict().items()
+             if name in sig.parameters and name not in ("heat_w", "h_side_w_m2k", "h_front_w_m2k",
+                                                        "ambient_c", "duration_min")}
+    res = thermal_summary(heat_w, h_side, h_front, ambient_c=p.ambient_c,
+                          duration_min=p.test_duration_min, **extra)
+    return {k: (None if getattr(res, k, None) is None else float(getattr(res, k))) for k in _THERMAL_KEYS}
+
+
+def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
+                  thicknesses=TABLE3_THICKNESSES_M, **overrides) -> PhysicsResult:
+    """Run the chain for ``params`` (default: the shipped defaults) with ``overrides``.
+
+    Parameters
+    ----------
+    params : LRGParams
+    thermal : bool
+        Run the thermal model (``False``: the four thermal numbers are ``None``).
+    thicknesses : sequence of float
+        Hinge thicknesses for the ``hinge`` rows [m] (Table 3).
+    **overrides
+        Any parameter by name (``mu_k=0.01``).
+
+    Notes
+    -----
+    ``rfcms_over_rms`` is the ratio of carriage sliding per cycle (= of Archard wear per hour,
+    Eq. 13) of the RFCMS over the RMS at the same motion (``stroke_m``, ``velocity_m_s``,
+    ``acceleration_m_s2``, ``dwell_s``) and hinge thickness ``hinge_thickness_m``, from the
+    stick-slip dynamics in their periodic steady state (:func:`.dynamics.cycle_metrics`).
+    ``details`` also gives the paper's reading, Eq. 14 for one stroke (``(s − Δδ)/s``), the
+    quasi-static reciprocating value, and the inverse question: the Δδ that the paper's
+    58.93 % implies by Eq. 14 and the leaf thickness that would give it with the assumed
+    hinge width and length.
+    """
+    p = (params or LRGParams()).with_overrides(**overrides) if overrides else (params or LRGParams())
+    load = float(hinge.normal_load(p.preload_n, p.stage_mass_kg, p.gravity_m_s2))
+    fmax = float(p.mu_s * load)
+    q = float(heat.friction_heat(p.mu_k, load, p.velocity_m_s, p.thermal_equivalent_j_per_cal,
+                                 in_calories=p.heat_in_calories))
+    vt = float(heat.ball_volume(p.ball_radius_m, p.n_balls))
+    phi = float(heat.heat_source_intensity(q, vt))
+    re = float(convection.reynolds(p.air_velocity_m_s, p.char_length_m, p.air_kinematic_viscosity_m2_s))
+    pr = float(convection.prandtl(p.air_specific_heat_j_kgk, p.air_dynamic_viscosity_pa_s, p.air_conductivity_w_mk))
+    hs = float(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr),
+                                                    p.air_conductivity_w_mk, p.char_length_m))
+    hf = float(convection.heat_transfer_coefficient(convection.nusselt_normal_plate(re, pr),
+                                                    p.air_conductivity_w_mk, p.char_length_m))
+    rows = []
+    for y in thicknesses:
+        k = float(hinge.hinge_stiffness(p.hinge_modulus_pa, p.hinge_width_m, y, p.hinge_length_m))
+        rows.append(HingeRow(float(y), k, float(hinge.hinge_deflection(fmax, p.hinge_count, k))))
+
+    # wear: dynamics at the parameters' motion and thickness
+    cm = dynamics.cycle_metrics(p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, stage=["rfcms", "rms"],
+                                params=p, method="integrate")
+    l_rf, l_rms = (float(x) for x in cm.sliding_distance_m)
+    ratio = l_rf / l_rms
+    k_here = p.hinge_stiffness_n_m
+    dd = float(hinge.hinge_deflection(fmax, p.hinge_count, k_here))
+    dd_k = float(hinge.hinge_deflection(p.mu_k * load, p.hinge_count, k_here))
+    f_i = float(wear.ball_normal_force(load, p.n_balls, p.contact_angle_deg))
+    hb = float(wear.brinell_to_pa(p.hardness_hb))
+    t_cyc = float(motion.cycle_time(p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, p.dwell_s))
+    dd_paper = float(wear.deflection_for_wear_ratio(PAPER_WEAR_RATIO, p.stroke_m))
+    details = {
+        "rfcms_over_rms_eq14": float(wear.rfcms_sliding_distance(p.stroke_m, dd) / p.stroke_m),
+        "rfcms_over_rms_quasi_static": float(wear.reciprocating_sliding_distance(p.stroke_m, dd, dd_k) / p.stroke_m),
+        "sliding_rfcms_m_per_cycle": l_rf,
+        "sliding_rms_m_per_cycle": l_rms,
+        "friction_work_rfcms_j_per_cycle": float(cm.friction_work_j[0]),
+        "friction_work_rms_j_per_cycle": float(cm.friction_work_j[1]),
+        "mean_friction_power_rfcms_w": float(cm.mean_friction_power_w[0]),
+        "mean_friction_power_rms_w": float(cm.mean_friction_power_w[1]),
+        "peak_hinge_deflection_m": float(cm.peak_deflection_m[0]),
+        "hinge_natural_frequency_hz": float(dynamics.natural_frequency(p.hinge_count * k_here, p.frame_mass_kg)) / (2 * np.pi),
+        "cycle_time_s": t_cyc,
+        "ball_normal_force_n": f_i,
+        "wear_rfcms_m3_per_h": float(wear.wear_rate_per_hour(p.wear_coefficient, f_i, l_rf, t_cyc, hb)),
+        "wear_rms_m3_per_h": float(wear.wear_rate_per_hour(p.wear_coefficient, f_i, l_rms, t_cyc, hb)),
+        "deflection_for_paper_ratio_m": dd_paper,
+        "thickness_for_paper_ratio_m": float(hinge.hinge_thickness_for_deflection(
+            dd_paper, fmax, p.hinge_count, p.hinge_modulus_pa, p.hinge_width_m, p.hinge_length_m)),
+        "heat_friction_power_w": float(heat.friction_heat(p.mu_k, load, p.velocity_m_s, in_calories=False)),
+        "ball_volume_m3": vt,
+    }
+    th = _thermal(p, q, hs, hf) if thermal else {k: None for k in _THERMAL_KEYS}
+    return PhysicsResult(load, fmax, q, phi, re, pr, hs, hf, tuple(rows), th, ratio, p, details)
