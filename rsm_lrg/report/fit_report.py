@@ -1,0 +1,500 @@
+"""The HTML face of a fit: :func:`to_html` and :func:`write_report`.
+
+A report is a view of a :class:`~rsm_lrg.model.FitResult` (and of its optimum, an
+:class:`~rsm_lrg.optimize.OptimumResult`). Every number on the page is read from those
+objects: the ANOVA laid out like the paper's Table 5 with significant terms marked and the
+Design-Expert notes, the fit statistics, the coefficients with their confidence intervals
+and VIFs, the equation in coded and in actual units (Eq. 19 for the paper's data), the six
+diagnostic plots, a 3-D surface and a contour for every pair of factors, the stationary
+point and the optimum with its confidence and prediction intervals.
+
+The only arithmetic here is presentation: predictions of the fitted model on a plotting
+grid (through :meth:`FitResult.predict_coded`), the classes of p values under the note of
+Table 5, and hiding round-off (a sum of squares below 1e-12 of the total, or a coefficient
+below 1e-12 of the largest, is shown as 0, as Design-Expert prints it).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .html import SIGNIFICANCE_NOTE, fmt_f, fmt_num, fmt_p, render_page, significance
+
+__all__ = ["to_html", "write_report", "report_context", "SECTION_IDS"]
+
+#: ``id`` of every section of a fit report, in page order.
+SECTION_IDS = (
+    "summary", "data", "anova", "statistics", "coefficients", "equation", "diagnostics",
+    "surfaces", "stationary-point", "optimum",
+)
+
+_SECTION_TITLES = {
+    "summary": "Summary", "data": "Data", "anova": "ANOVA", "statistics": "Fit statistics",
+    "coefficients": "Coefficients", "equation": "Equation", "diagnostics": "Diagnostics",
+    "surfaces": "Surfaces", "stationary-point": "Stationary point", "optimum": "Optimum",
+}
+
+#: Relative size below which a sum of squares or coefficient is round-off (shown as 0).
+ROUNDOFF = 1e-12
+
+_RUN_COLUMNS = ("run_order", "run", "order")
+
+
+# -- small views ---------------------------------------------------------------------------
+
+def _zero_if_roundoff(x: float, scale: float) -> float:
+    if x is None or not np.isfinite(x):
+        return x
+    return 0.0 if abs(x) <= ROUNDOFF * abs(scale) else float(x)
+
+
+def _term_label(term, labels: list[str], sep: str) -> str:
+    """``A``, ``AB``, ``A²`` (coded, ``sep=""``) or ``thickness_m·stroke_m`` (actual, ``sep="·"``)."""
+    sup = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
+    parts = [labels[i] + (str(p).translate(sup) if p > 1 else "") for i, p in enumerate(term.powers) if p]
+    return sep.join(parts)
+
+
+def _equation_rhs(coefs: dict, terms, labels: list[str], sep: str = "", *, scale: float,
+                  magnitudes=None) -> str:
+    """The right-hand side of the fitted equation as text.
+
+    A term whose largest contribution over the factor box, ``|c| · Π max|x_i|^p_i``, is
+    below ``ROUNDOFF · scale`` (``scale`` = the largest coded coefficient, in response units)
+    is round-off and left out; ``magnitudes`` holds ``max|x_i|`` per factor (1 when coded).
+    """
+    mags = np.ones(len(labels)) if magnitudes is None else np.asarray(magnitudes, dtype=float)
+    out = []
+    for t in terms:
+        v = float(coefs[t.name])
+        size = abs(v) * float(np.prod(mags ** np.asarray(t.powers)))
+        if t.order > 0 and (v == 0.0 or size <= ROUNDOFF * abs(scale)):
+            continue
+        num = fmt_num(abs(v), 5)
+        lab = _term_label(t, labels, sep)
+        piece = f"{num}·{lab}" if (lab and sep) else (f"{num} {lab}" if lab else num)
+        if not out:
+            out.append(("−" if v < 0 else "") + piece)
+        else:
+            out.append(("− " if v < 0 else "+ ") + piece)
+    return " ".join(out) if out else "0"
+
+
+def _run_numbers(result) -> tuple[np.ndarray, str]:
+    cols = {str(c).lower(): c for c in result.data.columns}
+    for name in _RUN_COLUMNS:
+        if name in cols:
+            try:
+                v = np.asarray(result.data[cols[name]], dtype=float)
+                if np.isfinite(v).all():
+                    return v, f"column {cols[name]!r}"
+            except (TypeError, ValueError):
+                pass
+    return np.arange(1, result.n + 1, dtype=float), "row order of the data"
+
+
+def _anova_rows(result) -> tuple[list[dict], list[str]]:
+    a = result.anova
+    total = float(a.loc[a["source"] == "Cor Total", "sum_sq"].iloc[0]) if (a["source"] == "Cor Total").any() else 1.0
+    term_names = set(result.term_names)
+    rows = []
+    for r in a.itertuples(index=False):
+        ss = _zero_if_roundoff(r.sum_sq, total)
+        ms = _zero_if_roundoff(r.mean_sq, total)
+        f = r.f
+        if ss == 0.0 and np.isfinite(f):
+            f = 0.0
+        sig = significance(r.p)
+        is_term = r.source in term_names
+        if r.source == "Lack of Fit" and np.isfinite(r.p):
+            verdict = ("not significant relative to pure error" if r.p >= 0.05
+                       else "significant relative to pure error")
+            mark, p_class = "", ("" if r.p >= 0.05 else "sig")
+        else:
+            verdict, mark, p_class = sig.label, sig.mark, sig.css
+        kind = "model" if r.source == "Model" else ("term" if is_term else "error")
+        row_class = {"model": "summary-row", "term": "", "error": "group"}[kind]
+        if r.source in ("Residual", "Block") or r.source == "Cor Total":
+            row_class = "group" + (" summary-row" if r.source == "Cor Total" else "")
+        rows.append({
+            "source": _pretty_term(r.source), "sum_sq": ss, "df": r.df, "mean_sq": ms, "f": f,
+            "p": r.p, "mark": mark, "p_class": p_class, "verdict": verdict, "row_class": row_class,
+        })
+    return rows, _anova_notes(result, rows)
+
+
+def _pretty_term(name: str) -> str:
+    """``A^2`` → ``A²`` for display (the data keep Design-Expert's ASCII names)."""
+    sup = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
+    out, i = [], 0
+    while i < len(name):
+        if name[i] == "^" and i + 1 < len(name) and name[i + 1].isdigit():
+            j = i + 1
+            while j < len(name) and name[j].isdigit():
+                j += 1
+            out.append(name[i + 1:j].translate(sup))
+            i = j
+        else:
+            out.append(name[i])
+            i += 1
+    return "".join(out)
+
+
+def _chance(p: float) -> str:
+    return "less than a 0.01%" if p < 1e-4 else f"a {100 * p:.2f}%"
+
+
+def _anova_notes(result, rows) -> list[str]:
+    """Design-Expert's sentences under the ANOVA, from the numbers in the table."""
+    notes = []
+    a = {r.source: r for r in result.anova.itertuples(index=False)}
+    m = a.get("Model")
+    if m is not None and np.isfinite(m.p):
+        verdict = "is significant" if m.p < 0.05 else "is not significant relative to the noise"
+        notes.append(f"The Model F-value of {fmt_f(m.f)} implies the model {verdict}. There is "
+                     f"{_chance(m.p)} chance that an F-value this large could occur due to noise.")
+    terms = [r for r in result.anova.itertuples(index=False) if r.source in set(result.term_names[1:])]
+    sig = [_pretty_term(r.source) for r in terms if np.isfinite(r.p) and r.p < 0.05]
+    if terms and any(np.isfinite(r.p) for r in terms):
+        notes.append("P-values less than 0.0500 indicate model terms are significant. In this case "
+                     + (", ".join(sig) + (" are" if len(sig) > 1 else " is") if sig else "no term is")
+                     + " significant. Values greater than 0.1000 indicate the model terms are not significant.")
+    lof = a.get("Lack of Fit")
+    if lof is not None and np.isfinite(lof.p):
+        verdict = "not significant" if lof.p >= 0.05 else "significant"
+        notes.append(f"The Lack of Fit F-value of {fmt_f(lof.f)} implies the Lack of Fit is {verdict} "
+                     f"relative to the pure error. There is {_chance(lof.p)} chance that a Lack of Fit "
+                     "F-value this large could occur due to noise."
+                     + (" Non-significant lack of fit is good: the model fits." if lof.p >= 0.05 else ""))
+    notes.extend(result.notes)
+    notes.append("Significance classes (** and * marks): " + SIGNIFICANCE_NOTE)
+    return notes
+
+
+def _statistics(result) -> tuple[list, list[str]]:
+    s = result.statistics
+    rows = [
+        ("Std. Dev.", s.std_dev, "√(residual mean square) [response units]"),
+        ("Mean", s.mean, "mean response [response units]"),
+        ("C.V. %", s.cv_percent, "100 · Std. Dev. / Mean"),
+        ("R²", s.r2, ""),
+        ("Adjusted R²", s.adj_r2, ""),
+        ("Predicted R²", s.pred_r2, "from PRESS"),
+        ("PRESS", s.press, "prediction error sum of squares"),
+        ("Adeq Precision", s.adeq_precision, "signal-to-noise ratio; above 4 is desirable"),
+    ]
+    notes = []
+    if np.isfinite(s.pred_r2) and np.isfinite(s.adj_r2):
+        d = abs(s.adj_r2 - s.pred_r2)
+        if d < 0.2:
+            notes.append(f"The Predicted R² of {s.pred_r2:.4f} is in reasonable agreement with the "
+                         f"Adjusted R² of {s.adj_r2:.4f}; i.e. the difference is less than 0.2.")
+        else:
+            notes.append(f"The Predicted R² of {s.pred_r2:.4f} is not as close to the Adjusted R² of "
+                         f"{s.adj_r2:.4f} as one might expect (difference ≥ 0.2): this may indicate a "
+                         "large block effect or a possible problem with the model and/or data.")
+    if np.isfinite(s.adeq_precision):
+        ok = "indicates an adequate signal" if s.adeq_precision > 4 else "indicates an inadequate signal"
+        notes.append(f"Adeq Precision measures the signal-to-noise ratio; a ratio greater than 4 is "
+                     f"desirable. The ratio of {s.adeq_precision:.3f} {ok}.")
+    return rows, notes
+
+
+def _coefficients(result) -> list[dict]:
+    c = result.coefficients
+    scale = float(np.nanmax(np.abs(c["coded"].to_numpy(dtype=float)))) or 1.0
+    rows = []
+    for name, r in c.iterrows():
+        z = _zero_if_roundoff(float(r["coded"]), scale)
+        sig = significance(r["p"]) if name != "Intercept" else significance(None)
+        rows.append({"term": _pretty_term(str(name)), "estimate": z, "df": 1, "se": r["std_error"],
+                     "ci_low": r["ci_low"], "ci_high": r["ci_high"], "vif": r["vif"], "p": r["p"],
+                     "p_class": sig.css})
+    return rows
+
+
+def _data_table(result, runs_label: str) -> dict:
+    d = result.data
+    cols = [str(c) for c in d.columns]
+    coded = result.coded
+    letters = list(result.space.letters)
+    rows = []
+    for i in range(len(d)):
+        row = [d.iloc[i, j] for j in range(d.shape[1])]
+        row += [float(coded.iloc[i][L]) for L in letters]
+        rows.append([None if (isinstance(v, float) and math.isnan(v)) else (v.item() if hasattr(v, "item") else v)
+                     for v in row])
+    return {
+        "columns": cols + [f"coded {L}" for L in letters],
+        "rows": rows,
+        "caption": f"{len(d)} runs as read, with the coded factor settings (−1 low, 0 centre, +1 high).",
+    }
+
+
+# -- figures --------------------------------------------------------------------------------
+
+def _diagnostics(result) -> tuple[list, str]:
+    from . import plots as P
+
+    ext = np.asarray(result.externally_studentized_residuals, dtype=float)
+    runs, runs_from = _run_numbers(result)
+    p = result.design_matrix.shape[1]
+    n = result.n
+    resp = result.response
+    figs = []
+    finite = np.isfinite(ext)
+    if finite.sum() >= 2:
+        figs.append(P.render(P.normal_probability_plot(ext[finite]), "normal-plot", "Normal plot of residuals",
+                             "Externally studentized residuals against normal % probability (Blom positions); "
+                             "a straight line means normally distributed errors.", "svg"))
+        figs.append(P.render(P.residuals_vs_predicted(np.asarray(result.fitted)[finite], ext[finite], limits=3.0,
+                                                      label="Externally studentized residuals"),
+                             "residuals-vs-predicted", "Residuals vs predicted",
+                             "Externally studentized residuals against predicted values; dashed lines at ±3.", "svg"))
+        figs.append(P.render(P.residuals_vs_run(ext[finite], runs[finite], limits=3.0,
+                                                label="Externally studentized residuals"),
+                             "residuals-vs-run", "Residuals vs run order",
+                             f"Externally studentized residuals in run order (run numbers from the {runs_from}); "
+                             "dashed lines at ±3.", "svg"))
+    figs.append(P.render(P.predicted_vs_actual(result.y, result.fitted, response=resp), "predicted-vs-actual",
+                         "Predicted vs actual", "Fitted values against the observed response; the line is y = x.", "svg"))
+    cooks = np.asarray(result.cooks_distance, dtype=float)
+    figs.append(P.render(P.cooks_distance_plot(np.where(np.isfinite(cooks), cooks, 0.0), runs, threshold=1.0),
+                         "cooks-distance", "Cook's distance",
+                         "Cook's distance of each run; the dashed line at 1 is the usual flag for an influential run.", "svg"))
+    ref = 2.0 * p / n
+    figs.append(P.render(P.leverage_plot(result.hat, runs, threshold=ref if ref < 1.0 else None), "leverage",
+                         "Leverage", f"Leverage (hat diagonal) of each run; average leverage p/n = {p}/{n}"
+                         + (f"; the dashed line is twice that (2p/n)." if ref < 1.0 else
+                            "; twice the average exceeds 1, so no reference line is drawn."), "svg"))
+    note = "" if finite.sum() >= 2 else "Residual plots are omitted: the model leaves no residual degrees of freedom."
+    return figs, note
+
+
+def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
+    from . import plots as P
+
+    space = result.space
+    k = len(space)
+    if k < 2:
+        return [], "Surfaces need at least two factors."
+    if hold == "optimum" and optimum is not None:
+        held = np.array([float(optimum.coded[L]) for L in space.letters])
+        held_text = "at the optimum"
+    else:
+        held = np.zeros(k)
+        held_text = "at their centre (coded 0)"
+    coded = result.coded[space.letters].to_numpy(dtype=float)
+    y = np.asarray(result.y, dtype=float)
+    out = []
+    for i, j in itertools.combinations(range(k), 2):
+        fi, fj = space.factors[i], space.factors[j]
+        others = [f for m, f in enumerate(space.factors) if m not in (i, j)]
+
+        def predict(X, Y, i=i, j=j):
+            pts = np.tile(held, (X.size, 1))
+            pts[:, i] = fi.encode(X.ravel())
+            pts[:, j] = fj.encode(Y.ravel())
+            return result.predict_coded(pts)
+
+        X, Y, Z = P.evaluate_on_grid(predict, (fi.low, fi.high), (fj.low, fj.high), n=30)
+        at_held = np.ones(len(y), dtype=bool)
+        for m in range(k):
+            if m not in (i, j):
+                at_held &= np.abs(coded[:, m] - held[m]) < 1e-9
+        pts3 = np.column_stack([result.data[fi.name].to_numpy(dtype=float)[at_held],
+                                result.data[fj.name].to_numpy(dtype=float)[at_held], y[at_held]])
+        pts2 = np.column_stack([result.data[fi.name].to_numpy(dtype=float),
+                                result.data[fj.name].to_numpy(dtype=float)])
+        held_desc = ", ".join(f"{f.letter} ({f.name}) = {fmt_num(float(f.decode(held[space.letters.index(f.letter)])))}"
+                              for f in others)
+        hold_sentence = (f"Other factors held {held_text}: {held_desc}." if others else "")
+        pair = f"{fi.letter}{fj.letter}"
+        title = f"{result.response} over {fi.letter} ({fi.name}) and {fj.letter} ({fj.name})"
+        mark = None
+        if optimum is not None:
+            mark = (float(optimum.actual[fi.name]), float(optimum.actual[fj.name]))
+        surf = P.render(
+            P.surface_3d(X, Y, Z, points=pts3, xlabel=f"{fi.letter}: {fi.name}", ylabel=f"{fj.letter}: {fj.name}",
+                         zlabel=result.response),
+            f"surface-{pair}", f"3-D surface, {title}",
+            f"{hold_sentence} Red points: the {int(at_held.sum())} runs made at those settings of the other "
+            "factors, at their observed response.", "png")
+        cont = P.render(
+            P.contour_plot(X, Y, Z, points=pts2, xlabel=f"{fi.letter}: {fi.name}", ylabel=f"{fj.letter}: {fj.name}",
+                           zlabel=result.response, mark=mark, mark_label="optimum"),
+            f"contour-{pair}", f"Contour, {title}",
+            f"{hold_sentence} Red points: all {len(y)} design points projected onto this pair"
+            + ("; star: the optimum." if mark is not None else "."), "png")
+        out.append({"pair": pair, "surface": surf, "contour": cont})
+    note = (f"Every pair of the {k} factors: {len(out)} surfaces and {len(out)} contours of the fitted model, "
+            f"with the other factors held {held_text}.")
+    return out, note
+
+
+# -- sections: stationary point and optimum ------------------------------------------------------
+
+def _stationary(result) -> tuple[dict | None, str]:
+    sp = result.stationary_point
+    if sp is None or sp.coded is None:
+        why = getattr(sp, "note", "") or "The model has no unique stationary point."
+        return None, why
+    rows = []
+    for f in result.space.factors:
+        c = float(sp.coded[f.letter])
+        rows.append({"letter": f.letter, "name": f.name, "coded": c, "actual": float(sp.actual[f.name]),
+                     "inside": "yes" if -1.0 <= c <= 1.0 else "no (extrapolation)"})
+    kind = sp.kind or "undetermined"
+    sentence = f"The stationary point of the fitted surface is a {kind}"
+    sentence += ("" if sp.inside is None else (", inside the design box." if sp.inside else
+                 ", outside the design box (coded cube [−1, 1]): the surface there is an extrapolation."))
+    facts = [("Kind", kind), ("Predicted response there", fmt_num(sp.predicted, 5)),
+             ("Eigenvalues (decreasing)", ", ".join(fmt_num(e, 4) for e in (sp.eigenvalues or ())))]
+    if sp.note:
+        facts.append(("Note", sp.note))
+    return {"rows": rows, "sentence": sentence, "facts": facts}, ""
+
+
+def _optimum_section(result, optimum) -> tuple[dict | None, str]:
+    if optimum is None:
+        return None, "No optimum was computed."
+    rows = [{"letter": f.letter, "name": f.name, "coded": float(optimum.coded[f.letter]),
+             "actual": float(optimum.actual[f.name])} for f in result.space.factors]
+    conf = 100 * float(optimum.confidence)
+    goal = optimum.goal + (f" (target {fmt_num(optimum.target)})" if getattr(optimum, "target", None) is not None else "")
+    sentence = (f"Goal: {goal} {result.response} inside the factor box. Predicted {result.response} at the "
+                f"optimum: {fmt_num(optimum.predicted, 5)}.")
+    facts = [("Predicted", fmt_num(optimum.predicted, 5)),
+             (f"{conf:g} % confidence interval (mean)", f"{fmt_num(optimum.ci[0], 5)} … {fmt_num(optimum.ci[1], 5)}"),
+             (f"{conf:g} % prediction interval (one new run)", f"{fmt_num(optimum.pi[0], 5)} … {fmt_num(optimum.pi[1], 5)}")]
+    for w in getattr(optimum, "warnings", ()) or ():
+        facts.append(("Note", w))
+    return {"rows": rows, "sentence": sentence, "facts": facts}, ""
+
+
+# -- the page -----------------------------------------------------------------------------------
+
+def report_context(result, *, title: str | None = None, source_name: str | None = None,
+                   goal: Any = "minimize", hold: str = "center", optimum=None) -> dict:
+    """Everything the fit-report template shows, as plain values (no HTML).
+
+    Parameters
+    ----------
+    result : rsm_lrg.model.FitResult
+    title : str, optional
+        Page title (default ``"Response surface report: <response>"``).
+    source_name : str, optional
+        Where the data came from (a file name), shown in the summary.
+    goal : str or None
+        Goal for the optimum section (``"minimize"``, ``"maximize"``, ``"target=V"``);
+        ``None`` leaves the section out. Ignored when ``optimum`` is given.
+    hold : {"center", "optimum"}
+        Where the factors not on a surface's axes are held.
+    optimum : rsm_lrg.optimize.OptimumResult, optional
+        A ready optimum (otherwise ``result.optimize(goal)``).
+    """
+    if hold not in ("center", "optimum"):
+        raise ValueError(f"hold must be 'center' or 'optimum', not {hold!r}")
+    if optimum is None and goal is not None:
+        optimum = result.optimize(goal=goal)
+    space = result.space
+    letters = space.letters
+    anova_rows, anova_notes = _anova_rows(result)
+    stats_rows, stats_notes = _statistics(result)
+    _, runs_from = _run_numbers(result)
+    coded_coefs = dict(zip(result.coefficients.index, result.coefficients["coded"]))
+    scale = max((abs(float(v)) for v in coded_coefs.values() if np.isfinite(v)), default=1.0) or 1.0
+    coded_eq = _equation_rhs(coded_coefs, result.terms, list(letters), scale=scale)
+    actual_eq = _equation_rhs(result.actual_coefficients, result.terms, list(space.names), "·", scale=scale,
+                              magnitudes=[max(abs(f.low), abs(f.high)) for f in space.factors])
+    pe_df = result.pure_error.df if result.pure_error is not None else 0
+    summary = [
+        ("Response", result.response),
+        ("Data", source_name or "a DataFrame"),
+        ("Runs", str(result.n)),
+        ("Factors", ", ".join(f"{f.letter} = {f.name}" for f in space.factors)),
+        ("Model", f"{result.model} ({len(result.terms)} terms, fitted by least squares in coded units)"),
+        ("Block", result.block or "none"),
+        ("Replicated settings", f"{pe_df} degrees of freedom of pure error" if pe_df else "none (no lack-of-fit test)"),
+        ("R² / adjusted R² / predicted R²",
+         " / ".join(fmt_num(v, 4) for v in (result.statistics.r2, result.statistics.adj_r2, result.statistics.pred_r2))),
+        ("Model F-value, p-value",
+         next((f"{fmt_f(r['f'])}, {fmt_p(r['p'])}" for r in anova_rows if r["source"] == "Model"), "—")),
+    ]
+    if optimum is not None:
+        summary.append(("Optimum (" + optimum.goal + ")",
+                        ", ".join(f"{n} = {fmt_num(v, 4)}" for n, v in optimum.actual.items())
+                        + f" → {result.response} = {fmt_num(optimum.predicted, 4)}"))
+    diagnostics, diag_note = _diagnostics(result)
+    surfaces, surf_note = _surfaces(result, hold, optimum)
+    stationary, stationary_missing = _stationary(result)
+    opt, opt_missing = _optimum_section(result, optimum)
+    if result.block is not None and result.block_effects:
+        summary.append(("Block effects", ", ".join(f"{k} ({result.block_levels.get(k, k)}) = {fmt_num(v, 4)}"
+                                                  for k, v in result.block_effects.items())))
+    return {
+        "title": title or f"Response surface report: {result.response}",
+        "subtitle": (f"{result.model.capitalize()} model of {result.response} in {len(space)} factors from "
+                     f"{result.n} runs" + (f" ({source_name})" if source_name else "") + "."),
+        "toc": [(sid, _SECTION_TITLES[sid]) for sid in SECTION_IDS],
+        "summary": summary,
+        "factors": [{"letter": f.letter, "name": f.name, "low": f.low, "center": f.center, "high": f.high}
+                    for f in space.factors],
+        "data": _data_table(result, runs_from),
+        "anova": {"rows": anova_rows, "notes": anova_notes,
+                  "caption": f"ANOVA for the {result.model} model of {result.response} "
+                             "(partial sums of squares, Type III), laid out like Table 5.",
+                  "legend": "** p < 0.01, * 0.01 ≤ p < 0.05 (see the notes)."},
+        "statistics": stats_rows,
+        "statistics_notes": stats_notes,
+        "coefficients": {"rows": _coefficients(result), "ci_label": "95 % CI"},
+        "equations": [
+            {"id": "equation-coded", "title": "In terms of coded factors", "lhs": result.response, "rhs": coded_eq,
+             "note": "Coded factors: " + ", ".join(f"{f.letter} = ({f.name} − {fmt_num(f.center)}) / {fmt_num(f.half_range)}"
+                                                  for f in space.factors)
+                     + ". Use it to compare effects: the coefficients are on one scale."},
+            {"id": "equation-actual", "title": "In terms of actual factors", "lhs": result.response, "rhs": actual_eq,
+             "note": "Actual factors in the units of the data columns. The same polynomial; do not compare "
+                     "these coefficients with one another (their units differ)."},
+        ],
+        "diagnostics": diagnostics,
+        "diagnostics_note": diag_note,
+        "surfaces": surfaces,
+        "surfaces_note": surf_note,
+        "stationary": stationary,
+        "stationary_missing": stationary_missing,
+        "optimum": opt,
+        "optimum_missing": opt_missing,
+    }
+
+
+def to_html(result, *, title: str | None = None, source_name: str | None = None, goal: Any = "minimize",
+            hold: str = "center", optimum=None) -> str:
+    """The self-contained HTML report of a fit (a string).
+
+    See :func:`report_context` for the parameters. The page has no scripts, makes no
+    network requests and inlines its figures (``data:`` URIs) and CSS.
+    """
+    ctx = report_context(result, title=title, source_name=source_name, goal=goal, hold=hold, optimum=optimum)
+    return render_page("fit_report.html.j2", **ctx)
+
+
+def write_report(result, path, *, force: bool = False, title: str | None = None, source_name: str | None = None,
+                 goal: Any = "minimize", hold: str = "center", optimum=None) -> Path:
+    """Write :func:`to_html` to ``path`` atomically (:func:`rsm_lrg.io.write_output`).
+
+    An existing file is kept unless ``force=True`` (then ``InputError``, a ValueError).
+    Returns the path written.
+    """
+    from ..io import InputError, write_output
+
+    p = Path(path)
+    if p.exists() and not force:  # fail before the figures are drawn
+        raise InputError(f"{p}: already exists; use --force to overwrite it")
+    html = to_html(result, title=title, source_name=source_name, goal=goal, hold=hold, optimum=optimum)
+    return write_output(p, html, force=force)
