@@ -391,6 +391,20 @@ def _block_codes(data, block: str):
     return codes.astype(int), keys, dict(zip(keys, shown))
 
 
+def _check_mostly_numeric(data, exclude) -> None:
+    """A text column whose other entries are numbers is a typo, not a label: name the row."""
+    import pandas as pd
+
+    from ..factors import BOOKKEEPING
+
+    for c in data.columns:
+        if c in exclude or str(c).lower() in BOOKKEEPING or pd.api.types.is_numeric_dtype(data[c]):
+            continue
+        num = pd.to_numeric(data[c], errors="coerce")
+        if num.notna().sum() >= max(1, data.shape[0] // 2):
+            _numeric(data, c)  # raises "column 'c', row i: holds 'text', not a finite number"
+
+
 def _aliased_terms(X: np.ndarray, names: Sequence[str]) -> list[str]:
     """Columns that are (numerically) linear combinations of earlier columns."""
     R = np.linalg.qr(X, mode="r")
@@ -445,6 +459,7 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     exclude = [response] + ([block] if block is not None else [])
     if factors is None:  # a design CSV's coded_A, coded_B, ... copies are not factors
         exclude += [c for c in data.columns if str(c).lower().startswith("coded_")]
+        _check_mostly_numeric(data, exclude)
     space = FactorSpace.from_data(data, factors, exclude=exclude)
     y = _numeric(data, response).to_numpy(dtype=float)
     coded = space.encode(data)

@@ -4,15 +4,17 @@ Goals: ``"minimize"``, ``"maximize"`` or a target ``T`` (minimise ``(ŷ - T)²``
 search runs in coded units over the box [-1, 1]^k, or over tighter bounds given in actual
 units. Two routes are combined so that the global optimum is found:
 
-* for a second-order (or lower) model and min/max, an exact enumeration of the faces of
-  the box: for every split of the factors into "at the lower bound", "at the upper bound"
-  and "free", the stationary point of the quadratic restricted to that face is solved
-  from a small linear system and kept if it lies in the box. The best of these is the
-  global optimum of a quadratic on a box (used up to 8 factors, 3^8 faces);
+* for a second-order (or lower) model, an exact enumeration of the faces of the box: for
+  every split of the factors into "at the lower bound", "at the upper bound" and "free",
+  the stationary point of the quadratic restricted to that face is solved from a small
+  linear system and kept if it lies in the box. The best of these is the global optimum
+  of a quadratic on a box (used up to 8 factors, 3^8 faces). A target T is then hit
+  exactly: the extreme nearest T, or a root of ŷ = T on the segment from the minimiser to
+  the maximiser. One local polish from the centre runs as a cross-check;
 * a deterministic multi-start of ``scipy.optimize.minimize`` (L-BFGS-B with the analytic
   gradient) from the centre, the vertices (k <= 6), the stationary point when it lies in
-  the box, and a scrambled Sobol set with a fixed seed; this also covers targets and cubic
-  models.
+  the box, and a scrambled Sobol set with a fixed seed, for cubic models and more than 8
+  factors.
 
 With blocks the prediction is for the average block (sum-to-zero effects, block effect 0).
 The paper's optimum (Sec. 4.3): minimising κ on Table 4 gives every factor at its low
@@ -220,10 +222,10 @@ def _exact_quadratic(b, B, lo, hi, sign):
             H = 2.0 * Bs[np.ix_(free, free)]
             rhs = -(bs[free] + 2.0 * Bs[np.ix_(free, fixed)] @ x[fixed])
             try:
-                if np.linalg.cond(H) > 1e12:
-                    continue
                 xf = np.linalg.solve(H, rhs)
             except np.linalg.LinAlgError:
+                continue
+            if not np.all(np.isfinite(xf)) or np.linalg.norm(H @ xf - rhs) > 1e-9 * (np.linalg.norm(rhs) + np.abs(H).max()):
                 continue
             tol = 1e-9
             if np.any(xf < lo[free] - tol) or np.any(xf > hi[free] + tol):
@@ -281,49 +283,79 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     beta = fitted.coefficients["coded"].to_numpy(dtype=float)
     k = len(space)
 
-    def yhat(x):
-        return float(design_matrix(x, terms)[0] @ beta)
+    quadratic = all(t.order <= 2 for t in terms)
+    if quadratic:  # closed form b0 + x'b + x'Bx (fast, exact)
+        coefs = dict(zip(fitted.coefficients.index, beta))
+        b0, bq, Bq = quadratic_parts(coefs, terms, k)
 
-    def grad_y(x):
-        return design_gradient(x, terms).T @ beta
+        def yhat(x):
+            return float(b0 + x @ bq + x @ Bq @ x)
 
+        def grad_y(x):
+            return bq + 2.0 * Bq @ x
+    else:
+        def yhat(x):
+            return float(design_matrix(x, terms)[0] @ beta)
+
+        def grad_y(x):
+            return design_gradient(x, terms).T @ beta
+
+    scale = float(np.max(np.abs(beta))) or 1.0  # objective of order 1 for the optimiser
     if kind == "target":
         def obj(x):
-            r = yhat(x) - target
-            return r * r, 2.0 * r * grad_y(x)
+            r = (yhat(x) - target) / scale
+            return r * r, 2.0 * r * grad_y(x) / scale
     else:
-        s = 1.0 if kind == "minimize" else -1.0
+        sgn = (1.0 if kind == "minimize" else -1.0) / scale
 
         def obj(x):
-            return s * yhat(x), s * grad_y(x)
+            return sgn * yhat(x), sgn * grad_y(x)
 
     candidates = []
     method = "multistart"
-    quadratic = all(t.order <= 2 for t in terms)
-    if kind != "target" and quadratic and k <= 8:
-        coefs = dict(zip(fitted.coefficients.index, beta))
-        _, b, B = quadratic_parts(coefs, terms, k)
-        xe = _exact_quadratic(b, B, lo, hi, 1.0 if kind == "minimize" else -1.0)
-        if xe is not None:
-            candidates.append(xe)
+    if quadratic and k <= 8:
+        if kind == "target":
+            # exact: the extreme nearest the target, or a root of y - T on the segment
+            # from the minimiser to the maximiser (the box is convex, y continuous)
+            xmin = _exact_quadratic(bq, Bq, lo, hi, 1.0)
+            xmax = _exact_quadratic(bq, Bq, lo, hi, -1.0)
+            if xmin is not None and xmax is not None:
+                ymin, ymax = yhat(xmin), yhat(xmax)
+                if target <= ymin:
+                    candidates.append(xmin)
+                elif target >= ymax:
+                    candidates.append(xmax)
+                else:
+                    g = lambda t: yhat(xmin + t * (xmax - xmin)) - target  # noqa: E731
+                    t = so.brentq(g, 0.0, 1.0, xtol=1e-15)
+                    candidates.append(xmin + t * (xmax - xmin))
+        else:
+            xe = _exact_quadratic(bq, Bq, lo, hi, 1.0 if kind == "minimize" else -1.0)
+            if xe is not None:
+                candidates.append(xe)
+        if candidates:
             method = "exact-faces+multistart"
 
-    starts = [np.clip(np.zeros(k), lo, hi), (lo + hi) / 2.0]
-    if k <= 6:
+    exact = bool(candidates)
+    starts = [np.clip(np.zeros(k), lo, hi)]
+    if not exact:
+        starts.append((lo + hi) / 2.0)
+    if k <= 6 and not exact:
         starts += [np.where(np.array(v) > 0, hi, lo) for v in itertools.product((0, 1), repeat=k)]
     sp = fitted.stationary_point
     if sp.coded is not None:
         xs = np.array([sp.coded[L] for L in space.letters])
         if np.all(xs >= lo) and np.all(xs <= hi):
             starts.append(xs)
-    m = max(3, int(math.ceil(math.log2(max(8, 4 * k)))))
-    sob = qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m)
-    starts += list(lo + sob * (hi - lo))
+    if not exact:  # the face enumeration is already the global optimum; else multi-start
+        m = max(3, int(math.ceil(math.log2(max(8, 4 * k)))))
+        sob = qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m)
+        starts += list(lo + sob * (hi - lo))
     box = list(zip(lo, hi))
     for x0 in starts:
         try:
             r = so.minimize(obj, x0, jac=True, method="L-BFGS-B", bounds=box,
-                            options={"ftol": 1e-15, "gtol": 1e-12, "maxiter": 500})
+                            options={"ftol": 1e-15, "gtol": 1e-10, "maxiter": 300})
             candidates.append(np.clip(r.x, lo, hi))
         except (ValueError, FloatingPointError):
             continue
@@ -331,7 +363,7 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
 
     values = np.array([obj(c)[0] for c in candidates])
     i_best = int(np.argmin(values))
-    if method != "multistart" and values[0] <= values[i_best] + 1e-12 * max(abs(values[i_best]), 1e-300):
+    if method != "multistart" and values[0] <= values[i_best] + 1e-12 * max(abs(values[i_best]), 1.0):
         i_best = 0  # prefer the exact face solution over a numerically equal local one
     best = candidates[i_best]
     # snap to the bounds within round-off

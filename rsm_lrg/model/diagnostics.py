@@ -1,0 +1,266 @@
+"""Regression diagnostics per run and the Box–Cox plot (Design-Expert "Diagnostics").
+
+Per run, from the one factorisation of :func:`rsm_lrg.fit` (hat diagonal ``h_ii``,
+residuals ``e_i``, residual mean square ``σ²`` on ``ν = n - p`` df):
+
+* internally studentized residual ``r_i = e_i / (σ √(1 - h_ii))``;
+* externally studentized residual ``t_i = r_i √((ν - 1) / (ν - r_i²))``;
+* leverage ``h_ii``; Cook's distance ``D_i = r_i² h_ii / (p (1 - h_ii))``;
+* DFFITS ``t_i √(h_ii / (1 - h_ii))``.
+
+Flags ("beyond the usual limits"), all documented in the result:
+
+* |t_i| above the Bonferroni outlier limit ``t(1 - α/(2n), ν - 1)`` (α = 0.05; the
+  outlier-t limit Design-Expert draws);
+* leverage above ``2p/n`` (twice the average leverage; Belsley, Kuh & Welsch 1980);
+* Cook's D above ``F(0.5; p, ν)``, the median of F (Cook & Weisberg 1982; Montgomery,
+  *Design and Analysis of Experiments*, Sec. 10.7 — close to 1);
+* |DFFITS| above ``2 √(p/n)`` (Belsley, Kuh & Welsch 1980).
+
+Box–Cox (Box & Cox 1964; Montgomery, *DAE*, Sec. 15.1.1): for each λ in [-3, 3] the model
+is refitted to ``y^(λ) = (y^λ - 1) / (λ ẏ^(λ-1))`` (``ẏ ln y`` at λ = 0; ẏ the geometric
+mean), which makes the residual sums of squares ``SS(λ)`` comparable across λ. λ̂
+minimises ``SS(λ)``; the approximate 100(1-α) % interval is the set where
+``SS(λ) <= SS(λ̂) (1 + t²(α/2, ν) / ν)``. The recommended transform follows Stat-Ease's rule:
+the standard λ (1 none, 0.5 square root, 0 natural log, -0.5 inverse square root,
+-1 inverse) closest to λ̂ inside the interval, else the power λ̂ itself.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["diagnostics", "Diagnostics", "box_cox", "BoxCox", "STANDARD_LAMBDAS"]
+
+#: Standard power transforms, λ -> name (Stat-Ease's list).
+STANDARD_LAMBDAS = {1.0: "none", 0.5: "sqrt", 0.0: "log", -0.5: "inverse sqrt", -1.0: "inverse"}
+
+_ORDER_COLUMNS = ("run_order", "run order", "order", "run")
+
+
+def _run_order(data) -> np.ndarray:
+    import pandas as pd
+
+    lower = {str(c).lower(): c for c in data.columns}
+    for key in _ORDER_COLUMNS:
+        if key in lower:
+            v = pd.to_numeric(data[lower[key]], errors="coerce")
+            if not v.isna().any():
+                return v.to_numpy(dtype=float)
+    return np.arange(1, len(data) + 1, dtype=float)
+
+
+@dataclass(frozen=True)
+class BoxCox:
+    """Box–Cox profile of a fit (frozen).
+
+    Attributes
+    ----------
+    lambdas : ndarray
+        Grid of λ [-].
+    ss : ndarray
+        Scaled residual sum of squares ``SS(λ)`` [response units²].
+    lambda_best : float
+        λ̂ minimising ``SS(λ)``.
+    ci : tuple of float
+        (low, high) of the approximate interval for λ (NaN where it leaves [-3, 3]).
+    confidence : float
+    current : float
+        λ of the response as fitted (1: untransformed).
+    recommended : str
+        ``"none"``, ``"sqrt"``, ``"log"``, ``"inverse sqrt"``, ``"inverse"`` or
+        ``"power=λ̂"``.
+    recommended_lambda : float
+    ratio : float
+        max(y) / min(y); a ratio above 10 usually calls for a transform (Stat-Ease) [-].
+    """
+
+    lambdas: np.ndarray = field(repr=False)
+    ss: np.ndarray = field(repr=False)
+    lambda_best: float = math.nan
+    ci: tuple = (math.nan, math.nan)
+    confidence: float = 0.95
+    current: float = 1.0
+    recommended: str = "none"
+    recommended_lambda: float = 1.0
+    ratio: float = math.nan
+
+    def to_dict(self) -> dict:
+        f = lambda v: float(v) if math.isfinite(v) else None  # noqa: E731
+        return {"lambda": f(self.lambda_best), "ci": [f(self.ci[0]), f(self.ci[1])],
+                "confidence": self.confidence, "current": self.current, "recommended": self.recommended,
+                "recommended_lambda": f(self.recommended_lambda), "ratio_max_min": f(self.ratio)}
+
+
+def box_cox(result, *, confidence: float = 0.95, lambdas=None) -> BoxCox:
+    """Box–Cox profile of the fitted model (see the module docstring).
+
+    Parameters
+    ----------
+    result : FitResult
+        Fit on the untransformed response; every response value must be positive.
+    confidence : float
+    lambdas : array, optional
+        λ grid (default -3 .. 3 by 0.01, refined around the minimum).
+    """
+    from scipy import optimize as so
+    from scipy import stats
+
+    y = np.asarray(result.y, dtype=float)
+    if np.any(y <= 0):
+        i = int(np.flatnonzero(y <= 0)[0])
+        raise ValueError(f"Box-Cox needs a positive response: column {result.response!r}, row {i + 1} holds {y[i]:g}")
+    X = result.design_matrix
+    Q, _ = np.linalg.qr(X)
+    lny = np.log(y)
+    gm = float(np.exp(lny.mean()))
+
+    def ss_of(lam: float) -> float:
+        if abs(lam) < 1e-12:
+            z = gm * lny
+        else:
+            z = (np.exp(lam * lny) - 1.0) / (lam * gm ** (lam - 1.0))
+        r = z - Q @ (Q.T @ z)
+        return float(r @ r)
+
+    grid = np.round(np.arange(-3.0, 3.0 + 1e-9, 0.01), 10) if lambdas is None else np.asarray(lambdas, float)
+    ss = np.array([ss_of(l) for l in grid])
+    i = int(np.argmin(ss))
+    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+    if hi > lo:
+        r = so.minimize_scalar(ss_of, bounds=(lo, hi), method="bounded", options={"xatol": 1e-8})
+        lam = float(r.x) if r.fun <= ss[i] else float(grid[i])
+    else:
+        lam = float(grid[i])
+    ss_min = ss_of(lam)
+    nu = result.df_resid
+    if nu <= 0:
+        raise ValueError("Box-Cox needs residual degrees of freedom (the model is saturated)")
+    t = stats.t.ppf(1 - (1 - confidence) / 2, nu)
+    cut = ss_min * (1 + t * t / nu)
+    g = lambda l: ss_of(l) - cut  # noqa: E731
+    low = high = math.nan
+    if g(-3.0) > 0 and lam > -3.0:
+        low = float(so.brentq(g, -3.0, lam, xtol=1e-10))
+    if g(3.0) > 0 and lam < 3.0:
+        high = float(so.brentq(g, lam, 3.0, xtol=1e-10))
+    lo_eff = -math.inf if math.isnan(low) else low
+    hi_eff = math.inf if math.isnan(high) else high
+    inside = [l for l in STANDARD_LAMBDAS if lo_eff <= l <= hi_eff]
+    if inside:
+        rec_l = min(inside, key=lambda l: (abs(l - lam), -l))
+        rec = STANDARD_LAMBDAS[rec_l]
+    else:
+        rec_l = lam
+        rec = f"power={lam:.4g}"
+    return BoxCox(lambdas=grid, ss=ss, lambda_best=lam, ci=(low, high), confidence=float(confidence),
+                  current=1.0, recommended=rec, recommended_lambda=float(rec_l), ratio=float(y.max() / y.min()))
+
+
+@dataclass(frozen=True)
+class Diagnostics:
+    """Per-run diagnostics of a fit (frozen).
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per run (data order): ``run, run_order, actual, predicted, residual,
+        leverage, studentized, externally_studentized, cooks_distance, dffits`` and the
+        boolean flags ``flag_outlier, flag_leverage, flag_cooks, flag_dffits`` and ``flagged``.
+    limits : dict
+        ``{"externally_studentized", "leverage", "cooks_distance", "dffits"}`` limits used.
+    box_cox : BoxCox or None
+        ``None`` when the response is not all positive or the model is saturated.
+    note : str
+    """
+
+    table: Any = field(repr=False)
+    limits: dict = field(default_factory=dict)
+    box_cox: BoxCox | None = None
+    note: str = ""
+
+    @property
+    def flagged_runs(self) -> list[int]:
+        """Run numbers (1-based data rows) with any flag."""
+        return [int(r) for r in self.table.loc[self.table["flagged"], "run"]]
+
+    def to_frame(self):
+        return self.table.copy()
+
+    def to_dict(self) -> dict:
+        rows = []
+        for r in self.table.to_dict(orient="records"):
+            rows.append({k: (bool(v) if isinstance(v, (bool, np.bool_)) else
+                             (float(v) if isinstance(v, (float, np.floating)) and math.isfinite(v) else
+                              (None if isinstance(v, (float, np.floating)) else v))) for k, v in r.items()})
+        return {"runs": rows, "limits": dict(self.limits),
+                "box_cox": None if self.box_cox is None else self.box_cox.to_dict(), "note": self.note or None}
+
+    def summary(self) -> str:
+        from .text import _table, format_g
+
+        head = ["Run", "Order", "Actual", "Predicted", "Residual", "Leverage", "Ext. stud.", "Cook's D", "DFFITS", "Flag"]
+        rows = []
+        for r in self.table.itertuples(index=False):
+            flags = [n for n, f in (("outlier", r.flag_outlier), ("leverage", r.flag_leverage),
+                                    ("Cook", r.flag_cooks), ("DFFITS", r.flag_dffits)) if f]
+            rows.append([r.run, format_g(r.run_order), format_g(r.actual), format_g(r.predicted), format_g(r.residual),
+                         format_g(r.leverage, 3), format_g(r.externally_studentized, 3), format_g(r.cooks_distance, 3),
+                         format_g(r.dffits, 3), ",".join(flags)])
+        lim = self.limits
+        out = ["Diagnostics", _table(head, rows), "",
+               f"Limits: |ext. studentized| > {lim['externally_studentized']:.3f} (Bonferroni, alpha 0.05), "
+               f"leverage > {lim['leverage']:.3f} (2p/n), Cook's D > {lim['cooks_distance']:.3f} (F median), "
+               f"|DFFITS| > {lim['dffits']:.3f} (2 sqrt(p/n))"]
+        if self.box_cox is not None:
+            b = self.box_cox
+            ci = ", ".join("beyond ±3" if not math.isfinite(v) else f"{v:.3f}" for v in b.ci)
+            out.append(f"Box-Cox: lambda = {b.lambda_best:.3f}, {int(round(100 * b.confidence))} % CI [{ci}], "
+                       f"max/min = {b.ratio:.3g}; recommended transform: {b.recommended}")
+        if self.note:
+            out.append(f"Note: {self.note}")
+        return "\n".join(out) + "\n"
+
+
+def diagnostics(result, *, alpha: float = 0.05) -> Diagnostics:
+    """Per-run diagnostics and Box–Cox for a :class:`~rsm_lrg.model.fit.FitResult`."""
+    import pandas as pd
+    from scipy import stats
+
+    n = result.n
+    p = result.design_matrix.shape[1]
+    nu = result.df_resid
+    h = np.asarray(result.hat, dtype=float)
+    r = np.asarray(result.studentized_residuals, dtype=float)
+    t = np.asarray(result.externally_studentized_residuals, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cook = r ** 2 * h / (p * (1 - h))
+        dffits = t * np.sqrt(h / (1 - h))
+    lim_t = float(stats.t.ppf(1 - alpha / (2 * n), nu - 1)) if nu > 1 else math.nan
+    lim_h = 2.0 * p / n
+    lim_c = float(stats.f.ppf(0.5, p, nu)) if nu > 0 else math.nan
+    lim_d = 2.0 * math.sqrt(p / n)
+    table = pd.DataFrame({
+        "run": np.arange(1, n + 1), "run_order": _run_order(result.data), "actual": result.y,
+        "predicted": result.fitted, "residual": result.residuals, "leverage": h, "studentized": r,
+        "externally_studentized": t, "cooks_distance": cook, "dffits": dffits,
+    })
+    with np.errstate(invalid="ignore"):
+        table["flag_outlier"] = np.abs(t) > lim_t
+        table["flag_leverage"] = h > lim_h
+        table["flag_cooks"] = cook > lim_c
+        table["flag_dffits"] = np.abs(dffits) > lim_d
+    table["flagged"] = table[["flag_outlier", "flag_leverage", "flag_cooks", "flag_dffits"]].any(axis=1)
+    note = ""
+    bc = None
+    if np.all(result.y > 0) and nu > 0:
+        bc = box_cox(result)
+    else:
+        note = ("no Box-Cox plot: the response has values <= 0" if nu > 0
+                else "no residual degrees of freedom: the limits and Box-Cox are undefined")
+    limits = {"externally_studentized": lim_t, "leverage": lim_h, "cooks_distance": lim_c, "dffits": lim_d}
+    return Diagnostics(table=table, limits=limits, box_cox=bc, note=note)

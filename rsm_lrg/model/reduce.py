@@ -1,0 +1,202 @@
+"""Model reduction by backward elimination, keeping the model hierarchical.
+
+Starting from a full model, one term at a time is removed:
+
+* ``criterion="p"`` (Design-Expert's "backward, alpha out"): among the terms that may be
+  removed, the one with the largest partial-F p-value goes, while that p-value exceeds
+  ``alpha_out`` (default 0.1). The p-values are those of the current model's ANOVA
+  (Type III, ``SS_j = b_j² / C_jj`` as in :mod:`rsm_lrg.model.anova`).
+* ``criterion="aicc"``: the removal that lowers the corrected Akaike criterion most,
+  while any removal lowers it. ``AICc = n ln(SS_res/n) + n ln(2π) + n + 2K + 2K(K+1)/(n-K-1)``
+  with ``K = p + 1`` (p coefficients including intercept and blocks, plus the variance;
+  Burnham & Anderson, *Model Selection and Multimodel Inference*, 2nd ed., Eq. 2.14).
+
+**Hierarchy**: a term may only be removed when no remaining term contains it — ``s`` is
+contained in ``t`` when every exponent of ``s`` is at most that of ``t`` (so ``A`` stays
+while ``AC`` or ``A^2`` stays; in a cubic model ``AB`` stays while ``A^2B`` stays).
+The intercept and blocks are never removed.
+
+On the paper's Table 4 at ``alpha_out = 0.1`` the p-value route keeps A, B, C, D, AC, C²,
+D² (issue 6).
+
+>>> import rsm_lrg
+>>> r = reduce_terms(rsm_lrg.load_table4(), "tcr_c_per_min")
+>>> r.kept
+('Intercept', 'A', 'B', 'C', 'D', 'AC', 'C^2', 'D^2')
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Sequence
+
+import numpy as np
+
+__all__ = ["reduce_terms", "Reduction", "removable", "CRITERIA", "aicc"]
+
+#: Accepted values of ``criterion``.
+CRITERIA = ("p", "aicc")
+
+
+def removable(terms: Sequence) -> list:
+    """Terms that no other remaining term contains (hierarchy), intercept excluded.
+
+    >>> from rsm_lrg.model.terms import model_terms
+    >>> [t.name for t in removable(model_terms("AB", "quadratic"))]
+    ['AB', 'A^2', 'B^2']
+    """
+    out = []
+    for s in terms:
+        if s.order == 0:
+            continue
+        inside = any(t is not s and t.powers != s.powers and all(a <= b for a, b in zip(s.powers, t.powers))
+                     for t in terms)
+        if not inside:
+            out.append(s)
+    return out
+
+
+def aicc(ss_res: float, n: int, p: int) -> float:
+    """Corrected AIC of a Gaussian linear model (see the module docstring) [-]."""
+    K = p + 1
+    if n - K - 1 <= 0 or ss_res <= 0:
+        return math.inf if ss_res > 0 else -math.inf
+    return n * math.log(ss_res / n) + n * math.log(2 * math.pi) + n + 2 * K + 2 * K * (K + 1) / (n - K - 1)
+
+
+def _ols(X, y):
+    from scipy import stats
+
+    XtX = X.T @ X
+    try:
+        C = np.linalg.inv(XtX)
+    except np.linalg.LinAlgError:
+        raise ValueError("the model matrix is singular (aliased terms); reduce a model the design can estimate") from None
+    beta = C @ (X.T @ y)
+    resid = y - X @ beta
+    ss = float(resid @ resid)
+    df = X.shape[0] - X.shape[1]
+    ms = ss / df if df > 0 else math.nan
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = beta ** 2 / np.diag(C) / ms
+    p = stats.f.sf(f, 1, df) if df > 0 else np.full_like(f, np.nan)
+    return beta, ss, df, p
+
+
+@dataclass(frozen=True)
+class Reduction:
+    """Outcome of backward elimination (frozen).
+
+    Attributes
+    ----------
+    kept : tuple of str
+        Term names kept, in model order (intercept first).
+    removed : tuple of str
+        Term names removed, in the order they went.
+    steps : pandas.DataFrame
+        One row per removal: ``step, term, p, aicc_before, aicc_after``.
+    criterion : str
+    alpha_out : float
+    start_model : str
+    """
+
+    kept: tuple
+    removed: tuple
+    steps: Any = field(repr=False)
+    criterion: str = "p"
+    alpha_out: float = 0.1
+    start_model: str = "quadratic"
+
+    def to_dict(self) -> dict:
+        """``{"criterion", "alpha_out", "start_model", "kept", "removed", "steps"}``."""
+        steps = [{k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in r.items()}
+                 for r in self.steps.to_dict(orient="records")]
+        return {"criterion": self.criterion, "alpha_out": self.alpha_out, "start_model": self.start_model,
+                "kept": list(self.kept), "removed": list(self.removed), "steps": steps}
+
+
+def reduce_terms(data, response: str, factors=None, block: str | None = None, model: str = "quadratic", *,
+                 alpha_out: float = 0.1, criterion: str = "p", terms=None) -> Reduction:
+    """Backward elimination keeping hierarchy (see the module docstring).
+
+    Parameters
+    ----------
+    data, response, factors, block, model
+        As for :func:`rsm_lrg.fit`; ``model`` is the starting model.
+    alpha_out : float
+        Remove while the largest removable p-value exceeds this (criterion ``"p"``).
+    criterion : {"p", "aicc"}
+    terms : sequence of str, optional
+        Start from these terms instead of ``model`` (the intercept is always kept).
+
+    Returns
+    -------
+    Reduction
+    """
+    import pandas as pd
+
+    from .summary import base_design
+    from .terms import design_matrix, model_terms, parse_term
+
+    crit = str(criterion).strip().lower()
+    if crit not in CRITERIA:
+        raise ValueError(f"criterion must be 'p' or 'aicc', not {criterion!r}")
+    if not (isinstance(alpha_out, (int, float)) and 0.0 < alpha_out < 1.0):
+        raise ValueError(f"alpha_out must lie between 0 and 1, not {alpha_out!r}")
+    lin, Bm = base_design(data, response, factors, block)
+    letters = lin.space.letters
+    if terms is None:
+        current = list(model_terms(letters, model))
+    else:
+        current = [parse_term("Intercept", letters)] + [parse_term(t, letters) for t in terms if t != "Intercept"]
+    coded = lin.coded.to_numpy(dtype=float)
+    y = lin.y
+    n = y.size
+    nb = Bm.shape[1]
+
+    def matrix(ts):
+        Xt = design_matrix(coded, ts)
+        return np.column_stack([Xt[:, :1], Bm, Xt[:, 1:]])
+
+    steps = []
+    removed = []
+    while True:
+        X = matrix(current)
+        if X.shape[0] <= X.shape[1]:
+            raise ValueError(f"{n} runs cannot fit {X.shape[1]} terms; start from a smaller model")
+        beta, ss, df, p = _ols(X, y)
+        cand = removable(current)
+        if not cand:
+            break
+        a_now = aicc(ss, n, X.shape[1])
+        if crit == "p":
+            pos = {id(t): 1 + nb + current[1:].index(t) for t in current[1:]}
+            pv = [(float(p[pos[id(t)]]), t) for t in cand]
+            worst_p, worst = max(pv, key=lambda z: z[0])
+            if not (worst_p > alpha_out):
+                break
+            trial = [t for t in current if t is not worst]
+            _, ss2, _, _ = _ols(matrix(trial), y)
+            steps.append({"step": len(steps) + 1, "term": worst.name, "p": worst_p,
+                          "aicc_before": a_now, "aicc_after": aicc(ss2, n, X.shape[1] - 1)})
+        else:
+            best = None
+            for t in cand:
+                trial = [s for s in current if s is not t]
+                Xs = matrix(trial)
+                _, ss2, _, _ = _ols(Xs, y)
+                a2 = aicc(ss2, n, Xs.shape[1])
+                if best is None or a2 < best[0]:
+                    best = (a2, t)
+            if best is None or not best[0] < a_now:
+                break
+            worst = best[1]
+            pos = 1 + nb + current[1:].index(worst)
+            steps.append({"step": len(steps) + 1, "term": worst.name, "p": float(p[pos]),
+                          "aicc_before": a_now, "aicc_after": best[0]})
+        current = [t for t in current if t is not worst]
+        removed.append(worst.name)
+    frame = pd.DataFrame(steps, columns=["step", "term", "p", "aicc_before", "aicc_after"])
+    return Reduction(kept=tuple(t.name for t in current), removed=tuple(removed), steps=frame,
+                     criterion=crit, alpha_out=float(alpha_out), start_model=model if terms is None else "custom")

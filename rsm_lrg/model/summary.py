@@ -1,0 +1,326 @@
+"""Fit summary: which polynomial order do the data support? (Design-Expert "Fit Summary").
+
+For the nested models mean ⊂ linear ⊂ 2FI ⊂ quadratic ⊂ cubic this gives
+
+* the **sequential model sums of squares** (Type I): the extra sum of squares of each
+  order given the lower ones, ``SS(order | lower) = SS_res(lower) - SS_res(order)``, on
+  ``df = rank(X_order) - rank(X_lower)`` degrees of freedom, with
+  ``F = MS(order | lower) / MS_res(order)`` (Design-Expert's convention: the residual of the
+  model that includes the order). An order is **aliased** when some of its terms cannot be
+  estimated from the design (its rank increase is smaller than its number of terms), e.g.
+  the cubic terms of a Box–Behnken or central composite design;
+* the **lack-of-fit test** of each order, ``F = MS_lof / MS_pe`` with pure error from
+  replicated settings (the same split as the ANOVA of :func:`rsm_lrg.fit`);
+* **model summary statistics** per order: std dev, R², adjusted R², predicted R², PRESS
+  (as :class:`~rsm_lrg.model.statistics.FitStatistics` defines them);
+* the **suggested model**: the highest order that is significant (sequential p < alpha),
+  not aliased, and whose lack of fit is not significant (p >= alpha).
+
+Blocks (optional) enter right after the mean, as in :func:`rsm_lrg.fit`; every order is
+then adjusted for blocks. Everything reuses the model layer: the factor coding and
+validation of :func:`rsm_lrg.fit`, :func:`~rsm_lrg.model.terms.model_terms`,
+:func:`~rsm_lrg.model.terms.design_matrix` and :func:`~rsm_lrg.model.anova.pure_error`.
+
+Reference: Myers, Montgomery & Anderson-Cook, *Response Surface Methodology* (3rd ed.),
+Sec. 3.3 (extra sum of squares) and 6.2; Design-Expert help, "Fit Summary".
+
+>>> import rsm_lrg
+>>> s = fit_summary(rsm_lrg.load_table4(), "tcr_c_per_min")
+>>> s.suggested
+'quadratic'
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["fit_summary", "FitSummary", "ORDERS", "base_design"]
+
+#: The nested model orders of the fit summary.
+ORDERS = ("linear", "2fi", "quadratic", "cubic")
+
+_LABEL = {"mean": "Mean", "block": "Block", "linear": "Linear", "2fi": "2FI", "quadratic": "Quadratic",
+          "cubic": "Cubic"}
+
+
+def base_design(data, response: str, factors=None, block: str | None = None):
+    """Coding, response and block contrasts exactly as :func:`rsm_lrg.fit` builds them.
+
+    Returns ``(linear_fit, block_columns)`` where ``linear_fit`` is the linear
+    :class:`~rsm_lrg.model.fit.FitResult` (it validates the columns and holds the coding)
+    and ``block_columns`` the (n, b-1) sum-to-zero block contrasts (zero columns when
+    unblocked).
+    """
+    from .fit import fit
+
+    lin = fit(data, response, factors=factors, block=block, model="linear")
+    nb = len(lin.column_names) - len(lin.terms)
+    Bm = lin.design_matrix[:, 1:1 + nb]
+    return lin, Bm
+
+
+def _rank(X: np.ndarray) -> int:
+    if X.shape[1] == 0:
+        return 0
+    s = np.linalg.svd(X, compute_uv=False)
+    return int(np.sum(s > s[0] * max(X.shape) * np.finfo(float).eps * 10))
+
+
+def _ls(X: np.ndarray, y: np.ndarray):
+    """Least squares by the pseudo-inverse: (residual SS, rank, hat diagonal, fitted)."""
+    P = np.linalg.pinv(X)
+    beta = P @ y
+    fitted = X @ beta
+    resid = y - fitted
+    hat = np.einsum("ij,ji->i", X, P)
+    return float(resid @ resid), _rank(X), hat, fitted, resid
+
+
+@dataclass(frozen=True)
+class FitSummary:
+    """The fit summary (frozen).
+
+    Attributes
+    ----------
+    response : str
+    n : int
+        Runs.
+    block : str or None
+    sequential : pandas.DataFrame
+        Sequential model sums of squares: columns ``source, sum_sq, df, mean_sq, f, p,
+        aliased``; rows Mean, (Block), Linear, 2FI, Quadratic, Cubic (each "vs" the one
+        before), Residual (of the largest estimable model), Total (uncorrected).
+    lack_of_fit : pandas.DataFrame
+        Columns ``source, sum_sq, df, mean_sq, f, p``; one row per order plus Pure Error
+        (empty when no setting is replicated).
+    statistics : pandas.DataFrame
+        Columns ``source, std_dev, r2, adj_r2, pred_r2, press, aliased``; one row per order.
+    suggested : str or None
+        ``"linear"``, ``"2fi"``, ``"quadratic"``, ``"cubic"`` or ``"mean"`` (no order is
+        significant).
+    alpha : float
+        Significance level used for the suggestion.
+    notes : tuple of str
+    """
+
+    response: str
+    n: int
+    block: str | None
+    sequential: Any = field(repr=False)
+    lack_of_fit: Any = field(repr=False)
+    statistics: Any = field(repr=False)
+    suggested: str | None = None
+    alpha: float = 0.05
+    notes: tuple = ()
+
+    def to_dict(self) -> dict:
+        """Plain JSON-safe dict: ``{"response", "n", "block", "sequential", "lack_of_fit",
+        "statistics", "suggested", "alpha", "notes"}`` (NaN becomes ``None``)."""
+        def rows(df):
+            return [{k: _clean(v) for k, v in r.items()} for r in df.to_dict(orient="records")]
+
+        return {"response": self.response, "n": self.n, "block": self.block,
+                "sequential": rows(self.sequential), "lack_of_fit": rows(self.lack_of_fit),
+                "statistics": rows(self.statistics), "suggested": self.suggested,
+                "alpha": self.alpha, "notes": list(self.notes)}
+
+    def to_frame(self):
+        """The three tables side by side, one row per order (sequential, lack of fit, statistics)."""
+        import pandas as pd
+
+        seq = self.sequential.set_index("source")
+        lof = self.lack_of_fit.set_index("source") if len(self.lack_of_fit) else None
+        st = self.statistics.set_index("source")
+        out = []
+        for name in st.index:
+            key = next((s for s in seq.index if s.startswith(name)), None)
+            row = {"model": name}
+            if key is not None:
+                row.update(seq_p=seq.loc[key, "p"], seq_df=seq.loc[key, "df"])
+            if lof is not None and name in lof.index:
+                row.update(lof_p=lof.loc[name, "p"])
+            row.update(st.loc[name].to_dict())
+            row["suggested"] = name.lower() == (self.suggested or "")
+            out.append(row)
+        return pd.DataFrame(out)
+
+    def summary(self) -> str:
+        """Design-Expert style text: the three tables and the suggestion."""
+        from .text import _p, _table, format_g
+
+        out = [f"Fit summary for {self.response} ({self.n} runs)", "", "Sequential model sum of squares [Type I]"]
+        rows = [[r.source, format_g(r.sum_sq), r.df, format_g(r.mean_sq), format_g(r.f), _p(r.p),
+                 "Aliased" if r.aliased else ""] for r in self.sequential.itertuples(index=False)]
+        out.append(_table(["Source", "Sum of Squares", "df", "Mean Square", "F-value", "p-value", ""], rows,
+                          ["<", ">", ">", ">", ">", ">", "<"]))
+        if len(self.lack_of_fit):
+            out += ["", "Lack of fit tests"]
+            rows = [[r.source, format_g(r.sum_sq), r.df, format_g(r.mean_sq), format_g(r.f), _p(r.p)]
+                    for r in self.lack_of_fit.itertuples(index=False)]
+            out.append(_table(["Source", "Sum of Squares", "df", "Mean Square", "F-value", "p-value"], rows))
+        out += ["", "Model summary statistics"]
+        rows = [[r.source, format_g(r.std_dev), format_g(r.r2), format_g(r.adj_r2), format_g(r.pred_r2),
+                 format_g(r.press), "Aliased" if r.aliased else ("Suggested" if r.source.lower() == self.suggested else "")]
+                for r in self.statistics.itertuples(index=False)]
+        out.append(_table(["Source", "Std. Dev.", "R²", "Adjusted R²", "Predicted R²", "PRESS", ""], rows))
+        out += ["", f"Suggested model: {_LABEL.get(self.suggested, self.suggested)}"]
+        out += [f"Note: {n}" for n in self.notes]
+        return "\n".join(out) + "\n"
+
+    def __str__(self) -> str:
+        return self.summary()
+
+
+def _clean(v):
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if isinstance(v, (int, np.integer)):
+        return int(v)
+    if isinstance(v, (float, np.floating)):
+        return float(v) if math.isfinite(v) else None
+    return v
+
+
+def fit_summary(data, response: str, factors=None, block: str | None = None, *, alpha: float = 0.05,
+                orders=ORDERS) -> FitSummary:
+    """Sequential sums of squares, lack of fit and statistics per model order.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+    response : str
+        Response column [response units].
+    factors, block
+        As for :func:`rsm_lrg.fit`.
+    alpha : float
+        Level for "significant" (sequential F) and "not significant" (lack of fit).
+    orders : sequence of str
+        Model orders to compare, a prefix-closed subset of ``ORDERS`` (default all four).
+
+    Returns
+    -------
+    FitSummary
+    """
+    import pandas as pd
+    from scipy import stats
+
+    from .anova import pure_error
+    from .terms import design_matrix, model_terms
+
+    if not 0.0 < alpha < 1.0:
+        raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
+    orders = tuple(orders)
+    bad = [o for o in orders if o not in ORDERS]
+    if bad or not orders:
+        raise ValueError(f"orders must be among {', '.join(ORDERS)} (got {', '.join(map(str, orders)) or 'none'})")
+    orders = tuple(o for o in ORDERS if o in orders)
+    lin, Bm = base_design(data, response, factors, block)
+    y = lin.y
+    n = y.size
+    coded = lin.coded.to_numpy(dtype=float)
+    letters = lin.space.letters
+    nb = Bm.shape[1] + 1
+
+    # pure error (replicates within blocks), as in fit()
+    keys = coded
+    if block is not None:
+        keys = np.column_stack([coded, lin.design_matrix[:, 1:1 + nb - 1]])
+    pe = pure_error(keys, y)
+
+    ss_mean = float(n * np.mean(y) ** 2)
+    ybar = float(np.mean(y))
+    ss_tot_corr = float(np.sum((y - ybar) ** 2))
+    base_X = np.column_stack([np.ones(n), Bm])
+    ss_prev, r_prev, *_ = _ls(base_X, y)
+    ss_block = ss_tot_corr - ss_prev
+    seq_rows = [{"source": "Mean vs Total", "sum_sq": ss_mean, "df": 1, "mean_sq": ss_mean, "f": math.nan,
+                 "p": math.nan, "aliased": False}]
+    if nb > 1:
+        seq_rows.append({"source": "Block vs Mean", "sum_sq": ss_block, "df": nb - 1,
+                         "mean_sq": ss_block / (nb - 1), "f": math.nan, "p": math.nan, "aliased": False})
+    lof_rows, stat_rows = [], []
+    notes = []
+    prev_label = "Block" if nb > 1 else "Mean"
+    last_ok = None
+    results = {}
+    for order in orders:
+        terms = model_terms(letters, order)
+        Xt = design_matrix(coded, terms)
+        X = np.column_stack([Xt[:, :1], Bm, Xt[:, 1:]])
+        ss_res, r, hat, fitted, resid = _ls(X, y)
+        df_add = r - r_prev
+        aliased = r < X.shape[1]
+        df_res = n - r
+        ms_res = ss_res / df_res if df_res > 0 else math.nan
+        ss_add = max(ss_prev - ss_res, 0.0)
+        ms_add = ss_add / df_add if df_add > 0 else math.nan
+        if df_add > 0 and df_res > 0 and ms_res > 0:
+            f = ms_add / ms_res
+            p = float(stats.f.sf(f, df_add, df_res))
+        else:
+            f = p = math.nan
+        seq_rows.append({"source": f"{_LABEL[order]} vs {prev_label}", "sum_sq": ss_add, "df": int(df_add),
+                         "mean_sq": ms_add, "f": f, "p": p, "aliased": bool(aliased)})
+        # lack of fit
+        lof_p = math.nan
+        if pe.df > 0:
+            df_lof = df_res - pe.df
+            ss_lof = max(ss_res - pe.ss, 0.0)
+            ms_pe = pe.ss / pe.df
+            if df_lof > 0:
+                ms_lof = ss_lof / df_lof
+                f_l = ms_lof / ms_pe if ms_pe > 0 else math.nan
+                lof_p = float(stats.f.sf(f_l, df_lof, pe.df)) if ms_pe > 0 else math.nan
+            else:
+                ms_lof = f_l = math.nan
+            lof_rows.append({"source": _LABEL[order], "sum_sq": ss_lof, "df": int(df_lof), "mean_sq": ms_lof,
+                             "f": f_l, "p": lof_p})
+        # statistics (FitStatistics definitions; block SS left out of R²)
+        ss_adj = ss_tot_corr - ss_block
+        df_model = r - nb
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ok = (1.0 - hat) > 1e-10
+            press = float(np.sum((resid / (1.0 - hat)) ** 2)) if ok.all() else math.nan
+        r2 = 1.0 - ss_res / ss_adj if ss_adj > 0 else math.nan
+        adj = 1.0 - ms_res / (ss_adj / (df_model + df_res)) if (ss_adj > 0 and df_res > 0) else math.nan
+        pred = 1.0 - press / ss_adj if (ss_adj > 0 and math.isfinite(press)) else math.nan
+        stat_rows.append({"source": _LABEL[order], "std_dev": math.sqrt(ms_res) if ms_res == ms_res else math.nan,
+                          "r2": r2, "adj_r2": adj, "pred_r2": pred, "press": press, "aliased": bool(aliased)})
+        results[order] = (p, aliased, lof_p, df_add)
+        ss_prev, r_prev, prev_label = ss_res, r, _LABEL[order]
+        last_ok = (ss_res, df_res)
+    ss_res, df_res = last_ok
+    seq_rows.append({"source": "Residual", "sum_sq": ss_res, "df": int(df_res),
+                     "mean_sq": ss_res / df_res if df_res > 0 else math.nan, "f": math.nan, "p": math.nan,
+                     "aliased": False})
+    seq_rows.append({"source": "Total", "sum_sq": float(y @ y), "df": int(n), "mean_sq": float(y @ y) / n,
+                     "f": math.nan, "p": math.nan, "aliased": False})
+    if pe.df > 0:
+        lof_rows.append({"source": "Pure Error", "sum_sq": pe.ss, "df": int(pe.df), "mean_sq": pe.ss / pe.df,
+                         "f": math.nan, "p": math.nan})
+    else:
+        notes.append("No lack-of-fit tests: no factor setting is replicated, so there is no pure error.")
+
+    suggested = "mean"
+    for order in orders:
+        p, aliased, lof_p, df_add = results[order]
+        if aliased or df_add == 0:
+            continue
+        if p == p and p < alpha and not (lof_p == lof_p and lof_p < alpha):
+            suggested = order
+    if suggested == "mean":
+        notes.append("No model order is significant with a non-significant lack of fit; "
+                     "consider the highest significant order or a transformation.")
+    cols_seq = ["source", "sum_sq", "df", "mean_sq", "f", "p", "aliased"]
+    cols_lof = ["source", "sum_sq", "df", "mean_sq", "f", "p"]
+    return FitSummary(
+        response=response, n=int(n), block=block,
+        sequential=pd.DataFrame(seq_rows, columns=cols_seq),
+        lack_of_fit=pd.DataFrame(lof_rows, columns=cols_lof),
+        statistics=pd.DataFrame(stat_rows, columns=["source", "std_dev", "r2", "adj_r2", "pred_r2", "press", "aliased"]),
+        suggested=suggested, alpha=float(alpha), notes=tuple(notes),
+    )

@@ -1,0 +1,357 @@
+"""Multi-response optimisation by desirability (Derringer & Suich 1980, as Stat-Ease documents it).
+
+Each response i gets a goal and limits ``L_i < U_i`` and its individual desirability
+``d_i ∈ [0, 1]`` (Stat-Ease, "Desirability Details" and "Weight"):
+
+* **maximize**: 0 below L, ``((y - L)/(U - L))^w`` between, 1 above U;
+* **minimize**: 1 below L, ``((U - y)/(U - L))^w`` between, 0 above U;
+* **target T** (L ≤ T ≤ U): ``((y - L)/(T - L))^w1`` on [L, T], ``((U - y)/(U - T))^w2``
+  on [T, U], 0 outside;
+* **in range**: 1 on [L, U], 0 outside.
+
+Weights ``w`` lie in [0.1, 10] (1 = linear ramp). The overall desirability is the
+importance-weighted geometric mean (Stat-Ease, "Importance"; importance r_i ∈ 1..5):
+
+    D = ( Π d_i^{r_i} )^{1 / Σ r_i},
+
+where "in range" responses enter the product (0 or 1) but not the sum Σ r_i. Default
+limits are the observed minimum and maximum of the response (Stat-Ease's default).
+
+The search maximises D over the coded box [-1, 1]^k (or tighter bounds) from many starts:
+the centre, the vertices (k ≤ 6), each response's single-response optimum and a scrambled
+Sobol set, each polished by L-BFGS-B. Where D is 0 (flat) the objective is the summed
+distance of the responses to their acceptable ranges, scaled by U - L, so the search
+still moves towards the feasible region (Stat-Ease's "tail" serves the same purpose).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+__all__ = ["ResponseGoal", "individual_desirability", "overall_desirability", "optimize_desirability",
+           "DesirabilityResult", "parse_response_goal"]
+
+_GOALS = {"maximize": "maximize", "maximise": "maximize", "max": "maximize", "minimize": "minimize",
+          "minimise": "minimize", "min": "minimize", "target": "target", "range": "range",
+          "in_range": "range", "in-range": "range", "inrange": "range"}
+
+
+@dataclass(frozen=True)
+class ResponseGoal:
+    """The goal for one response (frozen).
+
+    Attributes
+    ----------
+    response : str
+    goal : {"maximize", "minimize", "target", "range"}
+    low, high : float or None
+        Limits L and U [response units]; ``None``: observed min / max.
+    target : float or None
+        T for ``goal == "target"``.
+    weight : float or (float, float)
+        w (or (w1, w2) for a target), 0.1 .. 10.
+    importance : int
+        1 .. 5.
+    """
+
+    response: str
+    goal: str = "maximize"
+    low: float | None = None
+    high: float | None = None
+    target: float | None = None
+    weight: Any = 1.0
+    importance: float = 3
+
+    def __post_init__(self):
+        g = _GOALS.get(str(self.goal).strip().lower())
+        if g is None:
+            raise ValueError(f"response {self.response!r}: goal must be minimize, maximize, target=V or range, "
+                             f"not {self.goal!r}")
+        object.__setattr__(self, "goal", g)
+        if g == "target" and self.target is None:
+            raise ValueError(f"response {self.response!r}: a target goal needs a value (target=V)")
+        w = self.weight if isinstance(self.weight, (tuple, list)) else (self.weight, self.weight)
+        if len(w) != 2:
+            raise ValueError(f"response {self.response!r}: weight must be a number or two numbers")
+        w = tuple(float(v) for v in w)
+        if not all(0.1 <= v <= 10.0 for v in w):
+            raise ValueError(f"response {self.response!r}: weights must lie between 0.1 and 10 (got {self.weight!r})")
+        object.__setattr__(self, "weight", w)
+        imp = float(self.importance)
+        if not (1 <= imp <= 5):
+            raise ValueError(f"response {self.response!r}: importance must lie between 1 and 5 (got {self.importance!r})")
+        object.__setattr__(self, "importance", imp)
+        if self.low is not None and self.high is not None and not self.low < self.high:
+            raise ValueError(f"response {self.response!r}: the lower limit must be below the upper limit "
+                             f"(got {self.low:g} >= {self.high:g})")
+        if g == "target" and self.low is not None and self.high is not None and not (self.low <= self.target <= self.high):
+            raise ValueError(f"response {self.response!r}: the target {self.target:g} lies outside the limits "
+                             f"{self.low:g}..{self.high:g}")
+
+    def with_limits(self, low: float, high: float) -> "ResponseGoal":
+        lo = self.low if self.low is not None else low
+        hi = self.high if self.high is not None else high
+        if self.goal == "target":  # keep the target inside the limits
+            lo, hi = min(lo, self.target), max(hi, self.target)
+        if not lo < hi:
+            raise ValueError(f"response {self.response!r}: the limits {lo:g}..{hi:g} are empty "
+                             "(give --limits LOW:HIGH)")
+        return ResponseGoal(self.response, self.goal, float(lo), float(hi), self.target, self.weight, self.importance)
+
+    def to_dict(self) -> dict:
+        return {"response": self.response, "goal": self.goal, "low": self.low, "high": self.high,
+                "target": self.target, "weight": list(self.weight), "importance": self.importance}
+
+
+def parse_response_goal(response: str, goal: str = "maximize", *, weight=None, importance=None,
+                        limits=None) -> ResponseGoal:
+    """A :class:`ResponseGoal` from CLI-style strings: goal ``minimize|maximize|target=V|range``,
+    weight ``"W"`` or ``"W1,W2"``, importance ``"R"``, limits ``"LOW:HIGH"``."""
+    g = str(goal).strip().lower()
+    target = None
+    if g.startswith("target"):
+        rest = g[len("target"):].strip()
+        if not rest.startswith("="):
+            raise ValueError(f"response {response!r}: goal {goal!r} needs a value, e.g. target=0.03")
+        try:
+            target = float(rest[1:])
+        except ValueError:
+            raise ValueError(f"response {response!r}: the target {rest[1:]!r} is not a number") from None
+        g = "target"
+    w = 1.0
+    if weight is not None:
+        try:
+            parts = [float(v) for v in str(weight).split(",")]
+        except ValueError:
+            raise ValueError(f"response {response!r}: weight {weight!r} is not a number (or W1,W2)") from None
+        w = parts[0] if len(parts) == 1 else tuple(parts)
+    imp = 3 if importance is None else importance
+    try:
+        imp = float(imp)
+    except ValueError:
+        raise ValueError(f"response {response!r}: importance {importance!r} is not a number") from None
+    lo = hi = None
+    if limits is not None:
+        s = str(limits)
+        if ":" not in s:
+            raise ValueError(f"response {response!r}: limits must be LOW:HIGH, not {limits!r}")
+        a, b = s.split(":", 1)
+        try:
+            lo = float(a) if a.strip() else None
+            hi = float(b) if b.strip() else None
+        except ValueError:
+            raise ValueError(f"response {response!r}: limits {limits!r} are not numbers") from None
+    return ResponseGoal(response, g, lo, hi, target, w, imp)
+
+
+def individual_desirability(y, goal: ResponseGoal) -> np.ndarray:
+    """d_i for predicted values ``y`` (limits must be set; see the module docstring) [-]."""
+    y = np.asarray(y, dtype=float)
+    L, U = goal.low, goal.high
+    if L is None or U is None:
+        raise ValueError(f"response {goal.response!r}: limits are not set")
+    w1, w2 = goal.weight
+    with np.errstate(invalid="ignore", divide="ignore"):
+        if goal.goal == "maximize":
+            d = np.clip((y - L) / (U - L), 0.0, 1.0) ** w1
+        elif goal.goal == "minimize":
+            d = np.clip((U - y) / (U - L), 0.0, 1.0) ** w1
+        elif goal.goal == "range":
+            d = ((y >= L) & (y <= U)).astype(float)
+        else:
+            T = goal.target
+            lo_part = np.clip((y - L) / (T - L), 0.0, 1.0) ** w1 if T > L else (y >= L).astype(float)
+            hi_part = np.clip((U - y) / (U - T), 0.0, 1.0) ** w2 if U > T else (y <= U).astype(float)
+            d = np.where(y <= T, lo_part, hi_part)
+    return np.where(np.isfinite(y), d, 0.0)
+
+
+def overall_desirability(ds: Sequence, goals: Sequence[ResponseGoal]) -> np.ndarray:
+    """D = (Π d_i^{r_i})^{1/Σ r_i}; "in range" goals enter the product only [-]."""
+    ds = [np.asarray(d, dtype=float) for d in ds]
+    logs = 0.0
+    rsum = 0.0
+    zero = np.zeros_like(ds[0], dtype=bool)
+    for d, g in zip(ds, goals):
+        zero = zero | (d <= 0)
+        if g.goal == "range":
+            continue
+        with np.errstate(divide="ignore"):
+            logs = logs + g.importance * np.log(np.where(d > 0, d, 1.0))
+        rsum += g.importance
+    if rsum == 0:
+        return np.where(zero, 0.0, 1.0)
+    return np.where(zero, 0.0, np.exp(logs / rsum))
+
+
+@dataclass(frozen=True)
+class DesirabilityResult:
+    """The best compromise found (frozen).
+
+    Attributes
+    ----------
+    responses : tuple of str
+    goals : tuple of ResponseGoal
+        With the limits used.
+    coded, actual : dict
+        Settings [coded units] / [actual units].
+    predicted : dict
+        ŷ per response (average block) [response units].
+    individual : dict
+        d_i per response [-].
+    desirability : float
+        D [-].
+    bounds : dict
+    n_starts : int
+    """
+
+    responses: tuple
+    goals: tuple
+    coded: dict
+    actual: dict
+    predicted: dict
+    individual: dict
+    desirability: float
+    bounds: dict = field(default_factory=dict)
+    n_starts: int = 0
+    warnings: tuple = ()
+
+    def to_dict(self) -> dict:
+        return {"responses": list(self.responses), "goals": [g.to_dict() for g in self.goals],
+                "coded": dict(self.coded), "actual": dict(self.actual), "predicted": dict(self.predicted),
+                "desirability": self.desirability, "individual": dict(self.individual),
+                "bounds": {k: [v[0], v[1]] for k, v in self.bounds.items()}, "warnings": list(self.warnings)}
+
+    def summary(self) -> str:
+        from ..model.text import format_g
+
+        lines = [f"Desirability optimum (D = {self.desirability:.4f})"]
+        for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):
+            lines.append(f"  {L}: {name} = {format_g(a, 6)}   (coded {c:+.4f})")
+        for g in self.goals:
+            what = g.goal if g.goal != "target" else f"target {format_g(g.target, 6)}"
+            lines.append(f"  {g.response}: predicted {format_g(self.predicted[g.response], 6)}, d = "
+                         f"{self.individual[g.response]:.4f}  ({what}, limits {format_g(g.low, 6)}..{format_g(g.high, 6)}, "
+                         f"weight {g.weight[0]:g}, importance {g.importance:g})")
+        lines += [f"  warning: {w}" for w in self.warnings]
+        return "\n".join(lines) + "\n"
+
+
+def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal], bounds=None, *,
+                          seed: int = 0, n_sobol: int = 64) -> DesirabilityResult:
+    """Maximise the overall desirability of several fitted responses.
+
+    Parameters
+    ----------
+    fits : mapping
+        ``{response: FitResult}``; all fits must share the same factors and coding.
+    goals : sequence of ResponseGoal
+        One per response (limits default to the observed range of that response).
+    bounds : mapping or list of str, optional
+        Tighter factor bounds in actual units (see :func:`rsm_lrg.optimize.parse_bounds`).
+    seed : int
+        Seed of the Sobol start set.
+    n_sobol : int
+        Sobol starts (rounded up to a power of two).
+    """
+    from scipy import optimize as so
+    from scipy.stats import qmc
+
+    from ..model.terms import design_matrix
+    from .single import optimize as single_optimize
+    from .single import parse_bounds
+
+    if not goals:
+        raise ValueError("give at least one response goal")
+    names = [g.response for g in goals]
+    if len(set(names)) != len(names):
+        raise ValueError("each response may have one goal only")
+    missing = [n for n in names if n not in fits]
+    if missing:
+        raise ValueError(f"no fitted model for response(s) {', '.join(map(repr, missing))}")
+    first = fits[names[0]]
+    space = first.space
+    for n in names[1:]:
+        if fits[n].space.to_list() != space.to_list():
+            raise ValueError(f"responses {names[0]!r} and {n!r} were fitted on different factors or codings")
+    goals = [g.with_limits(float(np.min(fits[g.response].y)), float(np.max(fits[g.response].y))) for g in goals]
+    lo, hi, notes = parse_bounds(space, bounds)
+    k = len(space)
+    models = [(fits[g.response].terms, fits[g.response].coefficients["coded"].to_numpy(dtype=float)) for g in goals]
+
+    def preds(X):
+        X = np.atleast_2d(X)
+        return [design_matrix(X, t) @ b for t, b in models]
+
+    def D_of(X):
+        ys = preds(X)
+        return overall_desirability([individual_desirability(y, g) for y, g in zip(ys, goals)], goals), ys
+
+    def objective(x):
+        D, ys = D_of(x)
+        if D[0] > 0:
+            return -float(D[0])
+        pen = 0.0
+        for y, g in zip(ys, goals):
+            v = float(y[0])
+            span = g.high - g.low
+            if g.goal in ("maximize",):
+                pen += max(g.low - v, 0.0) / span
+            elif g.goal == "minimize":
+                pen += max(v - g.high, 0.0) / span
+            else:
+                pen += (max(g.low - v, 0.0) + max(v - g.high, 0.0)) / span
+        return pen + 1e-12
+
+    starts = [np.clip(np.zeros(k), lo, hi), (lo + hi) / 2]
+    if k <= 6:
+        starts += [np.where(np.array(v) > 0, hi, lo) for v in itertools.product((0, 1), repeat=k)]
+    for g in goals:
+        goal = g.goal if g.goal in ("maximize", "minimize") else (("target", g.target) if g.goal == "target" else None)
+        if goal is None:
+            continue
+        try:
+            o = single_optimize(fits[g.response], goal=goal, bounds=bounds)
+            starts.append(np.array([o.coded[L] for L in space.letters]))
+        except ValueError:
+            pass
+    m = max(3, int(math.ceil(math.log2(max(n_sobol, 8)))))
+    sob = qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m)
+    starts += list(lo + sob * (hi - lo))
+    box = list(zip(lo, hi))
+    best_x, best_v = None, math.inf
+    for x0 in starts:
+        cands = [np.clip(x0, lo, hi)]
+        try:
+            r = so.minimize(objective, cands[0], method="L-BFGS-B", bounds=box,
+                            options={"ftol": 1e-14, "gtol": 1e-10, "maxiter": 300})
+            cands.append(np.clip(r.x, lo, hi))
+            r2 = so.minimize(objective, cands[-1], method="Nelder-Mead",
+                             options={"xatol": 1e-9, "fatol": 1e-14, "maxiter": 400})
+            cands.append(np.clip(r2.x, lo, hi))
+        except (ValueError, FloatingPointError):
+            pass
+        for c in cands:
+            v = objective(c)
+            if v < best_v - 1e-15:
+                best_x, best_v = c, v
+    x = best_x + 0.0
+    D, ys = D_of(x)
+    ds = [float(individual_desirability(y, g)[0]) for y, g in zip(ys, goals)]
+    warns = list(notes)
+    if D[0] <= 0:
+        warns.append("no setting in the box meets every response's limits (D = 0); the point shown is the closest")
+    return DesirabilityResult(
+        responses=tuple(names), goals=tuple(goals),
+        coded={L: float(v) for L, v in zip(space.letters, x)},
+        actual={f.name: float(f.decode(v)) for f, v in zip(space.factors, x)},
+        predicted={g.response: float(y[0]) for g, y in zip(goals, ys)},
+        individual=dict(zip(names, ds)), desirability=float(D[0]),
+        bounds={f.name: (float(f.decode(a)), float(f.decode(b))) for f, a, b in zip(space.factors, lo, hi)},
+        n_starts=len(starts), warnings=tuple(warns),
+    )
