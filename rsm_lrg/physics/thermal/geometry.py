@@ -129,7 +129,7 @@ class GuideGeometry:
         Catalogue block mass 0.19 kg (includes the balls).
     rail_width_m, rail_height_m : float
         Catalogue rail section 0.015 m x 0.013 m.
-    rail_mass_per_m_kg : float
+    rail_mass_kg_per_m : float
         Catalogue rail mass 1.3 kg/m.
     rail_length_m : float
         Rail length (ASSUMPTION, 0.4 m).
@@ -152,7 +152,7 @@ class GuideGeometry:
     block_mass_kg: float = 0.19
     rail_width_m: float = 0.015
     rail_height_m: float = 0.013
-    rail_mass_per_m_kg: float = 1.3
+    rail_mass_kg_per_m: float = 1.3
     rail_length_m: float = 0.4
     n_rows: int = 4
     balls_per_row: int = 18
@@ -200,7 +200,7 @@ class GuideGeometry:
         if self.row_length_m > self.block_length_m:
             raise ValueError("the ball rows (balls_per_row x ball diameter) are longer than the block.")
         if self.rail_fill > 1.0 + 1e-12:
-            raise ValueError("rail_mass_per_m_kg exceeds a solid rail of rail_width_m x rail_height_m.")
+            raise ValueError("rail_mass_kg_per_m exceeds a solid rail of rail_width_m x rail_height_m.")
         g = self.clearance_m  # raises if the mass cannot be matched
         if self.lower_row_depth_m + self.ball_diameter_m / 2 > self.rail_height_m - self.block_clearance_m:
             raise ValueError("lower_row_depth_m puts the lower ball rows below the carriage.")
@@ -229,7 +229,7 @@ class GuideGeometry:
     @property
     def rail_fill(self) -> float:
         """Fill fraction of the rail rectangle (derived from the catalogue 1.3 kg/m)."""
-        return self.rail_mass_per_m_kg / (
+        return self.rail_mass_kg_per_m / (
             self.steel_density_kg_m3 * self.rail_width_m * self.rail_height_m
         )
 
@@ -415,6 +415,9 @@ class VoxelModel:
         Body whose cells carry the heat source (uniform per volume, Eq. 9).
     probes : tuple of (x, y, z)
         Points [m] whose containing cells are reported (thermocouples).
+    mirror_faces : tuple of int
+        Directions (0..5 as in :data:`DIRECTIONS`) whose domain border is a symmetry plane
+        (adiabatic); the full body is ``2 ** len(mirror_faces)`` copies of the grid.
     """
 
     x_edges: np.ndarray
@@ -427,6 +430,12 @@ class VoxelModel:
     h_table: np.ndarray
     source_body: int
     probes: tuple = field(default_factory=tuple)
+    mirror_faces: tuple = ()
+
+    @property
+    def copies(self) -> int:
+        """How many mirror copies of the grid make the whole body."""
+        return 2 ** len(self.mirror_faces)
 
     @property
     def shape(self):
@@ -456,6 +465,7 @@ def voxelise(
     cell_size_m: float = 2e-3,
     rail_cell_max_m: float = 0.01,
     growth: float = 1.2,
+    symmetric: bool = True,
 ) -> VoxelModel:
     """Voxelise the guide on a grid conforming to every edge of :meth:`GuideGeometry.boxes`.
 
@@ -474,6 +484,10 @@ def voxelise(
         Largest cell edge [m] in the carriage region.
     rail_cell_max_m : float
         Largest cell along the rail away from the carriage [m] (cells grow by ``growth``).
+    symmetric : bool
+        Solve one quarter (x >= 0, y >= 0) with adiabatic symmetry planes x = 0 and y = 0
+        (the geometry, the loads and the boundary conditions are symmetric in both); the
+        thermocouple at -x reads the same as its mirror.
     """
     for name, v in (("h_side_w_m2k", h_side_w_m2k), ("h_front_w_m2k", h_front_w_m2k),
                     ("h_base_w_m2k", h_base_w_m2k)):
@@ -488,8 +502,13 @@ def voxelise(
     if not growth >= 1.0:
         raise ValueError(f"growth must be >= 1, got {growth!r}.")
     xb, yb, zb = geometry.breakpoints()
-    # the first and last x intervals are bare rail: grade them
-    graded = {0: "right", len(xb) - 2: "left"}
+    if symmetric:
+        xb = np.concatenate([[0.0], xb[xb > 1e-12]])
+        yb = np.concatenate([[0.0], yb[yb > 1e-12]])
+        graded = {len(xb) - 2: "left"}
+    else:
+        # the first and last x intervals are bare rail: grade them
+        graded = {0: "right", len(xb) - 2: "left"}
     xe = _axis_cells(xb, cell_size_m, graded, growth, max(rail_cell_max_m, cell_size_m))
     ye = _axis_cells(yb, cell_size_m)
     ze = _axis_cells(zb, cell_size_m)
@@ -508,7 +527,9 @@ def voxelise(
     h[RAIL] = [h_rail_w_m2k] * 4 + [h_base_w_m2k, h_rail_w_m2k]
     eps = 1e-9
     probes = tuple(
-        (float(x), geometry.block_width_m / 2 - eps, geometry.thermocouple_z_m)
+        (abs(float(x)) if symmetric else float(x), geometry.block_width_m / 2 - eps,
+         geometry.thermocouple_z_m)
         for x in geometry.thermocouple_x_m
     )
-    return VoxelModel(xe, ye, ze, body, rho, lam, cp, h, BALLS, probes)
+    mirror = (0, 2) if symmetric else ()
+    return VoxelModel(xe, ye, ze, body, rho, lam, cp, h, BALLS, probes, mirror)
