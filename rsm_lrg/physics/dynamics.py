@@ -47,6 +47,7 @@ Leine, R.I., van Campen, D.H., de Kraker, A., van den Steen, L. (1998), Nonlinea
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, fields
 from typing import Any
 
@@ -516,9 +517,20 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
     k, c, m, fs, fk = (float(getattr(cst, f.name)) for f in fields(cst))
     bps, T = _breakpoints(s, v, a, dw, n_cycles)
 
-    def stage(t):
-        x, vv, _ = motion.reciprocating_profile(t, s, v, a, dw)
-        return float(x), float(vv)
+    vp = float(motion.peak_velocity(s, v, a))
+    ta_, ts_ = vp / a, s / vp + vp / a
+
+    def stage(t):  # scalar closed form of motion.reciprocating_profile (fast in the ODE loop)
+        tm = math.fmod(t, T)
+        back = tm >= ts_ + dw
+        tau = min(tm - ts_ - dw if back else tm, ts_)
+        if tau < 0.0:
+            tau = 0.0
+        up = min(tau, ta_)
+        down = max(tau - (ts_ - ta_), 0.0)
+        x = vp * (tau - up - down) + 0.5 * a * up * up + vp * down - 0.5 * a * down * down
+        vv = min(a * tau, a * (ts_ - tau), vp)
+        return (s - x, -vv) if back else (x, vv)
 
     grid = np.linspace(0.0, n_cycles * T, n_cycles * samples_per_cycle + 1)
     if rigid:
