@@ -217,7 +217,7 @@ class FactorSpace:
                 and not str(c).lower().startswith(CODED_COLUMN_PREFIX)
                 and pd.api.types.is_numeric_dtype(data[c]) and not pd.api.types.is_bool_dtype(data[c])
             ]
-            items: list[Any] = list(names)
+            items: list[Any] = [(n, None, None) for n in names]  # column names, never NAME=LOW:HIGH specs
             if not items:
                 raise ValueError("no numeric factor columns found in the data")
         else:
