@@ -1,0 +1,89 @@
+"""The HTML report in real headless Chromium: it renders offline, asks the network for
+nothing, every figure decodes, and markup in column names is shown as text and runs nothing."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import rsm_lrg
+from rsm_lrg.report import SECTION_IDS, write_report
+
+pytestmark = pytest.mark.browser
+
+XSS_NAMES = ["<script>alert(1)</script>", "<img src=x onerror=alert(2)>", "\"><svg onload=alert(3)>"]
+
+
+@pytest.fixture(scope="module")
+def reports(tmp_path_factory):
+    d = tmp_path_factory.mktemp("reports")
+    t4 = write_report(rsm_lrg.fit(rsm_lrg.load_table4(), "tcr_c_per_min"), d / "table4.html",
+                      source_name="data/table4.csv")
+    rng = np.random.default_rng(11)
+    runs = [c for c in itertools.product([-1, 0, 1], repeat=3) if sum(map(abs, c)) == 2] + [(0, 0, 0)] * 3
+    X = np.array(runs, dtype=float)
+    df = pd.DataFrame(X, columns=XSS_NAMES)
+    df["<b onmouseover=alert(4)>y</b>"] = 2 + X[:, 0] - X[:, 2] ** 2 + 0.05 * rng.normal(size=len(X))
+    xss = write_report(rsm_lrg.fit(df, "<b onmouseover=alert(4)>y</b>"), d / "xss.html",
+                       title="<script>alert(5)</script>", source_name="<img src=y onerror=alert(6)>.csv")
+    return {"table4": t4, "xss": xss}
+
+
+def test_table4_report_renders_offline(visit, reports):
+    v = visit(reports["table4"], screenshot_name="table4.png")
+    assert v.console_errors == []
+    assert v.foreign_requests == []
+    assert v.dialogs == []
+    assert len(v.images) == 6 + 12  # six diagnostics, six surfaces, six contours
+    for img in v.images:
+        assert img["complete"] and img["naturalWidth"] > 0 and img["naturalHeight"] > 0, img["src"]
+    for sid in SECTION_IDS:
+        assert sid in v.ids
+    for pair in ("AB", "AC", "AD", "BC", "BD", "CD"):
+        assert f"fig-surface-{pair}" in v.ids and f"fig-contour-{pair}" in v.ids
+    # Table 5 and Eq. 19 numbers are visible on the page
+    for text in ("26.03", "221.92", "53.04", "57.97", "10.75", "0.0880", "0.033667", "0.0075 C", "0.0027083 C²"):
+        assert text in v.text, text
+    assert v.screenshot.exists() and v.screenshot.stat().st_size > 10_000
+
+
+def test_markup_in_column_names_is_text_and_runs_nothing(visit, reports):
+    v = visit(reports["xss"], screenshot_name="xss.png")
+    assert v.dialogs == []
+    assert v.console_errors == []
+    assert v.foreign_requests == []
+    assert v.scripts == 0
+    for name in XSS_NAMES + ["<b onmouseover=alert(4)>y</b>", "<script>alert(5)</script>"]:
+        assert name in v.text, name  # shown literally
+    counts = v.page.evaluate(
+        """() => ({img: document.images.length, svg: document.querySelectorAll('svg').length,
+                   b: document.querySelectorAll('b[onmouseover]').length,
+                   handlers: Array.from(document.querySelectorAll('*')).filter(
+                       e => Array.from(e.attributes).some(a => a.name.startsWith('on'))).length})"""
+    )
+    assert counts == {"img": 6 + 2 * 3, "svg": 0, "b": 0, "handlers": 0}
+    for img in v.images:
+        assert img["src"].startswith("data:image/") and img["naturalWidth"] > 0
+    # hovering the response name runs nothing either
+    v.page.mouse.move(10, 10)
+    v.page.hover("#title")
+    assert v.dialogs == []
+    assert "<script>alert(5)</script>" == v.page.title()
+
+
+def test_harness_sees_what_it_must_forbid(visit, tmp_path):
+    """Negative control: a page that does what a report must never do is caught."""
+    bad = tmp_path / "bad.html"
+    bad.write_text(
+        "<!DOCTYPE html><html><head><title>bad</title></head><body>"
+        "<img src='http://example.invalid/x.png'><script>console.error('boom'); alert('hi');</script>"
+        "</body></html>", encoding="utf-8")
+    v = visit(bad, screenshot_name="bad.png")
+    assert v.foreign_requests == ["http://example.invalid/x.png"]
+    assert v.dialogs == ["hi"]
+    assert "boom" in v.console_errors
+    assert v.images[0]["naturalWidth"] == 0
+    assert v.scripts == 1
