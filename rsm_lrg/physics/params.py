@@ -134,7 +134,6 @@ class LRGParams:
     rail_height_m: float = _d("rail_height_m")
     rail_mass_kg_per_m: float = _d("rail_mass_kg_per_m")
     rail_length_m: float = _d("rail_length_m")
-    thermocouple_height_m: float = _d("thermocouple_height_m")
     # materials
     guide_density_kg_m3: float = _d("guide_density_kg_m3")
     guide_conductivity_w_mk: float = _d("guide_conductivity_w_mk")

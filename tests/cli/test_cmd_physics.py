@@ -1,0 +1,65 @@
+"""``rsm-lrg physics`` from outside: exit codes, one-line errors, the JSON keys."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+
+def run(*args, **kw):
+    return subprocess.run([sys.executable, "-m", "rsm_lrg", "physics", *args], capture_output=True, text=True, **kw)
+
+
+def test_table_and_json_to_stdout():
+    out = run("--no-thermal", "--json", "-")
+    assert out.returncode == 0, out.stderr
+    d = json.loads(out.stdout)
+    assert list(d) == ["normal_load_n", "f_mu_max_n", "heat_w", "heat_source_w_m3", "reynolds", "prandtl",
+                       "h_side_w_m2k", "h_front_w_m2k", "hinge", "thermal", "wear"]
+    assert list(d["thermal"]) == ["steady_rise_k_fv", "steady_rise_k_network", "time_to_95_percent_h", "tcr_c_per_min"]
+    assert list(d["wear"]) == ["rfcms_over_rms"]
+    assert abs(d["normal_load_n"] - 173.65) < 0.005   # paper Section 2.1
+    assert "normal_load_n" in out.stderr               # the table goes to stderr when JSON is on stdout
+
+
+def test_json_file_force_and_params(tmp_path):
+    dest = tmp_path / "p.json"
+    out = run("--no-thermal", "--param", "mu_k=0.01", "--json", str(dest))
+    assert out.returncode == 0, out.stderr
+    assert "heat_w" in out.stdout
+    assert json.loads(dest.read_text())["heat_w"] == pytest.approx(0.4150 / 2, rel=5e-4)   # Eq. 8 linear in mu_k
+    again = run("--no-thermal", "--json", str(dest))
+    assert again.returncode == 2 and again.stderr.startswith("error:") and "--force" in again.stderr
+    assert run("--no-thermal", "--json", str(dest), "--force").returncode == 0
+    toml = tmp_path / "o.toml"
+    toml.write_text("mu_s = 0.06\n")
+    d = json.loads(run("--no-thermal", "--params-file", str(toml), "--json", "-").stdout)
+    assert d["f_mu_max_n"] == pytest.approx(2 * 5.2094, rel=1e-4)
+
+
+@pytest.mark.parametrize("args,words", [
+    (["--param", "no_such=1"], "no_such"),
+    (["--param", "mu_s=2"], "mu_s"),
+    (["--param", "stroke_m=-0.1"], "stroke_m"),
+    (["--param", "mu_k=abc"], "mu_k"),
+    (["--param", "mu_k"], "NAME=VALUE"),
+    (["--params-file", "/no/such/file.toml"], "file.toml"),
+])
+def test_bad_parameters_exit_2_with_one_line(args, words):
+    out = run("--no-thermal", *args)
+    assert out.returncode == 2
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error:") and words in lines[0]
+
+
+def test_with_thermal_model():
+    out = run("--json", "-")
+    assert out.returncode == 0, out.stderr
+    d = json.loads(out.stdout)
+    assert all(isinstance(d["thermal"][k], float) for k in d["thermal"])
+
+
+def test_list_params():
+    out = run("--list-params")
+    assert out.returncode == 0 and "hinge_width_m" in out.stdout and "ASSUMPTION" in out.stdout
