@@ -36,6 +36,8 @@ _register("rsm_lrg.design", "Design", "box_behnken", "central_composite", "full_
 _register("rsm_lrg.model", "fit", "FitResult")
 _register("rsm_lrg.optimize", "optimize", "OptimumResult")
 _register("rsm_lrg.surrogate", "simulate")
+_register("rsm_lrg.physics.chain", "physics_chain", "PhysicsResult")
+_register("rsm_lrg.physics.params", "LRGParams")
 
 __all__ = sorted(_LAZY) + ["__version__"]
 

@@ -35,7 +35,7 @@ PAPER_WEAR_RATIO = 0.5893
 PAPER_VALUES = {
     "normal_load_n": 173.65, "f_mu_max_n": 5.209, "heat_w": 0.4150, "heat_source_w_m3": 5.6e5,
     "reynolds": 290.3, "prandtl": 0.703, "h_side_w_m2k": 8.82, "h_front_w_m2k": 22.45,
-    "steady_rise_k_fv": 4.038, "steady_rise_k_network": 4.038, "rfcms_over_rms": PAPER_WEAR_RATIO,
+    "steady_rise_k_fv": 4.038, "rfcms_over_rms": PAPER_WEAR_RATIO,
 }
 
 _THERMAL_KEYS = ("steady_rise_k_fv", "steady_rise_k_network", "time_to_95_percent_h", "tcr_c_per_min")
