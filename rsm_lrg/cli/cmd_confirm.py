@@ -1,0 +1,53 @@
+"""``rsm-lrg confirm``: confirmation runs against the prediction interval."""
+
+from __future__ import annotations
+
+import argparse
+
+from ._common import about_file, add_factor_options, add_force, add_json
+
+NAME = "confirm"
+HELP = "check confirmation runs against the prediction interval for their mean"
+DESCRIPTION = (
+    "Fit the model, predict at the --at settings (actual units) and compare the mean of the "
+    "--observed confirmation runs with the 95 % prediction interval for the mean of that many "
+    "runs: inside or outside, and the relative error against the prediction (and against "
+    "--reference, e.g. a rounded published prediction)."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
+    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    parser.add_argument("--at", action="append", required=True, metavar="NAME=VALUE",
+                        help="a factor setting in actual units (repeat for every factor)")
+    parser.add_argument("--observed", type=float, nargs="+", required=True, metavar="V",
+                        help="the confirmation run result(s)")
+    parser.add_argument("--reference", type=float, default=None, metavar="V",
+                        help="also give the relative error against this value")
+    parser.add_argument("--confidence", type=float, default=0.95, metavar="C", help="interval level (default 0.95)")
+    add_factor_options(parser)
+    parser.add_argument("--block", metavar="COL", default=None, help="block column (prediction for the average block)")
+    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
+                        help="model order (default quadratic)")
+    add_json(parser)
+    add_force(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..io import dump_json, read_table
+    from ..model import fit
+    from ..optimize.confirm import confirm
+
+    data = read_table(args.data)
+    with about_file(args.data):
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
+        c = confirm(result, args.at, args.observed, confidence=args.confidence, reference=args.reference)
+    if args.json and args.json != "-":
+        dump_json(c.to_dict(), args.json, force=args.force)
+    if args.json == "-":
+        dump_json(c.to_dict(), "-")
+    else:
+        print(f"Data: {args.data}")
+        print(c.summary(), end="")
+    return 0

@@ -1,0 +1,67 @@
+"""``rsm-lrg evaluate``: evaluate a design before any data (VIF, leverage, prediction variance, FDS, power)."""
+
+from __future__ import annotations
+
+import argparse
+
+from ._common import about_file, add_force, add_json
+
+NAME = "evaluate"
+HELP = "evaluate a design for a model before any data: VIF, leverage, prediction variance, FDS, power"
+DESCRIPTION = (
+    "Read a design CSV (as written by 'rsm-lrg design') and report, for the chosen model, the "
+    "degrees of freedom, each term's standard error (in units of sigma), VIF and power to "
+    "detect a 2-sigma effect at alpha 0.05, the leverage of every run, the scaled prediction "
+    "variance at the centre, at the design points and over the region, and the "
+    "fraction-of-design-space curve. A data CSV without coded columns is read as well: its "
+    "numeric columns (minus --exclude) are the factors, coded from their observed range."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("design", metavar="DESIGN.csv", help="the design")
+    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
+                        help="model to evaluate (default quadratic)")
+    parser.add_argument("--region", default="cube", choices=["cube", "sphere"],
+                        help="region for the prediction variance (default: the coded cube)")
+    parser.add_argument("--alpha", type=float, default=0.05, metavar="A", help="level of the power test (default 0.05)")
+    parser.add_argument("--effect", type=float, default=2.0, metavar="SD",
+                        help="effect to detect, in standard deviations (default 2)")
+    parser.add_argument("--exclude", action="append", default=[], metavar="COL",
+                        help="a column that is not a factor (data CSVs only; repeatable)")
+    add_json(parser)
+    add_force(parser)
+
+
+def _load(path, exclude):
+    from ..design import read_design
+    from ..design.core import Design
+    from ..factors import FactorSpace
+    from ..io import read_table
+
+    df = read_table(path)
+    if any(str(c).lower().startswith("coded_") for c in df.columns):
+        return read_design(path)
+    space = FactorSpace.from_data(df, None, exclude=exclude)
+    coded = space.encode(df).to_numpy(dtype=float)
+    n = len(df)
+    import numpy as np
+
+    return Design(space, "custom", coded, np.arange(1, n + 1), np.arange(1, n + 1))
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..io import dump_json
+    from ..model.evaluate import evaluate_design
+
+    with about_file(args.design):
+        design = _load(args.design, args.exclude)
+        ev = evaluate_design(design, args.model, region=args.region, alpha=args.alpha, effect_sd=args.effect)
+    if args.json and args.json != "-":
+        dump_json(ev.to_dict(), args.json, force=args.force)
+    if args.json == "-":
+        dump_json(ev.to_dict(), "-")
+    else:
+        print(f"Design: {args.design}")
+        print(ev.summary(), end="")
+    return 0

@@ -1,0 +1,45 @@
+"""``rsm-lrg fit-summary``: sequential model sums of squares, lack of fit per order, suggested model."""
+
+from __future__ import annotations
+
+import argparse
+
+from ._common import about_file, add_factor_options, add_force, add_json
+
+NAME = "fit-summary"
+HELP = "compare linear, 2FI, quadratic and cubic models; suggest one"
+DESCRIPTION = (
+    "Design-Expert style fit summary: sequential (Type I) model sums of squares for the mean, "
+    "linear, 2FI, quadratic and cubic models (flagged 'Aliased' where the design cannot "
+    "estimate every term), the lack-of-fit test of each order, R², adjusted and predicted R² "
+    "and PRESS per order, and the suggested model: the highest order that is significant, "
+    "not aliased, and without significant lack of fit."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
+    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    add_factor_options(parser)
+    parser.add_argument("--block", metavar="COL", default=None, help="block column (entered first)")
+    parser.add_argument("--alpha", type=float, default=0.05, metavar="A",
+                        help="significance level for the suggestion (default 0.05)")
+    add_json(parser)
+    add_force(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..io import dump_json, read_table
+    from ..model.summary import fit_summary
+
+    data = read_table(args.data)
+    with about_file(args.data):
+        s = fit_summary(data, args.response, factors=args.factor, block=args.block, alpha=args.alpha)
+    if args.json and args.json != "-":
+        dump_json(s.to_dict(), args.json, force=args.force)
+    if args.json == "-":
+        dump_json(s.to_dict(), "-")
+    else:
+        print(f"Data: {args.data}")
+        print(s.summary(), end="")
+    return 0

@@ -1,0 +1,54 @@
+"""``rsm-lrg ridge``: ridge path (second-order model) or steepest path (first order)."""
+
+from __future__ import annotations
+
+import argparse
+
+from ._common import about_file, add_factor_options, add_force, add_json
+
+NAME = "ridge"
+HELP = "ridge analysis (second order) or path of steepest ascent/descent (first order)"
+DESCRIPTION = (
+    "Fit the model, then follow the path of best predicted response away from the design "
+    "centre: for a second-order model the ridge path (the best point on each sphere of "
+    "radius r, R rsm's steepest()), for a first-order model the straight path of steepest "
+    "ascent or descent. Points at every multiple of --step up to --radius (coded units), in "
+    "coded and actual units with the predicted response."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
+    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    parser.add_argument("--goal", default="maximize", choices=["maximize", "minimize"],
+                        help="ascent (maximize, default) or descent (minimize)")
+    parser.add_argument("--radius", type=float, default=None, metavar="R",
+                        help="largest distance from the centre in coded units (default: the farthest design point)")
+    parser.add_argument("--step", type=float, default=0.1, metavar="S", help="spacing of the path points (default 0.1)")
+    add_factor_options(parser)
+    parser.add_argument("--block", metavar="COL", default=None, help="block column (path for the average block)")
+    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic"],
+                        help="model order (default quadratic)")
+    add_json(parser)
+    add_force(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..io import dump_json, read_table
+    from ..model import fit
+    from ..model.ridge import radii, ridge
+
+    if args.radius is not None:
+        radii(args.radius, args.step)  # bad numbers fail before any work
+    data = read_table(args.data)
+    with about_file(args.data):
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
+        path = ridge(result, goal=args.goal, radius=args.radius, step=args.step)
+    if args.json and args.json != "-":
+        dump_json(path.to_dict(), args.json, force=args.force)
+    if args.json == "-":
+        dump_json(path.to_dict(), "-")
+    else:
+        print(f"Data: {args.data}")
+        print(path.summary(), end="")
+    return 0
