@@ -65,6 +65,10 @@ __all__ = [
 
 _MOTION_KEYS = ("stroke_m", "velocity_m_s", "acceleration_m_s2", "dwell_s")
 
+#: Parameters that only the RFCMS uses (RMS rows may leave them empty).
+_HINGE_SIDE = {"hinge_thickness_m", "hinge_width_m", "hinge_length_m", "hinge_modulus_pa", "hinge_count",
+               "hinge_damping_ratio", "frame_mass_fraction"}
+
 
 # ------------------------------------------------------------------------------------------
 # constants of the two-mass model
@@ -246,6 +250,16 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         raise ValueError("n_cycles must be at least 2")
     dwell = columns.pop("dwell_s", p.dwell_s)
     check_values("dwell_s", dwell)
+    if np.ndim(stage) and columns:
+        # RMS rows ignore the hinge and frame columns (they may be empty/NaN there)
+        shape0 = np.broadcast_shapes(np.shape(stroke), np.shape(velocity), np.shape(acceleration),
+                                     np.shape(stage), *(np.shape(x) for x in columns.values()))
+        rig = _stage_is_rigid(np.ravel(np.broadcast_to(np.asarray(stage, dtype=object), shape0)),
+                              int(np.prod(shape0))).reshape(shape0)
+        if rig.any():
+            base = p.to_dict()
+            columns = {k: (np.where(rig, base[k], np.broadcast_to(np.asarray(x, dtype=float), shape0))
+                           if k in _HINGE_SIDE and np.ndim(x) else x) for k, x in columns.items()}
     const = stage_constants(p, **columns)
     arrays = np.broadcast_arrays(np.asarray(stroke, float), np.asarray(velocity, float),
                                  np.asarray(acceleration, float), np.asarray(dwell, float),

@@ -150,3 +150,11 @@ def test_bad_inputs():
         dynamics.cycle_metrics(hinge_thicknes_m=0.0003)
     with pytest.raises(ValueError, match="stroke_m must be > 0"):
         dynamics.cycle_metrics(stroke=0.0)
+
+
+def test_rms_rows_may_leave_hinge_columns_empty():
+    y = np.array([np.nan, 0.0003])
+    m = dynamics.cycle_metrics([0.05, 0.05], 0.5, 30.0, stage=np.array(["rms", "rfcms"]), hinge_thickness_m=y)
+    assert m.sliding_distance_m[0] == 0.1 and np.isfinite(m.sliding_distance_m[1])
+    with pytest.raises(ValueError, match=r"hinge_thickness_m must be finite.*row 0"):
+        dynamics.cycle_metrics([0.05, 0.05], 0.5, 30.0, stage="rfcms", hinge_thickness_m=y)
