@@ -170,3 +170,9 @@ def test_bad_inputs_are_refused(fv4):
         network_response([-1.0])
     with pytest.raises(ValueError, match="method"):
         fv4.steady(Q, method="lu")
+
+
+def test_cg_equals_direct(fv2):
+    d, c = fv2.steady(Q), fv2.steady(Q, method="cg", rtol=1e-12)
+    np.testing.assert_allclose(c.theta_k, d.theta_k, rtol=1e-8)
+    assert c.info["iterations"] > 0
