@@ -24,6 +24,18 @@ def format_g(x, digits: int = 4) -> str:
     return f"{x:.{digits - 1}e}"
 
 
+#: Relative size below which a sum of squares or a coefficient is round-off and printed as 0
+#: (Design-Expert prints 0.000 for the AB and BC rows of the paper's Table 5).
+ROUND_OFF = 1e-12
+
+
+def _clean(x, scale):
+    """``x``, or 0.0 when it is round-off relative to ``scale``."""
+    if x is None or not math.isfinite(float(x)) or not math.isfinite(float(scale)):
+        return x
+    return 0.0 if abs(float(x)) <= ROUND_OFF * abs(float(scale)) else x
+
+
 def _p(p) -> str:
     if p is None or not math.isfinite(p):
         return ""
@@ -42,6 +54,8 @@ def _table(header, rows, align=None) -> str:
 def format_anova(result, alpha: float = 0.05) -> str:
     """The ANOVA (Type III partial sums of squares) like Table 5, with significance notes."""
     rows = []
+    total = result.anova.loc[result.anova["source"] == "Cor Total", "sum_sq"]
+    scale = float(total.iloc[0]) if len(total) else 0.0
     for r in result.anova.itertuples(index=False):
         mark = ""
         if r.p == r.p and r.source not in ("Residual", "Pure Error", "Cor Total", "Block"):
@@ -51,7 +65,9 @@ def format_anova(result, alpha: float = 0.05) -> str:
                 mark = "significant" if r.p < alpha else "not significant"
             else:
                 mark = "*" if r.p < alpha else ""
-        rows.append([r.source, format_g(r.sum_sq), r.df, format_g(r.mean_sq), format_g(r.f), _p(r.p), mark])
+        ss, ms = _clean(r.sum_sq, scale), _clean(r.mean_sq, scale)
+        f = 0.0 if (ss == 0.0 and r.f == r.f) else r.f
+        rows.append([r.source, format_g(ss), r.df, format_g(ms), format_g(f), _p(r.p), mark])
     head = ["Source", "Sum of Squares", "df", "Mean Square", "F-value", "p-value", ""]
     return _table(head, rows, ["<", ">", ">", ">", ">", ">", "<"])
 
@@ -65,7 +81,9 @@ def format_equation(result, units: str = "coded") -> str:
         coefs = dict(result.actual_coefficients)
         rename = {f.letter: f.name for f in result.space.factors}
     lines = [f"{result.response} ="]
+    scale = max((abs(v) for v in coefs.values() if math.isfinite(v)), default=0.0)
     for name, c in coefs.items():
+        c = _clean(c, scale)
         if name == "Intercept":
             label = ""
         elif units == "coded":
@@ -126,8 +144,9 @@ def format_summary(result) -> str:
     out.append("")
     out.append("Coefficients in terms of coded factors (95 % CI)")
     rows = []
+    cscale = float(result.coefficients["coded"].abs().max())
     for name, r in result.coefficients.iterrows():
-        rows.append([name, format_g(r["coded"]), format_g(r["std_error"]), format_g(r["ci_low"]),
+        rows.append([name, format_g(_clean(r["coded"], cscale)), format_g(r["std_error"]), format_g(r["ci_low"]),
                      format_g(r["ci_high"]), (f"{r['vif']:.2f}" if r["vif"] == r["vif"] else ""), _p(r["p"])])
     out.append(_table(["Term", "Estimate", "Std Error", "95% CI Low", "95% CI High", "VIF", "p-value"], rows))
     if result.block_effects:
