@@ -87,3 +87,20 @@ def test_harness_sees_what_it_must_forbid(visit, tmp_path):
     assert "boom" in v.console_errors
     assert v.images[0]["naturalWidth"] == 0
     assert v.scripts == 1
+
+
+@pytest.mark.slow
+def test_paper_reproduction_page_renders_offline(visit, tmp_path):
+    from rsm_lrg.report.reproduce import reproduce, write_reproduction
+
+    rep = reproduce()
+    page = write_reproduction(rep, tmp_path / "reports")
+    v = visit(page, screenshot_name="paper-reproduction.png")
+    assert v.console_errors == [] and v.foreign_requests == [] and v.dialogs == [] and v.scripts == 0
+    for sid in ("verdict", "comparison", "comparison-table", "fig5", "fig9", "fig10", "fig11", "surrogate"):
+        assert sid in v.ids, sid
+    assert len(v.images) >= 12 + 2  # Fig. 10 (6 surfaces + 6 contours), Fig. 5, Fig. 11 (+ Fig. 9, surrogate)
+    for img in v.images:
+        assert img["complete"] and img["naturalWidth"] > 0, img["src"]
+    assert "Every checked row is within its tolerance." in v.text
+    assert "221.92" in v.text and "0.03367" in v.text

@@ -1,0 +1,100 @@
+"""``reproduce``: the paper side by side with the toolkit, each row with its tolerance.
+
+Reference values are the paper's own printed numbers, read from the shipped data files
+(Table 5, Eq. 19) or quoted in reproduce.py with their section; the tolerance rule is one
+unit in the last printed digit unless a row says otherwise.
+"""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from rsm_lrg.report.reproduce import VERDICTS, Reproduction, _claim, _close, last_digit_unit, reproduce
+
+
+@given(st.integers(0, 10**6), st.integers(0, 6))
+def test_last_digit_unit_counts_printed_decimals(mantissa, decimals):
+    printed = f"{mantissa / 10**decimals:.{decimals}f}"
+    assert last_digit_unit(printed) == pytest.approx(10.0 ** -decimals, rel=1e-12)
+
+
+def test_last_digit_unit_rejects_text():
+    with pytest.raises(ValueError, match="cannot read"):
+        last_digit_unit("about five")
+
+
+def test_verdicts():
+    assert _close("s", "q", "26.03", 26.0312).verdict == "pass"
+    assert _close("s", "q", "26.03", 26.05).verdict == "FAIL"
+    r = _close("s", "q", "26.03", 26.05, gap="input not given")
+    assert (r.verdict, r.note) == ("not yet", "input not given")
+    assert _close("s", "q", "26.03", 26.035, gap="input not given").verdict == "pass"  # a gap closes by itself
+    assert _close("s", "q", "4.038", 2.8, tol=0.4038).verdict == "FAIL"
+    assert _close("s", "q", "1.0", float("nan")).verdict == "FAIL"
+    assert _claim("s", "q", "claim", "x", None, gap="not built").verdict == "not yet"
+    assert _claim("s", "q", "claim", "x", False).verdict == "FAIL"
+
+
+@pytest.fixture(scope="module")
+def rep() -> Reproduction:
+    messages = []
+    r = reproduce(progress=messages.append)
+    assert len(messages) == 5 and messages[0].startswith("[1/5]")
+    return r
+
+
+def _row(rep, text):
+    hits = [r for r in rep.rows if text in r.quantity]
+    assert hits, text
+    return hits[0]
+
+
+def test_covers_what_the_issue_lists(rep):
+    for text in ("heat source intensity Φ", "h, top and side faces", "h, front face", "steady temperature rise",
+                 "time to thermal equilibrium", "RFCMS / RMS", "Fig. 9", "R² [-]", "optimum thickness_m",
+                 "predicted κ at the optimum", "confirmation κ, 1.2 °C in 50 min", "prediction interval"):
+        _row(rep, text)
+    eq19 = [r for r in rep.rows if r.quantity.startswith("Eq. 19 coefficient")]
+    assert len(eq19) == 15
+    t5 = [r for r in rep.rows if r.section == "Table 5: ANOVA"]
+    sources = {r.quantity.split(":")[0] for r in t5}
+    assert {"Model", "A", "B", "C", "D", "AB", "AC", "AD", "BC", "BD", "CD", "A^2", "B^2", "C^2", "D^2",
+            "Residual", "Lack of Fit", "Pure Error", "Cor Total"} <= sources
+
+
+def test_nothing_fails_and_every_gap_says_why(rep):
+    assert set(r.verdict for r in rep.rows) <= set(VERDICTS)
+    assert [r.quantity for r in rep.rows if r.verdict == "FAIL"] == []
+    assert rep.ok
+    for r in rep.rows:
+        if r.verdict in ("not yet", "info"):
+            assert len(r.note) > 20, r.quantity
+
+
+def test_paper_numbers_that_must_match(rep):
+    # DIGEST §2 (checked): Phi 5.597e5 ("5.6 x 10^5"), h 8.82 and 22.45 W/(m^2 K)
+    assert _row(rep, "heat source intensity Φ").verdict == "pass"
+    assert _row(rep, "h, top and side faces").verdict == "pass"
+    assert _row(rep, "h, front face").verdict == "pass"
+    # Table 5 and Eq. 19 all within one unit of the last printed digit
+    for r in rep.rows:
+        if r.section in ("Table 5: ANOVA", "Eq. 19: coded coefficients of κ [°C/min]"):
+            assert r.verdict == "pass", r
+    # Section 4.3: F-order C > D > A > B; optimum at all-low corner; confirmation inside the PI
+    assert _row(rep, "order of influence").toolkit == "C > D > A > B"
+    assert _row(rep, "predicted κ at the optimum").toolkit_value == pytest.approx(0.022833, abs=5e-7)
+    assert _row(rep, "prediction interval").verdict == "pass"
+    assert _row(rep, "optimum acceleration_m_s2").toolkit_value == pytest.approx(20.0, abs=1e-9)
+
+
+def test_text_and_frame(rep):
+    text = rep.to_text()
+    assert text.splitlines()[0].split() == ["quantity", "paper", "toolkit", "rel.", "diff", "tolerance", "verdict"]
+    assert "Rows that do not match, and why:" in text or rep.counts()["not yet"] == 0
+    df = rep.to_frame()
+    assert list(df.columns)[:4] == ["section", "quantity", "paper", "toolkit"]
+    assert len(df) == len(rep.rows)
+    d = rep.to_dict()
+    assert d["ok"] is True and sum(d["counts"].values()) == len(rep.rows)
