@@ -1,0 +1,57 @@
+"""``rsm-lrg calibrate``: fit the surrogate's unknown parameters to measured runs."""
+
+from __future__ import annotations
+
+import argparse
+
+from ._common import about_file, add_force, add_json
+
+NAME = "calibrate"
+HELP = "fit the surrogate's unknown parameters to measured runs"
+DESCRIPTION = (
+    "Fit at most three parameters the paper does not give (by default: the share of the "
+    "friction heat that enters the guide, the viscous friction of the block, the hinge length) "
+    "by bounded least squares to the measured response of noise-free virtual runs; report R2, "
+    "RMSE, standard errors and leave-one-out cross-validation, and write them with the data's "
+    "name and SHA-256 to a TOML file that `rsm-lrg simulate --calibration PATH` reads "
+    "(data/calibration.toml is the shipped default)."
+)
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("data", metavar="DATA.csv", help="measured runs: the design columns and the response")
+    p.add_argument("--response", required=True, metavar="COL", help="the measured column (e.g. tcr_c_per_min)")
+    p.add_argument("--parameter", action="append", default=None, metavar="NAME",
+                   help="a parameter to calibrate (repeatable, at most 3; default: heat_partition, "
+                        "viscous_friction_n_s_m, hinge_length_m)")
+    p.add_argument("--duration-min", type=float, default=50.0, metavar="M",
+                   help="test duration of the measured runs [min] (default 50)")
+    p.add_argument("--no-loo", action="store_true", help="skip leave-one-out cross-validation")
+    p.add_argument("-o", "--output", default=None, metavar="PATH.toml", help="write the calibration TOML here")
+    add_json(p)
+    add_force(p)
+
+
+def run(args) -> int:
+    import sys
+    from pathlib import Path
+
+    from ..io import InputError, dump_json, read_table, write_output
+    from ..surrogate.calibrate import calibrate, calibration_toml, file_sha256
+
+    if args.output and Path(args.output).exists() and not args.force:
+        raise InputError(f"{args.output}: already exists; use --force to overwrite it")
+    if not args.duration_min >= 1:
+        raise InputError(f"--duration-min must be at least 1, got {args.duration_min:g}")
+    data = read_table(args.data)
+    with about_file(args.data):
+        cal = calibrate(data, args.response, parameters=args.parameter, duration_min=args.duration_min,
+                        loo=not args.no_loo, source=Path(args.data).name, data_sha256=file_sha256(args.data))
+    print(cal.summary())
+    cmd = "rsm-lrg calibrate " + " ".join(sys.argv[2:]) if len(sys.argv) > 2 else ""
+    if args.output:
+        write_output(args.output, calibration_toml(cal, cmd), force=args.force)
+        print(f"calibrate: written to {args.output}", file=sys.stderr)
+    if args.json:
+        dump_json(cal.to_dict(), args.json, force=args.force)
+    return 0

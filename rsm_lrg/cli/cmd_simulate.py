@@ -1,0 +1,140 @@
+"""``rsm-lrg simulate``: virtual runs of the physics surrogate, one row per design row."""
+
+from __future__ import annotations
+
+import argparse
+
+from ._common import about_file, add_force
+
+NAME = "simulate"
+HELP = "virtual runs of the physics surrogate, one row per design row"
+DESCRIPTION = (
+    "Run a design through the physics surrogate as if the rig of Su, Zhang & Yang (2023, "
+    "Section 4) had run it: motion profile, stage dynamics with the hinge thickness (column "
+    "stage = rfcms, the default, or rms), cycle-averaged friction heat, the thermal model over "
+    "the test, thermocouple readings every minute (two sensors, averaged) and the temperature "
+    "change rate by Eq. 18, plus temperature rise, steady rise, Archard wear per hour and "
+    "sliding distance per cycle. Every input column is kept. Uses the calibration in "
+    "data/calibration.toml unless --calibration PATH or --uncalibrated."
+)
+
+
+def _nonneg_float(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not v >= 0 or v == float("inf"):
+        raise argparse.ArgumentTypeError(f"expected a finite number >= 0, got {text!r}")
+    return v
+
+
+def _pos_int(text: str) -> int:
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+    if v < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 1, got {text!r}")
+    return v
+
+
+def _seed(text: str) -> int:
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {text!r}")
+    return v
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("design", metavar="DESIGN.csv",
+                   help="design: thickness_m, stroke_m, velocity_m_s, acceleration_m_s2 [, stage, parameter columns]")
+    p.add_argument("--seed", type=_seed, default=None, metavar="N",
+                   help="seed of the reading noise (default: drawn and printed on stderr)")
+    p.add_argument("--noise-sd", type=_nonneg_float, default=None, metavar="X",
+                   help="SD [degC] of the Gaussian noise on each thermocouple reading (two sensors, read "
+                        "every minute, averaged); kappa's SD is X / duration. 0 = deterministic (default 0.03)")
+    p.add_argument("--duration-min", type=_nonneg_float, default=50.0, metavar="M",
+                   help="test duration [min] for rows without a test_duration_min column (default 50)")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=_pos_int, default=None, metavar="N",
+                       help="run batches in N local processes")
+    where.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                       help="run batches on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786)")
+    cal = p.add_mutually_exclusive_group()
+    cal.add_argument("--calibration", default=None, metavar="PATH",
+                     help="calibration TOML (default: the shipped data/calibration.toml)")
+    cal.add_argument("--uncalibrated", action="store_true",
+                     help="the raw physics: the paper's inputs and the documented assumptions")
+    p.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                   help="override a physical parameter for every row (repeatable)")
+    prog = p.add_mutually_exclusive_group()
+    prog.add_argument("--progress", dest="progress", action="store_true", default=None,
+                      help="always show a progress bar on stderr")
+    prog.add_argument("--no-progress", dest="progress", action="store_false",
+                      help="never show a progress bar (default: for 20,000 rows or more)")
+    p.add_argument("-o", "--output", required=True, metavar="PATH", help="the CSV of runs to write")
+    add_force(p)
+
+
+def run(args) -> int:
+    import sys
+    from pathlib import Path
+
+    from ..io import InputError, read_table, write_output
+    from ..physics.params import LRGParams, parse_assignments
+    from ..surrogate.execute import DEFAULT_NOISE_SD, simulate
+    from ..surrogate.noise import resolve_seed
+
+    out_path = Path(args.output)
+    if out_path.exists() and not args.force:
+        raise InputError(f"{out_path}: already exists; use --force to overwrite it")
+    if args.duration_min < 1:
+        raise InputError(f"--duration-min must be at least 1 (two readings one minute apart), got {args.duration_min:g}")
+    design = read_table(args.design)
+    params = LRGParams().with_overrides(**parse_assignments(args.param)) if args.param else LRGParams()
+    noise = DEFAULT_NOISE_SD if args.noise_sd is None else args.noise_sd
+    seed = args.seed
+    if seed is None and noise > 0:
+        seed = resolve_seed(None)
+        print(f"simulate: --seed {seed}", file=sys.stderr)
+    if args.uncalibrated:
+        calibration = None
+    elif args.calibration:
+        from ..surrogate.calibrate import load_calibration
+
+        calibration = load_calibration(args.calibration)
+    else:
+        calibration = "default"
+
+    executor = client = None
+    try:
+        if args.workers and args.workers > 1:
+            from concurrent.futures import ProcessPoolExecutor
+
+            executor = ProcessPoolExecutor(max_workers=args.workers)
+        elif args.scheduler:
+            try:
+                from distributed import Client
+            except ImportError:
+                raise InputError("--scheduler needs dask.distributed: pip install 'rsm-lrg[parallel]'") from None
+            try:
+                client = Client(args.scheduler, timeout="10s")
+            except (OSError, TimeoutError) as exc:
+                raise InputError(f"--scheduler {args.scheduler}: cannot connect ({exc})") from None
+            executor = client.get_executor()
+        with about_file(args.design):
+            runs = simulate(design, seed=seed, noise_sd=noise, duration_min=args.duration_min,
+                            executor=executor, calibration=calibration, params=params,
+                            progress=args.progress)
+    finally:
+        if executor is not None and client is None:
+            executor.shutdown()
+        if client is not None:
+            client.close()
+    write_output(out_path, runs.to_csv(index=False, float_format="%.10g", lineterminator="\n"), force=args.force)
+    print(f"simulate: {len(runs)} runs -> {out_path}", file=sys.stderr)
+    return 0

@@ -1,0 +1,423 @@
+"""Calibration of the surrogate's unknown parameters to measured runs (Table 4).
+
+At most three parameters that the paper does not give, each with a physical meaning and
+bounds, are fitted by bounded nonlinear least squares (:func:`scipy.optimize.least_squares`,
+trust-region reflective) to the measured response of noise-free virtual runs at the measured
+settings. Reported: R², RMSE, standard errors from the Jacobian at the optimum
+(``s²·(JᵀJ)⁻¹``, s² = SSR/(n − p)), and leave-one-out cross-validation (each run refitted
+without it and predicted; LOO R² = 1 − PRESS/SS_tot). No offsets or correction terms:
+every parameter enters through a mechanism of :mod:`rsm_lrg.surrogate.runs`.
+
+The result is written to a TOML file (``data/calibration.toml`` ships with the package and
+is what :func:`rsm_lrg.simulate` uses by default).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+__all__ = [
+    "CALIBRATION_FILE", "DEFAULT_PARAMETERS", "ParameterSpec", "ParameterEstimate",
+    "Calibration", "calibrate", "load_calibration", "resolve_calibration", "calibration_toml",
+]
+
+#: Name of the shipped calibration file.
+CALIBRATION_FILE = "calibration.toml"
+
+
+@dataclass(frozen=True)
+class ParameterSpec:
+    """A parameter to calibrate: name, bounds and starting value, in its unit."""
+
+    name: str
+    lower: float
+    upper: float
+    start: float
+    unit: str
+    meaning: str
+
+
+#: The parameters calibrated by default (at most three; see the module docstring).
+DEFAULT_PARAMETERS = (
+    ParameterSpec("heat_partition", 0.01, 1.0, 0.5, "1",
+                  "share of the friction heat of Eq. 8 (as written, divided by J) that enters "
+                  "the guide; the rest goes into the stage, the lubricant and the seals"),
+    ParameterSpec("viscous_friction_n_s_m", 0.0, 30.0, 3.0, "N s/m",
+                  "speed-proportional friction of the lubricated, sealed block (LuGre sigma_2): "
+                  "its heat c_v * <v^2> adds to the Coulomb heat of Eq. 8"),
+    ParameterSpec("hinge_length_m", 0.005, 0.06, 0.02, "m",
+                  "free length l of each leaf hinge (Eq. 1: K_n = E w y^3 / l^3); the paper "
+                  "does not give it; sets how far the frame lags the working stage"),
+)
+
+
+@dataclass(frozen=True)
+class ParameterEstimate:
+    """A calibrated parameter: value, standard error, bounds, unit, meaning."""
+
+    name: str
+    value: float
+    std_error: float
+    lower: float
+    upper: float
+    unit: str = ""
+    meaning: str = ""
+    at_bound: bool = False
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "value": self.value, "std_error": self.std_error, "lower": self.lower,
+                "upper": self.upper, "unit": self.unit, "meaning": self.meaning, "at_bound": self.at_bound}
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """Calibrated parameters and how well they reproduce the data.
+
+    Attributes
+    ----------
+    parameters : tuple of ParameterEstimate
+    response : str
+        The measured column fitted (``tcr_c_per_min``).
+    n : int
+        Number of runs.
+    r2, rmse : float
+        In-sample R² and RMSE [response units] of the noise-free surrogate.
+    loo_r2, loo_rmse : float or None
+        Leave-one-out R² (1 − PRESS/SS_tot) and RMSE, if computed.
+    data : str
+        Where the data came from (file name) and ``data_sha256`` its SHA-256.
+    observed, predicted, loo_predicted : tuple of float
+        Per run (``loo_predicted`` empty if LOO was not run).
+    """
+
+    parameters: tuple
+    response: str
+    n: int
+    r2: float
+    rmse: float
+    loo_r2: float | None = None
+    loo_rmse: float | None = None
+    data: str = ""
+    data_sha256: str = ""
+    observed: tuple = field(default=(), repr=False)
+    predicted: tuple = field(default=(), repr=False)
+    loo_predicted: tuple = field(default=(), repr=False)
+    method: str = "scipy.optimize.least_squares (trf, bounded), noise-free virtual runs"
+    uncalibrated_r2: float | None = None
+
+    def parameter_values(self) -> dict:
+        """``{name: value}`` as :func:`rsm_lrg.surrogate.runs.evaluate_rows` takes it."""
+        return {p.name: p.value for p in self.parameters}
+
+    def to_dict(self) -> dict:
+        return {
+            "response": self.response, "n": self.n, "r2": self.r2, "rmse": self.rmse,
+            "loo_r2": self.loo_r2, "loo_rmse": self.loo_rmse, "uncalibrated_r2": self.uncalibrated_r2,
+            "data": self.data, "data_sha256": self.data_sha256, "method": self.method,
+            "parameters": [p.to_dict() for p in self.parameters],
+            "observed": list(self.observed), "predicted": list(self.predicted),
+            "loo_predicted": list(self.loo_predicted),
+        }
+
+    def to_frame(self):
+        """One row per parameter: name, value, std_error, lower, upper, unit, meaning."""
+        import pandas as pd
+
+        return pd.DataFrame([p.to_dict() for p in self.parameters])
+
+    def summary(self) -> str:
+        lines = [f"calibration of {len(self.parameters)} parameters to {self.response} ({self.n} runs, {self.data})"]
+        for p in self.parameters:
+            flag = "  (at a bound)" if p.at_bound else ""
+            lines.append(f"  {p.name:<24} {p.value:12.6g} ± {p.std_error:<10.3g} {p.unit:<6} "
+                         f"bounds [{p.lower:g}, {p.upper:g}]{flag}")
+        lines.append(f"  R2 {self.r2:.4f}   RMSE {self.rmse:.4g}")
+        if self.loo_r2 is not None:
+            lines.append(f"  leave-one-out R2 {self.loo_r2:.4f}   RMSE {self.loo_rmse:.4g}")
+        if self.uncalibrated_r2 is not None:
+            lines.append(f"  raw physics (uncalibrated) R2 {self.uncalibrated_r2:.4f}")
+        return "\n".join(lines)
+
+
+# ----------------------------------------------------------------------------------------
+# fitting
+# ----------------------------------------------------------------------------------------
+def _specs(parameters) -> tuple:
+    if parameters is None:
+        return DEFAULT_PARAMETERS
+    out = []
+    by_name = {s.name: s for s in DEFAULT_PARAMETERS}
+    for p in parameters:
+        if isinstance(p, ParameterSpec):
+            out.append(p)
+        elif isinstance(p, str) and p in by_name:
+            out.append(by_name[p])
+        else:
+            raise ValueError(f"unknown calibration parameter {p!r}; give a ParameterSpec or one of "
+                             f"{', '.join(by_name)}")
+    if not 1 <= len(out) <= 3:
+        raise ValueError(f"calibrate at most three parameters (got {len(out)})")
+    names = [s.name for s in out]
+    if len(set(names)) != len(names):
+        raise ValueError("a calibration parameter is given twice")
+    for s in out:
+        if not (s.lower < s.upper and s.lower <= s.start <= s.upper):
+            raise ValueError(f"parameter {s.name}: need lower < upper and start within the bounds")
+    return tuple(out)
+
+
+def _r2(obs, pred) -> float:
+    ss = float(np.sum((obs - np.mean(obs)) ** 2))
+    return 1.0 - float(np.sum((obs - pred) ** 2)) / ss if ss > 0 else float("nan")
+
+
+def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=None,
+              duration_min: float = 50.0, loo: bool = True, source: str = "",
+              data_sha256: str = "") -> Calibration:
+    """Fit the surrogate's unknown parameters to measured runs.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        Measured runs: the design columns (``thickness_m``, ``stroke_m``, ``velocity_m_s``,
+        ``acceleration_m_s2``, optional ``stage`` and parameter columns) and ``response``.
+    response : str
+        Column of the measured response; ``tcr_c_per_min`` (κ [°C/min], Eq. 18) or any
+        other output of :func:`rsm_lrg.simulate`.
+    parameters : sequence of str or ParameterSpec, optional
+        One to three parameters (default: :data:`DEFAULT_PARAMETERS`).
+    params : LRGParams, optional
+        Base physical parameters.
+    duration_min : float
+        Test duration of the runs [min] (the paper: about 50).
+    loo : bool
+        Also run leave-one-out cross-validation (one refit per run).
+    source, data_sha256 : str
+        Recorded with the result.
+
+    Returns
+    -------
+    Calibration
+    """
+    from scipy.optimize import least_squares
+
+    from ..physics.params import LRGParams
+    from .design_input import OUTPUT_COLUMNS, read_design_arrays
+    from .runs import evaluate_rows
+
+    specs = _specs(parameters)
+    if response not in data.columns:
+        raise ValueError(f"column {response!r} not found (columns: {', '.join(map(str, data.columns))})")
+    if response not in OUTPUT_COLUMNS:
+        raise ValueError(f"the surrogate does not produce {response!r}; choose one of {', '.join(OUTPUT_COLUMNS)}")
+    from ..factors import _numeric
+
+    obs = _numeric(data, response).to_numpy()
+    n = obs.size
+    if n <= len(specs) + 1:
+        raise ValueError(f"{n} runs are too few to calibrate {len(specs)} parameters")
+    p = params if params is not None else LRGParams()
+    arrays = read_design_arrays(data.drop(columns=[response]), p)
+
+    def predict(theta, idx=None):
+        # always all rows (the dynamics of a row set is memoised), then the subset
+        cal = {s.name: float(t) for s, t in zip(specs, theta)}
+        out = evaluate_rows(arrays, params=p, calibration=cal, duration_min=duration_min)[response]
+        return out if idx is None else out[idx]
+
+    lo = np.array([s.lower for s in specs])
+    hi = np.array([s.upper for s in specs])
+    x0 = np.array([s.start for s in specs])
+    scale = hi - lo
+
+    def fit(idx, start):
+        o = obs if idx is None else obs[idx]
+        fun = lambda th: predict(th, idx) - o  # noqa: E731
+        return least_squares(fun, start, bounds=(lo, hi), x_scale=scale, diff_step=1e-4,
+                             xtol=1e-10, ftol=1e-12, gtol=1e-12, method="trf")
+
+    best = None
+    for start in _starts(x0, lo, hi):
+        r = fit(None, start)
+        if best is None or r.cost < best.cost:
+            best = r
+    theta = best.x
+    pred = predict(theta)
+    resid = obs - pred
+    dof = n - len(specs)
+    s2 = float(resid @ resid) / dof
+    J = best.jac
+    try:
+        cov = s2 * np.linalg.inv(J.T @ J)
+        se = np.sqrt(np.clip(np.diag(cov), 0, None))
+    except np.linalg.LinAlgError:
+        se = np.full(len(specs), np.nan)
+    at_bound = (np.isclose(theta, lo, rtol=0, atol=1e-6 * scale) | np.isclose(theta, hi, rtol=0, atol=1e-6 * scale))
+    ests = tuple(ParameterEstimate(s.name, float(t), float(e), s.lower, s.upper, s.unit, s.meaning, bool(b))
+                 for s, t, e, b in zip(specs, theta, se, at_bound))
+    raw = evaluate_rows(arrays, params=p, calibration={}, duration_min=duration_min)[response]
+    loo_pred = ()
+    loo_r2 = loo_rmse = None
+    if loo:
+        lp = np.empty(n)
+        for i in range(n):
+            keep = np.delete(np.arange(n), i)
+            r = fit(keep, theta)
+            lp[i] = predict(r.x, np.array([i]))[0]
+        loo_pred = tuple(float(x) for x in lp)
+        loo_r2 = _r2(obs, lp)
+        loo_rmse = float(np.sqrt(np.mean((obs - lp) ** 2)))
+    return Calibration(
+        parameters=ests, response=response, n=n, r2=_r2(obs, pred),
+        rmse=float(np.sqrt(np.mean(resid ** 2))), loo_r2=loo_r2, loo_rmse=loo_rmse,
+        data=str(source), data_sha256=data_sha256, observed=tuple(map(float, obs)),
+        predicted=tuple(map(float, pred)), loo_predicted=loo_pred, uncalibrated_r2=_r2(obs, raw),
+    )
+
+
+def _starts(x0, lo, hi):
+    """The given start, then the bounds' midpoints and quarter points (multistart)."""
+    yield x0
+    yield lo + 0.25 * (hi - lo)
+
+
+def _subset(arrays, idx):
+    from .design_input import DesignArrays
+
+    idx = np.asarray(idx)
+    return DesignArrays(idx.size, {k: v[idx] for k, v in arrays.columns.items()}, arrays.rigid[idx],
+                        arrays.param_columns)
+
+
+# ----------------------------------------------------------------------------------------
+# file I/O
+# ----------------------------------------------------------------------------------------
+def _fmt(x) -> str:
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "nan"
+    if isinstance(x, bool):
+        return "true" if x else "false"
+    if isinstance(x, (int, np.integer)):
+        return str(int(x))
+    if isinstance(x, (float, np.floating)):
+        return repr(float(x))
+    s = str(x).replace("\\", "\\\\").replace('"', '\\"')
+    return f'"{s}"'
+
+
+def calibration_toml(cal: Calibration, command: str = "") -> str:
+    """The TOML text of a calibration (what :func:`load_calibration` reads)."""
+    lines = [
+        "# Calibration of the rsm-lrg virtual-run surrogate (rsm_lrg.surrogate).",
+        "# Written by `rsm-lrg calibrate`; read by `rsm-lrg simulate` and rsm_lrg.simulate().",
+        "# Each [parameters.NAME] has a physical meaning, bounds and a standard error from the",
+        "# Jacobian; no offsets or correction terms. Regenerate with:",
+        f"#   {command or 'rsm-lrg calibrate data/table4.csv --response tcr_c_per_min -o data/calibration.toml --force'}",
+        "",
+        "[calibration]",
+    ]
+    for k in ("response", "n", "r2", "rmse", "loo_r2", "loo_rmse", "uncalibrated_r2", "data", "data_sha256", "method"):
+        v = getattr(cal, k)
+        if v is None:
+            continue
+        lines.append(f"{k} = {_fmt(v)}")
+    lines.append("")
+    for p in cal.parameters:
+        lines.append(f"[parameters.{p.name}]")
+        for k in ("value", "std_error", "lower", "upper", "unit", "meaning", "at_bound"):
+            lines.append(f"{k} = {_fmt(getattr(p, k))}")
+        lines.append("")
+    lines.append("[runs]")
+    lines.append(f"observed = [{', '.join(_fmt(x) for x in cal.observed)}]")
+    lines.append(f"predicted = [{', '.join(_fmt(x) for x in cal.predicted)}]")
+    if cal.loo_predicted:
+        lines.append(f"loo_predicted = [{', '.join(_fmt(x) for x in cal.loo_predicted)}]")
+    return "\n".join(lines) + "\n"
+
+
+def load_calibration(path) -> Calibration:
+    """Read a calibration TOML file (as written by :func:`calibration_toml`)."""
+    from .runs import SURROGATE_PARAMETERS
+    from ..physics.params import param_names
+
+    path = Path(path)
+    if not path.exists():
+        raise ValueError(f"{path}: no such calibration file")
+    try:
+        with open(path, "rb") as fh:
+            raw = tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path}: not valid TOML ({exc})") from None
+    head = raw.get("calibration", {})
+    pars = raw.get("parameters")
+    if not isinstance(pars, dict) or not pars:
+        raise ValueError(f"{path}: no [parameters.NAME] tables")
+    known = set(param_names()) | set(SURROGATE_PARAMETERS)
+    ests = []
+    for name, t in pars.items():
+        if name not in known:
+            raise ValueError(f"{path}: unknown parameter {name!r}")
+        if not isinstance(t, dict) or "value" not in t:
+            raise ValueError(f"{path}: [parameters.{name}] has no value")
+        try:
+            v = float(t["value"])
+        except (TypeError, ValueError):
+            raise ValueError(f"{path}: [parameters.{name}] value is not a number") from None
+        lo, hi = float(t.get("lower", -math.inf)), float(t.get("upper", math.inf))
+        if not math.isfinite(v) or not lo <= v <= hi:
+            raise ValueError(f"{path}: [parameters.{name}] value {v!r} is outside its bounds [{lo}, {hi}]")
+        ests.append(ParameterEstimate(name, v, float(t.get("std_error", math.nan)), lo, hi,
+                                      str(t.get("unit", "")), str(t.get("meaning", "")), bool(t.get("at_bound", False))))
+    runs = raw.get("runs", {})
+    g = lambda k: head.get(k)  # noqa: E731
+    return Calibration(
+        parameters=tuple(ests), response=str(head.get("response", "tcr_c_per_min")), n=int(head.get("n", 0)),
+        r2=float(head.get("r2", math.nan)), rmse=float(head.get("rmse", math.nan)),
+        loo_r2=None if g("loo_r2") is None else float(g("loo_r2")),
+        loo_rmse=None if g("loo_rmse") is None else float(g("loo_rmse")),
+        data=str(head.get("data", "")), data_sha256=str(head.get("data_sha256", "")),
+        observed=tuple(runs.get("observed", ())), predicted=tuple(runs.get("predicted", ())),
+        loo_predicted=tuple(runs.get("loo_predicted", ())), method=str(head.get("method", "")),
+        uncalibrated_r2=None if g("uncalibrated_r2") is None else float(g("uncalibrated_r2")),
+    )
+
+
+def resolve_calibration(spec) -> Calibration | None:
+    """``"default"`` (the shipped file, if any), ``None``/``False`` (raw physics), a path, a
+    mapping ``{name: value}`` or a :class:`Calibration`."""
+    if spec is None or spec is False:
+        return None
+    if isinstance(spec, Calibration):
+        return spec
+    if isinstance(spec, str) and spec == "default":
+        from ..datasets import data_path
+
+        try:
+            return load_calibration(data_path(CALIBRATION_FILE))
+        except FileNotFoundError:
+            return None
+    if isinstance(spec, Mapping):
+        from .runs import SURROGATE_PARAMETERS
+        from ..physics.params import param_names
+
+        known = set(param_names()) | set(SURROGATE_PARAMETERS)
+        ests = []
+        for k, v in spec.items():
+            if k not in known:
+                raise ValueError(f"calibration: unknown parameter {k!r}")
+            ests.append(ParameterEstimate(str(k), float(v), math.nan, -math.inf, math.inf))
+        return Calibration(tuple(ests), "tcr_c_per_min", 0, math.nan, math.nan)
+    if isinstance(spec, (str, Path)):
+        return load_calibration(spec)
+    raise TypeError(f"calibration must be 'default', None, a path, a mapping or a Calibration, not {type(spec).__name__}")
+
+
+def file_sha256(path) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()

@@ -1,0 +1,200 @@
+"""Running a design through the surrogate: batches, executors, progress.
+
+:func:`simulate` checks the design, cuts it into batches of rows, evaluates each batch as
+NumPy arrays (:func:`rsm_lrg.surrogate.runs.evaluate_rows`; never one Python call per row),
+in this process or on any :class:`concurrent.futures.Executor` -- a
+``ProcessPoolExecutor`` for local processes, or the executor of a Dask
+``distributed.Client`` (``client.get_executor()``) for a cluster -- and joins the batches in
+row order. Each row's noise comes from its own stream, keyed by the seed and the row's
+index (:mod:`rsm_lrg.surrogate.noise`), so the rows do not depend on the batch size, the
+number of workers or the executor.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from concurrent.futures import Executor, as_completed
+
+import numpy as np
+
+from .design_input import OUTPUT_COLUMNS, read_design_arrays
+from .noise import resolve_seed
+
+__all__ = ["simulate", "DEFAULT_NOISE_SD", "DEFAULT_BATCH_ROWS"]
+
+#: Default reading noise [°C], per thermocouple reading. Table 4's three centre runs
+#: (0.034, 0.033, 0.034 °C/min) have a standard deviation of 5.77e-4 °C/min; over 50 min
+#: that is 0.029 °C on the end-minus-start rise, which is what independent readings of
+#: SD sigma give when two sensors are averaged (SD of the rise = sigma). It is also the
+#: SD of rounding to the 0.1 °C display step of the rig's HT9815 (0.1/sqrt(12) = 0.029).
+DEFAULT_NOISE_SD = 0.03
+
+#: Rows per batch (a batch is one NumPy evaluation and one task on an executor). Batches are
+#: cut at fixed row indices, whatever the executor or the number of workers: the noise of a
+#: row never depends on its batch (:mod:`.noise`), and the stick-slip integrator shares one
+#: step count among the rows it integrates together (a 1e-4-relative effect at most), so
+#: fixed cuts make the rows bit-identical on one process, N processes or a cluster.
+DEFAULT_BATCH_ROWS = 2048
+
+#: Designs with at least this many rows show a progress bar by default.
+PROGRESS_MIN_ROWS = 20000
+
+
+def _evaluate_batch(arrays, start, seed, noise_sd, duration_min, params, calibration):
+    """One batch (module-level so that executors can pickle it)."""
+    from .runs import evaluate_rows
+
+    return start, evaluate_rows(arrays, params=params, calibration=calibration, row_start=start,
+                                seed=seed, noise_sd=noise_sd, duration_min=duration_min)
+
+
+def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min: float = 50.0,
+             executor: Executor | None = None, *, calibration="default", params=None,
+             batch_rows: int | None = None, progress: bool | None = None):
+    """Virtual runs of the rig: one row of responses per design row.
+
+    Parameters
+    ----------
+    design : pandas.DataFrame
+        Columns ``thickness_m`` [m], ``stroke_m`` [m], ``velocity_m_s`` [m/s],
+        ``acceleration_m_s2`` [m/s²]; optionally ``stage`` (``rfcms``/``rms``) and any
+        parameter of :class:`rsm_lrg.physics.params.LRGParams` as a per-row column. Other
+        columns pass through.
+    seed : int, numpy.random.Generator or None
+        Seed of the reading noise; the same seed gives the same rows. ``None``: fresh
+        entropy.
+    noise_sd : float
+        Standard deviation [°C] of the Gaussian noise on each thermocouple reading (two
+        thermocouples, read every minute, averaged; κ by Eq. 18 from the noisy record).
+        The SD of κ is then ``noise_sd / duration``. 0 gives the deterministic surrogate.
+    duration_min : float
+        Test duration [min] for rows without a ``test_duration_min`` column (the paper:
+        about 50 min).
+    executor : concurrent.futures.Executor, optional
+        Where batches run: ``None`` in this process; a ``ProcessPoolExecutor``; a Dask
+        ``Client.get_executor()``.
+    calibration : "default", None, path, mapping or Calibration
+        Calibrated parameters: ``"default"`` the shipped ``data/calibration.toml``; ``None``
+        the raw physics (paper inputs and the documented assumptions).
+    params : LRGParams, optional
+        Base physical parameters (default: ``data/lrg_shs15v.toml``).
+    batch_rows : int, optional
+        Rows per batch (default 2048; the same for every executor, see
+        :data:`DEFAULT_BATCH_ROWS`).
+    progress : bool, optional
+        Progress bar on stderr (tqdm); default: for designs of 20,000 rows or more.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Every input column (a column whose name the surrogate writes is kept as
+        ``NAME_input``), then ``tcr_c_per_min`` [°C/min], ``temperature_rise_k`` [K] at the
+        end of the test, ``steady_rise_k`` [K], ``wear_volume_m3_per_h`` [m³/h],
+        ``sliding_distance_m_per_cycle`` [m], ``heat_w`` [W] into the guide, ``cycle_time_s``.
+    """
+    import pandas as pd
+
+    from ..physics.params import LRGParams
+    from .calibrate import resolve_calibration
+
+    noise_sd = _check_nonneg("noise_sd", noise_sd)
+    duration_min = _check_nonneg("duration_min", duration_min)
+    if duration_min < 1.0:
+        raise ValueError(f"duration_min must be at least 1 (two readings one minute apart), got {duration_min:g}")
+    if params is None:
+        params = LRGParams()
+    elif not isinstance(params, LRGParams):
+        raise TypeError(f"params must be an LRGParams, not {type(params).__name__}")
+    cal = resolve_calibration(calibration)
+    seed_int = resolve_seed(seed) if noise_sd > 0 else 0
+    arrays = read_design_arrays(design, params)
+    n = arrays.n
+
+    _executor_workers(executor)
+    if batch_rows is None:
+        batch_rows = DEFAULT_BATCH_ROWS
+    elif isinstance(batch_rows, (bool, np.bool_)) or not isinstance(batch_rows, (int, np.integer)) or batch_rows < 1:
+        raise ValueError(f"batch_rows must be a positive integer, got {batch_rows!r}")
+    starts = list(range(0, n, int(batch_rows)))
+    show = (n >= PROGRESS_MIN_ROWS) if progress is None else bool(progress)
+    bar = _progress_bar(n, show)
+    pieces = {}
+    cal_dict = cal.parameter_values() if cal is not None else {}
+    try:
+        if executor is None:
+            for s in starts:
+                e = min(n, s + batch_rows)
+                _, out = _evaluate_batch(arrays.take(s, e), s, seed_int, noise_sd, duration_min, params, cal_dict)
+                pieces[s] = out
+                bar.update(e - s)
+        else:
+            futs = {executor.submit(_evaluate_batch, arrays.take(s, min(n, s + batch_rows)), s, seed_int,
+                                    noise_sd, duration_min, params, cal_dict): s for s in starts}
+            for f in as_completed(futs):
+                s, out = f.result()
+                pieces[s] = out
+                bar.update(min(n, s + batch_rows) - s)
+    finally:
+        bar.close()
+
+    result = {k: np.concatenate([pieces[s][k] for s in starts]) for k in pieces[starts[0]]}
+    out = design.copy()
+    out.columns = [str(c) for c in out.columns]
+    rename = {c: f"{c}_input" for c in out.columns if c in result}
+    out = out.rename(columns=rename)
+    for k in OUTPUT_COLUMNS:
+        out[k] = result[k]
+    for k, v in result.items():
+        if k not in OUTPUT_COLUMNS:
+            out[k] = v
+    out.attrs.clear()
+    return out
+
+
+def _check_nonneg(name, x) -> float:
+    if isinstance(x, (bool, np.bool_)):
+        raise TypeError(f"{name} must be a number, not {x!r}")
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a number, not {x!r}") from None
+    if not math.isfinite(v) or v < 0:
+        raise ValueError(f"{name} must be a finite number >= 0, got {x!r}")
+    return v
+
+
+def _executor_workers(executor) -> int:
+    if executor is None:
+        return 1
+    if not isinstance(executor, Executor):
+        raise TypeError(f"executor must be a concurrent.futures.Executor, not {type(executor).__name__}")
+    for attr in ("_max_workers",):
+        w = getattr(executor, attr, None)
+        if isinstance(w, int) and w > 0:
+            return w
+    client = getattr(executor, "_client", None)
+    if client is not None:
+        try:
+            return max(1, sum(client.nthreads().values()))
+        except Exception:  # noqa: BLE001 - only a sizing hint
+            return 2
+    return 2
+
+
+class _NoBar:
+    def update(self, n):
+        pass
+
+    def close(self):
+        pass
+
+
+def _progress_bar(total: int, show: bool):
+    if not show:
+        return _NoBar()
+    try:
+        from tqdm import tqdm
+    except ImportError:  # tqdm is in the 'parallel' extra
+        return _NoBar()
+    return tqdm(total=total, unit="run", desc="virtual runs", file=sys.stderr, dynamic_ncols=True)

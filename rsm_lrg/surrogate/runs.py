@@ -1,0 +1,274 @@
+"""The row model: one test of the rig (Section 4 of Su, Zhang & Yang 2023), vectorised.
+
+For every row of a design (arrays, never one Python call per row):
+
+1. **Motion** (:mod:`rsm_lrg.physics.motion`): the reciprocating trapezoidal profile of the
+   working stage from stroke s, velocity v and acceleration a (Eqs. 15-16); cycle time.
+2. **Stage dynamics** (:func:`rsm_lrg.physics.dynamics.cycle_metrics`): the two-mass RFCMS
+   with the hinge of thickness y (Eq. 1) and stick-slip friction on the guide, in its
+   periodic steady state; the RMS (``stage = rms``) slides the full stroke. Gives the
+   carriage sliding distance per cycle and the friction work µ_k·F_z·L.
+3. **Friction heat** (Eq. 8 mechanism): friction force × carriage sliding speed, averaged
+   over the cycle: P = µ_k·F_z·L/T_cycle, plus the viscous (speed-proportional) friction of
+   the lubricated block, c_v·<ẋ²>, when calibrated (0 in the raw physics). Divided by
+   J = 4.184 as the paper's Eq. 8 does when ``heat_in_calories`` (the default, as in the
+   paper); times the share ``heat_partition`` that enters the guide (1 in the raw physics).
+4. **Thermal model** (:func:`rsm_lrg.physics.thermal.network.network_response`): the
+   carriage (thermocouple) temperature rise per watt after a heat step, exact in time,
+   linear in Q; the convection coefficients of Eqs. 10-12.
+5. **The rig's record**: readings every minute from 0 to the test duration on two
+   thermocouples, each with Gaussian reading noise (:mod:`.noise`), averaged; κ by Eq. 18
+   from the first and the last reading.
+6. **Wear** (Eq. 13, Archard): K_a·F_i·(sliding per hour)/H, F_i the ball normal force.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from functools import lru_cache
+
+import numpy as np
+
+__all__ = ["evaluate_rows", "SURROGATE_PARAMETERS", "mean_square_speed", "thermal_unit_response"]
+
+#: Parameters of the surrogate that are not in :class:`~rsm_lrg.physics.params.LRGParams`:
+#: name -> (raw-physics value, unit, meaning).
+SURROGATE_PARAMETERS = {
+    "heat_partition": (1.0, "1", "share of the friction heat (Eq. 8) that enters the guide; "
+                                 "the rest leaves through the stage, the lubricant and the seals"),
+    "viscous_friction_n_s_m": (0.0, "N s/m", "speed-proportional friction of the lubricated, "
+                                             "sealed block (the sigma_2 term of the LuGre model, "
+                                             "Canudas de Wit et al. 1995): force c_v * v"),
+}
+
+#: LRGParams name -> GuideGeometry field where the names differ (as in physics.chain).
+_GEOMETRY_ALIASES = {
+    "ball_rows": "n_rows", "carriage_mass_kg": "block_mass_kg",
+    "guide_density_kg_m3": "steel_density_kg_m3", "guide_conductivity_w_mk": "steel_conductivity_w_mk",
+    "guide_specific_heat_j_kgk": "steel_specific_heat_j_kgk",
+}
+
+#: Parameters that enter the convection coefficients (Eqs. 10-12).
+_CONVECTION = ("air_velocity_m_s", "char_length_m", "air_kinematic_viscosity_m2_s",
+               "air_dynamic_viscosity_pa_s", "air_conductivity_w_mk", "air_specific_heat_j_kgk")
+
+
+def mean_square_speed(stroke, velocity, acceleration, dwell=0.0):
+    """Mean of ẋ² over a reciprocating cycle [m²/s²] (trapezoidal or triangular profile).
+
+    Per stroke ∫ẋ² dt = v_p·s − v_p³/(3a) with v_p the peak speed; twice per cycle.
+
+    >>> round(float(mean_square_speed(0.05, 0.5, 30.0)), 5)
+    0.20238
+    """
+    from ..physics import motion
+
+    vp = motion.peak_velocity(stroke, velocity, acceleration)
+    a = np.asarray(acceleration, float)
+    per_stroke = vp * np.asarray(stroke, float) - vp ** 3 / (3.0 * a)
+    return 2.0 * per_stroke / motion.cycle_time(stroke, velocity, acceleration, dwell)
+
+
+# ----------------------------------------------------------------------------------------
+# thermal unit response (cached per thermal parameter set)
+# ----------------------------------------------------------------------------------------
+def _thermal_items(values: dict) -> tuple:
+    """The (name, value) pairs of a parameter dict that the thermal model uses."""
+    from ..physics.thermal.geometry import GuideGeometry
+
+    geo = {f.name for f in dataclasses.fields(GuideGeometry)}
+    items = []
+    for name in sorted(values):
+        target = _GEOMETRY_ALIASES.get(name, name)
+        if target in geo or name in _CONVECTION:
+            items.append((name, float(values[name])))
+    return tuple(items)
+
+
+@lru_cache(maxsize=64)
+def _unit_response_cached(items: tuple, n_minutes: int):
+    from ..physics import convection
+    from ..physics.thermal.geometry import GuideGeometry
+    from ..physics.thermal.network import ThermalNetwork
+
+    v = dict(items)
+    geo_kw = {}
+    geo = {f.name for f in dataclasses.fields(GuideGeometry)}
+    for name, value in v.items():
+        target = _GEOMETRY_ALIASES.get(name, name)
+        if target in geo:
+            f = GuideGeometry.__dataclass_fields__[target]
+            geo_kw[target] = int(value) if f.type in ("int", int) else value
+    geometry = GuideGeometry().with_(**geo_kw)
+    re = convection.reynolds(v["air_velocity_m_s"], v["char_length_m"], v["air_kinematic_viscosity_m2_s"])
+    pr = convection.prandtl(v["air_specific_heat_j_kgk"], v["air_dynamic_viscosity_pa_s"], v["air_conductivity_w_mk"])
+    hs = float(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr),
+                                                    v["air_conductivity_w_mk"], v["char_length_m"]))
+    hf = float(convection.heat_transfer_coefficient(convection.nusselt_normal_plate(re, pr),
+                                                    v["air_conductivity_w_mk"], v["char_length_m"]))
+    net = ThermalNetwork(geometry, hs, hf)
+    minutes = np.arange(n_minutes + 1, dtype=float)
+    hist = net.response(minutes * 60.0)
+    hist.setflags(write=False)
+    return hist, float(net.steady_rise_per_w)
+
+
+def thermal_unit_response(values: dict, duration_min: float):
+    """Thermocouple rise per watt [K/W] at every minute 0..ceil(duration), and the steady rise
+    per watt [K/W], for the parameters ``values`` (a full ``LRGParams.to_dict()``)."""
+    return _unit_response_cached(_thermal_items(values), int(math.ceil(duration_min)))
+
+
+# ----------------------------------------------------------------------------------------
+# dynamics with a row-local step (so that a row's result does not depend on its batch)
+# ----------------------------------------------------------------------------------------
+def _cycle_metrics(s, v, a, rigid, p, cols):
+    """Sliding per cycle [m] and cycle time [s] of every row, from
+    :func:`rsm_lrg.physics.dynamics.cycle_metrics` (``method="auto"``: the quasi-static limit
+    where it is valid, the vectorised stick-slip integration elsewhere; RMS rows slide 2·s).
+
+    The integrator takes one number of steps per cycle for the rows it integrates together,
+    so a row's result can move in the 5th significant digit with its batch-mates; batches are
+    therefore cut at fixed row indices (:data:`rsm_lrg.surrogate.execute.DEFAULT_BATCH_ROWS`),
+    whatever the executor or the number of workers.
+    """
+    from ..physics import dynamics
+
+    key = None
+    if s.size <= _MEMO_MAX_ROWS:  # small batches repeat during calibration: memoise
+        key = (p, s.tobytes(), v.tobytes(), a.tobytes(), rigid.tobytes(),
+               tuple((k, np.asarray(x, float).tobytes()) for k, x in sorted(cols.items())))
+        hit = _MEMO.get(key)
+        if hit is not None:
+            return hit[0].copy(), hit[1].copy()
+    stage = np.where(rigid, "rms", "rfcms")
+    m = dynamics.cycle_metrics(s, v, a, stage=stage, params=p, method="auto", **cols)
+    out = np.asarray(m.sliding_distance_m, float), np.asarray(m.cycle_time_s, float)
+    if key is not None:
+        if len(_MEMO) >= _MEMO_SIZE:
+            _MEMO.pop(next(iter(_MEMO)))
+        _MEMO[key] = (out[0].copy(), out[1].copy())
+    return out
+
+
+#: Memo of the dynamics of small batches (calibration evaluates the same rows many times,
+#: with only the heat and thermal parameters changing).
+_MEMO: dict = {}
+_MEMO_SIZE = 256
+_MEMO_MAX_ROWS = 2000
+
+
+# ----------------------------------------------------------------------------------------
+# the row model
+# ----------------------------------------------------------------------------------------
+def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, seed: int = 0,
+                  noise_sd: float = 0.0, duration_min: float = 50.0) -> dict:
+    """Responses of a batch of rows (see the module docstring).
+
+    Parameters
+    ----------
+    arrays : rsm_lrg.surrogate.design_input.DesignArrays
+        The checked rows.
+    params : LRGParams
+        Base parameters.
+    calibration : dict
+        ``{name: value}`` of calibrated parameters: LRGParams names (override ``params``)
+        and :data:`SURROGATE_PARAMETERS`. A design column of the same name wins.
+    row_start : int
+        Index of the batch's first row in the whole design (keys the noise streams).
+    seed : int
+        Noise seed (see :mod:`.noise`).
+    noise_sd : float
+        SD of each thermocouple reading's noise [°C]; 0: deterministic.
+    duration_min : float
+        Test duration [min] where the design has no ``test_duration_min`` column.
+
+    Returns
+    -------
+    dict of numpy arrays: ``tcr_c_per_min``, ``temperature_rise_k``, ``steady_rise_k``,
+    ``wear_volume_m3_per_h``, ``sliding_distance_m_per_cycle``, ``heat_w``, ``cycle_time_s``.
+    """
+    from ..physics import wear
+    from ..physics.params import LRGParams, param_names
+    from .noise import reading_noise
+
+    p = params if params is not None else LRGParams()
+    cal = dict(calibration or {})
+    extra = {k: float(cal.pop(k, d[0])) for k, d in SURROGATE_PARAMETERS.items()}
+    known = set(param_names())
+    unknown = [k for k in cal if k not in known]
+    if unknown:
+        raise ValueError(f"calibration: unknown parameter {unknown[0]!r}")
+    if cal:
+        p = p.with_overrides(**cal)
+    n = arrays.n
+    c = arrays.columns
+    s, v, a = c["stroke_m"], c["velocity_m_s"], c["acceleration_m_s2"]
+    rigid = arrays.rigid
+    pcols = {k: c[k] for k in arrays.param_columns}
+    for k in list(pcols):
+        if k in SURROGATE_PARAMETERS:
+            extra[k] = pcols.pop(k)
+    y = np.where(rigid & ~np.isfinite(c["thickness_m"]), p.hinge_thickness_m, c["thickness_m"])
+    dyn_cols = {k: x for k, x in pcols.items() if k not in ("test_duration_min", "ambient_c")}
+    dyn_cols["hinge_thickness_m"] = y
+
+    def col(name):
+        return pcols[name] if name in pcols else getattr(p, name)
+
+    # 1-2: motion and stage dynamics
+    slide, T = _cycle_metrics(s, v, a, rigid, p, dyn_cols)
+    load = col("preload_n") + np.asarray(col("stage_mass_kg")) * col("gravity_m_s2")
+    # 3: friction heat, cycle-averaged (Eq. 8 mechanism)
+    power = col("mu_k") * load * slide / T
+    frac = np.where(rigid, 1.0, slide / (2.0 * s))
+    power = power + extra["viscous_friction_n_s_m"] * mean_square_speed(s, v, a, col("dwell_s")) * frac
+    q = power / p.thermal_equivalent_j_per_cal if p.heat_in_calories else power
+    q = q * extra["heat_partition"]
+    q = np.broadcast_to(q, (n,)).astype(float)
+
+    # 4-5: thermal record
+    dur = np.broadcast_to(np.asarray(pcols.get("test_duration_min", duration_min), float), (n,))
+    end_idx = np.ceil(dur - 1e-9).astype(np.int64)
+    unit_end = np.empty(n)
+    steady = np.empty(n)
+    base = p.to_dict()
+    th_names = [k for k, _ in _thermal_items(base) if k in pcols]
+    if th_names:
+        keys = np.stack([np.broadcast_to(pcols[k], (n,)) for k in th_names], axis=1)
+        uniq, inv = np.unique(keys, axis=0, return_inverse=True)
+        inv = inv.reshape(-1)
+    else:
+        uniq, inv = np.zeros((1, 0)), np.zeros(n, dtype=int)
+    dmax = float(dur.max())
+    for g, row in enumerate(uniq):
+        vals = dict(base, **dict(zip(th_names, row)))
+        hist, ss = thermal_unit_response(vals, dmax)
+        m = inv == g
+        minutes = np.arange(hist.size, dtype=float)
+        unit_end[m] = np.interp(dur[m], minutes, hist)
+        steady[m] = ss
+    rise_true = q * unit_end
+    if noise_sd > 0:
+        rows = np.arange(row_start, row_start + n, dtype=np.uint64)
+        z0 = reading_noise(seed, rows, [0])[:, 0, :].mean(axis=1)
+        z1 = np.empty(n)
+        for e in np.unique(end_idx):
+            m = end_idx == e
+            z1[m] = reading_noise(seed, rows[m], [int(e)])[:, 0, :].mean(axis=1)
+        rise = rise_true + noise_sd * (z1 - z0)
+    else:
+        rise = rise_true
+    tcr = rise / dur
+
+    # 6: wear (Eq. 13)
+    fi = wear.ball_normal_force(load, np.asarray(col("ball_rows")) * np.asarray(col("balls_per_row")),
+                                col("contact_angle_deg"))
+    vw = wear.wear_rate_per_hour(col("wear_coefficient"), fi, slide, T, wear.brinell_to_pa(col("hardness_hb")))
+    b = lambda x: np.broadcast_to(np.asarray(x, float), (n,)).copy()  # noqa: E731
+    return {
+        "tcr_c_per_min": b(tcr), "temperature_rise_k": b(rise), "steady_rise_k": b(q * steady),
+        "wear_volume_m3_per_h": b(vw), "sliding_distance_m_per_cycle": b(slide),
+        "heat_w": b(q), "cycle_time_s": b(T),
+    }
