@@ -10,7 +10,8 @@ NAME = "calibrate"
 HELP = "fit the surrogate's unknown parameters to measured runs"
 DESCRIPTION = (
     "Fit at most three parameters the paper does not give (by default: the share of the "
-    "friction heat that enters the guide, the viscous friction of the block, the hinge length) "
+    "friction heat that enters the guide, the viscous friction of the block, the damping of "
+    "the frame on its hinges) "
     "by bounded least squares to the measured response of noise-free virtual runs; report R2, "
     "RMSE, standard errors and leave-one-out cross-validation, and write them with the data's "
     "name and SHA-256 to a TOML file that `rsm-lrg simulate --calibration PATH` reads "
@@ -23,7 +24,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--response", required=True, metavar="COL", help="the measured column (e.g. tcr_c_per_min)")
     p.add_argument("--parameter", action="append", default=None, metavar="NAME",
                    help="a parameter to calibrate (repeatable, at most 3; default: heat_partition, "
-                        "viscous_friction_n_s_m, hinge_length_m)")
+                        "viscous_friction_n_s_m, hinge_damping_ratio; also hinge_length_m, hinge_width_m, "
+                        "frame_mass_fraction)")
     p.add_argument("--duration-min", type=float, default=50.0, metavar="M",
                    help="test duration of the measured runs [min] (default 50)")
     p.add_argument("--no-loo", action="store_true", help="skip leave-one-out cross-validation")

@@ -100,7 +100,9 @@ def run(args) -> int:
     seed = args.seed
     if seed is None and noise > 0:
         seed = resolve_seed(None)
-        print(f"simulate: --seed {seed}", file=sys.stderr)
+        drawn = True
+    else:
+        drawn = False
     if args.uncalibrated:
         calibration = None
     elif args.calibration:
@@ -136,5 +138,6 @@ def run(args) -> int:
         if client is not None:
             client.close()
     write_output(out_path, runs.to_csv(index=False, float_format="%.10g", lineterminator="\n"), force=args.force)
-    print(f"simulate: {len(runs)} runs -> {out_path}", file=sys.stderr)
+    note = f" (noise seed drawn: rerun with --seed {seed} to repeat)" if drawn else ""
+    print(f"simulate: {len(runs)} runs -> {out_path}{note}", file=sys.stderr)
     return 0

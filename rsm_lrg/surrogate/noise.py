@@ -46,7 +46,7 @@ def resolve_seed(seed) -> int:
     so the run is not reproducible unless the returned integer is kept.
     """
     if seed is None:
-        return int(np.random.SeedSequence().entropy)
+        return int(np.random.SeedSequence().generate_state(1, np.uint64)[0] >> np.uint64(1))
     if isinstance(seed, np.random.Generator):
         return int(seed.integers(0, 2**63))
     if isinstance(seed, np.random.SeedSequence):

@@ -1,0 +1,92 @@
+"""Calibration (rsm_lrg.surrogate.calibrate): recovery of known parameters, file round trip,
+the shipped calibration against Table 4."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from rsm_lrg.datasets import data_path, load_table4
+from rsm_lrg.surrogate import simulate
+from rsm_lrg.surrogate.calibrate import (ParameterSpec, calibrate, calibration_toml, load_calibration,
+                                         resolve_calibration)
+
+
+def synthetic(truth, n=12, seed=0, thickness=(3e-4, 5e-4)):
+    rng = np.random.default_rng(seed)
+    d = pd.DataFrame({"thickness_m": rng.choice(thickness, n), "stroke_m": rng.uniform(0.04, 0.06, n),
+                      "velocity_m_s": rng.uniform(0.4, 0.6, n), "acceleration_m_s2": rng.uniform(20, 40, n)})
+    d["tcr_c_per_min"] = simulate(d, noise_sd=0, calibration=truth).tcr_c_per_min
+    return d
+
+
+def test_recovers_known_heat_parameters_exactly():
+    # exact solution: data made by the surrogate itself with known parameters, no noise
+    truth = {"heat_partition": 0.4, "viscous_friction_n_s_m": 5.0}
+    d = synthetic(truth)
+    cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], source="synthetic")
+    got = cal.parameter_values()
+    assert got["heat_partition"] == pytest.approx(0.4, rel=1e-5)
+    assert got["viscous_friction_n_s_m"] == pytest.approx(5.0, rel=1e-4)
+    assert cal.r2 == pytest.approx(1.0, abs=1e-9) and cal.loo_r2 == pytest.approx(1.0, abs=1e-8)
+    assert cal.n == 12 and len(cal.loo_predicted) == 12
+
+
+@pytest.mark.slow
+def test_recovers_a_stage_parameter_through_the_profile_grid():
+    truth = {"heat_partition": 0.5, "frame_mass_fraction": 0.3}
+    d = synthetic(truth, n=8, thickness=(1e-4, 3e-4))
+    cal = calibrate(d, parameters=["heat_partition", "frame_mass_fraction"], loo=False, grid_points=7)
+    assert cal.r2 > 0.999
+    assert cal.parameter_values()["heat_partition"] == pytest.approx(0.5, rel=1e-2)
+
+
+def test_noise_gives_finite_standard_errors_that_cover_the_truth():
+    truth = {"heat_partition": 0.4, "viscous_friction_n_s_m": 5.0}
+    d = synthetic(truth, n=20)
+    d["tcr_c_per_min"] += np.random.default_rng(1).normal(0, 5e-4, len(d))
+    cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], loo=False)
+    for p in cal.parameters:
+        assert math.isfinite(p.std_error) and p.std_error > 0
+        assert abs(p.value - truth[p.name]) < 4 * p.std_error
+
+
+def test_toml_round_trip(tmp_path):
+    d = synthetic({"heat_partition": 0.4, "viscous_friction_n_s_m": 5.0}, n=6)
+    cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], source="x.csv",
+                    data_sha256="ab" * 32)
+    path = tmp_path / "cal.toml"
+    path.write_text(calibration_toml(cal))
+    back = load_calibration(path)
+    assert back.parameter_values() == cal.parameter_values()
+    assert back.r2 == cal.r2 and back.loo_r2 == cal.loo_r2 and back.data == "x.csv"
+    assert back.observed == cal.observed and back.predicted == cal.predicted
+    assert resolve_calibration(str(path)).parameter_values() == cal.parameter_values()
+
+
+def test_bad_requests():
+    d = synthetic({"heat_partition": 0.4}, n=6)
+    with pytest.raises(ValueError, match="at most three"):
+        calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m", "hinge_length_m", "hinge_width_m"])
+    with pytest.raises(ValueError, match="unknown calibration parameter"):
+        calibrate(d, parameters=["offset"])
+    with pytest.raises(ValueError, match="not found"):
+        calibrate(d, response="kappa")
+    with pytest.raises(ValueError, match="start within the bounds"):
+        calibrate(d, parameters=[ParameterSpec("heat_partition", 0.5, 1.0, 0.1, "1", "")])
+    with pytest.raises(ValueError, match="too few"):
+        calibrate(d.iloc[:2], parameters=["heat_partition"])
+
+
+def test_bad_files(tmp_path):
+    p = tmp_path / "c.toml"
+    p.write_text("[parameters.offset]\nvalue = 1.0\n")
+    with pytest.raises(ValueError, match="unknown parameter 'offset'"):
+        load_calibration(p)
+    p.write_text("[parameters.heat_partition]\nvalue = 2.0\nlower = 0.01\nupper = 1.0\n")
+    with pytest.raises(ValueError, match="outside its bounds"):
+        load_calibration(p)
+    p.write_text("not toml [")
+    with pytest.raises(ValueError, match="not valid TOML"):
+        load_calibration(p)
