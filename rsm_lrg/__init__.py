@@ -36,6 +36,13 @@ _register("rsm_lrg.design", "Design", "box_behnken", "central_composite", "full_
 _register("rsm_lrg.model", "fit", "FitResult")
 _register("rsm_lrg.optimize", "optimize", "OptimumResult")
 _register("rsm_lrg.surrogate", "simulate")
+_register("rsm_lrg.model.summary", "fit_summary")
+_register("rsm_lrg.model.reduce", "reduce_terms")
+_register("rsm_lrg.model.ridge", "ridge")
+_register("rsm_lrg.model.transform", "fit_transformed")
+_register("rsm_lrg.model.evaluate", "evaluate_design")
+_register("rsm_lrg.optimize.confirm", "confirm")
+_register("rsm_lrg.optimize.desirability", "optimize_desirability", "ResponseGoal")
 _register("rsm_lrg.physics.chain", "physics_chain", "PhysicsResult")
 _register("rsm_lrg.physics.params", "LRGParams")
 

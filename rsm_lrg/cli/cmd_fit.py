@@ -23,6 +23,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--block", metavar="COL", default=None, help="block column (effects sum to zero)")
     parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
                         help="model order (default quadratic)")
+    parser.add_argument("--reduce", action="store_true",
+                        help="backward elimination keeping hierarchy; the output carries only the kept terms")
+    parser.add_argument("--alpha-out", type=float, default=0.1, metavar="A",
+                        help="with --reduce and --criterion p: remove terms while p > A (default 0.1)")
+    parser.add_argument("--criterion", default="p", choices=["p", "aicc"],
+                        help="with --reduce: remove by p-value (default) or while AICc falls")
+    parser.add_argument("--transform", default=None, metavar="log|log10|sqrt|inverse|power=L",
+                        help="fit a transformed response (predictions are back-transformed)")
+    parser.add_argument("--transform-constant", type=float, default=0.0, metavar="K",
+                        help="add K to the response before transforming (default 0)")
+    parser.add_argument("--diagnostics", action="store_true",
+                        help="also print per-run diagnostics and the Box-Cox recommendation (JSON key 'diagnostics')")
     add_json(parser)
     parser.add_argument("--report", metavar="PATH", default=None, help="also write a self-contained HTML report")
     add_force(parser)
@@ -46,15 +58,52 @@ def run(args: argparse.Namespace) -> int:
     from ..model import fit
 
     data = read_table(args.data)
+    extra = {}
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
+        tr = None
+        if args.transform is not None:
+            from ..factors import _numeric
+            from ..model.transform import parse_transform
+
+            tr = parse_transform(args.transform, args.transform_constant)
+            if args.response not in data.columns:
+                raise ValueError(f"response column {args.response!r} not found")
+            y = _numeric(data, args.response).to_numpy(dtype=float)
+            tr.check(y, args.response)
+            data = data.copy()
+            data[args.response] = tr.forward(y)
+        terms = None
+        if args.reduce:
+            from ..model.reduce import reduce_terms
+
+            red = reduce_terms(data, args.response, factors=args.factor, block=args.block, model=args.model,
+                               alpha_out=args.alpha_out, criterion=args.criterion)
+            terms = list(red.kept[1:])
+            extra["reduction"] = red.to_dict()
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model, terms=terms)
+        if args.diagnostics:
+            diag = result.diagnostics()
+            extra["diagnostics"] = diag.to_dict()
+    shown = result
+    if tr is not None:
+        from ..model.transform import TransformedFit
+
+        shown = TransformedFit(fit=result, transform=tr, response=args.response)
+    out = dict(shown.to_dict(), **extra)
     if args.json and args.json != "-":
-        dump_json(result.to_dict(), args.json, force=args.force)
+        dump_json(out, args.json, force=args.force)
     if args.report:
         _write_report(result, args.report, args.force)
     if args.json == "-":
-        dump_json(result.to_dict(), "-")
+        dump_json(out, "-")
     else:
         print(f"Data: {args.data}")
-        print(result.summary(), end="")
+        if "reduction" in extra:
+            r = extra["reduction"]
+            print(f"Backward elimination ({'p > ' + format(args.alpha_out, 'g') if r['criterion'] == 'p' else 'AICc'}, "
+                  f"hierarchy kept): removed {', '.join(r['removed']) or 'nothing'}")
+        print(shown.summary(), end="")
+        if args.diagnostics:
+            print()
+            print(diag.summary(), end="")
     return 0

@@ -38,8 +38,7 @@ def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ..model.ridge import radii, ridge
 
-    if args.radius is not None:
-        radii(args.radius, args.step)  # bad numbers fail before any work
+    radii(0.0 if args.radius is None else args.radius, args.step)  # bad numbers fail before any work
     data = read_table(args.data)
     with about_file(args.data):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)

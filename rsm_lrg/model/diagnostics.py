@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["diagnostics", "Diagnostics", "box_cox", "BoxCox", "STANDARD_LAMBDAS"]
+__all__ = ["diagnostics", "Diagnostics", "box_cox", "box_cox_ss", "BoxCox", "STANDARD_LAMBDAS"]
 
 #: Standard power transforms, λ -> name (Stat-Ease's list).
 STANDARD_LAMBDAS = {1.0: "none", 0.5: "sqrt", 0.0: "log", -0.5: "inverse sqrt", -1.0: "inverse"}
@@ -96,6 +96,28 @@ class BoxCox:
                 "recommended_lambda": f(self.recommended_lambda), "ratio_max_min": f(self.ratio)}
 
 
+def box_cox_ss(X, y, lambdas) -> np.ndarray:
+    """Residual SS of the model matrix ``X`` fitted to the scaled Box–Cox response
+    ``(y^λ - 1) / (λ ẏ^(λ-1))`` (``ẏ ln y`` at λ = 0), one value per λ [response units²].
+
+    ``-n/2 ln SS(λ)`` is the profile log-likelihood of λ up to a constant (Box & Cox 1964).
+    """
+    X = np.asarray(X, dtype=float)
+    y = np.asarray(y, dtype=float)
+    Q, _ = np.linalg.qr(X)
+    lny = np.log(y)
+    gm = float(np.exp(lny.mean()))
+    out = []
+    for lam in np.atleast_1d(np.asarray(lambdas, dtype=float)):
+        if abs(lam) < 1e-12:
+            z = gm * lny
+        else:
+            z = (np.exp(lam * lny) - 1.0) / (lam * gm ** (lam - 1.0))
+        r = z - Q @ (Q.T @ z)
+        out.append(float(r @ r))
+    return np.array(out)
+
+
 def box_cox(result, *, confidence: float = 0.95, lambdas=None) -> BoxCox:
     """Box–Cox profile of the fitted model (see the module docstring).
 
@@ -115,17 +137,9 @@ def box_cox(result, *, confidence: float = 0.95, lambdas=None) -> BoxCox:
         i = int(np.flatnonzero(y <= 0)[0])
         raise ValueError(f"Box-Cox needs a positive response: column {result.response!r}, row {i + 1} holds {y[i]:g}")
     X = result.design_matrix
-    Q, _ = np.linalg.qr(X)
-    lny = np.log(y)
-    gm = float(np.exp(lny.mean()))
 
     def ss_of(lam: float) -> float:
-        if abs(lam) < 1e-12:
-            z = gm * lny
-        else:
-            z = (np.exp(lam * lny) - 1.0) / (lam * gm ** (lam - 1.0))
-        r = z - Q @ (Q.T @ z)
-        return float(r @ r)
+        return float(box_cox_ss(X, y, [lam])[0])
 
     grid = np.round(np.arange(-3.0, 3.0 + 1e-9, 0.01), 10) if lambdas is None else np.asarray(lambdas, float)
     ss = np.array([ss_of(l) for l in grid])

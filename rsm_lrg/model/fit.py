@@ -299,6 +299,29 @@ class FitResult:
 
         return _optimize(self, goal=goal, bounds=bounds, **kwargs)
 
+    # -- further analysis (issue 6) ------------------------------------------------------
+    def diagnostics(self, **kwargs):
+        """Per-run diagnostics and Box–Cox; see :func:`rsm_lrg.model.diagnostics.diagnostics`."""
+        from .diagnostics import diagnostics as _diagnostics
+
+        return _diagnostics(self, **kwargs)
+
+    def ridge(self, goal="maximize", radius=None, step=0.1):
+        """Ridge (second order) or steepest (first order) path; see :func:`rsm_lrg.model.ridge.ridge`."""
+        from .ridge import ridge as _ridge
+
+        return _ridge(self, goal=goal, radius=radius, step=step)
+
+    def reduce(self, alpha_out: float = 0.1, criterion: str = "p") -> "FitResult":
+        """The model refitted with the terms kept by hierarchical backward elimination
+        (see :func:`rsm_lrg.model.reduce.reduce_terms`)."""
+        from .reduce import reduce_terms
+
+        red = reduce_terms(self.data, self.response, factors=self.space, block=self.block,
+                           alpha_out=alpha_out, criterion=criterion, terms=self.term_names[1:])
+        return fit(self.data, self.response, factors=self.space, block=self.block, model=self.model,
+                   terms=red.kept[1:])
+
     # -- faces -------------------------------------------------------------------------
     def summary(self) -> str:
         """Design-Expert style text: ANOVA (Table 5 layout), statistics, coefficients,
@@ -405,6 +428,20 @@ def _check_mostly_numeric(data, exclude) -> None:
             _numeric(data, c)  # raises "column 'c', row i: holds 'text', not a finite number"
 
 
+def _chosen_terms(names, letters) -> tuple:
+    """The named terms (plus the intercept), without repeats, in Design-Expert order."""
+    from .terms import parse_term
+
+    if isinstance(names, str):
+        names = [names]
+    chosen = {}
+    for nm in ["Intercept", *names]:
+        t = parse_term(str(nm).strip(), letters) if not isinstance(nm, Term) else nm
+        chosen[t.powers] = t
+    order = {t.powers: i for i, t in enumerate(model_terms(letters, "cubic"))}
+    return tuple(sorted(chosen.values(), key=lambda t: (order.get(t.powers, len(order)), t.order, t.powers)))
+
+
 def _aliased_terms(X: np.ndarray, names: Sequence[str]) -> list[str]:
     """Columns that are (numerically) linear combinations of earlier columns."""
     R = np.linalg.qr(X, mode="r")
@@ -414,7 +451,8 @@ def _aliased_terms(X: np.ndarray, names: Sequence[str]) -> list[str]:
     return bad
 
 
-def fit(data, response: str, factors=None, block: str | None = None, model: str = "quadratic") -> FitResult:
+def fit(data, response: str, factors=None, block: str | None = None, model: str = "quadratic", *,
+        terms=None) -> FitResult:
     """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
 
     Parameters
@@ -431,6 +469,10 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     block : str, optional
         Block column (any labels); block effects sum to zero.
     model : {"linear", "2fi", "quadratic", "cubic"}
+    terms : sequence of str, optional
+        Fit only these terms (names as ``"A"``, ``"AC"``, ``"C^2"``; the intercept is always
+        included), e.g. the terms kept by :func:`rsm_lrg.model.reduce.reduce_terms`; they are
+        put in Design-Expert order. ``model`` then only labels the result.
 
     Returns
     -------
@@ -467,7 +509,7 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         if np.unique(coded[f.letter].to_numpy()).size < 2:
             raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")
 
-    terms = tuple(model_terms(space.letters, model))
+    terms = tuple(model_terms(space.letters, model)) if terms is None else _chosen_terms(terms, space.letters)
     Xt = design_matrix(coded.to_numpy(dtype=float), terms)
     n = y.size
     names = [t.name for t in terms]

@@ -211,6 +211,7 @@ def ridge(result, goal: str = "maximize", radius: float | None = None, step: flo
         of ``step`` up to ``radius``, 0 included.
     """
     g = _goal(goal)
+    radii(0.0, step)  # validates step
     b0, b, B = _parts(result)
     if radius is None:
         radius = float(np.max(np.linalg.norm(result.coded.to_numpy(dtype=float), axis=1)))

@@ -18,8 +18,8 @@ where "in range" responses enter the product (0 or 1) but not the sum Σ r_i. De
 limits are the observed minimum and maximum of the response (Stat-Ease's default).
 
 The search maximises D over the coded box [-1, 1]^k (or tighter bounds) from many starts:
-the centre, the vertices (k ≤ 6), each response's single-response optimum and a scrambled
-Sobol set, each polished by L-BFGS-B. Where D is 0 (flat) the objective is the summed
+the centre, the vertices (k ≤ 8), each response's single-response optimum and a scrambled
+Sobol set; all are screened at once, the best six polished by L-BFGS-B and the winner by Nelder–Mead. Where D is 0 (flat) the objective is the summed
 distance of the responses to their acceptable ranges, scaled by U - L, so the search
 still moves towards the feasible region (Stat-Ease's "tail" serves the same purpose).
 """
@@ -243,7 +243,7 @@ class DesirabilityResult:
 
 
 def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal], bounds=None, *,
-                          seed: int = 0, n_sobol: int = 64) -> DesirabilityResult:
+                          seed: int = 0, n_sobol: int = 256, n_polish: int = 6) -> DesirabilityResult:
     """Maximise the overall desirability of several fitted responses.
 
     Parameters
@@ -257,7 +257,9 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     seed : int
         Seed of the Sobol start set.
     n_sobol : int
-        Sobol starts (rounded up to a power of two).
+        Sobol starts (rounded up to a power of two); all starts are screened at once.
+    n_polish : int
+        The best starts polished by L-BFGS-B; the best result then by Nelder–Mead.
     """
     from scipy import optimize as so
     from scipy.stats import qmc
@@ -282,34 +284,50 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     goals = [g.with_limits(float(np.min(fits[g.response].y)), float(np.max(fits[g.response].y))) for g in goals]
     lo, hi, notes = parse_bounds(space, bounds)
     k = len(space)
-    models = [(fits[g.response].terms, fits[g.response].coefficients["coded"].to_numpy(dtype=float)) for g in goals]
+    polys = []
+    for g in goals:
+        f = fits[g.response]
+        beta = f.coefficients["coded"].to_numpy(dtype=float)
+        if all(t.order <= 2 for t in f.terms):
+            from ..model.canonical import quadratic_parts
+
+            polys.append(("q", quadratic_parts(dict(zip(f.coefficients.index, beta)), f.terms, k)))
+        else:
+            polys.append(("g", (f.terms, beta)))
 
     def preds(X):
-        X = np.atleast_2d(X)
-        return [design_matrix(X, t) @ b for t, b in models]
+        X = np.atleast_2d(np.asarray(X, dtype=float))
+        out = []
+        for kind, par in polys:
+            if kind == "q":
+                b0, b, B = par
+                out.append(b0 + X @ b + np.einsum("ij,jk,ik->i", X, B, X))
+            else:
+                out.append(design_matrix(X, par[0]) @ par[1])
+        return out
 
     def D_of(X):
         ys = preds(X)
         return overall_desirability([individual_desirability(y, g) for y, g in zip(ys, goals)], goals), ys
 
-    def objective(x):
-        D, ys = D_of(x)
-        if D[0] > 0:
-            return -float(D[0])
-        pen = 0.0
+    def objective_many(X):
+        D, ys = D_of(X)
+        pen = np.zeros(len(D))
         for y, g in zip(ys, goals):
-            v = float(y[0])
             span = g.high - g.low
-            if g.goal in ("maximize",):
-                pen += max(g.low - v, 0.0) / span
+            if g.goal == "maximize":
+                pen += np.maximum(g.low - y, 0.0) / span
             elif g.goal == "minimize":
-                pen += max(v - g.high, 0.0) / span
+                pen += np.maximum(y - g.high, 0.0) / span
             else:
-                pen += (max(g.low - v, 0.0) + max(v - g.high, 0.0)) / span
-        return pen + 1e-12
+                pen += (np.maximum(g.low - y, 0.0) + np.maximum(y - g.high, 0.0)) / span
+        return np.where(D > 0, -D, pen + 1e-12)
+
+    def objective(x):
+        return float(objective_many(np.asarray(x, dtype=float)[None, :])[0])
 
     starts = [np.clip(np.zeros(k), lo, hi), (lo + hi) / 2]
-    if k <= 6:
+    if k <= 8:
         starts += [np.where(np.array(v) > 0, hi, lo) for v in itertools.product((0, 1), repeat=k)]
     for g in goals:
         goal = g.goal if g.goal in ("maximize", "minimize") else (("target", g.target) if g.goal == "target" else None)
@@ -323,23 +341,28 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     m = max(3, int(math.ceil(math.log2(max(n_sobol, 8)))))
     sob = qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m)
     starts += list(lo + sob * (hi - lo))
+    S = np.clip(np.array(starts), lo, hi)
+    # screen every start (vectorised), polish the most promising ones
+    vals = objective_many(S)
+    order = np.argsort(vals, kind="stable")[:n_polish]
     box = list(zip(lo, hi))
-    best_x, best_v = None, math.inf
-    for x0 in starts:
-        cands = [np.clip(x0, lo, hi)]
+    best_x, best_v = S[order[0]], float(vals[order[0]])
+    for i in order:
         try:
-            r = so.minimize(objective, cands[0], method="L-BFGS-B", bounds=box,
-                            options={"ftol": 1e-14, "gtol": 1e-10, "maxiter": 300})
-            cands.append(np.clip(r.x, lo, hi))
-            r2 = so.minimize(objective, cands[-1], method="Nelder-Mead",
-                             options={"xatol": 1e-9, "fatol": 1e-14, "maxiter": 400})
-            cands.append(np.clip(r2.x, lo, hi))
+            r = so.minimize(objective, S[i], method="L-BFGS-B", bounds=box,
+                            options={"ftol": 1e-14, "gtol": 1e-10, "maxiter": 200})
         except (ValueError, FloatingPointError):
-            pass
-        for c in cands:
-            v = objective(c)
-            if v < best_v - 1e-15:
-                best_x, best_v = c, v
+            continue
+        c = np.clip(r.x, lo, hi)
+        v = objective(c)
+        if v < best_v - 1e-15:
+            best_x, best_v = c, v
+    # D has kinks (limits, targets): finish with a derivative-free polish of the best point
+    r2 = so.minimize(objective, best_x, method="Nelder-Mead",
+                     options={"xatol": 1e-10, "fatol": 1e-15, "maxiter": 400 * k})
+    c = np.clip(r2.x, lo, hi)
+    if objective(c) < best_v:
+        best_x, best_v = c, objective(c)
     x = best_x + 0.0
     D, ys = D_of(x)
     ds = [float(individual_desirability(y, g)[0]) for y, g in zip(ys, goals)]
