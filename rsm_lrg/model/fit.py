@@ -333,6 +333,20 @@ class FitResult:
     def __str__(self) -> str:
         return self.summary()
 
+    def to_html(self, **kwargs) -> str:
+        """The self-contained HTML report of this fit (see :func:`rsm_lrg.report.to_html`).
+
+        The report layer sits above the model; it is imported only when asked for, so the
+        model layer does not depend on it.
+        """
+        from ..report import to_html
+
+        return to_html(self, **kwargs)
+
+    def _repr_html_(self) -> str:
+        """Notebook face: the HTML report without the optimisation section."""
+        return self.to_html(goal=None)
+
     def to_dict(self) -> dict:
         """The fit JSON of INTERFACE.md (plain Python; NaN becomes ``null`` in JSON)."""
         coef = self.coefficients
