@@ -249,7 +249,7 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     def predict(theta, idx=None):
         # always all rows (the dynamics of a row set is memoised), then the subset
         cal = {s.name: float(t) for s, t in zip(specs, theta)}
-        out = evaluate_rows(arrays, params=p, calibration=cal, duration_min=duration_min)[response]
+        out = evaluate_rows(arrays, params=p, calibration=cal, duration_min=duration_min, memo=True)[response]
         return out if idx is None else out[idx]
 
     lo = np.array([s.lower for s in specs])

@@ -34,8 +34,10 @@ DEFAULT_NOISE_SD = 0.03
 #: cut at fixed row indices, whatever the executor or the number of workers: the noise of a
 #: row never depends on its batch (:mod:`.noise`), and the stick-slip integrator shares one
 #: step count among the rows it integrates together (a 1e-4-relative effect at most), so
-#: fixed cuts make the rows bit-identical on one process, N processes or a cluster.
-DEFAULT_BATCH_ROWS = 2048
+#: fixed cuts make the rows bit-identical on one process, N processes or a cluster. The cost
+#: of a batch is mostly the integrator's time steps, shared by all its rows, so batches are
+#: large: 10,000 rows cost about 2.5x what 1,000 rows cost (benchmarks/bench_simulate.py).
+DEFAULT_BATCH_ROWS = 16384
 
 #: Designs with at least this many rows show a progress bar by default.
 PROGRESS_MIN_ROWS = 20000
@@ -80,7 +82,7 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
     params : LRGParams, optional
         Base physical parameters (default: ``data/lrg_shs15v.toml``).
     batch_rows : int, optional
-        Rows per batch (default 2048; the same for every executor, see
+        Rows per batch (default 16384; the same for every executor, see
         :data:`DEFAULT_BATCH_ROWS`).
     progress : bool, optional
         Progress bar on stderr (tqdm); default: for designs of 20,000 rows or more.

@@ -123,7 +123,7 @@ def thermal_unit_response(values: dict, duration_min: float):
 # ----------------------------------------------------------------------------------------
 # dynamics with a row-local step (so that a row's result does not depend on its batch)
 # ----------------------------------------------------------------------------------------
-def _cycle_metrics(s, v, a, rigid, p, cols):
+def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
     """Sliding per cycle [m] and cycle time [s] of every row, from
     :func:`rsm_lrg.physics.dynamics.cycle_metrics` (``method="auto"``: the quasi-static limit
     where it is valid, the vectorised stick-slip integration elsewhere; RMS rows slide 2·s).
@@ -136,7 +136,7 @@ def _cycle_metrics(s, v, a, rigid, p, cols):
     from ..physics import dynamics
 
     key = None
-    if s.size <= _MEMO_MAX_ROWS:  # small batches repeat during calibration: memoise
+    if memo and s.size <= _MEMO_MAX_ROWS:  # calibration repeats the same rows: memoise
         key = (p, s.tobytes(), v.tobytes(), a.tobytes(), rigid.tobytes(),
                tuple((k, np.asarray(x, float).tobytes()) for k, x in sorted(cols.items())))
         hit = _MEMO.get(key)
@@ -163,7 +163,7 @@ _MEMO_MAX_ROWS = 2000
 # the row model
 # ----------------------------------------------------------------------------------------
 def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, seed: int = 0,
-                  noise_sd: float = 0.0, duration_min: float = 50.0) -> dict:
+                  noise_sd: float = 0.0, duration_min: float = 50.0, memo: bool = False) -> dict:
     """Responses of a batch of rows (see the module docstring).
 
     Parameters
@@ -183,6 +183,9 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         SD of each thermocouple reading's noise [°C]; 0: deterministic.
     duration_min : float
         Test duration [min] where the design has no ``test_duration_min`` column.
+    memo : bool
+        Remember the stage dynamics of these rows (calibration re-evaluates the same rows
+        with only the heat parameters changed).
 
     Returns
     -------
@@ -218,7 +221,7 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         return pcols[name] if name in pcols else getattr(p, name)
 
     # 1-2: motion and stage dynamics
-    slide, T = _cycle_metrics(s, v, a, rigid, p, dyn_cols)
+    slide, T = _cycle_metrics(s, v, a, rigid, p, dyn_cols, memo=memo)
     load = col("preload_n") + np.asarray(col("stage_mass_kg")) * col("gravity_m_s2")
     # 3: friction heat, cycle-averaged (Eq. 8 mechanism)
     power = col("mu_k") * load * slide / T

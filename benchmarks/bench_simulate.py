@@ -1,0 +1,103 @@
+"""Virtual runs per second of ``rsm_lrg.simulate`` (the physics surrogate).
+
+    python benchmarks/bench_simulate.py [--rows 1 27 1000 100000] [--single 40] [--workers 2]
+                                        [--noise-sd 0.03] [--json PATH]
+
+Workload: every row a different setting, drawn uniformly from the paper's Table 3 box
+(thickness 0.1-0.5 mm, stroke 0.04-0.06 m, velocity 0.4-0.6 m/s, acceleration 20-40 m/s^2),
+RFCMS, calibrated surrogate, reading noise on. For each size: wall time and runs per second
+(the first call, which builds the thermal network, is warmed up beforehand).
+
+Also:
+- ``row-at-a-time``: ``--single`` rows, each through its own ``simulate`` call (what one
+  Python call per row would cost), against the batched cost per run at the largest size:
+  the speed-up factor (issue 4 asks >= 100x);
+- scaling: cost of the largest size over the cost of 1,000 rows (issue 4: close to 100x for
+  100,000 vs 1,000);
+- ``--workers N``: the largest size again on a ``ProcessPoolExecutor`` of N processes.
+
+Figures go in the report, not in tests (wall-clock times depend on the machine).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import time
+
+import numpy as np
+import pandas as pd
+
+from rsm_lrg.surrogate import simulate
+
+
+def box(n, seed=0):
+    rng = np.random.default_rng(seed)
+    return pd.DataFrame({"thickness_m": rng.uniform(1e-4, 5e-4, n), "stroke_m": rng.uniform(0.04, 0.06, n),
+                         "velocity_m_s": rng.uniform(0.4, 0.6, n), "acceleration_m_s2": rng.uniform(20, 40, n)})
+
+
+def timed(fn, repeat=1):
+    best = np.inf
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t)
+    return best
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--rows", type=int, nargs="+", default=[1, 27, 1000, 100_000])
+    ap.add_argument("--single", type=int, default=40, help="rows run one simulate() call each")
+    ap.add_argument("--workers", type=int, default=0, help="also run the largest size on N processes")
+    ap.add_argument("--noise-sd", type=float, default=0.03)
+    ap.add_argument("--json", default=None)
+    a = ap.parse_args(argv)
+
+    simulate(box(3), seed=0, noise_sd=a.noise_sd)  # warm-up: imports, thermal network
+    out = {"machine": {"cpus": os.cpu_count(), "python": platform.python_version(),
+                       "processor": platform.processor() or platform.machine()}, "sizes": []}
+    print(f"{'rows':>8} {'seconds':>10} {'runs/s':>12} {'ms/run':>10}")
+    for n in a.rows:
+        d = box(n, seed=n)
+        sec = timed(lambda: simulate(d, seed=1, noise_sd=a.noise_sd, progress=False), repeat=3 if n <= 1000 else 1)
+        out["sizes"].append({"rows": n, "seconds": sec, "runs_per_s": n / sec})
+        print(f"{n:>8} {sec:>10.3f} {n / sec:>12.1f} {1e3 * sec / n:>10.4f}")
+
+    d = box(a.single, seed=7)
+    t = time.perf_counter()
+    for i in range(a.single):
+        simulate(d.iloc[[i]], seed=1, noise_sd=a.noise_sd, progress=False)
+    single = (time.perf_counter() - t) / a.single
+    big = out["sizes"][-1]
+    batched = big["seconds"] / big["rows"]
+    out["row_at_a_time"] = {"rows": a.single, "seconds_per_run": single,
+                            "batched_seconds_per_run": batched, "speedup": single / batched}
+    print(f"row at a time: {1e3 * single:.2f} ms/run; batched ({big['rows']} rows): "
+          f"{1e3 * batched:.4f} ms/run; speed-up {single / batched:.0f}x")
+    sizes = {s["rows"]: s["seconds"] for s in out["sizes"]}
+    if 1000 in sizes and max(sizes) > 1000:
+        n = max(sizes)
+        ratio = sizes[n] / sizes[1000]
+        out["scaling"] = {"rows": n, "over_1000": ratio, "ideal": n / 1000}
+        print(f"scaling: {n} rows cost {ratio:.1f}x of 1,000 rows (ideal {n / 1000:.0f}x)")
+    if a.workers > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        n = max(a.rows)
+        d = box(n, seed=n)
+        with ProcessPoolExecutor(a.workers) as ex:
+            simulate(box(3), executor=ex)  # start the workers
+            sec = timed(lambda: simulate(d, seed=1, noise_sd=a.noise_sd, executor=ex, progress=False))
+        out["workers"] = {"workers": a.workers, "rows": n, "seconds": sec, "runs_per_s": n / sec}
+        print(f"{a.workers} processes, {n} rows: {sec:.2f} s, {n / sec:.0f} runs/s")
+    if a.json:
+        with open(a.json, "w") as fh:
+            json.dump(out, fh, indent=2)
+
+
+if __name__ == "__main__":
+    main()
