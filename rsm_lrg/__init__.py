@@ -35,7 +35,7 @@ def _register(module: str, *names: str) -> None:
 _register("rsm_lrg.design", "Design", "box_behnken", "central_composite", "full_factorial", "read_design")
 _register("rsm_lrg.model", "fit", "FitResult")
 _register("rsm_lrg.optimize", "optimize", "OptimumResult")
-_register("rsm_lrg.surrogate", "simulate")
+_register("rsm_lrg.surrogate", "simulate", "calibrate", "Calibration")
 _register("rsm_lrg.model.summary", "fit_summary")
 _register("rsm_lrg.model.reduce", "reduce_terms")
 _register("rsm_lrg.model.ridge", "ridge")

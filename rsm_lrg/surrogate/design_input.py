@@ -8,7 +8,8 @@ A design row is one test of the rig (Section 4 of Su, Zhang & Yang 2023). Column
 ``acceleration_m_s2``  acceleration a [m/s²]
 ``stage``              optional: ``rfcms`` (default) or ``rms`` (case-insensitive)
 any name of :class:`rsm_lrg.physics.params.LRGParams` (``preload_n``, ``mu_k``,
-``ambient_c``, ``test_duration_min``, ...): a per-row value of that parameter.
+``ambient_c``, ``test_duration_min``, ...) or of the surrogate's calibrated parameters
+(``heat_partition``, ``viscous_friction_n_s_m``): a per-row value of that parameter.
 
 Every other column passes through untouched. Missing or out-of-range values raise
 ``ValueError`` naming the column and the (1-based) data row.
@@ -156,14 +157,23 @@ def read_design_arrays(df, params=None) -> DesignArrays:
         columns[c] = _float_column(df, c)
     columns["thickness_m"] = y
 
-    names = set(param_names()) - _NOT_PER_ROW
+    from .runs import SURROGATE_PARAMETERS
+
+    names = (set(param_names()) - _NOT_PER_ROW) | set(SURROGATE_PARAMETERS)
     param_cols = tuple(c for c in cols if c in names and c not in FACTOR_COLUMNS)
     for c in param_cols:
         columns[c] = _float_column(df, c)
+    for c, (rule, bad) in {
+        "heat_partition": ("must lie in (0, 1]", lambda x: (x <= 0) | (x > 1)),
+        "viscous_friction_n_s_m": ("must be >= 0", lambda x: x < 0),
+    }.items():
+        if c in columns and bad(columns[c]).any():
+            raise _bad_row(c, df[c].tolist(), bad(columns[c]), rule)
 
     # ranges: the physics' own rules, then the rig's limits
     for c, name in (("stroke_m", "stroke_m"), ("velocity_m_s", "velocity_m_s"),
-                    ("acceleration_m_s2", "acceleration_m_s2"), *((c, c) for c in param_cols)):
+                    ("acceleration_m_s2", "acceleration_m_s2"),
+                    *((c, c) for c in param_cols if c not in SURROGATE_PARAMETERS)):
         try:
             check_values(name, columns[c])
         except ValueError as exc:

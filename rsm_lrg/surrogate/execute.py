@@ -58,7 +58,7 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
 
     Parameters
     ----------
-    design : pandas.DataFrame
+    design : pandas.DataFrame or rsm_lrg.design.Design
         Columns ``thickness_m`` [m], ``stroke_m`` [m], ``velocity_m_s`` [m/s],
         ``acceleration_m_s2`` [m/s²]; optionally ``stage`` (``rfcms``/``rms``) and any
         parameter of :class:`rsm_lrg.physics.params.LRGParams` as a per-row column. Other
@@ -108,6 +108,8 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
         params = LRGParams()
     elif not isinstance(params, LRGParams):
         raise TypeError(f"params must be an LRGParams, not {type(params).__name__}")
+    if not isinstance(design, pd.DataFrame) and hasattr(design, "to_frame"):
+        design = design.to_frame()  # a rsm_lrg.design.Design
     cal = resolve_calibration(calibration)
     seed_int = resolve_seed(seed) if noise_sd > 0 else 0
     arrays = read_design_arrays(design, params)

@@ -86,3 +86,12 @@ def test_any_valid_design_is_accepted_in_order(rows):
     assert a.n == len(rows)
     for c in FACTOR_COLUMNS:
         assert np.array_equal(a.columns[c], df[c].to_numpy())
+
+
+def test_surrogate_parameters_may_vary_by_row():
+    a = read_design_arrays(design(heat_partition=[0.2, 0.5, 1.0]))
+    assert a.param_columns == ("heat_partition",)
+    with pytest.raises(ValueError, match=r"column 'heat_partition', row 2: .*\(0, 1\]"):
+        read_design_arrays(design(heat_partition=[0.2, 1.5, 1.0]))
+    with pytest.raises(ValueError, match=r"column 'viscous_friction_n_s_m', row 1"):
+        read_design_arrays(design(viscous_friction_n_s_m=[-1.0, 0.0, 1.0]))

@@ -91,3 +91,14 @@ def test_uncalibrated_centre_run_within_30_percent_of_measured():
     # 0.03367 degC/min), raw physics from the paper's inputs, within +-30 %
     out = simulate(rows(), noise_sd=0, calibration=None)
     assert out.tcr_c_per_min[0] == pytest.approx(0.03367, rel=0.30)
+
+
+def test_a_design_object_and_a_heat_share_column():
+    from rsm_lrg import box_behnken
+
+    d = box_behnken(["thickness_m=0.0001:0.0005", "stroke_m=0.04:0.06", "velocity_m_s=0.4:0.6",
+                     "acceleration_m_s2=20:40"], center=1, seed=1)
+    out = simulate(d, noise_sd=0)
+    assert len(out) == 25 and "coded_A" in out
+    two = simulate(rows(2, stage="rms", heat_partition=[0.25, 0.5]), noise_sd=0)
+    assert two.heat_w[1] == pytest.approx(2 * two.heat_w[0], rel=1e-12)
