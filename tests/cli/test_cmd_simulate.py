@@ -109,3 +109,16 @@ def test_unreachable_scheduler_is_a_clear_error(design_csv, tmp_path, capsys):
     assert main(["simulate", str(design_csv), "--scheduler", "tcp://127.0.0.1:9", "-o",
                  str(tmp_path / "o.csv")]) == 2
     assert "cannot connect" in capsys.readouterr().err
+
+
+@pytest.mark.cluster
+@pytest.mark.slow
+def test_scheduler_gives_the_same_file_as_one_process(design_csv, tmp_path):
+    distributed = pytest.importorskip("distributed")
+    one, dask = tmp_path / "one.csv", tmp_path / "dask.csv"
+    assert main(["simulate", str(design_csv), "--seed", "8", "-o", str(one)]) == 0
+    with distributed.LocalCluster(processes=True, n_workers=2, threads_per_worker=1, host="127.0.0.1",
+                                  dashboard_address=None) as cluster:
+        r = run("simulate", str(design_csv), "--seed", "8", "--scheduler", cluster.scheduler_address, "-o", str(dask))
+    assert r.returncode == 0, r.stderr
+    assert one.read_bytes() == dask.read_bytes()
