@@ -129,7 +129,7 @@ def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
     where it is valid, the vectorised stick-slip integration elsewhere; RMS rows slide 2·s).
 
     The integrator takes one number of steps per cycle for the rows it integrates together,
-    so a row's result can move in the 5th significant digit with its batch-mates; batches are
+    so a row's result can move by ~1e-5 relative with its batch-mates; batches are
     therefore cut at fixed row indices (:data:`rsm_lrg.surrogate.execute.DEFAULT_BATCH_ROWS`),
     whatever the executor or the number of workers.
     """
