@@ -24,6 +24,16 @@ def add_factor_options(p: argparse.ArgumentParser) -> None:
     )
 
 
+def add_model_inputs(parser: argparse.ArgumentParser) -> None:
+    """DATA.csv, --response, --factor, --block and --model: the inputs of a fitted model."""
+    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
+    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    add_factor_options(parser)
+    parser.add_argument("--block", metavar="COL", default=None, help="block column (effects sum to zero)")
+    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
+                        help="model order (default quadratic)")
+
+
 @contextmanager
 def about_file(path):
     """Re-raise a ValueError from the library as InputError prefixed with the file name."""

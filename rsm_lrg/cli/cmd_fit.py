@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_factor_options, add_force, add_json
+from ._common import about_file, add_model_inputs, add_force, add_json
 
 NAME = "fit"
 HELP = "fit a response-surface model; print the ANOVA, statistics and equation"
@@ -17,12 +17,7 @@ DESCRIPTION = (
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
-    add_factor_options(parser)
-    parser.add_argument("--block", metavar="COL", default=None, help="block column (effects sum to zero)")
-    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
-                        help="model order (default quadratic)")
+    add_model_inputs(parser)
     parser.add_argument("--reduce", action="store_true",
                         help="backward elimination keeping hierarchy; the output carries only the kept terms")
     parser.add_argument("--alpha-out", type=float, default=0.1, metavar="A",

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_factor_options, add_force
+from ._common import about_file, add_model_inputs, add_force
 
 NAME = "report"
 HELP = "fit a model and write a self-contained HTML report (ANOVA, diagnostics, surfaces, optimum)"
@@ -18,12 +18,7 @@ DESCRIPTION = (
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
-    add_factor_options(parser)
-    parser.add_argument("--block", metavar="COL", default=None, help="block column (effects sum to zero)")
-    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
-                        help="model order (default quadratic)")
+    add_model_inputs(parser)
     parser.add_argument("--goal", default="minimize", metavar="minimize|maximize|target=V",
                         help="goal of the optimum section (default minimize, as in the paper)")
     parser.add_argument("--hold", default="center", choices=["center", "optimum"],
