@@ -16,7 +16,8 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-__all__ = ["InputError", "read_table", "write_output", "dump_json", "to_jsonable", "numeric_column"]
+__all__ = ["InputError", "read_table", "read_toml", "toml_value", "write_output", "dump_json", "to_jsonable",
+           "numeric_column"]
 
 
 class InputError(ValueError):
@@ -69,6 +70,56 @@ def read_table(path: str | os.PathLike):
         raise InputError(f"{p}: is not a CSV table (found a single column {cols[0]!r}); expected comma-separated columns")
     df.columns = cols
     return df
+
+
+def read_toml(path: str | os.PathLike, what: str = "file") -> dict:
+    """Parse a TOML file, or raise :class:`InputError` naming it (missing, a directory, or not
+    valid TOML with the parser's line and column). ``what`` names the kind of file in the
+    "no such ..." message (``"calibration file"``)."""
+    import tomllib
+
+    p = Path(path)
+    if not p.exists():
+        raise InputError(f"{p}: no such {what}")
+    if p.is_dir():
+        raise InputError(f"{p}: is a directory, not a TOML file")
+    try:
+        with open(p, "rb") as fh:
+            return tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{p}: not valid TOML ({exc})") from None
+    except UnicodeDecodeError:
+        raise InputError(f"{p}: not valid TOML (not UTF-8 text)") from None
+
+
+def toml_value(x: Any) -> str:
+    """One value as TOML source: booleans, integers, floats (``repr``, round-trips exactly;
+    ``None`` and non-finite numbers as ``nan``), strings (quoted, escaped) and lists of them.
+
+    >>> print(toml_value([1, 0.5, True, 'a "b"', None]))
+    [1, 0.5, true, "a \\"b\\"", nan]
+    """
+    import numbers
+
+    if isinstance(x, (list, tuple)):
+        return "[" + ", ".join(toml_value(v) for v in x) + "]"
+    if x is None:
+        return "nan"
+    if isinstance(x, bool) or type(x).__name__ in ("bool", "bool_"):
+        return "true" if x else "false"
+    if isinstance(x, numbers.Integral):
+        return str(int(x))
+    if isinstance(x, numbers.Real):
+        return repr(float(x)) if math.isfinite(x) else "nan"
+    out = []
+    for ch in str(x):
+        if ch in '"\\':
+            out.append("\\" + ch)
+        elif ord(ch) < 0x20 or ord(ch) == 0x7F:
+            out.append(f"\\u{ord(ch):04x}")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
 
 
 def numeric_column(df, name: str, where: str = ""):

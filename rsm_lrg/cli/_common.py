@@ -24,14 +24,27 @@ def add_factor_options(p: argparse.ArgumentParser) -> None:
     )
 
 
+#: The model orders a command can fit (rsm_lrg.model.terms).
+MODEL_ORDERS = ("linear", "2fi", "quadratic", "cubic")
+
+
+def add_model_option(p: argparse.ArgumentParser, orders=MODEL_ORDERS, what: str = "model order") -> None:
+    """``--model ORDER`` (default quadratic)."""
+    p.add_argument("--model", default="quadratic", choices=list(orders), help=f"{what} (default quadratic)")
+
+
+def add_block_option(p: argparse.ArgumentParser, role: str = "effects sum to zero") -> None:
+    """``--block COL``; ``role`` says what the command does with the blocks."""
+    p.add_argument("--block", metavar="COL", default=None, help=f"block column ({role})")
+
+
 def add_model_inputs(parser: argparse.ArgumentParser) -> None:
     """DATA.csv, --response, --factor, --block and --model: the inputs of a fitted model."""
     parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
     parser.add_argument("--response", required=True, metavar="COL", help="the response column")
     add_factor_options(parser)
-    parser.add_argument("--block", metavar="COL", default=None, help="block column (effects sum to zero)")
-    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
-                        help="model order (default quadratic)")
+    add_block_option(parser)
+    add_model_option(parser)
 
 
 @contextmanager

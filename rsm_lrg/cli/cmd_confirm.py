@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_factor_options, add_force, add_json
+from ._common import about_file, add_block_option, add_factor_options, add_force, add_json, add_model_option
 
 NAME = "confirm"
 HELP = "check confirmation runs against the prediction interval for their mean"
@@ -27,9 +27,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="also give the relative error against this value")
     parser.add_argument("--confidence", type=float, default=0.95, metavar="C", help="interval level (default 0.95)")
     add_factor_options(parser)
-    parser.add_argument("--block", metavar="COL", default=None, help="block column (prediction for the average block)")
-    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
-                        help="model order (default quadratic)")
+    add_block_option(parser, "prediction for the average block")
+    add_model_option(parser)
     add_json(parser)
     add_force(parser)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, add_json
+from ._common import about_file, add_force, add_json, add_model_option
 
 NAME = "evaluate"
 HELP = "evaluate a design for a model before any data: VIF, leverage, prediction variance, FDS, power"
@@ -20,8 +20,7 @@ DESCRIPTION = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("design", metavar="DESIGN.csv", help="the design")
-    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
-                        help="model to evaluate (default quadratic)")
+    add_model_option(parser, what="model to evaluate")
     parser.add_argument("--region", default="cube", choices=["cube", "sphere"],
                         help="region for the prediction variance (default: the coded cube)")
     parser.add_argument("--alpha", type=float, default=0.05, metavar="A", help="level of the power test (default 0.05)")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_factor_options, add_force, add_json
+from ._common import about_file, add_block_option, add_factor_options, add_force, add_json
 
 NAME = "fit-summary"
 HELP = "compare linear, 2FI, quadratic and cubic models; suggest one"
@@ -21,7 +21,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
     parser.add_argument("--response", required=True, metavar="COL", help="the response column")
     add_factor_options(parser)
-    parser.add_argument("--block", metavar="COL", default=None, help="block column (entered first)")
+    add_block_option(parser, "entered first")
     parser.add_argument("--alpha", type=float, default=0.05, metavar="A",
                         help="significance level for the suggestion (default 0.05)")
     add_json(parser)

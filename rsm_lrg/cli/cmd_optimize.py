@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_factor_options, add_force, add_json
+from ._common import about_file, add_block_option, add_factor_options, add_force, add_json, add_model_option
 
 NAME = "optimize"
 HELP = "fit, then find the minimum, maximum or a target inside the factor box"
@@ -32,9 +32,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
                         help="tighter limits for a factor in actual units (repeatable)")
-    parser.add_argument("--block", metavar="COL", default=None, help="block column (optimum for the average block)")
-    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
-                        help="model order (default quadratic)")
+    add_block_option(parser, "optimum for the average block")
+    add_model_option(parser)
     add_json(parser)
     add_force(parser)
 

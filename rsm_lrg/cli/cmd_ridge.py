@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_factor_options, add_force, add_json
+from ._common import (MODEL_ORDERS, about_file, add_block_option, add_factor_options, add_force, add_json,
+                      add_model_option)
 
 NAME = "ridge"
 HELP = "ridge analysis (second order) or path of steepest ascent/descent (first order)"
@@ -26,9 +27,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="largest distance from the centre in coded units (default: the farthest design point)")
     parser.add_argument("--step", type=float, default=0.1, metavar="S", help="spacing of the path points (default 0.1)")
     add_factor_options(parser)
-    parser.add_argument("--block", metavar="COL", default=None, help="block column (path for the average block)")
-    parser.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic"],
-                        help="model order (default quadratic)")
+    add_block_option(parser, "path for the average block")
+    add_model_option(parser, MODEL_ORDERS[:3])
     add_json(parser)
     add_force(parser)
 

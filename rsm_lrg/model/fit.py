@@ -195,7 +195,6 @@ class FitResult:
     @property
     def externally_studentized_residuals(self) -> np.ndarray:
         """Externally studentized (deleted) residuals, Design-Expert's "externally studentized" [-]."""
-        p = self.design_matrix.shape[1]
         r = self.studentized_residuals
         dfe = self.df_resid
         with np.errstate(divide="ignore", invalid="ignore"):

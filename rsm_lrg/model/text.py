@@ -76,10 +76,8 @@ def format_equation(result, units: str = "coded") -> str:
     """The fitted equation in ``"coded"`` (letters) or ``"actual"`` (factor names) terms."""
     if units == "coded":
         coefs = dict(zip(result.coefficients.index, result.coefficients["coded"]))
-        rename = {}
     else:
         coefs = dict(result.actual_coefficients)
-        rename = {f.letter: f.name for f in result.space.factors}
     lines = [f"{result.response} ="]
     scale = max((abs(v) for v in coefs.values() if math.isfinite(v)), default=0.0)
     for name, c in coefs.items():

@@ -13,7 +13,6 @@ RFCMS against the RMS (Eqs. 13-17 with the stage dynamics of :mod:`.dynamics`).
 
 from __future__ import annotations
 
-import inspect
 from dataclasses import dataclass, field
 from typing import Any
 

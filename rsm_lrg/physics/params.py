@@ -315,14 +315,10 @@ def load_params(path: str | Path | None = None, base: LRGParams | None = None, *
     p = base or LRGParams()
     values: dict[str, Any] = {}
     if path is not None:
+        from ..io import read_toml
+
         path = Path(path)
-        if not path.exists():
-            raise ValueError(f"{path}: no such file")
-        try:
-            with open(path, "rb") as fh:
-                raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{path}: not valid TOML ({exc})") from None
+        raw = read_toml(path)
         for k, v in raw.items():
             values[k] = v["value"] if isinstance(v, dict) and "value" in v else v
         try:

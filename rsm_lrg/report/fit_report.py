@@ -270,7 +270,7 @@ def _diagnostics(result) -> tuple[list, str]:
     ref = 2.0 * p / n
     figs.append(P.render(P.leverage_plot(result.hat, runs, threshold=ref if ref < 1.0 else None), "leverage",
                          "Leverage", f"Leverage (hat diagonal) of each run; average leverage p/n = {p}/{n}"
-                         + (f"; the dashed line is twice that (2p/n)." if ref < 1.0 else
+                         + ("; the dashed line is twice that (2p/n)." if ref < 1.0 else
                             "; twice the average exceeds 1, so no reference line is drawn."), "svg"))
     note = "" if finite.sum() >= 2 else "Residual plots are omitted: the model leaves no residual degrees of freedom."
     return figs, note

@@ -16,10 +16,9 @@ from __future__ import annotations
 
 import hashlib
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Mapping
 
 import numpy as np
 
@@ -341,21 +340,10 @@ def _subset(arrays, idx):
 # ----------------------------------------------------------------------------------------
 # file I/O
 # ----------------------------------------------------------------------------------------
-def _fmt(x) -> str:
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return "nan"
-    if isinstance(x, bool):
-        return "true" if x else "false"
-    if isinstance(x, (int, np.integer)):
-        return str(int(x))
-    if isinstance(x, (float, np.floating)):
-        return repr(float(x))
-    s = str(x).replace("\\", "\\\\").replace('"', '\\"')
-    return f'"{s}"'
-
-
 def calibration_toml(cal: Calibration, command: str = "") -> str:
     """The TOML text of a calibration (what :func:`load_calibration` reads)."""
+    from ..io import toml_value
+
     lines = [
         "# Calibration of the rsm-lrg virtual-run surrogate (rsm_lrg.surrogate).",
         "# Written by `rsm-lrg calibrate`; read by `rsm-lrg simulate` and rsm_lrg.simulate().",
@@ -369,18 +357,18 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
         v = getattr(cal, k)
         if v is None:
             continue
-        lines.append(f"{k} = {_fmt(v)}")
+        lines.append(f"{k} = {toml_value(v)}")
     lines.append("")
     for p in cal.parameters:
         lines.append(f"[parameters.{p.name}]")
         for k in ("value", "std_error", "lower", "upper", "unit", "meaning", "at_bound"):
-            lines.append(f"{k} = {_fmt(getattr(p, k))}")
+            lines.append(f"{k} = {toml_value(getattr(p, k))}")
         lines.append("")
     lines.append("[runs]")
-    lines.append(f"observed = [{', '.join(_fmt(x) for x in cal.observed)}]")
-    lines.append(f"predicted = [{', '.join(_fmt(x) for x in cal.predicted)}]")
+    lines.append(f"observed = {toml_value(list(cal.observed))}")
+    lines.append(f"predicted = {toml_value(list(cal.predicted))}")
     if cal.loo_predicted:
-        lines.append(f"loo_predicted = [{', '.join(_fmt(x) for x in cal.loo_predicted)}]")
+        lines.append(f"loo_predicted = {toml_value(list(cal.loo_predicted))}")
     return "\n".join(lines) + "\n"
 
 
@@ -389,14 +377,10 @@ def load_calibration(path) -> Calibration:
     from .runs import SURROGATE_PARAMETERS
     from ..physics.params import param_names
 
+    from ..io import read_toml
+
     path = Path(path)
-    if not path.exists():
-        raise ValueError(f"{path}: no such calibration file")
-    try:
-        with open(path, "rb") as fh:
-            raw = tomllib.load(fh)
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: not valid TOML ({exc})") from None
+    raw = read_toml(path, "calibration file")
     head = raw.get("calibration", {})
     pars = raw.get("parameters")
     if not isinstance(pars, dict) or not pars:

@@ -2,7 +2,6 @@
 boxcox_llf profile and MLE, a planted outlier, and log-normal data that call for a log."""
 
 import numpy as np
-import pandas as pd
 import pytest
 import statsmodels.api as sm
 from scipy import stats

@@ -7,7 +7,6 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rsm_lrg.datasets import data_path, load_table4
 from rsm_lrg.surrogate import simulate
 from rsm_lrg.surrogate.calibrate import (ParameterSpec, calibrate, calibration_toml, load_calibration,
                                          resolve_calibration)
