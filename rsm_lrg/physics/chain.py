@@ -143,34 +143,12 @@ class PhysicsResult:
         return "\n".join(lines)
 
 
-#: LRGParams name -> rsm_lrg.physics.thermal.GuideGeometry field, where the names differ.
-_GEOMETRY_ALIASES = {
-    "ball_rows": "n_rows", "carriage_mass_kg": "block_mass_kg",
-    "guide_density_kg_m3": "steel_density_kg_m3", "guide_conductivity_w_mk": "steel_conductivity_w_mk",
-    "guide_specific_heat_j_kgk": "steel_specific_heat_j_kgk",
-}
-
-
 def _thermal(p: LRGParams, heat_w: float, h_side: float, h_front: float) -> dict[str, float | None]:
     """The four thermal numbers from :func:`rsm_lrg.physics.thermal.thermal_summary`, passing
-    every parameter that is also a field of its geometry (``None`` if it is not installed)."""
-    try:
-        from .thermal import thermal_summary
-    except ImportError:
-        return {k: None for k in _THERMAL_KEYS}
-    try:
-        import dataclasses
+    every parameter that is also a field of its geometry."""
+    from .thermal import GuideGeometry, thermal_summary
 
-        from .thermal import GuideGeometry
-
-        geo = {f.name for f in dataclasses.fields(GuideGeometry)}
-    except ImportError:  # an older thermal package: pass nothing
-        geo = set()
-    extra = {}
-    for name, value in p.to_dict().items():
-        target = _GEOMETRY_ALIASES.get(name, name)
-        if target in geo:
-            extra[target] = value
+    extra = GuideGeometry.fields_from_params(p.to_dict())
     res = thermal_summary(heat_w, h_side, h_front, ambient_c=p.ambient_c,
                           duration_min=p.test_duration_min, **extra)
     return {k: (None if getattr(res, k, None) is None else float(getattr(res, k))) for k in _THERMAL_KEYS}

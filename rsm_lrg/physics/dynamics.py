@@ -189,6 +189,8 @@ class CycleMetrics:
 
 def _stage_is_rigid(stage, n):
     s = np.asarray(stage)
+    if s.dtype == object and s.size and all(isinstance(x, (bool, np.bool_)) for x in s.flat):
+        s = s.astype(bool)  # a boolean column that went through an object array
     if s.dtype == bool:
         rigid = s
     else:

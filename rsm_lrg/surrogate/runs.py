@@ -42,13 +42,6 @@ SURROGATE_PARAMETERS = {
                                              "Canudas de Wit et al. 1995): force c_v * v"),
 }
 
-#: LRGParams name -> GuideGeometry field where the names differ (as in physics.chain).
-_GEOMETRY_ALIASES = {
-    "ball_rows": "n_rows", "carriage_mass_kg": "block_mass_kg",
-    "guide_density_kg_m3": "steel_density_kg_m3", "guide_conductivity_w_mk": "steel_conductivity_w_mk",
-    "guide_specific_heat_j_kgk": "steel_specific_heat_j_kgk",
-}
-
 #: Parameters that enter the convection coefficients (Eqs. 10-12).
 _CONVECTION = ("air_velocity_m_s", "char_length_m", "air_kinematic_viscosity_m2_s",
                "air_dynamic_viscosity_pa_s", "air_conductivity_w_mk", "air_specific_heat_j_kgk")
@@ -75,15 +68,11 @@ def mean_square_speed(stroke, velocity, acceleration, dwell=0.0):
 # ----------------------------------------------------------------------------------------
 def _thermal_items(values: dict) -> tuple:
     """The (name, value) pairs of a parameter dict that the thermal model uses."""
-    from ..physics.thermal.geometry import GuideGeometry
+    from ..physics.thermal.geometry import PARAM_ALIASES, GuideGeometry
 
     geo = {f.name for f in dataclasses.fields(GuideGeometry)}
-    items = []
-    for name in sorted(values):
-        target = _GEOMETRY_ALIASES.get(name, name)
-        if target in geo or name in _CONVECTION:
-            items.append((name, float(values[name])))
-    return tuple(items)
+    return tuple((name, float(values[name])) for name in sorted(values)
+                 if PARAM_ALIASES.get(name, name) in geo or name in _CONVECTION)
 
 
 @lru_cache(maxsize=64)
@@ -93,14 +82,7 @@ def _unit_response_cached(items: tuple, n_minutes: int):
     from ..physics.thermal.network import ThermalNetwork
 
     v = dict(items)
-    geo_kw = {}
-    geo = {f.name for f in dataclasses.fields(GuideGeometry)}
-    for name, value in v.items():
-        target = _GEOMETRY_ALIASES.get(name, name)
-        if target in geo:
-            f = GuideGeometry.__dataclass_fields__[target]
-            geo_kw[target] = int(value) if f.type in ("int", int) else value
-    geometry = GuideGeometry().with_(**geo_kw)
+    geometry = GuideGeometry.from_params(v)
     re = convection.reynolds(v["air_velocity_m_s"], v["char_length_m"], v["air_kinematic_viscosity_m2_s"])
     pr = convection.prandtl(v["air_specific_heat_j_kgk"], v["air_dynamic_viscosity_pa_s"], v["air_conductivity_w_mk"])
     hs = float(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr),

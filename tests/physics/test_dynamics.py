@@ -158,3 +158,15 @@ def test_rms_rows_may_leave_hinge_columns_empty():
     assert m.sliding_distance_m[0] == 0.1 and np.isfinite(m.sliding_distance_m[1])
     with pytest.raises(ValueError, match=r"hinge_thickness_m must be finite.*row 0"):
         dynamics.cycle_metrics([0.05, 0.05], 0.5, 30.0, stage="rfcms", hinge_thickness_m=y)
+
+
+def test_boolean_stage_column_with_parameter_columns():
+    # a boolean stage column (True = RMS) together with per-row parameter columns goes through
+    # an object array inside cycle_metrics; it must mean the same as the string labels
+    rigid = np.array([True, False, False])
+    y = np.array([np.nan, 0.0003, 0.0001])
+    by_bool = dynamics.cycle_metrics([0.05] * 3, 0.5, 30.0, stage=rigid, hinge_thickness_m=y)
+    by_name = dynamics.cycle_metrics([0.05] * 3, 0.5, 30.0, stage=np.array(["rms", "rfcms", "rfcms"]),
+                                     hinge_thickness_m=y)
+    np.testing.assert_array_equal(by_bool.sliding_distance_m, by_name.sliding_distance_m)
+    assert list(by_bool.method[:1]) == ["rms"]

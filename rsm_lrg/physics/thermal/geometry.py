@@ -45,7 +45,16 @@ __all__ = [
     "RAIL",
     "BODY_NAMES",
     "graded_cells",
+    "PARAM_ALIASES",
 ]
+
+#: :class:`rsm_lrg.physics.params.LRGParams` name -> :class:`GuideGeometry` field, where the
+#: names differ (every other shared name is the same in both).
+PARAM_ALIASES = {
+    "ball_rows": "n_rows", "carriage_mass_kg": "block_mass_kg",
+    "guide_density_kg_m3": "steel_density_kg_m3", "guide_conductivity_w_mk": "steel_conductivity_w_mk",
+    "guide_specific_heat_j_kgk": "steel_specific_heat_j_kgk",
+}
 
 # Body codes used in the voxel array (0 = surrounding air, not part of the solution).
 AMBIENT, CARRIAGE, BALLS, GAP, RAIL = 0, 1, 2, 3, 4
@@ -269,6 +278,34 @@ class GuideGeometry:
     def thermocouple_z_m(self) -> float:
         """Mid-height of the carriage side face [m] (ASSUMPTION)."""
         return 0.5 * (self.block_clearance_m + self.block_height_m)
+
+    @staticmethod
+    def fields_from_params(values) -> dict:
+        """The :class:`GuideGeometry` keyword arguments among physical parameters.
+
+        ``values`` is a mapping of :class:`~rsm_lrg.physics.params.LRGParams` names (e.g.
+        ``LRGParams().to_dict()``); names are mapped by :data:`PARAM_ALIASES`, integer fields
+        are cast to int, and parameters the geometry does not use are left out.
+
+        >>> from rsm_lrg.physics.params import LRGParams
+        >>> kw = GuideGeometry.fields_from_params(LRGParams().to_dict())
+        >>> kw["n_rows"], kw["block_mass_kg"], "mu_k" in kw
+        (4, 0.19, False)
+        """
+        out = {}
+        by_name = {f.name: f for f in fields(GuideGeometry)}
+        for name, value in dict(values).items():
+            target = PARAM_ALIASES.get(name, name)
+            f = by_name.get(target)
+            if f is None or target == "thermocouple_x_m":
+                continue
+            out[target] = int(value) if f.type in ("int", int) else float(value)
+        return out
+
+    @classmethod
+    def from_params(cls, values, **overrides) -> "GuideGeometry":
+        """The geometry of a parameter set (:meth:`fields_from_params`), then ``overrides``."""
+        return cls(**{**cls.fields_from_params(values), **overrides})
 
     def with_(self, **overrides) -> "GuideGeometry":
         """Return a copy with some fields replaced (unknown names raise ValueError)."""
