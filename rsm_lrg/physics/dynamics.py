@@ -7,13 +7,16 @@ position-controlled drive). The rigid frame (mass m_f: its share of m_t plus the
 tied to it by n hinges of stiffness K_n (Eq. 1) and damping C_n, and rides on the guide with
 Coulomb friction with stiction:
 
-    m_f·ẍ_rf = n·K_n·(x_ws − x_rf) + C_n·(ẋ_ws − ẋ_rf) − f_µ,
+    m_f·ẍ_rf = n·K_n·(x_ws − x_rf) + C_n·(ẋ_ws − ẋ_rf) − f_µ − c_v·ẋ_rf,
 
 sliding: ``f_µ = µ_k·F_z·sign(ẋ_rf)``; stuck (ẋ_rf = 0): the frame stays put while the hinge
 force ``|F_h| ≤ f_µmax = µ_s·F_z`` (Eq. 2) and breaks away when it exceeds it. This is the
 stick-slip state machine of Karnopp (1985) / Leine et al. (1998) ("switch model"), without a
 velocity band: stop and breakaway are explicit events. F_z = F0 + m_t·g (the paper's load).
-C_n = 2·ζ·sqrt(n·K_n·m_f) with the assumed modal damping ratio ζ.
+C_n = 2·ζ·sqrt(n·K_n·m_f) with the assumed modal damping ratio ζ. c_v is the viscous
+(speed-proportional) friction of the lubricated, sealed block (``viscous_friction_n_s_m``,
+0 in the paper's Coulomb-only model); it acts only while the carriage slides and its work
+``∫c_v·ẋ_rf² dt`` is heat like the Coulomb work.
 
 The rigid stage (RMS) is the stiff limit: the frame is the stage, so the carriage slides the
 full stroke, ``2·s`` per cycle, and the friction work is ``µ_k·F_z·2·s``.
@@ -78,7 +81,8 @@ class StageConstants:
     """Arrays (or floats) of the model constants, one per row.
 
     k_n_m : total hinge stiffness n·K_n [N/m]; c_ns_m : C_n [N·s/m]; mass_kg : frame mass
-    m_f [kg]; f_static_n : µ_s·F_z [N]; f_kinetic_n : µ_k·F_z [N].
+    m_f [kg]; f_static_n : µ_s·F_z [N]; f_kinetic_n : µ_k·F_z [N]; viscous_ns_m : viscous
+    friction c_v of the block [N·s/m].
     """
 
     k_n_m: Any
@@ -86,6 +90,7 @@ class StageConstants:
     mass_kg: Any
     f_static_n: Any
     f_kinetic_n: Any
+    viscous_ns_m: Any = 0.0
 
 
 def _columns(params: LRGParams | None, columns: dict[str, Any]) -> dict[str, Any]:
@@ -113,7 +118,7 @@ def stage_constants(params: LRGParams | None = None, **columns) -> StageConstant
     m = v["frame_mass_fraction"] * np.asarray(v["stage_mass_kg"], dtype=float) + v["carriage_mass_kg"]
     load = v["preload_n"] + np.asarray(v["stage_mass_kg"], dtype=float) * v["gravity_m_s2"]
     c = 2.0 * np.asarray(v["hinge_damping_ratio"], dtype=float) * np.sqrt(k * m)
-    return StageConstants(k, c, m, v["mu_s"] * load, v["mu_k"] * load)
+    return StageConstants(k, c, m, v["mu_s"] * load, v["mu_k"] * load, v["viscous_friction_n_s_m"])
 
 
 def natural_frequency(k_total, mass):
@@ -128,13 +133,14 @@ def natural_frequency(k_total, mass):
 def quasi_static_valid(const: StageConstants, stroke, velocity, acceleration, *, fraction=0.01):
     """Where the quasi-static per-stroke sliding is accurate (boolean array).
 
-    The hinge's whole lag, ``(f_µmax + µ_k·F_z + m_f·a)/(n·K_n)`` — breakaway, rest and
-    inertial deflection — must stay below ``fraction`` of the stroke. Then neither the
+    The hinge's whole lag, ``(f_µmax + µ_k·F_z + c_v·v + m_f·a)/(n·K_n)`` — breakaway, rest,
+    viscous and inertial deflection — must stay below ``fraction`` of the stroke. Then neither the
     oscillation excited at the ramps (amplitude ≲ m_f·a/(n·K_n)) nor the stick-slip spread of
     the rest deflection (≤ (µ_s − µ_k)·F_z/(n·K_n)) can change the sliding per stroke by more
-    than about ``fraction`` of it. ``velocity`` is accepted for symmetry and future criteria.
+    than about ``fraction`` of it.
     """
     lag = (np.asarray(const.f_static_n, dtype=float) + np.asarray(const.f_kinetic_n, dtype=float)
+           + np.asarray(const.viscous_ns_m, dtype=float) * np.asarray(velocity, dtype=float)
            + np.asarray(const.mass_kg) * np.asarray(acceleration, dtype=float)) / np.asarray(const.k_n_m)
     return lag <= fraction * np.asarray(stroke, dtype=float)
 
@@ -164,10 +170,13 @@ class CycleMetrics:
         last two cycles, equal to the last one once the response is periodic)
     friction_work_j : friction work per cycle, µ_k·F_z·sliding [J]
     peak_deflection_m : largest |x_ws − x_rf| over the cycle [m] (0 for the RMS)
-    mean_friction_power_w : friction work / cycle time [W]
+    mean_friction_power_w : (friction work + viscous work) / cycle time [W]
     cycle_time_s : duration of the cycle [s]
     periodicity_error_m : |sliding of the last cycle − the one before| [m] (convergence check)
     method : "rms", "quasi_static" or "integrate" per row
+    viscous_work_j : work of the block's viscous friction per cycle, ``∫c_v·ẋ_rf² dt`` [J]
+        (0 without viscous friction; exact for the RMS, the stage's ∫c_v·ẋ_ws² dt scaled by the
+        sliding share for quasi-static rows, trapezoidal in time for integrated rows)
     """
 
     sliding_distance_m: np.ndarray
@@ -177,6 +186,7 @@ class CycleMetrics:
     cycle_time_s: np.ndarray
     periodicity_error_m: np.ndarray
     method: np.ndarray = field(default=None)
+    viscous_work_j: np.ndarray = field(default=None)
 
     def to_dict(self) -> dict[str, Any]:
         return {f.name: np.asarray(getattr(self, f.name)).tolist() for f in fields(self)}
@@ -269,18 +279,20 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
                                  np.asarray(stage, dtype=object) if np.ndim(stage) else np.asarray(0.0))
     shape = arrays[0].shape
     n = int(np.prod(shape)) if shape else 1
-    s, v, a, dw, k, c, m, fs, fk = (np.ravel(x).astype(float) for x in arrays[:9])
-    rigid = _stage_is_rigid(np.ravel(arrays[9]) if np.ndim(stage) else stage, n)
+    s, v, a, dw, k, c, m, fs, fk, cv = (np.ravel(x).astype(float) for x in arrays[:10])
+    rigid = _stage_is_rigid(np.ravel(arrays[10]) if np.ndim(stage) else stage, n)
 
     T = motion.cycle_time(s, v, a, dw)
+    stage_visc = cv * motion.mean_square_speed(s, v, a, dw) * T  # ∫c_v·ẋ_ws² dt per cycle
     slide = np.empty(n)
+    visc = np.zeros(n)
     peak = np.zeros(n)
     err = np.zeros(n)
     how = np.full(n, "integrate", dtype=object)
 
     slide[rigid] = 2.0 * s[rigid]
     how[rigid] = "rms"
-    cst = StageConstants(k, c, m, fs, fk)
+    cst = StageConstants(k, c, m, fs, fk, cv)
     if method == "quasi_static":
         qs = ~rigid
     elif method == "auto":
@@ -290,28 +302,30 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
     slide[qs] = 2.0 * quasi_static_sliding_per_stroke(s[qs], k[qs], fs[qs], fk[qs])
     peak[qs] = np.maximum(fs[qs], fk[qs] + m[qs] * a[qs]) / k[qs]
     how[qs] = "quasi_static"
+    visc[rigid] = stage_visc[rigid]
+    visc[qs] = stage_visc[qs] * slide[qs] / (2.0 * s[qs])
     todo = np.flatnonzero(~rigid & ~qs)
     if todo.size:
-        key = np.column_stack([x[todo] for x in (s, v, a, dw, k, c, m, fs, fk)])
+        key = np.column_stack([x[todo] for x in (s, v, a, dw, k, c, m, fs, fk, cv)])
         uniq, inv = np.unique(key, axis=0, return_inverse=True)
         inv = np.ravel(inv)
-        d, pk, e = _integrate_grouped(uniq, int(n_cycles), float(h), int(max_steps_per_cycle),
-                                      int(max_cycles), float(rtol))
-        slide[todo], peak[todo], err[todo] = d[inv], pk[inv], e[inv]
+        d, pk, e, vw = _integrate_grouped(uniq, int(n_cycles), float(h), int(max_steps_per_cycle),
+                                          int(max_cycles), float(rtol))
+        slide[todo], peak[todo], err[todo], visc[todo] = d[inv], pk[inv], e[inv], vw[inv]
     work = fk * slide
 
     def r(x):
         return x.reshape(shape) if shape else x.reshape(())[()]
 
-    return CycleMetrics(r(slide), r(work), r(peak), r(work / T), r(T), r(err), r(how))
+    return CycleMetrics(r(slide), r(work), r(peak), r((work + visc) / T), r(T), r(err), r(how), r(visc))
 
 
 def _integrate_grouped(rows, n_cycles, h, max_steps, max_cycles, rtol):
     """Integrate rows in groups of similar stiffness (steps per cycle within a factor 2)."""
-    s, v, a, dw, k, c, m, fs, fk = rows.T
+    s, v, a, dw, k, c, m, fs, fk, cv = rows.T
     need = np.sqrt(k / m) * motion.cycle_time(s, v, a, dw) / h
     grp = np.floor(np.log2(np.maximum(need, 1.0))).astype(int)
-    out = [np.empty(len(rows)) for _ in range(3)]
+    out = [np.empty(len(rows)) for _ in range(4)]
     for g in np.unique(grp):
         i = np.flatnonzero(grp == g)
         res = _integrate_rows(*rows[i].T, n_cycles, h, max_steps, max_cycles, rtol)
@@ -346,14 +360,23 @@ def _stage_xv(t, s, vp, a, ta, ts, dw, T):
     return np.where(back, s - x, x), np.where(back, -v, v)
 
 
-def _slide(z, wrel, sigma, accel, w, zeta, fk_m, p11, p12, p21, p22):
-    """Exact sliding step of the relative coordinate z = x_ws − x_rf, wrel = ż."""
-    zs = (accel + fk_m * sigma) / w ** 2
-    zr = z - zs
-    return zs + p11 * zr + p12 * wrel, p21 * zr + p22 * wrel
+def _slide(z, wrel, sigma, accel, w, zeta, fk_m, p11, p12, p21, p22, cv_m=0.0, vstage=0.0, tau=0.0):
+    """Exact sliding step over ``tau`` of the relative coordinate z = x_ws − x_rf, wrel = ż.
+
+    While sliding, ``z̈ + 2ζω·ż + ω²·z = a + σ·f_k/m + (c_v/m)·ẋ_ws(t)`` with the stage
+    velocity ẋ_ws = vstage + a·t linear in the step; ζ includes c_v (the viscous friction
+    damps the relative motion too). The particular solution is ``A + B·t`` with
+    ``B = (c_v/m)·a/ω²`` and ``A = (a + σ·f_k/m + (c_v/m)·vstage − 2ζω·B)/ω²``; the rest is the
+    homogeneous propagator ``p``. Returns z and ż at the end of the step.
+    """
+    B = cv_m * accel / w ** 2
+    A = (accel + fk_m * sigma + cv_m * vstage - 2.0 * zeta * w * B) / w ** 2
+    zr = z - A
+    wr = wrel - B
+    return A + B * tau + p11 * zr + p12 * wr, B + p21 * zr + p22 * wr
 
 
-def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, n_cycles, h, max_steps, max_cycles=12, rtol=1e-5):
+def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, n_cycles, h, max_steps, max_cycles=12, rtol=1e-5):
     """Stick-slip integration of many rows at once with exact linear steps.
 
     Each row uses its own step Δt = T/N (one N for all rows, N = ceil(max(ω_n·T)/h)). While
@@ -363,22 +386,29 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, n_cycles, h, max_steps, max_cy
     |F_h| = f_µmax), a stop (ẋ_rf reaching 0) by linear interpolation of ẋ_rf.
     Cycles are integrated from rest until the sliding of two successive cycles agrees within
     ``rtol`` (at least ``n_cycles``, at most ``max_cycles``); settled rows leave the loop.
+    The block's viscous friction c_v acts on the sliding frame (exact in the step, see
+    :func:`_slide`); its work ∫c_v·ẋ_rf² dt is summed by the trapezoidal rule.
     Returns (mean sliding per cycle over the last two cycles, peak deflection of the last
-    cycle, |difference of the last two cycles' sliding|).
+    cycle, |difference of the last two cycles' sliding|, viscous work per cycle, mean of the
+    last two cycles).
     """
     n = len(s)
-    out_d, out_p, out_e = np.empty(n), np.empty(n), np.empty(n)
+    out_d, out_p, out_e, out_v = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     T = motion.cycle_time(s, v, a, dw)
     vp = motion.peak_velocity(s, v, a)
     ta = vp / a
     ts = s / vp + ta
     w = np.sqrt(k / m)
-    zeta = c / (2.0 * np.sqrt(k * m))
-    N = max(int(np.ceil(np.max(w * T) / h)), 200)
+    zeta = (c + cv) / (2.0 * np.sqrt(k * m))  # hinge damping and viscous friction, while sliding
+    cv_m = cv / m
+    # each row its own number of steps per cycle (so that its result does not depend on the
+    # rows integrated with it); the loop runs to the largest, finished rows wait
+    Ni = np.maximum(np.ceil(w * T / h), 200.0)
+    N = int(np.max(Ni))
     if N > max_steps:
         raise ValueError(f"the stiffest row needs {N} steps per cycle (> max_steps_per_cycle={max_steps}); "
                          "use method='auto' or 'quasi_static' for stiff hinges")
-    dt = T / N
+    dt = T / Ni
     p11, p12, p21, p22 = _propagator(w, zeta, dt)
     fk_m = fk / m
     rows = np.arange(n)
@@ -387,24 +417,28 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, n_cycles, h, max_steps, max_cy
     stuck = np.ones(n, dtype=bool)
     dist = np.zeros(n)
     prev = np.zeros(n)
+    vwork = np.zeros(n)
+    vprev = np.zeros(n)
     peak = np.zeros(n)
     x0, v0 = np.zeros(n), np.zeros(n)
     cyc = 0
     while True:
         dist_start = dist.copy()
+        vwork_start = vwork.copy()
         peak[:] = 0.0
         for j in range(N):
-            t = (cyc * N + j + 1) * dt
+            act = j < Ni
+            t = (cyc * Ni + np.minimum(j, Ni - 1) + 1) * dt
             x1, v1 = _stage_xv(t, s, vp, a, ta, ts, dw, T)
             acc = (v1 - v0) / dt
             xf_old = xf.copy()
+            u_old = u
+            stuck_old = stuck
             sl = ~stuck
             # sliding rows: one exact step
-            zs = (acc + fk_m * np.sign(u)) / w ** 2
-            zr = (x0 - xf) - zs
-            wr = v0 - u
-            zn = zs + p11 * zr + p12 * wr
-            un = v1 - (p21 * zr + p22 * wr)
+            zn, wn = _slide(x0 - xf, v0 - u, np.sign(u), acc, w, zeta, fk_m, p11, p12, p21, p22,
+                            cv_m, v0, dt)
+            un = v1 - wn
             stop = sl & (un * u <= 0.0)
             go = sl & ~stop
             xf = np.where(go, x1 - zn, xf)
@@ -427,33 +461,46 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, n_cycles, h, max_steps, max_cy
                                   ki * (x0[i] - xf[i]) + c[i] * v0i - sig * fs[i], dt[i])
                 xs_t = x0[i] + v0i * tau + 0.5 * ai * tau ** 2
                 Q = _propagator(w[i], zeta[i], dt[i] - tau)
-                zn_b, wn_b = _slide(xs_t - xf[i], v0i + ai * tau, sig, ai, w[i], zeta[i], fk_m[i], *Q)
+                zn_b, wn_b = _slide(xs_t - xf[i], v0i + ai * tau, sig, ai, w[i], zeta[i], fk_m[i], *Q,
+                                    cv_m[i], v0i + ai * tau, dt[i] - tau)
                 un_b = v1[i] - wn_b
                 ok = un_b * sig > 0.0
                 xf[i] = np.where(ok, x1[i] - zn_b, xf[i])
                 u[i] = np.where(ok, un_b, 0.0)
                 stuck[i[ok]] = False
+            if not act.all():  # rows that have finished this cycle keep their state
+                xf = np.where(act, xf, xf_old)
+                u = np.where(act, u, u_old)
+                stuck = np.where(act, stuck, stuck_old)
+                x1 = np.where(act, x1, x0)
+                v1 = np.where(act, v1, v0)
             dist += np.abs(xf - xf_old)
+            vwork += np.where(act, 0.5 * cv * (u_old ** 2 + u ** 2) * dt, 0.0)
             np.maximum(peak, np.abs(x1 - xf), out=peak)
             x0, v0 = x1, v1
         this = dist - dist_start
         err = np.abs(this - prev)
         mean2 = 0.5 * (this + prev)
         prev = this
+        vthis = vwork - vwork_start
+        vmean2 = 0.5 * (vthis + vprev)
+        vprev = vthis
         cyc += 1
         if cyc < n_cycles:
             continue
         done = (err <= rtol * np.maximum(this, 1e-300)) | (cyc >= max_cycles)
         out_d[rows[done]], out_p[rows[done]], out_e[rows[done]] = mean2[done], peak[done], err[done]
+        out_v[rows[done]] = vmean2[done]
         if done.all():
             break
         keep = ~done
         (rows, s, v, a, dw, k, c, m, fs, T, vp, ta, ts, w, zeta, dt, p11, p12, p21, p22, fk_m, xf, u,
-         stuck, dist, prev, peak, x0, v0) = (x[keep] for x in (
+         stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni) = (x[keep] for x in (
             rows, s, v, a, dw, k, c, m, fs, T, vp, ta, ts, w, zeta, dt, p11, p12, p21, p22, fk_m, xf, u,
-            stuck, dist, prev, peak, x0, v0))
+            stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni))
+        N = int(np.max(Ni))
     # a row that has not settled (period-2 stick-slip, say) reports the mean of its last two cycles
-    return out_d, out_p, out_e
+    return out_d, out_p, out_e, out_v
 
 
 def _first_root(A, B, C, dt):
@@ -488,6 +535,8 @@ class StageHistory:
     friction_work_j: float  # last cycle
     cycle_time_s: float
     events: int
+    viscous_work_j: float = 0.0  # last cycle, ∫c_v·ẋ_rf² dt
+
 
     @property
     def sliding_distance_m(self) -> float:
@@ -495,7 +544,7 @@ class StageHistory:
 
     @property
     def mean_friction_power_w(self) -> float:
-        return self.friction_work_j / self.cycle_time_s
+        return (self.friction_work_j + self.viscous_work_j) / self.cycle_time_s
 
     def to_frame(self):
         import pandas as pd
@@ -530,7 +579,7 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
         check_values(name, val)
     dw = p.dwell_s
     cst = stage_constants(p)
-    k, c, m, fs, fk = (float(getattr(cst, f.name)) for f in fields(cst))
+    k, c, m, fs, fk, cv = (float(getattr(cst, f.name)) for f in fields(cst))
     bps, T = _breakpoints(s, v, a, dw, n_cycles)
 
     vp = float(motion.peak_velocity(s, v, a))
@@ -552,10 +601,11 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
     if rigid:
         xs, vs, _ = motion.reciprocating_profile(grid, s, v, a, dw)
         per = np.full(n_cycles, 2 * s)
-        return StageHistory(grid, xs, xs.copy(), vs, per, 0.0, fk * 2 * s, T, 0)
+        visc = cv * float(motion.mean_square_speed(s, v, a, dw)) * T
+        return StageHistory(grid, xs, xs.copy(), vs, per, 0.0, fk * 2 * s, T, 0, visc)
 
-    # state: x_f, u, distance; mode: 0 stuck, +1 / -1 sliding
-    y = np.zeros(3)
+    # state: x_f, u, distance, viscous work; mode: 0 stuck, +1 / -1 sliding
+    y = np.zeros(4)
     mode = 0
     t = 0.0
     ts_out, xf_out, u_out = [0.0], [0.0], [0.0]
@@ -568,7 +618,7 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
         def f(tt, yy):
             xs, vs = stage(tt)
             fh = k * (xs - yy[0]) + c * (vs - yy[1])
-            return [yy[1], (fh - sign * fk) / m, sign * yy[1]]
+            return [yy[1], (fh - sign * fk - cv * yy[1]) / m, sign * yy[1], cv * yy[1] ** 2]
         return f
 
     def ev_stop(tt, yy):
@@ -599,7 +649,7 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
                 mode = 1 if fh > 0 else -1
                 n_events += 1
                 continue
-            sol = solve_ivp(lambda tt, yy: [0.0, 0.0, 0.0], (t, t_next), y, method="DOP853",
+            sol = solve_ivp(lambda tt, yy: [0.0, 0.0, 0.0, 0.0], (t, t_next), y, method="DOP853",
                             events=[ev_break_up, ev_break_dn], rtol=rtol, atol=1e-14,
                             max_step=(t_next - t) / 4 + 1e-12)
         else:
@@ -629,12 +679,14 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
         t = t_new
         for cyc in range(1, n_cycles + 1):
             if cyc not in cycle_marks and t >= cyc * T - 1e-12:
-                cycle_marks[cyc] = y[2]
-    marks = [0.0] + [cycle_marks.get(cc, y[2]) for cc in range(1, n_cycles + 1)]
-    per = np.diff(marks)
+                cycle_marks[cyc] = (y[2], y[3])
+    marks = [(0.0, 0.0)] + [cycle_marks.get(cc, (y[2], y[3])) for cc in range(1, n_cycles + 1)]
+    per = np.diff([mk[0] for mk in marks])
+    visc_last = marks[-1][1] - marks[-2][1]
     tt = np.array(ts_out)
     xs_h, _, _ = motion.reciprocating_profile(tt, s, v, a, dw)
     xf_h = np.array(xf_out)
     last = tt >= (n_cycles - 1) * T - 1e-12
     peak = float(np.max(np.abs(xs_h[last] - xf_h[last])))
-    return StageHistory(tt, xs_h, xf_h, np.array(u_out), per, peak, fk * float(per[-1]), T, n_events)
+    return StageHistory(tt, xs_h, xf_h, np.array(u_out), per, peak, fk * float(per[-1]), T, n_events,
+                        float(visc_last))

@@ -18,6 +18,7 @@ import numpy as np
 
 __all__ = [
     "is_triangular", "peak_velocity", "accel_time", "stroke_time", "cycle_time", "mean_speed",
+    "mean_square_speed",
     "stroke_profile", "reciprocating_profile", "MotionProfile",
 ]
 
@@ -73,6 +74,23 @@ def mean_speed(stroke, velocity, acceleration, dwell=0.0):
     0.375
     """
     return 2.0 * _f(stroke) / cycle_time(stroke, velocity, acceleration, dwell)
+
+
+def mean_square_speed(stroke, velocity, acceleration, dwell=0.0):
+    """Mean of ẋ² over a reciprocating cycle [m²/s²] (trapezoidal or triangular profile).
+
+    Per stroke ∫ẋ² dt = v_p·s − v_p³/(3a) with v_p the peak speed; twice per cycle. Times a
+    viscous friction c_v it is the mean viscous friction power of a carriage that follows the
+    stage (Eq. 8 with a speed-proportional friction force).
+
+    >>> round(float(mean_square_speed(0.05, 0.5, 30.0)), 5)
+    0.20238
+    >>> round(float(mean_square_speed(0.004, 0.5, 10.0)), 6)   # triangle: (2/3)·a·s / 2
+    0.013333
+    """
+    vp = peak_velocity(stroke, velocity, acceleration)
+    per_stroke = vp * _f(stroke) - vp ** 3 / (3.0 * _f(acceleration))
+    return 2.0 * per_stroke / cycle_time(stroke, velocity, acceleration, dwell)
 
 
 def stroke_profile(tau, stroke, velocity, acceleration):

@@ -68,7 +68,7 @@ def _d(name: str):
 # Validation rules (name -> (kind, low, high)); every other float must be > 0.
 _CLOSED_UNIT = {"mu_s", "mu_k"}
 _OPEN_UNIT = {"frame_mass_fraction"}
-_NONNEG = {"dwell_s", "hinge_damping_ratio", "preload_n"}
+_NONNEG = {"dwell_s", "hinge_damping_ratio", "preload_n", "viscous_friction_n_s_m"}
 _INTS = {"hinge_count", "ball_rows", "balls_per_row"}
 _BOOLS = {"heat_in_calories"}
 
@@ -90,6 +90,7 @@ class LRGParams:
     gravity_m_s2: float = _d("gravity_m_s2")
     mu_s: float = _d("mu_s")
     mu_k: float = _d("mu_k")
+    viscous_friction_n_s_m: float = _d("viscous_friction_n_s_m")
     # flexure hinges
     hinge_count: int = _d("hinge_count")
     hinge_thickness_m: float = _d("hinge_thickness_m")

@@ -15,6 +15,7 @@ is what :func:`rsm_lrg.simulate` uses by default).
 from __future__ import annotations
 
 import hashlib
+import itertools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -51,7 +52,8 @@ DEFAULT_PARAMETERS = (
                   "the guide; the rest goes into the stage, the lubricant and the seals"),
     ParameterSpec("viscous_friction_n_s_m", 0.0, 30.0, 3.0, "N s/m",
                   "speed-proportional friction of the lubricated, sealed block (LuGre sigma_2): "
-                  "its heat c_v * <v^2> adds to the Coulomb heat of Eq. 8"),
+                  "the force c_v * v acts on the sliding carriage in the stage dynamics and its "
+                  "work adds to the Coulomb heat of Eq. 8"),
     ParameterSpec("hinge_damping_ratio", 0.01, 3.0, 0.5, "1",
                   "effective damping ratio of the frame on its hinges (structure, bolted "
                   "joints, lubricant film), zeta = C_n / (2 sqrt(n K_n m_f)); the paper does "
@@ -191,12 +193,12 @@ def _r2(obs, pred) -> float:
 
 
 #: Calibratable parameters that do not enter the stage dynamics (cheap to vary).
-_HEAT_ONLY = ("heat_partition", "viscous_friction_n_s_m")
+_HEAT_ONLY = ("heat_partition",)
 
 
 def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=None,
               duration_min: float = 50.0, loo: bool = True, source: str = "",
-              data_sha256: str = "", grid_points: int = 13) -> Calibration:
+              data_sha256: str = "", grid_points: int | None = None) -> Calibration:
     """Fit the surrogate's unknown parameters to measured runs.
 
     Parameters
@@ -216,8 +218,9 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     loo : bool
         Also run leave-one-out cross-validation (one refit per run, from the full-data
         optimum).
-    grid_points : int
-        Points of the profile grid over the one stage parameter (see the code comment).
+    grid_points : int, optional
+        Points per axis of the profile grid over the stage parameters (see the code comment);
+        default 13 for one stage parameter, 7 per axis for two.
     source, data_sha256 : str
         Recorded with the result.
 
@@ -274,22 +277,28 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
 
     # The stick-slip dynamics make kappa a rough function of the stage parameters (a small
     # change can add or remove a stop per cycle), so a local search alone can stall: first
-    # a profile over a grid of the (one) stage parameter with the others fitted, then all
-    # parameters together from the best grid point.
+    # a profile over a grid of the (one or two) stage parameters with the others fitted (or
+    # just evaluated, when every parameter is a stage parameter), then all parameters
+    # together from the best grid point.
     stage_idx = [i for i, sp in enumerate(specs) if sp.name not in _HEAT_ONLY]
     starts = [x0]
-    if len(stage_idx) == 1:
-        i = stage_idx[0]
-        grid = (np.geomspace(lo[i], hi[i], grid_points) if lo[i] > 0 else np.linspace(lo[i], hi[i], grid_points))
+    if 1 <= len(stage_idx) <= 2:
+        m = int(grid_points) if grid_points is not None else (13 if len(stage_idx) == 1 else 7)
+        axes = [np.geomspace(lo[i], hi[i], m) if lo[i] > 0 else np.linspace(lo[i], hi[i], m) for i in stage_idx]
         free = np.ones(len(specs), dtype=bool)
-        free[i] = False
-        prof = []
-        for g in grid:
+        free[stage_idx] = False
+        best_cost, best_start = np.inf, x0
+        for point in itertools.product(*axes):
             st0 = x0.copy()
-            st0[i] = g
-            prof.append(fit(None, st0, free) if free.any() else None)
-        costs = [r.cost if r is not None else np.inf for r in prof]
-        starts = [prof[int(np.argmin(costs))].x]
+            st0[stage_idx] = point
+            if free.any():
+                r = fit(None, st0, free)
+                cost, st0 = r.cost, r.x
+            else:
+                cost = 0.5 * float(np.sum((predict(st0) - obs) ** 2))
+            if cost < best_cost:
+                best_cost, best_start = cost, st0
+        starts = [best_start]
     best = None
     for start in starts:
         r = fit(None, start)

@@ -9,7 +9,7 @@ A design row is one test of the rig (Section 4 of Su, Zhang & Yang 2023). Column
 ``stage``              optional: ``rfcms`` (default) or ``rms`` (case-insensitive)
 any name of :class:`rsm_lrg.physics.params.LRGParams` (``preload_n``, ``mu_k``,
 ``ambient_c``, ``test_duration_min``, ...) or of the surrogate's calibrated parameters
-(``heat_partition``, ``viscous_friction_n_s_m``): a per-row value of that parameter.
+(``heat_partition``): a per-row value of that parameter.
 
 Every other column passes through untouched. Missing or out-of-range values raise
 ``ValueError`` naming the column and the (1-based) data row.
@@ -165,7 +165,6 @@ def read_design_arrays(df, params=None) -> DesignArrays:
         columns[c] = _float_column(df, c)
     for c, (rule, bad) in {
         "heat_partition": ("must lie in (0, 1]", lambda x: (x <= 0) | (x > 1)),
-        "viscous_friction_n_s_m": ("must be >= 0", lambda x: x < 0),
     }.items():
         if c in columns and bad(columns[c]).any():
             raise _bad_row(c, df[c].tolist(), bad(columns[c]), rule)

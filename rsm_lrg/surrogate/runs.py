@@ -9,8 +9,9 @@ For every row of a design (arrays, never one Python call per row):
    periodic steady state; the RMS (``stage = rms``) slides the full stroke. Gives the
    carriage sliding distance per cycle and the friction work µ_k·F_z·L.
 3. **Friction heat** (Eq. 8 mechanism): friction force × carriage sliding speed, averaged
-   over the cycle: P = µ_k·F_z·L/T_cycle, plus the viscous (speed-proportional) friction of
-   the lubricated block, c_v·<ẋ²>, when calibrated (0 in the raw physics). Divided by
+   over the cycle: P = (µ_k·F_z·L + ∫c_v·ẋ_rf² dt)/T_cycle — the Coulomb work and the work of
+   the block's viscous (speed-proportional) friction ``viscous_friction_n_s_m`` (0 in the raw
+   physics; it also acts on the carriage in step 2). Divided by
    J = 4.184 as the paper's Eq. 8 does when ``heat_in_calories`` (the default, as in the
    paper); times the share ``heat_partition`` that enters the guide (1 in the raw physics).
 4. **Thermal model** (:func:`rsm_lrg.physics.thermal.network.network_response`): the
@@ -37,9 +38,6 @@ __all__ = ["evaluate_rows", "SURROGATE_PARAMETERS", "mean_square_speed", "therma
 SURROGATE_PARAMETERS = {
     "heat_partition": (1.0, "1", "share of the friction heat (Eq. 8) that enters the guide; "
                                  "the rest leaves through the stage, the lubricant and the seals"),
-    "viscous_friction_n_s_m": (0.0, "N s/m", "speed-proportional friction of the lubricated, "
-                                             "sealed block (the sigma_2 term of the LuGre model, "
-                                             "Canudas de Wit et al. 1995): force c_v * v"),
 }
 
 #: Parameters that enter the convection coefficients (Eqs. 10-12).
@@ -48,19 +46,14 @@ _CONVECTION = ("air_velocity_m_s", "char_length_m", "air_kinematic_viscosity_m2_
 
 
 def mean_square_speed(stroke, velocity, acceleration, dwell=0.0):
-    """Mean of ẋ² over a reciprocating cycle [m²/s²] (trapezoidal or triangular profile).
-
-    Per stroke ∫ẋ² dt = v_p·s − v_p³/(3a) with v_p the peak speed; twice per cycle.
+    """Mean of ẋ² over a reciprocating cycle [m²/s²]: :func:`rsm_lrg.physics.motion.mean_square_speed`.
 
     >>> round(float(mean_square_speed(0.05, 0.5, 30.0)), 5)
     0.20238
     """
     from ..physics import motion
 
-    vp = motion.peak_velocity(stroke, velocity, acceleration)
-    a = np.asarray(acceleration, float)
-    per_stroke = vp * np.asarray(stroke, float) - vp ** 3 / (3.0 * a)
-    return 2.0 * per_stroke / motion.cycle_time(stroke, velocity, acceleration, dwell)
+    return motion.mean_square_speed(stroke, velocity, acceleration, dwell)
 
 
 # ----------------------------------------------------------------------------------------
@@ -106,7 +99,7 @@ def thermal_unit_response(values: dict, duration_min: float):
 # dynamics with a row-local step (so that a row's result does not depend on its batch)
 # ----------------------------------------------------------------------------------------
 def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
-    """Sliding per cycle [m] and cycle time [s] of every row, from
+    """Sliding per cycle [m], cycle time [s] and viscous work per cycle [J] of every row, from
     :func:`rsm_lrg.physics.dynamics.cycle_metrics` (``method="auto"``: the quasi-static limit
     where it is valid, the vectorised stick-slip integration elsewhere; RMS rows slide 2·s).
 
@@ -123,14 +116,13 @@ def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
                tuple((k, np.asarray(x, float).tobytes()) for k, x in sorted(cols.items())))
         hit = _MEMO.get(key)
         if hit is not None:
-            return hit[0].copy(), hit[1].copy()
-    stage = np.where(rigid, "rms", "rfcms")
-    m = dynamics.cycle_metrics(s, v, a, stage=stage, params=p, method="auto", **cols)
-    out = np.asarray(m.sliding_distance_m, float), np.asarray(m.cycle_time_s, float)
+            return tuple(x.copy() for x in hit)
+    m = dynamics.cycle_metrics(s, v, a, stage=rigid, params=p, method="auto", **cols)
+    out = tuple(np.asarray(x, float) for x in (m.sliding_distance_m, m.cycle_time_s, m.viscous_work_j))
     if key is not None:
         if len(_MEMO) >= _MEMO_SIZE:
             _MEMO.pop(next(iter(_MEMO)))
-        _MEMO[key] = (out[0].copy(), out[1].copy())
+        _MEMO[key] = tuple(x.copy() for x in out)
     return out
 
 
@@ -203,12 +195,10 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         return pcols[name] if name in pcols else getattr(p, name)
 
     # 1-2: motion and stage dynamics
-    slide, T = _cycle_metrics(s, v, a, rigid, p, dyn_cols, memo=memo)
+    slide, T, visc = _cycle_metrics(s, v, a, rigid, p, dyn_cols, memo=memo)
     load = col("preload_n") + np.asarray(col("stage_mass_kg")) * col("gravity_m_s2")
-    # 3: friction heat, cycle-averaged (Eq. 8 mechanism)
-    power = col("mu_k") * load * slide / T
-    frac = np.where(rigid, 1.0, slide / (2.0 * s))
-    power = power + extra["viscous_friction_n_s_m"] * mean_square_speed(s, v, a, col("dwell_s")) * frac
+    # 3: friction heat, cycle-averaged (Eq. 8 mechanism): Coulomb work + viscous work
+    power = (col("mu_k") * load * slide + visc) / T
     q = power / p.thermal_equivalent_j_per_cal if p.heat_in_calories else power
     q = q * extra["heat_partition"]
     q = np.broadcast_to(q, (n,)).astype(float)

@@ -49,18 +49,23 @@ def test_stored_figures_are_what_the_surrogate_gives_now(cal, table4_runs):
 
 def test_calibrated_fit_to_table4_reached_figures(cal):
     # Figures reached by honest physics with three calibrated parameters (Table 4, 27 runs,
-    # noise-free): R2 0.774, leave-one-out R2 0.734. Pinned here so they cannot silently get
-    # worse; the issue's targets are the strict xfail below.
-    assert cal.r2 >= 0.77
-    assert cal.loo_r2 >= 0.73
+    # noise-free): R2 0.829, leave-one-out R2 0.791 (viscous friction acting on the carriage
+    # in the dynamics as well as in the heat). Pinned here so they cannot silently get worse.
+    assert cal.r2 >= 0.82
+    assert cal.loo_r2 >= 0.78
 
 
-@pytest.mark.xfail(strict=True, reason="issue 4 targets not reached by the physics: the heat model has no "
-                   "mechanism for kappa's convexity in velocity (C^2), its strong acceleration effect, "
-                   "or a thickness effect linear in y (Eq. 1 makes hinge compliance ~ y^-3: a step)")
-def test_calibrated_fit_to_table4_issue_targets(cal):
-    # issue 4 "Done when": R2 >= 0.85 and leave-one-out R2 >= 0.75 against Table 4
-    assert cal.r2 >= 0.85 and cal.loo_r2 >= 0.75
+def test_calibrated_fit_to_table4_issue_target_loo(cal):
+    # issue 4 "Done when": leave-one-out R2 >= 0.75 against Table 4
+    assert cal.loo_r2 >= 0.75
+
+
+@pytest.mark.xfail(strict=True, reason="issue 4 target R2 >= 0.85 not reached by the physics (0.829): no "
+                   "mechanism gives a thickness effect linear in y (Eq. 1 makes the hinge compliance ~ y^-3, "
+                   "a step between 0.1 and 0.3 mm) or the full acceleration effect")
+def test_calibrated_fit_to_table4_issue_target_r2(cal):
+    # issue 4 "Done when": R2 >= 0.85 against Table 4
+    assert cal.r2 >= 0.85
 
 
 def test_uncalibrated_centre_run(cal):
@@ -102,9 +107,9 @@ def test_virtual_box_behnken_study_finds_what_the_paper_found(virtual_study):
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="the surrogate's stroke effect (ramp share of the cycle, hinge lag a "
-                   "fixed length per stroke) exceeds its thickness effect (a step in y): F order C > D > B > A, "
-                   "the paper's C > D > A > B")
 def test_virtual_box_behnken_study_stroke_weakest(virtual_study):
+    # Table 5: stroke the weakest factor. With the viscous friction acting on the carriage the
+    # surrogate's F order is C > A > D > B at this seed (C > A > D > B or C > D > A > B over
+    # seeds 1-7, stroke weakest at all of them; the paper's order is C > D > A > B).
     _, an = virtual_study
-    assert an.loc[["A", "B", "C", "D"], "f"].idxmin() == "B"   # stroke the weakest (Table 5)
+    assert an.loc[["A", "B", "C", "D"], "f"].idxmin() == "B"
