@@ -27,8 +27,9 @@ Three routes, checked against each other in ``tests/physics/test_dynamics.py``:
   DOP853, split at every kink of the profile, events at breakaway and stop) for one
   parameter set, to its periodic steady state, with the time history.
 - :func:`cycle_metrics` with ``method="integrate"`` — a vectorised fixed-step integrator over
-  rows (semi-implicit Euler with the same stick-slip switch, a common number of steps per
-  cycle so every row keeps ``ω_n·Δt ≤ h``); for 10⁵-row virtual runs.
+  rows (exact linear steps between the stick-slip switches, each row its own number of
+  steps per cycle with ``ω_n·Δt ≤ h``, so a row's result does not depend on the rows
+  integrated with it); for 10⁵-row virtual runs.
 - ``method="quasi_static"`` — the slow-motion limit, analytic: per stroke the stage first
   unbends the hinge from its rest deflection µ_k·F_z/(n·K_n) and bends it to the breakaway
   deflection Δδ = µ_s·F_z/(n·K_n); then the frame follows, so the carriage slides
@@ -379,7 +380,8 @@ def _slide(z, wrel, sigma, accel, w, zeta, fk_m, p11, p12, p21, p22, cv_m=0.0, v
 def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, n_cycles, h, max_steps, max_cycles=12, rtol=1e-5):
     """Stick-slip integration of many rows at once with exact linear steps.
 
-    Each row uses its own step Δt = T/N (one N for all rows, N = ceil(max(ω_n·T)/h)). While
+    Each row uses its own step Δt = T/N_i, N_i = max(ceil(ω_n·T/h), 200); the loop runs to the
+    largest N_i and rows that have finished their cycle wait (masked). While
     sliding, the relative motion z = x_ws − x_rf is advanced with the exact propagator of the
     damped hinge under the step-average stage acceleration and the kinetic friction; while
     stuck the frame stays put. Breakaway is located inside the step (quadratic stage motion,

@@ -32,10 +32,10 @@ DEFAULT_NOISE_SD = 0.03
 
 #: Rows per batch (a batch is one NumPy evaluation and one task on an executor). Batches are
 #: cut at fixed row indices, whatever the executor or the number of workers: the noise of a
-#: row never depends on its batch (:mod:`.noise`), and the stick-slip integrator shares one
-#: step count among the rows it integrates together (measured: at most 8e-6 relative on the
-#: sliding distance, 4e-6 on kappa for Table 4's rows run alone vs together), so
-#: fixed cuts make the rows bit-identical on one process, N processes or a cluster. The cost
+#: row never depends on its batch (:mod:`.noise`), and the stick-slip integrator gives each
+#: row its own step count (a row run alone equals the row among others; tested), so the
+#: rows are the same on one process, N processes or a cluster; fixed cuts keep them
+#: bit-identical even where vectorised floating point could differ in the last bit. The cost
 #: of a batch is mostly the integrator's time steps, shared by all its rows, so batches are
 #: large: 10,000 rows cost about 2.5x what 1,000 rows cost (benchmarks/bench_simulate.py).
 DEFAULT_BATCH_ROWS = 16384

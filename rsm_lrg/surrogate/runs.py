@@ -96,17 +96,17 @@ def thermal_unit_response(values: dict, duration_min: float):
 
 
 # ----------------------------------------------------------------------------------------
-# dynamics with a row-local step (so that a row's result does not depend on its batch)
+# stage dynamics (a row's result does not depend on its batch)
 # ----------------------------------------------------------------------------------------
 def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
     """Sliding per cycle [m], cycle time [s] and viscous work per cycle [J] of every row, from
     :func:`rsm_lrg.physics.dynamics.cycle_metrics` (``method="auto"``: the quasi-static limit
     where it is valid, the vectorised stick-slip integration elsewhere; RMS rows slide 2·s).
 
-    The integrator takes one number of steps per cycle for the rows it integrates together,
-    so a row's result can move by ~1e-5 relative with its batch-mates; batches are
-    therefore cut at fixed row indices (:data:`rsm_lrg.surrogate.execute.DEFAULT_BATCH_ROWS`),
-    whatever the executor or the number of workers.
+    The integrator gives every row its own number of steps per cycle, so a row's result does
+    not depend on the rows integrated with it; batches are still cut at fixed row indices
+    (:data:`rsm_lrg.surrogate.execute.DEFAULT_BATCH_ROWS`) whatever the executor or the
+    number of workers.
     """
     from ..physics import dynamics
 
