@@ -62,19 +62,26 @@ def test_quasi_static_with_stiction_stays_in_the_sawtooth_band():
     assert p.stroke_m - 2 * ds - 1e-5 <= per_stroke <= p.stroke_m - 2 * dk + 1e-5
 
 
+def _last_cycle_works(p, n_cycles=5):
+    """Event-driven history of ``p`` and, over its last cycle, the work of the hinge (spring +
+    damper) on the frame and ∫c_v·ẋ_rf² dt, both by the trapezoidal rule on the samples."""
+    from rsm_lrg.physics import motion
+
+    h = dynamics.simulate_stage(p, n_cycles=n_cycles, samples_per_cycle=20000, rtol=1e-8)
+    c = dynamics.stage_constants(p)
+    last = h.t >= (n_cycles - 1) * h.cycle_time_s - 1e-12
+    t, u = h.t[last], h.v_frame[last]
+    _, vs, _ = motion.reciprocating_profile(t, p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, p.dwell_s)
+    fh = float(c.k_n_m) * (h.x_stage[last] - h.x_frame[last]) + float(c.c_ns_m) * (vs - u)
+    return h, np.trapezoid(fh * u, t), np.trapezoid(float(c.viscous_ns_m) * u ** 2, t)
+
+
 def test_energy_balance_over_a_periodic_cycle():
     # Over one cycle of the periodic state the frame's kinetic energy returns, so the work of the
     # hinge (spring + damper) on the frame equals the friction work mu_k F_z * sliding (1 %).
     p = LRGParams(hinge_thickness_m=0.0002)
-    h = dynamics.simulate_stage(p, n_cycles=5, samples_per_cycle=20000, rtol=1e-8)
+    h, hinge_work, _ = _last_cycle_works(p)
     c = dynamics.stage_constants(p)
-    from rsm_lrg.physics import motion
-    T = h.cycle_time_s
-    last = h.t >= 4 * T - 1e-12
-    t = h.t[last]
-    _, vs, _ = motion.reciprocating_profile(t, p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, p.dwell_s)
-    fh = float(c.k_n_m) * (h.x_stage[last] - h.x_frame[last]) + float(c.c_ns_m) * (vs - h.v_frame[last])
-    hinge_work = np.trapezoid(fh * h.v_frame[last], t)
     assert hinge_work == pytest.approx(h.friction_work_j, rel=0.01)
     assert h.friction_work_j == pytest.approx(float(c.f_kinetic_n) * h.sliding_distance_m, rel=1e-12)
 
@@ -190,16 +197,7 @@ def test_viscous_friction_energy_balance():
     # Over one periodic cycle the hinge's work on the frame = Coulomb work + viscous work (1 %),
     # the viscous work computed independently from the sampled frame velocity.
     p = LRGParams(hinge_thickness_m=0.0002, viscous_friction_n_s_m=10.0)
-    h = dynamics.simulate_stage(p, n_cycles=5, samples_per_cycle=20000, rtol=1e-8)
-    c = dynamics.stage_constants(p)
-    from rsm_lrg.physics import motion
-    T = h.cycle_time_s
-    last = h.t >= 4 * T - 1e-12
-    t = h.t[last]
-    _, vs, _ = motion.reciprocating_profile(t, p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, p.dwell_s)
-    fh = float(c.k_n_m) * (h.x_stage[last] - h.x_frame[last]) + float(c.c_ns_m) * (vs - h.v_frame[last])
-    hinge_work = np.trapezoid(fh * h.v_frame[last], t)
-    visc = np.trapezoid(10.0 * h.v_frame[last] ** 2, t)
+    h, hinge_work, visc = _last_cycle_works(p)
     assert visc == pytest.approx(h.viscous_work_j, rel=0.01)
     assert hinge_work == pytest.approx(h.friction_work_j + h.viscous_work_j, rel=0.01)
 
