@@ -383,10 +383,9 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
 
 def load_calibration(path) -> Calibration:
     """Read a calibration TOML file (as written by :func:`calibration_toml`)."""
-    from .runs import SURROGATE_PARAMETERS
-    from ..physics.params import param_names
-
     from ..io import read_toml
+    from ..physics.params import param_names
+    from .runs import SURROGATE_PARAMETERS
 
     path = Path(path)
     raw = read_toml(path, "calibration file")
