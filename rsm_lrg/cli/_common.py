@@ -8,6 +8,22 @@ from contextlib import contextmanager
 from ..io import InputError
 
 
+def whole_number(minimum: int | None = None):
+    """An argparse ``type`` for a whole number, at least ``minimum`` when given (argparse
+    turns the ArgumentTypeError into a usage error naming the option)."""
+
+    def parse(text: str) -> int:
+        try:
+            v = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+        if minimum is not None and v < minimum:
+            raise argparse.ArgumentTypeError(f"expected a whole number >= {minimum}, got {text!r}")
+        return v
+
+    return parse
+
+
 def add_force(p: argparse.ArgumentParser) -> None:
     p.add_argument("--force", action="store_true", help="overwrite existing output files")
 

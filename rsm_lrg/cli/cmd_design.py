@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import add_force
+from ._common import add_force, whole_number
 
 NAME = "design"
 HELP = "write a design CSV (box-behnken, central-composite, full-factorial)"
@@ -15,19 +15,11 @@ DESCRIPTION = (
 )
 
 
-def _nonneg_int(text: str) -> int:
-    try:
-        v = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
-    return v
-
-
 def _common(p: argparse.ArgumentParser, center_default, center_help: str) -> None:
     p.add_argument("--factor", action="append", required=True, metavar="NAME=LOW:HIGH",
                    help="a factor and the levels coded -1 and +1 (repeat for each factor, in order)")
     p.add_argument("--center", default=center_default, metavar="N", help=center_help)
-    p.add_argument("--seed", type=_nonneg_int, default=None, metavar="N",
+    p.add_argument("--seed", type=whole_number(), default=None, metavar="N",
                    help="seed of the randomised run order (default: drawn and printed)")
     p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
     p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
@@ -39,7 +31,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     bb = sub.add_parser("box-behnken", help="Box-Behnken design, 3 to 7 factors (Box & Behnken 1960)",
                         description="Box-Behnken design for 3 to 7 factors as published by Box & Behnken (1960).")
     _common(bb, "3", "centre runs (per block when blocked; default 3)")
-    bb.add_argument("--blocks", type=_nonneg_int, default=None, metavar="N",
+    bb.add_argument("--blocks", type=whole_number(), default=None, metavar="N",
                     help="orthogonal blocks: 3 for 4 factors, 2 for 5 factors (default 1)")
     cc = sub.add_parser("central-composite", help="central composite design (2^k cube + star + centre)",
                         description="Central composite design with a full 2^k cube.")
@@ -48,12 +40,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                     help="rotatable (default), orthogonal, practical, face, or a number")
     cc.add_argument("--face", default="circumscribed", choices=["circumscribed", "inscribed", "faced"],
                     help="where the star points sit (default circumscribed)")
-    cc.add_argument("--blocks", type=_nonneg_int, default=None, metavar="N",
+    cc.add_argument("--blocks", type=whole_number(), default=None, metavar="N",
                     help="2: cube and star in separate blocks (default 1)")
     ff = sub.add_parser("full-factorial", help="full factorial, equally spaced levels (default 3^k)",
                         description="Full factorial design with equally spaced levels.")
     _common(ff, "0", "extra centre runs (default 0)")
-    ff.add_argument("--levels", type=_nonneg_int, default=3, metavar="N", help="levels per factor (default 3)")
+    ff.add_argument("--levels", type=whole_number(), default=3, metavar="N", help="levels per factor (default 3)")
 
 
 def _center(text: str, pair: bool):

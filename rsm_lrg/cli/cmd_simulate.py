@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force
+from ._common import about_file, add_force, whole_number
 
 NAME = "simulate"
 HELP = "virtual runs of the physics surrogate, one row per design row"
@@ -29,30 +29,10 @@ def _nonneg_float(text: str) -> float:
     return v
 
 
-def _pos_int(text: str) -> int:
-    try:
-        v = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
-    if v < 1:
-        raise argparse.ArgumentTypeError(f"expected a whole number >= 1, got {text!r}")
-    return v
-
-
-def _seed(text: str) -> int:
-    try:
-        v = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
-    if v < 0:
-        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {text!r}")
-    return v
-
-
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("design", metavar="DESIGN.csv",
                    help="design: thickness_m, stroke_m, velocity_m_s, acceleration_m_s2 [, stage, parameter columns]")
-    p.add_argument("--seed", type=_seed, default=None, metavar="N",
+    p.add_argument("--seed", type=whole_number(0), default=None, metavar="N",
                    help="seed of the reading noise (default: drawn and printed on stderr)")
     p.add_argument("--noise-sd", type=_nonneg_float, default=None, metavar="X",
                    help="SD [degC] of the Gaussian noise on each thermocouple reading (two sensors, read "
@@ -60,7 +40,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--duration-min", type=_nonneg_float, default=50.0, metavar="M",
                    help="test duration [min] for rows without a test_duration_min column (default 50)")
     where = p.add_mutually_exclusive_group()
-    where.add_argument("--workers", type=_pos_int, default=None, metavar="N",
+    where.add_argument("--workers", type=whole_number(1), default=None, metavar="N",
                        help="run batches in N local processes")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS",
                        help="run batches on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786)")
