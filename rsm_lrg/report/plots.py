@@ -168,6 +168,14 @@ def render(fig: Figure, key: str, title: str, caption: str = "", fmt: str = "png
 _PROB_TICKS = [1, 5, 10, 20, 30, 50, 70, 80, 90, 95, 99]
 
 
+def _residual_lines(ax, limits: float | None) -> None:
+    """The zero line of a residual plot and, when given, dashed lines at ±``limits``."""
+    ax.axhline(0.0, color=_LINE_COLOR, linewidth=1)
+    if limits is not None:
+        for s in (-limits, limits):
+            ax.axhline(s, color="#b5261e", linewidth=0.8, linestyle="--")
+
+
 def normal_probability_plot(residuals, *, label: str = "Externally studentized residuals",
                             title: str | None = "Normal plot of residuals") -> Figure:
     """Normal probability plot: sorted residuals against normal % probability.
@@ -221,10 +229,7 @@ def residuals_vs_predicted(predicted, residuals, *, limits: float | None = None,
     fig = _new_figure()
     ax = fig.add_subplot()
     ax.scatter(x, y, s=22, **_POINT_STYLE)
-    ax.axhline(0.0, color=_LINE_COLOR, linewidth=1)
-    if limits is not None:
-        for s in (-limits, limits):
-            ax.axhline(s, color="#b5261e", linewidth=0.8, linestyle="--")
+    _residual_lines(ax, limits)
     _finish(ax, title, "Predicted", label)
     return fig
 
@@ -240,10 +245,7 @@ def residuals_vs_run(residuals, run_order=None, *, limits: float | None = None,
     ax = fig.add_subplot()
     ax.plot(x[o], y[o], color="#888888", linewidth=0.8, zorder=3)
     ax.scatter(x[o], y[o], s=22, **_POINT_STYLE)
-    ax.axhline(0.0, color=_LINE_COLOR, linewidth=1)
-    if limits is not None:
-        for s in (-limits, limits):
-            ax.axhline(s, color="#b5261e", linewidth=0.8, linestyle="--")
+    _residual_lines(ax, limits)
     _finish(ax, title, "Run number", label)
     return fig
 
