@@ -33,6 +33,8 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from .single import parse_goal
+
 __all__ = ["ResponseGoal", "individual_desirability", "overall_desirability", "optimize_desirability",
            "DesirabilityResult", "parse_response_goal"]
 
@@ -114,15 +116,11 @@ def parse_response_goal(response: str, goal: str = "maximize", *, weight=None, i
     weight ``"W"`` or ``"W1,W2"``, importance ``"R"``, limits ``"LOW:HIGH"``."""
     g = str(goal).strip().lower()
     target = None
-    if g.startswith("target"):
-        rest = g[len("target"):].strip()
-        if not rest.startswith("="):
-            raise ValueError(f"response {response!r}: goal {goal!r} needs a value, e.g. target=0.03")
+    if g.startswith("target"):  # target=V: the single-response parser, named for this response
         try:
-            target = float(rest[1:])
-        except ValueError:
-            raise ValueError(f"response {response!r}: the target {rest[1:]!r} is not a number") from None
-        g = "target"
+            g, target = parse_goal(goal)
+        except ValueError as exc:
+            raise ValueError(f"response {response!r}: {exc}") from None
     w = 1.0
     if weight is not None:
         try:
