@@ -49,7 +49,8 @@ def letters_for(k: int) -> list[str]:
     return out
 
 
-def _as_float(value: Any, what: str) -> float:
+def finite_float(value: Any, what: str) -> float:
+    """``float(value)``, or a ValueError naming ``what`` if it is not a finite number."""
     try:
         x = float(value)
     except (TypeError, ValueError):
@@ -81,8 +82,8 @@ class Factor:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
             raise ValueError("a factor needs a non-empty name")
-        low = _as_float(self.low, f"factor {self.name!r}: low level")
-        high = _as_float(self.high, f"factor {self.name!r}: high level")
+        low = finite_float(self.low, f"factor {self.name!r}: low level")
+        high = finite_float(self.high, f"factor {self.name!r}: high level")
         if not low < high:
             raise ValueError(
                 f"factor {self.name!r}: LOW must be below HIGH (got {low:g} >= {high:g})"
@@ -138,8 +139,8 @@ def parse_factor_spec(spec: str) -> tuple[str, float | None, float | None]:
     name = m.group("name")
     if m.group("low") is None:
         return name, None, None
-    low = _as_float(m.group("low"), f"factor {name!r}: LOW")
-    high = _as_float(m.group("high"), f"factor {name!r}: HIGH")
+    low = finite_float(m.group("low"), f"factor {name!r}: LOW")
+    high = finite_float(m.group("high"), f"factor {name!r}: HIGH")
     if not low < high:
         raise ValueError(f"factor {name!r}: LOW must be below HIGH (got {low:g} >= {high:g})")
     return name, low, high

@@ -24,6 +24,8 @@ from typing import Mapping
 
 import numpy as np
 
+from ..factors import finite_float
+
 __all__ = ["confirm", "ConfirmationResult", "parse_settings"]
 
 
@@ -45,12 +47,7 @@ def parse_settings(space, at) -> dict:
             f = space[key]
         except KeyError:
             raise ValueError(f"setting for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
-        try:
-            val = float(v)
-        except (TypeError, ValueError):
-            raise ValueError(f"setting for {f.name!r}: {v!r} is not a number") from None
-        if not math.isfinite(val):
-            raise ValueError(f"setting for {f.name!r} must be a finite number")
+        val = finite_float(v, f"setting for {f.name!r}")
         if f.name in items:
             raise ValueError(f"factor {f.name!r} is set more than once")
         items[f.name] = val
