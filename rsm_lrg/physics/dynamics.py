@@ -198,20 +198,22 @@ class CycleMetrics:
         return pd.DataFrame({f.name: np.atleast_1d(getattr(self, f.name)) for f in fields(self)})
 
 
-def _stage_is_rigid(stage, n):
+def _stage_is_rigid(stage) -> np.ndarray:
+    """True where ``stage`` is the RMS: a boolean array of ``stage``'s shape from booleans
+    (True = RMS, also as an object array such as a pandas object column) or the labels
+    ``"rfcms"``/``"rms"`` (any case)."""
     s = np.asarray(stage)
     if s.dtype == object and s.size and all(isinstance(x, (bool, np.bool_)) for x in s.flat):
-        s = s.astype(bool)  # a boolean column that went through an object array
+        s = s.astype(bool)
     if s.dtype == bool:
-        rigid = s
-    else:
-        low = np.char.lower(np.asarray(s, dtype=str))
-        bad = ~np.isin(low, ["rfcms", "rms"])
-        if bad.any():
-            i = int(np.flatnonzero(np.atleast_1d(bad))[0])
-            raise ValueError(f"stage must be 'rfcms' or 'rms', got {np.atleast_1d(s)[i]!r} (row {i})")
-        rigid = low == "rms"
-    return np.broadcast_to(rigid, (n,)).copy()
+        return s
+    low = np.char.lower(np.asarray(s, dtype=str))
+    bad = ~np.isin(low, ["rfcms", "rms"])
+    if bad.any():
+        i = int(np.flatnonzero(np.atleast_1d(bad))[0])
+        given = np.ravel(np.asarray(stage, dtype=object))[i]  # the caller's own value
+        raise ValueError(f"stage must be 'rfcms' or 'rms', got {given!r} (row {i})")
+    return low == "rms"
 
 
 def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms",
@@ -263,12 +265,12 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         raise ValueError("n_cycles must be at least 2")
     dwell = columns.pop("dwell_s", p.dwell_s)
     check_values("dwell_s", dwell)
+    stage_rigid = _stage_is_rigid(stage)
     if np.ndim(stage) and columns:
         # RMS rows ignore the hinge and frame columns (they may be empty/NaN there)
         shape0 = np.broadcast_shapes(np.shape(stroke), np.shape(velocity), np.shape(acceleration),
                                      np.shape(stage), *(np.shape(x) for x in columns.values()))
-        rig = _stage_is_rigid(np.ravel(np.broadcast_to(np.asarray(stage, dtype=object), shape0)),
-                              int(np.prod(shape0))).reshape(shape0)
+        rig = np.broadcast_to(stage_rigid, shape0)
         if rig.any():
             base = p.to_dict()
             columns = {k: (np.where(rig, base[k], np.broadcast_to(np.asarray(x, dtype=float), shape0))
@@ -277,11 +279,11 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
     arrays = np.broadcast_arrays(np.asarray(stroke, float), np.asarray(velocity, float),
                                  np.asarray(acceleration, float), np.asarray(dwell, float),
                                  *(np.asarray(getattr(const, f.name), float) for f in fields(const)),
-                                 np.asarray(stage, dtype=object) if np.ndim(stage) else np.asarray(0.0))
+                                 stage_rigid)
     shape = arrays[0].shape
     n = int(np.prod(shape)) if shape else 1
     s, v, a, dw, k, c, m, fs, fk, cv = (np.ravel(x).astype(float) for x in arrays[:10])
-    rigid = _stage_is_rigid(np.ravel(arrays[10]) if np.ndim(stage) else stage, n)
+    rigid = np.ravel(arrays[10]).copy()
 
     T = motion.cycle_time(s, v, a, dw)
     stage_visc = cv * motion.mean_square_speed(s, v, a, dw) * T  # ∫c_v·ẋ_ws² dt per cycle
