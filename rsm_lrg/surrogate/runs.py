@@ -31,7 +31,7 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["evaluate_rows", "SURROGATE_PARAMETERS", "mean_square_speed", "thermal_unit_response"]
+__all__ = ["evaluate_rows", "SURROGATE_PARAMETERS", "thermal_unit_response"]
 
 #: Parameters of the surrogate that are not in :class:`~rsm_lrg.physics.params.LRGParams`:
 #: name -> (raw-physics value, unit, meaning).
@@ -43,17 +43,6 @@ SURROGATE_PARAMETERS = {
 #: Parameters that enter the convection coefficients (Eqs. 10-12).
 _CONVECTION = ("air_velocity_m_s", "char_length_m", "air_kinematic_viscosity_m2_s",
                "air_dynamic_viscosity_pa_s", "air_conductivity_w_mk", "air_specific_heat_j_kgk")
-
-
-def mean_square_speed(stroke, velocity, acceleration, dwell=0.0):
-    """Mean of ẋ² over a reciprocating cycle [m²/s²]: :func:`rsm_lrg.physics.motion.mean_square_speed`.
-
-    >>> round(float(mean_square_speed(0.05, 0.5, 30.0)), 5)
-    0.20238
-    """
-    from ..physics import motion
-
-    return motion.mean_square_speed(stroke, velocity, acceleration, dwell)
 
 
 # ----------------------------------------------------------------------------------------

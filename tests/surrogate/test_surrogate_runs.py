@@ -6,7 +6,7 @@ import pytest
 
 from rsm_lrg.physics import motion
 from rsm_lrg.surrogate import simulate
-from rsm_lrg.surrogate.runs import mean_square_speed
+from rsm_lrg.physics.motion import mean_square_speed
 
 CENTRE = {"thickness_m": 3e-4, "stroke_m": 0.05, "velocity_m_s": 0.5, "acceleration_m_s2": 30.0}
 
