@@ -63,7 +63,7 @@ def main(argv=None):
     print(f"{'rows':>8} {'seconds':>10} {'runs/s':>12} {'ms/run':>10}")
     for n in a.rows:
         d = box(n, seed=n)
-        sec = timed(lambda: simulate(d, seed=1, noise_sd=a.noise_sd, progress=False), repeat=3 if n <= 1000 else 1)
+        sec = timed(lambda d=d: simulate(d, seed=1, noise_sd=a.noise_sd, progress=False), repeat=3 if n <= 1000 else 1)
         out["sizes"].append({"rows": n, "seconds": sec, "runs_per_s": n / sec})
         print(f"{n:>8} {sec:>10.3f} {n / sec:>12.1f} {1e3 * sec / n:>10.4f}")
 
@@ -91,7 +91,7 @@ def main(argv=None):
         d = box(n, seed=n)
         with ProcessPoolExecutor(a.workers) as ex:
             simulate(box(3), executor=ex)  # start the workers
-            sec = timed(lambda: simulate(d, seed=1, noise_sd=a.noise_sd, executor=ex, progress=False))
+            sec = timed(lambda d=d: simulate(d, seed=1, noise_sd=a.noise_sd, executor=ex, progress=False))
         out["workers"] = {"workers": a.workers, "rows": n, "seconds": sec, "runs_per_s": n / sec}
         print(f"{a.workers} processes, {n} rows: {sec:.2f} s, {n / sec:.0f} runs/s")
     if a.json:

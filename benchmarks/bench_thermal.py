@@ -119,7 +119,10 @@ def main(argv=None):
         r = run(c, symmetric=not a.full, steps=a.steps, direct_max_cells=a.direct_max_cells, cg=a.cg)
         rows.append(r)
         g = r.get
-        ms = (lambda k: 1e3 * r[k] if k in r else None)
+
+        def ms(k, r=r):
+            return 1e3 * r[k] if k in r else None
+
         diff = max(g("steady_diff_rel", 0.0), g("tr_diff_rel", 0.0)) if "steady_diff_rel" in r else None
         print(f"{c * 1e3:7.2f} {r['n_cells']:8d} {r['assemble_s']:6.2f} | {_f(g('steady_direct_s'), '8.3f')} "
               f"{r['steady_amg_setup_s']:7.3f} {r['steady_amg_solve_s']:7.3f} {r['steady_amg_iterations']:3d} | "

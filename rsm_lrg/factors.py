@@ -19,8 +19,9 @@ from __future__ import annotations
 import math
 import re
 import string
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -169,14 +170,14 @@ class FactorSpace:
 
     # -- construction -------------------------------------------------------------
     @classmethod
-    def from_ranges(cls, ranges: Mapping[str, tuple[float, float]] | Iterable[tuple[str, float, float]]) -> "FactorSpace":
+    def from_ranges(cls, ranges: Mapping[str, tuple[float, float]] | Iterable[tuple[str, float, float]]) -> FactorSpace:
         """From ``{name: (low, high)}`` or ``[(name, low, high), ...]``, in order."""
         items = list(ranges.items()) if isinstance(ranges, Mapping) else [(n, (lo, hi)) for n, lo, hi in ranges]
         letters = letters_for(len(items))
         return cls(tuple(Factor(n, lo, hi, L) for (n, (lo, hi)), L in zip(items, letters)))
 
     @classmethod
-    def from_specs(cls, specs: Sequence[str]) -> "FactorSpace":
+    def from_specs(cls, specs: Sequence[str]) -> FactorSpace:
         """From ``["NAME=LOW:HIGH", ...]``; every spec must carry its levels."""
         items = []
         for s in specs:
@@ -187,7 +188,7 @@ class FactorSpace:
         return cls.from_ranges(items)
 
     @classmethod
-    def from_data(cls, data, factors: Sequence[Any] | None = None, *, exclude: Iterable[str] = ()) -> "FactorSpace":
+    def from_data(cls, data, factors: Sequence[Any] | None = None, *, exclude: Iterable[str] = ()) -> FactorSpace:
         """Factor space for a data frame.
 
         Parameters

@@ -5,7 +5,8 @@ import tomllib
 
 import numpy as np
 import pytest
-from hypothesis import given, strategies as st
+from hypothesis import given
+from hypothesis import strategies as st
 
 from rsm_lrg.io import InputError, read_toml, toml_value, write_output
 

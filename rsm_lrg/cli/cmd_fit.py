@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_model_inputs, add_force, add_json
+from ._common import about_file, add_force, add_json, add_model_inputs
 
 NAME = "fit"
 HELP = "fit a response-surface model; print the ANOVA, statistics and equation"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_model_inputs, add_force
+from ._common import about_file, add_force, add_model_inputs
 
 NAME = "report"
 HELP = "fit a model and write a self-contained HTML report (ANOVA, diagnostics, surfaces, optimum)"

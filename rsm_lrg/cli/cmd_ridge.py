@@ -4,8 +4,15 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import (MODEL_ORDERS, about_file, add_block_option, add_factor_options, add_force, add_json,
-                      add_model_option)
+from ._common import (
+    MODEL_ORDERS,
+    about_file,
+    add_block_option,
+    add_factor_options,
+    add_force,
+    add_json,
+    add_model_option,
+)
 
 NAME = "ridge"
 HELP = "ridge analysis (second order) or path of steepest ascent/descent (first order)"

@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import math
 import secrets
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -359,7 +360,7 @@ class Design:
         seed: Any = None,
         randomize: bool = True,
         options: Mapping | None = None,
-    ) -> "Design":
+    ) -> Design:
         """Build from runs listed in standard order: assign ``std_order`` and a run order.
 
         Parameters
@@ -397,7 +398,7 @@ class Design:
             options=opts,
         )
 
-    def with_runs_of(self, data, run_order: str | None = None) -> "Design":
+    def with_runs_of(self, data, run_order: str | None = None) -> Design:
         """Match the runs of ``data`` to this design's runs and adopt ``data``'s order.
 
         Each row of ``data`` (actual settings in the factor columns) is matched to a run of
@@ -442,7 +443,7 @@ class Design:
         return Design(self.factors, self.kind, coded, std, ro, blocks, opts)
 
     @classmethod
-    def from_frame(cls, df, *, kind: str = "custom") -> "Design":
+    def from_frame(cls, df, *, kind: str = "custom") -> Design:
         """Read a design back from its CSV layout (see :meth:`to_frame`).
 
         The factors are the columns that follow the coded columns, one per coded column

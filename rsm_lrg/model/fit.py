@@ -22,8 +22,9 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -311,7 +312,7 @@ class FitResult:
 
         return _ridge(self, goal=goal, radius=radius, step=step)
 
-    def reduce(self, alpha_out: float = 0.1, criterion: str = "p") -> "FitResult":
+    def reduce(self, alpha_out: float = 0.1, criterion: str = "p") -> FitResult:
         """The model refitted with the terms kept by hierarchical backward elimination
         (see :func:`rsm_lrg.model.reduce.reduce_terms`)."""
         from .reduce import reduce_terms

@@ -15,8 +15,8 @@ effects, two-factor interactions, pure quadratics, then cubic terms.
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 

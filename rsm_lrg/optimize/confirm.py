@@ -19,8 +19,8 @@ the 95 % PI 0.0159–0.0298.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Mapping
 
 import numpy as np
 

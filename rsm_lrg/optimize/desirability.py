@@ -28,8 +28,9 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -95,7 +96,7 @@ class ResponseGoal:
             raise ValueError(f"response {self.response!r}: the target {self.target:g} lies outside the limits "
                              f"{self.low:g}..{self.high:g}")
 
-    def with_limits(self, low: float, high: float) -> "ResponseGoal":
+    def with_limits(self, low: float, high: float) -> ResponseGoal:
         lo = self.low if self.low is not None else low
         hi = self.high if self.high is not None else high
         if self.goal == "target":  # keep the target inside the limits

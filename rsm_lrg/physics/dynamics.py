@@ -667,10 +667,14 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
         mask = (grid > t) & (grid <= t_new)
         if mask.any():
             if mode == 0:
-                ts_out.extend(grid[mask]); xf_out.extend([y[0]] * int(mask.sum())); u_out.extend([0.0] * int(mask.sum()))
+                ts_out.extend(grid[mask])
+                xf_out.extend([y[0]] * int(mask.sum()))
+                u_out.extend([0.0] * int(mask.sum()))
             else:
                 yy = sol.sol(grid[mask])
-                ts_out.extend(grid[mask]); xf_out.extend(yy[0]); u_out.extend(yy[1])
+                ts_out.extend(grid[mask])
+                xf_out.extend(yy[0])
+                u_out.extend(yy[1])
         if hit:
             n_events += 1
             if mode == 0:

@@ -26,9 +26,10 @@ from __future__ import annotations
 import dataclasses
 import math
 import tomllib
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -149,7 +150,7 @@ class LRGParams:
             object.__setattr__(self, f.name, _coerce(f.name, getattr(self, f.name)))
 
     # ---- construction ------------------------------------------------------------------
-    def with_overrides(self, **overrides: Any) -> "LRGParams":
+    def with_overrides(self, **overrides: Any) -> LRGParams:
         """A copy with some values replaced; unknown names raise ``ValueError``."""
         _check_names(overrides)
         return dataclasses.replace(self, **overrides)

@@ -296,7 +296,7 @@ def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
         fi, fj = space.factors[i], space.factors[j]
         others = [f for m, f in enumerate(space.factors) if m not in (i, j)]
 
-        def predict(X, Y, i=i, j=j):
+        def predict(X, Y, i=i, j=j, fi=fi, fj=fj):
             pts = np.tile(held, (X.size, 1))
             pts[:, i] = fi.encode(X.ravel())
             pts[:, j] = fj.encode(Y.ravel())

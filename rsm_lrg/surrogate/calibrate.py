@@ -17,9 +17,9 @@ from __future__ import annotations
 import hashlib
 import itertools
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Mapping
 
 import numpy as np
 
@@ -438,8 +438,8 @@ def resolve_calibration(spec) -> Calibration | None:
         except FileNotFoundError:
             return None
     if isinstance(spec, Mapping):
-        from .runs import SURROGATE_PARAMETERS
         from ..physics.params import param_names
+        from .runs import SURROGATE_PARAMETERS
 
         known = set(param_names()) | set(SURROGATE_PARAMETERS)
         ests = []

@@ -63,7 +63,7 @@ class DesignArrays:
     rigid: np.ndarray = field(repr=False)
     param_columns: tuple = ()
 
-    def take(self, start: int, stop: int) -> "DesignArrays":
+    def take(self, start: int, stop: int) -> DesignArrays:
         """Rows ``start:stop`` as a new :class:`DesignArrays` (views, no copy)."""
         return DesignArrays(stop - start, {k: v[start:stop] for k, v in self.columns.items()},
                             self.rigid[start:stop], self.param_columns)

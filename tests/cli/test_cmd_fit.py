@@ -6,7 +6,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-
 from rsm_lrg.cli import main
 from rsm_lrg.datasets import data_path
 

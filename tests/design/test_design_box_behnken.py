@@ -5,9 +5,8 @@ from itertools import combinations
 
 import numpy as np
 import pytest
-from pyDOE3 import bbdesign
-
 from _design_helpers import block_orthogonality, multiset
+from pyDOE3 import bbdesign
 
 from rsm_lrg.design import BBD_SETS, box_behnken
 

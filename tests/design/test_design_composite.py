@@ -5,9 +5,8 @@ from itertools import combinations
 
 import numpy as np
 import pytest
-from pyDOE3 import ccdesign
-
 from _design_helpers import block_orthogonality, multiset
+from pyDOE3 import ccdesign
 
 from rsm_lrg.design import ccd_alpha, central_composite
 

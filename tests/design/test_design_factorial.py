@@ -4,9 +4,8 @@ import itertools
 
 import numpy as np
 import pytest
-from pyDOE3 import fullfact
-
 from _design_helpers import multiset
+from pyDOE3 import fullfact
 
 from rsm_lrg.design import full_factorial
 

@@ -5,7 +5,6 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-
 from _design_helpers import multiset
 
 from rsm_lrg.datasets import load_table4

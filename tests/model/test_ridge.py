@@ -4,13 +4,12 @@ is the requested one; the ridge point beats every sampled point on its sphere)."
 
 import numpy as np
 import pytest
+from _published import MONTGOMERY_11_1, TREB, TREB_FACTORS, TREB_STEEPEST
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import rsm_lrg
 from rsm_lrg.model.ridge import canonical_path, radii, ridge, ridge_point
-
-from _published import MONTGOMERY_11_1, TREB, TREB_FACTORS, TREB_STEEPEST
 
 
 @pytest.fixture(scope="module")

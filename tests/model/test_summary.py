@@ -9,14 +9,13 @@ import numpy as np
 import pandas as pd
 import pytest
 import statsmodels.api as sm
+from _published import CEMENT1, MONTGOMERY_11_2, TREB, TREB_FACTORS
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import rsm_lrg
 from rsm_lrg.model.summary import fit_summary
 from rsm_lrg.model.terms import design_matrix, model_terms
-
-from _published import CEMENT1, MONTGOMERY_11_2, TREB, TREB_FACTORS
 
 
 def _seq(s, label):

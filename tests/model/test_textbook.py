@@ -103,9 +103,9 @@ def test_chemreact_slopes_match_treatment_coded_lstsq(chemreact):
 def test_r_threshold_rule():
     # R rsm canonical(threshold=): eigenvalues below the threshold count as zero and the
     # stationary point is restricted to the remaining eigen-directions.
+    from rsm_lrg.factors import FactorSpace
     from rsm_lrg.model.canonical import canonical_analysis
     from rsm_lrg.model.terms import model_terms
-    from rsm_lrg.factors import FactorSpace
 
     space = FactorSpace.from_ranges({"u": (-1, 1), "v": (-1, 1)})
     terms = model_terms(space.letters, "quadratic")

@@ -9,8 +9,13 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import rsm_lrg
-from rsm_lrg.optimize.desirability import (ResponseGoal, individual_desirability, optimize_desirability,
-                                           overall_desirability, parse_response_goal)
+from rsm_lrg.optimize.desirability import (
+    ResponseGoal,
+    individual_desirability,
+    optimize_desirability,
+    overall_desirability,
+    parse_response_goal,
+)
 
 
 def test_linear_ramps_by_hand():

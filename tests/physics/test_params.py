@@ -7,8 +7,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rsm_lrg.physics.params import (ASSUMPTIONS, PARAM_INFO, LRGParams, check_values, load_params,
-                                    param_names, parse_assignments)
+from rsm_lrg.physics.params import (
+    ASSUMPTIONS,
+    PARAM_INFO,
+    LRGParams,
+    check_values,
+    load_params,
+    param_names,
+    parse_assignments,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 

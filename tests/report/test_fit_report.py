@@ -13,11 +13,10 @@ import re
 import numpy as np
 import pandas as pd
 import pytest
+from _html_tables import read  # noqa: E402  (tests/report is on sys.path under pytest)
 
 import rsm_lrg
 from rsm_lrg.report import SECTION_IDS, report_context, to_html, write_report
-
-from _html_tables import read  # noqa: E402  (tests/report is on sys.path under pytest)
 
 
 @pytest.fixture(scope="module")

@@ -8,8 +8,13 @@ import pandas as pd
 import pytest
 
 from rsm_lrg.surrogate import simulate
-from rsm_lrg.surrogate.calibrate import (ParameterSpec, calibrate, calibration_toml, load_calibration,
-                                         resolve_calibration)
+from rsm_lrg.surrogate.calibrate import (
+    ParameterSpec,
+    calibrate,
+    calibration_toml,
+    load_calibration,
+    resolve_calibration,
+)
 
 
 def synthetic(truth, n=12, seed=0, thickness=(3e-4, 5e-4)):

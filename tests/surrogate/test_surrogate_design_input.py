@@ -3,7 +3,8 @@
 import numpy as np
 import pandas as pd
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from rsm_lrg.surrogate.design_input import FACTOR_COLUMNS, read_design_arrays
 

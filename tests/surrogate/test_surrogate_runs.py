@@ -5,8 +5,8 @@ import pandas as pd
 import pytest
 
 from rsm_lrg.physics import motion
-from rsm_lrg.surrogate import simulate
 from rsm_lrg.physics.motion import mean_square_speed
+from rsm_lrg.surrogate import simulate
 
 CENTRE = {"thickness_m": 3e-4, "stroke_m": 0.05, "velocity_m_s": 0.5, "acceleration_m_s2": 30.0}
 

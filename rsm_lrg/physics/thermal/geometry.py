@@ -303,11 +303,11 @@ class GuideGeometry:
         return out
 
     @classmethod
-    def from_params(cls, values, **overrides) -> "GuideGeometry":
+    def from_params(cls, values, **overrides) -> GuideGeometry:
         """The geometry of a parameter set (:meth:`fields_from_params`), then ``overrides``."""
         return cls(**{**cls.fields_from_params(values), **overrides})
 
-    def with_(self, **overrides) -> "GuideGeometry":
+    def with_(self, **overrides) -> GuideGeometry:
         """Return a copy with some fields replaced (unknown names raise ValueError)."""
         names = {f.name for f in fields(self)}
         bad = sorted(set(overrides) - names)
@@ -381,7 +381,9 @@ class GuideGeometry:
         """Sorted unique box edges per axis (the grid conforms to all of them)."""
         xs, ys, zs = set(), set(), set()
         for _, (x0, x1), (y0, y1), (z0, z1) in self.boxes():
-            xs.update((x0, x1)); ys.update((y0, y1)); zs.update((z0, z1))
+            xs.update((x0, x1))
+            ys.update((y0, y1))
+            zs.update((z0, z1))
         r = lambda s: np.array(sorted({round(v, 12) for v in s}))  # noqa: E731
         return r(xs), r(ys), r(zs)
 

@@ -22,7 +22,9 @@ LAM, RHO, CP = 44.0, 7830.0, 460.0  # GCr15, paper Table 2
 
 def _props(*bodies):
     """rho, lam, cp arrays for body codes 1..n given (rho, lam, cp) tuples."""
-    rho = np.zeros(len(bodies) + 1); lam = np.zeros_like(rho); cp = np.zeros_like(rho)
+    rho = np.zeros(len(bodies) + 1)
+    lam = np.zeros_like(rho)
+    cp = np.zeros_like(rho)
     for i, (r, l, c) in enumerate(bodies, start=1):
         rho[i], lam[i], cp[i] = r, l, c
     return rho, lam, cp
@@ -34,7 +36,8 @@ def _slab(n, half_length, h):
     ye = ze = np.array([0.0, 0.01])
     body = np.ones((n, 1, 1), dtype=np.int8)
     rho, lam, cp = _props((RHO, LAM, CP))
-    ht = np.zeros((2, 6)); ht[1, :2] = h
+    ht = np.zeros((2, 6))
+    ht[1, :2] = h
     return VoxelModel(xe, ye, ze, body, rho, lam, cp, ht, 1, ((0.0, 0.005, 0.005),))
 
 
@@ -128,7 +131,8 @@ def _cube(n=4, a=0.01, h=10.0):
     xe = np.linspace(0, a, n + 1)
     body = np.ones((n, n, n), dtype=np.int8)
     rho, lam, cp = _props((RHO, 1e4, CP))  # very conductive: Biot = h a / k ~ 1e-5
-    ht = np.zeros((2, 6)); ht[1] = h
+    ht = np.zeros((2, 6))
+    ht[1] = h
     return VoxelModel(xe, xe, xe, body, rho, lam, cp, ht, 1, ((a / 2, a / 2, a / 2),))
 
 

@@ -11,7 +11,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rsm_lrg.physics.thermal import (
-    FVSystem, GuideGeometry, ThermalNetwork, network_response, network_rise, time_to_fraction, voxelise,
+    FVSystem,
+    GuideGeometry,
+    ThermalNetwork,
+    network_response,
+    network_rise,
+    time_to_fraction,
+    voxelise,
 )
 
 Q, HS, HF = 0.4150, 8.82, 22.45

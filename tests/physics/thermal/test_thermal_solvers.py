@@ -69,8 +69,12 @@ def _two_blocks(cool_second):
     xe = np.array([0.0, 0.01, 0.02, 0.03, 0.04])
     ye = ze = np.array([0.0, 0.01])
     body = np.array([1, 0, 2, 2], dtype=np.int8).reshape(4, 1, 1)
-    rho = np.array([0.0, 7830.0, 7830.0]); lam = np.array([0.0, 44.0, 44.0]); cp = np.array([0.0, 460.0, 460.0])
-    ht = np.zeros((3, 6)); ht[1] = 10.0; ht[2] = 10.0 if cool_second else 0.0
+    rho = np.array([0.0, 7830.0, 7830.0])
+    lam = np.array([0.0, 44.0, 44.0])
+    cp = np.array([0.0, 460.0, 460.0])
+    ht = np.zeros((3, 6))
+    ht[1] = 10.0
+    ht[2] = 10.0 if cool_second else 0.0
     return VoxelModel(xe, ye, ze, body, rho, lam, cp, ht, 1, ((0.005, 0.005, 0.005),))
 
 
