@@ -16,12 +16,41 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-__all__ = ["InputError", "read_table", "read_toml", "toml_value", "write_output", "dump_json", "to_jsonable",
+__all__ = ["InputError", "quote_user_value", "read_table", "read_toml", "toml_value", "write_output", "dump_json", "to_jsonable",
            "numeric_column"]
 
 
 class InputError(ValueError):
     """Bad input from the user: the CLI prints it as one ``error:`` line and exits 2."""
+
+
+def quote_user_value(value: Any, limit: int = 40) -> str:
+    """``repr``-like quoted text of a user's value for an error message, cut to about ``limit``
+    characters with ``…`` so that a 10 MB cell or a 300-digit number cannot flood the message.
+
+    Strings are quoted as by ``repr``; other values are shown as ``repr(value)``.
+
+    >>> quote_user_value("abc")
+    "'abc'"
+    >>> quote_user_value("x" * 100, limit=10)
+    "'xxxxxxxxx…'"
+    >>> quote_user_value(1.5)
+    '1.5'
+    >>> len(quote_user_value("9" * 300)) <= 42
+    True
+    """
+    limit = max(int(limit), 1)
+    if isinstance(value, str):
+        if len(value) <= limit:
+            return repr(value)
+        shown = repr(value[: limit - 1])  # escapes newlines and control characters
+        quote, body = shown[-1], shown[:-1][: limit]
+        return body + "\u2026" + quote
+    try:
+        text = repr(value)
+    except Exception:  # any object must be quotable (str of a 5000-digit int raises)
+        text = f"<{type(value).__name__} too long to show>"
+    return text if len(text) <= limit else text[: limit - 1] + "\u2026"
 
 
 def read_table(path: str | os.PathLike):
