@@ -8,6 +8,8 @@ an existing file is kept unless ``force=True``).
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import json
 import math
 import os
@@ -16,7 +18,7 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-__all__ = ["InputError", "quote_user_value", "read_table", "read_toml", "toml_value", "write_output", "dump_json", "to_jsonable",
+__all__ = ["InputError", "quote_user_value", "read_input_bytes", "check_output", "output_transaction", "read_table", "read_toml", "toml_value", "write_output", "dump_json", "to_jsonable",
            "numeric_column"]
 
 
@@ -53,6 +55,91 @@ def quote_user_value(value: Any, limit: int = 40) -> str:
     return text if len(text) <= limit else text[: limit - 1] + "\u2026"
 
 
+#: Limits on input files, far beyond any experiment: a file past them is refused at once
+#: (rather than hanging or exhausting memory) with a message naming the file and the limit.
+MAX_TABLE_BYTES = 200 * 1024 * 1024
+MAX_TEXT_BYTES = 10 * 1024 * 1024  # TOML parameter and calibration files
+MAX_LINE_BYTES = 1024 * 1024
+MAX_COLUMNS = 1000
+MAX_ROWS = 10_000_000
+
+
+def _mib(n: int) -> str:
+    return f"{n / (1024 * 1024):g} MiB"
+
+
+def read_input_bytes(path: str | os.PathLike, what: str = "file", *, limit: int = MAX_TABLE_BYTES) -> bytes:
+    """The bytes of an input file, read in a bounded way, or :class:`InputError` naming it.
+
+    Refuses what is not a regular file (a directory, a device such as ``/dev/zero``, a named
+    pipe or a socket: reading those could hang or never end) and files larger than ``limit``
+    bytes; reads at most ``limit + 1`` bytes, so a file growing meanwhile cannot exhaust memory.
+    The file is only ever opened for reading.
+    """
+    import stat
+
+    p = Path(path)
+    if not str(path).strip():
+        raise InputError(f"an empty path was given for the {what}")
+    try:
+        st = os.stat(p)
+    except FileNotFoundError:
+        raise InputError(f"{_show(p)}: no such {what}") from None
+    except OSError as exc:
+        raise InputError(f"{_show(p)}: cannot be read ({exc.strerror or type(exc).__name__})") from None
+    if stat.S_ISDIR(st.st_mode):
+        raise InputError(f"{_show(p)}: is a directory, not a{'n' if what[0] in 'aeiou' else ''} {what}")
+    if not stat.S_ISREG(st.st_mode):
+        raise InputError(f"{_show(p)}: is not a regular file (it is a device, pipe or socket)")
+    if st.st_size > limit:
+        raise InputError(f"{_show(p)}: is {_mib(st.st_size)}, larger than the limit of {_mib(limit)} for a {what}")
+    try:
+        fd = os.open(p, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
+        with os.fdopen(fd, "rb") as fh:
+            if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):  # replaced since the check
+                raise InputError(f"{_show(p)}: is not a regular file, not a {what}")
+            raw = fh.read(limit + 1)
+    except OSError as exc:
+        raise InputError(f"{_show(p)}: cannot be read ({exc.strerror or type(exc).__name__})") from None
+    if len(raw) > limit:
+        raise InputError(f"{_show(p)}: is larger than the limit of {_mib(limit)} for a {what}")
+    return raw
+
+
+def _check_table_shape(p: Path, raw: bytes) -> None:
+    """Refuse, before parsing, a table with a line over :data:`MAX_LINE_BYTES`, more than
+    :data:`MAX_COLUMNS` columns or more than :data:`MAX_ROWS` rows."""
+    import csv
+
+    import numpy as np
+
+    nl = np.flatnonzero(np.frombuffer(raw, dtype=np.uint8) == 10)
+    ends = np.concatenate([[-1], nl, [len(raw)]])
+    lengths = np.diff(ends) - 1
+    if lengths.size and int(lengths.max()) > MAX_LINE_BYTES:
+        line = int(np.argmax(lengths > MAX_LINE_BYTES)) + 1
+        raise InputError(f"{_show(p)}: line {line} is longer than the limit of {_mib(MAX_LINE_BYTES)}")
+    rows = int(np.count_nonzero(lengths > 0)) - 1
+    if rows > MAX_ROWS:
+        raise InputError(f"{_show(p)}: has {rows} data rows, more than the limit of {MAX_ROWS}")
+    first = raw[: int(nl[0]) if nl.size else len(raw)].decode("utf-8-sig", errors="replace")
+    try:
+        ncol = len(next(csv.reader([first]), []))
+    except csv.Error:
+        ncol = first.count(",") + 1
+    if ncol > MAX_COLUMNS:
+        raise InputError(f"{_show(p)}: the header has {ncol} columns, more than the limit of {MAX_COLUMNS}")
+
+
+def _show(p: str | os.PathLike, limit: int = 120) -> str:
+    """A path for a message, shortened in the middle when very long."""
+    text = str(p).replace("\n", "\\n").replace("\r", "\\r")
+    if len(text) <= limit:
+        return text
+    half = (limit - 1) // 2
+    return text[:half] + "\u2026" + text[-half:]
+
+
 def read_table(path: str | os.PathLike):
     """Read a CSV file into a DataFrame, or raise :class:`InputError` naming the problem.
 
@@ -62,22 +149,17 @@ def read_table(path: str | os.PathLike):
     import pandas as pd
 
     p = Path(path)
-    if not p.exists():
-        raise InputError(f"{p}: no such file")
-    if p.is_dir():
-        raise InputError(f"{p}: is a directory, not a CSV file")
-    try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise InputError(f"{p}: cannot be read ({exc.strerror or exc})") from None
+    raw = read_input_bytes(p, "file", limit=MAX_TABLE_BYTES)
     if not raw.strip():
         raise InputError(f"{p}: the file is empty")
-    if b"\x00" in raw[:4096]:
-        raise InputError(f"{p}: is not a CSV text file")
+    if b"\x00" in raw:
+        raise InputError(f"{p}: is not a CSV text file (it contains NUL bytes)")
+    _check_table_shape(p, raw)
     try:
         text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        raise InputError(f"{p}: is not a UTF-8 CSV text file") from None
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        raise InputError(f"{p}: is not a UTF-8 CSV text file (line {line})") from None
     import io as _io
 
     try:
@@ -108,17 +190,13 @@ def read_toml(path: str | os.PathLike, what: str = "file") -> dict:
     import tomllib
 
     p = Path(path)
-    if not p.exists():
-        raise InputError(f"{p}: no such {what}")
-    if p.is_dir():
-        raise InputError(f"{p}: is a directory, not a TOML file")
+    raw = read_input_bytes(p, what, limit=MAX_TEXT_BYTES)
     try:
-        with open(p, "rb") as fh:
-            return tomllib.load(fh)
+        return tomllib.loads(raw.decode("utf-8"))
     except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"{p}: not valid TOML ({exc})") from None
+        raise InputError(f"{_show(p)}: not valid TOML ({str(exc)[:150]})") from None
     except UnicodeDecodeError:
-        raise InputError(f"{p}: not valid TOML (not UTF-8 text)") from None
+        raise InputError(f"{_show(p)}: not valid TOML (not UTF-8 text)") from None
 
 
 def toml_value(x: Any) -> str:
@@ -163,34 +241,169 @@ def numeric_column(df, name: str, where: str = ""):
         raise InputError(f"{where}{exc}") from None
 
 
+_TRANSACTION: contextvars.ContextVar[_Transaction | None] = contextvars.ContextVar("rsm_lrg_outputs", default=None)
+
+
+class _Transaction:
+    """Outputs staged by :func:`write_output` inside :func:`output_transaction`."""
+
+    def __init__(self, inputs):
+        self.inputs = [Path(x) for x in inputs]
+        self.staged: list[tuple[str, Path]] = []  # (temporary file, target)
+
+    def discard(self) -> None:
+        for tmp, _ in self.staged:
+            _unlink(tmp)
+        self.staged = []
+
+    def commit(self) -> None:
+        """Rename every staged file into place; if one rename fails, undo the others."""
+        done: list[tuple[Path, str | None]] = []  # (target, backup of the file it replaced)
+        try:
+            for tmp, target in self.staged:
+                backup = None
+                if os.path.lexists(target):
+                    backup = f"{tmp}.old"
+                    try:
+                        os.link(target, backup, follow_symlinks=False)
+                    except OSError:
+                        backup = None
+                try:
+                    os.replace(tmp, target)
+                except OSError as exc:
+                    if backup:
+                        _unlink(backup)
+                    raise InputError(f"cannot write {_show(target)}: {exc.strerror or type(exc).__name__}") from None
+                done.append((target, backup))
+        except BaseException:
+            for target, backup in reversed(done):
+                if backup:
+                    try:
+                        os.replace(backup, target)
+                    except OSError:
+                        pass
+                else:
+                    _unlink(target)
+            self.discard()
+            raise
+        for _, backup in done:
+            if backup:
+                _unlink(backup)
+        self.staged = []
+
+
+def _unlink(path) -> None:
+    try:
+        os.unlink(path)
+    except OSError:
+        pass
+
+
+@contextlib.contextmanager
+def output_transaction(inputs=()):
+    """All-or-nothing outputs: inside the block :func:`write_output` writes each file to a
+    temporary file next to its target; when the block ends normally every one is renamed into
+    place, and when it raises every temporary file is removed, so a failed command leaves
+    nothing behind. No output may be one of ``inputs`` (the same file, also through a symbolic
+    or hard link), ``--force`` or not.
+    """
+    tx = _Transaction(inputs)
+    token = _TRANSACTION.set(tx)
+    try:
+        yield tx
+    except BaseException:
+        tx.discard()
+        raise
+    finally:
+        _TRANSACTION.reset(token)
+    tx.commit()
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        if os.path.samefile(a, b):
+            return True
+    except OSError:
+        pass
+    try:
+        return a.resolve() == b.resolve()
+    except (OSError, RuntimeError):
+        return False
+
+
+def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), option: str | None = None) -> Path:
+    """Check that ``path`` can be written as an output, or raise :class:`InputError`.
+
+    ``cannot write OPTION PATH: REASON`` where the reason is one of: the path is empty; it is
+    a directory or not a regular file; it already exists (without ``force``); it is one of
+    ``inputs`` (same file, through links too, whatever ``force``); its directory does not
+    exist, is not a directory or is not writable. Nothing is written.
+    """
+    import stat
+
+    what = f"{option} " if option else ""
+    if not str(path).strip():
+        raise InputError(f"cannot write {what}'': an empty path was given" + (f" to {option}" if option else ""))
+    p = Path(path)
+    head = f"cannot write {what}{_show(p)}"
+    tx = _TRANSACTION.get()
+    for inp in list(inputs) + (tx.inputs if tx is not None else []):
+        if _same_file(p, Path(inp)):
+            raise InputError(f"{head}: it is the input file {_show(inp)}; an input is never overwritten")
+    try:
+        st = os.stat(p)
+    except FileNotFoundError:
+        st = None
+    except OSError as exc:
+        raise InputError(f"{head}: {exc.strerror or type(exc).__name__}") from None
+    if st is not None:
+        if stat.S_ISDIR(st.st_mode):
+            raise InputError(f"{head}: it is a directory")
+        if not stat.S_ISREG(st.st_mode):
+            raise InputError(f"{head}: it is not a regular file (a device, pipe or socket)")
+        if not force:
+            raise InputError(f"{head}: it already exists; use --force to overwrite it")
+    parent = p.parent if str(p.parent) else Path(".")
+    if not parent.exists():
+        raise InputError(f"{head}: the directory {_show(parent)} does not exist")
+    if not parent.is_dir():
+        raise InputError(f"{head}: {_show(parent)} is not a directory")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise InputError(f"{head}: the directory {_show(parent)} is not writable")
+    return p
+
+
 def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = False) -> Path:
     """Write ``data`` to ``path`` atomically; refuse to replace a file unless ``force``.
 
     The text goes to a temporary file in the target directory, is flushed and synced,
-    then renamed over the target, so a reader never sees half a file.
+    then renamed over the target, so a reader never sees half a file. Every check of
+    :func:`check_output` applies. Inside :func:`output_transaction` the rename waits for the
+    end of the block (all outputs of a command appear together, or none).
     """
-    p = Path(path)
-    if p.exists() and not force:
-        raise InputError(f"{p}: already exists; use --force to overwrite it")
-    if p.exists() and p.is_dir():
-        raise InputError(f"{p}: is a directory")
+    p = check_output(path, force=force)
     parent = p.parent if str(p.parent) else Path(".")
-    if not parent.exists():
-        raise InputError(f"{p}: the directory {parent} does not exist")
     mode = "wb" if isinstance(data, bytes) else "w"
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=parent)
+    tmp = None
     try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:60]}.", suffix=".tmp", dir=parent)
         with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8", "newline": ""})) as fh:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o644)
-        os.replace(tmp, p)
+        tx = _TRANSACTION.get()
+        if tx is not None:
+            tx.staged.append((tmp, p))
+        else:
+            os.replace(tmp, p)
+    except OSError as exc:
+        if tmp is not None:
+            _unlink(tmp)
+        raise InputError(f"cannot write {_show(p)}: {exc.strerror or type(exc).__name__}") from None
     except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
+        if tmp is not None:
+            _unlink(tmp)
         raise
     return p
 
