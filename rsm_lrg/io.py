@@ -131,13 +131,16 @@ def _check_table_shape(p: Path, raw: bytes) -> None:
         raise InputError(f"{_show(p)}: the header has {ncol} columns, more than the limit of {MAX_COLUMNS}")
 
 
-def _show(p: str | os.PathLike, limit: int = 120) -> str:
+def show_path(p: str | os.PathLike, limit: int = 120) -> str:
     """A path for a message, shortened in the middle when very long."""
     text = str(p).replace("\n", "\\n").replace("\r", "\\r")
     if len(text) <= limit:
         return text
     half = (limit - 1) // 2
     return text[:half] + "\u2026" + text[-half:]
+
+
+_show = show_path
 
 
 def read_table(path: str | os.PathLike):
@@ -247,9 +250,14 @@ _TRANSACTION: contextvars.ContextVar[_Transaction | None] = contextvars.ContextV
 class _Transaction:
     """Outputs staged by :func:`write_output` inside :func:`output_transaction`."""
 
-    def __init__(self, inputs):
+    def __init__(self, inputs, labels=None):
         self.inputs = [Path(x) for x in inputs]
+        self.labels = {os.path.abspath(k): v for k, v in (labels or {}).items()}
         self.staged: list[tuple[str, Path]] = []  # (temporary file, target)
+
+    def label(self, path) -> str | None:
+        """The option that named ``path`` (``--json``), when known."""
+        return self.labels.get(os.path.abspath(path))
 
     def discard(self) -> None:
         for tmp, _ in self.staged:
@@ -300,14 +308,15 @@ def _unlink(path) -> None:
 
 
 @contextlib.contextmanager
-def output_transaction(inputs=()):
+def output_transaction(inputs=(), labels=None):
     """All-or-nothing outputs: inside the block :func:`write_output` writes each file to a
     temporary file next to its target; when the block ends normally every one is renamed into
     place, and when it raises every temporary file is removed, so a failed command leaves
     nothing behind. No output may be one of ``inputs`` (the same file, also through a symbolic
-    or hard link), ``--force`` or not.
+    or hard link), ``--force`` or not. ``labels`` maps output paths to the options that named
+    them, for error messages.
     """
-    tx = _Transaction(inputs)
+    tx = _Transaction(inputs, labels)
     token = _TRANSACTION.set(tx)
     try:
         yield tx
@@ -331,13 +340,15 @@ def _same_file(a: Path, b: Path) -> bool:
         return False
 
 
-def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), option: str | None = None) -> Path:
+def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), option: str | None = None,
+                 probe: bool = False) -> Path:
     """Check that ``path`` can be written as an output, or raise :class:`InputError`.
 
     ``cannot write OPTION PATH: REASON`` where the reason is one of: the path is empty; it is
     a directory or not a regular file; it already exists (without ``force``); it is one of
     ``inputs`` (same file, through links too, whatever ``force``); its directory does not
-    exist, is not a directory or is not writable. Nothing is written.
+    exist, is not a directory or is not writable. Nothing is left behind: with ``probe`` a
+    temporary file is created in the directory and removed, to be sure it can be written.
     """
     import stat
 
@@ -352,7 +363,7 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
             raise InputError(f"{head}: it is the input file {_show(inp)}; an input is never overwritten")
     try:
         st = os.stat(p)
-    except FileNotFoundError:
+    except (FileNotFoundError, NotADirectoryError):
         st = None
     except OSError as exc:
         raise InputError(f"{head}: {exc.strerror or type(exc).__name__}") from None
@@ -370,6 +381,14 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
         raise InputError(f"{head}: {_show(parent)} is not a directory")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise InputError(f"{head}: the directory {_show(parent)} is not writable")
+    if probe:  # the only sure test (read-only file systems, /proc, root's permissions)
+        try:
+            fd, tmp = tempfile.mkstemp(prefix=".rsm-lrg-probe.", suffix=".tmp", dir=parent)
+            os.close(fd)
+            _unlink(tmp)
+        except OSError as exc:
+            raise InputError(f"{head}: the directory {_show(parent)} is not writable "
+                             f"({exc.strerror or type(exc).__name__})") from None
     return p
 
 
@@ -381,7 +400,8 @@ def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = Fa
     :func:`check_output` applies. Inside :func:`output_transaction` the rename waits for the
     end of the block (all outputs of a command appear together, or none).
     """
-    p = check_output(path, force=force)
+    tx = _TRANSACTION.get()
+    p = check_output(path, force=force, option=tx.label(path) if tx is not None else None)
     parent = p.parent if str(p.parent) else Path(".")
     mode = "wb" if isinstance(data, bytes) else "w"
     tmp = None
@@ -392,7 +412,6 @@ def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = Fa
             fh.flush()
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o644)
-        tx = _TRANSACTION.get()
         if tx is not None:
             tx.staged.append((tmp, p))
         else:
@@ -400,7 +419,8 @@ def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = Fa
     except OSError as exc:
         if tmp is not None:
             _unlink(tmp)
-        raise InputError(f"cannot write {_show(p)}: {exc.strerror or type(exc).__name__}") from None
+        what = f"{tx.label(p)} " if tx is not None and tx.label(p) else ""
+        raise InputError(f"cannot write {what}{_show(p)}: {exc.strerror or type(exc).__name__}") from None
     except BaseException:
         if tmp is not None:
             _unlink(tmp)

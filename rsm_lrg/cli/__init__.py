@@ -23,6 +23,8 @@ import pkgutil
 import sys
 import traceback
 
+from ._common import input_paths, mark_outputs, planned_outputs
+
 __all__ = ["main", "build_parser", "UsageError"]
 
 #: Order in which commands are listed in ``--help`` (others follow alphabetically).
@@ -70,21 +72,53 @@ def build_parser() -> argparse.ArgumentParser:
         p = sub.add_parser(mod.NAME, help=mod.HELP, description=getattr(mod, "DESCRIPTION", mod.HELP))
         p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show a traceback on errors")
         mod.add_arguments(p)
-        p.set_defaults(_run=mod.run)
+        p.set_defaults(_run=mod.run, _module=mod)
+        mark_outputs(p)
     return parser
+
+
+#: An error line is cut to this many characters, as a last resort (messages quote user values
+#: shortened by rsm_lrg.io.quote_user_value already).
+MAX_ERROR_LINE = 300
+
+
+def _error_line(msg: str) -> str:
+    """``error: MSG`` as one line (newlines and runs of blanks collapsed) of at most
+    :data:`MAX_ERROR_LINE` characters."""
+    text = "error: " + " ".join(str(msg).split())
+    if len(text) > MAX_ERROR_LINE:
+        text = text[: MAX_ERROR_LINE - 1] + "\u2026"
+    return text
+
+
+def _input_name(args) -> str:
+    for dest in ("data", "design", "params_file", "calibration"):
+        v = getattr(args, dest, None)
+        if isinstance(v, str) and v:
+            return v
+    return ""
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of ``rsm-lrg`` and ``python -m rsm_lrg``; returns the exit status."""
+    from ..io import output_transaction
+
     argv = sys.argv[1:] if argv is None else list(argv)
     debug = "--debug" in argv
+    args = None
     try:
         parser = build_parser()
         args = parser.parse_args(argv)
         if not getattr(args, "command", None):
-            parser.print_help()
+            parser.print_help(sys.stderr)
+            print(_error_line("no command given; choose one of the commands above "
+                              "(rsm-lrg COMMAND --help for its options)"), file=sys.stderr)
             return 2
-        status = args._run(args)
+        # every output is checked before any work, so a bad second output cannot leave the
+        # first one written; then all outputs are renamed into place together at the end
+        outputs = planned_outputs(args, getattr(args, "_module", None))
+        with output_transaction(inputs=input_paths(args), labels={path: label for label, path in outputs}):
+            status = args._run(args)
         return int(status or 0)
     except SystemExit as exc:  # --help, --version
         return int(exc.code or 0) if isinstance(exc.code, int) else 0
@@ -98,14 +132,26 @@ def main(argv: list[str] | None = None) -> int:
         # (rsm_lrg.io.InputError is a ValueError that already names the file).
         if debug:
             traceback.print_exc()
-        msg = str(exc).strip().replace("\n", " ") or type(exc).__name__
+        msg = str(exc).strip() or type(exc).__name__
         if isinstance(exc, KeyError):
             msg = f"not found: {msg}"
-        print(f"error: {msg}", file=sys.stderr)
+        print(_error_line(msg), file=sys.stderr)
+        return 2
+    except (OverflowError, FloatingPointError, MemoryError) as exc:
+        # numbers or sizes far beyond any experiment, from the input or the options
+        if debug:
+            traceback.print_exc()
+        where = _input_name(args) if args is not None else ""
+        what = ("the input or options ask for more memory than there is" if isinstance(exc, MemoryError)
+                else "a number is too large to compute with")
+        detail = str(exc).strip()
+        print(_error_line(f"{where + ': ' if where else ''}{what}"
+                          f" ({type(exc).__name__}{': ' + detail if detail else ''})"), file=sys.stderr)
         return 2
     except Exception as exc:  # an internal fault
         if debug:
             traceback.print_exc()
-        msg = str(exc).strip().replace("\n", " ")
-        print(f"error: internal error ({type(exc).__name__}: {msg}); rerun with --debug for details", file=sys.stderr)
+        msg = str(exc).strip()
+        print(_error_line(f"internal error ({type(exc).__name__}: {msg[:150]}); rerun with --debug for details"),
+              file=sys.stderr)
         return 1

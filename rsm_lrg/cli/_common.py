@@ -3,25 +3,140 @@
 from __future__ import annotations
 
 import argparse
+import math
+import os
 from contextlib import contextmanager
 
-from ..io import InputError
+from ..io import InputError, check_output, quote_user_value, show_path
 
 
-def whole_number(minimum: int | None = None):
-    """An argparse ``type`` for a whole number, at least ``minimum`` when given (argparse
-    turns the ArgumentTypeError into a usage error naming the option)."""
+def whole_number(minimum: int | None = None, maximum: int | None = None):
+    """An argparse ``type`` for a whole number, at least ``minimum`` and at most ``maximum``
+    when given (argparse turns the ArgumentTypeError into a usage error naming the option)."""
 
     def parse(text: str) -> int:
+        q = quote_user_value(text)
         try:
             v = int(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+            raise argparse.ArgumentTypeError(f"expected a whole number, got {q}") from None
         if minimum is not None and v < minimum:
-            raise argparse.ArgumentTypeError(f"expected a whole number >= {minimum}, got {text!r}")
+            raise argparse.ArgumentTypeError(f"expected a whole number >= {minimum}, got {q}")
+        if maximum is not None and v > maximum:
+            raise argparse.ArgumentTypeError(f"expected a whole number <= {maximum}, got {q}")
         return v
 
     return parse
+
+
+def number(minimum: float | None = None, maximum: float | None = None, *, above: bool = False,
+           below: bool = False):
+    """An argparse ``type`` for a finite number (``nan`` and ``inf`` refused) in a range.
+
+    ``minimum``/``maximum`` are inclusive bounds; ``above=True`` makes the lower bound strict
+    (``x > minimum``) and ``below=True`` the upper one. The usage error names the option.
+
+    >>> number(0, 1, above=True, below=True)("0.5")
+    0.5
+    """
+    lo = "" if minimum is None else (f"> {minimum:g}" if above else f">= {minimum:g}")
+    hi = "" if maximum is None else (f"< {maximum:g}" if below else f"<= {maximum:g}")
+    want = "a number" + (f" {lo}" if lo else "") + (" and" if lo and hi else "") + (f" {hi}" if hi else "")
+
+    def parse(text: str) -> float:
+        q = quote_user_value(text)
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected {want}, got {q}") from None
+        if not math.isfinite(v):
+            raise argparse.ArgumentTypeError(f"expected a finite number, got {q}")
+        if minimum is not None and (v <= minimum if above else v < minimum):
+            raise argparse.ArgumentTypeError(f"expected {want}, got {q}")
+        if maximum is not None and (v >= maximum if below else v > maximum):
+            raise argparse.ArgumentTypeError(f"expected {want}, got {q}")
+        return v
+
+    return parse
+
+
+#: A probability or significance level strictly between 0 and 1.
+probability = number(0, 1, above=True, below=True)
+
+#: Destinations (argparse ``dest``) of the options that name an output file; ``planned_outputs``
+#: checks every one of them before a command runs.
+OUTPUT_DESTS = ("output", "json", "report")
+
+
+def output_labels(parser: argparse.ArgumentParser) -> dict[str, str]:
+    """``{dest: "-o/--output"}`` for the output options of ``parser``."""
+    return {a.dest: "/".join(a.option_strings) for a in parser._actions
+            if a.dest in OUTPUT_DESTS and a.option_strings}
+
+
+def mark_outputs(parser: argparse.ArgumentParser) -> None:
+    """Record the output options of ``parser`` and of its sub-parsers on the parsed namespace
+    (``_output_labels``), for :func:`planned_outputs`."""
+    parser.set_defaults(_output_labels=output_labels(parser))
+    for a in parser._actions:
+        if isinstance(a, argparse._SubParsersAction):
+            for sp in a.choices.values():
+                mark_outputs(sp)
+
+
+def input_paths(args: argparse.Namespace) -> list[str]:
+    """Every option or argument value (other than an output) that names an existing file: the
+    files a command may read, which it must never write."""
+    labels = getattr(args, "_output_labels", {}) or {}
+    found = []
+    for dest, value in vars(args).items():
+        if dest.startswith("_") or dest in labels or dest in OUTPUT_DESTS:
+            continue
+        for v in value if isinstance(value, (list, tuple)) else [value]:
+            if isinstance(v, (str, os.PathLike)) and str(v) and str(v) != "-" and len(str(v)) < 4096:
+                try:
+                    if os.path.lexists(v) and not os.path.isdir(v):
+                        found.append(str(v))
+                except (OSError, ValueError):
+                    pass
+    return found
+
+
+def planned_outputs(args: argparse.Namespace, module=None) -> list[tuple[str, str]]:
+    """Check every output of the command before it runs, or raise InputError naming the option.
+
+    The outputs are the values of the options in ``args._output_labels`` (``'-'`` for
+    ``--json`` is standard output), or what ``module.outputs(args)`` returns when the command
+    defines it. Each must pass :func:`rsm_lrg.io.check_output` (not empty, not a directory,
+    absent unless ``--force``, its directory writable, not an input file) and no two may name
+    the same file.
+    """
+    labels = getattr(args, "_output_labels", {}) or {}
+    hook = getattr(module, "outputs", None)
+    if hook is not None:
+        pairs = list(hook(args))
+    else:
+        pairs = [(labels[d], getattr(args, d)) for d in labels if getattr(args, d, None) is not None]
+    force = bool(getattr(args, "force", False))
+    inputs = input_paths(args)
+    checked: list[tuple[str, str]] = []
+    for label, path in pairs:
+        if str(path) == "-" and "json" in label:
+            continue
+        p = check_output(path, force=force, inputs=inputs, option=label, probe=True)
+        for other_label, other in checked:
+            if os.path.realpath(other) == os.path.realpath(p) or _samefile(other, p):
+                raise InputError(f"cannot write {label} {show_path(p)}: "
+                                 f"{other_label} names the same file")
+        checked.append((label, str(p)))
+    return checked
+
+
+def _samefile(a, b) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return False
 
 
 def add_force(p: argparse.ArgumentParser) -> None:

@@ -26,6 +26,35 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_force(parser)
 
 
+def outputs(args: argparse.Namespace) -> list[tuple[str, str]]:
+    """The files this run will write, for the checks made before it starts: DIR (made when
+    missing, so its nearest existing parent must be a writable directory), the page in it and
+    the --json file."""
+    import os
+    from pathlib import Path
+
+    from ..io import InputError
+
+    out = []
+    if not args.no_html:
+        d = Path(args.output)
+        if not str(args.output).strip():
+            raise InputError("cannot write -o/--output '': an empty path was given")
+        if d.is_dir():
+            out.append(("-o/--output", str(d / "paper-reproduction.html")))
+        elif os.path.lexists(d):
+            raise InputError(f"cannot write -o/--output {args.output}: it is not a directory")
+        else:
+            up = d.absolute().parent
+            while not up.exists():
+                up = up.parent
+            if not up.is_dir() or not os.access(up, os.W_OK | os.X_OK):
+                raise InputError(f"cannot write -o/--output {args.output}: cannot create the directory in {up}")
+    if args.json is not None:
+        out.append(("--json", args.json))
+    return out
+
+
 def run(args: argparse.Namespace) -> int:
     import sys
     from pathlib import Path
