@@ -62,7 +62,18 @@ class DesignEvaluation:
     alpha, effect_sd : float
         Test level and effect size (in σ over the coded range) of the power column.
     aliased : tuple of str
-        Terms the design cannot estimate (then nothing else is computed).
+        Terms the design cannot estimate (then nothing else is computed and the model,
+        residual and lack-of-fit df are ``None``).
+    alias_relations : tuple of str
+        For each aliased term, the combination of earlier terms it equals (``"A^2 = Intercept"``).
+    rank : int
+        Rank of the design matrix (the number of parameters the design can estimate).
+    n_distinct : int
+        Distinct factor settings (with blocks).
+    spv_max_at : dict
+        Coded point where the SPV over the region is largest (exact boundary search).
+    g_efficiency : float
+        ``p / max SPV`` over the region (Myers, Montgomery & Anderson-Cook, Sec. 8.2.1) [-].
     """
 
     model: str
@@ -80,6 +91,16 @@ class DesignEvaluation:
     effect_sd: float = 2.0
     aliased: tuple = ()
     letters: tuple = ()
+    alias_relations: tuple = ()
+    rank: int = 0
+    n_distinct: int = 0
+    spv_max_at: dict = field(default_factory=dict)
+    g_efficiency: float = math.nan
+
+    @property
+    def estimable(self) -> bool:
+        """Whether the design can estimate every term of the model."""
+        return not self.aliased
 
     def to_dict(self) -> dict:
         f = lambda v: float(v) if v is not None and math.isfinite(float(v)) else None  # noqa: E731
@@ -91,16 +112,31 @@ class DesignEvaluation:
                 "fds": [{"fraction": f(r.fraction), "variance": f(r.variance), "spv": f(r.spv)}
                         for r in self.fds.itertuples(index=False)] if self.fds is not None else [],
                 "region": self.region, "power_alpha": self.alpha, "power_effect_sd": self.effect_sd,
-                "aliased": list(self.aliased)}
+                "aliased": list(self.aliased), "alias_relations": list(self.alias_relations),
+                "estimable": self.estimable, "rank": self.rank, "n_distinct": self.n_distinct,
+                "spv_max_at": dict(self.spv_max_at), "g_efficiency": f(self.g_efficiency)}
+
+    def not_estimable_message(self) -> str:
+        """One sentence naming the aliased terms (empty when the model is estimable)."""
+        if self.estimable:
+            return ""
+        shown = list(self.aliased[:12])
+        more = f" and {len(self.aliased) - 12} more" if len(self.aliased) > 12 else ""
+        return (f"the {self.model} model is not estimable from this design (rank {self.rank} < {self.p} "
+                f"parameters): aliased {', '.join(shown)}{more}; use a smaller --model or add runs")
 
     def summary(self) -> str:
         from .text import _table, format_g
 
         out = [f"Design evaluation for a {self.model} model: {self.n} runs, {self.p} parameters"]
-        out.append("Degrees of freedom: " + ", ".join(f"{k.replace('_', ' ')} {v}" for k, v in self.df.items()))
         if self.aliased:
-            out.append("Aliased (not estimable): " + ", ".join(self.aliased))
+            out.append(f"Not estimable: the design matrix has rank {self.rank} < {self.p} parameters "
+                       f"({self.n} runs, {self.n_distinct} distinct settings).")
+            out.append("Aliased terms (each equals a combination of earlier terms):")
+            out += [f"  {r}" for r in self.alias_relations]
+            out.append("Choose a smaller model or add runs.")
             return "\n".join(out) + "\n"
+        out.append("Degrees of freedom: " + ", ".join(f"{k.replace('_', ' ')} {v}" for k, v in self.df.items()))
         rows = [[t, format_g(r.std_error), format_g(r.vif, 4), "" if not math.isfinite(r.power) else f"{100 * r.power:.1f} %"]
                 for t, r in self.terms.iterrows()]
         out += ["", _table(["Term", "Std. error [σ]", "VIF", f"Power ({self.effect_sd:g}σ, α {self.alpha:g})"], rows)]
@@ -108,6 +144,9 @@ class DesignEvaluation:
                 f"Scaled prediction variance n·x'(X'X)⁻¹x: centre {format_g(self.spv_center)}, "
                 f"max at a design point {format_g(self.spv_max_design)}; over the {self.region}: "
                 f"min {format_g(self.spv_region['min'])}, mean {format_g(self.spv_region['mean'])}, max {format_g(self.spv_region['max'])}",
+                "  (maximum by exact search of every face, edge and vertex; at coded "
+                + ", ".join(f"{L} {v:+.4g}" for L, v in self.spv_max_at.items())
+                + f"; G-efficiency p/max SPV = {100 * self.g_efficiency:.1f} %)",
                 "", "Fraction of design space (unscaled variance x'(X'X)⁻¹x)"]
         rows = [[f"{r.fraction:.1f}", format_g(r.variance), format_g(r.spv)] for r in self.fds.itertuples(index=False)]
         out.append(_table(["Fraction", "Variance [σ²]", "SPV"], rows))
@@ -127,6 +166,177 @@ def _region_sample(k: int, region: str, radius: float, m: int, seed: int) -> np.
     z /= np.linalg.norm(z, axis=1, keepdims=True)
     rr = radius * u[:, k] ** (1.0 / k)
     return z * rr[:, None]
+
+
+def _rows_and_jacobian(P: np.ndarray, E: np.ndarray):
+    """Model rows ``F`` (m x p) and their Jacobians ``J`` (m x p x k) at the points ``P``
+    (m x k) for the monomials with exponents ``E`` (p x k)."""
+    Pb = P[:, None, :]
+    F = np.prod(Pb ** E[None, :, :], axis=2)
+    m, k = P.shape
+    J = np.zeros((m, E.shape[0], k))
+    for i in range(k):
+        Ei = E.copy()
+        Ei[:, i] = np.maximum(Ei[:, i] - 1, 0)
+        J[:, :, i] = E[:, i] * np.prod(Pb ** Ei[None, :, :], axis=2)
+    return F, J
+
+
+def _face_starts(k: int):
+    """Starts and fixed masks for every face of the cube [-1, 1]^k (all 3^k faces: vertices,
+    edges, ..., the cube itself): the face centre, and for k <= 5 also ±0.5 along each free
+    axis and the two free-diagonal points ±0.5. Returns ``(starts, fixed)``."""
+    import itertools
+
+    starts, fixed = [], []
+    for code in itertools.product((-1, 0, 1), repeat=k):
+        c = np.array(code, dtype=float)
+        fx = c != 0
+        free = np.flatnonzero(~fx)
+        starts.append(c)
+        fixed.append(fx)
+        if k <= 5 and free.size:
+            for j in free:
+                for s in (-0.5, 0.5):
+                    x = c.copy()
+                    x[j] = s
+                    starts.append(x)
+                    fixed.append(fx)
+            for s in (-0.5, 0.5):
+                x = c.copy()
+                x[free] = s
+                starts.append(x)
+                fixed.append(fx)
+    return np.array(starts), np.array(fixed)
+
+
+def _max_variance_cube(E: np.ndarray, Ct: np.ndarray, k: int, seed: int = 0):
+    """Exact maximum of the unscaled prediction variance ``v(x) = f(x)'Ct f(x)`` over the
+    coded cube [-1, 1]^k, with its location.
+
+    ``v`` is a polynomial, so its maximum over the cube lies at a vertex or at a stationary
+    point inside some face. Every face of every dimension (3^k of them for k <= 8: fixed
+    coordinates at ±1, the rest free in [-1, 1]) is searched by L-BFGS-B from its centre (and,
+    for k <= 5, from a few more starts); the vertices are evaluated exactly (they are the
+    0-dimensional faces). All faces are optimised in one bounded L-BFGS-B call on the stacked
+    (separable) problem, then the best few points are polished one by one over the whole cube.
+    For k > 8 the faces are replaced by the vertices' neighbourhood of 4096 Sobol starts.
+    """
+    from scipy import optimize as so
+    from scipy.stats import qmc
+
+    def value_grad(P):
+        F, J = _rows_and_jacobian(P, E)
+        CF = F @ Ct
+        v = np.einsum("ij,ij->i", F, CF)
+        g = 2.0 * np.einsum("ijk,ij->ik", J, CF)
+        return v, g
+
+    if k <= 8:
+        S, fixed = _face_starts(k)
+    else:
+        S = 2.0 * qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(12) - 1.0
+        fixed = np.zeros_like(S, dtype=bool)
+    lo = np.where(fixed, S, -1.0)
+    hi = np.where(fixed, S, 1.0)
+    m = S.shape[0]
+    v0, _ = value_grad(S)
+    scale = float(np.max(v0)) or 1.0
+
+    def joint(z):
+        P = z.reshape(m, k)
+        v, g = value_grad(P)
+        return -float(v.sum()) / scale, -(g / scale).ravel()
+
+    r = so.minimize(joint, S.ravel(), jac=True, method="L-BFGS-B",
+                    bounds=list(zip(lo.ravel(), hi.ravel())),
+                    options={"maxiter": 2000, "ftol": 1e-15, "gtol": 1e-12, "maxcor": 20})
+    P = np.clip(r.x.reshape(m, k), lo, hi)
+    vP, _ = value_grad(P)
+    cand = np.vstack([P, S])
+    vc = np.concatenate([vP, v0])
+    order = np.argsort(-vc, kind="stable")[:8]
+
+    def single(x):
+        v, g = value_grad(x[None, :])
+        return -float(v[0]) / scale, -g[0] / scale
+
+    best_x, best_v = cand[order[0]].copy(), float(vc[order[0]])
+    for i in order:
+        rr = so.minimize(single, cand[i], jac=True, method="L-BFGS-B", bounds=[(-1.0, 1.0)] * k,
+                         options={"maxiter": 500, "ftol": 1e-16, "gtol": 1e-13})
+        x = np.clip(rr.x, -1.0, 1.0)
+        x = np.where(np.abs(np.abs(x) - 1.0) <= 1e-9, np.sign(x), x)
+        v = float(value_grad(x[None, :])[0][0])
+        if v > best_v:
+            best_x, best_v = x, v
+    return best_v, best_x
+
+
+def _max_variance_ball(E: np.ndarray, Ct: np.ndarray, k: int, radius: float, sample: np.ndarray,
+                       vsample: np.ndarray):
+    """Maximum of ``f(x)'Ct f(x)`` over the ball ``|x| <= radius``: SLSQP from the 32 largest
+    sample points, the axis points ±r e_i, the centre and (k <= 8) the scaled cube vertices."""
+    import itertools
+
+    from scipy import optimize as so
+
+    def vg(x):
+        F, J = _rows_and_jacobian(np.atleast_2d(x), E)
+        CF = F @ Ct
+        return float(F[0] @ CF[0]), 2.0 * J[0].T @ CF[0]
+
+    starts = [sample[i] for i in np.argsort(-vsample)[:32]] + [np.zeros(k)]
+    for i in range(k):
+        for s in (-1.0, 1.0):
+            e = np.zeros(k)
+            e[i] = s * radius
+            starts.append(e)
+    if k <= 8:
+        starts += [radius * np.array(v) / math.sqrt(k) for v in itertools.product((-1.0, 1.0), repeat=k)]
+    scale = max(float(np.max(vsample)), 1e-300)
+    cons = [{"type": "ineq", "fun": lambda x: radius ** 2 - x @ x, "jac": lambda x: -2.0 * x}]
+    best_v, best_x = -math.inf, None
+    for x0 in starts:
+        r = so.minimize(lambda x: tuple(-t / scale for t in vg(x)), x0, jac=True, method="SLSQP",
+                        constraints=cons, options={"maxiter": 300, "ftol": 1e-15})
+        x = r.x
+        nx = float(np.linalg.norm(x))
+        if nx > radius:
+            x = x * (radius / nx)
+        v = vg(x)[0]
+        if v > best_v:
+            best_v, best_x = v, x
+    return best_v, best_x
+
+
+def _alias_relations(X: np.ndarray, names) -> list[str]:
+    """For every column of ``X`` that is a linear combination of the estimable columns
+    before it, the relation ``"A^2 = Intercept"`` (coefficients shown when not 1)."""
+    kept: list[int] = []
+    out: list[str] = []
+    for j in range(X.shape[1]):
+        col = X[:, j]
+        nrm = float(np.linalg.norm(col))
+        if kept:
+            B = X[:, kept]
+            coef, *_ = np.linalg.lstsq(B, col, rcond=None)
+            res = float(np.linalg.norm(col - B @ coef))
+        else:
+            coef, res = np.zeros(0), nrm
+        if nrm == 0 or res <= 1e-9 * max(nrm, 1.0):
+            rhs = ""
+            for c, i in zip(coef, kept):
+                if abs(c) <= 1e-9:
+                    continue
+                mag = f"{abs(c):.6g}"
+                term = names[i] if mag == "1" else f"{mag}·{names[i]}"
+                rhs += (("-" if c < 0 else "") + term) if not rhs else ((" - " if c < 0 else " + ") + term)
+            rhs = rhs or "0"
+            out.append(f"{names[j]} = {rhs}")
+        else:
+            kept.append(j)
+    return out
 
 
 def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", alpha: float = 0.05,
@@ -192,17 +402,20 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     names = [t.name for t in terms]
     pe = pure_error(keys, np.zeros(n))
     df_res = n - p
-    df = {"model": len(terms) - 1, "residual": df_res, "lack_of_fit": max(df_res - pe.df, 0) if df_res >= 0 else 0,
-          "pure_error": pe.df, "blocks": nb - 1}
-    rank = np.linalg.matrix_rank(X)
+    rank = int(np.linalg.matrix_rank(X))
+    n_distinct = int(np.unique(keys, axis=0).shape[0])
     if n < p or rank < p:
-        from .fit import _aliased_terms
-
-        bad = _aliased_terms(X, ["Intercept"] + [f"Block{j}" for j in range(nb - 1)] + names[1:]) if n >= p else names[n:]
+        # not estimable: no negative or meaningless degrees of freedom; name every aliased term
+        relations = _alias_relations(X, ["Intercept"] + [f"Block{j + 1}" for j in range(nb - 1)] + names[1:])
+        bad = tuple(r.split(" = ", 1)[0] for r in relations)
+        df = {"model": None, "residual": None, "lack_of_fit": None, "pure_error": pe.df, "blocks": nb - 1}
         empty = pd.DataFrame(columns=["std_error", "vif", "power"])
         return DesignEvaluation(model=model, n=n, p=p, df=df, terms=empty, leverage=np.full(n, np.nan),
-                                aliased=tuple(bad) or ("(design has fewer runs than terms)",),
-                                letters=tuple(letters), region=region, alpha=alpha, effect_sd=effect_sd)
+                                aliased=bad or ("(unidentified)",), alias_relations=tuple(relations), rank=rank,
+                                n_distinct=n_distinct, letters=tuple(letters), region=region, alpha=alpha,
+                                effect_sd=effect_sd)
+    df = {"model": len(terms) - 1, "residual": df_res, "lack_of_fit": df_res - pe.df,
+          "pure_error": pe.df, "blocks": nb - 1}
     C = np.linalg.inv(X.T @ X)
     tidx = np.r_[0, np.arange(nb, p)] if nb > 1 else np.arange(p)
     se = np.sqrt(np.diag(C)[tidx])
@@ -238,13 +451,24 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     radius = float(np.max(np.linalg.norm(coded, axis=1)))
     m = int(math.ceil(math.log2(max(n_region, 16))))
     pts = _region_sample(k, region, radius if radius > 0 else 1.0, m, seed)
-    vr = np.sort(var(pts))
+    vs = var(pts)
+    E = np.array([t.powers for t in terms], dtype=int)
+    if region == "cube":
+        vmax, xmax = _max_variance_cube(E, Ct, k, seed)
+    else:
+        vmax, xmax = _max_variance_ball(E, Ct, k, radius if radius > 0 else 1.0, pts, vs)
+    if float(vs.max()) > vmax:  # never below the sample
+        vmax, xmax = float(vs.max()), pts[int(np.argmax(vs))]
+    vr = np.sort(vs)
     fr = np.array(FDS_FRACTIONS)
     q = np.quantile(vr, fr)
+    q[-1] = vmax  # the curve ends at the exact maximum over the region (boundary search)
     fds = pd.DataFrame({"fraction": fr, "variance": q, "spv": n * q})
     return DesignEvaluation(
         model=model, n=n, p=p, df=df, terms=term_frame, leverage=hat, spv_center=n * v0,
         spv_max_design=float(n * vd.max()),
-        spv_region={"min": float(n * vr[0]), "mean": float(n * vr.mean()), "max": float(n * vr[-1])},
+        spv_region={"min": float(n * vr[0]), "mean": float(n * vr.mean()), "max": float(n * vmax)},
         fds=fds, region=region, alpha=float(alpha), effect_sd=float(effect_sd), letters=tuple(letters),
+        spv_max_at={L: float(v) for L, v in zip(letters, xmax)}, g_efficiency=float(len(terms) / (n * vmax)),
+        rank=rank, n_distinct=n_distinct,
     )
