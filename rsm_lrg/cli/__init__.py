@@ -23,7 +23,7 @@ import pkgutil
 import sys
 import traceback
 
-from ._common import input_paths, mark_outputs, planned_outputs
+from ._common import check_option_specs, input_paths, mark_outputs, planned_outputs
 
 __all__ = ["main", "build_parser", "UsageError"]
 
@@ -116,6 +116,7 @@ def main(argv: list[str] | None = None) -> int:
             return 2
         # every output is checked before any work, so a bad second output cannot leave the
         # first one written; then all outputs are renamed into place together at the end
+        check_option_specs(args)
         outputs = planned_outputs(args, getattr(args, "_module", None))
         with output_transaction(inputs=input_paths(args), labels={path: label for label, path in outputs}):
             status = args._run(args)

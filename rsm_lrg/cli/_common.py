@@ -186,4 +186,24 @@ def about_file(path):
     except InputError:
         raise
     except ValueError as exc:
+        if str(exc).startswith("-"):  # it names the option at fault, not the file
+            raise InputError(str(exc)) from None
         raise InputError(f"{path}: {exc}") from None
+
+
+def check_option_specs(args: argparse.Namespace) -> None:
+    """Check the ``--factor NAME=LOW:HIGH`` values before any data is read, so that an error
+    names the option rather than the data file (categoric ``NAME=cat...`` specs are left to
+    the library)."""
+    from ..factors import parse_factor_spec
+
+    for spec in getattr(args, "factor", None) or []:
+        if not isinstance(spec, str):
+            continue
+        rest = spec.split("=", 1)[1].strip().lower() if "=" in spec else ""
+        if rest.startswith("cat"):
+            continue
+        try:
+            parse_factor_spec(spec)
+        except ValueError as exc:
+            raise InputError(f"--factor {quote_user_value(spec)}: {exc}") from None

@@ -26,7 +26,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="a parameter to calibrate (repeatable, at most 3; default: heat_partition, "
                         "viscous_friction_n_s_m, hinge_damping_ratio; also hinge_length_m, hinge_width_m, "
                         "frame_mass_fraction)")
-    p.add_argument("--duration-min", type=float, default=50.0, metavar="M",
+    from ._common import number
+
+    p.add_argument("--duration-min", type=number(1), default=50.0, metavar="M",
                    help="test duration of the measured runs [min] (default 50)")
     p.add_argument("--no-loo", action="store_true", help="skip leave-one-out cross-validation")
     p.add_argument("-o", "--output", default=None, metavar="PATH.toml", help="write the calibration TOML here")

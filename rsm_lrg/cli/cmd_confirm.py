@@ -19,13 +19,17 @@ DESCRIPTION = (
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
     parser.add_argument("--response", required=True, metavar="COL", help="the response column")
-    parser.add_argument("--at", action="append", required=True, metavar="NAME=VALUE",
-                        help="a factor setting in actual units (repeat for every factor)")
-    parser.add_argument("--observed", type=float, nargs="+", required=True, metavar="V",
+    from ._common import number, probability
+
+    parser.add_argument("--at", action="extend", nargs="+", required=True, metavar="NAME=VALUE",
+                        help="a factor setting in actual units, one for every factor: --at A=1 --at B=2 "
+                             "(several after one --at work too: --at A=1 B=2)")
+    parser.add_argument("--observed", type=number(), nargs="+", required=True, metavar="V",
                         help="the confirmation run result(s)")
-    parser.add_argument("--reference", type=float, default=None, metavar="V",
+    parser.add_argument("--reference", type=number(), default=None, metavar="V",
                         help="also give the relative error against this value")
-    parser.add_argument("--confidence", type=float, default=0.95, metavar="C", help="interval level (default 0.95)")
+    parser.add_argument("--confidence", type=probability, default=0.95, metavar="C",
+                        help="interval level (default 0.95)")
     add_factor_options(parser)
     add_block_option(parser, "prediction for the average block")
     add_model_option(parser)
@@ -33,15 +37,41 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_force(parser)
 
 
+def _check_at(settings) -> None:
+    """Each --at value is NAME=VALUE with a finite VALUE (before any data is read)."""
+    import math
+
+    from ..io import InputError, quote_user_value
+
+    for s in settings:
+        name, sep, value = str(s).partition("=")
+        try:
+            ok = bool(sep and name.strip()) and math.isfinite(float(value))
+        except ValueError:
+            ok = False
+        if not ok:
+            raise InputError(f"--at {quote_user_value(s)}: expected NAME=VALUE with a finite number VALUE")
+
+
 def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, read_table
     from ..model import fit
     from ..optimize.confirm import confirm
 
+    _check_at(args.at)
     data = read_table(args.data)
     with about_file(args.data):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
-        c = confirm(result, args.at, args.observed, confidence=args.confidence, reference=args.reference)
+    try:  # the settings are an option: an error names --at, not the data file
+        from ..optimize.confirm import parse_settings
+
+        settings = parse_settings(result.space, args.at)
+    except ValueError as exc:
+        from ..io import InputError
+
+        raise InputError(f"--at: {exc}") from None
+    with about_file(args.data):
+        c = confirm(result, settings, args.observed, confidence=args.confidence, reference=args.reference)
     if args.json and args.json != "-":
         dump_json(c.to_dict(), args.json, force=args.force)
     if args.json == "-":

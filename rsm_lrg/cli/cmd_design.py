@@ -19,7 +19,7 @@ def _common(p: argparse.ArgumentParser, center_default, center_help: str) -> Non
     p.add_argument("--factor", action="append", required=True, metavar="NAME=LOW:HIGH",
                    help="a factor and the levels coded -1 and +1 (repeat for each factor, in order)")
     p.add_argument("--center", default=center_default, metavar="N", help=center_help)
-    p.add_argument("--seed", type=whole_number(), default=None, metavar="N",
+    p.add_argument("--seed", type=whole_number(0), default=None, metavar="N",
                    help="seed of the randomised run order (default: drawn and printed)")
     p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
     p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
@@ -31,7 +31,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     bb = sub.add_parser("box-behnken", help="Box-Behnken design, 3 to 7 factors (Box & Behnken 1960)",
                         description="Box-Behnken design for 3 to 7 factors as published by Box & Behnken (1960).")
     _common(bb, "3", "centre runs (per block when blocked; default 3)")
-    bb.add_argument("--blocks", type=whole_number(), default=None, metavar="N",
+    bb.add_argument("--blocks", type=whole_number(1), default=None, metavar="N",
                     help="orthogonal blocks: 3 for 4 factors, 2 for 5 factors (default 1)")
     cc = sub.add_parser("central-composite", help="central composite design (2^k cube + star + centre)",
                         description="Central composite design with a full 2^k cube.")
@@ -40,12 +40,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                     help="rotatable (default), orthogonal, practical, face, or a number")
     cc.add_argument("--face", default="circumscribed", choices=["circumscribed", "inscribed", "faced"],
                     help="where the star points sit (default circumscribed)")
-    cc.add_argument("--blocks", type=whole_number(), default=None, metavar="N",
+    cc.add_argument("--blocks", type=whole_number(1), default=None, metavar="N",
                     help="2: cube and star in separate blocks (default 1)")
     ff = sub.add_parser("full-factorial", help="full factorial, equally spaced levels (default 3^k)",
                         description="Full factorial design with equally spaced levels.")
     _common(ff, "0", "extra centre runs (default 0)")
-    ff.add_argument("--levels", type=whole_number(), default=3, metavar="N", help="levels per factor (default 3)")
+    ff.add_argument("--levels", type=whole_number(2), default=3, metavar="N", help="levels per factor (default 3)")
 
 
 def _center(text: str, pair: bool):
@@ -64,10 +64,11 @@ def _center(text: str, pair: bool):
 
 
 def run(args) -> int:
+    import math
     from pathlib import Path
 
     from ..design import as_factor_space, box_behnken, central_composite, full_factorial
-    from ..io import InputError
+    from ..io import InputError, quote_user_value
 
     out = Path(args.output)
     if out.exists() and not args.force:
@@ -84,6 +85,10 @@ def run(args) -> int:
                 alpha = float(alpha)
             except ValueError:
                 pass
+            else:
+                if not (math.isfinite(alpha) and alpha > 0):
+                    raise InputError(f"--alpha: expected rotatable, orthogonal, practical, face or a finite "
+                                     f"number > 0, got {quote_user_value(args.alpha)}")
         design = central_composite(space, alpha=alpha, face=args.face, center=_center(args.center, True),
                                    blocks=args.blocks, seed=args.seed, randomize=randomize)
     else:

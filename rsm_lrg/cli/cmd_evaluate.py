@@ -23,8 +23,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_model_option(parser, what="model to evaluate")
     parser.add_argument("--region", default="cube", choices=["cube", "sphere"],
                         help="region for the prediction variance (default: the coded cube)")
-    parser.add_argument("--alpha", type=float, default=0.05, metavar="A", help="level of the power test (default 0.05)")
-    parser.add_argument("--effect", type=float, default=2.0, metavar="SD",
+    from ._common import number, probability
+
+    parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
+                        help="level of the power test (default 0.05)")
+    parser.add_argument("--effect", type=number(0, above=True), default=2.0, metavar="SD",
                         help="effect to detect, in standard deviations (default 2)")
     parser.add_argument("--exclude", action="append", default=[], metavar="COL",
                         help="a column that is not a factor (data CSVs only; repeatable)")

@@ -20,13 +20,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_model_inputs(parser)
     parser.add_argument("--reduce", action="store_true",
                         help="backward elimination keeping hierarchy; the output carries only the kept terms")
-    parser.add_argument("--alpha-out", type=float, default=0.1, metavar="A",
+    from ._common import number
+
+    parser.add_argument("--alpha-out", type=number(0, 1, above=True, below=True), default=0.1, metavar="A",
                         help="with --reduce and --criterion p: remove terms while p > A (default 0.1)")
     parser.add_argument("--criterion", default="p", choices=["p", "aicc"],
                         help="with --reduce: remove by p-value (default) or while AICc falls")
     parser.add_argument("--transform", default=None, metavar="log|log10|sqrt|inverse|power=L",
                         help="fit a transformed response (predictions are back-transformed)")
-    parser.add_argument("--transform-constant", type=float, default=0.0, metavar="K",
+    parser.add_argument("--transform-constant", type=number(), default=0.0, metavar="K",
                         help="add K to the response before transforming (default 0)")
     parser.add_argument("--diagnostics", action="store_true",
                         help="also print per-run diagnostics and the Box-Cox recommendation (JSON key 'diagnostics')")
@@ -52,6 +54,14 @@ def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, read_table
     from ..model import fit
 
+    if args.transform is not None:  # a bad --transform is named before any data is read
+        from ..io import InputError, quote_user_value
+        from ..model.transform import parse_transform
+
+        try:
+            parse_transform(args.transform, args.transform_constant)
+        except ValueError as exc:
+            raise InputError(f"--transform {quote_user_value(args.transform)}: {exc}") from None
     data = read_table(args.data)
     extra = {}
     with about_file(args.data):

@@ -22,7 +22,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--response", required=True, metavar="COL", help="the response column")
     add_factor_options(parser)
     add_block_option(parser, "entered first")
-    parser.add_argument("--alpha", type=float, default=0.05, metavar="A",
+    from ._common import probability
+
+    parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
                         help="significance level for the suggestion (default 0.05)")
     add_json(parser)
     add_force(parser)

@@ -38,6 +38,12 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.output)
     if out.exists() and not args.force:  # before the fit and the figures
         raise InputError(f"{out}: already exists; use --force to overwrite it")
+    from ..optimize import parse_goal
+
+    try:  # a bad --goal is named before any data is read
+        parse_goal(args.goal)
+    except ValueError as exc:
+        raise InputError(f"--goal: {exc}") from None
     data = read_table(args.data)
     with about_file(args.data):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)

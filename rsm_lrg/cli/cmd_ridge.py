@@ -30,9 +30,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--response", required=True, metavar="COL", help="the response column")
     parser.add_argument("--goal", default="maximize", choices=["maximize", "minimize"],
                         help="ascent (maximize, default) or descent (minimize)")
-    parser.add_argument("--radius", type=float, default=None, metavar="R",
+    from ._common import number
+
+    parser.add_argument("--radius", type=number(0), default=None, metavar="R",
                         help="largest distance from the centre in coded units (default: the farthest design point)")
-    parser.add_argument("--step", type=float, default=0.1, metavar="S", help="spacing of the path points (default 0.1)")
+    parser.add_argument("--step", type=number(0, above=True), default=0.1, metavar="S", help="spacing of the path points (default 0.1)")
     add_factor_options(parser)
     add_block_option(parser, "path for the average block")
     add_model_option(parser, MODEL_ORDERS[:3])

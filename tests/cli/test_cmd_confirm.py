@@ -23,4 +23,4 @@ def test_missing_setting_is_an_error(capsys):
     assert main(["confirm", "data/table4.csv", "--response", "tcr_c_per_min", "--at", "thickness_m=0.0001",
                  "--observed", "0.024"]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("error: data/table4.csv:") and "stroke_m" in err
+    assert err.startswith("error: --at:") and "stroke_m" in err  # an option error names the option
