@@ -122,3 +122,73 @@ def test_a_row_alone_agrees_with_the_row_in_its_batch():
     whole = simulate(d, noise_sd=0).tcr_c_per_min.to_numpy()
     alone = np.array([simulate(d.iloc[[i]], noise_sd=0).tcr_c_per_min.iloc[0] for i in range(len(d))])
     np.testing.assert_allclose(alone, whole, rtol=1e-12)
+
+
+# ----------------------------------------------------------------------------------------
+# bit-identity wherever a row runs (issue 10 item 1). Root cause of the old 1.7e-15 Dask
+# difference: LAPACK's eigh/solve in the thermal network give last-bit differences with a
+# different number of BLAS threads (a Dask worker starts with one); the network now uses
+# rsm_lrg.physics.thermal.fixed_order (no BLAS/LAPACK).
+# ----------------------------------------------------------------------------------------
+def mixed(n=16):
+    """Rows with different durations (each batch then asks the thermal model for a
+    different number of minutes), thin and thick hinges and both stages."""
+    d = grid(n, seed=5)
+    d["thickness_m"] = np.where(np.arange(n) % 3 == 0, 1e-4, d["thickness_m"])
+    d["test_duration_min"] = np.where(np.arange(n) % 2, 50.0, 37.5 + np.arange(n))
+    return d
+
+
+def test_rows_do_not_depend_on_their_batch_or_neighbours():
+    d = mixed()
+    whole = simulate(d, noise_sd=0)
+    for batch in (1, 3, 7):
+        pd.testing.assert_frame_equal(simulate(d, noise_sd=0, batch_rows=batch), whole, check_exact=True)
+    # the same rows in another order and with other neighbours: each row is the same
+    perm = np.random.default_rng(0).permutation(len(d))
+    shuffled = simulate(d.iloc[perm].reset_index(drop=True), noise_sd=0, batch_rows=5)
+    for c in OUT + ["heat_w", "cycle_time_s"]:
+        np.testing.assert_array_equal(shuffled[c].to_numpy(), whole[c].to_numpy()[perm], err_msg=c)
+    alone = pd.concat([simulate(d.iloc[[i]], noise_sd=0) for i in (0, 5, 11)])
+    np.testing.assert_array_equal(alone[OUT].to_numpy(), whole.iloc[[0, 5, 11]][OUT].to_numpy())
+
+
+_DIGEST = """
+import hashlib, sys
+import numpy as np
+sys.path.insert(0, {tests!r})
+from test_surrogate_execute import mixed
+from rsm_lrg.surrogate import simulate
+from rsm_lrg.physics.thermal.network import ThermalNetwork
+from rsm_lrg.physics.thermal.geometry import GuideGeometry
+out = simulate(mixed(), seed=3, noise_sd=0.03, batch_rows=int(sys.argv[1]))
+net = ThermalNetwork(GuideGeometry(), 8.82, 22.45)
+h = hashlib.sha256(out.select_dtypes("number").to_numpy().tobytes())
+h.update(np.asarray(net.response(np.arange(400) * 60.0)).tobytes())
+h.update(np.float64(net.steady_rise_per_w).tobytes())
+print(h.hexdigest())
+"""
+
+
+@pytest.mark.slow
+def test_rows_do_not_depend_on_the_number_of_blas_threads():
+    # threadpoolctl is not a dependency: set the thread counts of every BLAS NumPy may use
+    # before it starts, in fresh interpreters (1 thread, as on a Dask worker, against 4)
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    code = _DIGEST.format(tests=str(Path(__file__).parent))
+    digests = set()
+    for threads, batch in (("1", "16"), ("4", "16"), ("4", "5"), (None, "3")):
+        env = dict(os.environ)
+        for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+            env.pop(k, None)
+            if threads is not None:
+                env[k] = threads
+        r = subprocess.run([sys.executable, "-c", code, batch], env=env, capture_output=True, text=True,
+                           timeout=300)
+        assert r.returncode == 0, r.stderr[-2000:]
+        digests.add(r.stdout.strip())
+    assert len(digests) == 1, digests

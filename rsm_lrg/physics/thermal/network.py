@@ -20,6 +20,10 @@ eigen-decomposition of the symmetric matrix ``C^(-1/2) K C^(-1/2)``:
 
     theta(t) = C^(-1/2) V diag((1 - exp(-mu t)) / mu) V^T C^(-1/2) b Q.
 
+The decomposition, the steady solve and the sums over the modes use
+:mod:`.fixed_order` (no BLAS/LAPACK), so a response is bit-identical whatever the number of
+linear-algebra threads, the process it runs in, or the other times asked for with it.
+
 :func:`network_response` caches it per (geometry, h); :func:`network_rise` scales it for
 arrays of Q (and groups rows by their h), which is what the virtual-run surrogate needs.
 """
@@ -31,6 +35,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from .fixed_order import solve_spd, symmetric_eigen
 from .geometry import GuideGeometry
 
 __all__ = ["ThermalNetwork", "network_response", "network_rise", "fin_conductance"]
@@ -181,15 +186,19 @@ class ThermalNetwork:
         self.names = ["carriage"] + [f"balls[{k}]" for k in range(nb)] + [f"rail[{k}]" for k in range(nr)]
         self.rail_x_m = xc
         self.carriage_convection_w_k = 2 * G_car_amb
-        # modal decomposition (exact in time)
+        # modal decomposition (exact in time), in a fixed order of floating-point operations
+        # (no BLAS/LAPACK: their threading changes the last bits; see .fixed_order)
         s = 1.0 / np.sqrt(C)
-        mu, V = np.linalg.eigh(s[:, None] * K * s[None, :])
+        eig = symmetric_eigen(s[:, None] * K * s[None, :])
+        mu = eig.values
         if mu.min() <= 0:
             raise ValueError("the network has no path to ambient (all h = 0): no steady state.")
         self._mu = mu
-        self._modes = s[:, None] * V  # C^-1/2 V
-        self._load = V.T @ (s * b)  # V^T C^-1/2 b
-        self._steady = np.linalg.solve(K, b)
+        self._eig = eig
+        self._s = s
+        self._load = eig.project(s * b)[0]  # V^T C^-1/2 b
+        self._coef = {}
+        self._steady = solve_spd(K, b)
 
     # ------------------------------------------------------------------------------
     @property
@@ -207,13 +216,35 @@ class ThermalNetwork:
         """Time constants 1/mu of the network's modes [s], slowest first."""
         return 1.0 / self._mu
 
+    def modal_coefficients(self, node: int = 0) -> np.ndarray:
+        """Coefficients a_k [K/W] of ``node``'s unit response ``sum_k a_k (1 - exp(-mu_k t))``,
+        in the order of :attr:`time_constants_s`."""
+        node = int(node)
+        if not 0 <= node < self._mu.size:
+            raise ValueError(f"node must be in [0, {self._mu.size}), got {node}.")
+        if node not in self._coef:
+            unit = np.zeros(self._mu.size)
+            unit[node] = 1.0
+            coef = self._s[node] * self._eig.project(unit)[0] * self._load / self._mu
+            coef.setflags(write=False)
+            self._coef[node] = coef
+        return self._coef[node]
+
     def response(self, times_s, node: int = 0) -> np.ndarray:
-        """Rise per watt [K/W] of ``node`` (0 = carriage) at ``times_s`` after a heat step."""
+        """Rise per watt [K/W] of ``node`` (0 = carriage) at ``times_s`` after a heat step.
+
+        Each time's value is the sum over the modes in a fixed order of element-wise
+        operations: it does not depend on the other times asked for, on the number of
+        BLAS threads or on the process."""
         t = np.asarray(times_s, float)
         if np.any(t < 0) or not np.all(np.isfinite(t)):
             raise ValueError("times_s must be finite and >= 0 [s].")
-        coef = self._modes[node] * self._load / self._mu
-        return -np.expm1(-np.multiply.outer(t, self._mu)) @ coef
+        t = np.ascontiguousarray(t)
+        coef = self.modal_coefficients(node)
+        out = np.zeros(t.shape)
+        for a, mu in zip(coef.tolist(), self._mu.tolist()):
+            out -= a * np.expm1(-mu * t)
+        return out
 
 
 @lru_cache(maxsize=256)
