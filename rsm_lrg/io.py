@@ -173,11 +173,19 @@ def read_table(path: str | os.PathLike):
     cols = [str(c) for c in df.columns]
     if any(c.startswith("Unnamed:") or not c.strip() for c in cols):
         raise InputError(f"{p}: the header row has a blank column name")
+    # duplicates from the header line itself: pandas renames a repeated 'x' to 'x.1', so a
+    # suffix proves nothing ('stroke_m' and 'stroke_m.1' may both be real columns)
+    import csv
+
+    header = next(csv.reader(_io.StringIO(text), skipinitialspace=True), [])
     seen = set()
-    for c in cols:
-        if c.rsplit(".", 1)[0] in seen and c.rsplit(".", 1)[-1].isdigit():
-            raise InputError(f"{p}: column {c.rsplit('.', 1)[0]!r} appears more than once")
+    for c in header:
+        if c in seen:
+            raise InputError(f"{p}: column {quote_user_value(c)} appears more than once in the header")
         seen.add(c)
+    if not df.index.equals(pd.RangeIndex(len(df))):  # pandas took the first column for an index
+        raise InputError(f"{p}: line 2 has more fields than the header ({len(header)} columns); a number "
+                         "written with a comma (1,234) or a missing column name?")
     if df.shape[0] == 0:
         raise InputError(f"{p}: has a header but no data rows")
     if df.shape[1] < 2:

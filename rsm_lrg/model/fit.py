@@ -31,6 +31,7 @@ import numpy as np
 from ..factors import FactorSpace, _numeric
 from .anova import PureError, anova_table, partial_ss, pure_error
 from .canonical import StationaryPoint, canonical_analysis
+from .data import prepare
 from .statistics import FitStatistics, fit_statistics
 from .terms import MODELS, Term, design_matrix, model_terms, term_name
 
@@ -101,7 +102,7 @@ class FitResult:
     terms : tuple of Term
         Model terms in order (``terms[0]`` is the intercept).
     data : pandas.DataFrame
-        The data as given (a copy).
+        The rows used (a copy; rows without a response are in ``omitted_data``).
     coded : pandas.DataFrame
         Coded factor settings, columns = letters.
     y : ndarray
@@ -136,7 +137,17 @@ class FitResult:
     ols : statsmodels RegressionResults
         The statsmodels fit behind it all.
     notes : tuple of str
-        Remarks for the text output (e.g. why there is no lack-of-fit test).
+        Remarks for the text output: ``input_notes`` first, then the fit's own (e.g. why
+        there is no lack-of-fit test).
+    input_notes : tuple of str
+        Remarks on the input (:func:`rsm_lrg.model.data.prepare`): which columns were taken
+        as factors when they were inferred, every column left out (neither factor, response,
+        block nor bookkeeping), the runs left out for want of a response.
+    omitted_rows : tuple of int
+        1-based data rows left out because their response cell is empty ("not run").
+    omitted_data : pandas.DataFrame or None
+        Those rows as given (index = 0-based position in the input); ``data`` holds the
+        rows used.
     """
 
     response: str
@@ -165,6 +176,9 @@ class FitResult:
     actual_coefficients: dict = field(repr=False)
     ols: Any = field(repr=False)
     notes: tuple = field(default=(), repr=False)
+    input_notes: tuple = field(default=(), repr=False)
+    omitted_rows: tuple = field(default=(), repr=False)
+    omitted_data: Any = field(default=None, repr=False)
 
     # -- views -----------------------------------------------------------------------
     @property
@@ -428,20 +442,6 @@ def _block_codes(data, block: str):
     return codes.astype(int), keys, dict(zip(keys, shown))
 
 
-def _check_mostly_numeric(data, exclude) -> None:
-    """A text column whose other entries are numbers is a typo, not a label: name the row."""
-    import pandas as pd
-
-    from ..factors import BOOKKEEPING
-
-    for c in data.columns:
-        if c in exclude or str(c).lower() in BOOKKEEPING or pd.api.types.is_numeric_dtype(data[c]):
-            continue
-        num = pd.to_numeric(data[c], errors="coerce")
-        if num.notna().sum() >= max(1, data.shape[0] // 2):
-            _numeric(data, c)  # raises "column 'c', row i: holds 'text', not a finite number"
-
-
 def _chosen_terms(names, letters) -> tuple:
     """The named terms (plus the intercept), without repeats, in Design-Expert order."""
     from .terms import parse_term
@@ -506,18 +506,10 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         raise TypeError("data must be a pandas DataFrame")
     if model not in MODELS:
         raise ValueError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
-    if response not in data.columns:
-        raise ValueError(f"response column {response!r} not found (columns: {', '.join(map(str, data.columns))})")
-    if block is not None and block not in data.columns:
-        raise ValueError(f"block column {block!r} not found (columns: {', '.join(map(str, data.columns))})")
-    if block is not None and block == response:
-        raise ValueError(f"column {response!r} cannot be both the response and the block")
-    exclude = [response] + ([block] if block is not None else [])
-    if factors is None:  # a design CSV's coded_A, coded_B, ... copies are not factors
-        exclude += [c for c in data.columns if str(c).lower().startswith("coded_")]
-        _check_mostly_numeric(data, exclude)
-    space = FactorSpace.from_data(data, factors, exclude=exclude)
-    y = _numeric(data, response).to_numpy(dtype=float)
+    # columns, factors (inferred from a design's coded columns when not given), runs
+    # without a response left out, notes on everything left out (rsm_lrg.model.data)
+    prep = prepare(data, response, factors, block)
+    data, space, y, hint = prep.data, prep.space, prep.y, prep.choice.hint()
     coded = space.encode(data)
     for f in space.factors:
         if np.unique(coded[f.letter].to_numpy()).size < 2:
@@ -543,7 +535,7 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     p = X.shape[1]
     if n < p:
         what = f"{len(terms)} terms" + (f" and {nb - 1} block effects" if nb > 1 else "")
-        raise ValueError(f"{n} runs cannot fit {p} terms (the {model} model in {len(space)} factors has {what})")
+        raise ValueError(f"{n} runs cannot fit {p} terms (the {model} model in {len(space)} factors has {what}){hint}")
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -633,7 +625,8 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         anova=anova, statistics=statistics, stationary_point=sp, fitted=fitted, residuals=resid,
         hat=hat, cov_unscaled=C, sigma2=float(sigma2), df_resid=int(df_res),
         block_effects=block_effects, block_levels=blevels, pure_error=pe_used,
-        actual_coefficients=actual, ols=ols, notes=tuple(notes),
+        actual_coefficients=actual, ols=ols, notes=prep.notes + tuple(notes),
+        input_notes=prep.notes, omitted_rows=prep.omitted_rows, omitted_data=prep.omitted_data,
     )
 
 
