@@ -207,3 +207,12 @@ def check_option_specs(args: argparse.Namespace) -> None:
             parse_factor_spec(spec)
         except ValueError as exc:
             raise InputError(f"--factor {quote_user_value(spec)}: {exc}") from None
+
+
+def print_notes(notes) -> None:
+    """Print each note on the input (factors inferred, columns and runs left out) to stderr as
+    ``note: ...``, so that nothing is left out silently even when stdout carries JSON."""
+    import sys
+
+    for n in notes or ():
+        print(f"note: {n}", file=sys.stderr)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, add_json, add_model_inputs
+from ._common import about_file, add_force, add_json, add_model_inputs, print_notes
 
 NAME = "fit"
 HELP = "fit a response-surface model; print the ANOVA, statistics and equation"
@@ -67,13 +67,13 @@ def run(args: argparse.Namespace) -> int:
     with about_file(args.data):
         tr = None
         if args.transform is not None:
-            from ..factors import _numeric
+            from ..model.data import response_values
             from ..model.transform import parse_transform
 
             tr = parse_transform(args.transform, args.transform_constant)
             if args.response not in data.columns:
                 raise ValueError(f"response column {args.response!r} not found")
-            y = _numeric(data, args.response).to_numpy(dtype=float)
+            y = response_values(data, args.response)[0]  # NaN where empty: that run is left out
             tr.check(y, args.response)
             data = data.copy()
             data[args.response] = tr.forward(y)
@@ -100,6 +100,7 @@ def run(args: argparse.Namespace) -> int:
     if args.report:
         _write_report(result, args.report, args.force)
     if args.json == "-":
+        print_notes(result.input_notes)  # the text output carries them otherwise
         dump_json(out, "-")
     else:
         print(f"Data: {args.data}")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_block_option, add_factor_options, add_force, add_json
+from ._common import about_file, add_block_option, add_factor_options, add_force, add_json, print_notes
 
 NAME = "fit-summary"
 HELP = "compare linear, 2FI, quadratic and cubic models; suggest one"
@@ -32,11 +32,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, read_table
+    from ..model.data import prepare
     from ..model.summary import fit_summary
 
     data = read_table(args.data)
     with about_file(args.data):
+        notes = prepare(data, args.response, args.factor, args.block).notes
         s = fit_summary(data, args.response, factors=args.factor, block=args.block, alpha=args.alpha)
+    print_notes(notes)  # after the work: a failed command prints one error line only
     if args.json and args.json != "-":
         dump_json(s.to_dict(), args.json, force=args.force)
     if args.json == "-":

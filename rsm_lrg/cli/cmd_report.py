@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, add_model_inputs
+from ._common import about_file, add_force, add_model_inputs, print_notes
 
 NAME = "report"
 HELP = "fit a model and write a self-contained HTML report (ANOVA, diagnostics, surfaces, optimum)"
@@ -49,5 +49,6 @@ def run(args: argparse.Namespace) -> int:
         result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
         path = write_report(result, out, force=args.force, title=args.title, source_name=str(args.data),
                             goal=args.goal, hold=args.hold)
+    print_notes(result.input_notes)  # the report shows them too
     print(f"wrote {path}")
     return 0

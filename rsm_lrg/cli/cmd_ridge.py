@@ -12,6 +12,7 @@ from ._common import (
     add_force,
     add_json,
     add_model_option,
+    print_notes,
 )
 
 NAME = "ridge"
@@ -52,6 +53,7 @@ def run(args: argparse.Namespace) -> int:
     with about_file(args.data):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
         path = ridge(result, goal=args.goal, radius=args.radius, step=args.step)
+    print_notes(result.input_notes)  # after the work: a failed command prints one error line only
     if args.json and args.json != "-":
         dump_json(path.to_dict(), args.json, force=args.force)
     if args.json == "-":
