@@ -17,13 +17,28 @@ Flags ("beyond the usual limits"), all documented in the result:
   *Design and Analysis of Experiments*, Sec. 10.7 — close to 1);
 * |DFFITS| above ``2 √(p/n)`` (Belsley, Kuh & Welsch 1980).
 
-Box–Cox (Box & Cox 1964; Montgomery, *DAE*, Sec. 15.1.1): for each λ in [-3, 3] the model
-is refitted to ``y^(λ) = (y^λ - 1) / (λ ẏ^(λ-1))`` (``ẏ ln y`` at λ = 0; ẏ the geometric
-mean), which makes the residual sums of squares ``SS(λ)`` comparable across λ. λ̂
-minimises ``SS(λ)``; the approximate 100(1-α) % interval is the set where
-``SS(λ) <= SS(λ̂) (1 + t²(α/2, ν) / ν)``. The recommended transform follows Stat-Ease's rule:
-the standard λ (1 none, 0.5 square root, 0 natural log, -0.5 inverse square root,
--1 inverse) closest to λ̂ inside the interval, else the power λ̂ itself.
+Box–Cox (Box & Cox 1964; Montgomery, *DAE*, Sec. 15.1.1): for each λ the model is refitted
+to ``y^(λ) = (y^λ - 1) / (λ ẏ^(λ-1))`` (``ẏ ln y`` at λ = 0; ẏ the geometric mean), which
+makes the residual sums of squares ``SS(λ)`` comparable across λ; ``-n/2 ln SS(λ)`` is the
+profile log-likelihood of λ. Two rules are offered (``rule=``):
+
+* ``"likelihood"`` (default; the exact answer): λ̂ is the maximum-likelihood estimate (the
+  minimum of ``SS(λ)``, located to 1e-8 by a bounded search around the best point of a
+  0.01 grid on [-3, 3]); the 100(1-α) % interval is the likelihood-ratio interval
+  ``n ln(SS(λ)/SS(λ̂)) <= χ²(1-α; 1)`` (Box & Cox 1964, Sec. 4; the interval R's
+  ``MASS::boxcox`` draws).
+* ``"design-expert"``: Design-Expert's Box–Cox plot (Stat-Ease, "Box-Cox Plot",
+  https://www.statease.com/docs/latest/contents/analysis/box-cox-plot/): ``ln(SS(λ))`` on the
+  grid λ = -3, -2.99, ..., 3 (the plot's ±3 limits); the "best" λ is the grid point with the
+  smallest ``SS``; the interval is where ``ln SS(λ) <= ln SS_min + t²(α/2, ν)/ν`` (ν the
+  residual df; the page names the 95 % interval but prints no formula: this t-based form is
+  the one Montgomery, *DAE*, Sec. 15.1.1 uses with Design-Expert output, there written
+  ``SS* = SS_min (1 + t²/ν)`` whose logarithm is ``ln SS_min + t²/ν`` to first order); ends
+  beyond ±3 are not shown.
+
+Both rules recommend as Stat-Ease's page says: the standard λ (1 none, 0.5 square root, 0
+natural log, -0.5 inverse square root, -1 inverse) closest to the best λ inside the interval,
+else the power at the best λ itself.
 """
 
 from __future__ import annotations
@@ -34,7 +49,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["diagnostics", "Diagnostics", "box_cox", "box_cox_ss", "BoxCox", "STANDARD_LAMBDAS"]
+__all__ = ["diagnostics", "Diagnostics", "box_cox", "box_cox_ss", "BoxCox", "STANDARD_LAMBDAS", "BOX_COX_RULES"]
 
 #: Standard power transforms, λ -> name (Stat-Ease's list).
 STANDARD_LAMBDAS = {1.0: "none", 0.5: "sqrt", 0.0: "log", -0.5: "inverse sqrt", -1.0: "inverse"}
@@ -77,6 +92,8 @@ class BoxCox:
     recommended_lambda : float
     ratio : float
         max(y) / min(y); a ratio above 10 usually calls for a transform (Stat-Ease) [-].
+    rule : {"likelihood", "design-expert"}
+        How λ̂ and the interval were found (see the module docstring).
     """
 
     lambdas: np.ndarray = field(repr=False)
@@ -88,12 +105,23 @@ class BoxCox:
     recommended: str = "none"
     recommended_lambda: float = 1.0
     ratio: float = math.nan
+    rule: str = "likelihood"
+
+    @property
+    def rule_text(self) -> str:
+        """One line saying how λ and its interval were found."""
+        pc = f"{100 * self.confidence:g} %"
+        if self.rule == "design-expert":
+            return (f"λ by Design-Expert's rule (grid -3..3 step 0.01, minimum of ln SS), {pc} CI where "
+                    f"ln SS <= ln SS_min + t²/df")
+        return f"λ by maximum likelihood (profile log-likelihood), {pc} CI from χ²₁ (likelihood ratio)"
 
     def to_dict(self) -> dict:
         f = lambda v: float(v) if math.isfinite(v) else None  # noqa: E731
         return {"lambda": f(self.lambda_best), "ci": [f(self.ci[0]), f(self.ci[1])],
                 "confidence": self.confidence, "current": self.current, "recommended": self.recommended,
-                "recommended_lambda": f(self.recommended_lambda), "ratio_max_min": f(self.ratio)}
+                "recommended_lambda": f(self.recommended_lambda), "ratio_max_min": f(self.ratio),
+                "rule": self.rule, "rule_text": self.rule_text}
 
 
 def box_cox_ss(X, y, lambdas) -> np.ndarray:
@@ -118,8 +146,12 @@ def box_cox_ss(X, y, lambdas) -> np.ndarray:
     return np.array(out)
 
 
-def box_cox(result, *, confidence: float = 0.95, lambdas=None) -> BoxCox:
-    """Box–Cox profile of the fitted model (see the module docstring).
+#: The Box–Cox rules of :func:`box_cox`.
+BOX_COX_RULES = ("likelihood", "design-expert")
+
+
+def box_cox(result, *, confidence: float = 0.95, lambdas=None, rule: str = "likelihood") -> BoxCox:
+    """Box–Cox profile of the fitted model (see the module docstring for both rules).
 
     Parameters
     ----------
@@ -127,41 +159,58 @@ def box_cox(result, *, confidence: float = 0.95, lambdas=None) -> BoxCox:
         Fit on the untransformed response; every response value must be positive.
     confidence : float
     lambdas : array, optional
-        λ grid (default -3 .. 3 by 0.01, refined around the minimum).
+        λ grid (default -3 .. 3 by 0.01).
+    rule : {"likelihood", "design-expert"}
+        ``"likelihood"``: λ̂ by maximum likelihood and the χ²₁ likelihood-ratio interval (the
+        exact answer). ``"design-expert"``: the grid minimum and the interval
+        ``ln SS <= ln SS_min + t²(α/2, ν)/ν`` of Design-Expert's Box-Cox plot (Stat-Ease,
+        https://www.statease.com/docs/latest/contents/analysis/box-cox-plot/).
     """
     from scipy import optimize as so
     from scipy import stats
 
+    rule = str(rule).strip().lower().replace("_", "-")
+    if rule in ("de", "designexpert", "stat-ease", "statease"):
+        rule = "design-expert"
+    if rule not in BOX_COX_RULES:
+        raise ValueError(f"Box-Cox rule must be 'likelihood' or 'design-expert', not {rule!r}")
+    if not 0.0 < confidence < 1.0:
+        raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
     y = np.asarray(result.y, dtype=float)
     if np.any(y <= 0):
         i = int(np.flatnonzero(y <= 0)[0])
         raise ValueError(f"Box-Cox needs a positive response: column {result.response!r}, row {i + 1} holds {y[i]:g}")
     X = result.design_matrix
+    nu = result.df_resid
+    if nu <= 0:
+        raise ValueError("Box-Cox needs residual degrees of freedom (the model is saturated)")
 
     def ss_of(lam: float) -> float:
         return float(box_cox_ss(X, y, [lam])[0])
 
     grid = np.round(np.arange(-3.0, 3.0 + 1e-9, 0.01), 10) if lambdas is None else np.asarray(lambdas, float)
-    ss = np.array([ss_of(l) for l in grid])
+    ss = box_cox_ss(X, y, grid)
     i = int(np.argmin(ss))
-    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-    if hi > lo:
-        r = so.minimize_scalar(ss_of, bounds=(lo, hi), method="bounded", options={"xatol": 1e-8})
-        lam = float(r.x) if r.fun <= ss[i] else float(grid[i])
+    lam = float(grid[i])
+    if rule == "likelihood":
+        lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+        if hi > lo:
+            r = so.minimize_scalar(ss_of, bounds=(lo, hi), method="bounded", options={"xatol": 1e-8})
+            if r.fun <= ss[i]:
+                lam = float(r.x)
+        ss_min = ss_of(lam)
+        cut = ss_min * math.exp(stats.chi2.ppf(confidence, 1) / len(y))
     else:
-        lam = float(grid[i])
-    ss_min = ss_of(lam)
-    nu = result.df_resid
-    if nu <= 0:
-        raise ValueError("Box-Cox needs residual degrees of freedom (the model is saturated)")
-    t = stats.t.ppf(1 - (1 - confidence) / 2, nu)
-    cut = ss_min * (1 + t * t / nu)
+        ss_min = float(ss[i])
+        t = stats.t.ppf(1 - (1 - confidence) / 2, nu)
+        cut = math.exp(math.log(ss_min) + t * t / nu)
+    a, b = float(min(grid[0], -3.0)), float(max(grid[-1], 3.0))
     g = lambda l: ss_of(l) - cut  # noqa: E731
     low = high = math.nan
-    if g(-3.0) > 0 and lam > -3.0:
-        low = float(so.brentq(g, -3.0, lam, xtol=1e-10))
-    if g(3.0) > 0 and lam < 3.0:
-        high = float(so.brentq(g, lam, 3.0, xtol=1e-10))
+    if g(a) > 0 and lam > a:
+        low = float(so.brentq(g, a, lam, xtol=1e-10))
+    if g(b) > 0 and lam < b:
+        high = float(so.brentq(g, lam, b, xtol=1e-10))
     lo_eff = -math.inf if math.isnan(low) else low
     hi_eff = math.inf if math.isnan(high) else high
     inside = [l for l in STANDARD_LAMBDAS if lo_eff <= l <= hi_eff]
@@ -172,7 +221,8 @@ def box_cox(result, *, confidence: float = 0.95, lambdas=None) -> BoxCox:
         rec_l = lam
         rec = f"power={lam:.4g}"
     return BoxCox(lambdas=grid, ss=ss, lambda_best=lam, ci=(low, high), confidence=float(confidence),
-                  current=1.0, recommended=rec, recommended_lambda=float(rec_l), ratio=float(y.max() / y.min()))
+                  current=1.0, recommended=rec, recommended_lambda=float(rec_l), ratio=float(y.max() / y.min()),
+                  rule=rule)
 
 
 @dataclass(frozen=True)
@@ -235,13 +285,15 @@ class Diagnostics:
             ci = ", ".join("beyond ±3" if not math.isfinite(v) else f"{v:.3f}" for v in b.ci)
             out.append(f"Box-Cox: lambda = {b.lambda_best:.3f}, {int(round(100 * b.confidence))} % CI [{ci}], "
                        f"max/min = {b.ratio:.3g}; recommended transform: {b.recommended}")
+            out.append(f"  ({b.rule_text})")
         if self.note:
             out.append(f"Note: {self.note}")
         return "\n".join(out) + "\n"
 
 
-def diagnostics(result, *, alpha: float = 0.05) -> Diagnostics:
-    """Per-run diagnostics and Box–Cox for a :class:`~rsm_lrg.model.fit.FitResult`."""
+def diagnostics(result, *, alpha: float = 0.05, boxcox_rule: str = "likelihood") -> Diagnostics:
+    """Per-run diagnostics and Box–Cox for a :class:`~rsm_lrg.model.fit.FitResult`
+    (``boxcox_rule``: ``"likelihood"`` or ``"design-expert"``, see :func:`box_cox`)."""
     import pandas as pd
     from scipy import stats
 
@@ -272,7 +324,7 @@ def diagnostics(result, *, alpha: float = 0.05) -> Diagnostics:
     note = ""
     bc = None
     if np.all(result.y > 0) and nu > 0:
-        bc = box_cox(result)
+        bc = box_cox(result, rule=boxcox_rule)
     else:
         note = ("no Box-Cox plot: the response has values <= 0" if nu > 0
                 else "no residual degrees of freedom: the limits and Box-Cox are undefined")

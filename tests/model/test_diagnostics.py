@@ -66,11 +66,18 @@ def test_log_normal_regression_recommends_log():
     bc = box_cox(r)
     assert bc.ci[0] <= 0.0 <= bc.ci[1]
     assert bc.recommended == "log" and bc.recommended_lambda == 0.0
-    # Montgomery's interval rule holds at the ends: SS(end) = SS(λ̂)(1 + t²/ν)
-    t = stats.t.ppf(0.975, r.df_resid)
+    # default rule (likelihood ratio) at the ends: n ln(SS(end)/SS(λ̂)) = χ²(0.95; 1)
     ss_min = box_cox_ss(r.design_matrix, r.y, [bc.lambda_best])[0]
     for end in bc.ci:
-        assert box_cox_ss(r.design_matrix, r.y, [end])[0] == pytest.approx(ss_min * (1 + t * t / r.df_resid), rel=1e-6)
+        ss_end = box_cox_ss(r.design_matrix, r.y, [end])[0]
+        assert r.n * np.log(ss_end / ss_min) == pytest.approx(stats.chi2.ppf(0.95, 1), rel=1e-6)
+    # Design-Expert's rule at the ends: ln SS(end) = ln SS_min(grid) + t²(0.025, ν)/ν
+    de = box_cox(r, rule="design-expert")
+    t = stats.t.ppf(0.975, r.df_resid)
+    grid_min = box_cox_ss(r.design_matrix, r.y, np.round(np.arange(-3, 3.000001, 0.01), 10)).min()
+    for end in de.ci:
+        ss_end = box_cox_ss(r.design_matrix, r.y, [end])[0]
+        assert np.log(ss_end) == pytest.approx(np.log(grid_min) + t * t / r.df_resid, rel=1e-9)
 
 
 def test_non_positive_response_has_no_box_cox(paper):
@@ -83,3 +90,72 @@ def test_non_positive_response_has_no_box_cox(paper):
     out = dg.to_dict()
     assert set(out) == {"runs", "limits", "box_cox", "note"} and len(out["runs"]) == 27
     assert "Limits" in dg.summary()
+
+
+#: Box & Cox (1964), J. R. Stat. Soc. B 26, Table 1: survival times (10 h units) of animals,
+#: 3 poisons x 4 treatments x 4 animals (R: ``boot::poisons``), in data order (poison cycles
+#: fastest within treatment).
+POISONS_TIME = [0.31, 0.45, 0.46, 0.43, 0.36, 0.29, 0.40, 0.23, 0.22, 0.21, 0.18, 0.23,
+                0.82, 1.10, 0.88, 0.72, 0.92, 0.61, 0.49, 1.24, 0.30, 0.37, 0.38, 0.29,
+                0.43, 0.45, 0.63, 0.76, 0.44, 0.35, 0.31, 0.40, 0.23, 0.25, 0.24, 0.22,
+                0.45, 0.71, 0.66, 0.62, 0.56, 1.02, 0.71, 0.38, 0.30, 0.36, 0.31, 0.33]
+
+
+def _poisons_fit():
+    import pandas as pd
+
+    df = pd.DataFrame({"poison": np.tile(np.repeat([1, 2, 3], 4), 4), "treat": np.repeat([1, 2, 3, 4], 12),
+                       "time": POISONS_TIME})
+    # additive two-way model: poison (3 levels) by A, A^2; treatment (4 levels) by B, B^2, B^3
+    return rsm_lrg.fit(df, "time", factors=["poison=1:3", "treat=1:4"], model="cubic",
+                       terms=["A", "B", "A^2", "B^2", "B^3"])
+
+
+def test_box_cox_poisons_likelihood_rule_matches_box_cox_1964_and_r_mass():
+    # Box & Cox (1964), Sec. 6: λ̂ = -0.75 for the additive model (the reciprocal, "rate of
+    # dying", is within the interval). R 4.2 MASS::boxcox(time ~ poison + treat, lambda =
+    # seq(-3, 3, 1e-4)): maximum at -0.7502, 95 % interval (loglik > max - χ²(0.95;1)/2)
+    # -1.1380 .. -0.3561 on that grid (tolerance 1e-4, the grid step).
+    r = _poisons_fit()
+    bc = box_cox(r)
+    assert bc.rule == "likelihood" and "maximum likelihood" in bc.rule_text and "χ²₁" in bc.rule_text
+    assert bc.lambda_best == pytest.approx(-0.75, abs=5e-3)
+    assert bc.lambda_best == pytest.approx(-0.7502, abs=1e-4)
+    assert bc.ci[0] == pytest.approx(-1.1380, abs=1e-4) and bc.ci[1] == pytest.approx(-0.3561, abs=1e-4)
+    assert bc.recommended == "inverse"
+    assert "maximum likelihood" in r.diagnostics().summary()
+
+
+def test_box_cox_poisons_design_expert_rule_against_an_independent_profile():
+    # Independent route: transform with scipy.stats.boxcox's (y^λ - 1)/λ, scale by the
+    # geometric mean, residual SS by numpy lstsq; Design-Expert's rule: grid minimum on
+    # -3..3 step 0.01, interval ln SS <= ln SS_min + t²(0.025, ν)/ν (ν = 42).
+    from scipy.optimize import brentq
+
+    r = _poisons_fit()
+    y = np.asarray(POISONS_TIME)
+    X = r.design_matrix
+    gm = np.exp(np.mean(np.log(y)))
+
+    def ss(lam):
+        z = stats.boxcox(y, lmbda=lam) / gm ** (lam - 1)
+        res = z - X @ np.linalg.lstsq(X, z, rcond=None)[0]
+        return float(res @ res)
+
+    grid = np.round(np.arange(-3, 3.000001, 0.01), 10)
+    prof = np.array([ss(l) for l in grid])
+    best = grid[np.argmin(prof)]
+    t = stats.t.ppf(0.975, 42)
+    cut = np.log(prof.min()) + t * t / 42
+    lo = brentq(lambda l: np.log(ss(l)) - cut, -3, best)
+    hi = brentq(lambda l: np.log(ss(l)) - cut, best, 3)
+    de = box_cox(r, rule="design-expert")
+    assert de.rule == "design-expert" and "Design-Expert" in de.rule_text
+    assert de.lambda_best == best == pytest.approx(-0.75, abs=1e-12)
+    assert de.ci[0] == pytest.approx(lo, abs=1e-8) and de.ci[1] == pytest.approx(hi, abs=1e-8)
+    # the t rule is wider than the likelihood interval here (-1.178 .. -0.315 vs -1.138 .. -0.356)
+    ml = box_cox(r)
+    assert de.ci[0] < ml.ci[0] and de.ci[1] > ml.ci[1]
+    assert r.diagnostics(boxcox_rule="design-expert").box_cox.rule == "design-expert"
+    with pytest.raises(ValueError, match="rule"):
+        box_cox(r, rule="minitab")
