@@ -12,8 +12,10 @@ DESCRIPTION = (
     "Read a design CSV (as written by 'rsm-lrg design') and report, for the chosen model, the "
     "degrees of freedom, each term's standard error (in units of sigma), VIF and power to "
     "detect a 2-sigma effect at alpha 0.05, the leverage of every run, the scaled prediction "
-    "variance at the centre, at the design points and over the region, and the "
-    "fraction-of-design-space curve. A data CSV without coded columns is read as well: its "
+    "variance at the centre, at the design points and over the region (its maximum by an exact "
+    "search of every face, edge and vertex of the cube), the G-efficiency and the "
+    "fraction-of-design-space curve. A model the design cannot estimate is refused (exit 2) "
+    "with the aliased terms named. A data CSV without coded columns is read as well: its "
     "numeric columns (minus --exclude) are the factors, coded from their observed range."
 )
 
@@ -59,6 +61,8 @@ def run(args: argparse.Namespace) -> int:
     with about_file(args.design):
         design = _load(args.design, args.exclude)
         ev = evaluate_design(design, args.model, region=args.region, alpha=args.alpha, effect_sd=args.effect)
+        if not ev.estimable:  # a clear refusal naming the aliased terms (exit 2), never negative df
+            raise ValueError(ev.not_estimable_message())
     if args.json and args.json != "-":
         dump_json(ev.to_dict(), args.json, force=args.force)
     if args.json == "-":

@@ -23,3 +23,19 @@ def test_data_csv_and_errors(capsys, tmp_path):
     assert json.loads(capsys.readouterr().out)["n"] == 27
     assert main(["evaluate", str(tmp_path / "none.csv")]) == 2
     assert capsys.readouterr().err.startswith("error:")
+
+
+def test_cubic_on_replicated_2cubed_exits_2_naming_aliased_terms(capsys, tmp_path):
+    # Issue 10 item 13: was a negative residual df and no table; now a clear refusal.
+    import itertools
+
+    rows = ["a,b,c"] + [f"{a},{b},{c}" for a, b, c in itertools.product([10, 20], [1, 2], [5, 7])] * 2
+    path = tmp_path / "rep2cubed.csv"
+    path.write_text("\n".join(rows) + "\n")
+    assert main(["evaluate", str(path), "--model", "cubic"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error:") and "not estimable" in err and "A^3" in err and "-4" not in err
+    assert len(err.strip().splitlines()) == 1 and len(err) < 300
+    assert main(["evaluate", str(path), "--model", "2fi"]) == 0
+    out = capsys.readouterr().out
+    assert "maximum by exact search" in out
