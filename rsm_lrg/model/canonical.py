@@ -74,6 +74,52 @@ class StationaryPoint:
             "note": self.note or None,
         }
 
+    # -- faces: read like the CLI's "Canonical analysis" block -------------------------------
+    def _lines(self) -> list[str]:
+        from ..present import format_number as fmt
+
+        if self.eigenvalues is None and self.coded is None:
+            return [self.note or "no canonical analysis"]
+        out = []
+        if self.coded is None:
+            out.append(self.note or "no unique stationary point")
+        else:
+            out.append(f"Kind: {self.kind}" + ("" if self.inside is None else
+                       ", inside the design box" if self.inside else ", outside the design box (extrapolation)"))
+            out.append(f"Predicted response there: {fmt(self.predicted, 6, missing='n/a')}")
+            rows = [(f"{L} {n}", fmt(c, 6), fmt(a, 6))
+                    for (L, c), (n, a) in zip(self.coded.items(), self.actual.items())]
+            w = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(("factor", "coded", "actual"))]
+            out.append(f"  {'factor':<{w[0]}}  {'coded':>{w[1]}}  {'actual':>{w[2]}}")
+            out += [f"  {a:<{w[0]}}  {b:>{w[1]}}  {c:>{w[2]}}" for a, b, c in rows]
+            if self.note:
+                out.append(f"Note: {self.note}")
+        if self.eigenvalues is not None:
+            out.append("Eigenvalues: " + ", ".join(fmt(v, 6) for v in self.eigenvalues))
+        return out
+
+    def __str__(self) -> str:
+        """Multi-line, as the CLI prints the canonical analysis.
+
+        >>> sp = StationaryPoint({"A": 0.5}, {"x": 1.25}, (-2.0,), kind="maximum", predicted=3.0, inside=True)
+        >>> print(sp)
+        Kind: maximum, inside the design box
+        Predicted response there: 3
+          factor  coded  actual
+          A x       0.5    1.25
+        Eigenvalues: -2
+        """
+        return "\n".join(self._lines())
+
+    def __repr__(self) -> str:
+        return "StationaryPoint(\n  " + "\n  ".join(self._lines()) + "\n)"
+
+    def _repr_html_(self) -> str:
+        from html import escape
+
+        return ("<div class='rsm-lrg-stationary'><b>Stationary point</b>"
+                f"<pre>{escape(chr(10).join(self._lines()))}</pre></div>")
+
 
 def quadratic_parts(coefs: Mapping[str, float], terms, k: int):
     """``(b0, b, B)`` of the coded polynomial from ``{term name: coefficient}``.

@@ -358,8 +358,12 @@ class FitResult:
         return to_html(self, **kwargs)
 
     def _repr_html_(self) -> str:
-        """Notebook face: the HTML report without the optimisation section."""
-        return self.to_html(goal=None)
+        """Notebook face: summary, ANOVA, statistics, coefficients, equations and the
+        stationary point as one small HTML fragment, without figures (a few tens of kB);
+        :meth:`to_html` gives the full report with every figure."""
+        from ..report.fit_report import notebook_html
+
+        return notebook_html(self)
 
     def to_dict(self) -> dict:
         """The fit JSON of INTERFACE.md (plain Python; NaN becomes ``null`` in JSON)."""

@@ -60,6 +60,44 @@ class FitStatistics:
     def keys(self):
         return self.to_dict().keys()
 
+    # -- faces: read like the CLI's block under the ANOVA ----------------------------------
+    _LABELS = (("std_dev", "Std. Dev."), ("mean", "Mean"), ("cv_percent", "C.V. %"), ("press", "PRESS"),
+               ("r2", "R²"), ("adj_r2", "Adjusted R²"), ("pred_r2", "Predicted R²"),
+               ("adeq_precision", "Adeq Precision"))
+
+    def _cells(self) -> list[tuple[str, str]]:
+        from ..present import format_number
+
+        return [(label, format_number(getattr(self, key), 4, missing="n/a")) for key, label in self._LABELS]
+
+    def __str__(self) -> str:
+        """Two columns, as the CLI prints the fit statistics (4 significant figures).
+
+        >>> print(FitStatistics(0.96812, 0.93093, 0.81842, 2.079e-4, 18.4626, 1.744e-3, 0.035037, 4.9777))
+        Std. Dev.  0.001744   R²              0.9681
+        Mean       0.03504    Adjusted R²     0.9309
+        C.V. %     4.978      Predicted R²    0.8184
+        PRESS      0.0002079  Adeq Precision  18.46
+        """
+        cells = self._cells()
+        left, right = cells[:4], cells[4:]
+        wl = max(len(a) for a, _ in left)
+        wv = max(len(b) for _, b in left)
+        wr = max(len(a) for a, _ in right)
+        return "\n".join(f"{a:<{wl}}  {b:<{wv}}  {c:<{wr}}  {d}" for (a, b), (c, d) in zip(left, right))
+
+    def __repr__(self) -> str:
+        return "FitStatistics(\n  " + "\n  ".join(str(self).splitlines()) + "\n)"
+
+    def _repr_html_(self) -> str:
+        from html import escape
+
+        cells = self._cells()
+        rows = "".join(f"<tr><th style='text-align:left'>{escape(a)}</th><td style='text-align:right'>{escape(b)}</td>"
+                       f"<th style='text-align:left'>{escape(c)}</th><td style='text-align:right'>{escape(d)}</td></tr>"
+                       for (a, b), (c, d) in zip(cells[:4], cells[4:]))
+        return f"<table class='rsm-lrg-statistics'><caption>Fit statistics</caption>{rows}</table>"
+
 
 def _nan_div(a, b):
     return a / b if b not in (0, 0.0) and math.isfinite(b) else math.nan

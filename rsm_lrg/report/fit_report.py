@@ -23,9 +23,10 @@ from typing import Any
 
 import numpy as np
 
+from ..present import ROUND_OFF, clean
 from .html import SIGNIFICANCE_NOTE, fmt_f, fmt_num, fmt_p, render_page, significance
 
-__all__ = ["to_html", "write_report", "report_context", "SECTION_IDS"]
+__all__ = ["to_html", "write_report", "report_context", "notebook_html", "SECTION_IDS"]
 
 #: ``id`` of every section of a fit report, in page order.
 SECTION_IDS = (
@@ -40,7 +41,7 @@ _SECTION_TITLES = {
 }
 
 #: Relative size below which a sum of squares or coefficient is round-off (shown as 0).
-ROUNDOFF = 1e-12
+ROUNDOFF = ROUND_OFF
 
 _RUN_COLUMNS = ("run_order", "run", "order")
 
@@ -48,9 +49,9 @@ _RUN_COLUMNS = ("run_order", "run", "order")
 # -- small views ---------------------------------------------------------------------------
 
 def _zero_if_roundoff(x: float, scale: float) -> float:
-    if x is None or not np.isfinite(x):
-        return x
-    return 0.0 if abs(x) <= ROUNDOFF * abs(scale) else float(x)
+    """The round-off rule of :func:`rsm_lrg.present.clean` (shown as 0)."""
+    v = clean(x, scale)
+    return v if v is None else float(v)
 
 
 def _term_label(term, labels: list[str], sep: str) -> str:
@@ -62,7 +63,14 @@ def _term_label(term, labels: list[str], sep: str) -> str:
 
 def _equation_rhs(coefs: dict, terms, labels: list[str], sep: str = "", *, scale: float,
                   magnitudes=None) -> str:
-    """The right-hand side of the fitted equation as text.
+    """The right-hand side of the fitted equation as text (see :func:`_equation_terms`)."""
+    return " ".join(_equation_terms(coefs, terms, labels, sep, scale=scale, magnitudes=magnitudes)) or "0"
+
+
+def _equation_terms(coefs: dict, terms, labels: list[str], sep: str = "", *, scale: float,
+                    magnitudes=None) -> list[str]:
+    """The right-hand side of the fitted equation, one signed term per item (pages keep
+    each item on one line).
 
     A term whose largest contribution over the factor box, ``|c| · Π max|x_i|^p_i``, is
     below ``ROUNDOFF · scale`` (``scale`` = the largest coded coefficient, in response units)
@@ -82,7 +90,7 @@ def _equation_rhs(coefs: dict, terms, labels: list[str], sep: str = "", *, scale
             out.append(("−" if v < 0 else "") + piece)
         else:
             out.append(("− " if v < 0 else "+ ") + piece)
-    return " ".join(out) if out else "0"
+    return out
 
 
 def _run_numbers(result) -> tuple[np.ndarray, str]:
@@ -192,16 +200,16 @@ def _statistics(result) -> tuple[list, list[str]]:
     if np.isfinite(s.pred_r2) and np.isfinite(s.adj_r2):
         d = abs(s.adj_r2 - s.pred_r2)
         if d < 0.2:
-            notes.append(f"The Predicted R² of {s.pred_r2:.4f} is in reasonable agreement with the "
-                         f"Adjusted R² of {s.adj_r2:.4f}; i.e. the difference is less than 0.2.")
+            notes.append(f"The Predicted R² of {fmt_num(s.pred_r2)} is in reasonable agreement with the "
+                         f"Adjusted R² of {fmt_num(s.adj_r2)}; i.e. the difference is less than 0.2.")
         else:
-            notes.append(f"The Predicted R² of {s.pred_r2:.4f} is not as close to the Adjusted R² of "
-                         f"{s.adj_r2:.4f} as one might expect (difference ≥ 0.2): this may indicate a "
+            notes.append(f"The Predicted R² of {fmt_num(s.pred_r2)} is not as close to the Adjusted R² of "
+                         f"{fmt_num(s.adj_r2)} as one might expect (difference ≥ 0.2): this may indicate a "
                          "large block effect or a possible problem with the model and/or data.")
     if np.isfinite(s.adeq_precision):
         ok = "indicates an adequate signal" if s.adeq_precision > 4 else "indicates an inadequate signal"
         notes.append(f"Adeq Precision measures the signal-to-noise ratio; a ratio greater than 4 is "
-                     f"desirable. The ratio of {s.adeq_precision:.3f} {ok}.")
+                     f"desirable. The ratio of {fmt_num(s.adeq_precision, 5)} {ok}.")
     return rows, notes
 
 
@@ -276,7 +284,19 @@ def _diagnostics(result) -> tuple[list, str]:
     return figs, note
 
 
+def _on_slice(optimum, space, held, i: int, j: int) -> bool:
+    """Whether the optimum lies on the slice of pair (i, j): every other factor at its held value."""
+    return all(abs(float(optimum.coded[L]) - held[m]) <= 1e-6
+               for m, L in enumerate(space.letters) if m not in (i, j))
+
+
 def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
+    """A 3-D surface (PNG at twice the shown size) and a contour (SVG) for every factor pair.
+
+    The figures are slices of the fitted model with the other factors held at their centre
+    (``hold="center"``) or at the optimum (``hold="optimum"``); every figure says so in its
+    caption and on the figure. The optimum's star is drawn only on slices that contain it.
+    """
     from . import plots as P
 
     space = result.space
@@ -292,6 +312,7 @@ def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
     coded = result.coded[space.letters].to_numpy(dtype=float)
     y = np.asarray(result.y, dtype=float)
     out = []
+    off_slice = 0
     for i, j in itertools.combinations(range(k), 2):
         fi, fj = space.factors[i], space.factors[j]
         others = [f for m, f in enumerate(space.factors) if m not in (i, j)]
@@ -311,29 +332,41 @@ def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
                                 result.data[fj.name].to_numpy(dtype=float)[at_held], y[at_held]])
         pts2 = np.column_stack([result.data[fi.name].to_numpy(dtype=float),
                                 result.data[fj.name].to_numpy(dtype=float)])
-        held_desc = ", ".join(f"{f.letter} ({f.name}) = {fmt_num(float(f.decode(held[space.letters.index(f.letter)])))}"
-                              for f in others)
+        held_values = [(f, float(f.decode(held[space.letters.index(f.letter)]))) for f in others]
+        held_desc = ", ".join(f"{f.letter} ({f.name}) = {fmt_num(v)}" for f, v in held_values)
         hold_sentence = (f"Other factors held {held_text}: {held_desc}." if others else "")
+        fig_note = ("held: " + ", ".join(f"{f.letter} = {fmt_num(v)}" for f, v in held_values)) if others else None
         pair = f"{fi.letter}{fj.letter}"
         title = f"{result.response} over {fi.letter} ({fi.name}) and {fj.letter} ({fj.name})"
-        mark = None
+        mark = mark3 = None
+        star = ""
         if optimum is not None:
-            mark = (float(optimum.actual[fi.name]), float(optimum.actual[fj.name]))
+            ox, oy = float(optimum.actual[fi.name]), float(optimum.actual[fj.name])
+            if _on_slice(optimum, space, held, i, j):
+                mark, mark3 = (ox, oy), (ox, oy, float(optimum.predicted))
+                star = " Star: the optimum, which lies on this slice."
+            else:
+                off_slice += 1
+                where = ", ".join(f"{f.letter} = {fmt_num(float(optimum.actual[f.name]))}" for f in others)
+                star = (f" The optimum is not on this slice (it has {where}), so it is not marked here; "
+                        "hold the other factors at the optimum to see it.")
         surf = P.render(
             P.surface_3d(X, Y, Z, points=pts3, xlabel=f"{fi.letter}: {fi.name}", ylabel=f"{fj.letter}: {fj.name}",
-                         zlabel=result.response),
+                         zlabel=result.response, note=fig_note, mark=mark3, mark_label="optimum"),
             f"surface-{pair}", f"3-D surface, {title}",
             f"{hold_sentence} Red points: the {int(at_held.sum())} runs made at those settings of the other "
-            "factors, at their observed response.", "png")
+            f"factors, at their observed response.{star}", "png")
         cont = P.render(
             P.contour_plot(X, Y, Z, points=pts2, xlabel=f"{fi.letter}: {fi.name}", ylabel=f"{fj.letter}: {fj.name}",
-                           zlabel=result.response, mark=mark, mark_label="optimum"),
+                           zlabel=result.response, mark=mark, mark_label="optimum", note=fig_note),
             f"contour-{pair}", f"Contour, {title}",
-            f"{hold_sentence} Red points: all {len(y)} design points projected onto this pair"
-            + ("; star: the optimum." if mark is not None else "."), "png")
+            f"{hold_sentence} Red points: all {len(y)} design points projected onto this pair.{star}", "svg")
         out.append({"pair": pair, "surface": surf, "contour": cont})
     note = (f"Every pair of the {k} factors: {len(out)} surfaces and {len(out)} contours of the fitted model, "
             f"with the other factors held {held_text}.")
+    if optimum is not None and off_slice:
+        note += (f" The optimum's star appears only on slices that contain it ({len(out) - off_slice} of "
+                 f"{len(out)} here).")
     return out, note
 
 
@@ -379,6 +412,65 @@ def _optimum_section(result, optimum) -> tuple[dict | None, str]:
 
 # -- the page -----------------------------------------------------------------------------------
 
+def _tables(result, source_name: str | None, optimum) -> dict:
+    """The parts of a report that are text and tables (no figures): shared by the full
+    report and the notebook face."""
+    space = result.space
+    letters = space.letters
+    anova_rows, anova_notes = _anova_rows(result)
+    stats_rows, stats_notes = _statistics(result)
+    coded_coefs = dict(zip(result.coefficients.index, result.coefficients["coded"]))
+    scale = max((abs(float(v)) for v in coded_coefs.values() if np.isfinite(v)), default=1.0) or 1.0
+    coded_eq = _equation_terms(coded_coefs, result.terms, list(letters), scale=scale) or ["0"]
+    actual_eq = _equation_terms(result.actual_coefficients, result.terms, list(space.names), "·", scale=scale,
+                                magnitudes=[max(abs(f.low), abs(f.high)) for f in space.factors]) or ["0"]
+    pe_df = result.pure_error.df if result.pure_error is not None else 0
+    summary = [
+        ("Response", result.response),
+        ("Data", source_name or "a DataFrame"),
+        ("Runs", str(result.n)),
+        ("Factors", ", ".join(f"{f.letter} = {f.name}" for f in space.factors)),
+        ("Model", f"{result.model} ({len(result.terms)} terms, fitted by least squares in coded units)"),
+        ("Block", result.block or "none"),
+        ("Replicated settings", f"{pe_df} degrees of freedom of pure error" if pe_df else "none (no lack-of-fit test)"),
+        ("R² / adjusted R² / predicted R²",
+         " / ".join(fmt_num(v, 4) for v in (result.statistics.r2, result.statistics.adj_r2, result.statistics.pred_r2))),
+        ("Model F-value, p-value",
+         next((f"{fmt_f(r['f'])}, {fmt_p(r['p'])}" for r in anova_rows if r["source"] == "Model"), "—")),
+    ]
+    if optimum is not None:
+        summary.append(("Optimum (" + optimum.goal + ")",
+                        ", ".join(f"{n} = {fmt_num(v, 4)}" for n, v in optimum.actual.items())
+                        + f" → {result.response} = {fmt_num(optimum.predicted, 4)}"))
+    stationary, stationary_missing = _stationary(result)
+    if result.block is not None and result.block_effects:
+        summary.append(("Block effects", ", ".join(f"{k} ({result.block_levels.get(k, k)}) = {fmt_num(v, 4)}"
+                                                  for k, v in result.block_effects.items())))
+    return {
+        "summary": summary,
+        "factors": [{"letter": f.letter, "name": f.name, "low": f.low, "center": f.center, "high": f.high}
+                    for f in space.factors],
+        "anova": {"rows": anova_rows, "notes": anova_notes,
+                  "caption": f"ANOVA for the {result.model} model of {result.response} "
+                             "(partial sums of squares, Type III), laid out like Table 5.",
+                  "legend": "** p < 0.01, * 0.01 ≤ p < 0.05 (see the notes)."},
+        "statistics": stats_rows,
+        "statistics_notes": stats_notes,
+        "coefficients": {"rows": _coefficients(result), "ci_label": "95 % CI"},
+        "equations": [
+            {"id": "equation-coded", "title": "In terms of coded factors", "lhs": result.response, "rhs": coded_eq,
+             "note": "Coded factors: " + ", ".join(f"{f.letter} = ({f.name} − {fmt_num(f.center)}) / {fmt_num(f.half_range)}"
+                                                  for f in space.factors)
+                     + ". Use it to compare effects: the coefficients are on one scale."},
+            {"id": "equation-actual", "title": "In terms of actual factors", "lhs": result.response, "rhs": actual_eq,
+             "note": "Actual factors in the units of the data columns. The same polynomial; do not compare "
+                     "these coefficients with one another (their units differ)."},
+        ],
+        "stationary": stationary,
+        "stationary_missing": stationary_missing,
+    }
+
+
 def report_context(result, *, title: str | None = None, source_name: str | None = None,
                    goal: Any = "minimize", hold: str = "center", optimum=None) -> dict:
     """Everything the fit-report template shows, as plain values (no HTML).
@@ -403,74 +495,37 @@ def report_context(result, *, title: str | None = None, source_name: str | None 
     if optimum is None and goal is not None:
         optimum = result.optimize(goal=goal)
     space = result.space
-    letters = space.letters
-    anova_rows, anova_notes = _anova_rows(result)
-    stats_rows, stats_notes = _statistics(result)
     _, runs_from = _run_numbers(result)
-    coded_coefs = dict(zip(result.coefficients.index, result.coefficients["coded"]))
-    scale = max((abs(float(v)) for v in coded_coefs.values() if np.isfinite(v)), default=1.0) or 1.0
-    coded_eq = _equation_rhs(coded_coefs, result.terms, list(letters), scale=scale)
-    actual_eq = _equation_rhs(result.actual_coefficients, result.terms, list(space.names), "·", scale=scale,
-                              magnitudes=[max(abs(f.low), abs(f.high)) for f in space.factors])
-    pe_df = result.pure_error.df if result.pure_error is not None else 0
-    summary = [
-        ("Response", result.response),
-        ("Data", source_name or "a DataFrame"),
-        ("Runs", str(result.n)),
-        ("Factors", ", ".join(f"{f.letter} = {f.name}" for f in space.factors)),
-        ("Model", f"{result.model} ({len(result.terms)} terms, fitted by least squares in coded units)"),
-        ("Block", result.block or "none"),
-        ("Replicated settings", f"{pe_df} degrees of freedom of pure error" if pe_df else "none (no lack-of-fit test)"),
-        ("R² / adjusted R² / predicted R²",
-         " / ".join(fmt_num(v, 4) for v in (result.statistics.r2, result.statistics.adj_r2, result.statistics.pred_r2))),
-        ("Model F-value, p-value",
-         next((f"{fmt_f(r['f'])}, {fmt_p(r['p'])}" for r in anova_rows if r["source"] == "Model"), "—")),
-    ]
-    if optimum is not None:
-        summary.append(("Optimum (" + optimum.goal + ")",
-                        ", ".join(f"{n} = {fmt_num(v, 4)}" for n, v in optimum.actual.items())
-                        + f" → {result.response} = {fmt_num(optimum.predicted, 4)}"))
+    ctx = _tables(result, source_name, optimum)
     diagnostics, diag_note = _diagnostics(result)
     surfaces, surf_note = _surfaces(result, hold, optimum)
-    stationary, stationary_missing = _stationary(result)
     opt, opt_missing = _optimum_section(result, optimum)
-    if result.block is not None and result.block_effects:
-        summary.append(("Block effects", ", ".join(f"{k} ({result.block_levels.get(k, k)}) = {fmt_num(v, 4)}"
-                                                  for k, v in result.block_effects.items())))
-    return {
+    return ctx | {
         "title": title or f"Response surface report: {result.response}",
         "subtitle": (f"{result.model.capitalize()} model of {result.response} in {len(space)} factors from "
                      f"{result.n} runs" + (f" ({source_name})" if source_name else "") + "."),
         "toc": [(sid, _SECTION_TITLES[sid]) for sid in SECTION_IDS],
-        "summary": summary,
-        "factors": [{"letter": f.letter, "name": f.name, "low": f.low, "center": f.center, "high": f.high}
-                    for f in space.factors],
         "data": _data_table(result, runs_from),
-        "anova": {"rows": anova_rows, "notes": anova_notes,
-                  "caption": f"ANOVA for the {result.model} model of {result.response} "
-                             "(partial sums of squares, Type III), laid out like Table 5.",
-                  "legend": "** p < 0.01, * 0.01 ≤ p < 0.05 (see the notes)."},
-        "statistics": stats_rows,
-        "statistics_notes": stats_notes,
-        "coefficients": {"rows": _coefficients(result), "ci_label": "95 % CI"},
-        "equations": [
-            {"id": "equation-coded", "title": "In terms of coded factors", "lhs": result.response, "rhs": coded_eq,
-             "note": "Coded factors: " + ", ".join(f"{f.letter} = ({f.name} − {fmt_num(f.center)}) / {fmt_num(f.half_range)}"
-                                                  for f in space.factors)
-                     + ". Use it to compare effects: the coefficients are on one scale."},
-            {"id": "equation-actual", "title": "In terms of actual factors", "lhs": result.response, "rhs": actual_eq,
-             "note": "Actual factors in the units of the data columns. The same polynomial; do not compare "
-                     "these coefficients with one another (their units differ)."},
-        ],
         "diagnostics": diagnostics,
         "diagnostics_note": diag_note,
         "surfaces": surfaces,
         "surfaces_note": surf_note,
-        "stationary": stationary,
-        "stationary_missing": stationary_missing,
         "optimum": opt,
         "optimum_missing": opt_missing,
     }
+
+
+def notebook_html(result, *, source_name: str | None = None) -> str:
+    """The notebook face of a fit (``FitResult._repr_html_``): summary, ANOVA, fit
+    statistics, coefficients, equations and the stationary point, as one HTML fragment with
+    its own scoped style. No figures (they are what makes the full report large and slow);
+    :func:`to_html` (``result.to_html()``) gives the full report with every figure.
+    """
+    from .html import environment
+
+    ctx = _tables(result, source_name, None)
+    ctx["title"] = f"{result.model.capitalize()} fit of {result.response}: {result.n} runs, {len(result.space)} factors"
+    return environment().get_template("notebook.html.j2").render(**ctx)
 
 
 def to_html(result, *, title: str | None = None, source_name: str | None = None, goal: Any = "minimize",

@@ -5,7 +5,8 @@ names, labels and file names are shown as text, whatever characters they hold. P
 Content-Security-Policy that forbids scripts and every network request; images are
 ``data:`` URIs and the CSS is inline, so a report opens offline in any browser.
 
-The formats follow the paper's Table 5 (Design-Expert): sums of squares as ``1.61 × 10⁻⁴``,
+Number formats live in :mod:`rsm_lrg.present` (one format for every face); these are
+the page's names for them. They follow the paper's Table 5 (Design-Expert): sums of squares as ``1.61 × 10⁻⁴``,
 F values with two decimals, p values with four (``<0.0001`` below that).
 
 >>> fmt_sci(1.61e-4), fmt_p(3e-7), fmt_p(0.088), fmt_f(26.0312)
@@ -16,10 +17,10 @@ F values with two decimals, p values with four (``<0.0001`` below that).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from functools import lru_cache
-from numbers import Number
+
+from .. import present as _present
 
 __all__ = [
     "environment",
@@ -41,35 +42,23 @@ SIGNIFICANCE_NOTE = (
     "(the classes of the note under Table 5 of Su, Zhang & Yang 2023)."
 )
 
-_SUPERSCRIPT = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺")
-DASH = "—"
+DASH = _present.DASH
 
 
 def _missing(x) -> bool:
-    if x is None:
-        return True
-    try:
-        return isinstance(x, Number) and not math.isfinite(float(x))
-    except (TypeError, ValueError):
-        return False
+    return _present._missing(x)
 
 
 def fmt_num(x, sig: int = 4) -> str:
-    """A number with ``sig`` significant digits (``—`` when missing); text passes through.
+    """A number with ``sig`` significant figures (``—`` when missing); text passes through.
 
-    >>> fmt_num(0.0336667), fmt_num(27), fmt_num(None), fmt_num(1.5e-7)
-    ('0.03367', '27', '—', '1.5e-07')
+    The one number format of every page (:func:`rsm_lrg.present.format_number`): plain
+    decimals from 1e-4 up to 1e5, otherwise ``6.972 × 10⁻⁵``.
+
+    >>> fmt_num(0.0336667), fmt_num(27), fmt_num(None), fmt_num(1.5e-7), fmt_num(6.972e-05)
+    ('0.03367', '27', '—', '1.5 × 10⁻⁷', '6.972 × 10⁻⁵')
     """
-    if _missing(x):
-        return DASH
-    if isinstance(x, bool):
-        return "yes" if x else "no"
-    if isinstance(x, Number):
-        xf = float(x)
-        if xf.is_integer() and abs(xf) < 1e15 and not isinstance(x, float):
-            return str(int(xf))
-        return f"{xf:.{sig}g}"
-    return str(x)
+    return _present.format_number(x, sig, missing=DASH)
 
 
 def fmt_sci(x, sig: int = 3) -> str:
@@ -78,15 +67,7 @@ def fmt_sci(x, sig: int = 3) -> str:
     >>> fmt_sci(0.0), fmt_sci(1.108e-3), fmt_sci(12.5)
     ('0.000', '1.11 × 10⁻³', '12.5')
     """
-    if _missing(x):
-        return ""
-    xf = float(x)
-    if xf == 0.0:
-        return "0.000"
-    if 0.01 <= abs(xf) < 1000:
-        return f"{xf:.{sig}g}"
-    mant, exp = f"{xf:.{sig - 1}e}".split("e")
-    return f"{mant} × 10{str(int(exp)).translate(_SUPERSCRIPT)}"
+    return _present.format_sci(x, sig)
 
 
 def fmt_f(x) -> str:
@@ -95,36 +76,17 @@ def fmt_f(x) -> str:
     >>> fmt_f(221.918), fmt_f(0.0822), fmt_f(0.00304), fmt_f(0.0)
     ('221.92', '0.082', '3.04 × 10⁻³', '0.00')
     """
-    if _missing(x):
-        return ""
-    xf = float(x)
-    if xf == 0.0 or abs(xf) >= 0.1:
-        return f"{xf:.2f}"
-    if abs(xf) >= 0.01:
-        return f"{xf:.2g}"
-    return fmt_sci(xf)
+    return _present.format_f(x)
 
 
 def fmt_p(p) -> str:
     """p value with four decimals, ``<0.0001`` below that (Design-Expert)."""
-    if _missing(p):
-        return ""
-    pf = float(p)
-    if pf < 1e-4:
-        return "<0.0001"
-    return f"{pf:.4f}"
+    return _present.format_p(p)
 
 
 def fmt_cell(x) -> str:
     """A data-table cell: numbers with up to 6 significant digits, text as is."""
-    if _missing(x):
-        return ""
-    if isinstance(x, Number) and not isinstance(x, bool):
-        xf = float(x)
-        if xf.is_integer() and abs(xf) < 1e15:
-            return str(int(xf))
-        return f"{xf:.6g}"
-    return str(x)
+    return _present.format_cell(x)
 
 
 def fmt_dof(x) -> str:

@@ -52,8 +52,10 @@ __all__ = [
     "DEFAULT_DPI",
 ]
 
-#: Resolution of PNG figures [dots per inch]; modest, so that a report stays small and fast.
-DEFAULT_DPI = 80
+#: Resolution of PNG figures [dots per inch]: twice the 96 px/inch of a CSS pixel, so a
+#: figure shown at its nominal size (:attr:`Rendered.width_px`, never more: the pages cap it)
+#: has two image pixels per CSS pixel and stays sharp on high-density screens.
+DEFAULT_DPI = 192
 
 #: Figure size of a single panel [inch].
 PANEL_SIZE = (5.0, 3.6)
@@ -343,7 +345,8 @@ def _points(points, what="design points"):
 
 
 def surface_3d(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y", zlabel: str = "response",
-               title: str | None = None, size=(5.0, 4.0)) -> Figure:
+               title: str | None = None, size=(5.0, 4.0), note: str | None = None, mark=None,
+               mark_label: str | None = None) -> Figure:
     """A 3-D response surface (the paper's Fig. 10 a–f).
 
     Parameters
@@ -353,6 +356,10 @@ def surface_3d(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y", zl
     points : array_like, optional
         ``(m, 3)`` design points (x, y, observed response) drawn as markers; ``(m, 2)``
         puts them on the floor of the plot.
+    note : str, optional
+        One line of small text at the top of the figure (e.g. where the other factors are held).
+    mark : (float, float, float), optional
+        One point to highlight (e.g. the optimum on this slice), drawn as a star.
     """
     X, Y, Z = (np.asarray(a, dtype=float) for a in (X, Y, Z))
     if not (X.shape == Y.shape == Z.shape) or X.ndim != 2:
@@ -377,15 +384,25 @@ def surface_3d(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y", zl
     ax.set_ylabel(_t(ylabel), fontsize=8, labelpad=2)
     ax.set_zlabel(_t(zlabel), fontsize=8, labelpad=6)
     ax.tick_params(labelsize=7, pad=0)
+    if mark is not None:
+        ax.scatter([mark[0]], [mark[1]], [mark[2]], s=140, marker="*", color="#ffd21f", edgecolor="black",
+                   linewidth=0.7, depthshade=False, zorder=6, label=_t(mark_label or "optimum"))
+        ax.legend(loc="upper left", fontsize=7, framealpha=0.8)
     ax.view_init(elev=25, azim=-130)
     if title:
         ax.set_title(_t(title), fontsize=10)
+    _note(fig, note)
     return fig
+
+
+def _note(fig: Figure, note: str | None) -> None:
+    if note:
+        fig.text(0.5, 0.995, _t(note), ha="center", va="top", fontsize=7, color="#333333")
 
 
 def contour_plot(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y",
                  zlabel: str = "response", title: str | None = None, levels: int = 12,
-                 size=(5.0, 4.0), mark=None, mark_label: str | None = None) -> Figure:
+                 size=(5.0, 4.0), mark=None, mark_label: str | None = None, note: str | None = None) -> Figure:
     """Filled contour of a response over a factor pair, design points marked.
 
     Parameters
@@ -395,7 +412,10 @@ def contour_plot(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y",
     points : array_like, optional
         ``(m, 2)`` (or ``(m, 3)``; the third column is ignored) design points.
     mark : (float, float), optional
-        One point to highlight (e.g. the optimum), drawn as a star.
+        One point to highlight (e.g. the optimum), drawn as a star. Draw it only when the
+        point lies on the plotted slice (its other factors at the held values).
+    note : str, optional
+        One line of small text at the top of the figure (e.g. where the other factors are held).
     """
     X, Y, Z = (np.asarray(a, dtype=float) for a in (X, Y, Z))
     if not (X.shape == Y.shape == Z.shape) or X.ndim != 2:
@@ -429,6 +449,7 @@ def contour_plot(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y",
     ax.tick_params(labelsize=7)
     if title:
         ax.set_title(_t(title), fontsize=10)
+    _note(fig, note)
     return fig
 
 

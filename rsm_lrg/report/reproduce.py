@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["Row", "Reproduction", "reproduce", "reproduction_html", "write_reproduction", "VERDICTS",
-           "last_digit_unit"]
+           "last_digit_unit", "banner", "display_number"]
 
 VERDICTS = ("pass", "FAIL", "not yet", "info")
 
@@ -154,26 +154,35 @@ class Reproduction:
                 "notes": list(self.notes)}
 
     def to_text(self, width: int = 38) -> str:
-        """The side-by-side table for a terminal."""
+        """The side-by-side table for a terminal.
+
+        Long cells wrap onto continuation lines (nothing is cut): the quantity column is
+        ``width`` characters wide, the paper, toolkit and tolerance columns 22.
+        """
+        import textwrap
+
         head = ["quantity", "paper", "toolkit", "rel. diff", "tolerance", "verdict"]
-        body = []
+        caps = [width, 22, 22, 10, 22, 7]
+        cells = []
         for r in self.rows:
             rd = "" if r.rel_diff is None else f"{100 * r.rel_diff:+.2f} %"
-            body.append([_clip(r.quantity, width), _clip(r.paper, 22), _clip(r.toolkit, 22), rd,
-                         _clip(r.tolerance, 22), r.verdict])
-        widths = [max(len(h), *(len(b[i]) for b in body)) for i, h in enumerate(head)]
+            cells.append([r.quantity, display_number(r.paper), r.toolkit, rd, r.tolerance, r.verdict])
+        wrapped = [[textwrap.wrap(str(c), cap, break_long_words=True, break_on_hyphens=False) or [""]
+                    for c, cap in zip(row, caps)] for row in cells]
+        widths = [max(len(h), *(len(line) for w in wrapped for line in w[i])) for i, h in enumerate(head)]
         fmt = "  ".join(f"{{:{'<' if i in (0, 4, 5) else '>'}{w}}}" for i, w in enumerate(widths))
-        lines = [fmt.format(*head), "  ".join("-" * w for w in widths)]
+        lines = [fmt.format(*head).rstrip(), "  ".join("-" * w for w in widths)]
         section = None
-        for r, b in zip(self.rows, body):
+        for r, w in zip(self.rows, wrapped):
             if r.section != section:
                 section = r.section
                 lines.append(f"[{section}]")
-            lines.append(fmt.format(*b))
+            for k in range(max(len(c) for c in w)):
+                lines.append(fmt.format(*(c[k] if k < len(c) else "" for c in w)).rstrip())
         c = self.counts()
         lines.append("")
-        lines.append(f"{c['pass']} pass, {c['FAIL']} FAIL, {c['not yet']} not yet, {c['info']} info"
-                     f"  ({self.seconds:.1f} s)")
+        lines.append(f"{c['pass']} pass (within tolerance), {c['not yet']} not yet reached, {c['FAIL']} FAIL, "
+                     f"{c['info']} info  ({self.seconds:.1f} s)")
         why = [r for r in self.rows if r.verdict in ("not yet", "FAIL")]
         if why:
             lines.append("")
@@ -185,15 +194,46 @@ class Reproduction:
         return "\n".join(lines) + "\n"
 
 
-def _clip(s: str, n: int) -> str:
-    s = str(s)
-    return s if len(s) <= n else s[: n - 1] + "…"
+def banner(counts: dict) -> dict:
+    """Headline, colour and CSS class of the page's verdict (red: a failure, amber: rows not
+    yet reached, green: every checked row within its tolerance).
+
+    >>> banner({"pass": 88, "FAIL": 0, "not yet": 2, "info": 3})["colour"]
+    'amber'
+    """
+    n_fail, n_open, n_pass = counts["FAIL"], counts["not yet"], counts["pass"]
+    if n_fail:
+        return {"colour": "red", "css": "verdict-fail",
+                "headline": f"{n_fail} checked row{'s' if n_fail > 1 else ''} outside tolerance with no known "
+                            f"reason; {n_pass} within tolerance, {n_open} not yet reached."}
+    if n_open:
+        return {"colour": "amber", "css": "verdict-notyet",
+                "headline": f"Not everything is reached yet: {n_open} row{'s' if n_open > 1 else ''} outside "
+                            "tolerance for a stated reason (listed below); no row fails."}
+    return {"colour": "green", "css": "verdict-pass",
+            "headline": f"Every checked row is within its tolerance ({n_pass} rows) · 0 not yet reached · 0 failed."}
+
+
+_PRINTED_SCI = re.compile(r"([-−]?\d+(?:\.\d*)?)[eE]([+-]?\d+)")
+
+
+def display_number(text: str) -> str:
+    """A number printed as ``1.61e-4`` shown as the paper prints it, ``1.61 × 10⁻⁴``; other text as is.
+
+    >>> display_number("1.61e-4"), display_number("5.6e5"), display_number("0.0880")
+    ('1.61 × 10⁻⁴', '5.6 × 10⁵', '0.0880')
+    """
+    m = _PRINTED_SCI.fullmatch(str(text).strip())
+    if not m:
+        return str(text)
+    return f"{m.group(1)} × 10{str(int(m.group(2))).translate(str.maketrans('0123456789-', '⁰¹²³⁴⁵⁶⁷⁸⁹⁻'))}"
 
 
 def _fmt(x, sig: int = 5) -> str:
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return "n/a"
-    return f"{float(x):.{sig}g}"
+    """A toolkit value with ``sig`` significant figures (:func:`rsm_lrg.present.format_number`)."""
+    from ..present import format_number
+
+    return format_number(x, sig, missing="n/a")
 
 
 # -- row builders -------------------------------------------------------------------------------
@@ -548,6 +588,11 @@ def reproduction_html(rep: Reproduction) -> str:
 
     figs = _figures(rep)
     c = rep.counts()
+    css = {"pass": "pass", "FAIL": "fail", "not yet": "notyet", "info": ""}
+    rows = [r.to_dict() | {"rel_text": "" if r.rel_diff is None else f"{100 * r.rel_diff:+.2f} %",
+                           "paper": display_number(r.paper), "toolkit": display_number(r.toolkit),
+                           "css": css[r.verdict]}
+            for r in rep.rows]
     return render_page(
         "reproduction.html.j2",
         title="Su, Zhang & Yang (2023) reproduced by rsm-lrg",
@@ -556,9 +601,7 @@ def reproduction_html(rep: Reproduction) -> str:
                   "from the embedded data."),
         toc=[("verdict", "Verdict"), ("comparison", "Paper vs toolkit"), ("fig5", "Fig. 5"), ("fig9", "Fig. 9"),
              ("fig10", "Fig. 10"), ("fig11", "Fig. 11"), ("surrogate", "Surrogate vs Table 4")],
-        rows=[r.to_dict() | {"rel_text": "" if r.rel_diff is None else f"{100 * r.rel_diff:+.2f} %",
-                             "css": {"pass": "pass", "FAIL": "fail", "not yet": "notyet", "info": ""}[r.verdict]}
-              for r in rep.rows],
+        rows=rows, banner=banner(c), open_rows=[r for r in rows if r["verdict"] in ("not yet", "FAIL")],
         counts=c, ok=rep.ok, notes=list(rep.notes), seconds=rep.seconds,
         fig5=figs.get("fig5"), fig9=figs.get("fig9"), fig11=figs["fig11"], fig10=figs["fig10"],
         fig10_note=figs["fig10_note"], surrogate=figs.get("surrogate"),

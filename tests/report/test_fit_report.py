@@ -110,10 +110,12 @@ def test_coded_equation_is_eq19(page):
     eq19 = rsm_lrg.load_equation19()
     text = page.text_by_id["equation-coded"].split("=", 1)[1]
     shown = {"Intercept": 0.0}
-    tokens = re.findall(r"([+−-]?)\s*([\d.]+(?:e-?\d+)?)\s*([A-D][A-D²]*)?", text)
-    for sign, num, term in tokens:
+    # numbers as the page writes them (rsm_lrg.present): 0.0075 or 4.1667 × 10⁻⁵
+    tokens = re.findall(r"([+−-]?)\s*([\d.]+)(?:\s*×\s*10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))?\s*([A-D][A-D²]*)?", text)
+    for sign, num, exp, term in tokens:
         name = (term or "Intercept").replace("²", "^2")
-        shown[name] = (-1 if sign in ("−", "-") else 1) * float(num)
+        e = int(exp.translate(str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789"))) if exp else 0
+        shown[name] = (-1 if sign in ("−", "-") else 1) * float(num) * 10.0 ** e
     for term, coef in eq19.items():
         assert shown.get(term, 0.0) == pytest.approx(coef, abs=5e-6), term  # 5 decimals
     assert "AB" not in shown and "BC" not in shown  # zero in Eq. 19, round-off in the fit

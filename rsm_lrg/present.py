@@ -1,0 +1,214 @@
+"""How numbers are shown: one number format, one p-value text, one round-off rule.
+
+Every face of a result (the text of the CLI, the HTML report, the notebook display and the
+``repr`` of result objects) formats its numbers here, so that a value reads the same
+wherever it appears. This module imports nothing from the rest of the package, so every
+layer (``model``, ``optimize``, ``report``, ``cli``) may use it.
+
+The rules
+---------
+- **Number** (:func:`format_number`): ``digits`` significant figures; plain decimals for
+  ``1e-4 <= |x| < 1e5``, otherwise scientific notation, written ``6.972 × 10⁻⁵`` in the
+  ``"unicode"`` style (HTML, notebook, repr) and ``6.972e-05`` in the ``"ascii"`` style.
+  Trailing zeros are dropped unless ``trim=False`` (tables that align digits).
+- **p value** (:func:`format_p`): four decimals, ``<0.0001`` below that (Design-Expert).
+- **Round-off** (:func:`clean`): a value whose size is at most :data:`ROUND_OFF` times its
+  scale (a sum of squares against the corrected total, a coefficient against the largest
+  one) is shown as exactly 0, as Design-Expert prints the AB and BC rows of the paper's
+  Table 5. Stored results keep the computed values; only what is shown is cleaned.
+
+>>> format_number(6.972e-05), format_sci(1.61e-4), format_number(0.0336667)
+('6.972 × 10⁻⁵', '1.61 × 10⁻⁴', '0.03367')
+>>> format_number(6.972e-05, style="ascii"), format_number(26.0312, 4), format_number(27)
+('6.972e-05', '26.03', '27')
+>>> format_p(3e-7), format_p(0.088), clean(2.5e-34, 1.14e-3), clean(1.6e-4, 1.14e-3)
+('<0.0001', '0.0880', 0.0, 0.00016)
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Number
+
+__all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_sci", "format_p", "format_f",
+           "format_cell", "clean_anova", "anova_rows"]
+
+#: Relative size at or below which a value is round-off and shown as 0.
+ROUND_OFF = 1e-12
+
+#: What a missing value (None, NaN) shows as where a blank would be ambiguous.
+DASH = "—"
+
+_SUPERSCRIPT = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺")
+
+
+def _missing(x) -> bool:
+    if x is None:
+        return True
+    if isinstance(x, Number) and not isinstance(x, bool):
+        try:
+            return not math.isfinite(float(x))
+        except (TypeError, ValueError, OverflowError):
+            return False
+    return False
+
+
+def clean(x, scale):
+    """``x``, or ``0.0`` when ``|x| <= ROUND_OFF · |scale|`` (round-off); missing passes through.
+
+    >>> clean(-3e-20, 1.0), clean(0.5, 1.0), clean(None, 1.0)
+    (0.0, 0.5, None)
+    """
+    if _missing(x) or _missing(scale):
+        return x
+    return 0.0 if abs(float(x)) <= ROUND_OFF * abs(float(scale)) else x
+
+
+def _mantissa_exponent(x: float, digits: int) -> tuple[str, int]:
+    mant, exp = f"{x:.{max(digits, 1) - 1}e}".split("e")
+    return mant, int(exp)
+
+
+def _trim(s: str) -> str:
+    return s.rstrip("0").rstrip(".") if "." in s else s
+
+
+def format_number(x, digits: int = 4, *, style: str = "unicode", trim: bool = True,
+                  missing: str = "") -> str:
+    """A number with ``digits`` significant figures (see the module docstring for the rule).
+
+    Parameters
+    ----------
+    x : number or None
+        Integers (Python or NumPy ``int``) are shown whole; booleans as ``yes``/``no``;
+        anything that is not a number is returned as ``str(x)``.
+    digits : int
+        Significant figures.
+    style : {"unicode", "ascii"}
+        ``6.972 × 10⁻⁵`` or ``6.972e-05``.
+    trim : bool
+        Drop trailing zeros (``0.0880`` → ``0.088``); ``False`` keeps ``digits`` figures.
+    missing : str
+        Text for ``None``, NaN and infinities.
+
+    >>> format_number(0.0), format_number(-1234567.0), format_number(1.5e-7, style="ascii", trim=False)
+    ('0', '-1.235 × 10⁶', '1.500e-07')
+    >>> format_number(0.0880, 4, trim=False), format_number(float("nan"), missing="—")
+    ('0.08800', '—')
+    """
+    if style not in ("unicode", "ascii"):
+        raise ValueError(f"style must be 'unicode' or 'ascii', not {style!r}")
+    if _missing(x):
+        return missing
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    if not isinstance(x, Number):
+        return str(x)
+    if not isinstance(x, float) and float(x).is_integer() and abs(float(x)) < 1e15:
+        return str(int(x))
+    xf = float(x)
+    if xf == 0.0:
+        return "0" if trim else f"{0.0:.{max(digits - 1, 0)}f}"
+    a = abs(xf)
+    sign = "-" if xf < 0 else ""
+    r = float(f"{a:.{max(digits, 1) - 1}e}")  # rounded to the significant figures first
+    if 1e-4 <= r < 1e5:
+        decimals = max(digits - 1 - math.floor(math.log10(r)), 0)
+        s = f"{r:.{decimals}f}"
+        return sign + (_trim(s) if trim else s)
+    return sign + _sci(a, digits, style, trim)
+
+
+def _sci(a: float, digits: int, style: str, trim: bool) -> str:
+    mant, exp = _mantissa_exponent(a, digits)
+    if trim:
+        mant = _trim(mant)
+    if style == "ascii":
+        return f"{mant}e{'-' if exp < 0 else '+'}{abs(exp):02d}"
+    return f"{mant} × 10{str(exp).translate(_SUPERSCRIPT)}"
+
+
+def format_sci(x, digits: int = 3) -> str:
+    """A sum of squares or mean square as the paper's Table 5 prints it: ``1.61 × 10⁻⁴``;
+    zero as ``0.000``; plain decimals for ``0.01 <= |x| < 1000``.
+
+    >>> format_sci(0.0), format_sci(1.108e-3), format_sci(12.5)
+    ('0.000', '1.11 × 10⁻³', '12.5')
+    """
+    if _missing(x):
+        return ""
+    xf = float(x)
+    if xf == 0.0:
+        return "0.000"
+    if 0.01 <= abs(xf) < 1000:
+        return format_number(xf, digits)
+    return ("-" if xf < 0 else "") + _sci(abs(xf), digits, "unicode", trim=False)
+
+
+def format_f(x) -> str:
+    """An F value: two decimals from 0.1 up, two significant figures down to 0.01, else
+    Table 5's scientific form.
+
+    >>> format_f(221.918), format_f(0.0822), format_f(0.00304), format_f(0.0)
+    ('221.92', '0.082', '3.04 × 10⁻³', '0.00')
+    """
+    if _missing(x):
+        return ""
+    xf = float(x)
+    if xf == 0.0 or abs(xf) >= 0.1:
+        return f"{xf:.2f}"
+    if abs(xf) >= 0.01:
+        return f"{xf:.2g}"
+    return format_sci(xf)
+
+
+def format_p(p, *, style: str = "unicode") -> str:
+    """A p value with four decimals, ``<0.0001`` below that (Design-Expert); ``""`` if missing.
+
+    ``style="ascii"`` writes ``< 0.0001`` (the CLI's text tables)."""
+    if _missing(p):
+        return ""
+    pf = float(p)
+    if pf < 1e-4:
+        return "<0.0001" if style == "unicode" else "< 0.0001"
+    return f"{pf:.4f}"
+
+
+def format_cell(x) -> str:
+    """A data-table cell: numbers with up to 6 significant figures, text as is, blank if missing."""
+    return format_number(x, 6)
+
+
+def clean_anova(anova):
+    """A copy of an ANOVA DataFrame (``source, sum_sq, df, mean_sq, f, p``) as it is shown:
+    sums of squares and mean squares that are round-off against the corrected total
+    (``|ss| <= ROUND_OFF · SS_total``) set to 0, and their F to 0 and p to 1.
+
+    The stored ANOVA keeps the computed values (e.g. 2.5e-34 for the AB row of Table 4's fit);
+    this is what the CLI, the report and the notebook show.
+    """
+    a = anova.copy()
+    tot = a.loc[a["source"] == "Cor Total", "sum_sq"]
+    scale = float(tot.iloc[0]) if len(tot) else float(a["sum_sq"].abs().max())
+    for i in a.index:
+        ss = a.at[i, "sum_sq"]
+        if clean(ss, scale) == 0.0 and not _missing(ss):
+            a.at[i, "sum_sq"] = 0.0
+            if not _missing(a.at[i, "mean_sq"]):
+                a.at[i, "mean_sq"] = 0.0
+            if not _missing(a.at[i, "f"]):
+                a.at[i, "f"] = 0.0
+                a.at[i, "p"] = 1.0
+    return a
+
+
+def anova_rows(anova, *, style: str = "unicode") -> list[list[str]]:
+    """The rows of an ANOVA as shown (header first): cleaned (:func:`clean_anova`), sums of
+    squares with 4 significant figures, F with two decimals, p by :func:`format_p`."""
+    a = clean_anova(anova)
+    out = [["Source", "Sum of squares", "df", "Mean square", "F-value", "p-value"]]
+    for r in a.itertuples(index=False):
+        out.append([str(r.source), format_number(r.sum_sq, 4, style=style), format_number(int(r.df)),
+                    format_number(r.mean_sq, 4, style=style), format_f(r.f) if style == "unicode" else
+                    format_number(r.f, 4, style=style), format_p(r.p, style=style)])
+    return out
