@@ -89,3 +89,68 @@ def test_fit_as_a_real_process():
     assert out.returncode == 0, out.stderr
     d = json.loads(out.stdout)
     assert d["n"] == 27 and round(d["statistics"]["adeq_precision"], 2) == 18.46
+
+
+def _one_error(argv, capsys):
+    capsys.readouterr()
+    assert main(argv) == 2, argv
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error:") and len(err[0]) < 300, err
+    return err[0]
+
+
+def test_columns_and_runs_left_out_are_said(tmp_path, capsys):
+    t4 = Path(TABLE4).read_text().splitlines()
+    lines = [t4[0] + ",operator"] + [ln + f",op{i % 3}" for i, ln in enumerate(t4[1:])]
+    lines[5] = lines[5].replace(lines[5].split(",")[5], "", 1)  # row 5: no response (not run)
+    path = _write(tmp_path, "ops.csv", "\n".join(lines) + "\n")
+    capsys.readouterr()
+    assert main(["fit", path, "--response", "tcr_c_per_min"]) == 0
+    out = capsys.readouterr().out
+    assert "Text column left out" in out and "operator" in out
+    assert "1 run without a response left out of the fit (not run): row 5." in out
+    assert "runs: 26" in out
+    # with JSON on stdout the notes go to stderr, and the JSON stays clean
+    assert main(["fit", path, "--response", "tcr_c_per_min", "--json", "-"]) == 0
+    cap = capsys.readouterr()
+    assert json.loads(cap.out)["n"] == 26
+    notes = cap.err.strip().splitlines()
+    assert notes and all(n.startswith("note: ") for n in notes)
+    assert any("operator" in n for n in notes) and any("row 5" in n for n in notes)
+
+
+def test_column_names_and_comma_numbers(tmp_path, capsys):
+    # valid distinct columns stroke_m and stroke_m.1
+    t4 = Path(TABLE4).read_text().splitlines()
+    two = [t4[0].replace("velocity_m_s", "stroke_m.1")] + t4[1:]
+    path = _write(tmp_path, "two.csv", "\n".join(two) + "\n")
+    assert main(["fit", path, "--response", "tcr_c_per_min"]) == 0
+    assert "B: stroke_m " in capsys.readouterr().out
+    # a true duplicate in the header line
+    dup = [t4[0].replace("velocity_m_s", "stroke_m")] + t4[1:]
+    err = _one_error(["fit", _write(tmp_path, "dup.csv", "\n".join(dup)), "--response", "tcr_c_per_min"], capsys)
+    assert "'stroke_m' appears more than once" in err
+    # a quoted thousands separator in a column that would be a factor
+    com = [t4[0]] + [t4[1].replace(",30,", ',"1,030",', 1)] + t4[2:]
+    err = _one_error(["fit", _write(tmp_path, "com.csv", "\n".join(com)), "--response", "tcr_c_per_min"], capsys)
+    assert "'acceleration_m_s2', row 1" in err and "comma" in err
+    # unquoted 1,234 on every row: one field too many
+    unq = ["a,b,y", "1,234,5,6", "2,345,6,7", "3,456,7,8"]
+    err = _one_error(["fit", _write(tmp_path, "unq.csv", "\n".join(unq)), "--response", "y"], capsys)
+    assert "more fields than the header" in err
+
+
+def test_huge_cell_is_cut_in_the_error(tmp_path, capsys):
+    t4 = Path(TABLE4).read_text().splitlines()
+    big = [t4[0]] + [t4[1].replace(",0.4,", "," + "7" * 300 + "x,", 1)] + t4[2:]
+    err = _one_error(["fit", _write(tmp_path, "big.csv", "\n".join(big)), "--response", "tcr_c_per_min"], capsys)
+    assert "'velocity_m_s', row 1" in err
+
+
+def test_design_refuses_a_bookkeeping_factor_name(tmp_path, capsys):
+    for name in ["std_order", "coded_A", "block", "Run_Order"]:
+        out = tmp_path / f"{name}.csv"
+        err = _one_error(["design", "box-behnken", "--factor", f"{name}=0:1", "--factor", "b=0:1",
+                          "--factor", "c=0:1", "-o", str(out)], capsys)
+        assert "reserved" in err and name in err
+        assert not out.exists()
