@@ -71,6 +71,9 @@ def test_runs_without_a_response_are_left_out():
     np.testing.assert_allclose(r.coefficients["coded"], ref.coefficients["coded"], rtol=1e-12, atol=1e-15)
     assert r.n == 25 and r.omitted_rows == (4, 11)
     assert list(r.omitted_data.index) == [3, 10]
+    assert r.run_rows == [i for i in range(1, 28) if i not in (4, 11)]
+    d = r.to_dict()
+    assert d["n"] == 25 and d["omitted_rows"] == [4, 11] and d["notes"] == list(r.notes)
     assert len(r.data) == 25 and np.array_equal(r.y, ref.y)
     assert any("2 runs without a response left out of the fit (not run): rows 4, 11." == n for n in r.notes)
     # the coding is still the one of every run (factor levels of the runs left out count)
