@@ -77,9 +77,9 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-#: An error line is cut to this many characters, as a last resort (messages quote user values
-#: shortened by rsm_lrg.io.quote_user_value already).
-MAX_ERROR_LINE = 300
+#: An error line is cut to this many characters (under 300), as a last resort (messages quote
+#: user values shortened by rsm_lrg.io.quote_user_value already).
+MAX_ERROR_LINE = 299
 
 
 def _error_line(msg: str) -> str:

@@ -186,27 +186,63 @@ def about_file(path):
     except InputError:
         raise
     except ValueError as exc:
-        if str(exc).startswith("-"):  # it names the option at fault, not the file
-            raise InputError(str(exc)) from None
-        raise InputError(f"{path}: {exc}") from None
+        msg = str(exc)
+        if msg.startswith("-"):  # it names the option at fault, not the file
+            raise InputError(msg) from None
+        option = option_of_message(msg)
+        if option:  # the library checked an option's value after the data were read
+            raise InputError(f"{option}: {msg}") from None
+        raise InputError(f"{path}: {msg}") from None
+
+
+#: Library messages about an option's value begin with the parameter's name: the option that
+#: gives it (so that ``alpha_out must lie ...`` reads ``--alpha-out: alpha_out must lie ...``).
+OPTION_MESSAGES = {
+    "alpha_out": "--alpha-out", "alpha": "--alpha", "confidence": "--confidence", "bound": "--bound",
+    "goal": "--goal", "transform": "--transform", "radius": "--radius", "step": "--step",
+    "setting": "--at", "no setting": "--at", "weight": "--weight", "importance": "--importance",
+    "limits": "--limits", "criterion": "--criterion", "effect_sd": "--effect", "region": "--region",
+    "duration_min": "--duration-min", "noise_sd": "--noise-sd", "seed": "--seed", "center": "--center",
+    "blocks": "--blocks", "levels": "--levels", "observed": "--observed", "give at least one observed": "--observed",
+    "unknown calibration parameter": "--parameter", "calibrate at most": "--parameter",
+    "a calibration parameter": "--parameter", "unknown model": "--model",
+}
+
+
+def option_of_message(msg: str) -> str | None:
+    """The option a library message is about (see :data:`OPTION_MESSAGES`), or None.
+
+    >>> option_of_message("alpha_out must lie between 0 and 1, not 2")
+    '--alpha-out'
+    >>> option_of_message("response 'y': not numeric") is None
+    True
+    """
+    import re
+
+    for key in sorted(OPTION_MESSAGES, key=len, reverse=True):
+        if re.match(re.escape(key) + r"(?![\w])", msg):
+            return OPTION_MESSAGES[key]
+    return None
 
 
 def check_option_specs(args: argparse.Namespace) -> None:
-    """Check the ``--factor NAME=LOW:HIGH`` values before any data is read, so that an error
-    names the option rather than the data file (categoric ``NAME=cat...`` specs are left to
-    the library)."""
+    """Check the ``--factor`` and ``--bound NAME=LOW:HIGH`` values before any data is read, so
+    that an error names the option rather than the data file (categoric ``NAME=cat...`` specs
+    are left to the library)."""
     from ..factors import parse_factor_spec
 
-    for spec in getattr(args, "factor", None) or []:
-        if not isinstance(spec, str):
-            continue
-        rest = spec.split("=", 1)[1].strip().lower() if "=" in spec else ""
-        if rest.startswith("cat"):
-            continue
-        try:
-            parse_factor_spec(spec)
-        except ValueError as exc:
-            raise InputError(f"--factor {quote_user_value(spec)}: {exc}") from None
+    for dest in ("factor", "bound"):
+        for spec in getattr(args, dest, None) or []:
+            if not isinstance(spec, str):
+                continue
+            rest = spec.split("=", 1)[1].strip().lower() if "=" in spec else ""
+            if rest.startswith("cat"):
+                continue
+            try:
+                if parse_factor_spec(spec)[1] is None and dest == "bound":
+                    raise ValueError("expected NAME=LOW:HIGH")
+            except ValueError as exc:
+                raise InputError(f"--{dest} {quote_user_value(spec)}: {exc}") from None
 
 
 def print_notes(notes) -> None:

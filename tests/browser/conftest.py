@@ -1,8 +1,11 @@
 """Open a report in real headless Chromium (Debian's /usr/bin/chromium) through Playwright.
 
 Playwright's own browser download cannot work here, so the Debian binary is launched with
-``executable_path``. Tests using the ``chromium_page`` fixture are skipped, with the reason,
-only when that binary is absent (``.ci/run`` installs it).
+``executable_path``. Every test under ``tests/browser`` (whatever fixtures it uses) is
+skipped, with the reason, when that binary is absent, when Playwright cannot be imported,
+or when the browser does not start (``.ci/run`` installs it). Set
+``RSM_LRG_REQUIRE_BROWSER=1`` to make these a failure instead of a skip (for CI, where the
+browser must be there).
 """
 
 from __future__ import annotations
@@ -14,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-CHROMIUM = "/usr/bin/chromium"
+CHROMIUM = os.environ.get("RSM_LRG_CHROMIUM", "/usr/bin/chromium")  # override for another binary
 CHROMIUM_ARGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
     "--disable-background-networking", "--disable-component-update", "--disable-sync",
@@ -47,6 +50,39 @@ class PageVisit:
         return [u for u in self.requests if u != self.url and not u.startswith("data:")]
 
 
+def _require() -> bool:
+    return os.environ.get("RSM_LRG_REQUIRE_BROWSER", "").strip() not in ("", "0")
+
+
+def _skip_or_fail(reason: str):
+    if _require():
+        pytest.fail(f"{reason} (RSM_LRG_REQUIRE_BROWSER is set)", pytrace=False)
+    pytest.skip(reason)
+
+
+def _why_unavailable() -> str | None:
+    """Why the browser tests cannot run here, or None."""
+    if not chromium_available():
+        return f"{CHROMIUM} is not installed (Debian package 'chromium'; .ci/run installs it)"
+    try:
+        import playwright.sync_api  # noqa: F401
+    except Exception as exc:  # ImportError, or a broken binary dependency (greenlet, ...)
+        first = (str(exc).splitlines() or [""])[0][:200]
+        return f"Playwright for Python cannot be imported ({type(exc).__name__}: {first})"
+    return None
+
+
+def pytest_collection_modifyitems(config, items):
+    why = _why_unavailable()
+    if why is None or _require():
+        return
+    here = Path(__file__).parent.resolve()
+    mark = pytest.mark.skip(reason=why)
+    for item in items:
+        if here in Path(str(item.fspath)).resolve().parents:
+            item.add_marker(mark)
+
+
 def _launch():
     from playwright.sync_api import sync_playwright
 
@@ -61,10 +97,14 @@ def _launch():
 
 @pytest.fixture(scope="session")
 def chromium():
-    if not (os.path.exists(CHROMIUM) and os.access(CHROMIUM, os.X_OK)):
-        pytest.skip(f"{CHROMIUM} is not installed (Debian package 'chromium'; .ci/run installs it)")
-    pytest.importorskip("playwright.sync_api", reason="Playwright for Python is not installed")
-    pw, browser = _launch()
+    why = _why_unavailable()
+    if why is not None:
+        _skip_or_fail(why)
+    try:
+        pw, browser = _launch()
+    except Exception as exc:  # e.g. missing shared libraries of the binary
+        first = (str(exc).strip().splitlines() or [""])[0][:200]
+        _skip_or_fail(f"{CHROMIUM} does not start under Playwright ({type(exc).__name__}: {first})")
     yield browser
     browser.close()
     pw.stop()
@@ -128,4 +168,5 @@ def visit(chromium, tmp_path):
 
 
 def chromium_available() -> bool:
+    """True when the Chromium binary exists and is executable."""
     return os.path.exists(CHROMIUM) and shutil.which(CHROMIUM) is not None
