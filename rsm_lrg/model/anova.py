@@ -7,8 +7,10 @@ term with columns ``S`` is the extra sum of squares for dropping it,
     SS_S = b_S' (C_SS)^-1 b_S          (a 1-df term: b_j^2 / C_jj),
 
 so no term needs a refit. Blocks enter first (sequential SS) and are kept out of the model
-row; pure error comes from runs with identical factor settings in the same block, and lack
-of fit is the rest of the residual.
+row. Pure error is the residual of the largest model the design can fit — one mean per
+distinct factor setting, plus the block effects when blocked — and lack of fit is the rest
+of the residual (:func:`pure_error`; R ``rsm``'s ``PE()`` lack-of-fit test, Myers,
+Montgomery & Anderson-Cook, *Response Surface Methodology*, 3rd ed., Sec. 2.7 and 7.4).
 """
 
 from __future__ import annotations
@@ -52,46 +54,85 @@ class PureError:
     Attributes
     ----------
     groups : ndarray of int
-        Group number of each run (runs with the same settings in the same block share one).
+        Group number of each run (runs with the same factor settings share one, whatever
+        their block).
     n_groups : int
-        Number of distinct settings (per block).
+        Number of distinct factor settings.
     ss : float
         Pure-error sum of squares [response units^2].
     df : int
-        ``n - n_groups``.
+        ``n - n_groups - block_df``.
+    block_df : int
+        Degrees of freedom of the block effects that remain estimable once every setting
+        has its own mean (0 without blocks, or when no setting spans two blocks).
     """
 
     groups: np.ndarray
     n_groups: int
     ss: float
     df: int
+    block_df: int = 0
 
 
-def pure_error(keys: np.ndarray, y: np.ndarray) -> PureError:
-    """Pure error from replicate groups.
+def _group_means(groups: np.ndarray, values: np.ndarray, n_groups: int) -> np.ndarray:
+    """Per-run mean of ``values`` (n,) or (n, m) over its group."""
+    counts = np.bincount(groups, minlength=n_groups)
+    if values.ndim == 1:
+        return (np.bincount(groups, weights=values, minlength=n_groups) / counts)[groups]
+    cols = [np.bincount(groups, weights=values[:, j], minlength=n_groups) / counts for j in range(values.shape[1])]
+    return np.column_stack(cols)[groups] if cols else values.copy()
+
+
+def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None) -> PureError:
+    """Pure error: the residual of the model with one mean per distinct factor setting
+    (plus the block effects, when blocked).
+
+    Without blocks this is the within-group sum of squares ``Σ (y - ȳ_group)²`` on
+    ``n - g`` degrees of freedom (g distinct settings). With blocks it is the residual of
+    ``y ~ block + setting`` (R ``rsm``: ``y ~ Block + PE(x1, ...)``): a setting run once in
+    each of two blocks then contributes pure error once the block effects are removed. It
+    is computed without the n x (g + b) indicator matrix: the setting means are absorbed by
+    centring ``y`` and the block contrasts within each setting (Frisch–Waugh–Lovell), and the
+    pure error is the residual of the centred ``y`` on the centred contrasts, with
+    ``df = n - g - rank(centred contrasts)``.
 
     Parameters
     ----------
     keys : (n, m) array
-        What makes two runs replicates: the coded settings and (when blocked) the block
-        code, one row per run. Coded values are rounded by :class:`FactorSpace`, so equal
-        settings compare equal.
+        The coded factor settings, one row per run. Coded values are rounded by
+        :class:`FactorSpace`, so equal settings compare equal.
     y : (n,) array
-        Response.
+        Response (centre it first when it sits on a large offset: the result is the same
+        and more accurate).
+    blocks : (n,) array of int, optional
+        Block code of each run (0..b-1).
     """
     import pandas as pd
 
     keys = np.asarray(keys, dtype=float)
+    y = np.asarray(y, dtype=float)
     if keys.ndim == 1:
         keys = keys[:, None]
     frame = pd.DataFrame(keys)
     groups = frame.groupby(list(frame.columns), sort=False).ngroup().to_numpy()
     n_groups = int(groups.max()) + 1 if groups.size else 0
-    counts = np.bincount(groups, minlength=n_groups)
-    sums = np.bincount(groups, weights=y, minlength=n_groups)
-    means = sums / counts
-    ss = float(np.sum((y - means[groups]) ** 2))
-    return PureError(groups=groups, n_groups=n_groups, ss=ss, df=int(y.size - n_groups))
+    yt = y - _group_means(groups, y, n_groups)
+    block_df = 0
+    if blocks is not None:
+        codes = np.unique(np.asarray(blocks), return_inverse=True)[1].ravel()
+        nb = int(codes.max()) + 1 if codes.size else 0
+        if nb > 1:
+            B = np.zeros((y.size, nb - 1))
+            for j in range(nb - 1):
+                B[codes == j, j] = 1.0
+            B[codes == nb - 1, :] = -1.0
+            Bt = B - _group_means(groups, B, n_groups)
+            if np.any(Bt != 0.0):
+                coef, _, block_df, _ = np.linalg.lstsq(Bt, yt, rcond=1e-10)
+                yt = yt - Bt @ coef
+                block_df = int(block_df)
+    ss = float(np.sum(yt ** 2))
+    return PureError(groups=groups, n_groups=n_groups, ss=ss, df=int(y.size - n_groups - block_df), block_df=block_df)
 
 
 def _row(source, ss, df, ms=np.nan, f=np.nan, p=np.nan):

@@ -1,12 +1,15 @@
 """Fitting a response-surface model: :func:`fit` and its result :class:`FitResult`.
 
 The model (linear, 2FI, quadratic — the paper's Eq. 19 — or cubic) is fitted by ordinary
-least squares on statsmodels (``sm.OLS`` on the coded design matrix), in coded units
-``x = (actual - centre) / half_range``. Everything else — the Design-Expert ANOVA
-(Table 5), PRESS, VIF, intervals — comes from that one factorisation: the coefficients,
-``(X'X)^-1`` and the hat diagonal ``h_i = x_i'(X'X)^-1 x_i`` (read off the pseudo-inverse
-statsmodels already holds). No term is refitted, so a fit of 10^6 runs costs a small
-multiple of one least-squares solve.
+least squares on the coded design matrix, in coded units ``x = (actual - centre) /
+half_range``, by a Householder QR factorisation of the column-scaled matrix with the
+response centred (its mean is added back to the intercept), so a response of 1e9 + small
+variation loses no accuracy (:func:`_least_squares`). Everything else — the Design-Expert
+ANOVA (Table 5), PRESS, VIF, intervals — comes from that one factorisation: the
+coefficients, ``(X'X)^-1 = R^-1 R^-T`` and the hat diagonal ``h_i = |q_i|^2``. No term is
+refitted, so a fit of 10^6 runs costs a small multiple of one least-squares solve. The
+statsmodels results object of the same model matrix is built on first access of
+:attr:`FitResult.ols`.
 
 Blocks (optional) are sum-to-zero effects, as Design-Expert shows them; they enter the
 ANOVA first (sequential SS) and stay out of the model row. Predictions and the optimum are
@@ -24,6 +27,7 @@ import math
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -33,7 +37,7 @@ from .anova import PureError, anova_table, partial_ss, pure_error
 from .canonical import StationaryPoint, canonical_analysis
 from .data import prepare
 from .statistics import FitStatistics, fit_statistics
-from .terms import MODELS, Term, design_matrix, model_terms, term_name
+from .terms import MODELS, Term, check_model_size, design_matrix, model_terms, term_name
 
 __all__ = ["fit", "FitResult", "actual_coefficients", "COEF_COLUMNS"]
 
@@ -135,7 +139,8 @@ class FitResult:
     actual_coefficients : dict
         ``{term: coefficient in actual units}``.
     ols : statsmodels RegressionResults
-        The statsmodels fit behind it all.
+        statsmodels' OLS of ``y`` on ``design_matrix``, built on first access (a cached
+        property; the numbers above come from :func:`_least_squares`, not from it).
     notes : tuple of str
         Remarks for the text output: ``input_notes`` first, then the fit's own (e.g. why
         there is no lack-of-fit test).
@@ -174,24 +179,25 @@ class FitResult:
     block_levels: dict | None = field(repr=False)
     pure_error: PureError | None = field(repr=False)
     actual_coefficients: dict = field(repr=False)
-    ols: Any = field(repr=False)
     notes: tuple = field(default=(), repr=False)
     input_notes: tuple = field(default=(), repr=False)
     omitted_rows: tuple = field(default=(), repr=False)
     omitted_data: Any = field(default=None, repr=False)
+
+    @cached_property
+    def ols(self):
+        """statsmodels ``RegressionResults`` of ``y`` on :attr:`design_matrix`, built lazily."""
+        import statsmodels.api as sm
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return sm.OLS(self.y, self.design_matrix).fit()
 
     # -- views -----------------------------------------------------------------------
     @property
     def n(self) -> int:
         """Number of runs."""
         return int(self.y.size)
-
-    @property
-    def run_rows(self) -> list[int]:
-        """1-based data rows of the runs used (``data``, ``y``, ``fitted``... in this order);
-        the rows missing from it are ``omitted_rows`` (no response: "not run")."""
-        left = set(self.omitted_rows)
-        return [i for i in range(1, self.n + len(left) + 1) if i not in left]
 
     @property
     def term_names(self) -> list[str]:
@@ -395,8 +401,6 @@ class FitResult:
         ]
         out["statistics"] = {k: _f(v) for k, v in self.statistics.to_dict().items()}
         out["stationary_point"] = self.stationary_point.to_dict()
-        out["notes"] = list(self.notes)
-        out["omitted_rows"] = list(self.omitted_rows)  # 1-based data rows without a response
         return out
 
     def to_frame(self):
@@ -469,6 +473,78 @@ def _chosen_terms(names, letters) -> tuple:
     return tuple(sorted(chosen.values(), key=lambda t: (order.get(t.powers, len(order)), t.order, t.powers)))
 
 
+#: Largest magnitude of a factor or response value (and smallest factor half-range) that a fit
+#: accepts: squares, cubes and sums of squares of such numbers stay far from overflow.
+MAX_MAGNITUDE = 1e100
+
+
+def _check_magnitudes(space: FactorSpace, y: np.ndarray, response: str) -> None:
+    """Refuse numbers whose squares or cubes would overflow (a clear error, not inf/NaN later)."""
+    big = float(np.max(np.abs(y))) if y.size else 0.0
+    if big > MAX_MAGNITUDE:
+        raise ValueError(f"response {response!r} holds {big:.3g}, beyond the ±{MAX_MAGNITUDE:.0e} a fit computes with "
+                         "(its squares would overflow); rescale the column (e.g. change its unit)")
+    for f in space.factors:
+        size = max(abs(f.low), abs(f.high), abs(f.center))
+        if not size <= MAX_MAGNITUDE:
+            raise ValueError(f"factor {f.name!r} reaches {size:.3g}, beyond the ±{MAX_MAGNITUDE:.0e} a fit computes "
+                             "with (its powers would overflow); rescale the column (e.g. change its unit)")
+        if not f.half_range >= 1.0 / MAX_MAGNITUDE:
+            raise ValueError(f"factor {f.name!r} spans only {2 * f.half_range:.3g}, below the {1 / MAX_MAGNITUDE:.0e} "
+                             "a fit computes with; rescale the column (e.g. change its unit)")
+
+
+@dataclass(frozen=True)
+class _LeastSquares:
+    beta: np.ndarray
+    cov_unscaled: np.ndarray
+    hat: np.ndarray
+    fitted: np.ndarray
+    residuals: np.ndarray
+    rank: int
+    ybar: float
+
+
+def _least_squares(X: np.ndarray, y: np.ndarray) -> _LeastSquares:
+    """Least squares by Householder QR, accurate when ``y`` sits on a large offset.
+
+    The columns of ``X`` are scaled to unit length (``Xs = X S^-1``) and ``y`` is centred
+    (``yc = y - ȳ``, ``ȳ`` from a correctly rounded sum); ``Xs = QR`` (LAPACK ``geqrf``),
+    ``b_s = R^-1 Q'yc`` with one step of iterative refinement, ``b = S^-1 b_s`` and ``ȳ``
+    added back to the intercept (column 0, all ones). Then ``(X'X)^-1 = S^-1 R^-1 R^-T S^-1``,
+    ``h_i = |q_i|^2`` and the residuals ``yc - Xs b_s`` are computed on the centred scale,
+    so an offset of 1e9 costs no digits of the coefficients (issue 10, item 7). The rank is
+    that of ``Xs`` (singular values of ``R`` above ``max(n, p) eps s_max``); when it is short
+    of ``p`` only ``rank`` is meaningful.
+    """
+    from scipy.linalg import solve_triangular
+
+    n, p = X.shape
+    norms = np.sqrt(np.einsum("ij,ij->j", X, X))
+    scale = np.where(norms > 0, norms, 1.0)
+    Xs = X / scale
+    ybar = math.fsum(y) / n if (n and np.all(X[:, 0] == 1.0)) else 0.0
+    yc = y - ybar
+    Q, R = np.linalg.qr(Xs)
+    sv = np.linalg.svd(R, compute_uv=False)
+    rank = int(np.sum(sv > sv[0] * max(n, p) * np.finfo(float).eps)) if sv.size and sv[0] > 0 else 0
+    if rank < p:
+        nan = np.full(p, np.nan)
+        return _LeastSquares(nan, np.full((p, p), np.nan), np.full(n, np.nan), np.full(n, np.nan),
+                             np.full(n, np.nan), rank, ybar)
+    bs = solve_triangular(R, Q.T @ yc)
+    r = yc - Xs @ bs
+    bs = bs + solve_triangular(R, Q.T @ r)  # one step of iterative refinement
+    r = yc - Xs @ bs
+    Rinv = solve_triangular(R, np.eye(p))
+    C = (Rinv @ Rinv.T) / np.outer(scale, scale)
+    beta = bs / scale
+    beta[0] += ybar
+    hat = np.einsum("ij,ij->i", Q, Q)
+    fitted = ybar + Xs @ bs
+    return _LeastSquares(beta, C, hat, fitted, r, rank, ybar)
+
+
 def _aliased_terms(X: np.ndarray, names: Sequence[str]) -> list[str]:
     """Columns that are (numerically) linear combinations of earlier columns."""
     R = np.linalg.qr(X, mode="r")
@@ -512,7 +588,6 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         than model terms, aliased terms (naming them).
     """
     import pandas as pd
-    import statsmodels.api as sm
     from scipy import stats
 
     if not isinstance(data, pd.DataFrame):
@@ -528,13 +603,24 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         if np.unique(coded[f.letter].to_numpy()).size < 2:
             raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")
 
-    terms = tuple(model_terms(space.letters, model)) if terms is None else _chosen_terms(terms, space.letters)
-    Xt = design_matrix(coded.to_numpy(dtype=float), terms)
+    _check_magnitudes(space, y, response)
     n = y.size
-    names = [t.name for t in terms]
+    if np.all(y == y[0]):
+        raise ValueError(f"response {response!r} is constant (all {y[0]:.6g}): nothing to model")
     if block is not None:
         bcodes, bkeys, blevels = _block_codes(data, block)
         nb = len(bkeys)
+    else:
+        bcodes, bkeys, blevels, nb = None, None, None, 1
+    if terms is None:  # count the terms before building any (a cubic in 16 factors has 969)
+        try:
+            check_model_size(n, len(space), model, nb - 1)
+        except ValueError as exc:
+            raise ValueError(f"{exc}{hint}") from None
+    terms = tuple(model_terms(space.letters, model)) if terms is None else _chosen_terms(terms, space.letters)
+    Xt = design_matrix(coded.to_numpy(dtype=float), terms)
+    names = [t.name for t in terms]
+    if block is not None:
         Bm = np.zeros((n, nb - 1))
         for j in range(nb - 1):
             Bm[bcodes == j, j] = 1.0
@@ -542,7 +628,6 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         X = np.hstack([Xt[:, :1], Bm, Xt[:, 1:]])
         col_names = ["Intercept"] + [f"Block[{k}]" for k in bkeys[:-1]] + names[1:]
     else:
-        bcodes, bkeys, blevels, nb = None, None, None, 1
         X = Xt
         col_names = names
     p = X.shape[1]
@@ -550,32 +635,26 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         what = f"{len(terms)} terms" + (f" and {nb - 1} block effects" if nb > 1 else "")
         raise ValueError(f"{n} runs cannot fit {p} terms (the {model} model in {len(space)} factors has {what}){hint}")
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        ols = sm.OLS(y, X).fit()
-    if int(ols.model.rank) < p:
+    ls = _least_squares(X, y)
+    if ls.rank < p:
         bad = _aliased_terms(X, col_names) or ["(unidentified)"]
         raise ValueError(
             f"the {model} model cannot be estimated from this design: term(s) {', '.join(bad)} "
-            f"are aliased with earlier terms (the design matrix has rank {int(ols.model.rank)} < {p})"
+            f"are aliased with earlier terms (the design matrix has rank {ls.rank} < {p})"
         )
-    beta = np.asarray(ols.params, dtype=float)
-    C = np.asarray(ols.model.normalized_cov_params, dtype=float)
-    pinv = ols.model.pinv_wexog
-    hat = np.einsum("ij,ji->i", X, pinv)
-    fitted = X @ beta
-    resid = y - fitted
+    beta, C, hat, fitted, resid = ls.beta, ls.cov_unscaled, ls.hat, ls.fitted, ls.residuals
     df_res = n - p
     ss_res = float(resid @ resid)
-    ybar = float(np.mean(y))
-    ss_total = float(np.sum((y - ybar) ** 2))
+    ybar = ls.ybar
+    yc = y - ybar  # sums of squares on the centred scale (no digits lost to an offset)
+    ss_total = float(np.sum(yc ** 2))
     sigma2 = ss_res / df_res if df_res > 0 else math.nan
 
     # Blocks entered first: SS between block means.
     if nb > 1:
         cnt = np.bincount(bcodes, minlength=nb)
-        means = np.bincount(bcodes, weights=y, minlength=nb) / cnt
-        ss_block = float(np.sum(cnt * (means - ybar) ** 2))
+        means = np.bincount(bcodes, weights=yc, minlength=nb) / cnt
+        ss_block = float(np.sum(cnt * means ** 2))
     else:
         ss_block = 0.0
     ss_model = max(ss_total - ss_block - ss_res, 0.0)
@@ -584,15 +663,13 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     tidx = np.r_[0, np.arange(nb, p)] if nb > 1 else np.arange(p)
     term_ss = [partial_ss(beta, C, j) for j in tidx[1:]]
 
-    keys = coded.to_numpy(dtype=float)
-    if nb > 1:
-        keys = np.column_stack([keys, bcodes])
-    pe = pure_error(keys, y)
+    # pure error: residual of y ~ (blocks +) one mean per distinct setting (R rsm's PE())
+    pe = pure_error(coded.to_numpy(dtype=float), yc, bcodes if nb > 1 else None)
     notes = []
     if pe.df == 0:
         pe_used = None
         notes.append("No lack-of-fit test: no factor setting is replicated"
-                     + (" within a block" if nb > 1 else "") + ", so there is no pure error.")
+                     + (" (once the block effects are removed)" if nb > 1 else "") + ", so there is no pure error.")
     else:
         pe_used = pe
         if df_res - pe.df == 0:
@@ -638,7 +715,7 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         anova=anova, statistics=statistics, stationary_point=sp, fitted=fitted, residuals=resid,
         hat=hat, cov_unscaled=C, sigma2=float(sigma2), df_resid=int(df_res),
         block_effects=block_effects, block_levels=blevels, pure_error=pe_used,
-        actual_coefficients=actual, ols=ols, notes=prep.notes + tuple(notes),
+        actual_coefficients=actual, notes=prep.notes + tuple(notes),
         input_notes=prep.notes, omitted_rows=prep.omitted_rows, omitted_data=prep.omitted_data,
     )
 

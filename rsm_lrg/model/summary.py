@@ -9,8 +9,9 @@ For the nested models mean ⊂ linear ⊂ 2FI ⊂ quadratic ⊂ cubic this gives
   model that includes the order). An order is **aliased** when some of its terms cannot be
   estimated from the design (its rank increase is smaller than its number of terms), e.g.
   the cubic terms of a Box–Behnken or central composite design;
-* the **lack-of-fit test** of each order, ``F = MS_lof / MS_pe`` with pure error from
-  replicated settings (the same split as the ANOVA of :func:`rsm_lrg.fit`);
+* the **lack-of-fit test** of each order, ``F = MS_lof / MS_pe`` with pure error the
+  residual of (blocks +) one mean per distinct setting (the same split as the ANOVA of
+  :func:`rsm_lrg.fit`, and R ``rsm``'s ``PE()`` test);
 * **model summary statistics** per order: std dev, R², adjusted R², predicted R², PRESS
   (as :class:`~rsm_lrg.model.statistics.FitStatistics` defines them);
 * the **suggested model**: the highest order that is significant (sequential p < alpha),
@@ -209,7 +210,7 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     from scipy import stats
 
     from .anova import pure_error
-    from .terms import design_matrix, model_terms
+    from .terms import MAX_TERMS, design_matrix, model_terms, n_model_terms
 
     if not 0.0 < alpha < 1.0:
         raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
@@ -225,17 +226,17 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     letters = lin.space.letters
     nb = Bm.shape[1] + 1
 
-    # pure error (replicates within blocks), as in fit()
-    keys = coded
-    if block is not None:
-        keys = np.column_stack([coded, lin.design_matrix[:, 1:1 + nb - 1]])
-    pe = pure_error(keys, y)
+    # every model holds the intercept: fit the centred response (no digits lost to an offset)
+    ybar = math.fsum(y) / n
+    yc = y - ybar
+    # pure error: residual of (blocks +) one mean per distinct setting, as in fit()
+    bcodes = np.unique(Bm, axis=0, return_inverse=True)[1].ravel() if nb > 1 else None
+    pe = pure_error(coded, yc, bcodes)
 
-    ss_mean = float(n * np.mean(y) ** 2)
-    ybar = float(np.mean(y))
-    ss_tot_corr = float(np.sum((y - ybar) ** 2))
+    ss_mean = float(n * ybar ** 2)
+    ss_tot_corr = float(np.sum(yc ** 2))
     base_X = np.column_stack([np.ones(n), Bm])
-    ss_prev, r_prev, *_ = _ls(base_X, y)
+    ss_prev, r_prev, *_ = _ls(base_X, yc)
     ss_block = ss_tot_corr - ss_prev
     seq_rows = [{"source": "Mean vs Total", "sum_sq": ss_mean, "df": 1, "mean_sq": ss_mean, "f": math.nan,
                  "p": math.nan, "aliased": False}]
@@ -248,10 +249,15 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     last_ok = None
     results = {}
     for order in orders:
+        count = n_model_terms(len(letters), order)
+        if count > MAX_TERMS:  # counted, not built
+            notes.append(f"The {_LABEL[order]} model in {len(letters)} factors has {count} terms and was not fitted "
+                         f"(more than the {MAX_TERMS} this toolkit builds).")
+            break
         terms = model_terms(letters, order)
         Xt = design_matrix(coded, terms)
         X = np.column_stack([Xt[:, :1], Bm, Xt[:, 1:]])
-        ss_res, r, hat, fitted, resid = _ls(X, y)
+        ss_res, r, hat, fitted, resid = _ls(X, yc)
         df_add = r - r_prev
         aliased = r < X.shape[1]
         df_res = n - r

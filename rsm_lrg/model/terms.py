@@ -20,10 +20,50 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Term", "MODELS", "model_terms", "design_matrix", "design_gradient", "term_name", "parse_term"]
+__all__ = ["Term", "MODELS", "model_terms", "n_model_terms", "check_model_size", "design_matrix",
+           "design_gradient", "term_name", "parse_term"]
 
 #: Model names accepted by :func:`model_terms`.
 MODELS = ("linear", "2fi", "quadratic", "cubic")
+
+#: Largest number of model terms (columns of the model matrix) built at all; a model beyond
+#: this is refused from its term count alone, before any term is built.
+MAX_TERMS = 5000
+
+
+def n_model_terms(k: int, model: str = "quadratic") -> int:
+    """Number of terms (intercept included) of a standard model in ``k`` factors, by counting.
+
+    linear ``1 + k``; 2FI ``1 + k + C(k, 2)``; quadratic ``C(k + 2, 2)``; cubic ``C(k + 3, 3)``
+    (all monomials of total degree <= 3).
+
+    >>> [n_model_terms(4, m) for m in MODELS], n_model_terms(16, "cubic")
+    ([5, 11, 15, 35], 969)
+    """
+    from math import comb
+
+    if model not in MODELS:
+        raise ValueError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
+    k = int(k)
+    return {"linear": 1 + k, "2fi": 1 + k + comb(k, 2), "quadratic": comb(k + 2, 2), "cubic": comb(k + 3, 3)}[model]
+
+
+def check_model_size(n_runs: int, k: int, model: str, extra: int = 0, *, what: str = "runs") -> int:
+    """Refuse, from the term count alone, a model the runs cannot fit (fast, builds nothing).
+
+    Returns the number of terms; raises ``ValueError`` naming the count when
+    ``n_runs < terms + extra`` (``extra``: block contrasts) or the model is beyond
+    :data:`MAX_TERMS` columns.
+    """
+    p = n_model_terms(k, model)
+    if n_runs < p + extra:
+        blocks = f" and {extra} block effects" if extra else ""
+        raise ValueError(f"{n_runs} {what} cannot fit {p + extra} terms (the {model} model in {k} factors has "
+                         f"{p} terms{blocks}); choose a smaller model or fewer factors")
+    if p > MAX_TERMS:
+        raise ValueError(f"the {model} model in {k} factors has {p} terms, beyond the {MAX_TERMS} this toolkit "
+                         "builds; choose a smaller model or fewer factors")
+    return p
 
 
 def term_name(powers: Sequence[int], letters: Sequence[str]) -> str:
@@ -94,8 +134,8 @@ def model_terms(letters: Sequence[str], model: str = "quadratic") -> list[Term]:
         out += [_term(unit[i] + unit[j], letters) for i, j in itertools.combinations(range(k), 2)]
     if model in ("quadratic", "cubic"):
         out += [_term(2 * unit[i], letters) for i in range(k)]
-    if model == "cubic":
-        cub = [tuple(p) for p in itertools.product(range(4), repeat=k) if sum(p) == 3]
+    if model == "cubic":  # all monomials of degree 3, built from index triples (not 4**k candidates)
+        cub = [tuple(np.bincount(c, minlength=k)) for c in itertools.combinations_with_replacement(range(k), 3)]
         # Design-Expert order: ABC-type, then A^2B-type, then A^3
         cub.sort(key=lambda p: (max(p), [-x for x in p]))
         out += [_term(p, letters) for p in cub]

@@ -6,8 +6,12 @@ Computes nothing of its own; it formats what :class:`~rsm_lrg.model.fit.FitResul
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
-__all__ = ["format_summary", "format_anova", "format_equation", "format_g"]
+import numpy as np
+
+__all__ = ["format_summary", "format_anova", "format_equation", "equation_terms", "EquationTerm", "format_g",
+           "EQUATION_ACCURACY"]
 
 
 def format_g(x, digits: int = 4) -> str:
@@ -72,31 +76,109 @@ def format_anova(result, alpha: float = 0.05) -> str:
     return _table(head, rows, ["<", ">", ">", ">", ">", ">", "<"])
 
 
-def format_equation(result, units: str = "coded") -> str:
-    """The fitted equation in ``"coded"`` (letters) or ``"actual"`` (factor names) terms."""
+#: Accuracy the printed equations promise: evaluated anywhere in the factor box, they
+#: reproduce the model's prediction to ``EQUATION_ACCURACY`` times the largest fitted
+#: response (so to 1e-6 relative wherever the prediction is a tenth of that or more).
+EQUATION_ACCURACY = 1e-7
+
+
+@dataclass(frozen=True)
+class EquationTerm:
+    """One printed term of a fitted equation.
+
+    Attributes
+    ----------
+    name : str
+        Design-Expert term name (``"Intercept"``, ``"A"``, ``"AB"``, ``"A^2"``).
+    powers : tuple of int
+        Exponent of each factor.
+    value : float
+        Coefficient [response units per unit of the term].
+    text : str
+        ``|value|`` with as many significant digits as :data:`EQUATION_ACCURACY` needs
+        (6 to 17), trailing zeros dropped.
+    """
+
+    name: str
+    powers: tuple
+    value: float
+    text: str
+
+
+def _eq_number(x: float, digits: int) -> str:
+    """``x`` to ``digits`` significant figures like :func:`format_g`, without trailing zeros."""
+    s = format_g(x, digits)
+    mant, _, exp = s.partition("e")
+    if "." in mant:
+        mant = mant.rstrip("0").rstrip(".")
+    return mant + ("e" + exp if exp else "")
+
+
+def equation_terms(result, units: str = "coded") -> list[EquationTerm]:
+    """The terms of the fitted equation in ``"coded"`` or ``"actual"`` units — the one rule
+    every equation writer uses (issue 10, item 4).
+
+    Coded coefficients that are round-off (``|b| <= ROUND_OFF * max |b|``; all coded terms
+    share the response's units, so that comparison means something) are set to zero; the
+    actual-units coefficients are the exact expansion of that coded polynomial
+    (:func:`~rsm_lrg.model.fit.actual_coefficients`), so a term is left out only when its
+    coefficient is exactly zero by construction — never by comparing coefficients across
+    units. Each coefficient gets ``d`` significant digits, the least (6 to 17) with
+    ``5·10^-d · p · |c| · Π M_i^e_i <= EQUATION_ACCURACY · Y``, where ``M_i`` is the largest
+    ``|x_i|`` in the factor box (1 when coded), ``p`` the number of terms and ``Y`` the largest
+    ``|ŷ|`` over the runs: the rounding of all printed coefficients together then moves a
+    prediction in the box by at most ``EQUATION_ACCURACY · Y``.
+    """
+    from .fit import actual_coefficients
+    from .terms import parse_term
+
+    if units not in ("coded", "actual"):
+        raise ValueError(f"units must be 'coded' or 'actual', not {units!r}")
+    coded = {k: float(v) for k, v in zip(result.coefficients.index, result.coefficients["coded"])}
+    big = max((abs(v) for v in coded.values() if math.isfinite(v)), default=0.0)
+    coded = {k: (0.0 if abs(v) <= ROUND_OFF * big else v) for k, v in coded.items()}
+    letters = result.space.letters
     if units == "coded":
-        coefs = dict(zip(result.coefficients.index, result.coefficients["coded"]))
+        values, mags = coded, [1.0] * len(letters)
     else:
-        coefs = dict(result.actual_coefficients)
+        values = actual_coefficients(coded, result.terms, result.space)
+        mags = []
+        for f in result.space.factors:  # the box and the runs (a CCD's axial runs lie outside the box)
+            runs = np.abs(np.asarray(result.coded[f.letter], dtype=float)) * f.half_range + abs(f.center)
+            mags.append(max(abs(f.low), abs(f.high), float(np.max(runs, initial=0.0))))
+    fitted = [abs(float(v)) for v in result.fitted if math.isfinite(float(v))]
+    scale = max(fitted, default=0.0)
+    out = []
+    for name, v in values.items():
+        powers = parse_term(name, letters).powers
+        if v == 0.0 and name != "Intercept":
+            continue
+        size = abs(v) * math.prod(m ** e for m, e in zip(mags, powers))
+        if v == 0.0 or not math.isfinite(v):
+            digits = 6
+        elif scale > 0 and math.isfinite(size):
+            need = 5.0 * len(values) * size / (EQUATION_ACCURACY * scale)
+            digits = min(max(math.ceil(math.log10(need)), 6), 17) if need > 0 else 6
+        else:
+            digits = 17
+        out.append(EquationTerm(name=name, powers=tuple(powers), value=float(v), text=_eq_number(abs(v), digits)))
+    return out
+
+
+def format_equation(result, units: str = "coded") -> str:
+    """The fitted equation in ``"coded"`` (letters) or ``"actual"`` (factor names) terms,
+    one term a line, as :func:`equation_terms` gives them."""
     lines = [f"{result.response} ="]
-    scale = max((abs(v) for v in coefs.values() if math.isfinite(v)), default=0.0)
-    for name, c in coefs.items():
-        c = _clean(c, scale)
-        if name == "Intercept":
+    for t in equation_terms(result, units):
+        if t.name == "Intercept":
             label = ""
         elif units == "coded":
-            label = f" * {name}"
+            label = f" * {t.name}"
         else:
-            from .terms import parse_term
-
-            t = parse_term(name, result.space.letters)
-            parts = []
-            for p, f in zip(t.powers, result.space.factors):
-                if p:
-                    parts.append(f.name if p == 1 else f"{f.name}^{p}")
+            parts = [f.name if e == 1 else f"{f.name}^{e}" for e, f in zip(t.powers, result.space.factors) if e]
             label = " * " + " * ".join(parts)
-        sign = "-" if c < 0 else "+"
-        lines.append(f"  {sign} {format_g(abs(c), 6)}{label}")
+        sign = "-" if t.value < 0 else "+"
+        lines.append(f"  {sign} {t.text}{label}")
     return "\n".join(lines)
 
 

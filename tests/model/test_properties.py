@@ -123,13 +123,16 @@ def test_random_designs_match_independent_routes(case):
     pred_coded = r.predict(df)["predicted"].to_numpy()
     np.testing.assert_allclose(pred_actual, pred_coded, rtol=1e-7, atol=1e-7 * (np.abs(pred_coded).max() + 1))
 
-    # pure error from exact replicates within blocks
-    keys = [tuple(row) for row in np.round(coded, 9)]
+    # pure error = residual of one mean per distinct setting (+ block effects when blocked):
+    # the explicit indicator regression y ~ setting (+ block), as R rsm's PE() test fits it
+    # (issue 10, item 6; unblocked this is the within-replicate-group sum of squares)
+    keys = pd.Series([tuple(row) for row in np.round(coded, 9)]).astype(str)
+    D = pd.get_dummies(keys).to_numpy(dtype=float)
     if block:
-        keys = [kk + (bb,) for kk, bb in zip(keys, df["blk"])]
-    groups = pd.Series(y).groupby(pd.Series(keys).astype(str))
-    ss_pe = float(sum(((g - g.mean()) ** 2).sum() for _, g in groups))
-    df_pe = n - groups.ngroups
+        D = np.column_stack([D, pd.get_dummies(df["blk"]).to_numpy(dtype=float)])
+    beta_pe, *_ = np.linalg.lstsq(D, y, rcond=None)
+    ss_pe = float(np.sum((y - D @ beta_pe) ** 2))
+    df_pe = n - int(np.linalg.matrix_rank(D))
     if df_pe > 0:
         assert an.loc["Pure Error", "df"] == df_pe
         assert an.loc["Pure Error", "sum_sq"] == pytest.approx(ss_pe, rel=1e-9, abs=1e-12)
