@@ -400,7 +400,8 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         keys = coded
     p = X.shape[1]
     names = [t.name for t in terms]
-    pe = pure_error(keys, np.zeros(n))
+    # pure error as fit() splits it: residual of (blocks +) one mean per distinct setting
+    pe = pure_error(coded, np.zeros(n), codes if nb > 1 else None)
     df_res = n - p
     rank = int(np.linalg.matrix_rank(X))
     n_distinct = int(np.unique(keys, axis=0).shape[0])
