@@ -252,3 +252,133 @@ def print_notes(notes) -> None:
 
     for n in notes or ():
         print(f"note: {n}", file=sys.stderr)
+
+
+# --- fit's model options, shared (confirm, optimize; per response where several) -------------
+
+class ResponseGroup(argparse.Action):
+    """``--response COL`` that opens an option group: the per-response options
+    (:class:`PerResponseOption`) that follow it apply to that response only. The columns are
+    appended to ``dest``; the groups are kept in ``namespace.response_options`` (one dict per
+    --response, in order)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        items = list(getattr(namespace, self.dest, None) or [])
+        items.append(values)
+        setattr(namespace, self.dest, items)
+        groups = list(getattr(namespace, "response_options", None) or [])
+        groups.append({})
+        namespace.response_options = groups
+
+
+class PerResponseOption(argparse.Action):
+    """An option that belongs to the most recent ``--response`` (a :class:`ResponseGroup`);
+    given before any --response it is the default for every response. ``nargs=0`` with
+    ``const`` makes a flag."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        value = self.const if self.nargs == 0 else values
+        groups = getattr(namespace, "response_options", None)
+        if groups:
+            if self.dest in groups[-1]:
+                raise argparse.ArgumentError(self, f"given twice for --response {namespace.response[-1]!r}")
+            groups[-1][self.dest] = value
+        else:
+            setattr(namespace, self.dest, value)
+
+
+def response_options(args: argparse.Namespace, i: int) -> argparse.Namespace:
+    """The options of the i-th ``--response``: the command-wide values overridden by those
+    given after that --response."""
+    out = argparse.Namespace(**vars(args))
+    groups = getattr(args, "response_options", None) or []
+    if i < len(groups):
+        for k, v in groups[i].items():
+            setattr(out, k, v)
+    return out
+
+
+def add_model_refinements(parser: argparse.ArgumentParser, *, per_response: bool = False,
+                          model: bool = False) -> None:
+    """fit's model options: ``--reduce``, ``--alpha-out``, ``--criterion``, ``--transform``,
+    ``--transform-constant`` (and ``--model`` when ``model``). With ``per_response`` each one
+    given after a ``--response`` (declared with :class:`ResponseGroup`) applies to that
+    response only; see :func:`response_options` and :func:`fit_model`."""
+    kw = {"action": PerResponseOption} if per_response else {}
+    flag = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} if per_response \
+        else {"action": "store_true"}
+    if model:
+        parser.add_argument("--model", default="quadratic", choices=list(MODEL_ORDERS),
+                            help="model order (default quadratic)", **kw)
+    parser.add_argument("--reduce", help="backward elimination keeping hierarchy", **flag)
+    parser.add_argument("--alpha-out", type=number(0, 1, above=True, below=True), default=0.1, metavar="A",
+                        help="with --reduce and --criterion p: remove terms while p > A (default 0.1)", **kw)
+    parser.add_argument("--criterion", default="p", choices=["p", "aicc"],
+                        help="with --reduce: remove by p-value (default) or while AICc falls", **kw)
+    parser.add_argument("--transform", default=None, metavar="log|log10|sqrt|inverse|power=L",
+                        help="fit a transformed response (predictions and intervals back-transformed)", **kw)
+    parser.add_argument("--transform-constant", type=number(), default=0.0, metavar="K",
+                        help="add K to the response before transforming (default 0)", **kw)
+
+
+def check_transform_option(opts: argparse.Namespace) -> None:
+    """A bad ``--transform`` is named before any data is read."""
+    if getattr(opts, "transform", None) is None:
+        return
+    from ..model.transform import parse_transform
+
+    try:
+        parse_transform(opts.transform, opts.transform_constant)
+    except ValueError as exc:
+        raise InputError(f"--transform {quote_user_value(opts.transform)}: {exc}") from None
+
+
+def fit_model(data, response: str, opts: argparse.Namespace, *, factors=None, block=None):
+    """Fit ``response`` as ``rsm-lrg fit`` does with the options of
+    :func:`add_model_refinements` (``opts.model``, ``reduce``, ``alpha_out``, ``criterion``,
+    ``transform``, ``transform_constant``): transform (runs without a response left out),
+    backward elimination, fit. Returns ``(result, extra)``: a FitResult, or a
+    :class:`~rsm_lrg.model.transform.TransformedFit` with ``--transform``; ``extra`` holds
+    ``{"reduction": ...}`` with ``--reduce``."""
+    from ..model import fit
+
+    extra = {}
+    tr = None
+    if getattr(opts, "transform", None) is not None:
+        from ..model.data import response_values
+        from ..model.transform import parse_transform
+
+        tr = parse_transform(opts.transform, opts.transform_constant)
+        if response not in data.columns:
+            raise ValueError(f"response column {response!r} not found")
+        y = response_values(data, response)[0]  # NaN where empty: that run is left out
+        tr.check(y, response)
+        data = data.copy()
+        data[response] = tr.forward(y)
+    terms = None
+    if getattr(opts, "reduce", False):
+        from ..model.reduce import reduce_terms
+
+        red = reduce_terms(data, response, factors=factors, block=block, model=opts.model,
+                           alpha_out=opts.alpha_out, criterion=opts.criterion)
+        terms = list(red.kept[1:])
+        extra["reduction"] = red.to_dict()
+    result = fit(data, response, factors=factors, block=block, model=opts.model, terms=terms)
+    if tr is not None:
+        from ..model.transform import TransformedFit
+
+        result = TransformedFit(fit=result, transform=tr, response=response)
+    return result, extra
+
+
+def model_label(opts: argparse.Namespace, extra: dict | None = None) -> str:
+    """``"quadratic, reduced (removed AB, B^2), log transform"``: the model a command used."""
+    parts = [str(getattr(opts, "model", "quadratic"))]
+    red = (extra or {}).get("reduction")
+    if red is not None:
+        parts.append(f"reduced (removed {', '.join(red['removed']) or 'nothing'})")
+    if getattr(opts, "transform", None) is not None:
+        from ..model.transform import parse_transform
+
+        parts.append(f"{parse_transform(opts.transform, opts.transform_constant).label} transform")
+    return ", ".join(parts)

@@ -4,7 +4,15 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_block_option, add_factor_options, add_force, add_json, add_model_option
+from ._common import (
+    about_file,
+    add_block_option,
+    add_factor_options,
+    add_force,
+    add_json,
+    add_model_option,
+    add_model_refinements,
+)
 
 NAME = "confirm"
 HELP = "check confirmation runs against the prediction interval for their mean"
@@ -12,7 +20,9 @@ DESCRIPTION = (
     "Fit the model, predict at the --at settings (actual units) and compare the mean of the "
     "--observed confirmation runs with the 95 % prediction interval for the mean of that many "
     "runs: inside or outside, and the relative error against the prediction (and against "
-    "--reference, e.g. a rounded published prediction)."
+    "--reference, e.g. a rounded published prediction). The model options are those of 'fit': "
+    "--reduce (with --alpha-out, --criterion) confirms the reduced model, --transform computes "
+    "the interval on the transformed scale and back-transforms it (as Design-Expert does)."
 )
 
 
@@ -33,6 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_block_option(parser, "prediction for the average block")
     add_model_option(parser)
+    add_model_refinements(parser)
     add_json(parser)
     add_force(parser)
 
@@ -55,13 +66,14 @@ def _check_at(settings) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, read_table
-    from ..model import fit
     from ..optimize.confirm import confirm
+    from ._common import check_transform_option, fit_model, model_label
 
     _check_at(args.at)
+    check_transform_option(args)
     data = read_table(args.data)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
+        result, extra = fit_model(data, args.response, args, factors=args.factor, block=args.block)
     try:  # the settings are an option: an error names --at, not the data file
         from ..optimize.confirm import parse_settings
 
@@ -72,11 +84,16 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--at: {exc}") from None
     with about_file(args.data):
         c = confirm(result, settings, args.observed, confidence=args.confidence, reference=args.reference)
+    out = c.to_dict()
+    out["model"] = model_label(args, extra)
+    out.update(extra)
     if args.json and args.json != "-":
-        dump_json(c.to_dict(), args.json, force=args.force)
+        dump_json(out, args.json, force=args.force)
     if args.json == "-":
-        dump_json(c.to_dict(), "-")
+        dump_json(out, "-")
     else:
         print(f"Data: {args.data}")
+        if args.reduce or args.transform is not None:
+            print(f"Model: {model_label(args, extra)}")
         print(c.summary(), end="")
     return 0

@@ -4,7 +4,15 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_block_option, add_factor_options, add_force, add_json, add_model_option
+from ._common import (
+    ResponseGroup,
+    about_file,
+    add_block_option,
+    add_factor_options,
+    add_force,
+    add_json,
+    add_model_refinements,
+)
 
 NAME = "optimize"
 HELP = "fit, then find the minimum, maximum or a target inside the factor box"
@@ -12,15 +20,19 @@ DESCRIPTION = (
     "Fit the model (as 'rsm-lrg fit') and optimise the fitted response inside the coded box "
     "[-1, 1]^k, or inside tighter --bound NAME=LOW:HIGH limits in actual units (they must lie "
     "inside the factor range). Prints the optimum in actual and coded units with the predicted "
-    "value and its 95 % confidence and prediction intervals."
+    "value and its 95 % confidence and prediction intervals. The model options are those of "
+    "'fit' (--model, --reduce, --alpha-out, --criterion, --transform, --transform-constant); with "
+    "several responses, the model options that follow a --response apply to that response only "
+    "(given before the first --response they apply to all): --response Y1 --model quadratic "
+    "--response Y2 --model linear --transform log."
 )
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    parser.add_argument("--response", required=True, action="append", metavar="COL",
-                        help="the response column; repeat (each followed by its --goal) for a "
-                             "multi-response desirability optimisation")
+    parser.add_argument("--response", required=True, action=ResponseGroup, metavar="COL",
+                        help="the response column; repeat (each followed by its --goal and its own model "
+                             "options) for a multi-response desirability optimisation")
     parser.add_argument("--goal", action="append", default=None, metavar="minimize|maximize|target=V|range",
                         help="what to do with the response before it (default minimize)")
     parser.add_argument("--weight", action="append", default=None, metavar="W[,W2]",
@@ -33,29 +45,32 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
                         help="tighter limits for a factor in actual units (repeatable)")
     add_block_option(parser, "optimum for the average block")
-    add_model_option(parser)
+    add_model_refinements(parser, per_response=True, model=True)
     add_json(parser)
     add_force(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, read_table
-    from ..model import fit
     from ..optimize import optimize, parse_goal
+    from ._common import check_transform_option, fit_model, response_options
 
     responses = args.response
     goals = args.goal or []
+    for i in range(len(responses)):
+        check_transform_option(response_options(args, i))
     if len(responses) > 1 or args.weight or args.importance or args.limits:
         return _multi(args)
     if len(goals) > 1:
         raise ValueError("one --goal per --response")
+    opts = response_options(args, 0)
     args.response = responses[0]
     args.goal = goals[0] if goals else "minimize"
     parse_goal(args.goal)  # a bad goal fails before any work
     data = read_table(args.data)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
-        best = optimize(result, goal=args.goal, bounds=args.bound)
+        result, _ = fit_model(data, args.response, opts, factors=args.factor, block=args.block)
+        best = _optimize_on_fit_scale(optimize, result, args.goal, args.bound)
     if args.json and args.json != "-":
         dump_json(best.to_dict(), args.json, force=args.force)
     if args.json == "-":
@@ -64,6 +79,28 @@ def run(args: argparse.Namespace) -> int:
         print(f"Data: {args.data}")
         print(best.summary(), end="")
     return 0
+
+
+def _optimize_on_fit_scale(optimize, result, goal, bounds):
+    """Optimise a fit; a transformed fit is optimised on its own scale (a decreasing transform
+    swaps minimum and maximum, a target T becomes g(T)) and reported in response units."""
+    import dataclasses
+
+    from ..optimize import parse_goal
+
+    tr = getattr(result, "transform", None)
+    if tr is None:
+        return optimize(result, goal=goal, bounds=bounds)
+    kind, target = parse_goal(goal)
+    if kind == "target":
+        tr.check([target], "target")
+        on_fit = ("target", float(tr.forward([target])[0]))
+    else:
+        on_fit = kind if not tr.decreasing else ("minimize" if kind == "maximize" else "maximize")
+    best = optimize(result, goal=on_fit, bounds=bounds)
+    note = (f"model fitted to the {tr.label}-transformed response; prediction and intervals back-transformed "
+            "(standard error on the transformed scale)")
+    return dataclasses.replace(best, goal=kind, target=target, warnings=tuple(best.warnings) + (note,))
 
 
 def _per_response(values, n, what):
@@ -76,8 +113,8 @@ def _per_response(values, n, what):
 def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
     from ..io import dump_json, read_table
-    from ..model import fit
     from ..optimize.desirability import optimize_desirability, parse_response_goal
+    from ._common import fit_model, model_label, response_options
 
     n = len(args.response)
     if len(set(args.response)) != n:
@@ -91,7 +128,9 @@ def _multi(args) -> int:
     data = read_table(args.data)
     with about_file(args.data):
         fits = {}
-        for r in args.response:
+        models = {}
+        for i, r in enumerate(args.response):
+            opts = response_options(args, i)
             factors = args.factor
             if factors is None:  # other responses are not factors
                 from ..factors import FactorSpace
@@ -100,14 +139,17 @@ def _multi(args) -> int:
                 exclude = [r] + others + ([args.block] if args.block else [])
                 exclude += [c for c in data.columns if str(c).lower().startswith("coded_")]
                 factors = FactorSpace.from_data(data, None, exclude=exclude)
-            fits[r] = fit(data, r, factors=factors, block=args.block, model=args.model)
+            fits[r], extra = fit_model(data, r, opts, factors=factors, block=args.block)
+            models[r] = model_label(opts, extra)
         best = optimize_desirability(fits, specs, bounds=args.bound)
     out = best.to_dict()
+    out["models"] = models
     if args.json and args.json != "-":
         dump_json(out, args.json, force=args.force)
     if args.json == "-":
         dump_json(out, "-")
     else:
         print(f"Data: {args.data}")
+        print("Models: " + "; ".join(f"{r} {m}" for r, m in models.items()))
         print(best.summary(), end="")
     return 0

@@ -11,6 +11,14 @@ with σ² the residual mean square on ν df. The run mean is **inside** when it 
 interval. The relative error is ``100 · (ȳ - ŷ) / ŷ`` [%] against the exact prediction,
 and against a ``reference`` value when given (a published, rounded prediction).
 
+**Transformed response** (a :class:`~rsm_lrg.model.transform.TransformedFit`, fitted to
+``z = g(y + k)``): as Design-Expert does, the interval is computed on the transformed scale,
+``ẑ ± t · √(σ_z² (1/n + x'(X'X)⁻¹x))``, and its ends are back-transformed (swapped for a
+decreasing transform); the prediction shown is ``g⁻¹(ẑ)`` (the median on the original scale).
+The runs are judged on the same scale: inside when the mean of ``g(y_i + k)`` lies in the
+transformed interval, i.e. when ``g⁻¹(mean g(y_i + k))`` (the geometric mean for a log) lies
+in the back-transformed one; for a single run this is simply ``y`` in the interval.
+
 Paper check (Sec. 4.3): at the optimum (0.0001 m, 0.04 m, 0.4 m/s, 20 m/s²) one run gave
 κ = 0.024 °C/min: 4.35 % above the rounded 0.023, 5.11 % above the exact 0.022833, inside
 the 95 % PI 0.0159–0.0298.
@@ -85,6 +93,13 @@ class ConfirmationResult:
     relative_error_vs_reference_percent : float or None
     extrapolation : bool
         Whether a setting lies outside the coded cube [-1, 1].
+    transform : str or None
+        The response transform of the model (``None``: untransformed).
+    predicted_transformed, pi_transformed, se_transformed, mean_transformed
+        With a transform: ``ẑ``, its interval, the standard error and the mean of
+        ``g(y_i + k)`` on the transformed scale (``se_mean`` is then this standard error).
+    mean_back_transformed : float or None
+        ``g⁻¹(mean g(y_i + k))``: the run mean on the scale the interval judges.
     """
 
     response: str
@@ -103,6 +118,12 @@ class ConfirmationResult:
     relative_error_vs_reference_percent: float | None = None
     extrapolation: bool = False
     warnings: tuple = field(default=())
+    transform: str | None = None
+    predicted_transformed: float | None = None
+    pi_transformed: tuple | None = None
+    se_transformed: float | None = None
+    mean_transformed: float | None = None
+    mean_back_transformed: float | None = None
 
     def to_dict(self) -> dict:
         return {"response": self.response, "actual": dict(self.actual), "coded": dict(self.coded),
@@ -111,7 +132,11 @@ class ConfirmationResult:
                 "inside": self.inside, "relative_error_percent": self.relative_error_percent,
                 "reference": self.reference,
                 "relative_error_vs_reference_percent": self.relative_error_vs_reference_percent,
-                "extrapolation": self.extrapolation, "warnings": list(self.warnings)}
+                "extrapolation": self.extrapolation, "warnings": list(self.warnings),
+                "transform": self.transform, "predicted_transformed": self.predicted_transformed,
+                "pi_transformed": None if self.pi_transformed is None else list(self.pi_transformed),
+                "se_transformed": self.se_transformed, "mean_transformed": self.mean_transformed,
+                "mean_back_transformed": self.mean_back_transformed}
 
     def summary(self) -> str:
         from ..model.text import format_g
@@ -123,6 +148,13 @@ class ConfirmationResult:
                  f"  {pc} % PI for the mean of {self.n} run(s): {format_g(self.pi[0], 6)} .. {format_g(self.pi[1], 6)}"
                  f"  -> {'inside' if self.inside else 'OUTSIDE'}",
                  f"  relative error:  {self.relative_error_percent:+.2f} % of the prediction"]
+        if self.transform is not None:
+            lines.insert(1, f"  model fitted to the {self.transform}-transformed response; the interval is computed "
+                            "on that scale and back-transformed")
+            lines.append(f"  transformed scale: predicted {format_g(self.predicted_transformed, 6)}, run mean "
+                         f"{format_g(self.mean_transformed, 6)}, PI {format_g(self.pi_transformed[0], 6)} .. "
+                         f"{format_g(self.pi_transformed[1], 6)}"
+                         + ("" if self.n == 1 else f" (back-transformed run mean {format_g(self.mean_back_transformed, 6)})"))
         if self.reference is not None:
             lines.append(f"  relative error:  {self.relative_error_vs_reference_percent:+.2f} % of the reference "
                          f"{format_g(self.reference, 6)}")
@@ -135,7 +167,9 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
 
     Parameters
     ----------
-    result : FitResult
+    result : FitResult or TransformedFit
+        The model (reduced or transformed as fitted; a transformed fit gives the interval on
+        the transformed scale, back-transformed).
     at : mapping or list of str
         Settings in actual units, ``{name or letter: value}`` or ``["NAME=VALUE", ...]``.
     observed : float or sequence of float
@@ -160,14 +194,32 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
     settings = parse_settings(space, at)
     x_act = np.array([[settings[n] for n in space.names]])
     x = np.asarray(space.encode(x_act), dtype=float)
+    tr = getattr(result, "transform", None)
     pr = result.predict(x, coded=True).iloc[0]
-    yhat = float(pr["predicted"])
-    q_sigma2 = float(pr["se_fit"]) ** 2  # σ² x'(X'X)⁻¹x
+    q_sigma2 = float(pr["se_fit"]) ** 2  # σ² x'(X'X)⁻¹x (on the scale of the fit)
     n = int(obs.size)
     se = math.sqrt(result.sigma2 / n + q_sigma2)
     t = float(stats.t.ppf(1 - (1 - confidence) / 2, result.df_resid))
-    lo, hi = yhat - t * se, yhat + t * se
     mean = float(obs.mean())
+    tinfo = {}
+    if tr is not None:  # interval on the transformed scale, ends back-transformed
+        tr.check(obs, "observed")
+        zhat = float(pr["predicted_transformed"])
+        zlo, zhi = zhat - t * se, zhat + t * se
+        a, b = (float(v) for v in tr.inverse(np.array([zlo, zhi])))
+        lo, hi = (a, b) if a <= b else (b, a)
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            raise ValueError(f"the {tr.label} prediction interval {zlo:g} .. {zhi:g} cannot be back-transformed")
+        yhat = float(tr.inverse(np.array([zhat]))[0])
+        zbar = float(np.mean(tr.forward(obs)))
+        mean_bt = float(tr.inverse(np.array([zbar]))[0])
+        inside = bool(zlo <= zbar <= zhi)
+        tinfo = {"transform": tr.label, "predicted_transformed": zhat, "pi_transformed": (zlo, zhi),
+                 "se_transformed": se, "mean_transformed": zbar, "mean_back_transformed": mean_bt}
+    else:
+        yhat = float(pr["predicted"])
+        lo, hi = yhat - t * se, yhat + t * se
+        inside = bool(lo <= mean <= hi)
     rel = 100.0 * (mean - yhat) / yhat if yhat != 0 else math.nan
     rel_ref = None
     if reference is not None:
@@ -180,6 +232,6 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
     return ConfirmationResult(
         response=result.response, actual=dict(settings), coded={L: float(v) for L, v in zip(space.letters, x[0])},
         predicted=yhat, observed=tuple(float(v) for v in obs), n=n, mean=mean, confidence=float(confidence),
-        pi=(lo, hi), se_mean=se, inside=bool(lo <= mean <= hi), relative_error_percent=rel, reference=reference,
-        relative_error_vs_reference_percent=rel_ref, extrapolation=extra, warnings=warns,
+        pi=(lo, hi), se_mean=se, inside=inside, relative_error_percent=rel, reference=reference,
+        relative_error_vs_reference_percent=rel_ref, extrapolation=extra, warnings=warns, **tinfo,
     )

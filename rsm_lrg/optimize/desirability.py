@@ -248,7 +248,10 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     Parameters
     ----------
     fits : mapping
-        ``{response: FitResult}``; all fits must share the same factors and coding.
+        ``{response: FitResult or TransformedFit}``; all fits must share the same factors and
+        coding. Each response may have its own model (order, reduced terms, transform); a
+        transformed fit is back-transformed before its desirability is taken, and its default
+        limits are the observed range on the original scale.
     goals : sequence of ResponseGoal
         One per response (limits default to the observed range of that response).
     bounds : mapping or list of str, optional
@@ -280,12 +283,21 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     for n in names[1:]:
         if fits[n].space.to_list() != space.to_list():
             raise ValueError(f"responses {names[0]!r} and {n!r} were fitted on different factors or codings")
-    goals = [g.with_limits(float(np.min(fits[g.response].y)), float(np.max(fits[g.response].y))) for g in goals]
+    def observed(f):
+        tr = getattr(f, "transform", None)
+        y = np.asarray(f.y, dtype=float)
+        return tr.inverse(y) if tr is not None else y
+
+    goals = [g.with_limits(float(np.nanmin(observed(fits[g.response]))), float(np.nanmax(observed(fits[g.response]))))
+             for g in goals]
     lo, hi, notes = parse_bounds(space, bounds)
     k = len(space)
     polys = []
+    inverses = []
     for g in goals:
         f = fits[g.response]
+        tr = getattr(f, "transform", None)
+        inverses.append(tr.inverse if tr is not None else None)
         beta = f.coefficients["coded"].to_numpy(dtype=float)
         if all(t.order <= 2 for t in f.terms):
             from ..model.canonical import quadratic_parts
@@ -297,12 +309,13 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     def preds(X):
         X = np.atleast_2d(np.asarray(X, dtype=float))
         out = []
-        for kind, par in polys:
+        for (kind, par), inv in zip(polys, inverses):
             if kind == "q":
                 b0, b, B = par
-                out.append(b0 + X @ b + np.einsum("ij,jk,ik->i", X, B, X))
+                v = b0 + X @ b + np.einsum("ij,jk,ik->i", X, B, X)
             else:
-                out.append(design_matrix(X, par[0]) @ par[1])
+                v = design_matrix(X, par[0]) @ par[1]
+            out.append(v if inv is None else inv(v))  # back to response units
         return out
 
     def D_of(X):
@@ -320,6 +333,7 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
                 pen += np.maximum(y - g.high, 0.0) / span
             else:
                 pen += (np.maximum(g.low - y, 0.0) + np.maximum(y - g.high, 0.0)) / span
+        pen = np.where(np.isfinite(pen), pen, 1e6)  # a back-transform undefined there
         return np.where(D > 0, -D, pen + 1e-12)
 
     def objective(x):
@@ -332,6 +346,16 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
         goal = g.goal if g.goal in ("maximize", "minimize") else (("target", g.target) if g.goal == "target" else None)
         if goal is None:
             continue
+        tr = getattr(fits[g.response], "transform", None)
+        if tr is not None:  # the fit's own scale: a decreasing transform swaps min and max
+            if goal == "maximize" or goal == "minimize":
+                goal = goal if not tr.decreasing else ("minimize" if goal == "maximize" else "maximize")
+            else:
+                with np.errstate(all="ignore"):
+                    zt = float(tr.forward(np.array([g.target]))[0])
+                if not math.isfinite(zt):
+                    continue
+                goal = ("target", zt)
         try:
             o = single_optimize(fits[g.response], goal=goal, bounds=bounds)
             starts.append(np.array([o.coded[L] for L in space.letters]))

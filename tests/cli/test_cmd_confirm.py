@@ -24,3 +24,32 @@ def test_missing_setting_is_an_error(capsys):
                  "--observed", "0.024"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("error: --at:") and "stroke_m" in err  # an option error names the option
+
+
+def test_reduced_and_transformed_models(capsys, tmp_path):
+    # Montgomery, DAE (8th ed.), Example 11.2 (CCD): confirm takes fit's model options; the
+    # CLI equals the library on the same model (1e-12), the log interval is back-transformed.
+    import rsm_lrg
+    from rsm_lrg.optimize.confirm import confirm
+    from tests.model._published import MONTGOMERY_11_2
+
+    path = tmp_path / "m11_2.csv"
+    MONTGOMERY_11_2.to_csv(path, index=False)
+    base = ["confirm", str(path), "--response", "y", "--factor", "x1=-1:1", "--factor", "x2=-1:1",
+            "--at", "x1=0.5", "x2=0.5", "--observed", "79.0", "80.2", "--json", "-"]
+    assert main(base + ["--transform", "log"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    lib = confirm(rsm_lrg.fit_transformed(MONTGOMERY_11_2, "y", "log", factors=["x1=-1:1", "x2=-1:1"]),
+                  {"x1": 0.5, "x2": 0.5}, [79.0, 80.2])
+    assert d["transform"] == "log" and d["pi"] == pytest.approx(list(lib.pi), rel=1e-12)
+    assert d["model"] == "quadratic, log transform"
+    assert main(base + ["--reduce", "--alpha-out", "0.1"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["reduction"]["removed"] == ["AB"] and d["transform"] is None
+    r = rsm_lrg.fit(MONTGOMERY_11_2, "y", factors=["x1=-1:1", "x2=-1:1"], terms=["A", "B", "A^2", "B^2"])
+    assert d["pi"] == pytest.approx(list(confirm(r, {"x1": 0.5, "x2": 0.5}, [79.0, 80.2]).pi), rel=1e-12)
+    assert main(base[:-2] + ["--reduce", "--transform", "sqrt"]) == 0
+    out = capsys.readouterr().out
+    assert "Model: quadratic, reduced" in out and "sqrt transform" in out and "back-transformed" in out
+    assert main(base + ["--transform", "cube"]) == 2
+    assert capsys.readouterr().err.startswith("error: --transform")

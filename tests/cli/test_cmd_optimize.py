@@ -43,3 +43,105 @@ def test_optimize_bad_input(extra, needle, capsys):
     assert main(["optimize", TABLE4, "--response", "tcr_c_per_min", *extra]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("error:") and needle in err[0], err
+
+
+# --- per-response model options (issue 10, item 13) -------------------------------------------
+
+def _montgomery_three_responses():
+    """Montgomery, DAE (8th ed.), Sec. 11.3.4: the CCD of Example 11.2 with three responses,
+    yield y (quadratic), viscosity visc (quadratic) and molecular weight mn (linear), the
+    models Design-Expert selects there; printed fits: visc = 70.00 - 0.16 x1 - 0.95 x2
+    - 1.25 x1x2 - 0.69 x1² - 6.69 x2², mn = 3386.2 + 205.1 x1 + 177.4 x2."""
+    from tests.model._published import MONTGOMERY_11_2
+
+    d = MONTGOMERY_11_2.copy()
+    d["visc"] = [62, 60, 66, 59, 72, 69, 68, 70, 71, 68, 71, 58, 57]
+    d["mn"] = [2940, 3470, 3680, 3890, 3480, 3200, 3410, 3290, 3500, 3360, 3020, 3630, 3150]
+    return d
+
+
+FAC = ["--factor", "x1=-1:1", "--factor", "x2=-1:1"]
+GOALS = {"y": ["--goal", "maximize", "--limits", "78.5:80"], "visc": ["--goal", "target=65", "--limits", "62:68"],
+         "mn": ["--goal", "range", "--limits", "3200:3400"]}
+
+
+def test_each_response_gets_its_own_model(capsys, tmp_path):
+    import rsm_lrg
+    from rsm_lrg.optimize.desirability import optimize_desirability, parse_response_goal
+
+    d = _montgomery_three_responses()
+    path = tmp_path / "m11.csv"
+    d.to_csv(path, index=False)
+    argv = ["optimize", str(path), *FAC, "--response", "y", *GOALS["y"], "--model", "quadratic",
+            "--response", "visc", *GOALS["visc"], "--response", "mn", *GOALS["mn"], "--model", "linear",
+            "--json", "-"]
+    assert main(argv) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["models"] == {"y": "quadratic", "visc": "quadratic", "mn": "linear"}
+    # the library with the same three models gives the same optimum (1e-9)
+    f = ["x1=-1:1", "x2=-1:1"]
+    fits = {"y": rsm_lrg.fit(d, "y", factors=f), "visc": rsm_lrg.fit(d, "visc", factors=f),
+            "mn": rsm_lrg.fit(d, "mn", factors=f, model="linear")}
+    specs = [parse_response_goal("y", "maximize", limits="78.5:80"),
+             parse_response_goal("visc", "target=65", limits="62:68"),
+             parse_response_goal("mn", "range", limits="3200:3400")]
+    lib = optimize_desirability(fits, specs)
+    assert out["desirability"] == pytest.approx(lib.desirability, abs=1e-9)
+    for r in ("y", "visc", "mn"):
+        assert out["predicted"][r] == pytest.approx(lib.predicted[r], rel=1e-9)
+    # Montgomery's printed linear mn model at the optimum (coefficients to 0.1: 0.05 (1+|x1|+|x2|))
+    x1, x2 = out["coded"]["A"], out["coded"]["B"]
+    assert out["predicted"]["mn"] == pytest.approx(3386.2 + 205.1 * x1 + 177.4 * x2, abs=0.05 * (1 + abs(x1) + abs(x2)))
+    assert 3200 <= out["predicted"]["mn"] <= 3400 and out["desirability"] > 0
+    # one --model before the first --response applies to every response (the old behaviour)
+    assert main(["optimize", str(path), *FAC, "--model", "linear", "--response", "y", *GOALS["y"],
+                 "--response", "mn", *GOALS["mn"], "--json", "-"]) == 0
+    assert json.loads(capsys.readouterr().out)["models"] == {"y": "linear", "mn": "linear"}
+    # text output names the models
+    assert main(argv[:-2]) == 0
+    assert "Models: y quadratic; visc quadratic; mn linear" in capsys.readouterr().out
+
+
+def test_per_response_transform_and_reduce(capsys, tmp_path):
+    import numpy as np
+
+    import rsm_lrg
+
+    d = _montgomery_three_responses()
+    path = tmp_path / "m11.csv"
+    d.to_csv(path, index=False)
+    assert main(["optimize", str(path), *FAC, "--response", "y", *GOALS["y"], "--reduce",
+                 "--response", "visc", *GOALS["visc"], "--transform", "log", "--json", "-"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["models"]["y"].startswith("quadratic, reduced (removed AB")
+    assert out["models"]["visc"] == "quadratic, log transform"
+    # visc is predicted by exp of the log-scale model at the optimum (1e-9)
+    tf = rsm_lrg.fit_transformed(d, "visc", "log", factors=["x1=-1:1", "x2=-1:1"])
+    x = np.array([[out["coded"]["A"], out["coded"]["B"]]])
+    assert out["predicted"]["visc"] == pytest.approx(float(tf.predict(x, coded=True)["predicted"].iloc[0]), rel=1e-9)
+    # an option given twice for the same response is an error naming it
+    assert main(["optimize", str(path), *FAC, "--response", "y", "--model", "linear", "--model", "2fi",
+                 "--response", "mn"]) == 2
+    assert "--model" in capsys.readouterr().err
+
+
+def test_single_response_with_a_decreasing_transform(capsys, tmp_path):
+    # maximise y under an inverse-transformed model: the optimiser works on 1/y (minimum there)
+    # and reports y; the result is the largest back-transformed prediction on a 201^2 grid.
+    import numpy as np
+
+    import rsm_lrg
+
+    d = _montgomery_three_responses()
+    path = tmp_path / "m11.csv"
+    d.to_csv(path, index=False)
+    assert main(["optimize", str(path), *FAC, "--response", "y", "--goal", "maximize",
+                 "--transform", "inverse", "--json", "-"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["goal"] == "maximize"
+    tf = rsm_lrg.fit_transformed(d[["x1", "x2", "y"]], "y", "inverse", factors=["x1=-1:1", "x2=-1:1"])
+    g = np.linspace(-1, 1, 201)
+    P = np.array(np.meshgrid(g, g)).reshape(2, -1).T
+    grid_max = tf.predict(P, coded=True)["predicted"].max()
+    assert out["predicted"] >= grid_max - 1e-9 and out["predicted"] <= grid_max + 1e-3
+    assert out["pi"][0] < out["predicted"] < out["pi"][1]

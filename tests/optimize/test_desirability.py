@@ -120,3 +120,22 @@ def test_cli_multi_response_and_single_unchanged(capsys, tmp_path):
     s = json.loads(capsys.readouterr().out)
     assert list(s)[:8] == ["response", "goal", "coded", "actual", "predicted", "confidence", "ci", "pi"]
     assert s["predicted"] == pytest.approx(0.0228333, abs=1e-6)
+
+
+def test_transformed_fit_is_back_transformed_and_limits_are_on_the_original_scale():
+    # Montgomery, DAE (8th ed.), Example 11.2 yield fitted to ln(y): the desirability uses
+    # exp(ẑ) and the default limits are the observed range of y itself (75.6 .. 80.3).
+    import numpy as np
+
+    import rsm_lrg
+    from rsm_lrg.optimize.desirability import optimize_desirability, parse_response_goal
+    from tests.model._published import MONTGOMERY_11_2
+
+    f = ["x1=-1:1", "x2=-1:1"]
+    tf = rsm_lrg.fit_transformed(MONTGOMERY_11_2, "y", "log", factors=f)
+    res = optimize_desirability({"y": tf}, [parse_response_goal("y", "maximize")])
+    g = res.goals[0]
+    assert (g.low, g.high) == (pytest.approx(75.6, rel=1e-12), pytest.approx(80.3, rel=1e-12))
+    x = np.array([[res.coded["A"], res.coded["B"]]])
+    assert res.predicted["y"] == pytest.approx(float(tf.predict(x, coded=True)["predicted"].iloc[0]), rel=1e-12)
+    assert res.individual["y"] == pytest.approx((res.predicted["y"] - 75.6) / (80.3 - 75.6), rel=1e-9)
