@@ -382,3 +382,11 @@ def model_label(opts: argparse.Namespace, extra: dict | None = None) -> str:
 
         parts.append(f"{parse_transform(opts.transform, opts.transform_constant).label} transform")
     return ", ".join(parts)
+
+
+def add_boxcox_rule_option(parser: argparse.ArgumentParser) -> None:
+    """``--boxcox-rule likelihood|design-expert`` for a command that prints Box–Cox (pass
+    ``boxcox_rule=args.boxcox_rule`` to ``FitResult.diagnostics``)."""
+    parser.add_argument("--boxcox-rule", default="likelihood", choices=["likelihood", "design-expert"],
+                        help="Box-Cox lambda and interval: maximum likelihood with the chi-square(1) "
+                             "interval (default), or Design-Expert's rule (grid minimum, ln SS_min + t^2/df)")

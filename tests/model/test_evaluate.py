@@ -216,3 +216,20 @@ def test_replicated_2cubed_cubic_is_refused_naming_every_aliased_term():
     assert all(v is None or v >= 0 for v in e.df.values())
     assert "-4" not in e.summary() and "A^3 = A" in e.summary()
     assert "A^3" in e.not_estimable_message()
+
+
+def test_spv_max_over_the_ball_of_a_rotatable_ccd_equals_a_radial_search():
+    # A rotatable CCD has SPV depending on the radius only (Box & Hunter 1957), so the maximum
+    # over the ball |x| <= r (r = α = √2, the design's radius) is the maximum of SPV along one
+    # axis on [0, r]: an independent 1-D dense search (20001 points, 1e-9 relative).
+    d = rsm_lrg.central_composite({"a": (-1, 1), "b": (-1, 1)}, center=(5, 0), randomize=False)
+    e = evaluate_design(d, region="sphere")
+    terms = model_terms("AB", "quadratic")
+    X = design_matrix(d.coded_runs, terms)
+    C = np.linalg.inv(X.T @ X)
+    r = np.max(np.linalg.norm(d.coded_runs, axis=1))
+    rho = np.linspace(0, r, 20001)
+    Z = design_matrix(np.column_stack([rho, np.zeros_like(rho)]), terms)
+    ref = len(X) * np.max(np.einsum("ij,jk,ik->i", Z, C, Z))
+    assert e.spv_region["max"] == pytest.approx(ref, rel=1e-9)
+    assert np.hypot(*e.spv_max_at.values()) == pytest.approx(r, rel=1e-6)
