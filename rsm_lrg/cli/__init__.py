@@ -85,7 +85,15 @@ MAX_ERROR_LINE = 299
 def _error_line(msg: str) -> str:
     """``error: MSG`` as one line (newlines and runs of blanks collapsed) of at most
     :data:`MAX_ERROR_LINE` characters."""
-    text = "error: " + " ".join(str(msg).split())
+    import re
+
+    words = []
+    for w in str(msg).split():  # a 300-digit number or a 10 MB token quoted by a library message
+        if len(w) > 60:
+            w = re.sub(r"\d{25,}", lambda m: m.group()[:12] + f"\u2026({len(m.group())} digits)", w)
+            w = w if len(w) <= 60 else w[:59] + "\u2026"
+        words.append(w)
+    text = "error: " + " ".join(words)
     if len(text) > MAX_ERROR_LINE:
         text = text[: MAX_ERROR_LINE - 1] + "\u2026"
     return text

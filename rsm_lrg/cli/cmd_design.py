@@ -48,19 +48,28 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     ff.add_argument("--levels", type=whole_number(2), default=3, metavar="N", help="levels per factor (default 3)")
 
 
+#: Most centre runs per block: replicates of one point, far beyond any experiment.
+MAX_CENTER = 1000
+
+
 def _center(text: str, pair: bool):
+    from ..io import quote_user_value
+
     parts = [t.strip() for t in str(text).split(",")]
+    want = f"a whole number{' or CUBE,STAR' if pair else ''}"
     try:
         vals = [int(t) for t in parts]
     except ValueError:
-        raise ValueError(f"--center: expected a whole number{' or CUBE,STAR' if pair else ''}, got {text!r}") from None
+        raise ValueError(f"--center: expected {want}, got {quote_user_value(text)}") from None
     if any(v < 0 for v in vals):
-        raise ValueError(f"--center: the number of centre points must not be negative (got {text})")
+        raise ValueError(f"--center: the number of centre points must not be negative (got {quote_user_value(text)})")
+    if any(v > MAX_CENTER for v in vals):
+        raise ValueError(f"--center: at most {MAX_CENTER} centre points (got {quote_user_value(text)})")
     if len(vals) == 1:
         return vals[0]
     if pair and len(vals) == 2:
         return tuple(vals)
-    raise ValueError(f"--center: expected a whole number{' or CUBE,STAR' if pair else ''}, got {text!r}")
+    raise ValueError(f"--center: expected {want}, got {quote_user_value(text)}")
 
 
 def run(args) -> int:
