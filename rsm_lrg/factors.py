@@ -207,7 +207,7 @@ class FactorSpace:
         names = [f.name for f in self.factors]
         dup = {n for n in names if names.count(n) > 1}
         if dup:
-            raise ValueError(f"factor {sorted(dup)[0]!r} is given more than once")
+            raise ValueError(f"factor {quote_value(sorted(dup)[0])} is given more than once")
         letters = [f.letter for f in self.factors]
         if len(set(letters)) != len(letters):
             raise ValueError("factor letters must be unique")
@@ -227,7 +227,7 @@ class FactorSpace:
         for s in specs:
             name, low, high = parse_factor_spec(s)
             if low is None:
-                raise ValueError(f"factor {name!r}: levels are needed here; write {name}=LOW:HIGH")
+                raise ValueError(f"factor {quote_value(name)}: levels are needed here; write NAME=LOW:HIGH")
             items.append((name, low, high))
         return cls.from_ranges(items)
 

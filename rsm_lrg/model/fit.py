@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from ..factors import FactorSpace, _numeric
+from ..factors import FactorSpace, _numeric, quote_value
 from .anova import PureError, anova_table, partial_ss, pure_error
 from .canonical import StationaryPoint, canonical_analysis
 from .data import prepare
@@ -441,7 +441,7 @@ def _block_codes(data, block: str):
     col = data[block]
     if col.isna().any():
         i = int(np.flatnonzero(col.isna().to_numpy())[0])
-        raise ValueError(f"block column {block!r}, row {i + 1}: is empty")
+        raise ValueError(f"block column {quote_value(block)}, row {i + 1}: is empty")
     num = pd.to_numeric(col, errors="coerce")
     if not num.isna().any():
         labels = num.to_numpy(dtype=float)
@@ -454,7 +454,8 @@ def _block_codes(data, block: str):
         codes = np.searchsorted(levels, labels)
         shown = [str(v) for v in levels]
     if len(levels) < 2:
-        raise ValueError(f"block column {block!r} has a single level ({shown[0]!r}); a block column needs at least two")
+        raise ValueError(f"block column {quote_value(block)} has a single level ({quote_value(shown[0])}); "
+                         "a block column needs at least two")
     keys = [f"B{i + 1}" for i in range(len(levels))]
     return codes.astype(int), keys, dict(zip(keys, shown))
 
