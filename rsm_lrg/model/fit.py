@@ -485,6 +485,10 @@ def _check_magnitudes(space: FactorSpace, y: np.ndarray, response: str) -> None:
     if big > MAX_MAGNITUDE:
         raise ValueError(f"response {response!r} holds {big:.3g}, beyond the ±{MAX_MAGNITUDE:.0e} a fit computes with "
                          "(its squares would overflow); rescale the column (e.g. change its unit)")
+    spread = float(np.ptp(y)) if y.size else 0.0
+    if 0.0 < spread < 1.0 / MAX_MAGNITUDE:
+        raise ValueError(f"response {response!r} varies only by {spread:.3g}, below the {1 / MAX_MAGNITUDE:.0e} a fit "
+                         "computes with (its squares would underflow); rescale the column (e.g. change its unit)")
     for f in space.factors:
         size = max(abs(f.low), abs(f.high), abs(f.center))
         if not size <= MAX_MAGNITUDE:

@@ -67,16 +67,17 @@ def aicc(ss_res: float, n: int, p: int) -> float:
 
 
 def _ols(X, y):
+    """Coefficients, residual SS, residual df and partial-F p-values (the centred QR solve of
+    :func:`rsm_lrg.fit`, so a response on a large offset loses no accuracy)."""
     from scipy import stats
 
-    XtX = X.T @ X
-    try:
-        C = np.linalg.inv(XtX)
-    except np.linalg.LinAlgError:
-        raise ValueError("the model matrix is singular (aliased terms); reduce a model the design can estimate") from None
-    beta = C @ (X.T @ y)
-    resid = y - X @ beta
-    ss = float(resid @ resid)
+    from .fit import _least_squares
+
+    ls = _least_squares(X, y)
+    if ls.rank < X.shape[1]:
+        raise ValueError("the model matrix is singular (aliased terms); reduce a model the design can estimate")
+    beta, C = ls.beta, ls.cov_unscaled
+    ss = float(ls.residuals @ ls.residuals)
     df = X.shape[0] - X.shape[1]
     ms = ss / df if df > 0 else math.nan
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -138,7 +139,7 @@ def reduce_terms(data, response: str, factors=None, block: str | None = None, mo
     import pandas as pd
 
     from .summary import base_design
-    from .terms import design_matrix, model_terms, parse_term
+    from .terms import check_model_size, design_matrix, model_terms, parse_term
 
     crit = str(criterion).strip().lower()
     if crit not in CRITERIA:
@@ -148,6 +149,7 @@ def reduce_terms(data, response: str, factors=None, block: str | None = None, mo
     lin, Bm = base_design(data, response, factors, block)
     letters = lin.space.letters
     if terms is None:
+        check_model_size(lin.n, len(letters), model, Bm.shape[1])  # counted before any term is built
         current = list(model_terms(letters, model))
     else:
         current = [parse_term("Intercept", letters)] + [parse_term(t, letters) for t in terms if t != "Intercept"]
