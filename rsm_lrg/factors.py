@@ -504,9 +504,10 @@ def _check_text_columns(data, exclude) -> None:
         if c in exclude or is_bookkeeping(c) or pd.api.types.is_numeric_dtype(data[c]):
             continue
         col = data[c]
-        for i, raw in enumerate(col.astype(object).to_numpy()):
-            if isinstance(raw, str) and _COMMA_NUMBER.match(raw):
-                raise _bad_cell(str(c), i + 1, raw)
+        commas = np.flatnonzero(col.astype("string").str.match(_COMMA_NUMBER.pattern).fillna(False).to_numpy(bool))
+        if commas.size:
+            i = int(commas[0])
+            raise _bad_cell(str(c), i + 1, col.iloc[i])
         num = pd.to_numeric(col, errors="coerce")
         if num.notna().sum() >= max(1, data.shape[0] // 2):
             _numeric(data, c)  # raises "column 'c', row i: holds 'text', not a finite number"

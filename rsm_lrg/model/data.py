@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ..factors import FactorChoice, FactorSpace, _bad_cell, _is_empty, _numeric, choose_factors, quote_value
+from ..factors import FactorChoice, FactorSpace, _bad_cell, _numeric, choose_factors, quote_value
 
 __all__ = ["PreparedData", "prepare", "response_values"]
 
@@ -72,6 +72,16 @@ def _columns(data) -> str:
     return shown + (f" and {len(cols) - 30} more" if len(cols) > 30 else "")
 
 
+def _empty_cells(col) -> np.ndarray:
+    """Mask of the empty cells of a column: missing, or text of blanks only (vectorised)."""
+    import pandas as pd
+
+    if pd.api.types.is_numeric_dtype(col) or pd.api.types.is_bool_dtype(col):
+        return col.isna().to_numpy(dtype=bool)
+    txt = col.astype("string")
+    return (txt.isna() | (txt.str.strip() == "")).fillna(True).to_numpy(dtype=bool)
+
+
 def response_values(data, response: str) -> tuple[np.ndarray, np.ndarray]:
     """The response as floats (NaN where the cell is empty) and the mask of empty cells.
 
@@ -80,14 +90,13 @@ def response_values(data, response: str) -> tuple[np.ndarray, np.ndarray]:
     import pandas as pd
 
     col = data[response]
-    raw = col.astype(object).to_numpy()
-    empty = np.array([_is_empty(v) for v in raw], dtype=bool)
+    empty = _empty_cells(col)
     num = pd.to_numeric(col.where(~empty) if empty.any() else col, errors="coerce").to_numpy(dtype=float,
                                                                                                  na_value=np.nan)
     bad = ~empty & ~np.isfinite(num)
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        raise _bad_cell(response, i + 1, raw[i])
+        raise _bad_cell(response, i + 1, col.iloc[i])
     y = np.where(empty, np.nan, num)
     return y, empty
 
@@ -137,10 +146,9 @@ def prepare(data, response: str, factors=None, block: str | None = None) -> Prep
     for f in choice.space.factors:  # every row, the runs left out too: errors name the input row
         _numeric(data, f.name)
     if block is not None:
-        bcol = data[block].astype(object).to_numpy()
-        empty_b = [i for i, v in enumerate(bcol) if _is_empty(v)]
-        if empty_b:
-            raise ValueError(f"block column {quote_value(str(block))}, row {empty_b[0] + 1}: is empty")
+        empty_b = np.flatnonzero(_empty_cells(data[block]))
+        if empty_b.size:
+            raise ValueError(f"block column {quote_value(str(block))}, row {int(empty_b[0]) + 1}: is empty")
     y, empty = response_values(data, response)
     notes = list(choice.notes)
     if empty.all():
