@@ -229,6 +229,14 @@ def display_number(text: str) -> str:
     return f"{m.group(1)} × 10{str(int(m.group(2))).translate(str.maketrans('0123456789-', '⁰¹²³⁴⁵⁶⁷⁸⁹⁻'))}"
 
 
+_NUMBER_TEXT = re.compile(r"[<>≤≥±+−-]?\s*\d[\d.]*(?: × 10[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)?")
+
+
+def _cell_css(text: str) -> str:
+    """``"num"`` (right-aligned) for a cell that is one number, ``"text"`` for words."""
+    return "num" if _NUMBER_TEXT.fullmatch(str(text).strip()) else "text"
+
+
 def _fmt(x, sig: int = 5) -> str:
     """A toolkit value with ``sig`` significant figures (:func:`rsm_lrg.present.format_number`)."""
     from ..present import format_number
@@ -244,7 +252,7 @@ def _close(section, quantity, printed, value, *, tol=None, tol_text=None, gap=""
     in its last digit); outside it, the verdict is ``not yet`` when ``gap`` explains why."""
     pv = float(printed.replace("−", "-")) if paper_value is None else float(paper_value)
     unit = last_digit_unit(printed) if tol is None else float(tol)
-    text = tol_text or f"±{unit:g}"
+    text = tol_text or f"±{_fmt(unit, 3)}"
     if value is None or not math.isfinite(float(value)):
         return Row(section, quantity, printed, "n/a", pv, None, None, text, "not yet" if gap else "FAIL",
                    gap or note or "the toolkit gave no value")
@@ -366,10 +374,10 @@ def _rsm_rows(fit, table5_text, eq19_text) -> list[Row]:
     for term, printed in eq19_text:
         if float(printed) == 0.0:  # AB and BC: absent from Eq. 19
             rows.append(_close(S, f"Eq. 19 coefficient {term}", printed, float(coefs[term]), tol=1e-12 * scale,
-                               tol_text="zero (≤ 1e-12 · max |coef|)", note="absent from Eq. 19 (zero)"))
+                               tol_text="zero (≤ 10⁻¹² · max |coef|)", note="absent from Eq. 19 (zero)"))
         else:
             rows.append(_close(S, f"Eq. 19 coefficient {term}", printed, float(coefs[term]), sig=5, tol=1e-5,
-                               tol_text="±1e-05 (5th decimal)", note="Section 4.3 (signs restored, DIGEST §5)"))
+                               tol_text="±0.00001", note="Section 4.3 (signs restored, DIGEST §5)"))
     S = "Table 5: ANOVA"
     a = fit.anova.set_index("source")
     total = float(a.loc["Cor Total", "sum_sq"])
@@ -385,12 +393,12 @@ def _rsm_rows(fit, table5_text, eq19_text) -> list[Row]:
         ss_p = rec["sum_of_squares"]
         if float(ss_p) == 0.0:
             rows.append(_close(S, f"{src}: sum of squares", ss_p, float(r["sum_sq"]), tol=1e-12 * total,
-                               tol_text="zero (≤ 1e-12 · total)"))
+                               tol_text="zero (≤ 10⁻¹² · total)"))
         else:
             rows.append(_close(S, f"{src}: sum of squares", ss_p, float(r["sum_sq"]), sig=4))
         if rec["f_value"] and float(rec["f_value"]) == 0.0:
             rows.append(_close(S, f"{src}: F-value", rec["f_value"], float(r["f"]), tol=1e-9,
-                               tol_text="zero (≤ 1e-9)"))
+                               tol_text="zero (≤ 10⁻⁹)"))
         elif rec["f_value"]:
             rows.append(_close(S, f"{src}: F-value", rec["f_value"], float(r["f"]), sig=5))
         p_txt = rec["p_value"]
@@ -591,6 +599,9 @@ def reproduction_html(rep: Reproduction) -> str:
     css = {"pass": "pass", "FAIL": "fail", "not yet": "notyet", "info": ""}
     rows = [r.to_dict() | {"rel_text": "" if r.rel_diff is None else f"{100 * r.rel_diff:+.2f} %",
                            "paper": display_number(r.paper), "toolkit": display_number(r.toolkit),
+                           "toolkit_lines": display_number(r.toolkit).split("; "),
+                           "paper_css": _cell_css(display_number(r.paper)),
+                           "toolkit_css": _cell_css(display_number(r.toolkit)),
                            "css": css[r.verdict]}
             for r in rep.rows]
     return render_page(
