@@ -474,9 +474,12 @@ def _chosen_terms(names, letters) -> tuple:
     return tuple(sorted(chosen.values(), key=lambda t: (order.get(t.powers, len(order)), t.order, t.powers)))
 
 
-#: Largest magnitude of a factor or response value (and smallest factor half-range) that a fit
-#: accepts: squares, cubes and sums of squares of such numbers stay far from overflow.
+#: Largest magnitude of a response value (and smallest spread) that a fit accepts: sums of
+#: squares of such numbers stay far from overflow and underflow.
 MAX_MAGNITUDE = 1e100
+#: Largest magnitude of a factor value (and smallest half-range): the actual-units
+#: coefficients of a cubic, up to ``b (c/h)^3 / h^3``, then stay finite.
+MAX_FACTOR_MAGNITUDE = 1e50
 
 
 def _check_magnitudes(space: FactorSpace, y: np.ndarray, response: str) -> None:
@@ -491,12 +494,12 @@ def _check_magnitudes(space: FactorSpace, y: np.ndarray, response: str) -> None:
                          "computes with (its squares would underflow); rescale the column (e.g. change its unit)")
     for f in space.factors:
         size = max(abs(f.low), abs(f.high), abs(f.center))
-        if not size <= MAX_MAGNITUDE:
-            raise ValueError(f"factor {f.name!r} reaches {size:.3g}, beyond the ±{MAX_MAGNITUDE:.0e} a fit computes "
-                             "with (its powers would overflow); rescale the column (e.g. change its unit)")
-        if not f.half_range >= 1.0 / MAX_MAGNITUDE:
-            raise ValueError(f"factor {f.name!r} spans only {2 * f.half_range:.3g}, below the {1 / MAX_MAGNITUDE:.0e} "
-                             "a fit computes with; rescale the column (e.g. change its unit)")
+        if not size <= MAX_FACTOR_MAGNITUDE:
+            raise ValueError(f"factor {f.name!r} reaches {size:.3g}, beyond the ±{MAX_FACTOR_MAGNITUDE:.0e} a fit "
+                             "computes with (its powers would overflow); rescale the column (e.g. change its unit)")
+        if not f.half_range >= 1.0 / MAX_FACTOR_MAGNITUDE:
+            raise ValueError(f"factor {f.name!r} spans only {2 * f.half_range:.3g}, below the "
+                             f"{1 / MAX_FACTOR_MAGNITUDE:.0e} a fit computes with; rescale the column (e.g. change its unit)")
 
 
 @dataclass(frozen=True)

@@ -53,8 +53,15 @@ def test_tiny_spreads_are_refused():
     with pytest.raises(ValueError, match=r"response 'y' varies only by .*e-30\d, below the 1e-100"):
         rsm_lrg.fit(d.assign(y=d["y"] * 1e-300), "y")
     # small but ordinary numbers are fine: every statistic is finite
-    r = rsm_lrg.fit(d.assign(a=d["a"] * 1e-60, y=d["y"] * 1e-60), "y")
+    r = rsm_lrg.fit(d.assign(a=d["a"] * 1e-40, y=d["y"] * 1e-60), "y")
     assert np.isfinite(r.statistics.r2) and np.isfinite(list(r.actual_coefficients.values())).all()
+    # the extremes accepted still give finite actual-units coefficients for a cubic:
+    # factor values near 1e50 with a span near 1e-50 would not, so the factor limits are 1e±50
+    with pytest.raises(ValueError, match=r"factor 'c' reaches 1e\+60, beyond the ±1e\+50"):
+        rsm_lrg.fit(d.assign(c=d["c"] * 1e59), "y")
+    e = d.assign(a=d["a"] * 1e45, b=(d["b"] - 6) * 1e-40, y=d["y"] * 1e90)
+    r = rsm_lrg.fit(e, "y")
+    assert np.isfinite(list(r.actual_coefficients.values())).all()
 
 
 def test_term_count_is_combinatorial():
