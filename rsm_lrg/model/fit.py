@@ -573,10 +573,15 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     response : str
         Response column (e.g. ``"tcr_c_per_min"`` [°C/min]).
     factors : None, sequence or FactorSpace
-        ``None``: every numeric column except the response, the block, bookkeeping
-        columns and a design CSV's ``coded_*`` columns. Or names, ``"NAME=LOW:HIGH"`` strings (levels coded -1 and +1), or a
+        ``None``: inferred (:func:`rsm_lrg.factors.choose_factors`): data carrying a
+        design's ``coded_A``, ``coded_B``, ... columns (a design CSV or ``simulate``'s
+        output) are fitted on the design's factors, coded as the design codes them;
+        other data on every numeric column except the response, the block and
+        bookkeeping columns. The notes say which columns were taken and which left out.
+        Or names, ``"NAME=LOW:HIGH"`` strings (levels coded -1 and +1), or a
         :class:`~rsm_lrg.factors.FactorSpace`. A name without levels is coded from the
-        observed minimum and maximum.
+        observed minimum and maximum. Rows whose response cell is empty are left out
+        (``omitted_rows``, a note).
     block : str, optional
         Block column (any labels); block effects sum to zero.
     model : {"linear", "2fi", "quadratic", "cubic"}
