@@ -151,7 +151,8 @@ def add_factor_options(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--factor", action="append", metavar="NAME[=LOW:HIGH]", default=None,
         help="a factor column, optionally with the levels coded -1 and +1 (repeatable; "
-             "default: every numeric column except the response, block and bookkeeping columns)",
+             "default: a design's factors, found from its coded_A, coded_B, ... columns, else every "
+             "numeric column except the response, block and bookkeeping columns)",
     )
 
 
