@@ -87,6 +87,8 @@ def read_input_bytes(path: str | os.PathLike, what: str = "file", *, limit: int 
         raise InputError(f"{_show(p)}: no such {what}") from None
     except OSError as exc:
         raise InputError(f"{_show(p)}: cannot be read ({exc.strerror or type(exc).__name__})") from None
+    except ValueError:  # an embedded NUL character
+        raise InputError(f"{_show(p)}: not a valid file name (it contains a NUL character)") from None
     if stat.S_ISDIR(st.st_mode):
         raise InputError(f"{_show(p)}: is a directory, not a{'n' if what[0] in 'aeiou' else ''} {what}")
     if not stat.S_ISREG(st.st_mode):
@@ -133,7 +135,7 @@ def _check_table_shape(p: Path, raw: bytes) -> None:
 
 def show_path(p: str | os.PathLike, limit: int = 120) -> str:
     """A path for a message, shortened in the middle when very long."""
-    text = str(p).replace("\n", "\\n").replace("\r", "\\r")
+    text = str(p).replace("\n", "\\n").replace("\r", "\\r").replace("\0", "\\0")
     if len(text) <= limit:
         return text
     half = (limit - 1) // 2
@@ -365,6 +367,8 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
         raise InputError(f"cannot write {what}'': an empty path was given" + (f" to {option}" if option else ""))
     p = Path(path)
     head = f"cannot write {what}{_show(p)}"
+    if "\0" in str(path):
+        raise InputError(f"{head}: not a valid file name (it contains a NUL character)")
     tx = _TRANSACTION.get()
     for inp in list(inputs) + (tx.inputs if tx is not None else []):
         if _same_file(p, Path(inp)):
@@ -373,6 +377,8 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
         st = os.stat(p)
     except (FileNotFoundError, NotADirectoryError):
         st = None
+        if os.path.islink(p) and not force:  # a dangling symbolic link is replaced, not followed
+            raise InputError(f"{head}: it already exists (a symbolic link); use --force to overwrite it") from None
     except OSError as exc:
         raise InputError(f"{head}: {exc.strerror or type(exc).__name__}") from None
     if st is not None:

@@ -44,6 +44,12 @@ def _load(path, exclude):
     from ..io import read_table
 
     df = read_table(path)
+    for col in exclude or []:  # nothing is guessed: a column that is not there is an error
+        if col not in df.columns:
+            from ..io import InputError, quote_user_value
+
+            raise InputError(f"--exclude {quote_user_value(col)}: no such column in {path} "
+                             f"(columns: {', '.join(map(str, df.columns))})")
     if any(str(c).lower().startswith("coded_") for c in df.columns):
         return read_design(path)
     space = FactorSpace.from_data(df, None, exclude=exclude)

@@ -254,12 +254,21 @@ def _output_cases(tmp_path: Path, inp: Path) -> dict:
         "hard-link-to-input": (str(hard), "input"),
         "device": ("/dev/null", "not a regular file"),
         "unwritable-directory": ("/proc/rsm-lrg-out.x", "writable"),
+        "nul-character": (str(tmp_path / "a\0b.json"), "NUL"),
+        "dangling-symlink": (str(_dangling(tmp_path)), "already exists"),
+        "name-too-long": (str(tmp_path / ("x" * 5000)), "too long"),
     }
+
+
+def _dangling(tmp_path: Path) -> Path:
+    p = tmp_path / "dangling"
+    p.symlink_to(tmp_path / "nowhere")
+    return p
 
 
 OUTPUT_KINDS = ["file-as-directory", "missing-directory", "existing-directory", "empty", "blank", "existing-file",
                 "input", "input-relative", "input-dotted", "symlink-to-input", "hard-link-to-input", "device",
-                "unwritable-directory"]
+                "unwritable-directory", "nul-character", "dangling-symlink", "name-too-long"]
 
 
 @pytest.mark.parametrize("force", [False, True], ids=["", "force"])
@@ -268,7 +277,7 @@ OUTPUT_KINDS = ["file-as-directory", "missing-directory", "existing-directory", 
 def test_bad_output_path(cmd, opt, kind, force, tmp_path, data_copy, capsys):
     inp = _input_for(cmd, tmp_path, data_copy)
     path, expect = _output_cases(tmp_path, inp)[kind]
-    if force and kind == "existing-file":
+    if force and kind in ("existing-file", "dangling-symlink"):
         pytest.skip("with --force an existing file is replaced: not an error")
     argv = _argv(cmd, inp, tmp_path, {opt: path}) + (["--force"] if force else [])
     keep = [inp, tmp_path / "afile"]
@@ -350,6 +359,7 @@ BAD_OPTIONS = [
     ("evaluate", ["--effect", "-2"], "--effect"),
     ("evaluate", ["--effect", "nan"], "--effect"),
     ("evaluate", ["--region", "ball"], "--region"),
+    ("evaluate", ["--exclude", "no_such_column"], "--exclude"),
     ("ridge", ["--step", "0"], "--step"),
     ("ridge", ["--step", "nan"], "--step"),
     ("ridge", ["--radius", "-1"], "--radius"),
@@ -394,6 +404,7 @@ BAD_DESIGN = [
     (["--blocks", "0"], "--blocks"),
     (["--factor", "d=2:1"], "factor"),
     (["--factor", "d=nan:1"], "factor"),
+    (["--center", "1000000000"], "--center"),
 ]
 
 
@@ -433,7 +444,17 @@ def test_error_lines_are_capped_and_single(capsys):
     from rsm_lrg.cli import _error_line
 
     line = _error_line("a\nb\r\n" + "x" * 5000)
-    assert "\n" not in line and len(line) <= MAX_LINE and line.startswith("error: a b x")
+    assert "\n" not in line and len(line) < MAX_LINE and line.startswith("error: a b x")
+    # a library message that quotes a 300-digit number keeps its tail (what is wrong)
+    line = _error_line(f"radius/step = {10 ** 300} points is too many (at most 100000)")
+    assert len(line) < MAX_LINE and line.endswith("is too many (at most 100000)") and "(301 digits)" in line
+
+
+@pytest.mark.parametrize("path", ["a\0b.csv", "x" * 5000, "dangling"])
+def test_odd_input_names(path, tmp_path, capsys):
+    if path == "dangling":
+        path = str(_dangling(tmp_path))
+    _run_failing(capsys, ["fit", path, "--response", RESPONSE], tmp_path)
 
 
 # ---------------------------------------------------------------- hang checks (subprocess)
