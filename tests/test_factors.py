@@ -145,3 +145,12 @@ def test_inferred_levels_are_the_design_levels(ranges, seed):
     for fa, (lo, hi) in zip(ch.space, spec.values()):
         assert fa.low == pytest.approx(lo, rel=1e-9, abs=1e-9 * (hi - lo))
         assert fa.high == pytest.approx(hi, rel=1e-9, abs=1e-9 * (hi - lo))
+
+
+def test_empty_factor_cell_in_design_data_names_the_row():
+    f = _runs(box_behnken(PAPER, center=3, seed=1))
+    f.loc[6, "velocity_m_s"] = np.nan  # pairing skips it; the fit's check names row 7
+    ch = choose_factors(f, exclude=["tcr_c_per_min"])
+    assert ch.space.names == list(PAPER)
+    with pytest.raises(ValueError, match=r"column 'velocity_m_s', row 7: is empty"):
+        __import__("rsm_lrg").fit(f, "tcr_c_per_min")

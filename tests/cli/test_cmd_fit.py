@@ -154,3 +154,16 @@ def test_design_refuses_a_bookkeeping_factor_name(tmp_path, capsys):
                           "--factor", "c=0:1", "-o", str(out)], capsys)
         assert "reserved" in err and name in err
         assert not out.exists()
+
+
+def test_other_commands_print_the_notes_to_stderr(tmp_path, capsys):
+    t4 = Path(TABLE4).read_text().splitlines()
+    lines = [t4[0] + ",operator"] + [ln + ",ann" for ln in t4[1:]]
+    path = _write(tmp_path, "ops.csv", "\n".join(lines) + "\n")
+    for argv in (["ridge", path, "--response", "tcr_c_per_min", "--json", "-"],
+                 ["fit-summary", path, "--response", "tcr_c_per_min", "--json", "-"]):
+        capsys.readouterr()
+        assert main(argv) == 0, argv
+        cap = capsys.readouterr()
+        json.loads(cap.out)
+        assert "note: Text column left out (not a factor, response or block): operator." in cap.err, argv
