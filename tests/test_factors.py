@@ -154,3 +154,14 @@ def test_empty_factor_cell_in_design_data_names_the_row():
     assert ch.space.names == list(PAPER)
     with pytest.raises(ValueError, match=r"column 'velocity_m_s', row 7: is empty"):
         __import__("rsm_lrg").fit(f, "tcr_c_per_min")
+
+
+def test_read_design_pairs_moved_columns_like_fit(tmp_path):
+    from rsm_lrg.design import Design
+
+    f = _runs(box_behnken(PAPER, center=3, seed=2))
+    order = ["std_order", "run_order", "coded_A", "coded_B", "coded_C", "coded_D", "tcr_c_per_min",
+             "heat_w", "acceleration_m_s2", "velocity_m_s", "temperature_rise_k", "stroke_m", "thickness_m"]
+    d = Design.from_frame(f[order])
+    assert d.factors.names == list(PAPER)
+    assert [(fa.low, fa.high) for fa in d.factors] == list(PAPER.values())

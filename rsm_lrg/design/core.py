@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from ..factors import BOOKKEEPING, Factor, FactorSpace, _numeric, letters_for, parse_factor_spec
+from ..factors import BOOKKEEPING, Factor, FactorSpace, _design_factors, _numeric, letters_for, parse_factor_spec
 
 __all__ = [
     "Design",
@@ -449,8 +449,11 @@ class Design:
         The factors are the columns that follow the coded columns, one per coded column
         (``coded_A`` pairs with the first, ``coded_B`` with the second, ...). Each factor's
         low and high levels are recovered from the coded/actual pairs (actual = centre +
-        half-range × coded), which must agree on every row to 1e-9 relative. Columns after
-        the actual ones (responses added by ``simulate``, say) are ignored here.
+        half-range × coded), which must agree on every row to 1e-9 relative. When they do
+        not (the actual columns were moved), each coded column is paired with the numeric
+        column that is a rising linear map of it, as :func:`rsm_lrg.factors.choose_factors`
+        pairs them for a fit. Columns after the actual ones (responses added by
+        ``simulate``, say) are ignored here.
         ``std_order``/``run_order`` default to the row order when absent.
         """
         cols = [str(c) for c in df.columns]
@@ -472,18 +475,24 @@ class Design:
                 "each coded column needs its actual column"
             )
         names = after[:k]
-        factors = []
-        coded_all = []
         letters = letters_for(k)
-        for L, cc, name in zip(letters, coded_cols, names):
+        for L, cc in zip(letters, coded_cols):
             expect = CODED_PREFIX + L
             if cc != expect:
                 raise ValueError(f"coded column {cc!r} found where {expect!r} was expected")
-            c = _numeric(df, cc).to_numpy()
-            x = _numeric(df, name).to_numpy()
-            low, high = _levels_from_pairs(c, x, cc, name)
-            factors.append((name, low, high))
-            coded_all.append(c)
+        coded_all = [_numeric(df, cc).to_numpy() for cc in coded_cols]
+        try:
+            factors = [(name, *_levels_from_pairs(c, _numeric(df, name).to_numpy(), cc, name))
+                       for cc, name, c in zip(coded_cols, names, coded_all)]
+        except ValueError as exc:
+            # the actual columns moved (or others put between them): pair by values, as fit
+            # does (rsm_lrg.factors.choose_factors), or report the positional problem
+            try:
+                factors, _ = _design_factors(df, coded_cols, set())
+            except ValueError:
+                raise exc from None
+            for name, _, _ in factors:
+                _numeric(df, name)
         space = FactorSpace.from_ranges(factors)
         coded = np.column_stack(coded_all)
         n = len(df)
