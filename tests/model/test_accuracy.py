@@ -6,12 +6,15 @@ R 4.2.2 ``lm`` (``tests/model/r/lm_accuracy.R`` -> ``lm_expected.csv``, 17 digit
 Tolerance 1e-9 relative, per coefficient.
 """
 
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 from _exact import exact_lstsq, max_rel_error
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import rsm_lrg
 
@@ -37,8 +40,6 @@ def test_response_near_1e9_matches_exact_least_squares(seed):
     assert max_rel_error(r.coefficients["coded"], exact) < 1e-9
     # residuals (computed on the centred scale) are those of the exact coefficients to 1e-9
     # of the response's spread; fitted values to the float spacing at 1e9 (1.2e-7)
-    from fractions import Fraction
-
     fitted_exact = [sum((e * Fraction(float(v)) for e, v in zip(exact, row)), Fraction(0)) for row in r.design_matrix]
     resid_exact = np.array([float(Fraction(float(yi)) - f) for yi, f in zip(r.y, fitted_exact)])
     spread = np.abs(r.y - r.y.mean()).max()
@@ -89,3 +90,31 @@ def test_ols_is_lazy_and_agrees():
     np.testing.assert_allclose(ols.params, r.coefficients["coded"], rtol=1e-9, atol=1e-15)
     np.testing.assert_allclose(ols.model.normalized_cov_params, r.cov_unscaled, rtol=1e-9, atol=1e-15)
     np.testing.assert_allclose(ols.get_influence().hat_matrix_diag, r.hat, rtol=1e-9)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    n=st.integers(9, 14),
+    offset_exp=st.integers(0, 12),
+    seed=st.integers(0, 2 ** 16),
+    block=st.booleans(),
+)
+def test_random_designs_on_large_offsets_match_exact(n, offset_exp, seed, block):
+    # Random 2-factor settings, quadratic model (+ blocks), y = 10^e + O(1) variation: every
+    # coefficient within 1e-9 relative of the exact rational answer, or within 1e-13 of the
+    # response's spread where the exact coefficient is (nearly) zero.
+    rng = np.random.default_rng(seed)
+    d = pd.DataFrame({"u": rng.uniform(-3, 7, n), "v": rng.uniform(1e3, 5e3, n)})
+    d["y"] = 10.0 ** offset_exp + rng.normal(size=n) + 0.3 * d["u"] ** 2
+    kw = {}
+    if block:
+        d["blk"] = np.arange(n) % 2
+        kw = {"factors": ["u", "v"], "block": "blk"}
+    r = rsm_lrg.fit(d, "y", **kw)
+    exact = exact_lstsq(r.design_matrix, r.y)
+    beta = list(r.coefficients["coded"])
+    if block:  # design_matrix columns: intercept, block contrast, terms
+        beta = [beta[0], float(r.block_effects["B1"]), *beta[1:]]
+    spread = float(np.ptp(r.y))
+    for b, e in zip(beta, exact):
+        assert abs(Fraction(float(b)) - e) <= Fraction(1e-9) * abs(e) + Fraction(1e-13 * spread)
