@@ -200,6 +200,13 @@ class FitResult:
         return int(self.y.size)
 
     @property
+    def run_rows(self) -> list[int]:
+        """1-based data rows of the runs used (``data``, ``y``, ``fitted``... in this order);
+        the rows missing from it are ``omitted_rows`` (no response: "not run")."""
+        left = set(self.omitted_rows)
+        return [i for i in range(1, self.n + len(left) + 1) if i not in left]
+
+    @property
     def term_names(self) -> list[str]:
         return [t.name for t in self.terms]
 
@@ -401,6 +408,8 @@ class FitResult:
         ]
         out["statistics"] = {k: _f(v) for k, v in self.statistics.to_dict().items()}
         out["stationary_point"] = self.stationary_point.to_dict()
+        out["notes"] = list(self.notes)
+        out["omitted_rows"] = list(self.omitted_rows)  # 1-based data rows without a response
         return out
 
     def to_frame(self):
