@@ -43,11 +43,11 @@ def quote_user_value(value: Any, limit: int = 40) -> str:
     """
     limit = max(int(limit), 1)
     if isinstance(value, str):
-        if len(value) <= limit:
-            return repr(value)
-        shown = repr(value[: limit - 1])  # escapes newlines and control characters
-        quote, body = shown[-1], shown[:-1][: limit]
-        return body + "\u2026" + quote
+        shown = repr(value[: limit + 1])  # escapes newlines and control characters
+        if len(value) <= limit and len(shown) <= limit + 2:
+            return shown
+        quote, body = shown[0], shown[1:-1]
+        return quote + body[: limit - 1] + "\u2026" + quote
     try:
         text = repr(value)
     except Exception:  # any object must be quotable (str of a 5000-digit int raises)

@@ -1,6 +1,7 @@
 """rsm_lrg.io: TOML reading and writing shared by the parameter and calibration files."""
 
 import math
+import os
 import tomllib
 
 import numpy as np
@@ -68,3 +69,124 @@ def test_calibration_file_round_trips(tmp_path):
     assert again.parameters == cal.parameters
     assert list(again.predicted) == list(cal.predicted)
     assert math.isclose(again.r2, cal.r2, rel_tol=0, abs_tol=0)
+
+
+# ---------------------------------------------------------------- bounded reading, safe writing
+
+from hypothesis import settings  # noqa: E402
+
+import rsm_lrg.io as rio  # noqa: E402
+from rsm_lrg.io import check_output, output_transaction, quote_user_value, read_input_bytes, read_table  # noqa: E402
+
+
+@given(st.one_of(st.text(max_size=500), st.integers(), st.floats()), st.integers(min_value=1, max_value=80))
+@settings(max_examples=200, deadline=None)
+def test_quote_user_value_is_short_and_one_line(value, limit):
+    q = quote_user_value(value, limit)
+    assert "\n" not in q and "\r" not in q
+    assert len(q) <= limit + 2 or (not isinstance(value, str) and len(repr(value)) <= limit + 2)
+    if len(repr(value)) <= limit + (2 if isinstance(value, str) else 0):  # + the quotes
+        assert q == repr(value)  # short values are shown exactly
+
+
+def test_quote_user_value_huge_int_and_cell():
+    assert quote_user_value(10 ** 5000) == "<int too long to show>"  # str() of it raises in Python 3.11+
+    q = quote_user_value("z" * 10_000_000)
+    assert len(q) <= 42 and q.startswith("'zzz") and q.endswith("\u2026'")
+
+
+@pytest.mark.parametrize("path,word", [("/dev/zero", "regular file"), ("/dev/null", "regular file"),
+                                       ("/", "directory"), ("/no/such/file.csv", "no such")])
+def test_read_input_bytes_refuses_what_is_not_a_regular_file(path, word):
+    with pytest.raises(InputError, match=word):
+        read_input_bytes(path)
+
+
+def test_read_input_bytes_fifo_does_not_block(tmp_path):
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)  # opening it for reading would block until a writer came
+    with pytest.raises(InputError, match="regular file"):
+        read_table(fifo)
+
+
+def test_table_limits_name_the_file_and_the_limit(tmp_path, monkeypatch):
+    p = tmp_path / "t.csv"
+    p.write_text("a,b\n" + "1,2\n" * 50)
+    monkeypatch.setattr(rio, "MAX_ROWS", 10)
+    with pytest.raises(InputError, match=r"t\.csv: has 50 data rows, more than the limit of 10"):
+        read_table(p)
+    monkeypatch.setattr(rio, "MAX_ROWS", 100)
+    monkeypatch.setattr(rio, "MAX_COLUMNS", 1)
+    with pytest.raises(InputError, match=r"t\.csv: the header has 2 columns, more than the limit of 1"):
+        read_table(p)
+    monkeypatch.setattr(rio, "MAX_COLUMNS", 1000)
+    with pytest.raises(InputError, match=r"t\.csv: is .* larger than the limit"):
+        read_input_bytes(p, limit=100)
+    p.write_text("a,b\n1," + "2" * 2_000_000 + "\n")
+    with pytest.raises(InputError, match=r"t\.csv: line 2 is longer than the limit of 1 MiB"):
+        read_table(p)
+    assert len(read_table(tmp_path.joinpath("ok.csv").write_text("a,b\n1,2\n") and tmp_path / "ok.csv")) == 1
+
+
+def test_header_with_quoted_comma_counts_as_one_column(tmp_path):
+    p = tmp_path / "q.csv"
+    p.write_text('"a,b",c\n1,2\n')
+    assert list(read_table(p).columns) == ["a,b", "c"]
+
+
+def test_check_output_reasons(tmp_path):
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    cases = [("", "empty"), (afile / "o.json", "not a directory"), (tmp_path / "no" / "o.json", "does not exist"),
+             (tmp_path, "is a directory"), (afile, "already exists"), ("/dev/null", "regular file")]
+    for path, word in cases:
+        with pytest.raises(InputError, match=word):
+            check_output(path, option="--json")
+    assert check_output(afile, force=True) == afile
+    with pytest.raises(InputError, match=r"cannot write --json .*afile: it is the input file"):
+        check_output(afile, force=True, inputs=[afile], option="--json")
+    link = tmp_path / "link"
+    link.symlink_to(afile)
+    hard = tmp_path / "hard"
+    os.link(afile, hard)
+    for p in (link, hard, tmp_path / "." / "afile"):
+        with pytest.raises(InputError, match="input file"):
+            check_output(p, force=True, inputs=[afile])
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["afile", "hard", "link"]
+
+
+def test_output_transaction_writes_all_or_nothing(tmp_path):
+    a, b = tmp_path / "a.txt", tmp_path / "b.txt"
+    with pytest.raises(RuntimeError):
+        with output_transaction():
+            write_output(a, "A")
+            assert not a.exists()  # staged, not yet in place
+            raise RuntimeError("the second output failed")
+    assert list(tmp_path.iterdir()) == []
+    with output_transaction():
+        write_output(a, "A")
+        write_output(b, b"B")
+    assert a.read_text() == "A" and b.read_bytes() == b"B"
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["a.txt", "b.txt"]
+
+
+def test_output_transaction_undoes_earlier_renames_when_one_fails(tmp_path):
+    a, b = tmp_path / "a.txt", tmp_path / "b.txt"
+    a.write_text("old a")
+    with pytest.raises(InputError, match=r"cannot write .*b\.txt"):
+        with output_transaction():
+            write_output(a, "new a", force=True)
+            write_output(b, "new b")
+            b.mkdir()  # the target turns into a directory before the rename
+            (b / "keep").write_text("k")
+    assert a.read_text() == "old a"  # restored
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["a.txt", "b.txt"] and (b / "keep").exists()
+
+
+def test_output_transaction_never_writes_an_input(tmp_path):
+    inp = tmp_path / "in.csv"
+    inp.write_text("a,b\n1,2\n")
+    with pytest.raises(InputError, match="input file"):
+        with output_transaction(inputs=[inp]):
+            write_output(tmp_path / "." / "in.csv", "overwritten", force=True)
+    assert inp.read_text() == "a,b\n1,2\n"
