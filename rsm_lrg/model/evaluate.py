@@ -424,9 +424,8 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     cols = tidx[1:]
     vif = np.full(tidx.size, np.nan)
     if cols.size:
-        G = (X.T @ X)[np.ix_(cols, cols)]
-        mcol = X.mean(axis=0)[cols]
-        S = G - n * np.outer(mcol, mcol)
+        Xc = X[:, cols] - X[:, cols].mean(axis=0)
+        S = Xc.T @ Xc  # centred cross-products directly: no cancellation, so never a negative diagonal
         d = np.sqrt(np.diag(S))
         with np.errstate(divide="ignore", invalid="ignore"):
             try:

@@ -746,16 +746,16 @@ def _vif(C: np.ndarray, tidx: np.ndarray, X: np.ndarray, n: int) -> np.ndarray:
     """Variance inflation factors of the model terms (NaN for the intercept).
 
     Design-Expert's definition: the diagonal of the inverse correlation matrix of the
-    non-intercept term columns of the coded design matrix. ``X'X`` is recovered as
-    ``C^-1`` (p x p) so no pass over the n rows beyond the column means is needed.
+    non-intercept term columns of the coded design matrix. The centred cross-products are
+    formed from the centred columns directly (no ``X'X - n m m'`` cancellation, so no
+    negative diagonal for a nearly constant column).
     """
     cols = tidx[1:]
     out = np.full(tidx.size, np.nan)
     if cols.size == 0:
         return out
-    G = np.linalg.inv(C)[np.ix_(cols, cols)]
-    m = X.mean(axis=0)[cols]
-    S = G - n * np.outer(m, m)
+    Xc = X[:, cols] - X[:, cols].mean(axis=0)
+    S = Xc.T @ Xc
     d = np.sqrt(np.diag(S))
     with np.errstate(divide="ignore", invalid="ignore"):
         R = S / np.outer(d, d)

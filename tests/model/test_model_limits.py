@@ -90,7 +90,10 @@ def test_evaluate_raises_no_numpy_warnings():
     corners = np.array(list(itertools.product([-1.0, 1.0], repeat=3)))
     designs = [np.vstack([corners, corners]), np.vstack([corners, np.zeros((3, 3))]), corners[:4],
                rsm_lrg.box_behnken({"a": (0, 1), "b": (0, 1), "c": (0, 1)}, center=3, randomize=False),
-               rsm_lrg.central_composite({"a": (0, 1), "b": (0, 1)}, center=(3, 3), blocks=2, randomize=False)]
+               rsm_lrg.central_composite({"a": (0, 1), "b": (0, 1)}, center=(3, 3), blocks=2, randomize=False),
+               # coded settings squeezed into 0.5 +- 1e-8: the VIF's centred cross-products used to
+               # come out negative by cancellation ("invalid value encountered in sqrt")
+               0.5 + 1e-8 * np.random.default_rng(0).uniform(-1, 1, (11, 3))]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         for d in designs:
