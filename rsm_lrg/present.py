@@ -28,10 +28,11 @@ The rules
 from __future__ import annotations
 
 import math
+import re
 from numbers import Number
 
 __all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_sci", "format_p", "format_f",
-           "format_cell", "clean_anova", "anova_rows"]
+           "format_cell", "clean_anova", "anova_rows", "unicode_number"]
 
 #: Relative size at or below which a value is round-off and shown as 0.
 ROUND_OFF = 1e-12
@@ -126,6 +127,22 @@ def _sci(a: float, digits: int, style: str, trim: bool) -> str:
     if style == "ascii":
         return f"{mant}e{'-' if exp < 0 else '+'}{abs(exp):02d}"
     return f"{mant} × 10{str(exp).translate(_SUPERSCRIPT)}"
+
+
+_E_NOTATION = re.compile(r"([-+−]?\d+(?:\.\d*)?)[eE]([-+]?\d+)")
+
+
+def unicode_number(text: str) -> str:
+    """A number written in ASCII e-notation (``1.2e-05``) rewritten in the unicode style
+    (``1.2 × 10⁻⁵``); any other text is returned unchanged.
+
+    >>> unicode_number("4.16667e-05"), unicode_number("-3E+06"), unicode_number("0.0075"), unicode_number("n/a")
+    ('4.16667 × 10⁻⁵', '-3 × 10⁶', '0.0075', 'n/a')
+    """
+    m = _E_NOTATION.fullmatch(str(text).strip())
+    if not m:
+        return str(text)
+    return f"{m.group(1)} × 10{str(int(m.group(2))).translate(_SUPERSCRIPT)}"
 
 
 def format_sci(x, digits: int = 3) -> str:

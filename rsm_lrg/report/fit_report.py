@@ -61,36 +61,29 @@ def _term_label(term, labels: list[str], sep: str) -> str:
     return sep.join(parts)
 
 
-def _equation_rhs(coefs: dict, terms, labels: list[str], sep: str = "", *, scale: float,
-                  magnitudes=None) -> str:
-    """The right-hand side of the fitted equation as text (see :func:`_equation_terms`)."""
-    return " ".join(_equation_terms(coefs, terms, labels, sep, scale=scale, magnitudes=magnitudes)) or "0"
-
-
-def _equation_terms(coefs: dict, terms, labels: list[str], sep: str = "", *, scale: float,
-                    magnitudes=None) -> list[str]:
+def _equation_terms(result, units: str, labels: list[str], sep: str = "") -> list[str]:
     """The right-hand side of the fitted equation, one signed term per item (pages keep
     each item on one line).
 
-    A term whose largest contribution over the factor box, ``|c| · Π max|x_i|^p_i``, is
-    below ``ROUNDOFF · scale`` (``scale`` = the largest coded coefficient, in response units)
-    is round-off and left out; ``magnitudes`` holds ``max|x_i|`` per factor (1 when coded).
+    Which terms appear and with how many digits is the model's one rule for every equation
+    writer (:func:`rsm_lrg.model.text.equation_terms`: round-off coded terms are 0, every
+    actual-units coefficient not exactly zero is kept, with the digits that reproduce the
+    predictions); numbers are written in the page's format (``0.00075``, ``4.16667 × 10⁻⁵``).
     """
-    mags = np.ones(len(labels)) if magnitudes is None else np.asarray(magnitudes, dtype=float)
+    from ..model.text import equation_terms
+    from ..present import format_number
+
     out = []
-    for t in terms:
-        v = float(coefs[t.name])
-        size = abs(v) * float(np.prod(mags ** np.asarray(t.powers)))
-        if t.order > 0 and (v == 0.0 or size <= ROUNDOFF * abs(scale)):
-            continue
-        num = fmt_num(abs(v), 5)
+    for t in equation_terms(result, units):
+        mantissa = t.text.lower().split("e")[0].replace(".", "").lstrip("-0")
+        num = format_number(abs(t.value), max(len(mantissa), 1))  # the digits the rule chose
         lab = _term_label(t, labels, sep)
         piece = f"{num}·{lab}" if (lab and sep) else (f"{num} {lab}" if lab else num)
         if not out:
-            out.append(("−" if v < 0 else "") + piece)
+            out.append(("−" if t.value < 0 else "") + piece)
         else:
-            out.append(("− " if v < 0 else "+ ") + piece)
-    return out
+            out.append(("− " if t.value < 0 else "+ ") + piece)
+    return out or ["0"]
 
 
 def _run_numbers(result) -> tuple[np.ndarray, str]:
@@ -419,11 +412,8 @@ def _tables(result, source_name: str | None, optimum) -> dict:
     letters = space.letters
     anova_rows, anova_notes = _anova_rows(result)
     stats_rows, stats_notes = _statistics(result)
-    coded_coefs = dict(zip(result.coefficients.index, result.coefficients["coded"]))
-    scale = max((abs(float(v)) for v in coded_coefs.values() if np.isfinite(v)), default=1.0) or 1.0
-    coded_eq = _equation_terms(coded_coefs, result.terms, list(letters), scale=scale) or ["0"]
-    actual_eq = _equation_terms(result.actual_coefficients, result.terms, list(space.names), "·", scale=scale,
-                                magnitudes=[max(abs(f.low), abs(f.high)) for f in space.factors]) or ["0"]
+    coded_eq = _equation_terms(result, "coded", list(letters))
+    actual_eq = _equation_terms(result, "actual", list(space.names), "·")
     pe_df = result.pure_error.df if result.pure_error is not None else 0
     summary = [
         ("Response", result.response),

@@ -214,19 +214,15 @@ def banner(counts: dict) -> dict:
             "headline": f"Every checked row is within its tolerance ({n_pass} rows) · 0 not yet reached · 0 failed."}
 
 
-_PRINTED_SCI = re.compile(r"([-−]?\d+(?:\.\d*)?)[eE]([+-]?\d+)")
-
-
 def display_number(text: str) -> str:
     """A number printed as ``1.61e-4`` shown as the paper prints it, ``1.61 × 10⁻⁴``; other text as is.
 
     >>> display_number("1.61e-4"), display_number("5.6e5"), display_number("0.0880")
     ('1.61 × 10⁻⁴', '5.6 × 10⁵', '0.0880')
     """
-    m = _PRINTED_SCI.fullmatch(str(text).strip())
-    if not m:
-        return str(text)
-    return f"{m.group(1)} × 10{str(int(m.group(2))).translate(str.maketrans('0123456789-', '⁰¹²³⁴⁵⁶⁷⁸⁹⁻'))}"
+    from ..present import unicode_number
+
+    return unicode_number(text)
 
 
 _NUMBER_TEXT = re.compile(r"[<>≤≥±+−-]?\s*\d[\d.]*(?: × 10[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)?")

@@ -141,3 +141,24 @@ def test_banner_counts_not_yet_rows_plainly():
 
 def test_printed_numbers_shown_as_the_paper_prints_them():
     assert display_number("1.61e-4") == "1.61 × 10⁻⁴" and display_number("RMS above RFCMS") == "RMS above RFCMS"
+
+
+def test_page_equation_in_actual_units_reproduces_the_predictions(t4, ctx_center):
+    """Issue 10 item 4 on the page too: evaluating the printed actual-units equation at the
+    27 runs of Table 4 gives the fitted values to 1e-6 relative (of the largest |ŷ|)."""
+    rhs = next(e for e in ctx_center["equations"] if e["id"] == "equation-actual")["rhs"]
+    sup = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
+    data = t4.data
+    total = 0.0
+    for piece in rhs:
+        m = re.fullmatch(r"([+−]?)\s*([\d.]+)(?: × 10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))?((?:·.+)?)", piece)
+        assert m, piece
+        sign, mant, exp, labels = m.groups()
+        value = float(f"{mant}e{exp.translate(sup) if exp else 0}") * (-1.0 if sign == "−" else 1.0)
+        term = value
+        for lab in filter(None, labels.split("·")):
+            name, power = re.fullmatch(r"(.+?)([²³⁴⁵⁶⁷⁸⁹]?)", lab).groups()
+            term = term * data[name].to_numpy(dtype=float) ** (int(power.translate(sup)) if power else 1)
+        total = total + term
+    fitted = t4.fitted
+    assert abs(total - fitted).max() <= 1e-6 * abs(fitted).max()
