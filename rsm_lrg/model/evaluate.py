@@ -33,6 +33,9 @@ import numpy as np
 
 __all__ = ["evaluate_design", "DesignEvaluation", "FDS_FRACTIONS"]
 
+#: Boundary search of the SPV maximum: iterations of the stacked L-BFGS-B over all faces, points
+#: polished one by one, and the largest k with extra starts per face.
+MAXITER, NPOL, EXTRA_K = 100, 32, 3
 #: Fractions at which the FDS curve is reported.
 FDS_FRACTIONS = tuple(np.round(np.linspace(0.0, 1.0, 11), 2))
 
@@ -169,22 +172,33 @@ def _region_sample(k: int, region: str, radius: float, m: int, seed: int) -> np.
 
 
 def _rows_and_jacobian(P: np.ndarray, E: np.ndarray):
-    """Model rows ``F`` (m x p) and their Jacobians ``J`` (m x p x k) at the points ``P``
-    (m x k) for the monomials with exponents ``E`` (p x k)."""
-    Pb = P[:, None, :]
-    F = np.prod(Pb ** E[None, :, :], axis=2)
+    """Model rows ``F`` (m x p) and their derivatives ``J`` (k x p x m: ``J[i, j, r]`` is
+    d f_j / d x_i at point r) at the points ``P`` (m x k) for the monomials with exponents
+    ``E`` (p x k)."""
     m, k = P.shape
-    J = np.zeros((m, E.shape[0], k))
+    emax = int(E.max()) if E.size else 0
+    pw = np.empty((emax + 1, m, k))
+    pw[0] = 1.0
+    for e in range(1, emax + 1):
+        pw[e] = pw[e - 1] * P
+    G = [pw[E[:, i], :, i] for i in range(k)]  # factor i of every monomial, (p, m)
+    D = [E[:, i, None] * pw[np.maximum(E[:, i] - 1, 0), :, i] for i in range(k)]  # its derivative
+    F = np.ones((E.shape[0], m))
+    for g in G:
+        F = F * g
+    J = np.empty((k, E.shape[0], m))
     for i in range(k):
-        Ei = E.copy()
-        Ei[:, i] = np.maximum(Ei[:, i] - 1, 0)
-        J[:, :, i] = E[:, i] * np.prod(Pb ** Ei[None, :, :], axis=2)
-    return F, J
+        Ji = D[i]
+        for j in range(k):
+            if j != i:
+                Ji = Ji * G[j]
+        J[i] = Ji
+    return F.T, J
 
 
 def _face_starts(k: int):
     """Starts and fixed masks for every face of the cube [-1, 1]^k (all 3^k faces: vertices,
-    edges, ..., the cube itself): the face centre, and for k <= 5 also ±0.5 along each free
+    edges, ..., the cube itself): the face centre, and for k <= 3 also ±0.5 along each free
     axis and the two free-diagonal points ±0.5. Returns ``(starts, fixed)``."""
     import itertools
 
@@ -195,7 +209,7 @@ def _face_starts(k: int):
         free = np.flatnonzero(~fx)
         starts.append(c)
         fixed.append(fx)
-        if k <= 5 and free.size:
+        if k <= EXTRA_K and free.size:
             for j in free:
                 for s in (-0.5, 0.5):
                     x = c.copy()
@@ -217,9 +231,9 @@ def _max_variance_cube(E: np.ndarray, Ct: np.ndarray, k: int, seed: int = 0):
     ``v`` is a polynomial, so its maximum over the cube lies at a vertex or at a stationary
     point inside some face. Every face of every dimension (3^k of them for k <= 8: fixed
     coordinates at ±1, the rest free in [-1, 1]) is searched by L-BFGS-B from its centre (and,
-    for k <= 5, from a few more starts); the vertices are evaluated exactly (they are the
+    for k <= 3, from a few more starts); the vertices are evaluated exactly (they are the
     0-dimensional faces). All faces are optimised in one bounded L-BFGS-B call on the stacked
-    (separable) problem, then the best few points are polished one by one over the whole cube.
+    (separable) problem, then the best 32 points are polished one by one over the whole cube.
     For k > 8 the faces are replaced by the vertices' neighbourhood of 4096 Sobol starts.
     """
     from scipy import optimize as so
@@ -229,7 +243,8 @@ def _max_variance_cube(E: np.ndarray, Ct: np.ndarray, k: int, seed: int = 0):
         F, J = _rows_and_jacobian(P, E)
         CF = F @ Ct
         v = np.einsum("ij,ij->i", F, CF)
-        g = 2.0 * np.einsum("ijk,ij->ik", J, CF)
+        CFt = CF.T
+        g = 2.0 * np.stack([np.einsum("pm,pm->m", Ji, CFt) for Ji in J], axis=1)
         return v, g
 
     if k <= 8:
@@ -250,12 +265,12 @@ def _max_variance_cube(E: np.ndarray, Ct: np.ndarray, k: int, seed: int = 0):
 
     r = so.minimize(joint, S.ravel(), jac=True, method="L-BFGS-B",
                     bounds=list(zip(lo.ravel(), hi.ravel())),
-                    options={"maxiter": 2000, "ftol": 1e-15, "gtol": 1e-12, "maxcor": 20})
+                    options={"maxiter": MAXITER, "ftol": 1e-15, "gtol": 1e-12, "maxcor": 20})
     P = np.clip(r.x.reshape(m, k), lo, hi)
     vP, _ = value_grad(P)
     cand = np.vstack([P, S])
     vc = np.concatenate([vP, v0])
-    order = np.argsort(-vc, kind="stable")[:8]
+    order = np.argsort(-vc, kind="stable")[:NPOL]
 
     def single(x):
         v, g = value_grad(x[None, :])
@@ -284,7 +299,7 @@ def _max_variance_ball(E: np.ndarray, Ct: np.ndarray, k: int, radius: float, sam
     def vg(x):
         F, J = _rows_and_jacobian(np.atleast_2d(x), E)
         CF = F @ Ct
-        return float(F[0] @ CF[0]), 2.0 * J[0].T @ CF[0]
+        return float(F[0] @ CF[0]), 2.0 * J[:, :, 0] @ CF[0]
 
     starts = [sample[i] for i in np.argsort(-vsample)[:32]] + [np.zeros(k)]
     for i in range(k):
