@@ -369,6 +369,9 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     head = f"cannot write {what}{_show(p)}"
     if "\0" in str(path):
         raise InputError(f"{head}: not a valid file name (it contains a NUL character)")
+    if str(path).endswith(("/", os.sep)):
+        raise InputError(f"cannot write {what}{_show(path)}: the path ends with '/', so it names a directory; "
+                         f"give a file name")
     tx = _TRANSACTION.get()
     for inp in list(inputs) + (tx.inputs if tx is not None else []):
         if _same_file(p, Path(inp)):

@@ -22,6 +22,7 @@ import importlib
 import pkgutil
 import sys
 import traceback
+import warnings
 
 from ._common import check_option_specs, input_paths, mark_outputs, planned_outputs
 
@@ -91,7 +92,8 @@ def _error_line(msg: str) -> str:
     for w in str(msg).split():  # a 300-digit number or a 10 MB token quoted by a library message
         if len(w) > 60:
             w = re.sub(r"\d{25,}", lambda m: m.group()[:12] + f"\u2026({len(m.group())} digits)", w)
-            w = w if len(w) <= 60 else w[:59] + "\u2026"
+        if len(w) > 120:  # keep both ends: a long path still shows its file name
+            w = w[:59] + "\u2026" + w[-60:]
         words.append(w)
     text = "error: " + " ".join(words)
     if len(text) > MAX_ERROR_LINE:
@@ -126,8 +128,14 @@ def main(argv: list[str] | None = None) -> int:
         # first one written; then all outputs are renamed into place together at the end
         check_option_specs(args)
         outputs = planned_outputs(args, getattr(args, "_module", None))
-        with output_transaction(inputs=input_paths(args), labels={path: label for label, path in outputs}):
-            status = args._run(args)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("default")
+            with output_transaction(inputs=input_paths(args), labels={path: label for label, path in outputs}):
+                status = args._run(args)
+        # a library warning is one line after a success; after an error only the error line shows
+        for msg in dict.fromkeys(" ".join(str(w.message).split()) for w in caught
+                                 if not issubclass(w.category, (DeprecationWarning, PendingDeprecationWarning))):
+            print(f"warning: {msg}"[:MAX_ERROR_LINE], file=sys.stderr)
         return int(status or 0)
     except SystemExit as exc:  # --help, --version
         return int(exc.code or 0) if isinstance(exc.code, int) else 0

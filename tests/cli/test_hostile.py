@@ -257,6 +257,7 @@ def _output_cases(tmp_path: Path, inp: Path) -> dict:
         "nul-character": (str(tmp_path / "a\0b.json"), "NUL"),
         "dangling-symlink": (str(_dangling(tmp_path)), "already exists"),
         "name-too-long": (str(tmp_path / ("x" * 5000)), "too long"),
+        "trailing-slash": (str(tmp_path / "newdir") + "/", "directory"),
     }
 
 
@@ -268,7 +269,8 @@ def _dangling(tmp_path: Path) -> Path:
 
 OUTPUT_KINDS = ["file-as-directory", "missing-directory", "existing-directory", "empty", "blank", "existing-file",
                 "input", "input-relative", "input-dotted", "symlink-to-input", "hard-link-to-input", "device",
-                "unwritable-directory", "nul-character", "dangling-symlink", "name-too-long"]
+                "unwritable-directory", "nul-character", "dangling-symlink", "name-too-long",
+                "trailing-slash"]
 
 
 @pytest.mark.parametrize("force", [False, True], ids=["", "force"])
@@ -455,6 +457,32 @@ def test_odd_input_names(path, tmp_path, capsys):
     if path == "dangling":
         path = str(_dangling(tmp_path))
     _run_failing(capsys, ["fit", path, "--response", RESPONSE], tmp_path)
+
+
+@pytest.mark.parametrize("exc,status,word", [
+    (OverflowError("(34, 'Numerical result out of range')"), 2, "too large"),
+    (FloatingPointError("overflow encountered in square"), 2, "too large"),
+    (ValueError("a\nmessage on\nthree lines"), 2, "a message on three lines"),
+    (RuntimeError("a real bug"), 1, "internal error"),
+])
+def test_dispatcher_maps_failures_to_one_line(exc, status, word, tmp_path, data_copy, capsys, monkeypatch):
+    # how main() reports what a command raises (after a library warning, which must not add a line)
+    import warnings
+
+    import rsm_lrg.cli.cmd_fit_summary as mod
+
+    def run(args):
+        warnings.warn("invalid value encountered in divide", RuntimeWarning, stacklevel=2)
+        raise exc
+
+    monkeypatch.setattr(mod, "run", run)
+    json_out = tmp_path / "o.json"
+    rc = main(["fit-summary", str(data_copy), "--response", RESPONSE, "--json", str(json_out)])
+    err = capsys.readouterr().err
+    assert rc == status and len(err.splitlines()) == 1 and err.startswith("error:") and word in err, err
+    assert "Traceback" not in err and not json_out.exists()
+    if status == 2:
+        assert str(data_copy) in err or "message" in err  # names the input file
 
 
 # ---------------------------------------------------------------- hang checks (subprocess)
