@@ -698,6 +698,9 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
             notes.append("No lack-of-fit test: the model uses every degree of freedom beyond pure error.")
     if df_res == 0:
         notes.append("The model is saturated (no residual degrees of freedom): no F tests.")
+    elif ss_res <= 1e-20 * ss_total:  # residual RMS below 1e-10 of the response's spread
+        notes.append("The model fits the data exactly (residuals at round-off level): its F-values, p-values "
+                     "and standard errors measure round-off, not noise.")
 
     anova = anova_table(term_names=names[1:], term_ss=term_ss, ss_model=ss_model, df_model=df_model,
                         ss_block=ss_block, df_block=nb - 1, ss_res=ss_res, df_res=df_res,

@@ -24,7 +24,10 @@ def format_g(x, digits: int = 4) -> str:
     a = abs(x)
     if 1e-3 <= a < 1e5:
         decimals = max(digits - 1 - int(math.floor(math.log10(a))), 0)
-        return f"{x:.{decimals}f}"
+        s = f"{x:.{decimals}f}"
+        if decimals and abs(float(s)) >= 10.0 ** (digits - decimals):  # 0.99999 rounded up to 1.0000
+            s = f"{x:.{decimals - 1}f}"
+        return s
     return f"{x:.{digits - 1}e}"
 
 

@@ -100,3 +100,13 @@ def test_evaluate_raises_no_numpy_warnings():
             for m in MODELS:
                 for region in ("cube", "sphere"):
                     evaluate_design(d, m, region=region, n_region=256)
+
+
+def test_exact_fit_is_flagged():
+    # y is exactly a quadratic of the settings: the residual is round-off, and the text says so
+    g = np.array(list(itertools.product([-1.0, 0.0, 1.0], repeat=2)))
+    d = pd.DataFrame(g, columns=["a", "b"])
+    d["y"] = 1 + d.a + 2 * d.b + 0.5 * d.a * d.b + d.a ** 2 - d.b ** 2
+    r = rsm_lrg.fit(d, "y")
+    assert any("fits the data exactly" in n for n in r.notes)
+    assert not any("fits the data exactly" in n for n in rsm_lrg.fit(grid3(), "y").notes)
