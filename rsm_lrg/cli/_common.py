@@ -68,16 +68,37 @@ probability = number(0, 1, above=True, below=True)
 OUTPUT_DESTS = ("output", "json", "report")
 
 
+def output_option(action: argparse.Action) -> argparse.Action:
+    """Mark an option as naming an output file (for a dest outside :data:`OUTPUT_DESTS`):
+    ``output_option(p.add_argument("--html", metavar="PATH"))``. It is then checked with the
+    others before the command runs and written in the same transaction."""
+    action.rsm_output = True
+    return action
+
+
 def output_labels(parser: argparse.ArgumentParser) -> dict[str, str]:
     """``{dest: "-o/--output"}`` for the output options of ``parser``."""
     return {a.dest: "/".join(a.option_strings) for a in parser._actions
-            if a.dest in OUTPUT_DESTS and a.option_strings}
+            if (a.dest in OUTPUT_DESTS or getattr(a, "rsm_output", False)) and a.option_strings}
+
+
+def path_labels(parser: argparse.ArgumentParser) -> dict[str, str]:
+    """``{dest: label}`` for the other arguments that name a file (metavar ``PATH``,
+    ``DATA.csv``, ``PATH.toml``): an empty value is an error naming them."""
+    outs = output_labels(parser)
+    found = {}
+    for a in parser._actions:
+        mv = a.metavar if isinstance(a.metavar, str) else ""
+        if a.dest not in outs and ("PATH" in mv or mv.lower().endswith((".csv", ".toml"))):
+            found[a.dest] = "/".join(a.option_strings) or mv
+    return found
 
 
 def mark_outputs(parser: argparse.ArgumentParser) -> None:
     """Record the output options of ``parser`` and of its sub-parsers on the parsed namespace
-    (``_output_labels``), for :func:`planned_outputs`."""
-    parser.set_defaults(_output_labels=output_labels(parser))
+    (``_output_labels``), for :func:`planned_outputs`, and the other file arguments
+    (``_path_labels``)."""
+    parser.set_defaults(_output_labels=output_labels(parser), _path_labels=path_labels(parser))
     for a in parser._actions:
         if isinstance(a, argparse._SubParsersAction):
             for sp in a.choices.values():
@@ -232,6 +253,10 @@ def check_option_specs(args: argparse.Namespace) -> None:
     are left to the library)."""
     from ..factors import parse_factor_spec
 
+    for dest, label in (getattr(args, "_path_labels", None) or {}).items():
+        for v in getattr(args, dest, None) if isinstance(getattr(args, dest, None), list) else [getattr(args, dest, None)]:
+            if isinstance(v, str) and not v.strip():
+                raise InputError(f"{label}: an empty path was given")
     for dest in ("factor", "bound"):
         for spec in getattr(args, dest, None) or []:
             if not isinstance(spec, str):

@@ -167,6 +167,17 @@ def test_hostile_input_file(cmd, kind, tmp_path, capsys):
     assert "internal error" not in line
 
 
+@pytest.mark.parametrize("name", ["", "   "])
+@pytest.mark.parametrize("cmd", list(COMMANDS))
+def test_empty_input_name_names_the_argument(cmd, name, tmp_path, capsys):
+    _run_failing(capsys, _argv(cmd, name, tmp_path), tmp_path, expect="empty path")
+
+
+def test_empty_calibration_path(tmp_path, data_copy, capsys):
+    argv = _argv("simulate", data_copy, tmp_path) + ["--calibration", ""]
+    _run_failing(capsys, argv, tmp_path, inputs=[data_copy], expect="--calibration")
+
+
 @pytest.mark.parametrize("kind", TOML_KINDS)
 def test_hostile_params_file(kind, tmp_path, capsys):
     inp, expect = _make_input(kind, tmp_path)
