@@ -11,6 +11,7 @@ cases <- list(
   list(name = "blocks_fact3", formula = y ~ Block + FO(a_mm, b_s, c_k) + TWI(a_mm, b_s, c_k))
 )
 out <- c("dataset,source,df,sum_sq,f,p")
+coefs <- c("dataset,term,estimate")
 for (cs in cases) {
   d <- read.csv(file.path(here, paste0(cs$name, ".csv")))
   d$Block <- factor(d$Block)
@@ -22,6 +23,10 @@ for (cs in cases) {
     out <- c(out, paste(cs$name, src, r[["Df"]], g(r[["Sum Sq"]]), g(r[["F value"]]), g(r[["Pr(>F)"]]), sep = ","))
   }
   print(lof)
+  b <- coef(m)
+  for (t in names(b)) coefs <- c(coefs, paste(cs$name, paste0("\"", t, "\""), g(b[[t]]), sep = ","))
 }
 writeLines(out, file.path(here, "blocks_lof_expected.csv"))
+# coefficients in actual units (Block: treatment contrasts, so only the factor terms compare)
+writeLines(coefs, file.path(here, "blocks_coef_expected.csv"))
 cat(R.version.string, "; rsm", as.character(packageVersion("rsm")), "\n")
