@@ -31,28 +31,42 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--duration-min", type=number(1), default=50.0, metavar="M",
                    help="test duration of the measured runs [min] (default 50)")
     p.add_argument("--no-loo", action="store_true", help="skip leave-one-out cross-validation")
+    p.add_argument("--no-progress", dest="progress", action="store_false", default=True,
+                   help="no progress bar on stderr (default: one step per least-squares fit)")
     p.add_argument("-o", "--output", default=None, metavar="PATH.toml", help="write the calibration TOML here")
     add_json(p)
     add_force(p)
 
 
+def _safe_name(name: str) -> str:
+    """A file name as text that can be written to UTF-8 TOML: bytes that are not UTF-8
+    (kept by Python as lone surrogates) become U+FFFD."""
+    return name.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
+
+
 def run(args) -> int:
+    import shlex
     import sys
     from pathlib import Path
 
     from ..io import InputError, dump_json, read_table, write_output
     from ..surrogate.calibrate import calibrate, calibration_toml, file_sha256
+    from ..surrogate.runs import check_duration
 
     if args.output and Path(args.output).exists() and not args.force:
         raise InputError(f"{args.output}: already exists; use --force to overwrite it")
-    if not args.duration_min >= 1:
-        raise InputError(f"--duration-min must be at least 1, got {args.duration_min:g}")
+    try:
+        duration = check_duration(args.duration_min, "--duration-min")
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
     data = read_table(args.data)
     with about_file(args.data):
-        cal = calibrate(data, args.response, parameters=args.parameter, duration_min=args.duration_min,
-                        loo=not args.no_loo, source=Path(args.data).name, data_sha256=file_sha256(args.data))
+        cal = calibrate(data, args.response, parameters=args.parameter, duration_min=duration,
+                        loo=not args.no_loo, source=_safe_name(Path(args.data).name),
+                        data_sha256=file_sha256(args.data), progress=args.progress)
     print(cal.summary())
-    cmd = "rsm-lrg calibrate " + " ".join(sys.argv[2:]) if len(sys.argv) > 2 else ""
+    argv = [_safe_name(a) for a in sys.argv[2:]]
+    cmd = "rsm-lrg calibrate " + " ".join(shlex.quote(a) for a in argv) if argv else ""
     if args.output:
         write_output(args.output, calibration_toml(cal, cmd), force=args.force)
         print(f"calibrate: written to {args.output}", file=sys.stderr)

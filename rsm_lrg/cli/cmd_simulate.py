@@ -60,22 +60,44 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_force(p)
 
 
+def _calibration(args):
+    """The calibration the options ask for (read and checked before the design)."""
+    if args.uncalibrated:
+        return None
+    if args.calibration:
+        from ..surrogate.calibrate import load_calibration
+
+        return load_calibration(args.calibration)
+    return "default"
+
+
 def run(args) -> int:
     import sys
     from pathlib import Path
 
     from ..io import InputError, read_table, write_output
     from ..physics.params import LRGParams, parse_assignments
-    from ..surrogate.execute import DEFAULT_NOISE_SD, simulate
+    from ..surrogate.execute import DEFAULT_NOISE_SD, MAX_NOISE_SD, simulate
     from ..surrogate.noise import resolve_seed
+    from ..surrogate.runs import check_duration
 
     out_path = Path(args.output)
     if out_path.exists() and not args.force:
         raise InputError(f"{out_path}: already exists; use --force to overwrite it")
-    if args.duration_min < 1:
-        raise InputError(f"--duration-min must be at least 1 (two readings one minute apart), got {args.duration_min:g}")
+    try:
+        check_duration(args.duration_min, "--duration-min")
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    if args.noise_sd is not None and args.noise_sd > MAX_NOISE_SD:
+        raise InputError(f"--noise-sd must be at most {MAX_NOISE_SD:g} degC (the SD of one thermocouple "
+                         f"reading), got {args.noise_sd:g}")
+    overrides = parse_assignments(args.param)
+    for name, option in (("test_duration_min", "--duration-min"),):
+        if name in overrides:
+            raise InputError(f"--param {name}: give the test duration with {option} (or a {name} column)")
+    params = LRGParams().with_overrides(**overrides) if overrides else LRGParams()
+    calibration = _calibration(args)
     design = read_table(args.design)
-    params = LRGParams().with_overrides(**parse_assignments(args.param)) if args.param else LRGParams()
     noise = DEFAULT_NOISE_SD if args.noise_sd is None else args.noise_sd
     seed = args.seed
     if seed is None and noise > 0:
@@ -83,14 +105,6 @@ def run(args) -> int:
         drawn = True
     else:
         drawn = False
-    if args.uncalibrated:
-        calibration = None
-    elif args.calibration:
-        from ..surrogate.calibrate import load_calibration
-
-        calibration = load_calibration(args.calibration)
-    else:
-        calibration = "default"
 
     executor = client = None
     try:

@@ -37,7 +37,7 @@ from ..datasets import data_path
 
 __all__ = [
     "LRGParams", "PARAM_INFO", "ASSUMPTIONS", "param_names", "load_params", "check_values",
-    "parse_assignments", "DEFAULTS_FILE",
+    "parse_assignments", "DEFAULTS_FILE", "PHYSICAL_RANGES", "physical_range_text",
 ]
 
 #: Name of the shipped defaults file.
@@ -72,6 +72,47 @@ _OPEN_UNIT = {"frame_mass_fraction"}
 _NONNEG = {"dwell_s", "hinge_damping_ratio", "preload_n", "viscous_friction_n_s_m"}
 _INTS = {"hinge_count", "ball_rows", "balls_per_row"}
 _BOOLS = {"heat_in_calories"}
+
+#: Physical range of every numeric parameter, inclusive, in its unit: what a linear rolling
+#: guide on a motion stage of this kind (and its air, steel and test) can physically be.
+#: Far wider than any experiment (so that nothing sensible is refused), narrow enough to
+#: stop a typo, a wrong unit (mm for m) or a number that would overflow the physics. Checked
+#: with the rules above by :func:`check_values`: for ``--param``, TOML files, design
+#: columns and calibration files alike.
+PHYSICAL_RANGES: dict[str, tuple[float, float]] = {
+    "preload_n": (0.0, 1e5), "stage_mass_kg": (1e-3, 1e3), "gravity_m_s2": (0.1, 100.0),
+    "mu_s": (0.0, 1.0), "mu_k": (0.0, 1.0), "viscous_friction_n_s_m": (0.0, 1e4),
+    "hinge_count": (1, 100), "hinge_thickness_m": (1e-6, 0.05), "hinge_width_m": (1e-4, 1.0),
+    "hinge_length_m": (1e-4, 1.0), "hinge_modulus_pa": (1e6, 1.2e12), "hinge_damping_ratio": (0.0, 10.0),
+    "frame_mass_fraction": (0.0, 1.0), "carriage_mass_kg": (1e-3, 1e3),
+    "ball_radius_m": (1e-4, 0.05), "raceway_radius_m": (1e-4, 0.1), "ball_rows": (1, 16),
+    "balls_per_row": (1, 1000), "contact_angle_deg": (0.0, 90.0),
+    "velocity_m_s": (1e-4, 20.0), "thermal_equivalent_j_per_cal": (4.18, 4.21),
+    "air_velocity_m_s": (1e-3, 100.0), "char_length_m": (1e-4, 10.0),
+    "air_kinematic_viscosity_m2_s": (1e-7, 1e-3), "air_dynamic_viscosity_pa_s": (1e-7, 1e-2),
+    "air_conductivity_w_mk": (1e-3, 1.0), "air_specific_heat_j_kgk": (100.0, 2e4),
+    "wear_coefficient": (1e-12, 1.0), "hardness_hb": (1.0, 2000.0),
+    "stroke_m": (1e-5, 10.0), "acceleration_m_s2": (1e-3, 1e4), "dwell_s": (0.0, 60.0),
+    "ambient_c": (-100.0, 200.0), "test_duration_min": (1.0, 1e5),
+    "block_width_m": (1e-3, 1.0), "block_length_m": (1e-3, 2.0), "block_height_m": (1e-3, 1.0),
+    "rail_width_m": (1e-3, 1.0), "rail_height_m": (1e-3, 1.0), "rail_mass_kg_per_m": (1e-3, 1e3),
+    "rail_length_m": (1e-3, 20.0),
+    "guide_density_kg_m3": (100.0, 3e4), "guide_conductivity_w_mk": (0.01, 5000.0),
+    "guide_specific_heat_j_kgk": (10.0, 2e4), "ball_density_kg_m3": (100.0, 3e4),
+    "stage_density_kg_m3": (100.0, 3e4), "stage_conductivity_w_mk": (0.01, 5000.0),
+    "stage_specific_heat_j_kgk": (10.0, 2e4),
+}
+
+
+def physical_range_text(name: str) -> str:
+    """``"[lo, hi] unit"`` of a parameter's :data:`PHYSICAL_RANGES` entry.
+
+    >>> physical_range_text("preload_n")
+    '[0, 100000] N'
+    """
+    lo, hi = PHYSICAL_RANGES[name]
+    unit = PARAM_INFO[name]["unit"]
+    return f"[{lo:g}, {hi:g}]" + ("" if unit in ("1", "") else f" {unit}")
 
 
 @dataclass(frozen=True)
@@ -222,6 +263,8 @@ def _check_names(mapping: Mapping[str, Any], where: str = "") -> None:
 
 def _coerce(name: str, value: Any) -> Any:
     """Convert one scalar value to its field's type and validate it."""
+    from ..io import quote_user_value as q
+
     if name in _BOOLS:
         if isinstance(value, (bool, np.bool_)):
             return bool(value)
@@ -229,18 +272,21 @@ def _coerce(name: str, value: Any) -> Any:
             return value.strip().lower() in {"true", "1", "yes"}
         if isinstance(value, (int, np.integer)) and value in (0, 1):
             return bool(value)
-        raise ValueError(f"parameter {name} must be true or false, got {value!r}")
+        raise ValueError(f"parameter {name} must be true or false, got {q(value)}")
     if isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"parameter {name} must be a number, got {value!r}")
+        raise ValueError(f"parameter {name} must be a number, got {q(value)}")
     try:
         x = float(value)
+    except OverflowError:
+        x = math.inf
     except (TypeError, ValueError):
-        raise ValueError(f"parameter {name} must be a number, got {value!r}") from None
+        raise ValueError(f"parameter {name} must be a number, got {q(value)}") from None
     if not math.isfinite(x):
-        raise ValueError(f"parameter {name} must be finite, got {value!r}")
+        raise ValueError(f"parameter {name} must be finite, got {q(value)}")
     if name in _INTS:
         if x != int(x) or x < 1:
-            raise ValueError(f"parameter {name} must be a whole number >= 1, got {value!r}")
+            raise ValueError(f"parameter {name} must be a whole number >= 1, got {q(value)}")
+        check_values(name, x)
         return int(x)
     check_values(name, x)
     return x
@@ -289,6 +335,11 @@ def check_values(name: str, values) -> None:
         rule, bad = "be > 0", a <= 0
     if bad.any():
         fail(bad, rule)
+    if name in PHYSICAL_RANGES:
+        lo, hi = PHYSICAL_RANGES[name]
+        bad = (a < lo) | (a > hi)
+        if bad.any():
+            fail(bad, f"lie in its physical range {physical_range_text(name)}")
 
 
 def parse_assignments(items: Iterable[str]) -> dict[str, Any]:
@@ -300,11 +351,18 @@ def parse_assignments(items: Iterable[str]) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for item in items:
         if "=" not in item:
-            raise ValueError(f"--param {item!r}: expected NAME=VALUE")
+            from ..io import quote_user_value
+
+            raise ValueError(f"--param {quote_user_value(item, 60)}: expected NAME=VALUE")
         name, _, text = item.partition("=")
         name, text = name.strip(), text.strip()
-        _check_names({name: None})
-        out[name] = _coerce(name, text)
+        try:
+            _check_names({name: None})
+            out[name] = _coerce(name, text)
+        except ValueError as exc:
+            from ..io import quote_user_value
+
+            raise ValueError(f"--param {quote_user_value(item, 60)}: {exc}") from None
     return out
 
 
@@ -317,16 +375,24 @@ def load_params(path: str | Path | None = None, base: LRGParams | None = None, *
     p = base or LRGParams()
     values: dict[str, Any] = {}
     if path is not None:
-        from ..io import read_toml
+        from ..io import read_toml, show_path
 
         path = Path(path)
         raw = read_toml(path)
-        for k, v in raw.items():
-            values[k] = v["value"] if isinstance(v, dict) and "value" in v else v
         try:
-            _check_names(values)
+            _check_names(raw)
+            for k, v in raw.items():
+                if isinstance(v, dict):
+                    extra = sorted(set(v) - {"value", "unit", "source", "assumption"})
+                    if "value" not in v:
+                        raise ValueError(f"table [{k}] has no value")
+                    if extra:
+                        raise ValueError(f"table [{k}] has an unknown key {extra[0]!r} "
+                                         f"(known: value, unit, source, assumption)")
+                    v = v["value"]
+                values[k] = v
             values = {k: _coerce(k, v) for k, v in values.items()}
         except ValueError as exc:
-            raise ValueError(f"{path}: {exc}") from None
+            raise ValueError(f"{show_path(path)}: {exc}") from None
     values.update(overrides)
     return p.with_overrides(**values)

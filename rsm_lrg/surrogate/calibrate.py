@@ -26,7 +26,7 @@ import numpy as np
 __all__ = [
     "CALIBRATION_FILE", "DEFAULT_PARAMETERS", "ParameterSpec", "ParameterEstimate",
     "Calibration", "calibrate", "load_calibration", "resolve_calibration", "calibration_toml",
-    "OTHER_PARAMETERS", "file_sha256",
+    "OTHER_PARAMETERS", "file_sha256", "documented_bounds",
 ]
 
 #: Name of the shipped calibration file.
@@ -181,9 +181,25 @@ def _specs(parameters) -> tuple:
     names = [s.name for s in out]
     if len(set(names)) != len(names):
         raise ValueError("a calibration parameter is given twice")
+    from ..physics.params import PHYSICAL_RANGES, param_names
+
     for s in out:
+        vals = (s.lower, s.upper, s.start)
+        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in vals):
+            raise ValueError(f"parameter {s.name}: lower, upper and start must be finite numbers")
         if not (s.lower < s.upper and s.lower <= s.start <= s.upper):
             raise ValueError(f"parameter {s.name}: need lower < upper and start within the bounds")
+        if s.name in PHYSICAL_RANGES:
+            plo, phi = PHYSICAL_RANGES[s.name]
+        elif s.name == "heat_partition":
+            plo, phi = 0.0, 1.0
+        elif s.name not in param_names():
+            raise ValueError(f"unknown calibration parameter {s.name!r}")
+        else:
+            continue
+        if s.lower < plo or s.upper > phi:
+            raise ValueError(f"parameter {s.name}: bounds [{s.lower:g}, {s.upper:g}] reach outside its physical "
+                             f"range [{plo:g}, {phi:g}]")
     return tuple(out)
 
 
@@ -198,7 +214,7 @@ _HEAT_ONLY = ("heat_partition",)
 
 def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=None,
               duration_min: float = 50.0, loo: bool = True, source: str = "",
-              data_sha256: str = "", grid_points: int | None = None) -> Calibration:
+              data_sha256: str = "", grid_points: int | None = None, progress: bool = False) -> Calibration:
     """Fit the surrogate's unknown parameters to measured runs.
 
     Parameters
@@ -223,6 +239,9 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
         default 13 for one stage parameter, 7 per axis for two.
     source, data_sha256 : str
         Recorded with the result.
+    progress : bool
+        Show a progress bar (tqdm) on stderr, one step per least-squares fit or grid point
+        (the CLI shows it; a full calibration with leave-one-out takes minutes).
 
     Returns
     -------
@@ -232,11 +251,16 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
 
     from ..physics.params import LRGParams
     from .design_input import OUTPUT_COLUMNS, read_design_arrays
-    from .runs import evaluate_rows
+    from .runs import check_duration, evaluate_rows
 
     specs = _specs(parameters)
+    duration_min = check_duration(duration_min)
     if response not in data.columns:
-        raise ValueError(f"column {response!r} not found (columns: {', '.join(map(str, data.columns))})")
+        from ..io import quote_user_value
+
+        shown = ", ".join(quote_user_value(str(c), 30) for c in list(data.columns)[:8])
+        more = f" and {data.shape[1] - 8} more" if data.shape[1] > 8 else ""
+        raise ValueError(f"column {quote_user_value(str(response))} not found (columns: {shown}{more})")
     if response not in OUTPUT_COLUMNS:
         raise ValueError(f"the surrogate does not produce {response!r}; choose one of {', '.join(OUTPUT_COLUMNS)}")
     from ..factors import _numeric
@@ -281,14 +305,31 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     # just evaluated, when every parameter is a stage parameter), then all parameters
     # together from the best grid point.
     stage_idx = [i for i, sp in enumerate(specs) if sp.name not in _HEAT_ONLY]
-    starts = [x0]
+    grid = []
     if 1 <= len(stage_idx) <= 2:
         m = int(grid_points) if grid_points is not None else (13 if len(stage_idx) == 1 else 7)
         axes = [np.geomspace(lo[i], hi[i], m) if lo[i] > 0 else np.linspace(lo[i], hi[i], m) for i in stage_idx]
+        grid = list(itertools.product(*axes))
+    from .execute import _progress_bar
+
+    bar = _progress_bar(len(grid) + 1 + (n if loo else 0), bool(progress), desc="calibration fits", unit="fit")
+    try:
+        return _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar,
+                                arrays, p, duration_min, response, source, data_sha256, evaluate_rows)
+    finally:
+        bar.close()
+
+
+def _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar, arrays, p,
+                     duration_min, response, source, data_sha256, evaluate_rows):
+    """The profile grid, the full fit and leave-one-out of :func:`calibrate`, one bar step
+    each."""
+    starts = [x0]
+    if grid:
         free = np.ones(len(specs), dtype=bool)
         free[stage_idx] = False
         best_cost, best_start = np.inf, x0
-        for point in itertools.product(*axes):
+        for point in grid:
             st0 = x0.copy()
             st0[stage_idx] = point
             if free.any():
@@ -298,12 +339,14 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
                 cost = 0.5 * float(np.sum((predict(st0) - obs) ** 2))
             if cost < best_cost:
                 best_cost, best_start = cost, st0
+            bar.update(1)
         starts = [best_start]
     best = None
     for start in starts:
         r = fit(None, start)
         if best is None or r.cost < best.cost:
             best = r
+    bar.update(1)
     theta = best.x
     pred = predict(theta)
     resid = obs - pred
@@ -327,6 +370,7 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
             keep = np.delete(np.arange(n), i)
             r = fit(keep, theta)
             lp[i] = predict(r.x, np.array([i]))[0]
+            bar.update(1)
         loo_pred = tuple(float(x) for x in lp)
         loo_r2 = _r2(obs, lp)
         loo_rmse = float(np.sqrt(np.mean((obs - lp) ** 2)))
@@ -349,6 +393,22 @@ def _subset(arrays, idx):
 # ----------------------------------------------------------------------------------------
 # file I/O
 # ----------------------------------------------------------------------------------------
+def _comment_text(text: str) -> str:
+    """``text`` made safe for a TOML comment: control characters (a newline in a file name
+    would end the comment and break the file) written as ``\\n``, ``\\uXXXX``."""
+    out = []
+    for ch in str(text):
+        if ch == "\n":
+            out.append("\\n")
+        elif ch == "\r":
+            out.append("\\r")
+        elif (ord(ch) < 0x20 and ch != "\t") or ord(ch) == 0x7F or 0xD800 <= ord(ch) <= 0xDFFF:
+            out.append(f"\\u{ord(ch):04x}")
+        else:
+            out.append(ch)
+    return "".join(out)
+
+
 def calibration_toml(cal: Calibration, command: str = "") -> str:
     """The TOML text of a calibration (what :func:`load_calibration` reads)."""
     from ..io import toml_value
@@ -358,7 +418,7 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
         "# Written by `rsm-lrg calibrate`; read by `rsm-lrg simulate` and rsm_lrg.simulate().",
         "# Each [parameters.NAME] has a physical meaning, bounds and a standard error from the",
         "# Jacobian; no offsets or correction terms. Regenerate with:",
-        f"#   {command or 'rsm-lrg calibrate data/table4.csv --response tcr_c_per_min -o data/calibration.toml --force'}",
+        f"#   {_comment_text(command) or 'rsm-lrg calibrate data/table4.csv --response tcr_c_per_min -o data/calibration.toml --force'}",
         "",
         "[calibration]",
     ]
@@ -381,45 +441,158 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
     return "\n".join(lines) + "\n"
 
 
+#: Keys of a calibration file, with their types (what :func:`calibration_toml` writes).
+_HEAD_KEYS = {"response": str, "n": int, "r2": float, "rmse": float, "loo_r2": float, "loo_rmse": float,
+              "uncalibrated_r2": float, "data": str, "data_sha256": str, "method": str, "command": str}
+_PARAM_KEYS = {"value": float, "std_error": float, "lower": float, "upper": float, "unit": str,
+               "meaning": str, "at_bound": bool}
+_RUN_KEYS = ("observed", "predicted", "loo_predicted")
+
+
+def documented_bounds(name: str) -> tuple[float, float, str]:
+    """``(lower, upper, where)``: the documented range of a calibratable parameter -- the
+    bounds of its :class:`ParameterSpec` (:data:`DEFAULT_PARAMETERS`,
+    :data:`OTHER_PARAMETERS`), else the physical range of
+    :data:`rsm_lrg.physics.params.PHYSICAL_RANGES` (``heat_partition``: (0, 1])."""
+    from ..physics.params import PHYSICAL_RANGES
+
+    for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS:
+        if s.name == name:
+            return s.lower, s.upper, "documented in rsm_lrg.surrogate.calibrate"
+    if name in PHYSICAL_RANGES:
+        lo, hi = PHYSICAL_RANGES[name]
+        return float(lo), float(hi), "its physical range"
+    return 0.0, 1.0, "a share of the heat"
+
+
+def _typed(where: str, key: str, v, kind):
+    """A TOML value of the expected kind, or ValueError naming ``where`` and ``key``."""
+    from ..io import quote_user_value
+
+    if kind is float:
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            raise ValueError(f"{where} {key} must be a number, not {quote_user_value(v)}")
+        return float(v)
+    if kind is int:
+        if isinstance(v, bool) or not isinstance(v, int) or v < 0:
+            raise ValueError(f"{where} {key} must be a whole number >= 0, not {quote_user_value(v)}")
+        return int(v)
+    if kind is bool:
+        if not isinstance(v, bool):
+            raise ValueError(f"{where} {key} must be true or false, not {quote_user_value(v)}")
+        return v
+    if not isinstance(v, str):
+        raise ValueError(f"{where} {key} must be a string, not {quote_user_value(v)}")
+    return v
+
+
+def _unknown_key(where: str, key, allowed) -> ValueError:
+    import difflib
+
+    from ..io import quote_user_value
+
+    close = difflib.get_close_matches(str(key), list(allowed), n=1)
+    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    if not close and len(allowed) <= 12:
+        hint = f" (known: {', '.join(allowed)})"
+    if where == "[parameters]":
+        return ValueError(f"unknown parameter {quote_user_value(key)}{hint}")
+    return ValueError(f"{where} has an unknown key {quote_user_value(key)}{hint}")
+
+
 def load_calibration(path) -> Calibration:
-    """Read a calibration TOML file (as written by :func:`calibration_toml`)."""
-    from ..io import read_toml
+    """Read a calibration TOML file (as written by :func:`calibration_toml`).
+
+    Every table and key is checked: an unknown key (a typo), a value of the wrong type, a
+    missing ``value`` or a value outside the parameter's documented range
+    (:func:`documented_bounds`, and the file's own ``lower``/``upper``) raise ``ValueError``
+    naming the file, the table and the key.
+    """
+    from ..io import read_toml, show_path
     from ..physics.params import param_names
+    from .design_input import OUTPUT_COLUMNS
     from .runs import SURROGATE_PARAMETERS
 
     path = Path(path)
     raw = read_toml(path, "calibration file")
+    try:
+        return _calibration_from_toml(raw, param_names(), SURROGATE_PARAMETERS, OUTPUT_COLUMNS)
+    except ValueError as exc:
+        raise ValueError(f"{show_path(path)}: {exc}") from None
+
+
+def _calibration_from_toml(raw: dict, lrg_names, surrogate_names, outputs) -> Calibration:
+    from ..io import quote_user_value
+
+    for k in raw:
+        if k not in ("calibration", "parameters", "runs"):
+            raise _unknown_key("the file", k, ("calibration", "parameters", "runs"))
     head = raw.get("calibration", {})
+    if not isinstance(head, dict):
+        raise ValueError("'calibration' must be a table [calibration]")
+    h = {}
+    for k, v in head.items():
+        if k not in _HEAD_KEYS:
+            raise _unknown_key("[calibration]", k, _HEAD_KEYS)
+        h[k] = _typed("[calibration]", k, v, _HEAD_KEYS[k])
+    if "response" in h and h["response"] not in outputs:
+        raise ValueError(f"[calibration] response {quote_user_value(h['response'])} is not an output of the "
+                         f"surrogate ({', '.join(outputs)})")
     pars = raw.get("parameters")
     if not isinstance(pars, dict) or not pars:
-        raise ValueError(f"{path}: no [parameters.NAME] tables")
-    known = set(param_names()) | set(SURROGATE_PARAMETERS)
+        raise ValueError("no [parameters.NAME] tables")
+    known = set(lrg_names) | set(surrogate_names)
     ests = []
     for name, t in pars.items():
         if name not in known:
-            raise ValueError(f"{path}: unknown parameter {name!r}")
-        if not isinstance(t, dict) or "value" not in t:
-            raise ValueError(f"{path}: [parameters.{name}] has no value")
-        try:
-            v = float(t["value"])
-        except (TypeError, ValueError):
-            raise ValueError(f"{path}: [parameters.{name}] value is not a number") from None
-        lo, hi = float(t.get("lower", -math.inf)), float(t.get("upper", math.inf))
+            raise _unknown_key("[parameters]", name, sorted(known))
+        where = f"[parameters.{name}]"
+        if not isinstance(t, dict):
+            raise ValueError(f"{where} must be a table with value = NUMBER, not {quote_user_value(t)}")
+        for k in t:
+            if k not in _PARAM_KEYS:
+                raise _unknown_key(where, k, _PARAM_KEYS)
+        if "value" not in t:
+            raise ValueError(f"{where} has no value")
+        f = {k: _typed(where, k, v, _PARAM_KEYS[k]) for k, v in t.items()}
+        v = f["value"]
+        lo, hi, what = documented_bounds(name)
         if not math.isfinite(v) or not lo <= v <= hi:
-            raise ValueError(f"{path}: [parameters.{name}] value {v!r} is outside its bounds [{lo}, {hi}]")
-        ests.append(ParameterEstimate(name, v, float(t.get("std_error", math.nan)), lo, hi,
-                                      str(t.get("unit", "")), str(t.get("meaning", "")), bool(t.get("at_bound", False))))
+            raise ValueError(f"{where} value {v:g} is outside its bounds [{lo:g}, {hi:g}] ({what})")
+        if name in lrg_names:
+            from ..physics.params import check_values
+
+            try:
+                check_values(name, v)
+            except ValueError as exc:
+                raise ValueError(f"{where} value: {exc}") from None
+        flo, fhi = f.get("lower", lo), f.get("upper", hi)
+        if math.isnan(flo) or math.isnan(fhi) or flo > fhi:
+            raise ValueError(f"{where} lower {flo:g} and upper {fhi:g} are not a range")
+        if not flo <= v <= fhi:
+            raise ValueError(f"{where} value {v:g} is outside the file's own bounds [{flo:g}, {fhi:g}]")
+        se = f.get("std_error", math.nan)
+        if se < 0:
+            raise ValueError(f"{where} std_error must be >= 0 (or nan), not {se:g}")
+        ests.append(ParameterEstimate(name, v, se, flo, fhi, f.get("unit", ""), f.get("meaning", ""),
+                                      f.get("at_bound", False)))
     runs = raw.get("runs", {})
-    g = lambda k: head.get(k)  # noqa: E731
+    if not isinstance(runs, dict):
+        raise ValueError("'runs' must be a table [runs]")
+    lists = {}
+    for k, v in runs.items():
+        if k not in _RUN_KEYS:
+            raise _unknown_key("[runs]", k, _RUN_KEYS)
+        if not isinstance(v, list) or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in v):
+            raise ValueError(f"[runs] {k} must be a list of numbers")
+        lists[k] = tuple(float(x) for x in v)
     return Calibration(
-        parameters=tuple(ests), response=str(head.get("response", "tcr_c_per_min")), n=int(head.get("n", 0)),
-        r2=float(head.get("r2", math.nan)), rmse=float(head.get("rmse", math.nan)),
-        loo_r2=None if g("loo_r2") is None else float(g("loo_r2")),
-        loo_rmse=None if g("loo_rmse") is None else float(g("loo_rmse")),
-        data=str(head.get("data", "")), data_sha256=str(head.get("data_sha256", "")),
-        observed=tuple(runs.get("observed", ())), predicted=tuple(runs.get("predicted", ())),
-        loo_predicted=tuple(runs.get("loo_predicted", ())), method=str(head.get("method", "")),
-        uncalibrated_r2=None if g("uncalibrated_r2") is None else float(g("uncalibrated_r2")),
+        parameters=tuple(ests), response=h.get("response", "tcr_c_per_min"), n=h.get("n", 0),
+        r2=h.get("r2", math.nan), rmse=h.get("rmse", math.nan), loo_r2=h.get("loo_r2"),
+        loo_rmse=h.get("loo_rmse"), data=h.get("data", ""), data_sha256=h.get("data_sha256", ""),
+        observed=lists.get("observed", ()), predicted=lists.get("predicted", ()),
+        loo_predicted=lists.get("loo_predicted", ()), method=h.get("method", ""),
+        uncalibrated_r2=h.get("uncalibrated_r2"),
     )
 
 
@@ -446,7 +619,12 @@ def resolve_calibration(spec) -> Calibration | None:
         for k, v in spec.items():
             if k not in known:
                 raise ValueError(f"calibration: unknown parameter {k!r}")
-            ests.append(ParameterEstimate(str(k), float(v), math.nan, -math.inf, math.inf))
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+                raise ValueError(f"calibration: {k} must be a number, not {type(v).__name__}")
+            lo, hi, what = documented_bounds(str(k))
+            if not (math.isfinite(float(v)) and lo <= float(v) <= hi):
+                raise ValueError(f"calibration: {k} = {float(v):g} is outside its bounds [{lo:g}, {hi:g}] ({what})")
+            ests.append(ParameterEstimate(str(k), float(v), math.nan, lo, hi))
         return Calibration(tuple(ests), "tcr_c_per_min", 0, math.nan, math.nan)
     if isinstance(spec, (str, Path)):
         return load_calibration(spec)

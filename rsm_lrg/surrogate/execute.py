@@ -21,7 +21,7 @@ import numpy as np
 from .design_input import OUTPUT_COLUMNS, read_design_arrays
 from .noise import resolve_seed
 
-__all__ = ["simulate", "DEFAULT_NOISE_SD", "DEFAULT_BATCH_ROWS"]
+__all__ = ["simulate", "DEFAULT_NOISE_SD", "DEFAULT_BATCH_ROWS", "MAX_NOISE_SD"]
 
 #: Default reading noise [°C], per thermocouple reading. Table 4's three centre runs
 #: (0.034, 0.033, 0.034 °C/min) have a standard deviation of 5.77e-4 °C/min; over 50 min
@@ -29,6 +29,10 @@ __all__ = ["simulate", "DEFAULT_NOISE_SD", "DEFAULT_BATCH_ROWS"]
 #: SD sigma give when two sensors are averaged (SD of the rise = sigma). It is also the
 #: SD of rounding to the 0.1 °C display step of the rig's HT9815 (0.1/sqrt(12) = 0.029).
 DEFAULT_NOISE_SD = 0.03
+
+#: Largest reading noise [°C] accepted: a thermocouple whose readings scatter by more than
+#: 10 °C is broken, and larger values only drown the response (and overflow).
+MAX_NOISE_SD = 10.0
 
 #: Rows per batch (a batch is one NumPy evaluation and one task on an executor). Batches are
 #: cut at fixed row indices, whatever the executor or the number of workers: the noise of a
@@ -70,10 +74,11 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
     noise_sd : float
         Standard deviation [°C] of the Gaussian noise on each thermocouple reading (two
         thermocouples, read every minute, averaged; κ by Eq. 18 from the noisy record).
-        The SD of κ is then ``noise_sd / duration``. 0 gives the deterministic surrogate.
+        The SD of κ is then ``noise_sd / duration``. 0 gives the deterministic surrogate;
+        at most :data:`MAX_NOISE_SD`.
     duration_min : float
         Test duration [min] for rows without a ``test_duration_min`` column (the paper:
-        about 50 min).
+        about 50 min); in [1, 1e5] (:data:`rsm_lrg.surrogate.runs.MAX_DURATION_MIN`).
     executor : concurrent.futures.Executor, optional
         Where batches run: ``None`` in this process; a ``ProcessPoolExecutor``; a Dask
         ``Client.get_executor()``.
@@ -100,11 +105,14 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
 
     from ..physics.params import LRGParams
     from .calibrate import resolve_calibration
+    from .runs import check_duration
 
     noise_sd = _check_nonneg("noise_sd", noise_sd)
+    if noise_sd > MAX_NOISE_SD:
+        raise ValueError(f"noise_sd must be at most {MAX_NOISE_SD:g} degC (the SD of one thermocouple "
+                         f"reading), got {noise_sd:g}")
     duration_min = _check_nonneg("duration_min", duration_min)
-    if duration_min < 1.0:
-        raise ValueError(f"duration_min must be at least 1 (two readings one minute apart), got {duration_min:g}")
+    duration_min = check_duration(duration_min)
     if params is None:
         params = LRGParams()
     elif not isinstance(params, LRGParams):
@@ -195,11 +203,11 @@ class _NoBar:
         pass
 
 
-def _progress_bar(total: int, show: bool):
+def _progress_bar(total: int, show: bool, desc: str = "virtual runs", unit: str = "run"):
     if not show:
         return _NoBar()
     try:
         from tqdm import tqdm
     except ImportError:  # tqdm is in the 'parallel' extra
         return _NoBar()
-    return tqdm(total=total, unit="run", desc="virtual runs", file=sys.stderr, dynamic_ncols=True)
+    return tqdm(total=total, unit=unit, desc=desc, file=sys.stderr, dynamic_ncols=True)

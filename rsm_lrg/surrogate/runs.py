@@ -31,7 +31,26 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["evaluate_rows", "SURROGATE_PARAMETERS", "thermal_unit_response"]
+__all__ = ["evaluate_rows", "SURROGATE_PARAMETERS", "thermal_unit_response", "MAX_DURATION_MIN",
+           "check_duration"]
+
+#: Longest test [min] (69 days; the rig's tests last about 50 min, the guide is steady after
+#: a few hours): the upper end of ``test_duration_min``'s physical range.
+MAX_DURATION_MIN = 1e5
+
+
+def check_duration(value, name: str = "duration_min") -> float:
+    """``value`` as a test duration [min] in [1, :data:`MAX_DURATION_MIN`], or ``ValueError``
+    naming ``name`` (two readings one minute apart at least; a longer test is refused before
+    anything is computed)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be a number of minutes, got {value!r}") from None
+    if isinstance(value, bool) or not (1.0 <= v <= MAX_DURATION_MIN):
+        raise ValueError(f"{name} must lie in [1, {MAX_DURATION_MIN:g}] min (a test has at least two readings "
+                         f"one minute apart and lasts at most {MAX_DURATION_MIN / 1440:.0f} days), got {v:g}")
+    return v
 
 #: Parameters of the surrogate that are not in :class:`~rsm_lrg.physics.params.LRGParams`:
 #: name -> (raw-physics value, unit, meaning).
@@ -58,7 +77,7 @@ def _thermal_items(values: dict) -> tuple:
 
 
 @lru_cache(maxsize=64)
-def _unit_response_cached(items: tuple, n_minutes: int):
+def _network_cached(items: tuple):
     from ..physics import convection
     from ..physics.thermal.geometry import GuideGeometry
     from ..physics.thermal.network import ThermalNetwork
@@ -71,17 +90,26 @@ def _unit_response_cached(items: tuple, n_minutes: int):
                                                     v["air_conductivity_w_mk"], v["char_length_m"]))
     hf = float(convection.heat_transfer_coefficient(convection.nusselt_normal_plate(re, pr),
                                                     v["air_conductivity_w_mk"], v["char_length_m"]))
-    net = ThermalNetwork(geometry, hs, hf)
-    minutes = np.arange(n_minutes + 1, dtype=float)
-    hist = net.response(minutes * 60.0)
-    hist.setflags(write=False)
-    return hist, float(net.steady_rise_per_w)
+    return ThermalNetwork(geometry, hs, hf)
 
 
 def thermal_unit_response(values: dict, duration_min: float):
     """Thermocouple rise per watt [K/W] at every minute 0..ceil(duration), and the steady rise
     per watt [K/W], for the parameters ``values`` (a full ``LRGParams.to_dict()``)."""
-    return _unit_response_cached(_thermal_items(values), int(math.ceil(duration_min)))
+    net = _network_cached(_thermal_items(values))
+    minutes = np.arange(int(math.ceil(duration_min)) + 1, dtype=float)
+    return net.response(minutes * 60.0), float(net.steady_rise_per_w)
+
+
+def _rise_at(values: dict, dur: np.ndarray):
+    """Unit rise [K/W] at the durations ``dur`` [min] (the record's readings are one minute
+    apart: linear between the readings at floor and ceil of each duration) and the steady
+    rise per watt. Only the minutes needed are evaluated, each on its own (the value of a
+    row does not depend on the other rows; no array as long as the test)."""
+    net = _network_cached(_thermal_items(values))
+    knots = np.unique(np.concatenate([np.floor(dur), np.ceil(dur)]))
+    hist = net.response(knots * 60.0)
+    return np.interp(dur, knots, hist), float(net.steady_rise_per_w)
 
 
 # ----------------------------------------------------------------------------------------
@@ -159,6 +187,7 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     from ..physics.params import LRGParams, param_names
     from .noise import reading_noise
 
+    duration_min = check_duration(duration_min)
     p = params if params is not None else LRGParams()
     cal = dict(calibration or {})
     extra = {k: float(cal.pop(k, d[0])) for k, d in SURROGATE_PARAMETERS.items()}
@@ -205,14 +234,10 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         inv = inv.reshape(-1)
     else:
         uniq, inv = np.zeros((1, 0)), np.zeros(n, dtype=int)
-    dmax = float(dur.max())
     for g, row in enumerate(uniq):
         vals = dict(base, **dict(zip(th_names, row)))
-        hist, ss = thermal_unit_response(vals, dmax)
         m = inv == g
-        minutes = np.arange(hist.size, dtype=float)
-        unit_end[m] = np.interp(dur[m], minutes, hist)
-        steady[m] = ss
+        unit_end[m], steady[m] = _rise_at(vals, dur[m])
     rise_true = q * unit_end
     if noise_sd > 0:
         rows = np.arange(row_start, row_start + n, dtype=np.uint64)
@@ -231,8 +256,15 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
                                 col("contact_angle_deg"))
     vw = wear.wear_rate_per_hour(col("wear_coefficient"), fi, slide, T, wear.brinell_to_pa(col("hardness_hb")))
     b = lambda x: np.broadcast_to(np.asarray(x, float), (n,)).copy()  # noqa: E731
-    return {
+    out = {
         "tcr_c_per_min": b(tcr), "temperature_rise_k": b(rise), "steady_rise_k": b(q * steady),
         "wear_volume_m3_per_h": b(vw), "sliding_distance_m_per_cycle": b(slide),
         "heat_w": b(q), "cycle_time_s": b(T),
     }
+    for k, x in out.items():  # the physics must not overflow or divide by zero silently
+        bad = ~np.isfinite(x)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"row {row_start + i + 1}: the surrogate gives a non-finite {k} ({x[i]:g}); "
+                             f"the row's settings or parameters are outside what the physics can handle")
+    return out
