@@ -277,6 +277,10 @@ def _diagnostics(result) -> tuple[list, str]:
     return figs, note
 
 
+def _runs(n: int) -> str:
+    return "1 run" if n == 1 else f"{n} runs"
+
+
 def _on_slice(optimum, space, held, i: int, j: int) -> bool:
     """Whether the optimum lies on the slice of pair (i, j): every other factor at its held value."""
     return all(abs(float(optimum.coded[L]) - held[m]) <= 1e-6
@@ -347,7 +351,7 @@ def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
             P.surface_3d(X, Y, Z, points=pts3, xlabel=f"{fi.letter}: {fi.name}", ylabel=f"{fj.letter}: {fj.name}",
                          zlabel=result.response, note=fig_note, mark=mark3, mark_label="optimum"),
             f"surface-{pair}", f"3-D surface, {title}",
-            f"{hold_sentence} Red points: the {int(at_held.sum())} runs made at those settings of the other "
+            f"{hold_sentence} Red points: the {_runs(int(at_held.sum()))} made at those settings of the other "
             f"factors, at their observed response.{star}", "png")
         cont = P.render(
             P.contour_plot(X, Y, Z, points=pts2, xlabel=f"{fi.letter}: {fi.name}", ylabel=f"{fj.letter}: {fj.name}",

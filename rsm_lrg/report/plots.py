@@ -421,7 +421,7 @@ def contour_plot(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y",
     if not (X.shape == Y.shape == Z.shape) or X.ndim != 2:
         raise ValueError("X, Y and Z must be 2-D arrays of one shape")
     fig = Figure(figsize=size)
-    fig.subplots_adjust(left=0.15, right=0.98, bottom=0.13, top=0.92)
+    fig.subplots_adjust(left=0.15, right=0.98, bottom=0.13, top=0.89)
     ax = fig.add_subplot()
     if np.ptp(Z[np.isfinite(Z)]) > 0:
         cf = ax.contourf(X, Y, Z, levels=levels, cmap="viridis")
@@ -434,12 +434,15 @@ def contour_plot(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y",
         ax.pcolormesh(X, Y, Z, cmap="viridis", shading="auto")
     p = _points(points)
     if p is not None and len(p):
-        ax.scatter(p[:, 0], p[:, 1], s=22, marker="o", label="design points", **_POINT_STYLE)
+        # not clipped: design points and the optimum often sit on the edge of the box
+        ax.scatter(p[:, 0], p[:, 1], s=22, marker="o", label="design points", clip_on=False, **_POINT_STYLE)
     if mark is not None:
-        ax.scatter([mark[0]], [mark[1]], s=120, marker="*", color="#ffd21f", edgecolor="black",
-                   linewidth=0.7, zorder=6, label=_t(mark_label or "optimum"))
+        ax.scatter([mark[0]], [mark[1]], s=160, marker="*", color="#ffd21f", edgecolor="black",
+                   linewidth=0.7, zorder=7, clip_on=False, label=_t(mark_label or "optimum"))
     if (p is not None and len(p)) or mark is not None:
-        ax.legend(loc="upper left", fontsize=7, framealpha=0.8)
+        # above the axes, so it never covers a design point in a corner
+        ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=2, fontsize=7, frameon=False,
+                  borderaxespad=0.2, handletextpad=0.3)
     from matplotlib.ticker import MaxNLocator
 
     ax.xaxis.set_major_locator(MaxNLocator(5))
