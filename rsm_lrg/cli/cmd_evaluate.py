@@ -29,7 +29,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
     parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
                         help="level of the power test (default 0.05)")
-    parser.add_argument("--effect", type=number(0, above=True), default=2.0, metavar="SD",
+    parser.add_argument("--effect", type=number(0, 1e6, above=True), default=2.0, metavar="SD",
                         help="effect to detect, in standard deviations (default 2)")
     parser.add_argument("--exclude", action="append", default=[], metavar="COL",
                         help="a column that is not a factor (data CSVs only; repeatable)")

@@ -33,7 +33,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="ascent (maximize, default) or descent (minimize)")
     from ._common import number
 
-    parser.add_argument("--radius", type=number(0), default=None, metavar="R",
+    parser.add_argument("--radius", type=number(0, 1e6), default=None, metavar="R",
                         help="largest distance from the centre in coded units (default: the farthest design point)")
     parser.add_argument("--step", type=number(0, above=True), default=0.1, metavar="S", help="spacing of the path points (default 0.1)")
     add_factor_options(parser)
