@@ -263,14 +263,14 @@ class _Transaction:
     def __init__(self, inputs, labels=None):
         self.inputs = [Path(x) for x in inputs]
         self.labels = {os.path.abspath(k): v for k, v in (labels or {}).items()}
-        self.staged: list[tuple[str, Path]] = []  # (temporary file, target)
+        self.staged: list[tuple[str, Path, bool]] = []  # (temporary file, target, force)
 
     def label(self, path) -> str | None:
         """The option that named ``path`` (``--json``), when known."""
         return self.labels.get(os.path.abspath(path))
 
     def discard(self) -> None:
-        for tmp, _ in self.staged:
+        for tmp, *_ in self.staged:
             _unlink(tmp)
         self.staged = []
 
@@ -278,20 +278,20 @@ class _Transaction:
         """Rename every staged file into place; if one rename fails, undo the others."""
         done: list[tuple[Path, str | None]] = []  # (target, backup of the file it replaced)
         try:
-            for tmp, target in self.staged:
+            for tmp, target, force in self.staged:
                 backup = None
-                if os.path.lexists(target):
+                if force and os.path.lexists(target):
                     backup = f"{tmp}.old"
                     try:
                         os.link(target, backup, follow_symlinks=False)
                     except OSError:
                         backup = None
                 try:
-                    os.replace(tmp, target)
-                except OSError as exc:
+                    _place(tmp, target, force)
+                except BaseException:
                     if backup:
                         _unlink(backup)
-                    raise InputError(f"cannot write {_show(target)}: {exc.strerror or type(exc).__name__}") from None
+                    raise
                 done.append((target, backup))
         except BaseException:
             for target, backup in reversed(done):
@@ -308,6 +308,27 @@ class _Transaction:
             if backup:
                 _unlink(backup)
         self.staged = []
+
+
+def _place(tmp: str, target: Path, force: bool) -> None:
+    """Rename ``tmp`` to ``target``. Without ``force`` a file that appeared at ``target`` since
+    the checks is never replaced: the new file is linked in only where nothing exists yet."""
+    try:
+        if force:
+            os.replace(tmp, target)
+            return
+        try:
+            os.link(tmp, target)
+        except FileExistsError:
+            raise InputError(f"cannot write {_show(target)}: it already exists; use --force to overwrite it") from None
+        except OSError:  # a file system without hard links
+            if os.path.lexists(target):
+                raise InputError(f"cannot write {_show(target)}: it already exists; use --force to overwrite it") from None
+            os.replace(tmp, target)
+        else:
+            _unlink(tmp)
+    except OSError as exc:
+        raise InputError(f"cannot write {_show(target)}: {exc.strerror or type(exc).__name__}") from None
 
 
 def _unlink(path) -> None:
@@ -430,9 +451,9 @@ def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = Fa
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o644)
         if tx is not None:
-            tx.staged.append((tmp, p))
+            tx.staged.append((tmp, p, force))
         else:
-            os.replace(tmp, p)
+            _place(tmp, p, force)
     except OSError as exc:
         if tmp is not None:
             _unlink(tmp)

@@ -190,3 +190,17 @@ def test_output_transaction_never_writes_an_input(tmp_path):
         with output_transaction(inputs=[inp]):
             write_output(tmp_path / "." / "in.csv", "overwritten", force=True)
     assert inp.read_text() == "a,b\n1,2\n"
+
+
+def test_a_file_appearing_meanwhile_is_not_clobbered_without_force(tmp_path):
+    a, b = tmp_path / "a.txt", tmp_path / "b.txt"
+    with pytest.raises(InputError, match=r"b\.txt: it already exists"):
+        with output_transaction():
+            write_output(a, "A")
+            write_output(b, "B")
+            b.write_text("someone else's")  # after the checks, before the renames
+    assert b.read_text() == "someone else's" and not a.exists()
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["b.txt"]
+    with output_transaction():
+        write_output(b, "B", force=True)
+    assert b.read_text() == "B"
