@@ -749,18 +749,20 @@ def _vif(C: np.ndarray, tidx: np.ndarray, X: np.ndarray, n: int) -> np.ndarray:
     """Variance inflation factors of the model terms (NaN for the intercept).
 
     Design-Expert's definition: the diagonal of the inverse correlation matrix of the
-    non-intercept term columns of the coded design matrix. The centred cross-products are
-    formed from the centred columns directly (no ``X'X - n m m'`` cancellation, so no
-    negative diagonal for a nearly constant column).
+    non-intercept term columns of the coded design matrix. ``X'X`` is recovered as
+    ``C^-1`` (p x p) so no pass over the n rows beyond the column means is needed; a
+    nearly constant column, whose centred sum of squares ``X'X - n m m'`` cancels to a
+    negative number, gets NaN (no warning).
     """
     cols = tidx[1:]
     out = np.full(tidx.size, np.nan)
     if cols.size == 0:
         return out
-    Xc = X[:, cols] - X[:, cols].mean(axis=0)
-    S = Xc.T @ Xc
-    d = np.sqrt(np.diag(S))
+    G = np.linalg.inv(C)[np.ix_(cols, cols)]
+    m = X.mean(axis=0)[cols]
+    S = G - n * np.outer(m, m)
     with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.sqrt(np.diag(S))
         R = S / np.outer(d, d)
         try:
             out[1:] = np.diag(np.linalg.inv(R))
