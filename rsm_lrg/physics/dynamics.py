@@ -410,8 +410,12 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, n_cycles, h, max_steps, ma
     Ni = np.maximum(np.ceil(w * T / h), 200.0)
     N = int(np.max(Ni))
     if N > max_steps:
-        raise ValueError(f"the stiffest row needs {N} steps per cycle (> max_steps_per_cycle={max_steps}); "
-                         "use method='auto' or 'quasi_static' for stiff hinges")
+        i = int(np.argmax(Ni))
+        raise ValueError(
+            f"the stage dynamics need {N} time steps per cycle (limit {max_steps}) at stroke {s[i]:.4g} m, "
+            f"velocity {v[i]:.4g} m/s, acceleration {a[i]:.4g} m/s^2: the cycle ({T[i]:.4g} s) is too long for "
+            f"the hinge's natural period ({2 * np.pi / w[i]:.3g} s) and the quasi-static limit does not apply "
+            f"(change the hinge thickness or shorten the cycle)")
     dt = T / Ni
     p11, p12, p21, p22 = _propagator(w, zeta, dt)
     fk_m = fk / m

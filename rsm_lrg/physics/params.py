@@ -94,9 +94,12 @@ PHYSICAL_RANGES: dict[str, tuple[float, float]] = {
     "wear_coefficient": (1e-12, 1.0), "hardness_hb": (1.0, 2000.0),
     "stroke_m": (1e-5, 10.0), "acceleration_m_s2": (1e-3, 1e4), "dwell_s": (0.0, 60.0),
     "ambient_c": (-100.0, 200.0), "test_duration_min": (1.0, 1e5),
-    "block_width_m": (1e-3, 1.0), "block_length_m": (1e-3, 2.0), "block_height_m": (1e-3, 1.0),
-    "rail_width_m": (1e-3, 1.0), "rail_height_m": (1e-3, 1.0), "rail_mass_kg_per_m": (1e-3, 1e3),
-    "rail_length_m": (1e-3, 20.0),
+    # geometry: up to about twice the largest miniature-to-large guides (THK SHS65: block
+    # 126 x 255 x 90 mm, rail 63 x 53 mm; a 2 m rail is five times the rig's); larger guides
+    # would also make the 3-D thermal model too large to solve in seconds
+    "block_width_m": (1e-3, 0.25), "block_length_m": (1e-3, 0.5), "block_height_m": (1e-3, 0.2),
+    "rail_width_m": (1e-3, 0.15), "rail_height_m": (1e-3, 0.15), "rail_mass_kg_per_m": (1e-3, 100.0),
+    "rail_length_m": (1e-3, 2.0),
     "guide_density_kg_m3": (100.0, 3e4), "guide_conductivity_w_mk": (0.01, 5000.0),
     "guide_specific_heat_j_kgk": (10.0, 2e4), "ball_density_kg_m3": (100.0, 3e4),
     "stage_density_kg_m3": (100.0, 3e4), "stage_conductivity_w_mk": (0.01, 5000.0),

@@ -70,8 +70,11 @@ class DesignArrays:
 
 
 def _bad_row(col, values, mask, rule: str) -> ValueError:
+    from ..io import quote_user_value
+
     i = int(np.flatnonzero(mask)[0])
-    return ValueError(f"column {col!r}, row {i + 1}: {values[i]!r} is out of range ({rule})")
+    return ValueError(f"column {quote_user_value(col)}, row {i + 1}: {quote_user_value(values[i])} is out of "
+                      f"range ({rule})")
 
 
 def _float_column(df, name: str, allow_empty=None) -> np.ndarray:
@@ -88,7 +91,9 @@ def _float_column(df, name: str, allow_empty=None) -> np.ndarray:
         v = raw.iloc[i]
         if v is None or (isinstance(v, float) and math.isnan(v)) or str(v).strip() == "":
             raise ValueError(f"column {name!r}, row {i + 1}: is empty")
-        raise ValueError(f"column {name!r}, row {i + 1}: holds {v!r}, not a finite number")
+        from ..io import quote_user_value
+
+        raise ValueError(f"column {name!r}, row {i + 1}: holds {quote_user_value(v)}, not a finite number")
     return num
 
 
@@ -132,7 +137,9 @@ def read_design_arrays(df, params=None) -> DesignArrays:
         if not ok.all():
             i = int(np.flatnonzero(~ok)[0])
             v = s.iloc[i]
-            what = "is empty" if empty[i] or str(v).strip() == "" else f"holds {v!r}"
+            from ..io import quote_user_value
+
+            what = "is empty" if empty[i] or str(v).strip() == "" else f"holds {quote_user_value(v)}"
             raise ValueError(f"column 'stage', row {i + 1}: {what}; expected 'rfcms' or 'rms'")
         rigid = (text == "rms").to_numpy()
     else:

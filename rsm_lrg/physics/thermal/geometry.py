@@ -494,6 +494,11 @@ class VoxelModel:
         return tuple(idx)
 
 
+#: Most cells (of the bounding grid, solid or not) of the 3-D model: 1 mm cells on the
+#: SHS15V (about 5e4) solve in a few seconds; far more would run for minutes.
+MAX_FV_CELLS = 150_000
+
+
 def voxelise(
     geometry: GuideGeometry,
     h_side_w_m2k: float,
@@ -551,6 +556,12 @@ def voxelise(
     xe = _axis_cells(xb, cell_size_m, graded, growth, max(rail_cell_max_m, cell_size_m))
     ye = _axis_cells(yb, cell_size_m)
     ze = _axis_cells(zb, cell_size_m)
+    n_box = (len(xe) - 1) * (len(ye) - 1) * (len(ze) - 1)
+    if n_box > MAX_FV_CELLS:  # refused before anything of that size is allocated
+        raise ValueError(f"the 3-D thermal model would need {n_box} cells (limit {MAX_FV_CELLS}) with "
+                         f"cell_size_m={cell_size_m:g}: the guide is too large for it (block "
+                         f"{geometry.block_length_m:g} x {geometry.block_width_m:g} x {geometry.block_height_m:g} m, "
+                         f"rail {geometry.rail_length_m:g} m)")
     xc, yc, zc = 0.5 * (xe[1:] + xe[:-1]), 0.5 * (ye[1:] + ye[:-1]), 0.5 * (ze[1:] + ze[:-1])
     body = np.zeros((len(xc), len(yc), len(zc)), dtype=np.int8)
     for code, (x0, x1), (y0, y1), (z0, z1) in geometry.boxes():
