@@ -148,13 +148,15 @@ def _make_input(kind: str, tmp_path: Path) -> tuple[Path, str | None]:
         return _write(tmp_path, "digits.csv", _edit_cell("stroke_m", "9" * 300 + "x")), None
     if kind == "ragged":
         return _write(tmp_path, "ragged.csv", _table4_text() + "1,2,3\n"), None
+    if kind == "too-many-rows":  # 1,000,001 short rows: refused before parsing
+        return _write(tmp_path, "rows.csv", "a,b\n" + "1,2\n" * 1_000_001), "limit"
     if kind == "not-csv":
         return _write(tmp_path, "prose.csv", "This is not a table at all.\nJust words.\n"), None
     raise AssertionError(kind)
 
 
 INPUT_KINDS = ["missing", "directory", "dev-zero", "fifo", "empty", "blank-lines", "header-only", "binary",
-               "latin1", "long-header", "wide", "long-cell", "300-digit", "ragged", "not-csv"]
+               "latin1", "long-header", "wide", "long-cell", "300-digit", "ragged", "not-csv", "too-many-rows"]
 TOML_KINDS = ["missing", "directory", "dev-zero", "fifo", "binary", "long-header", "not-csv"]
 
 
