@@ -36,6 +36,10 @@ __all__ = ["evaluate_design", "DesignEvaluation", "FDS_FRACTIONS"]
 #: Boundary search of the SPV maximum: iterations of the stacked L-BFGS-B over all faces, points
 #: polished one by one, and the largest k with extra starts per face.
 MAXITER, NPOL, EXTRA_K = 100, 32, 3
+#: Largest model with fewer runs than terms whose aliased terms are listed one by one; a
+#: larger one is refused from its term count.
+MAX_ALIAS_LISTED = 200
+
 #: Fractions at which the FDS curve is reported.
 FDS_FRACTIONS = tuple(np.round(np.linspace(0.0, 1.0, 11), 2))
 
@@ -378,7 +382,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
 
     from ..factors import letters_for
     from .anova import pure_error
-    from .terms import design_matrix, model_terms
+    from .terms import MAX_TERMS, check_model_size, design_matrix, model_terms, n_model_terms
 
     blocks = None
     if hasattr(design, "coded_runs"):
@@ -397,6 +401,13 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     if not (effect_sd > 0 and math.isfinite(effect_sd)):
         raise ValueError(f"effect_sd must be a positive number, not {effect_sd!r}")
     n, k = coded.shape
+    # counted before any term is built: far more parameters than runs is refused at once
+    # (naming each of thousands of aliased terms would take minutes and help nobody)
+    n_par = n_model_terms(k, model)
+    if n_par > MAX_TERMS or (n < n_par and n_par > MAX_ALIAS_LISTED):
+        check_model_size(n, k, model)  # raises with the count ("N runs cannot fit P terms ...")
+        raise ValueError(f"the {model} model in {k} factors has {n_par} terms and {n} runs cannot estimate "
+                         "them; choose a smaller model or add runs")
     terms = model_terms(letters, model)
     Xt = design_matrix(coded, terms)
     nb = 1
