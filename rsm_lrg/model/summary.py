@@ -312,7 +312,7 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
         notes.append("No lack-of-fit tests: no factor setting is replicated, so there is no pure error.")
 
     suggested = "mean"
-    for order in orders:
+    for order in results:  # the orders fitted (one beyond MAX_TERMS terms is counted, not fitted)
         p, aliased, lof_p, df_add = results[order]
         if aliased or df_add == 0:
             continue

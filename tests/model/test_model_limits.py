@@ -121,3 +121,14 @@ def test_evaluate_refuses_far_too_large_models_by_their_count():
         evaluate_design(X, "cubic")
     corners = np.array(list(itertools.product([-1.0, 1.0], repeat=3)))
     assert "A^3" in evaluate_design(np.vstack([corners, corners]), "cubic").aliased
+
+
+def test_fit_summary_counts_orders_beyond_the_term_limit():
+    # 60 factors: the cubic has C(63, 3) = 39711 terms, beyond MAX_TERMS: it is not built,
+    # a note says so, and the lower orders are compared as usual
+    rng = np.random.default_rng(0)
+    d = pd.DataFrame(rng.uniform(-1, 1, (200, 60)), columns=[f"f{i}" for i in range(60)])
+    d["y"] = rng.normal(size=200)
+    s = fit_summary(d, "y")
+    assert list(s.statistics.source) == ["Linear", "2FI", "Quadratic"]
+    assert any("39711 terms and was not fitted" in n for n in s.notes)
