@@ -20,7 +20,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="override one parameter (repeatable), e.g. --param mu_k=0.01")
     p.add_argument("--params-file", metavar="PATH.toml",
                    help="TOML file of overrides (name = value, or [name] value = ...)")
-    p.add_argument("--list-params", action="store_true", help="list the parameters with units and sources, then exit")
+    p.add_argument("--list-params", action="store_true",
+                   help="list the parameters with units, physical ranges and sources, then exit")
     p.add_argument("--no-thermal", action="store_true", help="skip the thermal model (its numbers become null)")
     add_json(p)
     add_force(p)
@@ -31,13 +32,14 @@ def run(args) -> int:
 
     from ..io import dump_json
     from ..physics.chain import physics_chain
-    from ..physics.params import PARAM_INFO, LRGParams, load_params, parse_assignments
+    from ..physics.params import PARAM_INFO, PHYSICAL_RANGES, LRGParams, load_params, parse_assignments
 
     if args.list_params:
         for name, value in LRGParams().to_dict().items():
             info = PARAM_INFO[name]
             mark = "  [ASSUMPTION]" if "assumption" in info else ""
-            print(f"{name} = {value!r} [{info['unit']}]  {info['source']}{mark}")
+            rng = f" in [{PHYSICAL_RANGES[name][0]:g}, {PHYSICAL_RANGES[name][1]:g}]" if name in PHYSICAL_RANGES else ""
+            print(f"{name} = {value!r} [{info['unit']}]{rng}  {info['source']}{mark}")
         return 0
     overrides = parse_assignments(args.param)
     params = load_params(args.params_file, **overrides)

@@ -205,7 +205,7 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
         cm = dynamics.cycle_metrics(p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, stage=["rfcms", "rms"],
                                     params=p, method="integrate")
     except ValueError as exc:  # too many steps per cycle: a stiff hinge, use the quasi-static limit
-        if "time steps per cycle" not in str(exc):
+        if "steps per cycle" not in str(exc):
             raise
         cm = dynamics.cycle_metrics(p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, stage=["rfcms", "rms"],
                                     params=p, method="auto")

@@ -412,10 +412,9 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, n_cycles, h, max_steps, ma
     if N > max_steps:
         i = int(np.argmax(Ni))
         raise ValueError(
-            f"the stage dynamics need {N} time steps per cycle (limit {max_steps}) at stroke {s[i]:.4g} m, "
-            f"velocity {v[i]:.4g} m/s, acceleration {a[i]:.4g} m/s^2: the cycle ({T[i]:.4g} s) is too long for "
-            f"the hinge's natural period ({2 * np.pi / w[i]:.3g} s) and the quasi-static limit does not apply "
-            f"(change the hinge thickness or shorten the cycle)")
+            f"the stage dynamics need {N} steps per cycle (limit {max_steps}) at stroke {s[i]:.3g} m, "
+            f"velocity {v[i]:.3g} m/s, acceleration {a[i]:.3g} m/s^2: a {T[i]:.3g} s cycle is too long for "
+            f"the hinge period ({2 * np.pi / w[i]:.3g} s) outside the quasi-static limit")
     dt = T / Ni
     p11, p12, p21, p22 = _propagator(w, zeta, dt)
     fk_m = fk / m
