@@ -306,7 +306,14 @@ class FitResult:
         if not 0.0 < alpha < 1.0:
             raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
         index = points.index if isinstance(points, pd.DataFrame) else None
-        x = self._coded_points(points, coded)
+        with np.errstate(over="ignore"):  # a far point codes to a huge number or inf: refused below
+            x = self._coded_points(points, coded)
+        far = ~(np.abs(x) <= MAX_FACTOR_MAGNITUDE)
+        if far.any():  # a polynomial there overflows (and says nothing): refuse with the factor named
+            i, j = np.argwhere(far)[0]
+            f = self.space.factors[j]
+            raise ValueError(f"prediction point {i + 1}: factor {f.name!r} is more than {MAX_FACTOR_MAGNITUDE:.0e} "
+                             f"half-ranges from its centre ({f.center:.6g}); the model says nothing there")
         Xt = design_matrix(x, self.terms)
         beta = self.coefficients["coded"].to_numpy()
         pred = Xt @ beta

@@ -132,3 +132,14 @@ def test_fit_summary_counts_orders_beyond_the_term_limit():
     s = fit_summary(d, "y")
     assert list(s.statistics.source) == ["Linear", "2FI", "Quadratic"]
     assert any("39711 terms and was not fitted" in n for n in s.notes)
+
+
+def test_prediction_far_outside_is_refused_without_overflow():
+    r = rsm_lrg.fit(rsm_lrg.load_table4(), "tcr_c_per_min")
+    base = {"thickness_m": [2e-4], "stroke_m": [0.04], "velocity_m_s": [0.4], "acceleration_m_s2": [20.0]}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for v in (1e300, np.finfo(float).max):
+            with pytest.raises(ValueError, match=r"prediction point 1: factor 'thickness_m' is more than 1e\+50"):
+                r.predict({**base, "thickness_m": [v]}, interval="both")
+        assert np.isfinite(r.predict(base, interval="both").to_numpy()).all()
