@@ -135,7 +135,8 @@ class FitResult:
     block_levels : dict or None
         ``{"B1": original label, ...}``.
     pure_error : PureError or None
-        Replicate groups (``None`` when no run is replicated).
+        Pure error: residual of (blocks +) one mean per distinct factor setting, as R
+        ``rsm``'s ``PE()`` test (``None`` when it has no degrees of freedom).
     actual_coefficients : dict
         ``{term: coefficient in actual units}``.
     ols : statsmodels RegressionResults
@@ -613,8 +614,9 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     Raises
     ------
     ValueError
-        Unknown or non-numeric columns (naming the row), a constant factor, fewer runs
-        than model terms, aliased terms (naming them).
+        Unknown or non-numeric columns (naming the row), a constant factor, a constant
+        response, numbers beyond 1e±100 (response) or 1e±50 (factors), fewer runs than
+        model terms (counted before any term is built), aliased terms (naming them).
     """
     import pandas as pd
     from scipy import stats
