@@ -118,3 +118,17 @@ def test_random_designs_on_large_offsets_match_exact(n, offset_exp, seed, block)
     spread = float(np.ptp(r.y))
     for b, e in zip(beta, exact):
         assert abs(Fraction(float(b)) - e) <= Fraction(1e-9) * abs(e) + Fraction(1e-13 * spread)
+
+
+def test_fit_summary_on_a_large_offset():
+    # fit-summary centres the response too: y and y + 1e9 give the same sequential and
+    # lack-of-fit sums of squares (to the 1e-7 rounding of y + 1e9 itself, ~1e-6 relative here)
+    from rsm_lrg.model.summary import fit_summary
+
+    d = _bbd_offset(5, 0.0)
+    a = fit_summary(d, "y")
+    b = fit_summary(d.assign(y=d["y"] + 1e9), "y")
+    sa, sb = a.sequential.set_index("source"), b.sequential.set_index("source")
+    rows = [s for s in sa.index if s not in ("Mean vs Total", "Total")]
+    np.testing.assert_allclose(sb.loc[rows, "sum_sq"], sa.loc[rows, "sum_sq"], rtol=1e-6, atol=1e-9)
+    np.testing.assert_allclose(b.lack_of_fit["sum_sq"], a.lack_of_fit["sum_sq"], rtol=1e-6, atol=1e-9)
