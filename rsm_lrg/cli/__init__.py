@@ -39,7 +39,24 @@ class UsageError(Exception):
     """Raised by argument parsing: printed as one ``error:`` line, exit status 2."""
 
 
+class _StoreOnce(argparse._StoreAction):
+    """``store`` that refuses a second value: ``--json a --json b`` would otherwise drop ``a``
+    without a word (options meant to repeat use ``append`` or ``extend``)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        seen = namespace.__dict__.setdefault("_given_once", set())
+        if self.option_strings and self.dest in seen:
+            raise argparse.ArgumentError(self, "given more than once; give it once")
+        seen.add(self.dest)
+        setattr(namespace, self.dest, values)
+
+
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
+
     def error(self, message: str):  # one line, no usage dump
         raise UsageError(f"{self.prog}: {message}")
 

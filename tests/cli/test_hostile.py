@@ -442,6 +442,18 @@ def test_bad_design_kind_option(argv, expect, tmp_path, capsys):
     _run_failing(capsys, [*argv, "-o", str(tmp_path / "d.csv")], tmp_path, expect=expect)
 
 
+@pytest.mark.parametrize("argv", [
+    ["fit", "{IN}", "--response", RESPONSE, "--json", "{T}/a.json", "--json", "{T}/b.json"],
+    ["fit", "{IN}", "--response", RESPONSE, "--response", "stroke_m"],
+    ["fit", "{IN}", "--response", RESPONSE, "--model", "linear", "--model", "quadratic"],
+    ["design", "box-behnken", "--factor", "a=1:2", "--factor", "b=1:2", "--factor", "c=1:2", "-o", "{T}/a.csv",
+     "--output", "{T}/b.csv"],
+])
+def test_an_option_given_twice_is_not_dropped_silently(argv, tmp_path, data_copy, capsys):
+    argv = [a.replace("{IN}", str(data_copy)).replace("{T}", str(tmp_path)) for a in argv]
+    _run_failing(capsys, argv, tmp_path, inputs=[data_copy], expect="more than once")
+
+
 def test_bare_command_prints_usage_and_exits_2(capsys):
     rc = main([])
     cap = capsys.readouterr()
