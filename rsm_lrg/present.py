@@ -201,8 +201,9 @@ def clean_anova(anova):
     sums of squares and mean squares that are round-off against the corrected total
     (``|ss| <= ROUND_OFF · SS_total``) set to 0, and their F to 0 and p to 1.
 
-    The stored ANOVA keeps the computed values (e.g. 2.5e-34 for the AB row of Table 4's fit);
-    this is what the CLI, the report and the notebook show.
+    :func:`rsm_lrg.model.fit` stores its ANOVA through this (the AB row of Table 4's fit is
+    computed as 2.5e-34 and stored as 0), so the DataFrame, the CLI, the report and the
+    notebook show the same numbers.
     """
     a = anova.copy()
     tot = a.loc[a["source"] == "Cor Total", "sum_sq"]

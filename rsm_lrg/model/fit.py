@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from ..factors import FactorSpace, _numeric, quote_value
+from ..present import clean_anova
 from .anova import PureError, anova_table, partial_ss, pure_error
 from .canonical import StationaryPoint, canonical_analysis
 from .data import prepare
@@ -711,9 +712,11 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         notes.append("The model fits the data exactly (residuals at round-off level): its F-values, p-values "
                      "and standard errors measure round-off, not noise.")
 
-    anova = anova_table(term_names=names[1:], term_ss=term_ss, ss_model=ss_model, df_model=df_model,
-                        ss_block=ss_block, df_block=nb - 1, ss_res=ss_res, df_res=df_res,
-                        ss_total=ss_total, df_total=n - 1, pe=pe_used)
+    # Sums of squares that are round-off against the total (e.g. 2.5e-34 for a term whose
+    # coefficient is zero by symmetry) are stored as 0 with F 0 and p 1, as every face shows them.
+    anova = clean_anova(anova_table(term_names=names[1:], term_ss=term_ss, ss_model=ss_model, df_model=df_model,
+                                    ss_block=ss_block, df_block=nb - 1, ss_res=ss_res, df_res=df_res,
+                                    ss_total=ss_total, df_total=n - 1, pe=pe_used))
 
     # coefficients (coded), errors, VIF, actual
     b_t = beta[tidx]
