@@ -117,10 +117,13 @@ def run(args) -> int:
                 from distributed import Client
             except ImportError:
                 raise InputError("--scheduler needs dask.distributed: pip install 'rsm-lrg[parallel]'") from None
+            from ..io import quote_user_value
+
             try:
-                client = Client(args.scheduler, timeout="10s")
-            except (OSError, TimeoutError) as exc:
-                raise InputError(f"--scheduler {args.scheduler}: cannot connect ({exc})") from None
+                client = Client(args.scheduler, timeout="5s")
+            except Exception as exc:  # a bad address, no scheduler, or garbage from whatever answered
+                raise InputError(f"--scheduler {quote_user_value(args.scheduler, 80)}: cannot connect "
+                                 f"({type(exc).__name__}: {str(exc)[:120]})") from None
             executor = client.get_executor()
         with about_file(args.design):
             runs = simulate(design, seed=seed, noise_sd=noise, duration_min=args.duration_min,

@@ -397,6 +397,7 @@ BAD_OPTIONS = [
     ("simulate", ["--duration-min", "0"], "duration"),
     ("simulate", ["--workers", "0"], "--workers"),
     ("simulate", ["--seed", "-5"], "--seed"),
+    ("simulate", ["--scheduler", "no port"], "--scheduler"),
     ("simulate", ["--param", "mu_k"], "mu_k"),
     ("simulate", ["--param", "mu_k=nan"], "mu_k"),
     ("calibrate", ["--duration-min", "nan"], "--duration-min"),
