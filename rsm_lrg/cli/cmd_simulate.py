@@ -40,8 +40,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--duration-min", type=_nonneg_float, default=50.0, metavar="M",
                    help="test duration [min] for rows without a test_duration_min column (default 50)")
     where = p.add_mutually_exclusive_group()
-    where.add_argument("--workers", type=whole_number(1), default=None, metavar="N",
-                       help="run batches in N local processes")
+    where.add_argument("--workers", type=whole_number(1, 256), default=None, metavar="N",
+                       help="run batches in N local processes (at most 256)")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS",
                        help="run batches on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786)")
     cal = p.add_mutually_exclusive_group()

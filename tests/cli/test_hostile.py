@@ -396,6 +396,7 @@ BAD_OPTIONS = [
     ("simulate", ["--noise-sd", "inf"], "--noise-sd"),
     ("simulate", ["--duration-min", "0"], "duration"),
     ("simulate", ["--workers", "0"], "--workers"),
+    ("simulate", ["--workers", "1000000"], "--workers"),
     ("simulate", ["--seed", "-5"], "--seed"),
     ("simulate", ["--scheduler", "no port"], "--scheduler"),
     ("simulate", ["--param", "mu_k"], "mu_k"),
