@@ -2,8 +2,20 @@
 
 Every command reads its data through :func:`read_table` (clear errors that name the file,
 the column and the row; the file is only ever opened for reading) and writes through
-:func:`write_output` (atomic: a temporary file in the same directory, then ``os.replace``;
-an existing file is kept unless ``force=True``).
+:func:`write_output` (atomic: a temporary file in the same directory, then a rename; an
+existing file is kept unless ``force=True``).
+
+Inputs are read in a bounded way (:func:`read_input_bytes`): only regular files (a device
+such as ``/dev/zero``, a named pipe or a directory is refused at once, so nothing can hang)
+and at most :data:`MAX_TABLE_BYTES`, :data:`MAX_LINE_BYTES` per line, :data:`MAX_COLUMNS`
+columns and :data:`MAX_ROWS` rows, far beyond any experiment.
+
+Outputs: :func:`check_output` says why a path cannot be written (empty, a directory, a
+device, existing without ``force``, one of the inputs, its directory missing or not
+writable); inside :func:`output_transaction` every :func:`write_output` is staged and the
+files are renamed into place together when the block ends, or all removed when it raises.
+The CLI checks every output before a command runs, then runs it inside one transaction.
+User values quoted in messages go through :func:`quote_user_value` (short, one line).
 """
 
 from __future__ import annotations
@@ -18,8 +30,9 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-__all__ = ["InputError", "quote_user_value", "read_input_bytes", "check_output", "output_transaction", "read_table", "read_toml", "toml_value", "write_output", "dump_json", "to_jsonable",
-           "numeric_column"]
+__all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "check_output",
+           "output_transaction", "read_table", "read_toml", "toml_value", "write_output", "dump_json",
+           "to_jsonable", "numeric_column"]
 
 
 class InputError(ValueError):
