@@ -11,8 +11,20 @@ Modules are found by name, so adding a command touches no shared file. Nothing h
 (statsmodels, scipy, matplotlib, pandas) is imported before a command runs, which keeps
 ``rsm-lrg --help`` fast.
 
+Before a command runs, :func:`main` checks its option values (finite numbers and ranges in the
+argparse types of ``_common``; ``--factor``/``--bound`` specs; an empty file name) and every
+output it will write (``_common.planned_outputs``: the values of ``-o/--output``, ``--json``,
+``--report`` and options marked by ``_common.output_option``, or what the command's optional
+``outputs(args) -> [(option, path)]`` returns): not empty, not a directory or device, absent
+unless ``--force``, never one of the input files (also through links, ``--force`` or not), no
+two the same, the directory writable. The command then runs inside
+:func:`rsm_lrg.io.output_transaction`, so its outputs appear together at the end or not at all.
+A single-valued option given twice is an error (nothing is dropped silently).
+
 Exit status: 0 success; 2 bad usage or bad input, reported as one ``error:`` line on stderr
-(``--debug`` adds the traceback); 1 an internal fault.
+of under 300 characters (``--debug`` adds the traceback), including numbers or sizes beyond
+computing (OverflowError, FloatingPointError, MemoryError); 1 an internal fault. Library
+warnings are shown as one ``warning:`` line each after a success and not after an error.
 """
 
 from __future__ import annotations
