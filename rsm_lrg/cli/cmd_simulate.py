@@ -96,6 +96,13 @@ def run(args) -> int:
         if name in overrides:
             raise InputError(f"--param {name}: give the test duration with {option} (or a {name} column)")
     params = LRGParams().with_overrides(**overrides) if overrides else LRGParams()
+    if overrides:  # parameters that no design can rescue are the option's fault, not the file's
+        from ..surrogate.runs import thermal_unit_response
+
+        try:
+            thermal_unit_response(params.to_dict(), 1.0)
+        except ValueError as exc:
+            raise InputError(f"--param: {exc}") from None
     calibration = _calibration(args)
     design = read_table(args.design)
     noise = DEFAULT_NOISE_SD if args.noise_sd is None else args.noise_sd

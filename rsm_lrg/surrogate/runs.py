@@ -148,7 +148,7 @@ def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
 #: more -- a hinge period a thousand times shorter than the cycle where the quasi-static limit
 #: does not hold, e.g. a 10 um stroke -- is refused with its settings named, rather than
 #: integrated for minutes.
-_MAX_STEPS = 20_000
+_MAX_STEPS = 10_000
 
 #: Memo of the dynamics of small batches (calibration evaluates the same rows many times,
 #: with only the heat and thermal parameters changing).
@@ -244,7 +244,13 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     for g, row in enumerate(uniq):
         vals = dict(base, **dict(zip(th_names, row)))
         m = inv == g
-        unit_end[m], steady[m] = _rise_at(vals, dur[m])
+        try:
+            unit_end[m], steady[m] = _rise_at(vals, dur[m])
+        except ValueError as exc:
+            if not th_names:  # the base parameters themselves
+                raise
+            i = int(np.flatnonzero(m)[0])
+            raise ValueError(f"row {row_start + i + 1}: {exc}") from None
     rise_true = q * unit_end
     if noise_sd > 0:
         rows = np.arange(row_start, row_start + n, dtype=np.uint64)

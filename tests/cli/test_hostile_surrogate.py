@@ -113,6 +113,7 @@ BAD_OPTIONS = [
     (["--param", "nonsense=1"], ["--param", "nonsense"]),
     (["--param", "mu_k"], ["--param", "NAME=VALUE"]),
     (["--param", "test_duration_min=60"], ["--param test_duration_min", "--duration-min"]),
+    (["--param", "carriage_mass_kg=12"], ["--param", "carriage_mass_kg", "12 kg"]),
     (["--duration-min", "1e12"], ["--duration-min"]),
     (["--duration-min", "1e300"], ["--duration-min"]),
     (["--duration-min", "inf"], ["--duration-min"]),
@@ -142,6 +143,7 @@ BAD_COLUMNS = [
     ("heat_partition", [0.5, 7, 0.5], "row 2"),
     ("hinge_damping_ratio", [0.02, 1e6, 0.02], "row 2"),
     ("thickness_m", [3e-4, "", 3e-4], "row 2"),
+    ("carriage_mass_kg", [0.19, 12.0, 0.19], "row 2"),
 ]
 
 
@@ -150,7 +152,7 @@ def test_simulate_refuses_bad_design_cells(tmp_path, capsys, column, values, row
     p = tmp_path / "bad.csv"
     DESIGN.assign(**{column: values}).to_csv(p, index=False)
     out = tmp_path / "runs.csv"
-    check_refused(capsys, ["simulate", str(p), "-o", str(out)], ["bad.csv", repr(column), row], [p], [out])
+    check_refused(capsys, ["simulate", str(p), "-o", str(out)], ["bad.csv", column, row], [p], [out])
 
 
 def test_calibrate_refuses_bad_options(tmp_path, capsys):
@@ -236,3 +238,13 @@ def test_a_real_subprocess_gives_one_line_and_no_traceback(tmp_path):
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error:") and "cal.toml" in lines[0] and len(lines[0]) < 300
     assert not (tmp_path / "o.csv").exists()
+
+
+def test_a_row_the_integrator_cannot_afford_is_refused_by_its_motion(tmp_path, capsys):
+    # 10 um stroke on the thickest hinge: the quasi-static limit does not hold and the
+    # hinge period is 1e5 times shorter than the cycle
+    p = tmp_path / "corner.csv"
+    DESIGN.assign(thickness_m=0.0199, stroke_m=1e-5, velocity_m_s=1e-4, acceleration_m_s2=1e4).to_csv(p, index=False)
+    out = tmp_path / "runs.csv"
+    check_refused(capsys, ["simulate", str(p), "-o", str(out)], ["corner.csv", "steps per cycle", "stroke 1e-05 m"],
+                  [p], [out])

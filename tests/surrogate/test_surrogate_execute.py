@@ -6,6 +6,8 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from rsm_lrg.surrogate import simulate
 
@@ -192,3 +194,30 @@ def test_rows_do_not_depend_on_the_number_of_blas_threads():
         assert r.returncode == 0, r.stderr[-2000:]
         digests.add(r.stdout.strip())
     assert len(digests) == 1, digests
+
+
+@pytest.mark.slow
+@settings(max_examples=12, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_rows_anywhere_in_the_physical_ranges_are_finite_or_refused(seed):
+    # the whole documented range of the four factors and of two parameters (log-uniform):
+    # either every output is finite or a ValueError says why -- never NaN or inf in the rows
+    from rsm_lrg.physics.params import PHYSICAL_RANGES
+
+    rng = np.random.default_rng(seed)
+
+    def draw(name, lo=None, hi=None):
+        a, b = PHYSICAL_RANGES[name]
+        a, b = max(a, lo or a), min(b, hi or b)
+        return float(np.exp(rng.uniform(np.log(a), np.log(b))))
+
+    row = pd.DataFrame({"thickness_m": [draw("hinge_thickness_m", hi=0.019)],
+                        "stroke_m": [draw("stroke_m", hi=0.3)], "velocity_m_s": [draw("velocity_m_s")],
+                        "acceleration_m_s2": [draw("acceleration_m_s2")],
+                        "preload_n": [draw("preload_n", lo=1.0)], "mu_k": [draw("mu_k", lo=1e-4)]})
+    try:
+        out = simulate(row, noise_sd=0)
+    except ValueError as exc:
+        assert "steps per cycle" in str(exc) or "row 1" in str(exc), exc
+        return
+    assert np.isfinite(out[OUT].to_numpy()).all()

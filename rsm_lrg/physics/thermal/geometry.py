@@ -263,14 +263,14 @@ class GuideGeometry:
         disc = b * b - 4 * a * c
         if channel <= w * d or disc < 0:
             raise ValueError(
-                "block_mass_kg is too large for the block envelope: the carriage cannot wrap "
-                "the rail (no positive clearance matches the mass)."
+                f"block_mass_kg (carriage_mass_kg) {self.block_mass_kg:g} kg is too large for the block "
+                "envelope: the carriage cannot wrap the rail (no positive clearance matches the mass)."
             )
         g = (-b + math.sqrt(disc)) / (2 * a)
         if w + 2 * g >= W or self.rail_height_m + g >= self.block_height_m:
             raise ValueError(
-                "block_mass_kg is too small for the block envelope: the derived clearance "
-                f"({g * 1e3:.2f} mm) leaves no carriage wall."
+                f"block_mass_kg (carriage_mass_kg) {self.block_mass_kg:g} kg is too small for the block "
+                f"envelope: the derived clearance ({g * 1e3:.2f} mm) leaves no carriage wall."
             )
         return g
 
