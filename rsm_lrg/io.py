@@ -192,7 +192,10 @@ def read_table(path: str | os.PathLike):
     # suffix proves nothing ('stroke_m' and 'stroke_m.1' may both be real columns)
     import csv
 
-    header = next(csv.reader(_io.StringIO(text), skipinitialspace=True), [])
+    try:
+        header = next(csv.reader(_io.StringIO(text, newline=""), skipinitialspace=True), [])
+    except csv.Error as exc:
+        raise InputError(f"{p}: is not a valid CSV file (header: {exc})") from None
     seen = set()
     for c in header:
         if c in seen:
@@ -204,7 +207,8 @@ def read_table(path: str | os.PathLike):
     if df.shape[0] == 0:
         raise InputError(f"{p}: has a header but no data rows")
     if df.shape[1] < 2:
-        raise InputError(f"{p}: is not a CSV table (found a single column {cols[0]!r}); expected comma-separated columns")
+        raise InputError(f"{p}: is not a CSV table (found a single column {quote_user_value(cols[0])}); "
+                         "expected comma-separated columns")
     df.columns = cols
     return df
 
