@@ -67,7 +67,7 @@ def _check_at(settings) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, read_table
     from ..optimize.confirm import confirm
-    from ._common import check_transform_option, fit_model, model_label
+    from ._common import check_transform_option, fit_model, model_label, print_notes
 
     _check_at(args.at)
     check_transform_option(args)
@@ -84,6 +84,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--at: {exc}") from None
     with about_file(args.data):
         c = confirm(result, settings, args.observed, confidence=args.confidence, reference=args.reference)
+    print_notes(getattr(result, "fit", result).input_notes)
     out = c.to_dict()
     out["model"] = model_label(args, extra)
     out.update(extra)
@@ -95,5 +96,6 @@ def run(args: argparse.Namespace) -> int:
         print(f"Data: {args.data}")
         if args.reduce or args.transform is not None:
             print(f"Model: {model_label(args, extra)}")
-        print(c.summary(), end="")
+        text = c.summary()
+        print(text, end="" if text.endswith("\n") else "\n")
     return 0

@@ -53,7 +53,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, read_table
     from ..optimize import optimize, parse_goal
-    from ._common import check_transform_option, fit_model, response_options
+    from ._common import check_transform_option, fit_model, print_notes, response_options
 
     responses = args.response
     goals = args.goal or []
@@ -71,6 +71,7 @@ def run(args: argparse.Namespace) -> int:
     with about_file(args.data):
         result, _ = fit_model(data, args.response, opts, factors=args.factor, block=args.block)
         best = _optimize_on_fit_scale(optimize, result, args.goal, args.bound)
+    print_notes(result.input_notes)
     if args.json and args.json != "-":
         dump_json(best.to_dict(), args.json, force=args.force)
     if args.json == "-":
@@ -114,7 +115,7 @@ def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
     from ..io import dump_json, read_table
     from ..optimize.desirability import optimize_desirability, parse_response_goal
-    from ._common import fit_model, model_label, response_options
+    from ._common import fit_model, model_label, print_notes, response_options
 
     n = len(args.response)
     if len(set(args.response)) != n:
@@ -127,21 +128,22 @@ def _multi(args) -> int:
              for r, g, w, i, lim in zip(args.response, goals, weights, imps, limits)]
     data = read_table(args.data)
     with about_file(args.data):
+        from ..factors import choose_factors
+
+        # one factor space for every response (no response is a factor of another)
+        choice = choose_factors(data, args.factor, exclude=list(args.response) + ([args.block] if args.block else []))
+        notes = list(choice.notes)
         fits = {}
         models = {}
         for i, r in enumerate(args.response):
             opts = response_options(args, i)
-            factors = args.factor
-            if factors is None:  # other responses are not factors
-                from ..factors import FactorSpace
-
-                others = [c for c in args.response if c != r]
-                exclude = [r] + others + ([args.block] if args.block else [])
-                exclude += [c for c in data.columns if str(c).lower().startswith("coded_")]
-                factors = FactorSpace.from_data(data, None, exclude=exclude)
-            fits[r], extra = fit_model(data, r, opts, factors=factors, block=args.block)
+            fits[r], extra = fit_model(data, r, opts, factors=choice.space, block=args.block)
             models[r] = model_label(opts, extra)
+            # the choice's notes cover the columns; each fit adds its runs left out
+            fit_notes = getattr(fits[r], "fit", fits[r]).input_notes
+            notes += [f"{r}: {n}" for n in fit_notes if n not in choice.notes and "left out (not a factor" not in n]
         best = optimize_desirability(fits, specs, bounds=args.bound)
+    print_notes(notes)
     out = best.to_dict()
     out["models"] = models
     if args.json and args.json != "-":

@@ -232,7 +232,7 @@ class Diagnostics:
     Attributes
     ----------
     table : pandas.DataFrame
-        One row per run (data order): ``run, run_order, actual, predicted, residual,
+        One row per run used (data order; ``run`` is its 1-based data row): ``run, run_order, actual, predicted, residual,
         leverage, studentized, externally_studentized, cooks_distance, dffits`` and the
         boolean flags ``flag_outlier, flag_leverage, flag_cooks, flag_dffits`` and ``flagged``.
     limits : dict
@@ -272,7 +272,9 @@ class Diagnostics:
         for r in self.table.itertuples(index=False):
             flags = [n for n, f in (("outlier", r.flag_outlier), ("leverage", r.flag_leverage),
                                     ("Cook", r.flag_cooks), ("DFFITS", r.flag_dffits)) if f]
-            rows.append([r.run, format_g(r.run_order), format_g(r.actual), format_g(r.predicted), format_g(r.residual),
+            order = r.run_order
+            order = str(int(order)) if float(order).is_integer() else format_g(order)
+            rows.append([r.run, order, format_g(r.actual), format_g(r.predicted), format_g(r.residual),
                          format_g(r.leverage, 3), format_g(r.externally_studentized, 3), format_g(r.cooks_distance, 3),
                          format_g(r.dffits, 3), ",".join(flags)])
         lim = self.limits
@@ -311,7 +313,7 @@ def diagnostics(result, *, alpha: float = 0.05, boxcox_rule: str = "likelihood")
     lim_c = float(stats.f.ppf(0.5, p, nu)) if nu > 0 else math.nan
     lim_d = 2.0 * math.sqrt(p / n)
     table = pd.DataFrame({
-        "run": np.arange(1, n + 1), "run_order": _run_order(result.data), "actual": result.y,
+        "run": np.asarray(result.run_rows, dtype=int), "run_order": _run_order(result.data), "actual": result.y,
         "predicted": result.fitted, "residual": result.residuals, "leverage": h, "studentized": r,
         "externally_studentized": t, "cooks_distance": cook, "dffits": dffits,
     })

@@ -220,20 +220,38 @@ def _coefficients(result) -> list[dict]:
 
 
 def _data_table(result, runs_label: str) -> dict:
+    """Every row as read, in file order: the runs used with their coded settings, and the rows
+    left out for want of a response marked "not run" in the response column."""
     d = result.data
     cols = [str(c) for c in d.columns]
     coded = result.coded
     letters = list(result.space.letters)
+
+    def clean(row):
+        return [None if (isinstance(v, float) and math.isnan(v)) else (v.item() if hasattr(v, "item") else v)
+                for v in row]
+
     rows = []
-    for i in range(len(d)):
-        row = [d.iloc[i, j] for j in range(d.shape[1])]
-        row += [float(coded.iloc[i][L]) for L in letters]
-        rows.append([None if (isinstance(v, float) and math.isnan(v)) else (v.item() if hasattr(v, "item") else v)
-                     for v in row])
+    for i, row_no in enumerate(result.run_rows):
+        row = [d.iloc[i, j] for j in range(d.shape[1])] + [float(coded.iloc[i][L]) for L in letters]
+        rows.append((row_no, [row_no] + clean(row)))
+    left = result.omitted_data
+    if left is not None and len(left):
+        j_resp = cols.index(str(result.response))
+        for k, row_no in enumerate(result.omitted_rows):  # column by column: dtypes kept
+            row = clean([left[c].iloc[k] for c in d.columns]) + [None] * len(letters)
+            row[j_resp] = "not run"
+            rows.append((row_no, [row_no] + row))
+    rows.sort(key=lambda t: t[0])
+    n_left = len(result.omitted_rows)
+    caption = f"{len(d)} runs as read, with the coded factor settings (−1 low, 0 centre, +1 high)."
+    if n_left:
+        caption += (f" {n_left} row{'s' if n_left > 1 else ''} without a response "
+                    f"{'are' if n_left > 1 else 'is'} shown as \"not run\" and left out of the fit.")
     return {
-        "columns": cols + [f"coded {L}" for L in letters],
-        "rows": rows,
-        "caption": f"{len(d)} runs as read, with the coded factor settings (−1 low, 0 centre, +1 high).",
+        "columns": ["row"] + cols + [f"coded {L}" for L in letters],
+        "rows": [r for _, r in rows],
+        "caption": caption,
     }
 
 

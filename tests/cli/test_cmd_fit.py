@@ -167,3 +167,33 @@ def test_other_commands_print_the_notes_to_stderr(tmp_path, capsys):
         cap = capsys.readouterr()
         json.loads(cap.out)
         assert "note: Text column left out (not a factor, response or block): operator." in cap.err, argv
+
+
+def test_fit_diagnostics_takes_the_boxcox_rule(capsys):
+    assert main(["fit", TABLE4, "--response", "tcr_c_per_min", "--diagnostics", "--boxcox-rule", "design-expert"]) == 0
+    assert "Design-Expert's rule" in capsys.readouterr().out
+    assert main(["fit", TABLE4, "--response", "tcr_c_per_min", "--diagnostics"]) == 0
+    assert "maximum likelihood" in capsys.readouterr().out
+
+
+def test_optimize_names_its_inferred_factors_and_runs_left_out(tmp_path, capsys):
+    import pandas as pd
+
+    d = pd.read_csv(TABLE4)
+    d["wear"] = d["tcr_c_per_min"] * 2
+    d["operator"] = "ann"
+    d.loc[3, "tcr_c_per_min"] = float("nan")
+    d.loc[5, "wear"] = float("nan")
+    src = tmp_path / "t.csv"
+    d.to_csv(src, index=False)
+    assert main(["optimize", str(src), "--response", "tcr_c_per_min", "--factor", "thickness_m",
+                 "--factor", "stroke_m", "--factor", "velocity_m_s", "--factor", "acceleration_m_s2",
+                 "--json", "-"]) == 0
+    err = capsys.readouterr().err
+    assert "row 4" in err and "wear" in err and "operator" in err  # the run and the columns left out
+    assert main(["optimize", str(src), "--response", "tcr_c_per_min", "--goal", "minimize",
+                 "--response", "wear", "--goal", "minimize", "--json", "-"]) == 0
+    err = capsys.readouterr().err
+    assert "tcr_c_per_min: 1 run without a response left out of the fit (not run): row 4" in err
+    assert "wear: 1 run without a response left out of the fit (not run): row 6" in err
+    assert "operator" in err

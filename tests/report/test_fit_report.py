@@ -190,3 +190,18 @@ def test_write_report_is_atomic_and_refuses_to_overwrite(tmp_path, table4_fit, m
     write_report(table4_fit, out, force=True)
     assert out.read_text() == html
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.html"]  # no temporary file left
+
+
+def test_rows_without_a_response_are_shown_as_not_run():
+    # rows 4 and 11 of Table 4 with their response removed: in the table, in file order
+    d = rsm_lrg.load_table4()
+    d.loc[[3, 10], "tcr_c_per_min"] = np.nan
+    r = rsm_lrg.fit(d, "tcr_c_per_min")
+    ctx = report_context(r)
+    rows = ctx["data"]["rows"]
+    assert [row[0] for row in rows] == list(range(1, 28))
+    j = ctx["data"]["columns"].index("tcr_c_per_min")
+    assert [row[0] for row in rows if row[j] == "not run"] == [4, 11]
+    assert rows[3][1:j] == [int(d.iloc[3, 0])] + [d.iloc[3, c].item() for c in range(1, j - 1)]
+    assert "2 rows without a response" in ctx["data"]["caption"]
+    assert "not run" in read(to_html(r)).text_by_id["data"]
