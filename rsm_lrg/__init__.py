@@ -1,17 +1,32 @@
 """rsm-lrg: design of experiments and response-surface methodology for the linear rolling
 guide (LRG) study of Su, Zhang & Yang (2023), *Machines* 11(3), 358.
 
-Layers, each importing only from those before it::
+Layers, each importing only from those before it (checked by import-linter; the contract is
+``[tool.importlinter]`` in pyproject.toml, run ``lint-imports``)::
 
-    physics -> surrogate;  factors -> design -> model -> optimize -> report -> cli
+    base (factors, io, present, datasets, registry) -> physics -> surrogate
+    base -> design -> model -> optimize -> report -> paper -> cli
+
+``paper`` is the reproduction of Su, Zhang & Yang: it coordinates the physics, the
+surrogate, the model and the report; the report only presents.
 
 The names below are imported lazily, so ``import rsm_lrg`` (and ``rsm-lrg --help``) stays
-fast and does not pull in statsmodels, scipy or matplotlib.
+fast and does not pull in numpy, pandas, statsmodels, scipy or matplotlib.
+
+``rsm_lrg.optimize`` is always the package :mod:`rsm_lrg.optimize`, whatever was imported
+first; the package is callable, ``rsm_lrg.optimize(result, goal="minimize")`` calls
+:func:`rsm_lrg.optimize.optimize` (the function).
+
+``FitResult.optimize``, ``FitResult.to_html`` and ``FitResult._repr_html_`` are
+conveniences: the model layer looks the function up in :mod:`rsm_lrg.registry`, and this
+facade, above every layer, declares which layer provides it (below).
 """
 
 from __future__ import annotations
 
 import importlib
+
+from . import registry as _registry
 
 __version__ = "0.1.0"
 
@@ -46,6 +61,14 @@ _register("rsm_lrg.optimize.desirability", "optimize_desirability", "ResponseGoa
 _register("rsm_lrg.physics.chain", "physics_chain", "PhysicsResult")
 _register("rsm_lrg.physics.params", "LRGParams")
 
+# The higher layers provide the model's conveniences (resolved on first use).
+_registry.register("FitResult.optimize", "rsm_lrg.optimize.single:optimize")
+_registry.register("FitResult.to_html", "rsm_lrg.report.fit_report:to_html")
+_registry.register("FitResult.notebook_html", "rsm_lrg.report.fit_report:notebook_html")
+
+#: Top-level names that are sub-packages as well: always the (callable) package.
+_PACKAGES = {"optimize"}
+
 __all__ = sorted(_LAZY) + ["__version__"]
 
 
@@ -53,7 +76,10 @@ def __getattr__(name: str):
     mod = _LAZY.get(name)
     if mod is None:
         raise AttributeError(f"module 'rsm_lrg' has no attribute {name!r}")
-    value = getattr(importlib.import_module(mod), name)
+    if name in _PACKAGES:
+        value = importlib.import_module(f"{__name__}.{name}")
+    else:
+        value = getattr(importlib.import_module(mod), name)
     globals()[name] = value
     return value
 

@@ -337,10 +337,13 @@ class FitResult:
 
     # -- optimisation ------------------------------------------------------------------
     def optimize(self, goal="minimize", bounds=None, **kwargs):
-        """Optimum of the fitted response in the factor box; see :func:`rsm_lrg.optimize.optimize`."""
-        from ..optimize import optimize as _optimize
+        """Optimum of the fitted response in the factor box; see :func:`rsm_lrg.optimize.optimize`.
 
-        return _optimize(self, goal=goal, bounds=bounds, **kwargs)
+        A convenience: the optimize layer (above the model) provides it through
+        :mod:`rsm_lrg.registry`; the model does not import it."""
+        from ..registry import lookup
+
+        return lookup("FitResult.optimize")(self, goal=goal, bounds=bounds, **kwargs)
 
     # -- further analysis (issue 6) ------------------------------------------------------
     def diagnostics(self, **kwargs):
@@ -379,20 +382,21 @@ class FitResult:
     def to_html(self, **kwargs) -> str:
         """The self-contained HTML report of this fit (see :func:`rsm_lrg.report.to_html`).
 
-        The report layer sits above the model; it is imported only when asked for, so the
-        model layer does not depend on it.
+        A convenience: the report layer (above the model) provides it through
+        :mod:`rsm_lrg.registry`; the model does not import it.
         """
-        from ..report import to_html
+        from ..registry import lookup
 
-        return to_html(self, **kwargs)
+        return lookup("FitResult.to_html")(self, **kwargs)
 
     def _repr_html_(self) -> str:
         """Notebook face: summary, ANOVA, statistics, coefficients, equations and the
         stationary point as one small HTML fragment, without figures (a few tens of kB);
-        :meth:`to_html` gives the full report with every figure."""
-        from ..report.fit_report import notebook_html
+        :meth:`to_html` gives the full report with every figure (provided by the report
+        layer through :mod:`rsm_lrg.registry`)."""
+        from ..registry import lookup
 
-        return notebook_html(self)
+        return lookup("FitResult.notebook_html")(self)
 
     def to_dict(self) -> dict:
         """The fit JSON of INTERFACE.md (plain Python; NaN becomes ``null`` in JSON)."""
