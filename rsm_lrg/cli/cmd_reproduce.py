@@ -60,7 +60,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..io import InputError, dump_json
-    from ..report.reproduce import reproduce, write_reproduction
+    from ..paper import reproduce, write_reproduction
 
     out = Path(args.output) / "paper-reproduction.html"
     if not args.no_html:

@@ -1,9 +1,15 @@
 """The optimize layer: optima of fitted response surfaces (scipy on the coded box).
 
-``single`` holds the single-response optimiser: :func:`optimize` and :class:`OptimumResult`.
+Every function here takes fitted results (:class:`rsm_lrg.model.FitResult` or a
+transformed fit), never data: fit first (``rsm_lrg.fit``), then optimise.
 
-The package is callable, so ``rsm_lrg.optimize(result, goal="minimize")`` works whether
-``rsm_lrg.optimize`` resolves to this package or to the function.
+``single`` holds the single-response optimiser, :func:`optimize` and
+:class:`OptimumResult`; ``desirability`` the several-response optimiser; ``confirm`` the
+confirmation-run check.
+
+``rsm_lrg.optimize`` is always this package (see ``rsm_lrg/__init__.py``), and the package is
+callable: ``rsm_lrg.optimize(result, goal="minimize")`` is
+``rsm_lrg.optimize.optimize(result, goal="minimize")``.
 """
 
 import sys as _sys

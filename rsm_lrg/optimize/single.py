@@ -239,15 +239,14 @@ def _exact_quadratic(b, B, lo, hi, sign):
 
 
 def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
-             allow_extrapolation: bool = False, seed: int = 0, response: str | None = None,
-             factors=None, block: str | None = None, model: str = "quadratic") -> OptimumResult:
+             allow_extrapolation: bool = False, seed: int = 0) -> OptimumResult:
     """Optimise a fitted response inside the factor box.
 
     Parameters
     ----------
-    fitted : FitResult or pandas.DataFrame
-        A fit (from :func:`rsm_lrg.fit`), or data to fit first (then ``response`` and
-        optionally ``factors``, ``block``, ``model`` are passed to :func:`rsm_lrg.fit`).
+    fitted : FitResult
+        A fit (from :func:`rsm_lrg.fit`). The optimize layer takes fitted results, never
+        data: fit first, ``rsm_lrg.optimize(rsm_lrg.fit(data, response), goal)``.
     goal : str or tuple
         ``"minimize"``, ``"maximize"``, ``"target=V"`` or ``("target", V)``.
     bounds : mapping or list of str, optional
@@ -270,11 +269,8 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     from ..model.terms import design_gradient, design_matrix
 
     if not hasattr(fitted, "coefficients"):
-        if response is None:
-            raise ValueError("optimize() on data needs response=")
-        from ..model import fit as _fit
-
-        fitted = _fit(fitted, response, factors=factors, block=block, model=model)
+        raise TypeError(f"optimize() takes a fitted result, not {type(fitted).__name__}: fit first, "
+                        "e.g. rsm_lrg.optimize(rsm_lrg.fit(data, response), goal)")
     if not 0.0 < confidence < 1.0:
         raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
     kind, target = parse_goal(goal)

@@ -28,9 +28,13 @@ def test_paper_minimum(fitted):
     assert d["confidence"] == 0.95 and d["goal"] == "minimize"
 
 
-def test_optimize_on_data_directly():
-    opt = rsm_lrg.optimize(rsm_lrg.load_table4(), "minimize", response="tcr_c_per_min")
-    assert opt.predicted == pytest.approx(0.0228333333, abs=1e-9)
+def test_optimize_takes_a_fit_not_data():
+    # issue 11: the optimize layer takes fitted results, never data (the caller fits first)
+    data = rsm_lrg.load_table4()
+    with pytest.raises(TypeError, match="fit first"):
+        rsm_lrg.optimize(data, "minimize")
+    opt = rsm_lrg.optimize(rsm_lrg.fit(data, "tcr_c_per_min"), "minimize")
+    assert opt.predicted == pytest.approx(0.0228333333, abs=1e-9)  # paper Sec. 4.3 / DIGEST, 1e-9
 
 
 def test_maximum_and_target(fitted):

@@ -16,9 +16,10 @@ import pytest
 
 import rsm_lrg
 from rsm_lrg.model.canonical import StationaryPoint
+from rsm_lrg.paper.reproduction import Reproduction, Row
 from rsm_lrg.report import report_context
 from rsm_lrg.report.html import render_page
-from rsm_lrg.report.reproduce import Reproduction, Row, banner, display_number
+from rsm_lrg.report.reproduction_page import banner, display_number
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from rsm_lrg.report.reproduce import VERDICTS, Reproduction, _claim, _close, last_digit_unit, reproduce
+from rsm_lrg.paper.reproduction import VERDICTS, Reproduction, _claim, _close, last_digit_unit, reproduce
 
 
 @given(st.integers(0, 10**6), st.integers(0, 6))
@@ -98,3 +98,16 @@ def test_text_and_frame(rep):
     assert len(df) == len(rep.rows)
     d = rep.to_dict()
     assert d["ok"] is True and sum(d["counts"].values()) == len(rep.rows)
+
+
+def test_old_import_path_still_works():
+    # the reproduction moved from rsm_lrg.report.reproduce to rsm_lrg.paper (issue 11); the
+    # old module is an alias of the same objects
+    import rsm_lrg.paper.reproduction as new
+    import rsm_lrg.report.reproduce as old
+    import rsm_lrg.report.reproduction_page as page
+
+    for name in ("reproduce", "write_reproduction", "reproduction_html", "Row", "Reproduction", "VERDICTS",
+                 "last_digit_unit", "_close", "_claim"):
+        assert getattr(old, name) is getattr(new, name)
+    assert old.banner is page.banner and old.display_number is page.display_number
