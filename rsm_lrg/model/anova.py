@@ -1,8 +1,8 @@
 """The analysis of variance as Design-Expert prints it (the paper's Table 5).
 
-Everything here works from one least-squares factorisation: the coefficient vector ``b``
-and the unscaled covariance ``C = (X'X)^-1``. The partial (Type III) sum of squares of a
-term with columns ``S`` is the extra sum of squares for dropping it,
+Every sum of squares comes from the regression core
+(:mod:`rsm_lrg.model.least_squares`): the partial (Type III) sum of squares of a term with
+columns ``S`` is the extra sum of squares for dropping it,
 
     SS_S = b_S' (C_SS)^-1 b_S          (a 1-df term: b_j^2 / C_jj),
 
@@ -15,36 +15,16 @@ Montgomery & Anderson-Cook, *Response Surface Methodology*, 3rd ed., Sec. 2.7 an
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["partial_ss", "pure_error", "PureError", "anova_table", "ANOVA_COLUMNS"]
+from .least_squares import partial_ss
+
+__all__ = ["partial_ss", "pure_error", "PureError", "anova_table", "lack_of_fit", "f_test", "ANOVA_COLUMNS"]
 
 #: Columns of :attr:`FitResult.anova`.
 ANOVA_COLUMNS = ["source", "sum_sq", "df", "mean_sq", "f", "p"]
-
-
-def partial_ss(beta: np.ndarray, cov_unscaled: np.ndarray, idx: Sequence[int] | int) -> float:
-    """Partial (Type III) sum of squares of the columns ``idx`` [response units^2].
-
-    Parameters
-    ----------
-    beta : (p,) array
-        Least-squares coefficients.
-    cov_unscaled : (p, p) array
-        ``(X'X)^-1``.
-    idx : int or sequence of int
-        Column(s) of the term.
-    """
-    idx = np.atleast_1d(np.asarray(idx, dtype=int))
-    b = beta[idx]
-    if idx.size == 1:
-        c = cov_unscaled[idx[0], idx[0]]
-        return float(b[0] ** 2 / c)
-    sub = cov_unscaled[np.ix_(idx, idx)]
-    return float(b @ np.linalg.solve(sub, b))
 
 
 @dataclass(frozen=True)
@@ -135,6 +115,30 @@ def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None
     return PureError(groups=groups, n_groups=n_groups, ss=ss, df=int(y.size - n_groups - block_df), block_df=block_df)
 
 
+def f_test(ms: float, df: int, ms_den: float, df_den: int) -> tuple[float, float]:
+    """``F = ms / ms_den`` and its upper tail ``P(F(df, df_den) > F)`` (``scipy.special.fdtrc``);
+    NaN where a mean square or the degrees of freedom are missing."""
+    from scipy import special
+
+    if df > 0 and df_den > 0 and ms_den > 0 and ms == ms:
+        f = ms / ms_den
+        return float(f), float(special.fdtrc(df, df_den, f))
+    return np.nan, np.nan
+
+
+def lack_of_fit(ss_res: float, df_res: int, pe: PureError | None) -> dict | None:
+    """The lack-of-fit split of a residual: ``{"ss", "df", "ms", "f", "p"}`` with
+    ``SS_lof = SS_res - SS_pe`` on ``df_res - df_pe`` degrees of freedom and
+    ``F = MS_lof / MS_pe`` (``None`` without pure error; ms, F and p NaN without lack-of-fit df)."""
+    if pe is None or pe.df <= 0:
+        return None
+    df = int(df_res - pe.df)
+    ss = max(ss_res - pe.ss, 0.0)
+    ms = ss / df if df > 0 else np.nan
+    f, p = f_test(ms, df, pe.ss / pe.df, pe.df) if df > 0 else (np.nan, np.nan)
+    return {"ss": ss, "df": df, "ms": ms, "f": f, "p": p}
+
+
 def _row(source, ss, df, ms=np.nan, f=np.nan, p=np.nan):
     return {"source": source, "sum_sq": float(ss), "df": int(df), "mean_sq": float(ms), "f": float(f), "p": float(p)}
 
@@ -148,16 +152,12 @@ def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, 
     (``null`` in JSON).
     """
     import pandas as pd
-    from scipy import stats
 
     ms_res = ss_res / df_res if df_res > 0 else np.nan
 
     def test(ss, df):
         ms = ss / df if df > 0 else np.nan
-        if df_res > 0 and ms_res > 0:
-            f = ms / ms_res
-            return ms, f, float(stats.f.sf(f, df, df_res))
-        return ms, np.nan, np.nan
+        return (ms, *f_test(ms, df, ms_res, df_res))
 
     rows = [_row("Model", ss_model, df_model, *test(ss_model, df_model))]
     for name, ss in zip(term_names, term_ss):
@@ -165,18 +165,10 @@ def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, 
     if df_block:
         rows.append(_row("Block", ss_block, df_block, ss_block / df_block))
     rows.append(_row("Residual", ss_res, df_res, ms_res))
-    if pe is not None and pe.df > 0:
-        df_lof = df_res - pe.df
-        ss_lof = max(ss_res - pe.ss, 0.0)
-        ms_pe = pe.ss / pe.df
-        if df_lof > 0:
-            ms_lof = ss_lof / df_lof
-            if ms_pe > 0:
-                f = ms_lof / ms_pe
-                p = float(stats.f.sf(f, df_lof, pe.df))
-            else:
-                f = p = np.nan
-            rows.append(_row("Lack of Fit", ss_lof, df_lof, ms_lof, f, p))
-        rows.append(_row("Pure Error", pe.ss, pe.df, ms_pe))
+    lof = lack_of_fit(ss_res, df_res, pe)
+    if lof is not None:
+        if lof["df"] > 0:
+            rows.append(_row("Lack of Fit", lof["ss"], lof["df"], lof["ms"], lof["f"], lof["p"]))
+        rows.append(_row("Pure Error", pe.ss, pe.df, pe.ss / pe.df))
     rows.append(_row("Cor Total", ss_total, df_total))
     return pd.DataFrame(rows, columns=ANOVA_COLUMNS)

@@ -124,26 +124,26 @@ class BoxCox:
                 "rule": self.rule, "rule_text": self.rule_text}
 
 
-def box_cox_ss(X, y, lambdas) -> np.ndarray:
+def box_cox_ss(X, y, lambdas, *, fit=None) -> np.ndarray:
     """Residual SS of the model matrix ``X`` fitted to the scaled Box–Cox response
     ``(y^λ - 1) / (λ ẏ^(λ-1))`` (``ẏ ln y`` at λ = 0), one value per λ [response units²].
 
     ``-n/2 ln SS(λ)`` is the profile log-likelihood of λ up to a constant (Box & Cox 1964).
+    The projections use the factorisation of the regression core (``fit``, a
+    :class:`~rsm_lrg.model.least_squares.Regression` of ``X``; factorised here when not given).
     """
+    from .least_squares import least_squares
+
     X = np.asarray(X, dtype=float)
     y = np.asarray(y, dtype=float)
-    Q, _ = np.linalg.qr(X)
+    ls = fit if fit is not None else least_squares(X, y)
     lny = np.log(y)
     gm = float(np.exp(lny.mean()))
-    out = []
-    for lam in np.atleast_1d(np.asarray(lambdas, dtype=float)):
-        if abs(lam) < 1e-12:
-            z = gm * lny
-        else:
-            z = (np.exp(lam * lny) - 1.0) / (lam * gm ** (lam - 1.0))
-        r = z - Q @ (Q.T @ z)
-        out.append(float(r @ r))
-    return np.array(out)
+    lams = np.atleast_1d(np.asarray(lambdas, dtype=float))
+    Z = np.empty((y.size, lams.size))
+    for j, lam in enumerate(lams):
+        Z[:, j] = gm * lny if abs(lam) < 1e-12 else (np.exp(lam * lny) - 1.0) / (lam * gm ** (lam - 1.0))
+    return ls.residual_ss_of(X, Z)
 
 
 #: The Box–Cox rules of :func:`box_cox`.
@@ -167,7 +167,7 @@ def box_cox(result, *, confidence: float = 0.95, lambdas=None, rule: str = "like
         https://www.statease.com/docs/latest/contents/analysis/box-cox-plot/).
     """
     from scipy import optimize as so
-    from scipy import stats
+    from scipy import special
 
     rule = str(rule).strip().lower().replace("_", "-")
     if rule in ("de", "designexpert", "stat-ease", "statease"):
@@ -185,11 +185,13 @@ def box_cox(result, *, confidence: float = 0.95, lambdas=None, rule: str = "like
     if nu <= 0:
         raise ValueError("Box-Cox needs residual degrees of freedom (the model is saturated)")
 
+    ls = result.least_squares
+
     def ss_of(lam: float) -> float:
-        return float(box_cox_ss(X, y, [lam])[0])
+        return float(box_cox_ss(X, y, [lam], fit=ls)[0])
 
     grid = np.round(np.arange(-3.0, 3.0 + 1e-9, 0.01), 10) if lambdas is None else np.asarray(lambdas, float)
-    ss = box_cox_ss(X, y, grid)
+    ss = box_cox_ss(X, y, grid, fit=ls)
     i = int(np.argmin(ss))
     lam = float(grid[i])
     if rule == "likelihood":
@@ -199,10 +201,10 @@ def box_cox(result, *, confidence: float = 0.95, lambdas=None, rule: str = "like
             if r.fun <= ss[i]:
                 lam = float(r.x)
         ss_min = ss_of(lam)
-        cut = ss_min * math.exp(stats.chi2.ppf(confidence, 1) / len(y))
+        cut = ss_min * math.exp(special.chdtri(1, 1.0 - confidence) / len(y))
     else:
         ss_min = float(ss[i])
-        t = stats.t.ppf(1 - (1 - confidence) / 2, nu)
+        t = special.stdtrit(nu, 1 - (1 - confidence) / 2)
         cut = math.exp(math.log(ss_min) + t * t / nu)
     a, b = float(min(grid[0], -3.0)), float(max(grid[-1], 3.0))
     g = lambda l: ss_of(l) - cut  # noqa: E731
@@ -297,20 +299,20 @@ def diagnostics(result, *, alpha: float = 0.05, boxcox_rule: str = "likelihood")
     """Per-run diagnostics and Box–Cox for a :class:`~rsm_lrg.model.fit.FitResult`
     (``boxcox_rule``: ``"likelihood"`` or ``"design-expert"``, see :func:`box_cox`)."""
     import pandas as pd
-    from scipy import stats
+    from scipy import special
 
     n = result.n
-    p = result.design_matrix.shape[1]
+    p = len(result.column_names)
     nu = result.df_resid
     h = np.asarray(result.hat, dtype=float)
     r = np.asarray(result.studentized_residuals, dtype=float)
     t = np.asarray(result.externally_studentized_residuals, dtype=float)
+    cook = np.asarray(result.cooks_distance, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
-        cook = r ** 2 * h / (p * (1 - h))
         dffits = t * np.sqrt(h / (1 - h))
-    lim_t = float(stats.t.ppf(1 - alpha / (2 * n), nu - 1)) if nu > 1 else math.nan
+    lim_t = float(special.stdtrit(nu - 1, 1 - alpha / (2 * n))) if nu > 1 else math.nan
     lim_h = 2.0 * p / n
-    lim_c = float(stats.f.ppf(0.5, p, nu)) if nu > 0 else math.nan
+    lim_c = float(special.fdtri(p, nu, 0.5)) if nu > 0 else math.nan
     lim_d = 2.0 * math.sqrt(p / n)
     table = pd.DataFrame({
         "run": np.asarray(result.run_rows, dtype=int), "run_order": _run_order(result.data), "actual": result.y,

@@ -164,12 +164,13 @@ class DesignEvaluation:
 
 
 def _region_sample(k: int, region: str, radius: float, m: int, seed: int) -> np.ndarray:
-    from scipy.stats import norm, qmc
+    from scipy.special import ndtri
+    from scipy.stats import qmc
 
     u = qmc.Sobol(d=k + (1 if region == "sphere" else 0), scramble=True, seed=seed).random_base2(m)
     if region == "cube":
         return 2.0 * u - 1.0
-    z = norm.ppf(np.clip(u[:, :k], 1e-12, 1 - 1e-12))
+    z = ndtri(np.clip(u[:, :k], 1e-12, 1 - 1e-12))
     z /= np.linalg.norm(z, axis=1, keepdims=True)
     rr = radius * u[:, k] ** (1.0 / k)
     return z * rr[:, None]
@@ -329,35 +330,6 @@ def _max_variance_ball(E: np.ndarray, Ct: np.ndarray, k: int, radius: float, sam
     return best_v, best_x
 
 
-def _alias_relations(X: np.ndarray, names) -> list[str]:
-    """For every column of ``X`` that is a linear combination of the estimable columns
-    before it, the relation ``"A^2 = Intercept"`` (coefficients shown when not 1)."""
-    kept: list[int] = []
-    out: list[str] = []
-    for j in range(X.shape[1]):
-        col = X[:, j]
-        nrm = float(np.linalg.norm(col))
-        if kept:
-            B = X[:, kept]
-            coef, *_ = np.linalg.lstsq(B, col, rcond=None)
-            res = float(np.linalg.norm(col - B @ coef))
-        else:
-            coef, res = np.zeros(0), nrm
-        if nrm == 0 or res <= 1e-9 * max(nrm, 1.0):
-            rhs = ""
-            for c, i in zip(coef, kept):
-                if abs(c) <= 1e-9:
-                    continue
-                mag = f"{abs(c):.6g}"
-                term = names[i] if mag == "1" else f"{mag}·{names[i]}"
-                rhs += (("-" if c < 0 else "") + term) if not rhs else ((" - " if c < 0 else " + ") + term)
-            rhs = rhs or "0"
-            out.append(f"{names[j]} = {rhs}")
-        else:
-            kept.append(j)
-    return out
-
-
 def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", alpha: float = 0.05,
                     effect_sd: float = 2.0, n_region: int = 4096, seed: int = 0) -> DesignEvaluation:
     """Evaluate a design for a model before any data (see the module docstring).
@@ -378,10 +350,11 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         Sobol sample size over the region (rounded up to a power of two).
     """
     import pandas as pd
-    from scipy import stats
+    from scipy import special
 
     from ..factors import letters_for
     from .anova import pure_error
+    from .least_squares import least_squares
     from .terms import MAX_TERMS, check_model_size, design_matrix, model_terms, n_model_terms
 
     blocks = None
@@ -429,12 +402,14 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     # pure error as fit() splits it: residual of (blocks +) one mean per distinct setting
     pe = pure_error(coded, np.zeros(n), codes if nb > 1 else None)
     df_res = n - p
-    rank = int(np.linalg.matrix_rank(X))
+    # the regression core on a zero response: (X'X)^-1, leverage, VIF and the aliased columns
+    ls = least_squares(X, np.zeros(n), ["Intercept"] + [f"Block{j + 1}" for j in range(nb - 1)] + names[1:])
+    rank = ls.rank
     n_distinct = int(np.unique(keys, axis=0).shape[0])
     if n < p or rank < p:
         # not estimable: no negative or meaningless degrees of freedom; name every aliased term
-        relations = _alias_relations(X, ["Intercept"] + [f"Block{j + 1}" for j in range(nb - 1)] + names[1:])
-        bad = tuple(r.split(" = ", 1)[0] for r in relations)
+        relations = ls.alias_relations()
+        bad = ls.aliased
         df = {"model": None, "residual": None, "lack_of_fit": None, "pure_error": pe.df, "blocks": nb - 1}
         empty = pd.DataFrame(columns=["std_error", "vif", "power"])
         return DesignEvaluation(model=model, n=n, p=p, df=df, terms=empty, leverage=np.full(n, np.nan),
@@ -443,29 +418,18 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
                                 effect_sd=effect_sd)
     df = {"model": len(terms) - 1, "residual": df_res, "lack_of_fit": df_res - pe.df,
           "pure_error": pe.df, "blocks": nb - 1}
-    C = np.linalg.inv(X.T @ X)
+    C = ls.cov_unscaled
     tidx = np.r_[0, np.arange(nb, p)] if nb > 1 else np.arange(p)
     se = np.sqrt(np.diag(C)[tidx])
-    # VIF (same definition as fit())
-    cols = tidx[1:]
-    vif = np.full(tidx.size, np.nan)
-    if cols.size:
-        Xc = X[:, cols] - X[:, cols].mean(axis=0)
-        S = Xc.T @ Xc  # centred cross-products directly: no cancellation, so never a negative diagonal
-        d = np.sqrt(np.diag(S))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            try:
-                vif[1:] = np.diag(np.linalg.inv(S / np.outer(d, d)))
-            except np.linalg.LinAlgError:
-                pass
+    vif = np.r_[np.nan, ls.vif(tidx[1:])]  # the same definition as fit()
     power = np.full(tidx.size, np.nan)
-    if df_res > 0:
-        fcrit = stats.f.ppf(1 - alpha, 1, df_res)
+    if df_res > 0:  # noncentral F: P(F'(1, ν, λ) > F(1-α; 1, ν))
+        fcrit = special.fdtri(1, df_res, 1 - alpha)
         lam = (effect_sd / 2.0) ** 2 / np.diag(C)[tidx]
-        power = stats.ncf.sf(fcrit, 1, df_res, lam)
+        power = 1.0 - special.ncfdtr(1, df_res, lam, fcrit)
         power[0] = np.nan  # no test of the intercept
     term_frame = pd.DataFrame({"std_error": se, "vif": vif, "power": power}, index=pd.Index(names, name="term"))
-    hat = np.einsum("ij,jk,ik->i", X, C, X)
+    hat = ls.hat
     Ct = C[np.ix_(tidx, tidx)]
 
     def var(points):

@@ -2,14 +2,14 @@
 
 The model (linear, 2FI, quadratic — the paper's Eq. 19 — or cubic) is fitted by ordinary
 least squares on the coded design matrix, in coded units ``x = (actual - centre) /
-half_range``, by a Householder QR factorisation of the column-scaled matrix with the
-response centred (its mean is added back to the intercept), so a response of 1e9 + small
-variation loses no accuracy (:func:`_least_squares`). Everything else — the Design-Expert
-ANOVA (Table 5), PRESS, VIF, intervals — comes from that one factorisation: the
-coefficients, ``(X'X)^-1 = R^-1 R^-T`` and the hat diagonal ``h_i = |q_i|^2``. No term is
-refitted, so a fit of 10^6 runs costs a small multiple of one least-squares solve. The
-statsmodels results object of the same model matrix is built on first access of
-:attr:`FitResult.ols`.
+half_range``, by the regression core :mod:`rsm_lrg.model.least_squares`: a Householder
+QR factorisation of the column-scaled matrix with the response centred (so a response of
+1e9 + small variation loses no accuracy), accumulated over chunks of rows, and a second
+pass for the hat diagonal. Everything else — the Design-Expert ANOVA (Table 5), PRESS,
+VIF, intervals — is derived from that one factorisation (:attr:`FitResult.least_squares`);
+no term is refitted and the n x p model matrix is never held whole, so a fit of 10^6 runs
+costs a small multiple of one QR. The statsmodels results object of the same model matrix
+is built on first access of :attr:`FitResult.ols`.
 
 Blocks (optional) are sum-to-zero effects, as Design-Expert shows them; they enter the
 ANOVA first (sequential SS) and stay out of the model row. Predictions and the optimum are
@@ -34,13 +34,14 @@ import numpy as np
 
 from ..factors import FactorSpace, _numeric, quote_value
 from ..present import clean_anova
-from .anova import PureError, anova_table, partial_ss, pure_error
+from .anova import PureError, anova_table, pure_error
 from .canonical import StationaryPoint, canonical_analysis
 from .data import prepare
+from .least_squares import CHUNK_ROWS, Regression, factorise
 from .statistics import FitStatistics, fit_statistics
 from .terms import MODELS, Term, check_model_size, design_matrix, model_terms, term_name
 
-__all__ = ["fit", "FitResult", "actual_coefficients", "COEF_COLUMNS"]
+__all__ = ["fit", "FitResult", "actual_coefficients", "COEF_COLUMNS", "model_inputs", "ModelInputs"]
 
 #: Columns of :attr:`FitResult.coefficients`.
 COEF_COLUMNS = ["coded", "std_error", "t", "p", "ci_low", "ci_high", "vif", "actual"]
@@ -113,7 +114,8 @@ class FitResult:
     y : ndarray
         Response [response units].
     design_matrix : ndarray
-        Full model matrix (intercept, block contrasts, terms), n x p.
+        Full model matrix (intercept, block contrasts, terms), n x p; rebuilt from
+        ``coded`` on first access (a cached property: a fit never holds it whole).
     column_names : tuple of str
         Names of the ``design_matrix`` columns (blocks are ``"Block[B1]"``, ...).
     coefficients : pandas.DataFrame
@@ -142,7 +144,10 @@ class FitResult:
         ``{term: coefficient in actual units}``.
     ols : statsmodels RegressionResults
         statsmodels' OLS of ``y`` on ``design_matrix``, built on first access (a cached
-        property; the numbers above come from :func:`_least_squares`, not from it).
+        property; the numbers above come from :attr:`least_squares`, not from it).
+    least_squares : Regression
+        The regression core's factorisation (:mod:`rsm_lrg.model.least_squares`): ask it for
+        sequential or partial sums of squares, sub-models, VIF, PRESS.
     notes : tuple of str
         Remarks for the text output: ``input_notes`` first, then the fit's own (e.g. why
         there is no lack-of-fit test).
@@ -165,7 +170,6 @@ class FitResult:
     data: Any = field(repr=False)
     coded: Any = field(repr=False)
     y: np.ndarray = field(repr=False)
-    design_matrix: np.ndarray = field(repr=False)
     column_names: tuple = field(repr=False)
     coefficients: Any = field(repr=False)
     anova: Any = field(repr=False)
@@ -185,6 +189,15 @@ class FitResult:
     input_notes: tuple = field(default=(), repr=False)
     omitted_rows: tuple = field(default=(), repr=False)
     omitted_data: Any = field(default=None, repr=False)
+    least_squares: Regression | None = field(default=None, repr=False)
+
+    @cached_property
+    def design_matrix(self) -> np.ndarray:
+        """Full model matrix (intercept, block contrasts, terms), n x p, rebuilt from the coded
+        settings on first access: a fit builds it in chunks and never holds it whole."""
+        bcodes = _block_codes(self.data, self.block)[0] if self.block is not None else None
+        nb = len(self.column_names) - len(self.terms) + 1
+        return _model_rows(self.coded.to_numpy(dtype=float), self.terms, bcodes, nb)
 
     @cached_property
     def ols(self):
@@ -240,7 +253,7 @@ class FitResult:
     @property
     def cooks_distance(self) -> np.ndarray:
         """Cook's distance D_i = r_i² h_ii / (p (1 - h_ii)) [-]."""
-        p = self.design_matrix.shape[1]
+        p = len(self.column_names)
         with np.errstate(divide="ignore", invalid="ignore"):
             return self.studentized_residuals ** 2 * self.hat / (p * (1.0 - self.hat))
 
@@ -301,7 +314,7 @@ class FitResult:
             predictions are for the average block.
         """
         import pandas as pd
-        from scipy import stats
+        from scipy import special
 
         if interval not in (None, "confidence", "prediction", "both"):
             raise ValueError(f"interval must be None, 'confidence', 'prediction' or 'both', not {interval!r}")
@@ -325,7 +338,7 @@ class FitResult:
         se = np.sqrt(q * self.sigma2)
         out = pd.DataFrame({"predicted": pred, "se_fit": se}, index=index)
         if interval:
-            tq = stats.t.ppf(1 - alpha / 2, self.df_resid) if self.df_resid > 0 else np.nan
+            tq = float(special.stdtrit(self.df_resid, 1 - alpha / 2)) if self.df_resid > 0 else np.nan
             if interval in ("confidence", "both"):
                 out["ci_low"] = pred - tq * se
                 out["ci_high"] = pred + tq * se
@@ -524,68 +537,116 @@ def _check_magnitudes(space: FactorSpace, y: np.ndarray, response: str) -> None:
                              f"{1 / MAX_FACTOR_MAGNITUDE:.0e} a fit computes with; rescale the column (e.g. change its unit)")
 
 
+def _model_rows(x: np.ndarray, terms, bcodes: np.ndarray | None, nb: int, start: int = 0,
+                stop: int | None = None) -> np.ndarray:
+    """Rows ``start:stop`` of the model matrix: intercept, the ``nb - 1`` sum-to-zero block
+    contrasts (when blocked), the other terms."""
+    Xt = design_matrix(x[start:stop], terms)
+    if nb <= 1:
+        return Xt
+    c = bcodes[start:stop]
+    Bm = np.zeros((c.size, nb - 1))
+    for j in range(nb - 1):
+        Bm[c == j, j] = 1.0
+    Bm[c == nb - 1, :] = -1.0
+    return np.hstack([Xt[:, :1], Bm, Xt[:, 1:]])
+
+
 @dataclass(frozen=True)
-class _LeastSquares:
-    beta: np.ndarray
-    cov_unscaled: np.ndarray
-    hat: np.ndarray
-    fitted: np.ndarray
-    residuals: np.ndarray
-    rank: int
-    ybar: float
+class ModelInputs:
+    """The checked inputs of a fit (:func:`model_inputs`): the same for :func:`fit`,
+    :func:`~rsm_lrg.model.summary.fit_summary` and :func:`~rsm_lrg.model.reduce.reduce_terms`.
 
-
-def _least_squares(X: np.ndarray, y: np.ndarray) -> _LeastSquares:
-    """Least squares by Householder QR, accurate when ``y`` sits on a large offset.
-
-    The columns of ``X`` are scaled to unit length (``Xs = X S^-1``) and ``y`` is centred
-    (``yc = y - ȳ``, ``ȳ`` from a correctly rounded sum); ``Xs = QR`` (LAPACK ``geqrf``),
-    ``b_s = R^-1 Q'yc`` with one step of iterative refinement, ``b = S^-1 b_s`` and ``ȳ``
-    added back to the intercept (column 0, all ones). Then ``(X'X)^-1 = S^-1 R^-1 R^-T S^-1``,
-    ``h_i = |q_i|^2`` and the residuals ``yc - Xs b_s`` are computed on the centred scale,
-    so an offset of 1e9 costs no digits of the coefficients (issue 10, item 7). The rank is
-    that of ``Xs`` (singular values of ``R`` above ``max(n, p) eps s_max``); when it is short
-    of ``p`` only ``rank`` is meaningful.
+    Attributes
+    ----------
+    prep : PreparedData
+    space : FactorSpace
+    coded : pandas.DataFrame
+        Coded settings, columns = letters.
+    x : (n, k) ndarray
+        The same as an array.
+    y : (n,) ndarray
+        Response [response units].
+    block : str or None
+    bcodes : ndarray of int or None
+        Block code 0..b-1 of each run.
+    bkeys : list of str or None
+        ``["B1", ...]``.
+    blevels : dict or None
+        ``{"B1": original label, ...}``.
     """
-    from scipy.linalg import solve_triangular
 
-    n, p = X.shape
-    norms = np.sqrt(np.einsum("ij,ij->j", X, X))
-    scale = np.where(norms > 0, norms, 1.0)
-    Xs = X / scale
-    ybar = math.fsum(y) / n if (n and np.all(X[:, 0] == 1.0)) else 0.0
-    yc = y - ybar
-    Q, R = np.linalg.qr(Xs)
-    sv = np.linalg.svd(R, compute_uv=False)
-    rank = int(np.sum(sv > sv[0] * max(n, p) * np.finfo(float).eps)) if sv.size and sv[0] > 0 else 0
-    if rank < p:
-        nan = np.full(p, np.nan)
-        return _LeastSquares(nan, np.full((p, p), np.nan), np.full(n, np.nan), np.full(n, np.nan),
-                             np.full(n, np.nan), rank, ybar)
-    bs = solve_triangular(R, Q.T @ yc)
-    r = yc - Xs @ bs
-    bs = bs + solve_triangular(R, Q.T @ r)  # one step of iterative refinement
-    r = yc - Xs @ bs
-    Rinv = solve_triangular(R, np.eye(p))
-    C = (Rinv @ Rinv.T) / np.outer(scale, scale)
-    beta = bs / scale
-    beta[0] += ybar
-    hat = np.einsum("ij,ij->i", Q, Q)
-    fitted = ybar + Xs @ bs
-    return _LeastSquares(beta, C, hat, fitted, r, rank, ybar)
+    prep: Any
+    space: FactorSpace
+    coded: Any
+    x: np.ndarray
+    y: np.ndarray
+    block: str | None
+    bcodes: np.ndarray | None
+    bkeys: list | None
+    blevels: dict | None
+
+    @property
+    def n(self) -> int:
+        return int(self.y.size)
+
+    @property
+    def nb(self) -> int:
+        """Number of blocks (1 when unblocked)."""
+        return len(self.bkeys) if self.bkeys else 1
+
+    @property
+    def hint(self) -> str:
+        return self.prep.choice.hint()
+
+    def column_names(self, terms) -> list[str]:
+        names = [t.name for t in terms]
+        if self.nb > 1:
+            return ["Intercept"] + [f"Block[{k}]" for k in self.bkeys[:-1]] + names[1:]
+        return names
+
+    def term_columns(self, terms) -> np.ndarray:
+        """Positions of the model terms among the columns (blocks skipped)."""
+        p = len(terms) + self.nb - 1
+        return np.r_[0, np.arange(self.nb, p)] if self.nb > 1 else np.arange(p)
+
+    def rows(self, terms, start: int = 0, stop: int | None = None) -> np.ndarray:
+        return _model_rows(self.x, terms, self.bcodes, self.nb, start, stop)
+
+    def chunks(self, terms, rows: int = CHUNK_ROWS):
+        """``chunks()`` iterates over ``(model-matrix rows, responses)`` of ``rows`` runs each."""
+        n = self.n
+        return lambda: ((self.rows(terms, s, s + rows), self.y[s:s + rows]) for s in range(0, n, rows))
 
 
-def _aliased_terms(X: np.ndarray, names: Sequence[str]) -> list[str]:
-    """Columns that are (numerically) linear combinations of earlier columns."""
-    R = np.linalg.qr(X, mode="r")
-    norms = np.linalg.norm(X, axis=0)
-    d = np.abs(np.diag(R))
-    bad = [names[j] for j in range(X.shape[1]) if norms[j] == 0 or d[j] <= 1e-9 * max(norms[j], 1.0)]
-    return bad
+def model_inputs(data, response: str, factors=None, block: str | None = None) -> ModelInputs:
+    """Check the data and code the factors as every fit does (see :func:`fit` for what is refused)."""
+    import pandas as pd
+
+    if not isinstance(data, pd.DataFrame):
+        raise TypeError("data must be a pandas DataFrame")
+    # columns, factors (inferred from a design's coded columns when not given), runs
+    # without a response left out, notes on everything left out (rsm_lrg.model.data)
+    prep = prepare(data, response, factors, block)
+    data, space, y = prep.data, prep.space, prep.y
+    coded = space.encode(data)
+    x = coded.to_numpy(dtype=float)
+    for j, f in enumerate(space.factors):
+        if np.unique(x[:, j]).size < 2:
+            raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")
+    _check_magnitudes(space, y, response)
+    if np.all(y == y[0]):
+        raise ValueError(f"response {response!r} is constant (all {y[0]:.6g}): nothing to model")
+    if block is not None:
+        bcodes, bkeys, blevels = _block_codes(data, block)
+    else:
+        bcodes, bkeys, blevels = None, None, None
+    return ModelInputs(prep=prep, space=space, coded=coded, x=x, y=y, block=block, bcodes=bcodes, bkeys=bkeys,
+                       blevels=blevels)
 
 
 def fit(data, response: str, factors=None, block: str | None = None, model: str = "quadratic", *,
-        terms=None) -> FitResult:
+        terms=None, chunk_rows: int = CHUNK_ROWS) -> FitResult:
     """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
 
     Parameters
@@ -611,6 +672,9 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         Fit only these terms (names as ``"A"``, ``"AC"``, ``"C^2"``; the intercept is always
         included), e.g. the terms kept by :func:`rsm_lrg.model.reduce.reduce_terms`; they are
         put in Design-Expert order. ``model`` then only labels the result.
+    chunk_rows : int
+        Rows of the model matrix built and factorised at a time (the full n x p matrix is
+        never held; :mod:`rsm_lrg.model.least_squares`).
 
     Returns
     -------
@@ -624,83 +688,43 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         model terms (counted before any term is built), aliased terms (naming them).
     """
     import pandas as pd
-    from scipy import stats
+    from scipy import special
 
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
     if model not in MODELS:
         raise ValueError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
-    # columns, factors (inferred from a design's coded columns when not given), runs
-    # without a response left out, notes on everything left out (rsm_lrg.model.data)
-    prep = prepare(data, response, factors, block)
-    data, space, y, hint = prep.data, prep.space, prep.y, prep.choice.hint()
-    coded = space.encode(data)
-    for f in space.factors:
-        if np.unique(coded[f.letter].to_numpy()).size < 2:
-            raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")
-
-    _check_magnitudes(space, y, response)
-    n = y.size
-    if np.all(y == y[0]):
-        raise ValueError(f"response {response!r} is constant (all {y[0]:.6g}): nothing to model")
-    if block is not None:
-        bcodes, bkeys, blevels = _block_codes(data, block)
-        nb = len(bkeys)
-    else:
-        bcodes, bkeys, blevels, nb = None, None, None, 1
+    inp = model_inputs(data, response, factors, block)
+    data, space, y, hint, nb, n = inp.prep.data, inp.space, inp.y, inp.hint, inp.nb, inp.n
     if terms is None:  # count the terms before building any (a cubic in 16 factors has 969)
         try:
             check_model_size(n, len(space), model, nb - 1)
         except ValueError as exc:
             raise ValueError(f"{exc}{hint}") from None
     terms = tuple(model_terms(space.letters, model)) if terms is None else _chosen_terms(terms, space.letters)
-    Xt = design_matrix(coded.to_numpy(dtype=float), terms)
     names = [t.name for t in terms]
-    if block is not None:
-        Bm = np.zeros((n, nb - 1))
-        for j in range(nb - 1):
-            Bm[bcodes == j, j] = 1.0
-        Bm[bcodes == nb - 1, :] = -1.0
-        X = np.hstack([Xt[:, :1], Bm, Xt[:, 1:]])
-        col_names = ["Intercept"] + [f"Block[{k}]" for k in bkeys[:-1]] + names[1:]
-    else:
-        X = Xt
-        col_names = names
-    p = X.shape[1]
+    col_names = inp.column_names(terms)
+    p = len(col_names)
     if n < p:
         what = f"{len(terms)} terms" + (f" and {nb - 1} block effects" if nb > 1 else "")
         raise ValueError(f"{n} runs cannot fit {p} terms (the {model} model in {len(space)} factors has {what}){hint}")
 
-    ls = _least_squares(X, y)
-    if ls.rank < p:
-        bad = _aliased_terms(X, col_names) or ["(unidentified)"]
-        raise ValueError(
-            f"the {model} model cannot be estimated from this design: term(s) {', '.join(bad)} "
-            f"are aliased with earlier terms (the design matrix has rank {ls.rank} < {p})"
-        )
-    beta, C, hat, fitted, resid = ls.beta, ls.cov_unscaled, ls.hat, ls.fitted, ls.residuals
-    df_res = n - p
-    ss_res = float(resid @ resid)
-    ybar = ls.ybar
-    yc = y - ybar  # sums of squares on the centred scale (no digits lost to an offset)
-    ss_total = float(np.sum(yc ** 2))
-    sigma2 = ss_res / df_res if df_res > 0 else math.nan
-
-    # Blocks entered first: SS between block means.
-    if nb > 1:
-        cnt = np.bincount(bcodes, minlength=nb)
-        means = np.bincount(bcodes, weights=yc, minlength=nb) / cnt
-        ss_block = float(np.sum(cnt * means ** 2))
-    else:
-        ss_block = 0.0
-    ss_model = max(ss_total - ss_block - ss_res, 0.0)
+    # one factorisation (in chunks of rows), one pass more for the hat diagonal and residuals
+    chunks = inp.chunks(terms, int(chunk_rows))
+    ls = factorise(chunks, p, col_names)
+    ls.require_full_rank(f"{model} model")
+    ls = ls.second_pass(chunks)
+    beta, C, hat, fitted, resid = ls.params, ls.cov_unscaled, ls.hat, ls.fitted, ls.residuals
+    df_res, ss_res, ss_total, sigma2 = ls.df_resid, ls.ss_res, ls.ss_total, ls.sigma2
+    tidx = inp.term_columns(terms)
+    # blocks enter first (sequential SS), the model row is the rest; terms are Type III
+    ss_block = ls.sequential_ss(np.arange(1, nb)) if nb > 1 else 0.0
+    ss_model = ls.sequential_ss(tidx[1:]) if tidx.size > 1 else 0.0
     df_model = len(terms) - 1
-
-    tidx = np.r_[0, np.arange(nb, p)] if nb > 1 else np.arange(p)
-    term_ss = [partial_ss(beta, C, j) for j in tidx[1:]]
+    term_ss = [ls.partial_ss(j) for j in tidx[1:]]
 
     # pure error: residual of y ~ (blocks +) one mean per distinct setting (R rsm's PE())
-    pe = pure_error(coded.to_numpy(dtype=float), yc, bcodes if nb > 1 else None)
+    pe = pure_error(inp.x, y - ls.shift, inp.bcodes if nb > 1 else None)
     notes = []
     if pe.df == 0:
         pe_used = None
@@ -724,16 +748,16 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
 
     # coefficients (coded), errors, VIF, actual
     b_t = beta[tidx]
-    se = np.sqrt(np.diag(C)[tidx] * sigma2)
+    se = ls.std_errors[tidx]
     with np.errstate(divide="ignore", invalid="ignore"):
         tval = b_t / se
     if df_res > 0:
-        pval = 2 * stats.t.sf(np.abs(tval), df_res)
-        tq = stats.t.ppf(0.975, df_res)
+        pval = 2.0 * special.stdtr(df_res, -np.abs(tval))
+        tq = float(special.stdtrit(df_res, 0.975))
     else:
         pval = np.full_like(b_t, np.nan)
         tq = np.nan
-    vif = _vif(C, tidx, X, n)
+    vif = np.r_[np.nan, ls.vif(tidx[1:])]
     coded_coefs = dict(zip(names, b_t.tolist()))
     actual = actual_coefficients(coded_coefs, terms, space)
     coef = pd.DataFrame(
@@ -741,47 +765,24 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
          "ci_high": b_t + tq * se, "vif": vif, "actual": [actual[nm] for nm in names]},
         index=pd.Index(names, name="term"),
     )
-    statistics = fit_statistics(y=y, fitted=fitted, residuals=resid, hat=hat, ss_res=ss_res, df_res=df_res,
-                                ss_total=ss_total, ss_block=ss_block, df_model=df_model, n_params=p)
+    statistics = fit_statistics(n=n, mean=ls.ybar, fitted_range=float(np.ptp(fitted)), ss_res=ss_res,
+                                df_res=df_res, ss_total=ss_total, ss_block=ss_block, df_model=df_model,
+                                n_params=p, press=ls.press)
     sp = canonical_analysis(coded_coefs, terms, space)
     if nb > 1:
         eff = beta[1:nb].tolist()
         eff.append(-float(np.sum(eff)))
-        block_effects = dict(zip(bkeys, eff))
+        block_effects = dict(zip(inp.bkeys, eff))
     else:
         block_effects = None
+    prep = inp.prep
     return FitResult(
         response=response, model=model, block=block, space=space, terms=terms, data=data.copy(),
-        coded=coded, y=y, design_matrix=X, column_names=tuple(col_names), coefficients=coef,
+        coded=inp.coded, y=y, column_names=tuple(col_names), coefficients=coef,
         anova=anova, statistics=statistics, stationary_point=sp, fitted=fitted, residuals=resid,
         hat=hat, cov_unscaled=C, sigma2=float(sigma2), df_resid=int(df_res),
-        block_effects=block_effects, block_levels=blevels, pure_error=pe_used,
+        block_effects=block_effects, block_levels=inp.blevels, pure_error=pe_used,
         actual_coefficients=actual, notes=prep.notes + tuple(notes),
         input_notes=prep.notes, omitted_rows=prep.omitted_rows, omitted_data=prep.omitted_data,
+        least_squares=ls,
     )
-
-
-def _vif(C: np.ndarray, tidx: np.ndarray, X: np.ndarray, n: int) -> np.ndarray:
-    """Variance inflation factors of the model terms (NaN for the intercept).
-
-    Design-Expert's definition: the diagonal of the inverse correlation matrix of the
-    non-intercept term columns of the coded design matrix. ``X'X`` is recovered as
-    ``C^-1`` (p x p) so no pass over the n rows beyond the column means is needed; a
-    nearly constant column, whose centred sum of squares ``X'X - n m m'`` cancels to a
-    negative number, gets NaN (no warning).
-    """
-    cols = tidx[1:]
-    out = np.full(tidx.size, np.nan)
-    if cols.size == 0:
-        return out
-    G = np.linalg.inv(C)[np.ix_(cols, cols)]
-    m = X.mean(axis=0)[cols]
-    S = G - n * np.outer(m, m)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        d = np.sqrt(np.diag(S))
-        R = S / np.outer(d, d)
-        try:
-            out[1:] = np.diag(np.linalg.inv(R))
-        except np.linalg.LinAlgError:
-            pass
-    return out

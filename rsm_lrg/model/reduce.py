@@ -6,6 +6,9 @@ Starting from a full model, one term at a time is removed:
   removed, the one with the largest partial-F p-value goes, while that p-value exceeds
   ``alpha_out`` (default 0.1). The p-values are those of the current model's ANOVA
   (Type III, ``SS_j = b_j² / C_jj`` as in :mod:`rsm_lrg.model.anova`).
+
+The starting model is factorised once (:mod:`rsm_lrg.model.least_squares`); every smaller
+model is a sub-model of that factor (a QR of a p x p matrix), never a refit of the runs.
 * ``criterion="aicc"``: the removal that lowers the corrected Akaike criterion most,
   while any removal lowers it. ``AICc = n ln(SS_res/n) + n ln(2π) + n + 2K + 2K(K+1)/(n-K-1)``
   with ``K = p + 1`` (p coefficients including intercept and blocks, plus the variance;
@@ -66,24 +69,17 @@ def aicc(ss_res: float, n: int, p: int) -> float:
     return n * math.log(ss_res / n) + n * math.log(2 * math.pi) + n + 2 * K + 2 * K * (K + 1) / (n - K - 1)
 
 
-def _ols(X, y):
-    """Coefficients, residual SS, residual df and partial-F p-values (the centred QR solve of
-    :func:`rsm_lrg.fit`, so a response on a large offset loses no accuracy)."""
-    from scipy import stats
+def _term_p_values(ls) -> np.ndarray:
+    """Partial-F p-values of every column of a fit (``SS_j = b_j^2 / C_jj`` over the
+    residual mean square; ``scipy.special.fdtrc``)."""
+    from scipy import special
 
-    from .fit import _least_squares
-
-    ls = _least_squares(X, y)
-    if ls.rank < X.shape[1]:
-        raise ValueError("the model matrix is singular (aliased terms); reduce a model the design can estimate")
-    beta, C = ls.beta, ls.cov_unscaled
-    ss = float(ls.residuals @ ls.residuals)
-    df = X.shape[0] - X.shape[1]
-    ms = ss / df if df > 0 else math.nan
+    df = ls.df_resid
+    if df <= 0:
+        return np.full(ls.p, np.nan)
     with np.errstate(divide="ignore", invalid="ignore"):
-        f = beta ** 2 / np.diag(C) / ms
-    p = stats.f.sf(f, 1, df) if df > 0 else np.full_like(f, np.nan)
-    return beta, ss, df, p
+        f = ls.params ** 2 / np.diag(ls.cov_unscaled) / ls.sigma2
+    return special.fdtrc(1, df, f)
 
 
 @dataclass(frozen=True)
@@ -138,58 +134,60 @@ def reduce_terms(data, response: str, factors=None, block: str | None = None, mo
     """
     import pandas as pd
 
-    from .summary import base_design
-    from .terms import check_model_size, design_matrix, model_terms, parse_term
+    from .fit import model_inputs
+    from .least_squares import factorise
+    from .terms import check_model_size, model_terms, parse_term
 
     crit = str(criterion).strip().lower()
     if crit not in CRITERIA:
         raise ValueError(f"criterion must be 'p' or 'aicc', not {criterion!r}")
     if not (isinstance(alpha_out, (int, float)) and 0.0 < alpha_out < 1.0):
         raise ValueError(f"alpha_out must lie between 0 and 1, not {alpha_out!r}")
-    lin, Bm = base_design(data, response, factors, block)
-    letters = lin.space.letters
+    inp = model_inputs(data, response, factors, block)
+    letters = inp.space.letters
+    n, nb = inp.n, inp.nb - 1
+    check_model_size(n, len(letters), "linear", nb)
     if terms is None:
-        check_model_size(lin.n, len(letters), model, Bm.shape[1])  # counted before any term is built
+        check_model_size(n, len(letters), model, nb)  # counted before any term is built
         current = list(model_terms(letters, model))
     else:
         current = [parse_term("Intercept", letters)] + [parse_term(t, letters) for t in terms if t != "Intercept"]
-    coded = lin.coded.to_numpy(dtype=float)
-    y = lin.y
-    n = y.size
-    nb = Bm.shape[1]
+    if n <= len(current) + nb:
+        raise ValueError(f"{n} runs cannot fit {len(current) + nb} terms; start from a smaller model")
+    # one factorisation of the starting model; every smaller model is a sub-model of its
+    # factor (no pass over the runs again)
+    start = list(current)
+    full = factorise(inp.chunks(start), len(start) + nb, inp.column_names(start))
+    full.require_full_rank("model to reduce")
+    col = {id(t): (0 if i == 0 else nb + i) for i, t in enumerate(start)}
 
-    def matrix(ts):
-        Xt = design_matrix(coded, ts)
-        return np.column_stack([Xt[:, :1], Bm, Xt[:, 1:]])
+    def fitted(ts):
+        return full.submodel(sorted(col[id(t)] for t in ts) if nb == 0 else
+                             sorted([col[id(ts[0])], *range(1, nb + 1), *(col[id(t)] for t in ts[1:])]))
 
     steps = []
     removed = []
     while True:
-        X = matrix(current)
-        if X.shape[0] <= X.shape[1]:
-            raise ValueError(f"{n} runs cannot fit {X.shape[1]} terms; start from a smaller model")
-        beta, ss, df, p = _ols(X, y)
+        ls = fitted(current)
+        p = _term_p_values(ls)
+        ss = ls.ss_res
         cand = removable(current)
         if not cand:
             break
-        a_now = aicc(ss, n, X.shape[1])
+        a_now = aicc(ss, n, ls.p)
         if crit == "p":
             pos = {id(t): 1 + nb + current[1:].index(t) for t in current[1:]}
             pv = [(float(p[pos[id(t)]]), t) for t in cand]
             worst_p, worst = max(pv, key=lambda z: z[0])
             if not (worst_p > alpha_out):
                 break
-            trial = [t for t in current if t is not worst]
-            _, ss2, _, _ = _ols(matrix(trial), y)
+            ss2 = fitted([t for t in current if t is not worst]).ss_res
             steps.append({"step": len(steps) + 1, "term": worst.name, "p": worst_p,
-                          "aicc_before": a_now, "aicc_after": aicc(ss2, n, X.shape[1] - 1)})
+                          "aicc_before": a_now, "aicc_after": aicc(ss2, n, ls.p - 1)})
         else:
             best = None
             for t in cand:
-                trial = [s for s in current if s is not t]
-                Xs = matrix(trial)
-                _, ss2, _, _ = _ols(Xs, y)
-                a2 = aicc(ss2, n, Xs.shape[1])
+                a2 = aicc(fitted([s for s in current if s is not t]).ss_res, n, ls.p - 1)
                 if best is None or a2 < best[0]:
                     best = (a2, t)
             if best is None or not best[0] < a_now:

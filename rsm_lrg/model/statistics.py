@@ -16,8 +16,6 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-import numpy as np
-
 __all__ = ["FitStatistics", "fit_statistics"]
 
 
@@ -103,23 +101,23 @@ def _nan_div(a, b):
     return a / b if b not in (0, 0.0) and math.isfinite(b) else math.nan
 
 
-def fit_statistics(*, y, fitted, residuals, hat, ss_res, df_res, ss_total, ss_block, df_model, n_params) -> FitStatistics:
-    """Compute :class:`FitStatistics` from the pieces of one fit (see the module docstring)."""
-    n = y.size
+def fit_statistics(*, n, mean, fitted_range, ss_res, df_res, ss_total, ss_block, df_model, n_params,
+                   press) -> FitStatistics:
+    """Compute :class:`FitStatistics` from the numbers of one fit (see the module docstring).
+
+    ``press`` and the sums of squares come from the regression core
+    (:class:`~rsm_lrg.model.least_squares.Regression`); ``fitted_range`` is
+    ``max ŷ - min ŷ`` (NaN when not known: no adequate precision).
+    """
     ss_adj = ss_total - ss_block
     ms_res = _nan_div(ss_res, df_res)
     r2 = 1.0 - _nan_div(ss_res, ss_adj) if ss_adj > 0 else math.nan
     adj = 1.0 - _nan_div(ms_res, _nan_div(ss_adj, df_model + df_res)) if ss_adj > 0 and df_res > 0 else math.nan
-    with np.errstate(divide="ignore", invalid="ignore"):
-        one_minus_h = 1.0 - hat
-        ok = one_minus_h > 1e-10
-        press = float(np.sum((residuals[ok] / one_minus_h[ok]) ** 2)) if ok.all() else math.nan
     pred = 1.0 - press / ss_adj if (math.isfinite(press) and ss_adj > 0) else math.nan
     std = math.sqrt(ms_res) if math.isfinite(ms_res) else math.nan
     mean_var = n_params * ms_res / n if math.isfinite(ms_res) else math.nan
-    spread = float(np.max(fitted) - np.min(fitted))
-    adeq = spread / math.sqrt(mean_var) if (math.isfinite(mean_var) and mean_var > 0) else math.nan
-    mean = float(np.mean(y))
+    adeq = fitted_range / math.sqrt(mean_var) if (math.isfinite(mean_var) and mean_var > 0) else math.nan
+    mean = float(mean)
     cv = 100.0 * std / abs(mean) if mean != 0 and math.isfinite(std) else math.nan
     return FitStatistics(r2=float(r2), adj_r2=float(adj), pred_r2=float(pred), press=float(press),
                          adeq_precision=float(adeq), std_dev=float(std), mean=mean, cv_percent=float(cv))

@@ -18,9 +18,15 @@ For the nested models mean ⊂ linear ⊂ 2FI ⊂ quadratic ⊂ cubic this gives
   not aliased, and whose lack of fit is not significant (p >= alpha).
 
 Blocks (optional) enter right after the mean, as in :func:`rsm_lrg.fit`; every order is
-then adjusted for blocks. Everything reuses the model layer: the factor coding and
-validation of :func:`rsm_lrg.fit`, :func:`~rsm_lrg.model.terms.model_terms`,
-:func:`~rsm_lrg.model.terms.design_matrix` and :func:`~rsm_lrg.model.anova.pure_error`.
+then adjusted for blocks. The nested models are not refitted: the largest model (columns
+in order: mean, blocks, linear, 2FI, quadratic, cubic terms) is factorised once by the
+regression core (:mod:`rsm_lrg.model.least_squares`); its aliased columns are dropped from
+the factor, the sequential SS of an order is ``sum z_j^2`` over its estimable columns
+(``z = Q'y``), and one more pass over the rows gives every order's residuals and PRESS —
+the comparison of fitted nested models that statsmodels' ``anova_lm`` makes. The factor
+coding and validation are those of :func:`rsm_lrg.fit` (:func:`~rsm_lrg.model.fit.model_inputs`),
+pure error and lack of fit those of :mod:`rsm_lrg.model.anova`, the statistics those of
+:func:`~rsm_lrg.model.statistics.fit_statistics`.
 
 Reference: Myers, Montgomery & Anderson-Cook, *Response Surface Methodology* (3rd ed.),
 Sec. 3.3 (extra sum of squares) and 6.2; Design-Expert help, "Fit Summary".
@@ -39,46 +45,13 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["fit_summary", "FitSummary", "ORDERS", "base_design"]
+__all__ = ["fit_summary", "FitSummary", "ORDERS"]
 
 #: The nested model orders of the fit summary.
 ORDERS = ("linear", "2fi", "quadratic", "cubic")
 
 _LABEL = {"mean": "Mean", "block": "Block", "linear": "Linear", "2fi": "2FI", "quadratic": "Quadratic",
           "cubic": "Cubic"}
-
-
-def base_design(data, response: str, factors=None, block: str | None = None):
-    """Coding, response and block contrasts exactly as :func:`rsm_lrg.fit` builds them.
-
-    Returns ``(linear_fit, block_columns)`` where ``linear_fit`` is the linear
-    :class:`~rsm_lrg.model.fit.FitResult` (it validates the columns and holds the coding)
-    and ``block_columns`` the (n, b-1) sum-to-zero block contrasts (zero columns when
-    unblocked).
-    """
-    from .fit import fit
-
-    lin = fit(data, response, factors=factors, block=block, model="linear")
-    nb = len(lin.column_names) - len(lin.terms)
-    Bm = lin.design_matrix[:, 1:1 + nb]
-    return lin, Bm
-
-
-def _rank(X: np.ndarray) -> int:
-    if X.shape[1] == 0:
-        return 0
-    s = np.linalg.svd(X, compute_uv=False)
-    return int(np.sum(s > s[0] * max(X.shape) * np.finfo(float).eps * 10))
-
-
-def _ls(X: np.ndarray, y: np.ndarray):
-    """Least squares by the pseudo-inverse: (residual SS, rank, hat diagonal, fitted)."""
-    P = np.linalg.pinv(X)
-    beta = P @ y
-    fitted = X @ beta
-    resid = y - fitted
-    hat = np.einsum("ij,ji->i", X, P)
-    return float(resid @ resid), _rank(X), hat, fitted, resid
 
 
 @dataclass(frozen=True)
@@ -207,10 +180,12 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     FitSummary
     """
     import pandas as pd
-    from scipy import stats
 
-    from .anova import pure_error
-    from .terms import MAX_TERMS, design_matrix, model_terms, n_model_terms
+    from .anova import f_test, lack_of_fit, pure_error
+    from .fit import model_inputs
+    from .least_squares import factorise
+    from .statistics import fit_statistics
+    from .terms import MAX_TERMS, check_model_size, model_terms, n_model_terms
 
     if not 0.0 < alpha < 1.0:
         raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
@@ -219,85 +194,69 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     if bad or not orders:
         raise ValueError(f"orders must be among {', '.join(ORDERS)} (got {', '.join(map(str, orders)) or 'none'})")
     orders = tuple(o for o in ORDERS if o in orders)
-    lin, Bm = base_design(data, response, factors, block)
-    y = lin.y
-    n = y.size
-    coded = lin.coded.to_numpy(dtype=float)
-    letters = lin.space.letters
-    nb = Bm.shape[1] + 1
-
-    # every model holds the intercept: fit the centred response (no digits lost to an offset)
-    ybar = math.fsum(y) / n
-    yc = y - ybar
-    # pure error: residual of (blocks +) one mean per distinct setting, as in fit()
-    bcodes = np.unique(Bm, axis=0, return_inverse=True)[1].ravel() if nb > 1 else None
-    pe = pure_error(coded, yc, bcodes)
-
-    ss_mean = float(n * ybar ** 2)
-    ss_tot_corr = float(np.sum(yc ** 2))
-    base_X = np.column_stack([np.ones(n), Bm])
-    ss_prev, r_prev, *_ = _ls(base_X, yc)
-    ss_block = ss_tot_corr - ss_prev
-    seq_rows = [{"source": "Mean vs Total", "sum_sq": ss_mean, "df": 1, "mean_sq": ss_mean, "f": math.nan,
-                 "p": math.nan, "aliased": False}]
-    if nb > 1:
-        seq_rows.append({"source": "Block vs Mean", "sum_sq": ss_block, "df": nb - 1,
-                         "mean_sq": ss_block / (nb - 1), "f": math.nan, "p": math.nan, "aliased": False})
-    lof_rows, stat_rows = [], []
+    inp = model_inputs(data, response, factors, block)
+    y, n, nb, letters = inp.y, inp.n, inp.nb, inp.space.letters
+    check_model_size(n, len(letters), "linear", nb - 1)
     notes = []
-    prev_label = "Block" if nb > 1 else "Mean"
-    last_ok = None
-    results = {}
+    fitted = []
     for order in orders:
         count = n_model_terms(len(letters), order)
         if count > MAX_TERMS:  # counted, not built
             notes.append(f"The {_LABEL[order]} model in {len(letters)} factors has {count} terms and was not fitted "
                          f"(more than the {MAX_TERMS} this toolkit builds).")
             break
-        terms = model_terms(letters, order)
-        Xt = design_matrix(coded, terms)
-        X = np.column_stack([Xt[:, :1], Bm, Xt[:, 1:]])
-        ss_res, r, hat, fitted, resid = _ls(X, yc)
-        df_add = r - r_prev
-        aliased = r < X.shape[1]
-        df_res = n - r
+        fitted.append(order)
+
+    # one factorisation of the largest model; its estimable columns, in order
+    terms = model_terms(letters, fitted[-1])
+    chunks = inp.chunks(terms)
+    big = factorise(chunks, len(terms) + nb - 1, inp.column_names(terms))
+    big.submodel(range(nb + len(letters))).require_full_rank("linear model")
+    kept = np.asarray(big.kept)
+    ls = big if big.full_rank else big.submodel(kept)
+    ends_all = {o: nb - 1 + n_model_terms(len(letters), o) for o in fitted}  # columns up to each order
+    ends = {o: int(np.sum(kept < ends_all[o])) for o in fitted}  # estimable ones
+    sub_chunks = chunks if big.full_rank else (lambda: ((X[:, kept], yy) for X, yy in chunks()))
+    nested = dict(zip(fitted, ls.nested_press(sub_chunks, [ends[o] for o in fitted])))
+
+    # pure error: residual of (blocks +) one mean per distinct setting, as in fit()
+    pe = pure_error(inp.x, y - ls.shift, inp.bcodes if nb > 1 else None)
+    ybar = ls.ybar
+    ss_mean = float(n * ybar ** 2)
+    ss_tot_corr = float(np.sum((y - ybar) ** 2))
+    ss_block = ls.sequential_ss(np.arange(1, nb)) if nb > 1 else 0.0
+    seq_rows = [{"source": "Mean vs Total", "sum_sq": ss_mean, "df": 1, "mean_sq": ss_mean, "f": math.nan,
+                 "p": math.nan, "aliased": False}]
+    if nb > 1:
+        seq_rows.append({"source": "Block vs Mean", "sum_sq": ss_block, "df": nb - 1,
+                         "mean_sq": ss_block / (nb - 1), "f": math.nan, "p": math.nan, "aliased": False})
+    lof_rows, stat_rows = [], []
+    prev_label, prev_end = ("Block" if nb > 1 else "Mean"), nb
+    results = {}
+    for order in fitted:
+        end = ends[order]
+        ss_res, press = nested[order]
+        df_add = end - prev_end
+        aliased = end < ends_all[order]
+        df_res = n - end
         ms_res = ss_res / df_res if df_res > 0 else math.nan
-        ss_add = max(ss_prev - ss_res, 0.0)
+        ss_add = ls.sequential_ss(np.arange(prev_end, end)) if df_add > 0 else 0.0
         ms_add = ss_add / df_add if df_add > 0 else math.nan
-        if df_add > 0 and df_res > 0 and ms_res > 0:
-            f = ms_add / ms_res
-            p = float(stats.f.sf(f, df_add, df_res))
-        else:
-            f = p = math.nan
+        f, p = f_test(ms_add, df_add, ms_res, df_res)
         seq_rows.append({"source": f"{_LABEL[order]} vs {prev_label}", "sum_sq": ss_add, "df": int(df_add),
                          "mean_sq": ms_add, "f": f, "p": p, "aliased": bool(aliased)})
-        # lack of fit
+        lof = lack_of_fit(ss_res, df_res, pe)
         lof_p = math.nan
-        if pe.df > 0:
-            df_lof = df_res - pe.df
-            ss_lof = max(ss_res - pe.ss, 0.0)
-            ms_pe = pe.ss / pe.df
-            if df_lof > 0:
-                ms_lof = ss_lof / df_lof
-                f_l = ms_lof / ms_pe if ms_pe > 0 else math.nan
-                lof_p = float(stats.f.sf(f_l, df_lof, pe.df)) if ms_pe > 0 else math.nan
-            else:
-                ms_lof = f_l = math.nan
-            lof_rows.append({"source": _LABEL[order], "sum_sq": ss_lof, "df": int(df_lof), "mean_sq": ms_lof,
-                             "f": f_l, "p": lof_p})
-        # statistics (FitStatistics definitions; block SS left out of R²)
-        ss_adj = ss_tot_corr - ss_block
-        df_model = r - nb
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ok = (1.0 - hat) > 1e-10
-            press = float(np.sum((resid / (1.0 - hat)) ** 2)) if ok.all() else math.nan
-        r2 = 1.0 - ss_res / ss_adj if ss_adj > 0 else math.nan
-        adj = 1.0 - ms_res / (ss_adj / (df_model + df_res)) if (ss_adj > 0 and df_res > 0) else math.nan
-        pred = 1.0 - press / ss_adj if (ss_adj > 0 and math.isfinite(press)) else math.nan
-        stat_rows.append({"source": _LABEL[order], "std_dev": math.sqrt(ms_res) if ms_res == ms_res else math.nan,
-                          "r2": r2, "adj_r2": adj, "pred_r2": pred, "press": press, "aliased": bool(aliased)})
+        if lof is not None:
+            lof_p = lof["p"]
+            lof_rows.append({"source": _LABEL[order], "sum_sq": lof["ss"], "df": lof["df"], "mean_sq": lof["ms"],
+                             "f": lof["f"], "p": lof_p})
+        st = fit_statistics(n=n, mean=ybar, fitted_range=math.nan, ss_res=ss_res, df_res=df_res,
+                            ss_total=ss_tot_corr, ss_block=ss_block, df_model=end - nb, n_params=end, press=press)
+        stat_rows.append({"source": _LABEL[order], "std_dev": st.std_dev, "r2": st.r2, "adj_r2": st.adj_r2,
+                          "pred_r2": st.pred_r2, "press": st.press, "aliased": bool(aliased)})
         results[order] = (p, aliased, lof_p, df_add)
-        ss_prev, r_prev, prev_label = ss_res, r, _LABEL[order]
+        prev_label, prev_end = _LABEL[order], end
         last_ok = (ss_res, df_res)
     ss_res, df_res = last_ok
     seq_rows.append({"source": "Residual", "sum_sq": ss_res, "df": int(df_res),

@@ -1,0 +1,507 @@
+"""The regression core: one least-squares factorisation, every statistic derived from it.
+
+A fit is summarised by the triangular factor of the column-scaled model matrix with the
+response appended, ``[X S^-1 | y - c] = Q [[R, z], [0, rho]]`` (Householder QR; ``S`` the
+column norms, ``c`` a shift near the mean so that a response of 1e9 + small variation
+loses no digits). ``R`` (p x p), ``z = Q'(y - c)`` and ``rho`` are all a fit needs:
+
+* coefficients ``b = S^-1 R^-1 z`` (``c`` added back to the intercept) and their unscaled
+  covariance ``(X'X)^-1 = S^-1 R^-1 R^-T S^-1``;
+* the sequential (Type I) sum of squares of a column is ``z_j^2`` (columns in model
+  order), the partial (Type III) one of a group ``S`` is ``b_S' (C_SS)^-1 b_S``;
+* the residual sum of squares of the model is ``rho^2``; that of a sub-model (any subset
+  of the columns, e.g. a nested model or a step of backward elimination) comes from the QR
+  of the small matrix ``[R_cols | z]``, never from the n rows again;
+* the hat diagonal ``h_i = |x_i S^-1 R^-1|^2``, the residuals and PRESS
+  ``sum (e_i / (1 - h_ii))^2`` need a second pass over the rows;
+* the VIF of a term is ``C_jj`` of the model without blocks times the centred sum of
+  squares of its column, ``sum_{i>0} R_ij^2`` (the intercept being column 0): the diagonal
+  of the inverse correlation matrix (Design-Expert's definition) without forming it.
+
+Rank deficiency is decided here and only here: a column is *aliased* when its distance
+from the span of the estimable columns before it is at most :data:`ALIAS_TOL` of its
+length (the test R's ``lm`` makes with its pivoting QR, ``tol = 1e-7``, here ``1e-9``).
+
+The factor can be accumulated over chunks of rows (TSQR: the factor so far is stacked on
+the next chunk and re-factorised; :class:`Accumulator`), so a fit of 10^6 runs never holds
+its n x p model matrix, and accumulators of separate chunks merge (a tree reduction over
+the partitions of a Dask DataFrame). The second pass (hat diagonal, residuals) goes over
+the same chunks again.
+
+>>> import numpy as np
+>>> X = np.column_stack([np.ones(4), [-1.0, -1.0, 1.0, 1.0]])
+>>> fit = least_squares(X, np.array([1.0, 2.0, 3.0, 5.0]), names=["Intercept", "A"])
+>>> fit.params.round(12).tolist(), round(fit.ss_res, 12), fit.hat.round(12).tolist()
+([2.75, 1.25], 2.5, [0.5, 0.5, 0.5, 0.5])
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+
+import numpy as np
+
+__all__ = ["Regression", "Accumulator", "least_squares", "factorise", "partial_ss", "ALIAS_TOL", "CHUNK_ROWS"]
+
+#: A column is aliased when its distance from the span of the estimable columns before it
+#: is at most this fraction of its length.
+ALIAS_TOL = 1e-9
+#: Rows per chunk of the model matrix (about 17 MB for the 66 terms of a 10-factor quadratic).
+CHUNK_ROWS = 32768
+
+Chunks = Callable[[], Iterable[tuple[np.ndarray, np.ndarray]]]
+
+
+def _qr_r(A: np.ndarray) -> np.ndarray:
+    """Square upper-triangular factor (q x q) of ``A`` (m x q), zero rows added when m < q."""
+    from scipy.linalg import qr
+
+    R = qr(A, mode="r", overwrite_a=True, check_finite=False)[0]
+    q = A.shape[1]
+    if R.shape[0] < q:
+        R = np.vstack([R, np.zeros((q - R.shape[0], q))])
+    return np.triu(R[:q])
+
+
+def _solve_r(R: np.ndarray, B: np.ndarray, trans: bool = False) -> np.ndarray:
+    from scipy.linalg import solve_triangular
+
+    return solve_triangular(R, B, trans="T" if trans else "N", lower=False, check_finite=False)
+
+
+def _independent_columns(R: np.ndarray, tol: float = ALIAS_TOL) -> tuple:
+    """Columns of ``R`` (the factor of ``X``: ``R'R = X'X``) farther than ``tol`` of their
+    length from the span of the independent columns before them, in order."""
+    p = R.shape[1]
+    norms = np.sqrt(np.einsum("ij,ij->j", R, R))
+    d = np.abs(np.diag(R))
+    if np.all(norms > 0) and np.all(d > tol * norms):
+        return tuple(range(p))
+    basis = np.zeros((R.shape[0], 0))
+    kept = []
+    for j in range(p):
+        if not norms[j] > 0:
+            continue
+        v = R[:, j].copy()
+        for _ in range(2):  # Gram-Schmidt twice is enough
+            v -= basis @ (basis.T @ v)
+        nv = float(np.linalg.norm(v))
+        if nv > tol * norms[j]:
+            basis = np.column_stack([basis, v / nv])
+            kept.append(j)
+    return tuple(kept)
+
+
+# ----------------------------------------------------------------------------------------
+# first pass: the triangular factor, accumulated over chunks
+# ----------------------------------------------------------------------------------------
+@dataclass
+class Accumulator:
+    """Triangular factor of ``[X | y - shift]`` accumulated over chunks of rows (TSQR).
+
+    ``add`` stacks the factor so far on a chunk and re-factorises; ``merge`` combines two
+    accumulators of separate rows (same ``shift``), so partitions can be reduced in a tree.
+    """
+
+    p: int
+    shift: float | None = None
+    n: int = 0
+    raug: np.ndarray | None = None
+    col_ss: np.ndarray | None = None
+    col_sum: np.ndarray | None = None
+    y_sums: list = field(default_factory=list)
+    intercept: bool = True
+
+    def add(self, X: np.ndarray, y: np.ndarray) -> Accumulator:
+        X = np.asarray(X, dtype=float)
+        y = np.asarray(y, dtype=float).ravel()
+        m, p = X.shape
+        if p != self.p or y.size != m:
+            raise ValueError(f"a chunk of {m} x {p} rows and {y.size} responses does not fit a {self.p}-column model")
+        if m == 0:
+            return self
+        ones = bool(np.all(X[:, 0] == 1.0))
+        if self.shift is None:
+            self.shift = math.fsum(y) / m if ones else 0.0
+            self.intercept = ones
+        elif self.intercept and not ones:
+            if self.shift != 0.0:
+                raise ValueError("the first column is all ones in one chunk and not in another")
+            self.intercept = False
+        top = 0 if self.raug is None else self.p + 1
+        A = np.empty((m + top, p + 1))
+        if top:
+            A[:top] = self.raug
+        A[top:, :p] = X
+        A[top:, p] = y - self.shift
+        self.raug = _qr_r(A)
+        ss = np.einsum("ij,ij->j", X, X)
+        sm = X.sum(axis=0)
+        self.col_ss = ss if self.col_ss is None else self.col_ss + ss
+        self.col_sum = sm if self.col_sum is None else self.col_sum + sm
+        self.y_sums.append(math.fsum(y))
+        self.n += m
+        return self
+
+    def merge(self, other: Accumulator) -> Accumulator:
+        """The accumulator of the rows of both (they must share ``shift``)."""
+        if other.n == 0:
+            return self
+        if self.n == 0:
+            return other
+        if self.shift != other.shift:
+            raise ValueError("accumulators with different shifts cannot be merged")
+        raug = _qr_r(np.vstack([self.raug, other.raug]))
+        return Accumulator(p=self.p, shift=self.shift, n=self.n + other.n, raug=raug,
+                           col_ss=self.col_ss + other.col_ss, col_sum=self.col_sum + other.col_sum,
+                           y_sums=self.y_sums + other.y_sums, intercept=self.intercept and other.intercept)
+
+    def result(self, names: Sequence[str] | None = None) -> Regression:
+        """The :class:`Regression` of the rows added (first pass only: no hat diagonal yet)."""
+        if self.n == 0:
+            raise ValueError("no rows to fit")
+        p = self.p
+        names = tuple(names) if names is not None else tuple(f"x{j}" for j in range(p))
+        norms = np.sqrt(self.col_ss)
+        scale = np.where(norms > 0, norms, 1.0)
+        R = self.raug[:p, :p] / scale
+        kept = _independent_columns(R)
+        return Regression(R=R, qty=self.raug[:p, p].copy(), rho=abs(float(self.raug[p, p])), scale=scale,
+                          shift=float(self.shift), n=int(self.n), col_sum=self.col_sum.copy(),
+                          y_sum=math.fsum(self.y_sums), names=names, kept=kept, intercept=self.intercept)
+
+
+def factorise(chunks: Chunks, p: int, names: Sequence[str] | None = None, *, shift: float | None = None) -> Regression:
+    """First pass over ``chunks()`` (an iterable of ``(X_chunk, y_chunk)``): the factor."""
+    acc = Accumulator(p=p, shift=shift)
+    for X, y in chunks():
+        acc.add(X, y)
+    return acc.result(names)
+
+
+def _array_chunks(X: np.ndarray, y: np.ndarray, rows: int) -> Chunks:
+    n = X.shape[0]
+    return lambda: ((X[s:s + rows], y[s:s + rows]) for s in range(0, max(n, 1), rows))
+
+
+def least_squares(X: np.ndarray, y: np.ndarray, names: Sequence[str] | None = None, *,
+                  chunk_rows: int = CHUNK_ROWS) -> Regression:
+    """Least squares of ``y`` on the columns of ``X``: both passes (see the module docstring).
+
+    ``X`` is taken in chunks of ``chunk_rows`` rows; the result does not depend on the
+    chunk size beyond round-off. When ``X`` is rank deficient only the first pass is done
+    (``aliased`` names the columns; :meth:`Regression.require_full_rank` raises).
+    """
+    X = np.asarray(X, dtype=float)
+    y = np.asarray(y, dtype=float).ravel()
+    if X.ndim != 2 or X.shape[0] != y.size:
+        raise ValueError(f"X ({X.shape}) and y ({y.size}) do not match")
+    chunks = _array_chunks(X, y, int(chunk_rows))
+    intercept = X.shape[0] > 0 and bool(np.all(X[:, 0] == 1.0))
+    reg = factorise(chunks, X.shape[1], names, shift=(math.fsum(y) / y.size) if intercept else 0.0)
+    return reg.second_pass(chunks) if reg.full_rank else reg
+
+
+# ----------------------------------------------------------------------------------------
+# the result
+# ----------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Regression:
+    """One least-squares factorisation and everything derived from it (frozen).
+
+    Attributes
+    ----------
+    R : (p, p) ndarray
+        Upper-triangular factor of the column-scaled model matrix ``X S^-1`` (``R'R = S^-1 X'X S^-1``).
+    qty : (p,) ndarray
+        ``Q'(y - shift)`` [response units].
+    rho : float
+        Norm of the residual from the factorisation [response units].
+    scale : (p,) ndarray
+        Column norms ``S`` of ``X`` (1 for a zero column).
+    shift : float
+        Value subtracted from y before factorising (the mean, or that of the first chunk;
+        0 without an intercept) [response units].
+    n : int
+    col_sum : (p,) ndarray
+        Column sums of ``X``.
+    y_sum : float
+        Sum of y [response units].
+    names : tuple of str
+        Column names.
+    kept : tuple of int
+        The estimable columns (all of them when the matrix has full rank).
+    intercept : bool
+        Column 0 is all ones.
+    hat, residuals, fitted : ndarray or None
+        From the second pass (:meth:`second_pass`); ``None`` for a sub-model.
+    ss_total : float
+        ``sum (y - ybar)^2`` from the second pass (NaN before it) [response units^2].
+    """
+
+    R: np.ndarray = field(repr=False)
+    qty: np.ndarray = field(repr=False)
+    rho: float
+    scale: np.ndarray = field(repr=False)
+    shift: float
+    n: int
+    col_sum: np.ndarray = field(repr=False)
+    y_sum: float
+    names: tuple
+    kept: tuple = field(repr=False)
+    intercept: bool = True
+    hat: np.ndarray | None = field(default=None, repr=False)
+    residuals: np.ndarray | None = field(default=None, repr=False)
+    fitted: np.ndarray | None = field(default=None, repr=False)
+    ss_total: float = math.nan
+
+    # -- shape and rank ------------------------------------------------------------------
+    @property
+    def p(self) -> int:
+        return int(self.R.shape[1])
+
+    @property
+    def rank(self) -> int:
+        return len(self.kept)
+
+    @property
+    def full_rank(self) -> bool:
+        return self.rank == self.p
+
+    @property
+    def aliased(self) -> tuple:
+        """Names of the columns that are (numerically) combinations of earlier columns."""
+        kept = set(self.kept)
+        return tuple(nm for j, nm in enumerate(self.names) if j not in kept)
+
+    def require_full_rank(self, what: str = "model") -> None:
+        """Raise the one rank-deficiency message, naming the aliased columns."""
+        if not self.full_rank:
+            raise ValueError(f"the {what} cannot be estimated from this design: term(s) {', '.join(self.aliased)} "
+                             f"are aliased with earlier terms (the design matrix has rank {self.rank} < {self.p})")
+
+    def alias_relations(self) -> list[str]:
+        """For each aliased column, the combination of earlier estimable columns it equals
+        (``"A^2 = Intercept"``; coefficients shown when not 1; ``"= 0"`` for a zero column)."""
+        kept = set(self.kept)
+        out = []
+        for j in range(self.p):
+            if j in kept:
+                continue
+            before = [i for i in self.kept if i < j]
+            col = self.R[:, j]
+            if before and np.linalg.norm(col) > 0:
+                cs, *_ = np.linalg.lstsq(self.R[:, before], col, rcond=None)
+                coef = cs * self.scale[j] / self.scale[before]
+            else:
+                coef = np.zeros(0)
+            rhs = ""
+            for c, i in zip(coef, before):
+                if abs(c) <= 1e-9:
+                    continue
+                mag = f"{abs(c):.6g}"
+                term = self.names[i] if mag == "1" else f"{mag}·{self.names[i]}"
+                rhs += (("-" if c < 0 else "") + term) if not rhs else ((" - " if c < 0 else " + ") + term)
+            out.append(f"{self.names[j]} = {rhs or '0'}")
+        return out
+
+    def _need_full_rank(self) -> None:
+        if not self.full_rank:
+            self.require_full_rank()
+
+    # -- coefficients and covariance -----------------------------------------------------
+    @cached_property
+    def _rinv(self) -> np.ndarray:
+        self._need_full_rank()
+        return _solve_r(self.R, np.eye(self.p))
+
+    @cached_property
+    def _bs(self) -> np.ndarray:
+        """Coefficients of the scaled columns (on the shifted response)."""
+        self._need_full_rank()
+        return _solve_r(self.R, self.qty)
+
+    @cached_property
+    def params(self) -> np.ndarray:
+        """Least-squares coefficients of the columns of ``X`` [response units / column units]."""
+        b = self._bs / self.scale
+        if self.intercept:
+            b[0] += self.shift
+        return b
+
+    @cached_property
+    def _cov_scaled(self) -> np.ndarray:
+        return self._rinv @ self._rinv.T
+
+    @cached_property
+    def cov_unscaled(self) -> np.ndarray:
+        """``(X'X)^-1`` (p x p)."""
+        return self._cov_scaled / np.outer(self.scale, self.scale)
+
+    @property
+    def ybar(self) -> float:
+        return self.y_sum / self.n
+
+    @property
+    def df_resid(self) -> int:
+        return int(self.n - self.rank)
+
+    @cached_property
+    def ss_res(self) -> float:
+        """Residual sum of squares [response units^2] (from the residuals after the second
+        pass, else from the factorisation)."""
+        if self.residuals is not None:
+            return float(self.residuals @ self.residuals)
+        return self.rho ** 2
+
+    @property
+    def sigma2(self) -> float:
+        """Residual mean square (NaN without residual degrees of freedom) [response units^2]."""
+        return self.ss_res / self.df_resid if self.df_resid > 0 else math.nan
+
+    @property
+    def std_errors(self) -> np.ndarray:
+        return np.sqrt(np.diag(self.cov_unscaled) * self.sigma2)
+
+    # -- sums of squares -----------------------------------------------------------------
+    def sequential_ss(self, cols: Sequence[int] | int) -> float:
+        """Sequential (Type I) sum of squares of the columns ``cols`` given every column
+        before them: ``sum z_j^2`` [response units^2]."""
+        self._need_full_rank()
+        idx = np.atleast_1d(np.asarray(cols, dtype=int))
+        return float(np.sum(self.qty[idx] ** 2))
+
+    def partial_ss(self, cols: Sequence[int] | int) -> float:
+        """Partial (Type III) sum of squares of the columns ``cols`` jointly (the extra sum of
+        squares of dropping them): ``b_S' (C_SS)^-1 b_S`` [response units^2]."""
+        return partial_ss(self._bs, self._cov_scaled, cols)  # scaled: the same number, better conditioned
+
+    def residual_ss_after(self, k: int) -> float:
+        """Residual sum of squares of the model of the first ``k`` columns (nested models in
+        column order), from the factor: ``rho^2 + sum_{j>=k} z_j^2`` [response units^2]."""
+        self._need_full_rank()
+        return float(self.rho ** 2 + np.sum(self.qty[k:] ** 2))
+
+    @cached_property
+    def press(self) -> float:
+        """PRESS, ``sum (e_i / (1 - h_ii))^2`` (NaN when a run has leverage 1) [response units^2]."""
+        if self.hat is None:
+            raise ValueError("PRESS needs the second pass over the rows")
+        return _press(self.residuals, self.hat)
+
+    def vif(self, cols: Sequence[int]) -> np.ndarray:
+        """Variance inflation factors of the columns ``cols`` among themselves (the other
+        columns but the intercept, e.g. blocks, left out): the diagonal of the inverse
+        correlation matrix of those columns [-]."""
+        cols = [int(c) for c in cols]
+        if not cols:
+            return np.zeros(0)
+        if not self.intercept:
+            raise ValueError("VIF needs the intercept in column 0")
+        sub = self if cols == list(range(1, self.p)) else self.submodel([0, *cols])
+        pos = np.arange(1, len(cols) + 1)
+        centred = np.einsum("ij,ij->j", sub.R[1:, pos], sub.R[1:, pos])  # sum (x - mean)^2, scaled
+        return np.diag(sub._cov_scaled)[pos] * centred
+
+    # -- sub-models ----------------------------------------------------------------------
+    def submodel(self, cols: Sequence[int]) -> Regression:
+        """The least-squares fit of the columns ``cols`` only, from the p x p factor (no pass
+        over the rows; no hat diagonal)."""
+        cols = [int(c) for c in cols]
+        q, p = len(cols), self.p
+        A = np.zeros((p + 1, q + 1))
+        A[:p, :q] = self.R[:, cols]
+        A[:p, q] = self.qty
+        A[p, q] = self.rho
+        Ra = _qr_r(A)
+        R = Ra[:q, :q]
+        return Regression(R=R, qty=Ra[:q, q].copy(), rho=abs(float(Ra[q, q])), scale=self.scale[cols],
+                          shift=self.shift, n=self.n, col_sum=self.col_sum[cols], y_sum=self.y_sum,
+                          names=tuple(self.names[c] for c in cols), kept=_independent_columns(R),
+                          intercept=self.intercept and bool(cols) and cols[0] == 0, ss_total=self.ss_total)
+
+    # -- second pass ---------------------------------------------------------------------
+    def q_factor(self, X: np.ndarray) -> np.ndarray:
+        """``Q = X S^-1 R^-1`` for rows ``X`` of the model matrix (orthonormal columns when
+        ``X`` is the whole matrix)."""
+        self._need_full_rank()
+        return _solve_r(self.R, (np.asarray(X, dtype=float) / self.scale).T, trans=True).T
+
+    def _pass_chunk(self, X, y):
+        W = self.q_factor(X)
+        h = np.einsum("ij,ij->i", W, W)
+        fc = (np.asarray(X, dtype=float) / self.scale) @ self._bs
+        r = (np.asarray(y, dtype=float) - self.shift) - fc
+        return h, r, self.shift + fc
+
+    def second_pass(self, chunks: Chunks) -> Regression:
+        """The same fit with the hat diagonal, residuals, fitted values and the total sum of
+        squares from a pass over the same chunks."""
+        self._need_full_rank()
+        hs, rs, fs = [], [], []
+        ybar = self.ybar
+        sst = []
+        for X, y in chunks():
+            h, r, f = self._pass_chunk(X, y)
+            hs.append(h)
+            rs.append(r)
+            fs.append(f)
+            dy = np.asarray(y, dtype=float) - ybar
+            sst.append(float(dy @ dy))
+        return replace(self, hat=_cat(hs), residuals=_cat(rs), fitted=_cat(fs), ss_total=math.fsum(sst))
+
+    def nested_press(self, chunks: Chunks, ends: Sequence[int]) -> list[tuple[float, float]]:
+        """For the nested models of the first ``k`` columns (``k`` in ``ends``): the residual
+        sum of squares and PRESS from one pass over ``chunks`` (full-matrix rows)."""
+        self._need_full_rank()
+        ends = [int(k) for k in ends]
+        ss = [[] for _ in ends]
+        pr = [[] for _ in ends]
+        bad = [False] * len(ends)
+        for X, y in chunks():
+            W = self.q_factor(X)
+            yc = np.asarray(y, dtype=float) - self.shift
+            h2 = np.cumsum(W * W, axis=1)
+            for i, k in enumerate(ends):
+                r = yc - W[:, :k] @ self.qty[:k]
+                one = 1.0 - h2[:, k - 1]
+                ss[i].append(float(r @ r))
+                ok = one > 1e-10
+                bad[i] |= not ok.all()
+                pr[i].append(float(np.sum((r[ok] / one[ok]) ** 2)))
+        return [(math.fsum(s), math.nan if b else math.fsum(p)) for s, p, b in zip(ss, pr, bad)]
+
+    def residual_ss_of(self, X: np.ndarray, Z: np.ndarray) -> np.ndarray:
+        """Residual sums of squares of other responses ``Z`` (n x m) on the same model
+        matrix ``X`` (e.g. the Box–Cox transforms), by projection on ``Q`` [units^2]."""
+        Q = self.q_factor(X)
+        Z = np.asarray(Z, dtype=float)
+        Z = Z[:, None] if Z.ndim == 1 else Z
+        Rz = Z - Q @ (Q.T @ Z)
+        return np.einsum("ij,ij->j", Rz, Rz)
+
+
+def partial_ss(beta: np.ndarray, cov_unscaled: np.ndarray, idx: Sequence[int] | int) -> float:
+    """Partial (Type III) sum of squares ``b_S' (C_SS)^-1 b_S`` of the columns ``idx``
+    [response units^2], from coefficients ``beta`` (p,) and ``cov_unscaled = (X'X)^-1``."""
+    idx = np.atleast_1d(np.asarray(idx, dtype=int))
+    b = beta[idx]
+    if idx.size == 1:
+        c = cov_unscaled[idx[0], idx[0]]
+        return float(b[0] ** 2 / c)
+    return float(b @ np.linalg.solve(cov_unscaled[np.ix_(idx, idx)], b))
+
+
+def _cat(parts: list) -> np.ndarray:
+    return np.concatenate(parts) if parts else np.zeros(0)
+
+
+def _press(residuals: np.ndarray, hat: np.ndarray) -> float:
+    with np.errstate(divide="ignore", invalid="ignore"):
+        one = 1.0 - hat
+        if not np.all(one > 1e-10):
+            return math.nan
+        return float(np.sum((residuals / one) ** 2))
