@@ -22,11 +22,9 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
-import json
 import math
 import os
 import sys
-import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -438,6 +436,8 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
         raise InputError(f"{head}: the directory {_show(parent)} is not writable")
     if probe:  # the only sure test (read-only file systems, /proc, root's permissions)
         try:
+            import tempfile  # lazily: rsm-lrg --help never writes
+
             fd, tmp = tempfile.mkstemp(prefix=".rsm-lrg-probe.", suffix=".tmp", dir=parent)
             os.close(fd)
             _unlink(tmp)
@@ -461,6 +461,8 @@ def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = Fa
     mode = "wb" if isinstance(data, bytes) else "w"
     tmp = None
     try:
+        import tempfile
+
         fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:60]}.", suffix=".tmp", dir=parent)
         with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8", "newline": ""})) as fh:
             fh.write(data)
@@ -505,6 +507,8 @@ def to_jsonable(obj: Any) -> Any:
 
 def dump_json(obj: Any, dest: str | os.PathLike, *, force: bool = False) -> None:
     """Write ``obj`` as JSON to ``dest``; ``"-"`` means standard output."""
+    import json
+
     text = json.dumps(to_jsonable(obj), indent=2, allow_nan=False) + "\n"
     if str(dest) == "-":
         sys.stdout.write(text)

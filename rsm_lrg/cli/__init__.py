@@ -31,9 +31,8 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import pkgutil
+import os
 import sys
-import traceback
 import warnings
 
 from ._common import check_option_specs, input_paths, mark_outputs, planned_outputs
@@ -73,19 +72,41 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: {message}")
 
 
-def _command_modules():
-    from . import __path__ as here
+def _command_module_names() -> list[str]:
+    """``cmd_*`` module names in this package's directory (a directory listing: no import,
+    and not :mod:`pkgutil`, which imports :mod:`inspect`)."""
+    names = set()
+    for here in __path__:
+        try:
+            entries = os.listdir(here)
+        except OSError:
+            continue
+        names.update(f[:-3] for f in entries if f.startswith("cmd_") and f.endswith(".py"))
+    return sorted(names)
 
-    mods = []
-    for info in pkgutil.iter_modules(here):
-        if info.name.startswith("cmd_"):
-            mods.append(importlib.import_module(f"{__name__}.{info.name}"))
+
+def _command_modules():
+    mods = [importlib.import_module(f"{__name__}.{name}") for name in _command_module_names()]
     rank = {n: i for i, n in enumerate(ORDER)}
     mods.sort(key=lambda m: (rank.get(m.NAME, len(ORDER)), m.NAME))
     return mods
 
 
-def build_parser() -> argparse.ArgumentParser:
+def _chosen_command(argv: list[str]) -> str:
+    """The command named on the command line: the first word that is not an option (the
+    top-level options take no value); ``""`` when there is none (``rsm-lrg --help``)."""
+    for word in argv:
+        if word == "--":
+            break
+        if not word.startswith("-"):
+            return word
+    return ""
+
+
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The ``rsm-lrg`` parser. With ``argv``, only the command it names gets its options
+    (the others are listed with their one-line help), which keeps ``rsm-lrg --help`` and
+    every command's start-up short; without, every command gets its options."""
     from .. import __version__
 
     parser = _Parser(
@@ -98,12 +119,14 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"rsm-lrg {__version__}")
     parser.add_argument("--debug", action="store_true", help="show a traceback on errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    chosen = None if argv is None else _chosen_command(argv)
     for mod in _command_modules():
         p = sub.add_parser(mod.NAME, help=mod.HELP, description=getattr(mod, "DESCRIPTION", mod.HELP))
         p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show a traceback on errors")
-        mod.add_arguments(p)
-        p.set_defaults(_run=mod.run, _module=mod)
-        mark_outputs(p)
+        if chosen is None or mod.NAME == chosen:
+            mod.add_arguments(p)
+            p.set_defaults(_run=mod.run, _module=mod)
+            mark_outputs(p)
     return parser
 
 
@@ -146,7 +169,7 @@ def main(argv: list[str] | None = None) -> int:
     debug = "--debug" in argv
     args = None
     try:
-        parser = build_parser()
+        parser = build_parser(argv)
         args = parser.parse_args(argv)
         if not getattr(args, "command", None):
             parser.print_help(sys.stderr)
@@ -177,6 +200,8 @@ def main(argv: list[str] | None = None) -> int:
         # Bad input: the library raises ValueError/TypeError with a sentence for the user
         # (rsm_lrg.io.InputError is a ValueError that already names the file).
         if debug:
+            import traceback
+
             traceback.print_exc()
         msg = str(exc).strip() or type(exc).__name__
         if isinstance(exc, KeyError):
@@ -186,6 +211,8 @@ def main(argv: list[str] | None = None) -> int:
     except (OverflowError, FloatingPointError, MemoryError) as exc:
         # numbers or sizes far beyond any experiment, from the input or the options
         if debug:
+            import traceback
+
             traceback.print_exc()
         where = _input_name(args) if args is not None else ""
         what = ("the input or options ask for more memory than there is" if isinstance(exc, MemoryError)
@@ -196,6 +223,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except Exception as exc:  # an internal fault
         if debug:
+            import traceback
+
             traceback.print_exc()
         msg = str(exc).strip()
         print(_error_line(f"internal error ({type(exc).__name__}: {msg[:150]}); rerun with --debug for details"),

@@ -251,8 +251,6 @@ def check_option_specs(args: argparse.Namespace) -> None:
     """Check the ``--factor`` and ``--bound NAME=LOW:HIGH`` values before any data is read, so
     that an error names the option rather than the data file (categoric ``NAME=cat...`` specs
     are left to the library)."""
-    from ..factors import parse_factor_spec
-
     for dest, label in (getattr(args, "_path_labels", None) or {}).items():
         for v in getattr(args, dest, None) if isinstance(getattr(args, dest, None), list) else [getattr(args, dest, None)]:
             if isinstance(v, str) and not v.strip():
@@ -264,6 +262,8 @@ def check_option_specs(args: argparse.Namespace) -> None:
             rest = spec.split("=", 1)[1].strip().lower() if "=" in spec else ""
             if rest.startswith("cat"):
                 continue
+            from ..factors import parse_factor_spec  # only when there is a spec: it loads numpy
+
             try:
                 if parse_factor_spec(spec)[1] is None and dest == "bound":
                     raise ValueError("expected NAME=LOW:HIGH")

@@ -1,0 +1,134 @@
+"""Whole-process cost of ``rsm-lrg fit`` against R's ``rsm`` (issue 11, item 3; not a test).
+
+Runs, alternately and ``--repeat`` times each (after one warm-up round that is not counted):
+
+* ``python -m rsm_lrg fit data/table4.csv --response tcr_c_per_min``
+* ``rsm-lrg fit data/table4.csv --response tcr_c_per_min`` (the console script)
+* ``Rscript benchmarks/r/fit_table4.R data/table4.csv`` (``rsm()`` + ``summary()`` on the same
+  file, coded on the Table 3 levels as the toolkit codes them)
+* ``rsm-lrg --help`` and ``python -c pass`` (the interpreter alone, for reference)
+
+and measures each child's wall time and CPU time (user + system, from
+``resource.getrusage(RUSAGE_CHILDREN)`` deltas, so the whole process tree of the child is
+counted). It prints the medians and the median ratios Python / R.
+
+Targets: CPU time of the fit at most 3x R's; ``rsm-lrg --help`` under 0.15 s wall.
+
+The children run as an installed package runs: with byte-code caches (``__pycache__``, which
+``pip install`` writes), so ``PYTHONDONTWRITEBYTECODE`` is removed from their environment and
+the warm-up round writes the caches. ``--no-bytecode`` keeps the variable (then every run
+compiles the package's sources again, about 0.1-0.2 s more).
+
+The console script is the one beside the interpreter (``<prefix>/bin/rsm-lrg``), not a
+version manager's shim on ``PATH`` (pyenv's adds a bash start-up of its own).
+
+    python benchmarks/bench_cli.py               # 15 rounds
+    python benchmarks/bench_cli.py --repeat 30 --json out.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+DATA = "data/table4.csv"
+FIT_ARGS = ["fit", DATA, "--response", "tcr_c_per_min"]
+
+
+def commands(other_root: bool = False) -> dict[str, list[str]]:
+    cmds = {
+        "python -m rsm_lrg fit": [sys.executable, "-m", "rsm_lrg", *FIT_ARGS],
+    }
+    if other_root:  # another checkout (--root): `python -m` imports it from the working directory
+        cmds["python -m rsm_lrg --help"] = [sys.executable, "-m", "rsm_lrg", "--help"]
+        return cmds | {k: v for k, v in commands().items() if k in ("Rscript rsm fit", "python -c pass")}
+    beside = Path(sys.executable).parent / "rsm-lrg"
+    script = str(beside) if beside.exists() else shutil.which("rsm-lrg")
+    if script:
+        cmds["rsm-lrg fit"] = [script, *FIT_ARGS]
+        cmds["rsm-lrg --help"] = [script, "--help"]
+    cmds["python -m rsm_lrg --help"] = [sys.executable, "-m", "rsm_lrg", "--help"]
+    rscript = shutil.which("Rscript")
+    if rscript:
+        cmds["Rscript rsm fit"] = [rscript, str(HERE / "r" / "fit_table4.R"), DATA]
+    cmds["python -c pass"] = [sys.executable, "-c", "pass"]
+    return cmds
+
+
+ENV = dict(os.environ)
+
+
+def run_once(cmd: list[str]) -> tuple[float, float]:
+    """(wall, cpu) seconds of one child process (its whole tree)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.decode()[-500:]}")
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=15, help="rounds (each runs every command once)")
+    ap.add_argument("--json", default=None, help="also write the figures to this file")
+    ap.add_argument("--no-bytecode", action="store_true",
+                    help="keep PYTHONDONTWRITEBYTECODE (every run compiles the sources again)")
+    ap.add_argument("--root", default=None,
+                    help="run `python -m rsm_lrg` from another checkout (e.g. an older commit, for before/after)")
+    args = ap.parse_args()
+    global ROOT
+    if args.root:
+        ROOT = Path(args.root).resolve()
+    if not args.no_bytecode:
+        ENV.pop("PYTHONDONTWRITEBYTECODE", None)
+    cmds = commands(other_root=bool(args.root))
+    for cmd in cmds.values():  # warm-up: page cache, .pyc files, R's library
+        run_once(cmd)
+    times: dict[str, dict[str, list[float]]] = {k: {"wall": [], "cpu": []} for k in cmds}
+    for _ in range(args.repeat):  # alternate, so drifting machine load hits every command alike
+        for name, cmd in cmds.items():
+            w, c = run_once(cmd)
+            times[name]["wall"].append(w)
+            times[name]["cpu"].append(c)
+    med = {k: {m: statistics.median(v[m]) for m in ("wall", "cpu")} for k, v in times.items()}
+    print(f"{ROOT}: {args.repeat} rounds, {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}, "
+          f"byte-code caches {'off' if args.no_bytecode else 'on'}; medians [s]")
+    print(f"{'command':28s} {'wall':>8s} {'cpu':>8s}")
+    for k, v in med.items():
+        print(f"{k:28s} {v['wall']:8.3f} {v['cpu']:8.3f}")
+    out = {"rounds": args.repeat, "bytecode": not args.no_bytecode, "median_s": med}
+    r = med.get("Rscript rsm fit")
+    if r:
+        print()
+        for k in ("python -m rsm_lrg fit", "rsm-lrg fit"):
+            if k in med:
+                ratios = {m: statistics.median(a / b for a, b in zip(times[k][m], times["Rscript rsm fit"][m]))
+                          for m in ("wall", "cpu")}
+                out[f"ratio {k} / R"] = ratios
+                verdict = "at or under" if ratios["cpu"] <= 3.0 else "OVER"
+                print(f"{k} / R: CPU {ratios['cpu']:.2f}x, wall {ratios['wall']:.2f}x "
+                      f"(median of per-round ratios; target CPU <= 3x: {verdict})")
+    h = med.get("rsm-lrg --help") or med.get("python -m rsm_lrg --help")
+    if h:
+        print(f"rsm-lrg --help: {h['wall']:.3f} s wall (target < 0.15 s: {'met' if h['wall'] < 0.15 else 'NOT met'})")
+    if args.json:
+        Path(args.json).write_text(json.dumps(out, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
