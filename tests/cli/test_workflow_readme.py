@@ -2,18 +2,34 @@
 optimize) as real processes: the fit finds the design's four factors without --factor."""
 
 import json
+import re
+import shlex
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
 FACTORS = ["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]
-COMMANDS = [
-    "design box-behnken --factor thickness_m=0.0001:0.0005 --factor stroke_m=0.04:0.06 "
-    "--factor velocity_m_s=0.4:0.6 --factor acceleration_m_s2=20:40 --seed 1 -o bbd.csv",
-    "simulate bbd.csv --seed 7 -o runs.csv",
-    "fit runs.csv --response tcr_c_per_min",
-]
+README = Path(__file__).resolve().parents[2] / "README.md"
+
+
+def readme_commands() -> list[str]:
+    """The ``rsm-lrg`` commands of the README's "Virtual runs" block, as printed (line
+    continuations joined, comments dropped, the program name removed)."""
+    text = README.read_text(encoding="utf-8")
+    block = re.search(r"^### Virtual runs.*?^```bash\n(.*?)^```", text, re.S | re.M).group(1)
+    lines = block.replace("\\\n", " ").splitlines()
+    cmds = [shlex.split(line, comments=True) for line in lines]
+    return [" ".join(c[1:]) for c in cmds if c and c[0] == "rsm-lrg"]
+
+
+COMMANDS = readme_commands()
+
+
+def test_the_readme_block_is_design_simulate_fit_optimize():
+    assert [c.split()[0] for c in COMMANDS] == ["design", "simulate", "fit", "optimize"]
+    assert "--factor" not in COMMANDS[2]  # the fit finds the factors itself
 
 
 def _run(cmd, cwd):
@@ -27,7 +43,8 @@ def test_design_simulate_fit_optimize_as_printed(tmp_path):
         res = _run(cmd, tmp_path)
         assert res.returncode == 0, (cmd, res.stderr)
         outs.append(res)
-    fit_out = outs[-1].stdout
+    fit_out = outs[2].stdout
+    assert all(name in outs[3].stdout for name in FACTORS)  # the optimum names the four factors
     assert "runs: 27" in fit_out
     for letter, name in zip("ABCD", FACTORS):
         assert f"  {letter}: {name} " in fit_out, fit_out[:800]
