@@ -7,7 +7,6 @@ Sources are listed in ``data/README.md``.
 
 from __future__ import annotations
 
-from importlib import resources
 from pathlib import Path
 
 __all__ = ["data_path", "load_table4", "load_table3", "load_table5", "load_equation19"]
@@ -15,6 +14,8 @@ __all__ = ["data_path", "load_table4", "load_table3", "load_table5", "load_equat
 
 def data_path(name: str) -> Path:
     """Filesystem path of a shipped data file (``"table4.csv"``, ``"lrg_shs15v.toml"``, ...)."""
+    from importlib import resources  # here, not at import: it costs ~15 ms and most commands never need it
+
     ref = resources.files("rsm_lrg") / "data" / name
     with resources.as_file(ref) as p:
         if not Path(p).exists():

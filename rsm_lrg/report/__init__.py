@@ -4,7 +4,9 @@
 environment, autoescaping on, with the number formats of :mod:`rsm_lrg.present` as
 filters), ``fit_report`` (:func:`to_html`, :func:`write_report`: the self-contained HTML
 report of a fit; :func:`notebook_html`: the small, figure-free notebook face) and
-``reproduce`` (the paper side by side with the toolkit).
+``reproduction_page`` (the terminal table and HTML page of the paper reproduction, which
+:mod:`rsm_lrg.paper` computes; ``reproduce`` is a deprecated alias of that module and is
+not imported here, so the report layer never loads the paper layer).
 
 >>> from rsm_lrg.report import SECTION_IDS
 >>> SECTION_IDS[:3]
