@@ -263,7 +263,6 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     OptimumResult
     """
     from scipy import optimize as so
-    from scipy.stats import qmc
 
     from ..model.canonical import quadratic_parts
     from ..model.terms import design_gradient, design_matrix
@@ -345,6 +344,8 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
         if np.all(xs >= lo) and np.all(xs <= hi):
             starts.append(xs)
     if not exact:  # the face enumeration is already the global optimum; else multi-start
+        from scipy.stats import qmc  # only here: scipy.stats takes about a second to import
+
         m = max(3, int(math.ceil(math.log2(max(8, 4 * k)))))
         sob = qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m)
         starts += list(lo + sob * (hi - lo))
