@@ -10,6 +10,7 @@ layers.
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -104,3 +105,18 @@ def test_fit_command_does_not_import_statsmodels_api_or_matplotlib():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=120)
     assert out.returncode == 0, out.stderr
     assert json.loads(out.stdout) == [0, []]
+
+
+@pytest.mark.skipif(shutil.which("lint-imports") is None, reason="import-linter is not installed (test extra)")
+def test_contract_counts_imports_inside_functions(tmp_path):
+    # a copy of the package with one import inside a function that reverses the layers
+    # (model -> optimize) must break the contract; the real package is untouched
+    shutil.copytree(ROOT / "rsm_lrg", tmp_path / "rsm_lrg", ignore=shutil.ignore_patterns("__pycache__", "data"))
+    shutil.copy(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
+    with open(tmp_path / "rsm_lrg" / "model" / "terms.py", "a", encoding="utf-8") as fh:
+        fh.write("\n\ndef _reversed():\n    from ..optimize import optimize\n\n    return optimize\n")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"} | {"PYTHONPATH": str(tmp_path)}
+    out = subprocess.run(["lint-imports", "--no-cache"], capture_output=True, text=True, cwd=tmp_path, env=env,
+                         timeout=300)
+    assert out.returncode != 0
+    assert "rsm_lrg.model.terms -> rsm_lrg.optimize" in out.stdout
