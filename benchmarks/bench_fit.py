@@ -1,24 +1,38 @@
-"""Cost of rsm_lrg.fit relative to one least-squares solve (not part of the test suite).
+"""Cost of rsm_lrg.fit relative to one QR factorisation of its model matrix (not a test).
 
-For n runs and k factors (full quadratic: 15 terms for k = 4, 66 for k = 10) it times
-``numpy.linalg.lstsq`` on the coded design matrix (the baseline: one solve) and the whole
-``rsm_lrg.fit`` (matrix build, statsmodels OLS, hat diagonal, Type III ANOVA from
-(X'X)^-1, pure error, PRESS, VIF, canonical analysis), and prints the ratio.
+For n runs and k factors (full quadratic: 66 terms for k = 10) it measures, each in a
+fresh subprocess so that one measurement's memory does not colour the next:
 
-    python benchmarks/bench_fit.py            # n = 27, 1e4, 1e5, 1e6; k = 4 and 10
-    python benchmarks/bench_fit.py --max-n 100000
+* the baseline: ``scipy.linalg.qr(X, mode="r")`` of the n x p model matrix ``X``
+  (time; the size of ``X`` is the memory yardstick);
+* the whole ``rsm_lrg.fit`` (model matrix built and factorised in chunks, hat diagonal
+  in a second pass, ANOVA with Type III SS, lack of fit / pure error, PRESS, VIF,
+  canonical analysis): wall time, and the peak of memory allocated during the fit
+  (``tracemalloc``, in a second run; the input DataFrame, made before, is not counted).
+
+It prints ``fit / QR`` time and ``peak / size of X`` ratios (issue 11 targets: at most 3
+and 1.5 for 10^6 runs x 10 factors).
+
+    python benchmarks/bench_fit.py                 # n = 1e6, k = 10
+    python benchmarks/bench_fit.py --n 3e5 --k 10 4
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import subprocess
+import sys
 import time
 
 import numpy as np
-import pandas as pd
 
 
-def make(n: int, k: int, seed: int = 0) -> pd.DataFrame:
+def make(n: int, k: int, seed: int = 0):
+    """n runs of k factors on three levels (a tenth of them anywhere in [-1, 1]) and a
+    quadratic response with unit noise."""
+    import pandas as pd
+
     rng = np.random.default_rng(seed)
     x = rng.integers(-1, 2, size=(n, k)).astype(float)
     x[: max(n // 10, 1)] = rng.uniform(-1, 1, (max(n // 10, 1), k))
@@ -27,41 +41,61 @@ def make(n: int, k: int, seed: int = 0) -> pd.DataFrame:
     return df
 
 
-def bench(n: int, k: int) -> dict:
+def _child(what: str, n: int, k: int) -> dict:
+    import tracemalloc
+
     import rsm_lrg
     from rsm_lrg.model.terms import design_matrix, model_terms
 
     df = make(n, k)
     specs = [f"x{i}=-1:1" for i in range(k)]
     terms = model_terms([chr(65 + i) for i in range(k)], "quadratic")
-    X = design_matrix(df[[f"x{i}" for i in range(k)]].to_numpy(), terms)
-    y = df["y"].to_numpy()
-    t0 = time.perf_counter()
-    np.linalg.lstsq(X, y, rcond=None)
-    t_solve = time.perf_counter() - t0
+    nbytes = n * len(terms) * 8
+    if what == "qr":
+        from scipy.linalg import qr
+
+        X = design_matrix(df[[f"x{i}" for i in range(k)]].to_numpy(), terms)
+        t0 = time.perf_counter()
+        qr(X, mode="r")
+        return {"qr_s": time.perf_counter() - t0, "x_bytes": nbytes}
+    rsm_lrg.fit(make(200, 3), "y")  # warm-up: imports
     t0 = time.perf_counter()
     r = rsm_lrg.fit(df, "y", factors=specs)
     t_fit = time.perf_counter() - t0
-    return {"n": n, "k": k, "terms": len(terms), "lstsq_s": t_solve, "fit_s": t_fit,
-            "ratio": t_fit / t_solve, "r2": r.statistics.r2}
+    assert np.isfinite(r.statistics.press) and r.pure_error is not None
+    del r
+    tracemalloc.start()
+    r = rsm_lrg.fit(df, "y", factors=specs)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return {"fit_s": t_fit, "peak_bytes": peak, "x_bytes": nbytes, "r2": r.statistics.r2}
+
+
+def _run(what: str, n: int, k: int) -> dict:
+    out = subprocess.run([sys.executable, __file__, "--child", what, "--n", str(n), "--k", str(k)],
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--max-n", type=float, default=1e6)
+    ap.add_argument("--n", type=float, nargs="+", default=[1e6])
+    ap.add_argument("--k", type=int, nargs="+", default=[10])
+    ap.add_argument("--child", choices=["qr", "fit"], help=argparse.SUPPRESS)
     args = ap.parse_args()
-    import rsm_lrg
-
-    rsm_lrg.fit(make(40, 2), "y")  # warm-up: imports statsmodels
-    print(f"{'n':>8} {'k':>3} {'terms':>5} {'lstsq [s]':>10} {'fit [s]':>9} {'ratio':>6}")
-    for n in (27, 10_000, 100_000, 1_000_000):
-        if n > args.max_n:
-            continue
-        for k in (4, 10):
-            if n < 1 + 2 * k + k * (k - 1) // 2 + 2:
-                continue
-            b = bench(n, k)
-            print(f"{b['n']:>8} {b['k']:>3} {b['terms']:>5} {b['lstsq_s']:>10.4f} {b['fit_s']:>9.4f} {b['ratio']:>6.1f}")
+    if args.child:
+        print(json.dumps(_child(args.child, int(args.n[0]), args.k[0])))
+        return
+    print(f"{'n':>9} {'k':>3} {'terms':>5} {'X [MB]':>8} {'QR [s]':>8} {'fit [s]':>8} {'fit/QR':>7} "
+          f"{'peak [MB]':>10} {'peak/X':>7}")
+    for n in (int(v) for v in args.n):
+        for k in args.k:
+            q = _run("qr", n, k)
+            f = _run("fit", n, k)
+            p = (k + 1) * (k + 2) // 2
+            print(f"{n:>9} {k:>3} {p:>5} {q['x_bytes'] / 1e6:>8.1f} {q['qr_s']:>8.2f} {f['fit_s']:>8.2f} "
+                  f"{f['fit_s'] / q['qr_s']:>7.2f} {f['peak_bytes'] / 1e6:>10.1f} {f['peak_bytes'] / q['x_bytes']:>7.2f}",
+                  flush=True)
 
 
 if __name__ == "__main__":

@@ -93,8 +93,12 @@ def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None
     y = np.asarray(y, dtype=float)
     if keys.ndim == 1:
         keys = keys[:, None]
-    frame = pd.DataFrame(keys)
-    groups = frame.groupby(list(frame.columns), sort=False).ngroup().to_numpy()
+    # group number of each distinct row, in order of first appearance: factorise column by
+    # column, folding the codes so far with the next column's (the key stays below n)
+    groups = np.zeros(keys.shape[0], dtype=np.int64)
+    for j in range(keys.shape[1]):
+        codes, uniq = pd.factorize(keys[:, j])
+        groups = pd.factorize(groups * len(uniq) + codes)[0]
     n_groups = int(groups.max()) + 1 if groups.size else 0
     yt = y - _group_means(groups, y, n_groups)
     block_df = 0

@@ -56,14 +56,21 @@ Chunks = Callable[[], Iterable[tuple[np.ndarray, np.ndarray]]]
 
 
 def _qr_r(A: np.ndarray) -> np.ndarray:
-    """Square upper-triangular factor (q x q) of ``A`` (m x q), zero rows added when m < q."""
-    from scipy.linalg import qr
+    """Square upper-triangular factor (q x q) of ``A`` (m x q; overwritten), zero rows added
+    when m < q (LAPACK ``dgeqrf`` on a Fortran-ordered array: no copy, no m x q ``R``)."""
+    from scipy.linalg.lapack import dgeqrf
 
-    R = qr(A, mode="r", overwrite_a=True, check_finite=False)[0]
+    A = np.asfortranarray(A, dtype=float)
     q = A.shape[1]
+    if A.shape[0] == 0:
+        return np.zeros((q, q))
+    a, _, _, info = dgeqrf(A, overwrite_a=1)
+    if info != 0:
+        raise ValueError(f"the QR factorisation failed (LAPACK info {info})")
+    R = np.triu(a[:q])
     if R.shape[0] < q:
         R = np.vstack([R, np.zeros((q - R.shape[0], q))])
-    return np.triu(R[:q])
+    return R
 
 
 def _solve_r(R: np.ndarray, B: np.ndarray, trans: bool = False) -> np.ndarray:
@@ -132,7 +139,7 @@ class Accumulator:
                 raise ValueError("the first column is all ones in one chunk and not in another")
             self.intercept = False
         top = 0 if self.raug is None else self.p + 1
-        A = np.empty((m + top, p + 1))
+        A = np.empty((m + top, p + 1), order="F")
         if top:
             A[:top] = self.raug
         A[top:, :p] = X
@@ -431,9 +438,10 @@ class Regression:
         return _solve_r(self.R, (np.asarray(X, dtype=float) / self.scale).T, trans=True).T
 
     def _pass_chunk(self, X, y):
-        W = self.q_factor(X)
-        h = np.einsum("ij,ij->i", W, W)
-        fc = (np.asarray(X, dtype=float) / self.scale) @ self._bs
+        Xs = np.asarray(X, dtype=float) / self.scale
+        W = _solve_r(self.R, Xs.T, trans=True)  # (p, m): Q' of the chunk
+        h = np.einsum("ij,ij->j", W, W)
+        fc = Xs @ self._bs
         r = (np.asarray(y, dtype=float) - self.shift) - fc
         return h, r, self.shift + fc
 

@@ -168,21 +168,35 @@ def parse_term(name: str, letters: Sequence[str]) -> Term:
 def design_matrix(coded: np.ndarray, terms: Sequence[Term]) -> np.ndarray:
     """Model matrix ``X`` (n x p) for coded settings ``coded`` (n x k).
 
-    Column j holds ``prod_i coded[:, i] ** terms[j].powers[i]``.
+    Column j holds ``prod_i coded[:, i] ** terms[j].powers[i]`` (built column by column into
+    a Fortran-ordered array, each power of each factor computed once).
     """
     x = np.asarray(coded, dtype=float)
     if x.ndim == 1:
         x = x[None, :]
     n = x.shape[0]
-    X = np.empty((n, len(terms)), dtype=float)
+    X = np.empty((n, len(terms)), dtype=float, order="F")
+    cols = [np.ascontiguousarray(x[:, i]) for i in range(x.shape[1])]
+    powers: dict = {}
+
+    def power(i: int, p: int) -> np.ndarray:
+        if p == 1:
+            return cols[i]
+        if (i, p) not in powers:
+            powers[(i, p)] = cols[i] ** p
+        return powers[(i, p)]
+
     for j, t in enumerate(terms):
-        col = np.ones(n)
-        for i, p in enumerate(t.powers):
-            if p == 1:
-                col = col * x[:, i]
-            elif p > 1:
-                col = col * x[:, i] ** p
-        X[:, j] = col
+        parts = [power(i, p) for i, p in enumerate(t.powers) if p]
+        out = X[:, j]
+        if not parts:
+            out[:] = 1.0
+        elif len(parts) == 1:
+            out[:] = parts[0]
+        else:
+            np.multiply(parts[0], parts[1], out=out)
+            for q in parts[2:]:
+                out *= q
     return X
 
 
