@@ -43,15 +43,29 @@ _THERMAL_KEYS = ("steady_rise_k_fv", "steady_rise_k_network", "time_to_95_percen
 @dataclass(frozen=True)
 class HingeRow:
     """One hinge thickness: stiffness of one hinge K_n [N/m] (Eq. 1) and deflection at
-    breakaway Δδ = f_µmax/(n·K_n) [m] (Eq. 2)."""
+    breakaway Δδ = f_µmax/(n·K_n) [m] (Eq. 2); and, from the stage dynamics at the
+    parameters' motion (:func:`.dynamics.cycle_metrics`), the largest deflection of a leaf
+    over the periodic cycle [m], its peak bending stress ``3·E·y·δ/l²`` [Pa], the peak stress
+    with the membrane stress of held ends [Pa] (:func:`.hinge.hinge_peak_stress`), the
+    material's yield strength [Pa] and whether the leaf would yield (``yields``)."""
 
     thickness_m: float
     stiffness_n_m: float
     deflection_m: float
+    peak_deflection_m: float = float("nan")
+    peak_bending_stress_pa: float = float("nan")
+    peak_stress_pa: float = float("nan")
+    yield_strength_pa: float = float("nan")
+
+    @property
+    def yields(self) -> bool:
+        return bool(self.peak_stress_pa > self.yield_strength_pa)
 
     def to_dict(self) -> dict[str, float]:
         return {"thickness_m": self.thickness_m, "stiffness_n_m": self.stiffness_n_m,
-                "deflection_m": self.deflection_m}
+                "deflection_m": self.deflection_m, "peak_deflection_m": self.peak_deflection_m,
+                "peak_bending_stress_pa": self.peak_bending_stress_pa, "peak_stress_pa": self.peak_stress_pa,
+                "yield_strength_pa": self.yield_strength_pa, "yields": self.yields}
 
 
 @dataclass(frozen=True)
@@ -111,6 +125,10 @@ class PhysicsResult:
             mm = f"{h.thickness_m * 1e3:g} mm"
             rows.append((f"hinge {mm}: stiffness_n_m", h.stiffness_n_m, "N/m", None))
             rows.append((f"hinge {mm}: deflection_m", h.deflection_m, "m", None))
+            rows.append((f"hinge {mm}: peak_deflection_m", h.peak_deflection_m, "m", None))
+            rows.append((f"hinge {mm}: peak_bending_stress_pa", h.peak_bending_stress_pa, "Pa", None))
+            rows.append((f"hinge {mm}: peak_stress_pa" + (" (YIELDS)" if h.yields else ""), h.peak_stress_pa,
+                         "Pa", None))
         units = {"steady_rise_k_fv": "K", "steady_rise_k_network": "K", "time_to_95_percent_h": "h",
                  "tcr_c_per_min": "degC/min"}
         for k in _THERMAL_KEYS:
@@ -138,6 +156,10 @@ class PhysicsResult:
             lines.append(f"{name:<{w}}  {val:>12}  {unit:<18}  {pap}")
         if any(self.thermal.get(k) is None for k in _THERMAL_KEYS):
             lines.append("(thermal: n/a = rsm_lrg.physics.thermal.thermal_summary is not available)")
+        ylds = [f"{h.thickness_m * 1e3:g} mm" for h in self.hinge if h.yields]
+        if ylds:
+            lines.append(f"WARNING: the leaf of {', '.join(ylds)} would yield at this motion (peak stress above "
+                         f"hinge_yield_pa = {self.params.hinge_yield_pa:.4g} Pa); its dynamics are not elastic")
         lines.append("heat_w follows Eq. 8 as written (divided by J = 4.184)" if self.params.heat_in_calories
                      else "heat_w is the friction power in W (heat_in_calories = false)")
         return "\n".join(lines)
@@ -155,6 +177,21 @@ def _thermal(p: LRGParams, heat_w: float, h_side: float, h_front: float) -> dict
     res = thermal_summary(heat_w, h_side, h_front, ambient_c=p.ambient_c, horizon_h=horizon_h,
                           dt_s=60.0 * horizon_h / 6.0, duration_min=p.test_duration_min, **extra)
     return {k: (None if getattr(res, k, None) is None else float(getattr(res, k))) for k in _THERMAL_KEYS}
+
+
+def _peak_deflections(p: LRGParams, thicknesses):
+    """Peak leaf deflection [m] over the periodic cycle at the parameters' motion, one per
+    thickness (integrated; the quasi-static limit where the integration would need too many
+    steps)."""
+    try:
+        cm = dynamics.cycle_metrics(p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, params=p, method="integrate",
+                                    hinge_thickness_m=thicknesses)
+    except ValueError as exc:
+        if "steps per cycle" not in str(exc):
+            raise
+        cm = dynamics.cycle_metrics(p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, params=p, method="auto",
+                                    hinge_thickness_m=thicknesses)
+    return np.atleast_1d(np.asarray(cm.peak_deflection_m, dtype=float))
 
 
 def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
@@ -196,9 +233,14 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
     hf = float(convection.heat_transfer_coefficient(convection.nusselt_normal_plate(re, pr),
                                                     p.air_conductivity_w_mk, p.char_length_m))
     rows = []
-    for y in thicknesses:
+    ys = np.asarray(list(thicknesses), dtype=float)
+    peaks = _peak_deflections(p, ys) if ys.size else ys
+    for y, pk in zip(ys, peaks):
         k = float(hinge.hinge_stiffness(p.hinge_modulus_pa, p.hinge_width_m, y, p.hinge_length_m))
-        rows.append(HingeRow(float(y), k, float(hinge.hinge_deflection(fmax, p.hinge_count, k))))
+        sb = float(hinge.hinge_bending_stress(p.hinge_modulus_pa, y, p.hinge_length_m, pk))
+        st = float(hinge.hinge_peak_stress(p.hinge_modulus_pa, y, p.hinge_length_m, pk, membrane=p.hinge_membrane))
+        rows.append(HingeRow(float(y), k, float(hinge.hinge_deflection(fmax, p.hinge_count, k)), float(pk), sb, st,
+                             float(p.hinge_yield_pa)))
 
     # wear: dynamics at the parameters' motion and thickness
     try:

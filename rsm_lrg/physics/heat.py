@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["friction_heat", "ball_volume", "heat_source_intensity", "JOULES_PER_CALORIE"]
+__all__ = ["friction_heat", "ball_volume", "heat_source_intensity", "JOULES_PER_CALORIE", "leaf_conductance",
+           "drive_heat_to_carriage"]
 
 #: The paper's thermal equivalent J [J/cal] (thermochemical calorie).
 JOULES_PER_CALORIE = 4.184
@@ -86,3 +87,38 @@ def heat_source_intensity(heat, volume):
     '5.597e+05'
     """
     return np.asarray(heat, dtype=float) / np.asarray(volume, dtype=float)
+
+
+def leaf_conductance(n_leaves, conductivity, width, thickness, length):
+    """Conduction of n parallel leaves along their length ``G = n·λ·w·y/l`` [W/K] (Fourier, Eq. 3).
+
+    Examples
+    --------
+    Four 65Mn leaves (λ = 48 W/(m·K), Table 2), 10 mm wide, 20 mm long, 0.3 mm thick:
+
+    >>> round(float(leaf_conductance(4, 48.0, 0.010, 0.0003, 0.020)), 4)
+    0.0288
+    """
+    return (np.asarray(n_leaves, dtype=float) * np.asarray(conductivity, dtype=float) * np.asarray(width, dtype=float)
+            * np.asarray(thickness, dtype=float) / np.asarray(length, dtype=float))
+
+
+def drive_heat_to_carriage(drive_heat, joint_conductance, stage_conductance):
+    """Share of the drive's heat in the working stage that reaches the carriage [W].
+
+    The stage (one lumped node, Biot ≪ 1) receives P_d and loses it to the air through G_s
+    and into the frame and carriage through the joint G_c (the leaves of the RFCMS; for the
+    RMS a rigid bolted joint, ``joint_conductance = inf``): in steady state the carriage gets
+    ``P_d·G_c/(G_c + G_s)``, all of it for a rigid joint. The carriage is held near ambient by
+    its own convection, so its temperature is neglected against the stage's in this split.
+
+    Examples
+    --------
+    >>> round(float(drive_heat_to_carriage(0.2, 0.0288, 0.08)), 4), float(drive_heat_to_carriage(0.2, np.inf, 0.08))
+    (0.053, 0.2)
+    """
+    g = np.asarray(joint_conductance, dtype=float)
+    gs = np.asarray(stage_conductance, dtype=float)
+    with np.errstate(invalid="ignore"):
+        share = np.where(np.isinf(g), 1.0, g / (g + gs))
+    return np.asarray(drive_heat, dtype=float) * share

@@ -69,9 +69,10 @@ def _d(name: str):
 # Validation rules (name -> (kind, low, high)); every other float must be > 0.
 _CLOSED_UNIT = {"mu_s", "mu_k"}
 _OPEN_UNIT = {"frame_mass_fraction"}
-_NONNEG = {"dwell_s", "hinge_damping_ratio", "preload_n", "viscous_friction_n_s_m"}
+_NONNEG = {"dwell_s", "hinge_damping_ratio", "preload_n", "viscous_friction_n_s_m", "drive_heat_w",
+           "overconstraint_misfit_m"}
 _INTS = {"hinge_count", "ball_rows", "balls_per_row"}
-_BOOLS = {"heat_in_calories"}
+_BOOLS = {"heat_in_calories", "hinge_membrane"}
 
 #: Physical range of every numeric parameter, inclusive, in its unit: what a linear rolling
 #: guide on a motion stage of this kind (and its air, steel and test) can physically be.
@@ -85,6 +86,8 @@ PHYSICAL_RANGES: dict[str, tuple[float, float]] = {
     "hinge_count": (1, 100), "hinge_thickness_m": (1e-6, 0.05), "hinge_width_m": (1e-4, 1.0),
     "hinge_length_m": (1e-4, 1.0), "hinge_modulus_pa": (1e6, 1.2e12), "hinge_damping_ratio": (0.0, 10.0),
     "frame_mass_fraction": (0.0, 1.0), "carriage_mass_kg": (1e-3, 1e3),
+    "hinge_yield_pa": (1e6, 1e10), "hinge_conductivity_w_mk": (0.01, 5000.0),
+    "drive_heat_w": (0.0, 1e3), "stage_loss_conductance_w_k": (1e-4, 1e3), "overconstraint_misfit_m": (0.0, 1e-3),
     "ball_radius_m": (1e-4, 0.05), "raceway_radius_m": (1e-4, 0.1), "ball_rows": (1, 16),
     "balls_per_row": (1, 1000), "contact_angle_deg": (0.0, 90.0),
     "velocity_m_s": (1e-4, 20.0), "thermal_equivalent_j_per_cal": (4.18, 4.21),
@@ -143,6 +146,12 @@ class LRGParams:
     hinge_length_m: float = _d("hinge_length_m")
     hinge_modulus_pa: float = _d("hinge_modulus_pa")
     hinge_damping_ratio: float = _d("hinge_damping_ratio")
+    hinge_membrane: bool = _d("hinge_membrane")
+    hinge_yield_pa: float = _d("hinge_yield_pa")
+    hinge_conductivity_w_mk: float = _d("hinge_conductivity_w_mk")
+    drive_heat_w: float = _d("drive_heat_w")
+    stage_loss_conductance_w_k: float = _d("stage_loss_conductance_w_k")
+    overconstraint_misfit_m: float = _d("overconstraint_misfit_m")
     frame_mass_fraction: float = _d("frame_mass_fraction")
     carriage_mass_kg: float = _d("carriage_mass_kg")
     # balls
@@ -234,6 +243,17 @@ class LRGParams:
     def hinge_stiffness_n_m(self) -> float:
         """K_n of one hinge [N/m] (Eq. 1)."""
         return self.hinge_modulus_pa * self.hinge_width_m * self.hinge_thickness_m ** 3 / self.hinge_length_m ** 3
+
+    @property
+    def hinge_membrane_stiffness_n_m3(self) -> float:
+        """k₃ of one leaf with held ends [N/m³] (0 without ``hinge_membrane``); see
+        :func:`rsm_lrg.physics.hinge.hinge_membrane_stiffness`."""
+        from .hinge import hinge_membrane_stiffness
+
+        if not self.hinge_membrane:
+            return 0.0
+        return float(hinge_membrane_stiffness(self.hinge_modulus_pa, self.hinge_width_m, self.hinge_thickness_m,
+                                              self.hinge_length_m))
 
     @property
     def frame_mass_kg(self) -> float:

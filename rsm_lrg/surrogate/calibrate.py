@@ -14,6 +14,7 @@ is what :func:`rsm_lrg.simulate` uses by default).
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import itertools
 import math
@@ -26,8 +27,13 @@ import numpy as np
 __all__ = [
     "CALIBRATION_FILE", "DEFAULT_PARAMETERS", "ParameterSpec", "ParameterEstimate",
     "Calibration", "calibrate", "load_calibration", "resolve_calibration", "calibration_toml",
-    "OTHER_PARAMETERS", "file_sha256", "documented_bounds",
+    "OTHER_PARAMETERS", "file_sha256", "documented_bounds", "MODELS", "CalibrationModel", "DEFAULT_MODEL",
+    "PAPER_PRESS_R2",
 ]
+
+#: The paper's quadratic (Eq. 19) predicts unseen runs with R² 0.818 (PRESS 2.079e-4 against
+#: SS_tot; Table 5 refitted, ../shared/paper/DIGEST.md Section 5): the yardstick of ``loo_r2``.
+PAPER_PRESS_R2 = 0.818
 
 #: Name of the shipped calibration file.
 CALIBRATION_FILE = "calibration.toml"
@@ -59,6 +65,50 @@ DEFAULT_PARAMETERS = (
                   "joints, lubricant film), zeta = C_n / (2 sqrt(n K_n m_f)); the paper does "
                   "not give C_n; sets how much the frame rings and overshoots after each stop"),
 )
+
+#: Thickness mechanisms (one physical parameter each, :mod:`rsm_lrg.surrogate.runs`).
+DRIVE_HEAT = ParameterSpec(
+    "drive_heat_w", 0.0, 2.0, 0.2, "W",
+    "heat the drive puts into the working stage; the stage loses it to the air (G_s = "
+    "stage_loss_conductance_w_k) and conducts the rest through the leaves, G = n lambda w y / l "
+    "(proportional to the leaf thickness y), into the carriage: P_d G/(G + G_s); the RMS's rigid "
+    "joint passes all of it")
+OVERCONSTRAINT = ParameterSpec(
+    "overconstraint_misfit_m", 0.0, 2e-5, 2e-6, "m",
+    "misfit of the stage's and frame's clamping faces in the leaves' stiff in-plane direction; "
+    "loads the guide through the leaves with n E y w^3/l^3 e (proportional to y), added to "
+    "F0 + m_t g in the friction of Eqs. 2 and 8 (RFCMS only)")
+VISCOUS = DEFAULT_PARAMETERS[1]
+
+
+@dataclass(frozen=True)
+class CalibrationModel:
+    """A calibration model: the physics it fixes and the parameters it calibrates."""
+
+    name: str
+    fixed: tuple  # ((name, value), ...) LRGParams overrides
+    parameters: tuple  # ParameterSpec
+    description: str
+
+
+#: The calibration models (``rsm-lrg calibrate --model NAME``; the ``model`` key of a file).
+MODELS = {
+    "v2": CalibrationModel(
+        "v2", (("hinge_membrane", False),), DEFAULT_PARAMETERS,
+        "small-deflection hinge of Eq. 1 (no membrane stiffening), frame damping calibrated; the "
+        "calibration shipped before issue 15 (R2 0.829, leave-one-out 0.791, damping at its bound)"),
+    "v3": CalibrationModel(
+        "v3", (), (DEFAULT_PARAMETERS[0], VISCOUS, DRIVE_HEAT),
+        "elastic hinge with held ends (membrane stiffening, frame damping fixed at 0.02) and the "
+        "thickness mechanism 'leaf conduction' (drive heat through the leaves, conductance ~ y)"),
+    "v3-overconstraint": CalibrationModel(
+        "v3-overconstraint", (), (DEFAULT_PARAMETERS[0], VISCOUS, OVERCONSTRAINT),
+        "elastic hinge with held ends and the thickness mechanism 'over-constraint' (a clamping "
+        "misfit loads the guide through the leaves' stiff direction, stiffness ~ y)"),
+}
+
+#: The model ``rsm-lrg calibrate`` uses by default.
+DEFAULT_MODEL = "v3"
 
 #: Other parameters one may calibrate instead (``--parameter NAME``).
 OTHER_PARAMETERS = (
@@ -125,15 +175,24 @@ class Calibration:
     loo_predicted: tuple = field(default=(), repr=False)
     method: str = "scipy.optimize.least_squares (trf, bounded), noise-free virtual runs"
     uncalibrated_r2: float | None = None
+    model: str = ""
+
+    def fixed_values(self) -> dict:
+        """The physics the calibration's ``model`` fixes (``{}`` without a model)."""
+        return dict(MODELS[self.model].fixed) if self.model else {}
 
     def parameter_values(self) -> dict:
-        """``{name: value}`` as :func:`rsm_lrg.surrogate.runs.evaluate_rows` takes it."""
-        return {p.name: p.value for p in self.parameters}
+        """``{name: value}`` as :func:`rsm_lrg.surrogate.runs.evaluate_rows` takes it: the
+        model's fixed physics and the calibrated parameters."""
+        out = self.fixed_values()
+        out.update({p.name: p.value for p in self.parameters})
+        return out
 
     def to_dict(self) -> dict:
         return {
             "response": self.response, "n": self.n, "r2": self.r2, "rmse": self.rmse,
             "loo_r2": self.loo_r2, "loo_rmse": self.loo_rmse, "uncalibrated_r2": self.uncalibrated_r2,
+            "paper_press_r2": PAPER_PRESS_R2, "model": self.model,
             "data": self.data, "data_sha256": self.data_sha256, "method": self.method,
             "parameters": [p.to_dict() for p in self.parameters],
             "observed": list(self.observed), "predicted": list(self.predicted),
@@ -147,14 +206,16 @@ class Calibration:
         return pd.DataFrame([p.to_dict() for p in self.parameters])
 
     def summary(self) -> str:
-        lines = [f"calibration of {len(self.parameters)} parameters to {self.response} ({self.n} runs, {self.data})"]
+        lines = [f"calibration of {len(self.parameters)} parameters to {self.response} ({self.n} runs, {self.data})"
+                 + (f", model {self.model}" if self.model else "")]
         for p in self.parameters:
             flag = "  (at a bound)" if p.at_bound else ""
             lines.append(f"  {p.name:<24} {p.value:12.6g} ± {p.std_error:<10.3g} {p.unit:<6} "
                          f"bounds [{p.lower:g}, {p.upper:g}]{flag}")
         lines.append(f"  R2 {self.r2:.4f}   RMSE {self.rmse:.4g}")
         if self.loo_r2 is not None:
-            lines.append(f"  leave-one-out R2 {self.loo_r2:.4f}   RMSE {self.loo_rmse:.4g}")
+            lines.append(f"  leave-one-out R2 {self.loo_r2:.4f}   RMSE {self.loo_rmse:.4g}   (the paper's quadratic, "
+                         f"Eq. 19: PRESS R2 {PAPER_PRESS_R2:.3f})")
         if self.uncalibrated_r2 is not None:
             lines.append(f"  raw physics (uncalibrated) R2 {self.uncalibrated_r2:.4f}")
         return "\n".join(lines)
@@ -163,11 +224,11 @@ class Calibration:
 # ----------------------------------------------------------------------------------------
 # fitting
 # ----------------------------------------------------------------------------------------
-def _specs(parameters) -> tuple:
+def _specs(parameters, model: str = DEFAULT_MODEL) -> tuple:
     if parameters is None:
-        return DEFAULT_PARAMETERS
+        return MODELS[model].parameters
     out = []
-    by_name = {s.name: s for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS}
+    by_name = {s.name: s for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS + (DRIVE_HEAT, OVERCONSTRAINT)}
     for p in parameters:
         if isinstance(p, ParameterSpec):
             out.append(p)
@@ -214,7 +275,8 @@ _HEAT_ONLY = ("heat_partition",)
 
 def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=None,
               duration_min: float = 50.0, loo: bool = True, source: str = "",
-              data_sha256: str = "", grid_points: int | None = None, progress: bool = False) -> Calibration:
+              data_sha256: str = "", grid_points: int | None = None, progress: bool = False,
+              model: str = DEFAULT_MODEL) -> Calibration:
     """Fit the surrogate's unknown parameters to measured runs.
 
     Parameters
@@ -226,7 +288,11 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
         Column of the measured response; ``tcr_c_per_min`` (κ [°C/min], Eq. 18) or any
         other output of :func:`rsm_lrg.simulate`.
     parameters : sequence of str or ParameterSpec, optional
-        One to three parameters (default: :data:`DEFAULT_PARAMETERS`).
+        One to three parameters (default: those of ``model``).
+    model : str
+        A key of :data:`MODELS`: the physics it fixes (``v2``: the small-deflection hinge)
+        and its default parameters. ``v3`` (default): elastic hinge with held ends and the
+        leaf-conduction thickness mechanism; ``v3-overconstraint`` the other mechanism.
     params : LRGParams, optional
         Base physical parameters.
     duration_min : float
@@ -253,7 +319,9 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     from .design_input import OUTPUT_COLUMNS, read_design_arrays
     from .runs import check_duration, evaluate_rows
 
-    specs = _specs(parameters)
+    if model not in MODELS:
+        raise ValueError(f"unknown calibration model {model!r}; choose one of {', '.join(MODELS)}")
+    specs = _specs(parameters, model)
     duration_min = check_duration(duration_min)
     if response not in data.columns:
         from ..io import quote_user_value
@@ -270,6 +338,8 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     if n <= len(specs) + 1:
         raise ValueError(f"{n} runs are too few to calibrate {len(specs)} parameters")
     p = params if params is not None else LRGParams()
+    if MODELS[model].fixed:
+        p = p.with_overrides(**dict(MODELS[model].fixed))
     arrays = read_design_arrays(data.drop(columns=[response]), p)
 
     def predict(theta, idx=None):
@@ -314,8 +384,9 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
 
     bar = _progress_bar(len(grid) + 1 + (n if loo else 0), bool(progress), desc="calibration fits", unit="fit")
     try:
-        return _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar,
-                                arrays, p, duration_min, response, source, data_sha256, evaluate_rows)
+        cal = _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar,
+                               arrays, p, duration_min, response, source, data_sha256, evaluate_rows)
+        return dataclasses.replace(cal, model=model)
     finally:
         bar.close()
 
@@ -422,9 +493,10 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
         "",
         "[calibration]",
     ]
-    for k in ("response", "n", "r2", "rmse", "loo_r2", "loo_rmse", "uncalibrated_r2", "data", "data_sha256", "method"):
+    for k in ("model", "response", "n", "r2", "rmse", "loo_r2", "loo_rmse", "uncalibrated_r2", "data", "data_sha256",
+              "method"):
         v = getattr(cal, k)
-        if v is None:
+        if v is None or (k == "model" and not v):
             continue
         lines.append(f"{k} = {toml_value(v)}")
     lines.append("")
@@ -442,7 +514,7 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
 
 
 #: Keys of a calibration file, with their types (what :func:`calibration_toml` writes).
-_HEAD_KEYS = {"response": str, "n": int, "r2": float, "rmse": float, "loo_r2": float, "loo_rmse": float,
+_HEAD_KEYS = {"model": str, "response": str, "n": int, "r2": float, "rmse": float, "loo_r2": float, "loo_rmse": float,
               "uncalibrated_r2": float, "data": str, "data_sha256": str, "method": str, "command": str}
 _PARAM_KEYS = {"value": float, "std_error": float, "lower": float, "upper": float, "unit": str,
                "meaning": str, "at_bound": bool}
@@ -456,7 +528,7 @@ def documented_bounds(name: str) -> tuple[float, float, str]:
     :data:`rsm_lrg.physics.params.PHYSICAL_RANGES` (``heat_partition``: (0, 1])."""
     from ..physics.params import PHYSICAL_RANGES
 
-    for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS:
+    for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS + (DRIVE_HEAT, OVERCONSTRAINT):
         if s.name == name:
             return s.lower, s.upper, "documented in rsm_lrg.surrogate.calibrate"
     if name in PHYSICAL_RANGES:
@@ -535,6 +607,8 @@ def _calibration_from_toml(raw: dict, lrg_names, surrogate_names, outputs) -> Ca
         if k not in _HEAD_KEYS:
             raise _unknown_key("[calibration]", k, _HEAD_KEYS)
         h[k] = _typed("[calibration]", k, v, _HEAD_KEYS[k])
+    if "model" in h and h["model"] not in MODELS:
+        raise ValueError(f"[calibration] model {quote_user_value(h['model'])} is not one of {', '.join(MODELS)}")
     if "response" in h and h["response"] not in outputs:
         raise ValueError(f"[calibration] response {quote_user_value(h['response'])} is not an output of the "
                          f"surrogate ({', '.join(outputs)})")
@@ -592,7 +666,7 @@ def _calibration_from_toml(raw: dict, lrg_names, surrogate_names, outputs) -> Ca
         loo_rmse=h.get("loo_rmse"), data=h.get("data", ""), data_sha256=h.get("data_sha256", ""),
         observed=lists.get("observed", ()), predicted=lists.get("predicted", ()),
         loo_predicted=lists.get("loo_predicted", ()), method=h.get("method", ""),
-        uncalibrated_r2=h.get("uncalibrated_r2"),
+        uncalibrated_r2=h.get("uncalibrated_r2"), model=h.get("model", ""),
     )
 
 
@@ -619,6 +693,9 @@ def resolve_calibration(spec) -> Calibration | None:
         for k, v in spec.items():
             if k not in known:
                 raise ValueError(f"calibration: unknown parameter {k!r}")
+            if k == "hinge_membrane" and isinstance(v, (bool, np.bool_)):  # a switch of the physics
+                ests.append(ParameterEstimate(str(k), bool(v), math.nan, 0.0, 1.0))
+                continue
             if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
                 raise ValueError(f"calibration: {k} must be a number, not {type(v).__name__}")
             lo, hi, what = documented_bounds(str(k))

@@ -116,7 +116,8 @@ def _rise_at(values: dict, dur: np.ndarray):
 # stage dynamics (a row's result does not depend on its batch)
 # ----------------------------------------------------------------------------------------
 def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
-    """Sliding per cycle [m], cycle time [s] and viscous work per cycle [J] of every row, from
+    """Sliding per cycle [m], cycle time [s], viscous work per cycle [J] and peak hinge
+    deflection [m] of every row, from
     :func:`rsm_lrg.physics.dynamics.cycle_metrics` (``method="auto"``: the quasi-static limit
     where it is valid, the vectorised stick-slip integration elsewhere; RMS rows slide 2·s).
 
@@ -129,14 +130,16 @@ def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
 
     key = None
     if memo and s.size <= _MEMO_MAX_ROWS:  # calibration repeats the same rows: memoise
-        key = (p, s.tobytes(), v.tobytes(), a.tobytes(), rigid.tobytes(),
+        pk = p.with_overrides(**{k: getattr(_BASE, k) for k in _NOT_DYNAMICS})  # heat-only fields
+        key = (pk, s.tobytes(), v.tobytes(), a.tobytes(), rigid.tobytes(),
                tuple((k, np.asarray(x, float).tobytes()) for k, x in sorted(cols.items())))
         hit = _MEMO.get(key)
         if hit is not None:
             return tuple(x.copy() for x in hit)
     m = dynamics.cycle_metrics(s, v, a, stage=rigid, params=p, method="auto", max_steps_per_cycle=_MAX_STEPS,
                                **cols)
-    out = tuple(np.asarray(x, float) for x in (m.sliding_distance_m, m.cycle_time_s, m.viscous_work_j))
+    out = tuple(np.asarray(x, float) for x in (m.sliding_distance_m, m.cycle_time_s, m.viscous_work_j,
+                                               m.peak_deflection_m))
     if key is not None:
         if len(_MEMO) >= _MEMO_SIZE:
             _MEMO.pop(next(iter(_MEMO)))
@@ -149,6 +152,19 @@ def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
 #: does not hold, e.g. a 10 um stroke -- is refused with its settings named, rather than
 #: integrated for minutes.
 _MAX_STEPS = 10_000
+
+#: Parameters that do not enter the stage dynamics (calibrating them reuses the memo).
+_NOT_DYNAMICS = ("drive_heat_w", "stage_loss_conductance_w_k", "hinge_yield_pa", "hinge_conductivity_w_mk")
+
+
+class _Base:
+    def __getattr__(self, name):
+        from ..physics.params import LRGParams
+
+        return getattr(LRGParams(), name)
+
+
+_BASE = _Base()
 
 #: Memo of the dynamics of small batches (calibration evaluates the same rows many times,
 #: with only the heat and thermal parameters changing).
@@ -190,7 +206,7 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     dict of numpy arrays: ``tcr_c_per_min``, ``temperature_rise_k``, ``steady_rise_k``,
     ``wear_volume_m3_per_h``, ``sliding_distance_m_per_cycle``, ``heat_w``, ``cycle_time_s``.
     """
-    from ..physics import wear
+    from ..physics import dynamics, heat, hinge, wear
     from ..physics.params import LRGParams, param_names
     from .noise import reading_noise
 
@@ -220,13 +236,23 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         return pcols[name] if name in pcols else getattr(p, name)
 
     # 1-2: motion and stage dynamics
-    slide, T, visc = _cycle_metrics(s, v, a, rigid, p, dyn_cols, memo=memo)
-    load = col("preload_n") + np.asarray(col("stage_mass_kg")) * col("gravity_m_s2")
+    slide, T, visc, peak = _cycle_metrics(s, v, a, rigid, p, dyn_cols, memo=memo)
+    hv = dict(p.to_dict(), **{k: x for k, x in dyn_cols.items()})
+    # the carriage's load: F0 + m_t g, plus the leaves' over-constraint load (RFCMS only)
+    load = dynamics.carriage_load(dict(hv, overconstraint_misfit_m=np.where(
+        rigid, 0.0, np.asarray(hv["overconstraint_misfit_m"], float))))
     # 3: friction heat, cycle-averaged (Eq. 8 mechanism): Coulomb work + viscous work
     power = (col("mu_k") * load * slide + visc) / T
     q = power / p.thermal_equivalent_j_per_cal if p.heat_in_calories else power
     q = q * extra["heat_partition"]
+    # drive heat through the joint between stage and carriage: the leaves (RFCMS), rigid (RMS)
+    g_joint = np.where(rigid, np.inf, heat.leaf_conductance(hv["hinge_count"], hv["hinge_conductivity_w_mk"],
+                                                            hv["hinge_width_m"], y, hv["hinge_length_m"]))
+    q = q + heat.drive_heat_to_carriage(hv["drive_heat_w"], g_joint, hv["stage_loss_conductance_w_k"])
     q = np.broadcast_to(q, (n,)).astype(float)
+    # peak stress of the leaves (bending + membrane) against the yield strength
+    stress = np.where(rigid, 0.0, hinge.hinge_peak_stress(hv["hinge_modulus_pa"], y, hv["hinge_length_m"], peak,
+                                                          membrane=bool(p.hinge_membrane)))
 
     # 4-5: thermal record
     dur = np.broadcast_to(np.asarray(pcols.get("test_duration_min", duration_min), float), (n,))
@@ -273,6 +299,8 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         "tcr_c_per_min": b(tcr), "temperature_rise_k": b(rise), "steady_rise_k": b(q * steady),
         "wear_volume_m3_per_h": b(vw), "sliding_distance_m_per_cycle": b(slide),
         "heat_w": b(q), "cycle_time_s": b(T),
+        "hinge_peak_stress_pa": b(stress),
+        "hinge_yields": np.broadcast_to(stress > np.asarray(hv["hinge_yield_pa"], float), (n,)).copy(),
     }
     for k, x in out.items():  # the physics must not overflow or divide by zero silently
         bad = ~np.isfinite(x)

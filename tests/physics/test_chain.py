@@ -32,7 +32,9 @@ def test_paper_numbers(result):
 def test_json_keys_exactly(result):
     d = json.loads(json.dumps(result.to_dict()))
     assert list(d) == TOP
-    assert [list(h) for h in d["hinge"]] == [["thickness_m", "stiffness_n_m", "deflection_m"]] * 3
+    assert [list(h) for h in d["hinge"]] == [["thickness_m", "stiffness_n_m", "deflection_m", "peak_deflection_m",
+                                             "peak_bending_stress_pa", "peak_stress_pa", "yield_strength_pa",
+                                             "yields"]] * 3
     assert [h["thickness_m"] for h in d["hinge"]] == list(TABLE3_THICKNESSES_M)
     assert list(d["thermal"]) == THERMAL and all(v is None for v in d["thermal"].values())
     assert list(d["wear"]) == ["rfcms_over_rms"]
@@ -46,10 +48,16 @@ def test_wear_ratio_readings(result):
     # inverse question (DIGEST Section 3): 30.8 mm by Eq. 14
     assert d["deflection_for_paper_ratio_m"] == pytest.approx(0.0308, abs=5e-5)
     # ordering at the defaults (0.3 mm hinge, 0.075 m, 0.5 m/s, 10 m/s^2): the reciprocating
-    # quasi-static loses two deflections, Eq. 14 one, the dynamics less (inertia bends the
-    # hinge back at each stop) -- all below the RMS
-    assert d["rfcms_over_rms_quasi_static"] < d["rfcms_over_rms_eq14"] < result.rfcms_over_rms < 1.0
+    # quasi-static loses two deflections, Eq. 14 one (both of the small-deflection Eq. 2); the
+    # dynamics of the elastic hinge with held ends ring after each stop at a flexure's damping
+    # and slide 0.2 % MORE than the RMS (model finding, within 0.5 %)
+    assert d["rfcms_over_rms_quasi_static"] < d["rfcms_over_rms_eq14"] < 1.0
+    assert abs(result.rfcms_over_rms - 1.0) < 0.005
     assert d["wear_rfcms_m3_per_h"] / d["wear_rms_m3_per_h"] == pytest.approx(result.rfcms_over_rms, rel=1e-12)
+    # the small-deflection hinge (Eq. 1 alone): the dynamics lose less than Eq. 14 (inertia bends
+    # the hinge back at each stop), still below the RMS
+    lin = physics_chain(thermal=False, hinge_membrane=False)
+    assert lin.details["rfcms_over_rms_eq14"] < lin.rfcms_over_rms < 1.0
 
 
 def test_heat_in_watts_switch():

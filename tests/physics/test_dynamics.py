@@ -30,14 +30,25 @@ def test_integrator_matches_reference_thin_hinge():
     assert got.sliding_distance_m == pytest.approx(ref.sliding_distance_m, rel=5e-3)
 
 
-def test_quasi_static_limit_is_eq14_reading():
-    # Slow motion, mu_k = mu_s (no stick-slip jumps), thin hinge (dd = 4.9 mm). Exact quasi-static
-    # result derived in dynamics/wear docstrings: first stroke from a relaxed hinge slides
-    # s - dd (Eq. 14), every later stroke s - 2 dd. Tolerance 1 % of dd at 3 mm/s; the
-    # deviation shrinks as the motion slows (dynamic terms vanish in the limit).
-    p = LRGParams(hinge_thickness_m=0.0001, mu_k=0.03)
+def _breakaway_deflection(p, force=None):
+    """Δδ where the n hinges carry ``force`` (default f_µmax): Eq. 2, or its cubic with held ends."""
+    from rsm_lrg.physics.hinge import hinge_deflection_nonlinear
+
+    f = p.f_mu_max_n if force is None else force
+    return float(hinge_deflection_nonlinear(f, p.hinge_count * p.hinge_stiffness_n_m,
+                                            p.hinge_count * p.hinge_membrane_stiffness_n_m3))
+
+
+@pytest.mark.parametrize("membrane", [False, True])
+def test_quasi_static_limit_is_eq14_reading(membrane):
+    # Slow motion, mu_k = mu_s (no stick-slip jumps), thin hinge (dd = 4.9 mm linear, 0.39 mm
+    # with held ends). Exact quasi-static result derived in dynamics/wear docstrings: first
+    # stroke from a relaxed hinge slides s - dd (Eq. 14), every later stroke s - 2 dd.
+    # Tolerance 1 % of dd at 3 mm/s; the deviation shrinks as the motion slows (dynamic terms
+    # vanish in the limit).
+    p = LRGParams(hinge_thickness_m=0.0001, mu_k=0.03, hinge_membrane=membrane)
     s = p.stroke_m
-    dd = p.f_mu_max_n / (p.hinge_count * p.hinge_stiffness_n_m)
+    dd = _breakaway_deflection(p)
     h = dynamics.simulate_stage(p, n_cycles=3, velocity=0.003, acceleration=0.01, rtol=1e-8,
                                 samples_per_cycle=200)
     first, steady = h.sliding_per_cycle_m[0], h.sliding_per_cycle_m[-1]
@@ -50,12 +61,13 @@ def test_quasi_static_limit_is_eq14_reading():
     assert qs.sliding_distance_m == pytest.approx(2 * (s - 2 * dd), rel=1e-12)
 
 
-def test_quasi_static_with_stiction_stays_in_the_sawtooth_band():
+@pytest.mark.parametrize("membrane", [False, True])
+def test_quasi_static_with_stiction_stays_in_the_sawtooth_band(membrane):
     # mu_s > mu_k, slow: the frame stick-slips; the rest deflection lies between
-    # (2 mu_k - mu_s) F/(nK) and mu_s F/(nK), so per stroke s - 2 d_s <= L <= s - 2 d_k (exact bound).
-    p = LRGParams(hinge_thickness_m=0.0001)
-    k = p.hinge_count * p.hinge_stiffness_n_m
-    ds, dk = p.f_mu_max_n / k, p.mu_k * p.normal_load_n / k
+    # d((2 mu_k - mu_s) F) and d(mu_s F), so per stroke s - 2 d_s <= L <= s - 2 d_k (exact bound;
+    # d(f) the deflection under force f, linear or with held ends).
+    p = LRGParams(hinge_thickness_m=0.0001, hinge_membrane=membrane)
+    ds, dk = _breakaway_deflection(p), _breakaway_deflection(p, p.mu_k * p.normal_load_n)
     h = dynamics.simulate_stage(p, n_cycles=3, velocity=0.01, acceleration=0.05, rtol=1e-8,
                                 samples_per_cycle=200)
     per_stroke = h.sliding_per_cycle_m[-1] / 2
@@ -72,7 +84,8 @@ def _last_cycle_works(p, n_cycles=5):
     last = h.t >= (n_cycles - 1) * h.cycle_time_s - 1e-12
     t, u = h.t[last], h.v_frame[last]
     _, vs, _ = motion.reciprocating_profile(t, p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, p.dwell_s)
-    fh = float(c.k_n_m) * (h.x_stage[last] - h.x_frame[last]) + float(c.c_ns_m) * (vs - u)
+    z = h.x_stage[last] - h.x_frame[last]
+    fh = float(c.k_n_m) * z + float(c.k3_n_m3) * z ** 3 + float(c.c_ns_m) * (vs - u)
     return h, np.trapezoid(fh * u, t), np.trapezoid(float(c.viscous_ns_m) * u ** 2, t)
 
 
@@ -97,12 +110,14 @@ def test_rms_is_the_stiff_limit_and_exact():
 
 def test_rfcms_slides_less_than_rms():
     # Section 2.3 claim. Quasi-static: always (by s - dd_s - dd_k). Dynamics at the paper's
-    # comparative motion (0.075 m, 0.5 m/s, 10 m/s^2) for the 0.3 and 0.5 mm hinges.
+    # comparative motion (0.075 m, 0.5 m/s, 10 m/s^2) for the 0.3 and 0.5 mm hinges of the
+    # small-deflection model (Eq. 1 alone; with held ends see the next test).
     for y in (0.0001, 0.0003, 0.0005):
         qs = dynamics.cycle_metrics(params=LRGParams(hinge_thickness_m=y), method="quasi_static")
         assert qs.sliding_distance_m < 0.15
     m = dynamics.cycle_metrics(0.075, 0.5, 10.0, stage=["rfcms", "rfcms", "rms"],
-                               hinge_thickness_m=[0.0003, 0.0005, 0.0005], method="integrate")
+                               hinge_thickness_m=[0.0003, 0.0005, 0.0005], method="integrate",
+                               params=LRGParams(hinge_membrane=False))
     assert m.sliding_distance_m[0] < m.sliding_distance_m[2] and m.sliding_distance_m[1] < m.sliding_distance_m[2]
     assert np.all(m.friction_work_j == pytest.approx(LRGParams().mu_k * LRGParams().normal_load_n * m.sliding_distance_m))
 
@@ -110,8 +125,21 @@ def test_rfcms_slides_less_than_rms():
 def test_thin_hinge_overshoot_is_a_documented_model_result():
     # Model finding (not in the paper): with the assumed 2 % hinge damping a 0.1 mm hinge lets
     # the 0.325 kg frame overshoot at each stop, so the carriage slides MORE than the RMS's.
-    m = dynamics.cycle_metrics(0.075, 0.5, 10.0, hinge_thickness_m=0.0001, method="integrate")
+    m = dynamics.cycle_metrics(0.075, 0.5, 10.0, hinge_thickness_m=0.0001, method="integrate",
+                               params=LRGParams(hinge_membrane=False))
     assert m.sliding_distance_m > 0.15
+
+
+def test_elastic_hinge_slides_within_a_fraction_of_a_percent_of_the_rms():
+    # Model finding with held ends (membrane stiffening) at the comparative motion of Fig. 9
+    # (0.5 m/s, 10 m/s^2, strokes 0.075 / 0.06 / 0.04 m), 0.3 mm: the leaves deflect at most
+    # ~0.3 mm (a few tenths of a percent of the stroke) and the frame rings after each stop at
+    # a flexure's damping (zeta 0.02), so the carriage slides within 0.5 % of the RMS's 2 s,
+    # slightly MORE; the paper's 41 % less (58.93 %) would need a 31 mm deflection (wear.py).
+    s = np.array([0.075, 0.06, 0.04])
+    m = dynamics.cycle_metrics(s, 0.5, 10.0, hinge_thickness_m=0.0003, method="integrate")
+    ratio = m.sliding_distance_m / (2 * s)
+    assert np.all(np.abs(ratio - 1) < 0.005)
 
 
 def test_auto_uses_quasi_static_only_where_it_is_accurate():

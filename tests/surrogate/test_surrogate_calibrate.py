@@ -39,9 +39,11 @@ def test_recovers_known_heat_parameters_exactly():
 
 @pytest.mark.slow
 def test_recovers_a_stage_parameter_through_the_profile_grid():
-    truth = {"heat_partition": 0.5, "frame_mass_fraction": 0.3}
+    # the small-deflection hinge of model v2, where the frame mass moves the stick-slip of the
+    # thin leaf (with held ends the leaves are stiff enough that it hardly matters)
+    truth = {"heat_partition": 0.5, "frame_mass_fraction": 0.3, "hinge_membrane": False}
     d = synthetic(truth, n=8, thickness=(1e-4, 3e-4))
-    cal = calibrate(d, parameters=["heat_partition", "frame_mass_fraction"], loo=False, grid_points=7)
+    cal = calibrate(d, parameters=["heat_partition", "frame_mass_fraction"], loo=False, grid_points=7, model="v2")
     assert cal.r2 > 0.999
     assert cal.parameter_values()["heat_partition"] == pytest.approx(0.5, rel=1e-2)
 
