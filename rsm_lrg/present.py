@@ -11,7 +11,13 @@ The rules
   ``1e-4 <= |x| < 1e5``, otherwise scientific notation, written ``6.972 × 10⁻⁵`` in the
   ``"unicode"`` style (HTML, notebook, repr) and ``6.972e-05`` in the ``"ascii"`` style.
   Trailing zeros are dropped unless ``trim=False`` (tables that align digits).
-- **p value** (:func:`format_p`): four decimals, ``<0.0001`` below that (Design-Expert).
+- **Text face** (:func:`format_g`: the CLI's tables and ``summary()`` text, monospaced):
+  ``digits`` significant figures with trailing zeros kept so that columns align; plain
+  decimals for ``1e-3 <= |x| < 1e5``, otherwise ASCII e-notation ``1.613e-04`` (as the
+  paper's Table 5 prints 1.61 × 10⁻⁴ in scientific form); ``trim=True`` for equation
+  coefficients.
+- **p value** (:func:`format_p`): four decimals, ``<0.0001`` below that (Design-Expert);
+  ``style="ascii"`` writes ``< 0.0001`` for the text face.
 - **Round-off** (:func:`clean`): a value whose size is at most :data:`ROUND_OFF` times its
   scale (a sum of squares against the corrected total, a coefficient against the largest
   one) is shown as exactly 0, as Design-Expert prints the AB and BC rows of the paper's
@@ -31,7 +37,7 @@ import math
 import re
 from numbers import Number
 
-__all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_sci", "format_p", "format_f",
+__all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_g", "format_sci", "format_p", "format_f",
            "format_cell", "clean_anova", "anova_rows", "unicode_number"]
 
 #: Relative size at or below which a value is round-off and shown as 0.
@@ -118,6 +124,38 @@ def format_number(x, digits: int = 4, *, style: str = "unicode", trim: bool = Tr
         s = f"{r:.{decimals}f}"
         return sign + (_trim(s) if trim else s)
     return sign + _sci(a, digits, style, trim)
+
+
+def format_g(x, digits: int = 4, *, trim: bool = False) -> str:
+    """A number for the text face (CLI tables, ``summary()``): ``digits`` significant
+    figures; plain decimals for ``1e-3 <= |x| < 1e5`` with trailing zeros kept (columns
+    align), otherwise ``1.613e-04``; ``""`` for None, NaN and infinities. ``trim=True`` drops
+    trailing zeros (equation coefficients, ``0.0075`` rather than ``0.007500``).
+
+    >>> format_g(0.0880), format_g(1.6133e-4), format_g(26.0312), format_g(0.0), format_g(None)
+    ('0.08800', '1.613e-04', '26.03', '0', '')
+    >>> format_g(0.99999, 4), format_g(0.0075, 6, trim=True), format_g(4.1667e-05, 5, trim=True)
+    ('1.000', '0.0075', '4.1667e-05')
+    """
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return ""
+    x = float(x)
+    if x == 0:
+        return "0"
+    a = abs(x)
+    if 1e-3 <= a < 1e5:
+        decimals = max(digits - 1 - int(math.floor(math.log10(a))), 0)
+        s = f"{x:.{decimals}f}"
+        if decimals and abs(float(s)) >= 10.0 ** (digits - decimals):  # 0.99999 rounded up to 1.0000
+            s = f"{x:.{decimals - 1}f}"
+    else:
+        s = f"{x:.{digits - 1}e}"
+    if not trim:
+        return s
+    mant, _, exp = s.partition("e")
+    if "." in mant:
+        mant = mant.rstrip("0").rstrip(".")
+    return mant + ("e" + exp if exp else "")
 
 
 def _sci(a: float, digits: int, style: str, trim: bool) -> str:

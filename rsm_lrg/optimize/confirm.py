@@ -139,7 +139,7 @@ class ConfirmationResult:
                 "mean_back_transformed": self.mean_back_transformed}
 
     def summary(self) -> str:
-        from ..model.text import format_g
+        from ..present import format_g
 
         pc = int(round(100 * self.confidence))
         lines = [f"Confirmation of {self.response} at " + ", ".join(f"{k} = {format_g(v, 6)}" for k, v in self.actual.items()),

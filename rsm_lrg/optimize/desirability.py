@@ -227,7 +227,7 @@ class DesirabilityResult:
                 "bounds": {k: [v[0], v[1]] for k, v in self.bounds.items()}, "warnings": list(self.warnings)}
 
     def summary(self) -> str:
-        from ..model.text import format_g
+        from ..present import format_g
 
         lines = [f"Desirability optimum (D = {self.desirability:.4f})"]
         for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):

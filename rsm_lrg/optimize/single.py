@@ -195,7 +195,7 @@ class OptimumResult:
 
     def summary(self) -> str:
         """A few lines of text."""
-        from ..model.text import format_g
+        from ..present import format_g
 
         g = self.goal if self.target is None else f"target {format_g(self.target, 6)}"
         lines = [f"Optimum of {self.response} ({g})"]
