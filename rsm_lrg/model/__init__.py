@@ -1,6 +1,9 @@
 """The model layer: polynomial response-surface models fitted by OLS in coded units.
 
-``terms`` (model terms and the design matrix), ``fit`` (:func:`fit`, :class:`FitResult`),
+``least_squares`` (the regression core: one factorisation, every statistic derived from
+it), ``terms`` (model terms and the design matrix), ``fit`` (:func:`fit`, :class:`FitResult`;
+``dask_fit`` for a Dask DataFrame), ``summary`` (fit summary), ``reduce`` (backward
+elimination), ``evaluate`` (design evaluation), ``diagnostics``,
 ``anova`` (Design-Expert ANOVA, Table 5), ``statistics`` (R², PRESS, adequate precision),
 ``canonical`` (stationary point and eigen-analysis), ``text`` (the summary text).
 """

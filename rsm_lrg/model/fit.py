@@ -212,7 +212,7 @@ class FitResult:
     @property
     def n(self) -> int:
         """Number of runs."""
-        return int(self.y.size)
+        return int(self.least_squares.n) if self.least_squares is not None else int(self.y.size)
 
     @property
     def run_rows(self) -> list[int]:
@@ -619,6 +619,11 @@ class ModelInputs:
         return lambda: ((self.rows(terms, s, s + rows), self.y[s:s + rows]) for s in range(0, n, rows))
 
 
+def _is_dask(data) -> bool:
+    """A Dask DataFrame (checked by its module, so dask is not imported for a pandas fit)."""
+    return type(data).__module__.split(".")[0] == "dask" and hasattr(data, "map_partitions")
+
+
 def model_inputs(data, response: str, factors=None, block: str | None = None) -> ModelInputs:
     """Check the data and code the factors as every fit does (see :func:`fit` for what is refused)."""
     import pandas as pd
@@ -651,8 +656,9 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
 
     Parameters
     ----------
-    data : pandas.DataFrame
-        One row per run.
+    data : pandas.DataFrame or dask.dataframe.DataFrame
+        One row per run. A Dask DataFrame is fitted partition by partition without being
+        collected (:mod:`rsm_lrg.model.dask_fit`; no blocks; the result holds no per-run arrays).
     response : str
         Response column (e.g. ``"tcr_c_per_min"`` [°C/min]).
     factors : None, sequence or FactorSpace
@@ -688,8 +694,14 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         model terms (counted before any term is built), aliased terms (naming them).
     """
     import pandas as pd
-    from scipy import special
 
+    if model not in MODELS:
+        raise ValueError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
+    if _is_dask(data):  # fitted partition by partition, never collected
+        from .dask_fit import fit_dask
+
+        return fit_dask(data, response, factors=factors, block=block, model=model, terms=terms,
+                        chunk_rows=chunk_rows)
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
     if model not in MODELS:
@@ -702,7 +714,6 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
         except ValueError as exc:
             raise ValueError(f"{exc}{hint}") from None
     terms = tuple(model_terms(space.letters, model)) if terms is None else _chosen_terms(terms, space.letters)
-    names = [t.name for t in terms]
     col_names = inp.column_names(terms)
     p = len(col_names)
     if n < p:
@@ -714,17 +725,31 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     ls = factorise(chunks, p, col_names)
     ls.require_full_rank(f"{model} model")
     ls = ls.second_pass(chunks)
-    beta, C, hat, fitted, resid = ls.params, ls.cov_unscaled, ls.hat, ls.fitted, ls.residuals
+    # pure error: residual of y ~ (blocks +) one mean per distinct setting (R rsm's PE())
+    pe = pure_error(inp.x, y - ls.shift, inp.bcodes if nb > 1 else None)
+    prep = inp.prep
+    return _assemble(response=response, model=model, block=block, space=space, terms=terms, col_names=col_names,
+                     ls=ls, pe=pe, bkeys=inp.bkeys, blevels=inp.blevels, data=data.copy(), coded=inp.coded, y=y,
+                     input_notes=prep.notes, omitted_rows=prep.omitted_rows, omitted_data=prep.omitted_data)
+
+
+def _assemble(*, response, model, block, space, terms, col_names, ls: Regression, pe: PureError, bkeys, blevels,
+              data, coded, y, input_notes=(), omitted_rows=(), omitted_data=None) -> FitResult:
+    """The :class:`FitResult` of a factorised fit (both passes done) and its pure error."""
+    import pandas as pd
+    from scipy import special
+
+    names = [t.name for t in terms]
+    nb = len(col_names) - len(terms) + 1
+    n, p = ls.n, ls.p
+    beta, C = ls.params, ls.cov_unscaled
     df_res, ss_res, ss_total, sigma2 = ls.df_resid, ls.ss_res, ls.ss_total, ls.sigma2
-    tidx = inp.term_columns(terms)
+    tidx = np.r_[0, np.arange(nb, p)] if nb > 1 else np.arange(p)
     # blocks enter first (sequential SS), the model row is the rest; terms are Type III
     ss_block = ls.sequential_ss(np.arange(1, nb)) if nb > 1 else 0.0
     ss_model = ls.sequential_ss(tidx[1:]) if tidx.size > 1 else 0.0
     df_model = len(terms) - 1
     term_ss = [ls.partial_ss(j) for j in tidx[1:]]
-
-    # pure error: residual of y ~ (blocks +) one mean per distinct setting (R rsm's PE())
-    pe = pure_error(inp.x, y - ls.shift, inp.bcodes if nb > 1 else None)
     notes = []
     if pe.df == 0:
         pe_used = None
@@ -765,24 +790,24 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
          "ci_high": b_t + tq * se, "vif": vif, "actual": [actual[nm] for nm in names]},
         index=pd.Index(names, name="term"),
     )
-    statistics = fit_statistics(n=n, mean=ls.ybar, fitted_range=float(np.ptp(fitted)), ss_res=ss_res,
+    fitted_range = ls.pass_sums.fitted_max - ls.pass_sums.fitted_min
+    statistics = fit_statistics(n=n, mean=ls.ybar, fitted_range=fitted_range, ss_res=ss_res,
                                 df_res=df_res, ss_total=ss_total, ss_block=ss_block, df_model=df_model,
                                 n_params=p, press=ls.press)
     sp = canonical_analysis(coded_coefs, terms, space)
     if nb > 1:
         eff = beta[1:nb].tolist()
         eff.append(-float(np.sum(eff)))
-        block_effects = dict(zip(inp.bkeys, eff))
+        block_effects = dict(zip(bkeys, eff))
     else:
         block_effects = None
-    prep = inp.prep
     return FitResult(
-        response=response, model=model, block=block, space=space, terms=terms, data=data.copy(),
-        coded=inp.coded, y=y, column_names=tuple(col_names), coefficients=coef,
-        anova=anova, statistics=statistics, stationary_point=sp, fitted=fitted, residuals=resid,
-        hat=hat, cov_unscaled=C, sigma2=float(sigma2), df_resid=int(df_res),
-        block_effects=block_effects, block_levels=inp.blevels, pure_error=pe_used,
-        actual_coefficients=actual, notes=prep.notes + tuple(notes),
-        input_notes=prep.notes, omitted_rows=prep.omitted_rows, omitted_data=prep.omitted_data,
+        response=response, model=model, block=block, space=space, terms=terms, data=data,
+        coded=coded, y=y, column_names=tuple(col_names), coefficients=coef,
+        anova=anova, statistics=statistics, stationary_point=sp, fitted=ls.fitted, residuals=ls.residuals,
+        hat=ls.hat, cov_unscaled=C, sigma2=float(sigma2), df_resid=int(df_res),
+        block_effects=block_effects, block_levels=blevels, pure_error=pe_used,
+        actual_coefficients=actual, notes=tuple(input_notes) + tuple(notes),
+        input_notes=tuple(input_notes), omitted_rows=tuple(omitted_rows), omitted_data=omitted_data,
         least_squares=ls,
     )

@@ -44,7 +44,7 @@ from functools import cached_property
 
 import numpy as np
 
-__all__ = ["Regression", "Accumulator", "least_squares", "factorise", "partial_ss", "ALIAS_TOL", "CHUNK_ROWS"]
+__all__ = ["Regression", "Accumulator", "PassSums", "least_squares", "factorise", "partial_ss", "ALIAS_TOL", "CHUNK_ROWS"]
 
 #: A column is aliased when its distance from the span of the estimable columns before it
 #: is at most this fraction of its length.
@@ -244,9 +244,12 @@ class Regression:
     intercept : bool
         Column 0 is all ones.
     hat, residuals, fitted : ndarray or None
-        From the second pass (:meth:`second_pass`); ``None`` for a sub-model.
+        From the second pass (:meth:`second_pass`); ``None`` for a sub-model, and for a
+        second pass that keeps sums only (a Dask DataFrame's partitions).
     ss_total : float
         ``sum (y - ybar)^2`` from the second pass (NaN before it) [response units^2].
+    pass_sums : PassSums or None
+        The sums of the second pass: residual SS, PRESS, range of the fitted values.
     """
 
     R: np.ndarray = field(repr=False)
@@ -264,6 +267,7 @@ class Regression:
     residuals: np.ndarray | None = field(default=None, repr=False)
     fitted: np.ndarray | None = field(default=None, repr=False)
     ss_total: float = math.nan
+    pass_sums: PassSums | None = field(default=None, repr=False)
 
     # -- shape and rank ------------------------------------------------------------------
     @property
@@ -360,8 +364,8 @@ class Regression:
     def ss_res(self) -> float:
         """Residual sum of squares [response units^2] (from the residuals after the second
         pass, else from the factorisation)."""
-        if self.residuals is not None:
-            return float(self.residuals @ self.residuals)
+        if self.pass_sums is not None:
+            return self.pass_sums.ss_res
         return self.rho ** 2
 
     @property
@@ -395,9 +399,9 @@ class Regression:
     @cached_property
     def press(self) -> float:
         """PRESS, ``sum (e_i / (1 - h_ii))^2`` (NaN when a run has leverage 1) [response units^2]."""
-        if self.hat is None:
+        if self.pass_sums is None:
             raise ValueError("PRESS needs the second pass over the rows")
-        return _press(self.residuals, self.hat)
+        return self.pass_sums.press
 
     def vif(self, cols: Sequence[int]) -> np.ndarray:
         """Variance inflation factors of the columns ``cols`` among themselves (the other
@@ -442,24 +446,40 @@ class Regression:
         W = _solve_r(self.R, Xs.T, trans=True)  # (p, m): Q' of the chunk
         h = np.einsum("ij,ij->j", W, W)
         fc = Xs @ self._bs
-        r = (np.asarray(y, dtype=float) - self.shift) - fc
-        return h, r, self.shift + fc
+        y = np.asarray(y, dtype=float)
+        r = (y - self.shift) - fc
+        f = self.shift + fc
+        dy = y - self.ybar
+        one = 1.0 - h
+        ok = one > 1e-10
+        sums = PassSums(ss_res=float(r @ r), press=float(np.sum((r[ok] / one[ok]) ** 2)) if ok.all() else math.nan,
+                        fitted_min=float(f.min()) if f.size else math.inf,
+                        fitted_max=float(f.max()) if f.size else -math.inf, ss_total=float(dy @ dy))
+        return h, r, f, sums
 
-    def second_pass(self, chunks: Chunks) -> Regression:
-        """The same fit with the hat diagonal, residuals, fitted values and the total sum of
-        squares from a pass over the same chunks."""
+    def pass_sums_of(self, chunks: Iterable[tuple[np.ndarray, np.ndarray]]) -> PassSums:
+        """The second-pass sums of some chunks of rows (one partition), without the per-run arrays."""
+        return PassSums.combine([self._pass_chunk(X, y)[3] for X, y in chunks])
+
+    def with_pass_sums(self, sums: Sequence[PassSums]) -> Regression:
+        """The fit completed by second-pass sums gathered elsewhere (e.g. over partitions)."""
+        total = PassSums.combine(sums)
+        return replace(self, pass_sums=total, ss_total=total.ss_total)
+
+    def second_pass(self, chunks: Chunks, keep: bool = True) -> Regression:
+        """The same fit with the hat diagonal, residuals, fitted values (``keep``), the total
+        sum of squares, the residual sum of squares and PRESS from a pass over the same chunks."""
         self._need_full_rank()
-        hs, rs, fs = [], [], []
-        ybar = self.ybar
-        sst = []
+        hs, rs, fs, sums = [], [], [], []
         for X, y in chunks():
-            h, r, f = self._pass_chunk(X, y)
-            hs.append(h)
-            rs.append(r)
-            fs.append(f)
-            dy = np.asarray(y, dtype=float) - ybar
-            sst.append(float(dy @ dy))
-        return replace(self, hat=_cat(hs), residuals=_cat(rs), fitted=_cat(fs), ss_total=math.fsum(sst))
+            h, r, f, sm = self._pass_chunk(X, y)
+            sums.append(sm)
+            if keep:
+                hs.append(h)
+                rs.append(r)
+                fs.append(f)
+        out = self.with_pass_sums(sums)
+        return replace(out, hat=_cat(hs), residuals=_cat(rs), fitted=_cat(fs)) if keep else out
 
     def nested_press(self, chunks: Chunks, ends: Sequence[int]) -> list[tuple[float, float]]:
         """For the nested models of the first ``k`` columns (``k`` in ``ends``): the residual
@@ -503,13 +523,27 @@ def partial_ss(beta: np.ndarray, cov_unscaled: np.ndarray, idx: Sequence[int] | 
     return float(b @ np.linalg.solve(cov_unscaled[np.ix_(idx, idx)], b))
 
 
+@dataclass(frozen=True)
+class PassSums:
+    """Sums of the second pass over some rows (they add up over chunks and partitions).
+
+    ``press`` is NaN when a run has leverage 1 (within 1e-10); ``fitted_min``/``fitted_max``
+    give the range of the fitted values (adequate precision) [response units]."""
+
+    ss_res: float
+    press: float
+    fitted_min: float
+    fitted_max: float
+    ss_total: float
+
+    @staticmethod
+    def combine(parts: Sequence[PassSums]) -> PassSums:
+        parts = list(parts)
+        return PassSums(ss_res=math.fsum(p.ss_res for p in parts), press=math.fsum(p.press for p in parts),
+                        fitted_min=min((p.fitted_min for p in parts), default=math.inf),
+                        fitted_max=max((p.fitted_max for p in parts), default=-math.inf),
+                        ss_total=math.fsum(p.ss_total for p in parts))
+
+
 def _cat(parts: list) -> np.ndarray:
     return np.concatenate(parts) if parts else np.zeros(0)
-
-
-def _press(residuals: np.ndarray, hat: np.ndarray) -> float:
-    with np.errstate(divide="ignore", invalid="ignore"):
-        one = 1.0 - hat
-        if not np.all(one > 1e-10):
-            return math.nan
-        return float(np.sum((residuals / one) ** 2))

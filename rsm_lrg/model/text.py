@@ -147,10 +147,15 @@ def equation_terms(result, units: str = "coded") -> list[EquationTerm]:
         values = actual_coefficients(coded, result.terms, result.space)
         mags = []
         for f in result.space.factors:  # the box and the runs (a CCD's axial runs lie outside the box)
-            runs = np.abs(np.asarray(result.coded[f.letter], dtype=float)) * f.half_range + abs(f.center)
+            runs = (np.abs(np.asarray(result.coded[f.letter], dtype=float)) * f.half_range + abs(f.center)
+                    if result.coded is not None else np.zeros(0))  # a Dask fit holds no runs
             mags.append(max(abs(f.low), abs(f.high), float(np.max(runs, initial=0.0))))
-    fitted = [abs(float(v)) for v in result.fitted if math.isfinite(float(v))]
-    scale = max(fitted, default=0.0)
+    if result.fitted is not None:
+        fitted = [abs(float(v)) for v in result.fitted if math.isfinite(float(v))]
+        scale = max(fitted, default=0.0)
+    else:  # the range of the fitted values from the second pass
+        sums = result.least_squares.pass_sums
+        scale = max(abs(sums.fitted_min), abs(sums.fitted_max))
     out = []
     for name, v in values.items():
         powers = parse_term(name, letters).powers

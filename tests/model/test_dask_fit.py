@@ -1,0 +1,71 @@
+"""rsm_lrg.fit of a Dask DataFrame (partition by partition, never collected) equals the
+pandas fit of the same rows: coefficients, ANOVA (with lack of fit / pure error) and fit
+statistics (with PRESS) to 1e-10 relative (the same algebra; only the order of the
+rounding differs), on a real ``distributed.LocalCluster``.
+"""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import rsm_lrg
+
+dd = pytest.importorskip("dask.dataframe")  # needs pyarrow (dask[dataframe])
+
+
+def _data(n: int, k: int, seed: int = 0) -> pd.DataFrame:
+    # three levels per factor (replicated settings: pure error) and a tenth anywhere in the box,
+    # a response on an offset of 1e6 with unit noise; one run without a response
+    rng = np.random.default_rng(seed)
+    x = rng.integers(-1, 2, size=(n, k)).astype(float)
+    x[: n // 10] = rng.uniform(-1, 1, (n // 10, k))
+    df = pd.DataFrame(2.0 + 3.0 * x, columns=[f"x{i}" for i in range(k)])
+    df["y"] = 1e6 + x.sum(axis=1) + 0.5 * (x ** 2).sum(axis=1) + x[:, 0] * x[:, 1] + rng.normal(size=n)
+    df.loc[7, "y"] = np.nan
+    return df
+
+
+def _close(a, b, rtol=1e-10):
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    np.testing.assert_allclose(a, b, rtol=rtol, atol=rtol * np.nanmax(np.abs(b)), equal_nan=True)
+
+
+def _same_fit(got, ref):
+    for c in ("coded", "std_error", "t", "vif", "actual"):
+        _close(got.coefficients[c], ref.coefficients[c])
+    assert list(got.anova["source"]) == list(ref.anova["source"])
+    assert list(got.anova["df"]) == list(ref.anova["df"])
+    for c in ("sum_sq", "mean_sq", "f"):
+        _close(got.anova[c], ref.anova[c])
+    for key, v in ref.statistics.to_dict().items():
+        assert got.statistics[key] == pytest.approx(v, rel=1e-10), key
+    assert got.n == ref.n and got.df_resid == ref.df_resid
+    assert got.pure_error.df == ref.pure_error.df
+    assert got.pure_error.ss == pytest.approx(ref.pure_error.ss, rel=1e-10)
+
+
+@pytest.mark.cluster
+@pytest.mark.slow
+def test_dask_fit_on_a_local_cluster_equals_the_pandas_fit():
+    distributed = pytest.importorskip("distributed")
+    df = _data(6000, 3)
+    ref = rsm_lrg.fit(df, "y")
+    with distributed.LocalCluster(processes=False, n_workers=2, threads_per_worker=1,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        assert len(client.scheduler_info()["workers"]) == 2
+        got = rsm_lrg.fit(dd.from_pandas(df, npartitions=5), "y", chunk_rows=500)
+        given = rsm_lrg.fit(dd.from_pandas(df, npartitions=3), "y", factors=["x0", "x1=0:4", "x2"], model="2fi")
+    _same_fit(got, ref)
+    _same_fit(given, rsm_lrg.fit(df, "y", factors=["x0", "x1=0:4", "x2"], model="2fi"))
+    assert got.y is None and got.hat is None  # nothing per run was collected
+    assert "1 run without a response" in got.notes[-1]
+    assert "Lack of Fit" in got.summary()
+
+
+def test_dask_fit_refuses_blocks_and_constant_factors():
+    df = _data(300, 2).assign(blk=lambda d: np.arange(len(d)) % 2, const=1.0)
+    ddf = dd.from_pandas(df, npartitions=2)
+    with pytest.raises(ValueError, match="block column is not supported for a Dask DataFrame"):
+        rsm_lrg.fit(ddf, "y", factors=["x0", "x1"], block="blk")
+    with pytest.raises(ValueError, match="'const' is constant"):
+        rsm_lrg.fit(ddf, "y", factors=["x0", "const"])
