@@ -19,7 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .least_squares import partial_ss
+from .least_squares import least_squares, partial_ss
+from .terms import block_contrasts
 
 __all__ = ["partial_ss", "pure_error", "PureError", "anova_table", "lack_of_fit", "f_test", "ANOVA_COLUMNS"]
 
@@ -106,15 +107,13 @@ def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None
         codes = np.unique(np.asarray(blocks), return_inverse=True)[1].ravel()
         nb = int(codes.max()) + 1 if codes.size else 0
         if nb > 1:
-            B = np.zeros((y.size, nb - 1))
-            for j in range(nb - 1):
-                B[codes == j, j] = 1.0
-            B[codes == nb - 1, :] = -1.0
+            B = block_contrasts(codes, nb)
             Bt = B - _group_means(groups, B, n_groups)
-            if np.any(Bt != 0.0):
-                coef, _, block_df, _ = np.linalg.lstsq(Bt, yt, rcond=1e-10)
-                yt = yt - Bt @ coef
-                block_df = int(block_df)
+            if np.any(Bt != 0.0):  # the regression core on the centred contrasts (some may be aliased)
+                ls = least_squares(Bt, yt)
+                block_df = ls.rank
+                return PureError(groups=groups, n_groups=n_groups, ss=ls.submodel(ls.kept).ss_res,
+                                 df=int(y.size - n_groups - block_df), block_df=block_df)
     ss = float(np.sum(yt ** 2))
     return PureError(groups=groups, n_groups=n_groups, ss=ss, df=int(y.size - n_groups - block_df), block_df=block_df)
 

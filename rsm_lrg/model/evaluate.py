@@ -355,7 +355,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     from ..factors import letters_for
     from .anova import pure_error
     from .least_squares import least_squares
-    from .terms import MAX_TERMS, check_model_size, design_matrix, model_terms, n_model_terms
+    from .terms import MAX_TERMS, check_model_size, design_matrix, model_matrix, model_terms, n_model_terms
 
     blocks = None
     if hasattr(design, "coded_runs"):
@@ -382,21 +382,15 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         raise ValueError(f"the {model} model in {k} factors has {n_par} terms and {n} runs cannot estimate "
                          "them; choose a smaller model or add runs")
     terms = model_terms(letters, model)
-    Xt = design_matrix(coded, terms)
-    nb = 1
+    nb, codes = 1, None
     if blocks is not None and len(set(np.asarray(blocks).tolist())) > 1:
         levels = sorted(set(np.asarray(blocks).tolist()))
         nb = len(levels)
         codes = np.searchsorted(levels, blocks)
-        Bm = np.zeros((n, nb - 1))
-        for j in range(nb - 1):
-            Bm[codes == j, j] = 1.0
-        Bm[codes == nb - 1, :] = -1.0
-        X = np.column_stack([Xt[:, :1], Bm, Xt[:, 1:]])
         keys = np.column_stack([coded, codes])
     else:
-        X = Xt
         keys = coded
+    X = model_matrix(coded, terms, codes, nb)
     p = X.shape[1]
     names = [t.name for t in terms]
     # pure error as fit() splits it: residual of (blocks +) one mean per distinct setting

@@ -39,7 +39,7 @@ from .canonical import StationaryPoint, canonical_analysis
 from .data import prepare
 from .least_squares import CHUNK_ROWS, Regression, factorise
 from .statistics import FitStatistics, fit_statistics
-from .terms import MODELS, Term, check_model_size, design_matrix, model_terms, term_name
+from .terms import MODELS, Term, check_model_size, design_matrix, model_matrix, model_terms, term_name
 
 __all__ = ["fit", "FitResult", "actual_coefficients", "COEF_COLUMNS", "model_inputs", "ModelInputs"]
 
@@ -539,17 +539,8 @@ def _check_magnitudes(space: FactorSpace, y: np.ndarray, response: str) -> None:
 
 def _model_rows(x: np.ndarray, terms, bcodes: np.ndarray | None, nb: int, start: int = 0,
                 stop: int | None = None) -> np.ndarray:
-    """Rows ``start:stop`` of the model matrix: intercept, the ``nb - 1`` sum-to-zero block
-    contrasts (when blocked), the other terms."""
-    Xt = design_matrix(x[start:stop], terms)
-    if nb <= 1:
-        return Xt
-    c = bcodes[start:stop]
-    Bm = np.zeros((c.size, nb - 1))
-    for j in range(nb - 1):
-        Bm[c == j, j] = 1.0
-    Bm[c == nb - 1, :] = -1.0
-    return np.hstack([Xt[:, :1], Bm, Xt[:, 1:]])
+    """Rows ``start:stop`` of the model matrix (:func:`~rsm_lrg.model.terms.model_matrix`)."""
+    return model_matrix(x[start:stop], terms, None if bcodes is None else bcodes[start:stop], nb)
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["Term", "MODELS", "model_terms", "n_model_terms", "check_model_size", "design_matrix",
+           "block_contrasts", "model_matrix",
            "design_gradient", "term_name", "parse_term"]
 
 #: Model names accepted by :func:`model_terms`.
@@ -198,6 +199,27 @@ def design_matrix(coded: np.ndarray, terms: Sequence[Term]) -> np.ndarray:
             for q in parts[2:]:
                 out *= q
     return X
+
+
+def block_contrasts(codes: np.ndarray, n_blocks: int) -> np.ndarray:
+    """Sum-to-zero block contrasts (n x (b - 1)): column j is 1 in block j, -1 in the last
+    block, 0 elsewhere (Design-Expert's block effects; ``codes`` are 0 .. b-1)."""
+    codes = np.asarray(codes)
+    B = np.zeros((codes.size, n_blocks - 1))
+    for j in range(n_blocks - 1):
+        B[codes == j, j] = 1.0
+    B[codes == n_blocks - 1, :] = -1.0
+    return B
+
+
+def model_matrix(coded: np.ndarray, terms: Sequence[Term], block_codes: np.ndarray | None = None,
+                 n_blocks: int = 1) -> np.ndarray:
+    """Model matrix with blocks: intercept, the ``n_blocks - 1`` block contrasts
+    (:func:`block_contrasts`), then the other terms (without blocks: :func:`design_matrix`)."""
+    Xt = design_matrix(coded, terms)
+    if n_blocks <= 1:
+        return Xt
+    return np.hstack([Xt[:, :1], block_contrasts(block_codes, n_blocks), Xt[:, 1:]])
 
 
 def design_gradient(point: np.ndarray, terms: Sequence[Term]) -> np.ndarray:
