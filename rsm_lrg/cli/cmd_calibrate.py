@@ -9,9 +9,11 @@ from ._common import about_file, add_force, add_json
 NAME = "calibrate"
 HELP = "fit the surrogate's unknown parameters to measured runs"
 DESCRIPTION = (
-    "Fit at most three parameters the paper does not give (by default: the share of the "
-    "friction heat that enters the guide, the viscous friction of the block, the damping of "
-    "the frame on its hinges) "
+    "Fit at most three parameters the paper does not give (model v3, the default: the share of "
+    "the friction heat that enters the guide, the viscous friction of the block, and the drive's "
+    "heat conducted through the leaves; --model v3-overconstraint: the over-constraint misfit "
+    "instead of the drive heat; --model v2: the earlier calibration, small-deflection hinge with "
+    "the frame damping calibrated) "
     "by bounded least squares to the measured response of noise-free virtual runs; report R2, "
     "RMSE, standard errors and leave-one-out cross-validation, and write them with the data's "
     "name and SHA-256 to a TOML file that `rsm-lrg simulate --calibration PATH` reads "
@@ -22,8 +24,14 @@ DESCRIPTION = (
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("data", metavar="DATA.csv", help="measured runs: the design columns and the response")
     p.add_argument("--response", required=True, metavar="COL", help="the measured column (e.g. tcr_c_per_min)")
+    p.add_argument("--model", default="v3", choices=("v3", "v3-overconstraint", "v2"),
+                   help="calibration model: the physics it fixes and its default parameters (default v3: "
+                        "elastic hinge with held ends, leaf-conduction thickness mechanism; v2 reproduces the "
+                        "earlier calibration)")
     p.add_argument("--parameter", action="append", default=None, metavar="NAME",
-                   help="a parameter to calibrate (repeatable, at most 3; default: heat_partition, "
+                   help="a parameter to calibrate (repeatable, at most 3; default: the model's -- v3: "
+                        "heat_partition, viscous_friction_n_s_m, drive_heat_w; v3-overconstraint: "
+                        "overconstraint_misfit_m instead of drive_heat_w; v2: heat_partition, "
                         "viscous_friction_n_s_m, hinge_damping_ratio; also hinge_length_m, hinge_width_m, "
                         "frame_mass_fraction)")
     from ._common import number
@@ -63,7 +71,7 @@ def run(args) -> int:
     with about_file(args.data):
         cal = calibrate(data, args.response, parameters=args.parameter, duration_min=duration,
                         loo=not args.no_loo, source=_safe_name(Path(args.data).name),
-                        data_sha256=file_sha256(args.data), progress=args.progress)
+                        data_sha256=file_sha256(args.data), progress=args.progress, model=args.model)
     print(cal.summary())
     argv = [_safe_name(a) for a in sys.argv[2:]]
     cmd = "rsm-lrg calibrate " + " ".join(shlex.quote(a) for a in argv) if argv else ""

@@ -144,4 +144,9 @@ def run(args) -> int:
     write_output(out_path, runs.to_csv(index=False, float_format="%.10g", lineterminator="\n"), force=args.force)
     note = f" (noise seed drawn: rerun with --seed {seed} to repeat)" if drawn else ""
     print(f"simulate: {len(runs)} runs -> {out_path}{note}", file=sys.stderr)
+    if "hinge_yields" in runs.columns and runs["hinge_yields"].any():
+        rows = [str(i + 1) for i in runs.index[runs["hinge_yields"].to_numpy(dtype=bool)][:10]]
+        print(f"simulate: WARNING: the hinge leaves would yield in {int(runs['hinge_yields'].sum())} row(s) "
+              f"(data rows {', '.join(rows)}{' ...' if runs['hinge_yields'].sum() > 10 else ''}): peak stress "
+              f"above hinge_yield_pa, see the hinge_peak_stress_pa and hinge_yields columns", file=sys.stderr)
     return 0

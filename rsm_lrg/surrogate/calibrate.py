@@ -270,7 +270,7 @@ def _r2(obs, pred) -> float:
 
 
 #: Calibratable parameters that do not enter the stage dynamics (cheap to vary).
-_HEAT_ONLY = ("heat_partition",)
+_HEAT_ONLY = ("heat_partition", "drive_heat_w")
 
 
 def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=None,

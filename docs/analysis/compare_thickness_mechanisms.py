@@ -1,0 +1,40 @@
+"""Issue 15: calibrate the two thickness mechanisms on Table 4 and compare them (not a test).
+
+Run: python docs/analysis/compare_thickness_mechanisms.py [OUTDIR]
+Writes OUTDIR/calibration_<model>.toml for models v3 (leaf conduction) and v3-overconstraint,
+and prints R², leave-one-out R² and the parameters with standard errors; then what else each
+predicts at the Fig. 9 settings (RMS against RFCMS, v = 0.5 m/s, a = 10 m/s², 0.3 mm).
+A few minutes each on two cores.
+"""
+
+import sys
+import time
+from pathlib import Path
+
+import pandas as pd
+
+from rsm_lrg.datasets import data_path, load_table4
+from rsm_lrg.surrogate import simulate
+from rsm_lrg.surrogate.calibrate import calibrate, calibration_toml, file_sha256
+
+
+def main(out="."):
+    out = Path(out)
+    t4 = load_table4()
+    sha = file_sha256(data_path("table4.csv"))
+    for model in sys.argv[2:] or ("v3", "v3-overconstraint"):
+        t = time.time()
+        cal = calibrate(t4, "tcr_c_per_min", model=model, source="table4.csv", data_sha256=sha)
+        cmd = f"rsm-lrg calibrate data/table4.csv --response tcr_c_per_min --model {model} -o data/calibration.toml --force"
+        (out / f"calibration_{model}.toml").write_text(calibration_toml(cal, cmd))
+        print(f"== {model} ({time.time() - t:.0f} s)")
+        print(cal.summary())
+        rows = [dict(thickness_m=3e-4, stroke_m=s, velocity_m_s=0.5, acceleration_m_s2=10.0, stage=st)
+                for s in (0.075, 0.06, 0.04) for st in ("rfcms", "rms")]
+        fig9 = simulate(pd.DataFrame(rows), noise_sd=0, calibration=cal)
+        print(fig9[["stroke_m", "stage", "tcr_c_per_min", "heat_w", "wear_volume_m3_per_h"]].to_string())
+        sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else ".")
