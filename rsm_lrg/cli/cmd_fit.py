@@ -50,11 +50,39 @@ def _write_report(result, path, force: bool) -> None:
     writer(result, path, force=force)
 
 
+def _many_files(path: str):
+    """A Dask DataFrame of the CSV or Parquet files of a directory or glob pattern, or None
+    for one file (read as usual)."""
+    import glob
+    import os
+
+    if not (os.path.isdir(path) or any(c in path for c in "*?[")):
+        return None
+    pattern = os.path.join(path, "*") if os.path.isdir(path) else path
+    files = sorted(f for f in glob.glob(pattern) if os.path.isfile(f))
+    csv = [f for f in files if f.lower().endswith(".csv")]
+    pq = [f for f in files if f.lower().endswith((".parquet", ".pq"))]
+    if not csv and not pq:
+        raise ValueError(f"{path}: no CSV or Parquet files found")
+    if csv and pq:
+        raise ValueError(f"{path}: holds both CSV and Parquet files; give a pattern that picks one kind")
+    try:
+        import dask.dataframe as dd
+    except ImportError as exc:
+        raise ValueError(f"{path}: fitting several files needs dask[dataframe] ({exc})") from None
+    return dd.read_csv(csv, assume_missing=True) if csv else dd.read_parquet(pq)
+
+
 def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, read_table
 
     check_transform_option(args)  # a bad --transform is named before any data is read
-    data = read_table(args.data)
+    many = _many_files(str(args.data))  # a directory or glob: fitted partition by partition (Dask)
+    if many is not None:
+        unsupported = [o for o in ("reduce", "transform", "diagnostics", "report") if getattr(args, o, None)]
+        if unsupported:
+            raise ValueError(f"{args.data}: --{unsupported[0]} is not available when fitting several files")
+    data = many if many is not None else read_table(args.data)
     with about_file(args.data):
         shown, extra = fit_model(data, args.response, args, factors=args.factor, block=args.block)
         result = getattr(shown, "fit", shown)  # the FitResult behind a transformed fit

@@ -69,3 +69,27 @@ def test_dask_fit_refuses_blocks_and_constant_factors():
         rsm_lrg.fit(ddf, "y", factors=["x0", "x1"], block="blk")
     with pytest.raises(ValueError, match="'const' is constant"):
         rsm_lrg.fit(ddf, "y", factors=["x0", "const"])
+
+
+def test_fit_command_reads_a_directory_or_glob_of_csv_files(tmp_path, capsys):
+    # `rsm-lrg fit DIR` and `rsm-lrg fit 'DIR/*.csv'` fit the files as one Dask DataFrame:
+    # the same coefficients as the one-file fit (1e-10 relative)
+    import json
+
+    from rsm_lrg.cli import main
+
+    df = _data(1500, 2)
+    for i in range(3):
+        df.iloc[500 * i:500 * (i + 1)].to_csv(tmp_path / f"part{i}.csv", index=False)
+    df.to_csv(tmp_path / "all.txt", index=False)  # not a .csv: not picked up from the directory
+    outs = []
+    for src in (str(tmp_path / "all.txt"), str(tmp_path), str(tmp_path / "part*.csv")):
+        assert main(["fit", src, "--response", "y", "--json", "-"]) == 0
+        outs.append(json.loads(capsys.readouterr().out))
+    ref = outs[0]["coefficients"]["coded"]
+    for out in outs[1:]:
+        assert out["n"] == 1499
+        for k, v in ref.items():
+            assert out["coefficients"]["coded"][k] == pytest.approx(v, rel=1e-10, abs=1e-10 * abs(ref["Intercept"]))
+    assert main(["fit", str(tmp_path), "--response", "y", "--reduce"]) == 2
+    assert "--reduce is not available when fitting several files" in capsys.readouterr().err
