@@ -15,6 +15,10 @@ and 1.5 for 10^6 runs x 10 factors).
 
     python benchmarks/bench_fit.py                 # n = 1e6, k = 10
     python benchmarks/bench_fit.py --n 3e5 --k 10 4
+    python benchmarks/bench_fit.py --dask 1e6 --partitions 16 --workers 2 --memory-limit 1GB
+
+With ``--dask N`` it fits N runs made partition by partition on a ``distributed.LocalCluster``
+(the runs are never in one process; needs ``dask[dataframe]``) and prints the time.
 """
 
 from __future__ import annotations
@@ -77,12 +81,42 @@ def _run(what: str, n: int, k: int) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+def _dask(n: int, k: int, partitions: int, workers: int, memory_limit: str) -> None:
+    import dask
+    import dask.dataframe as dd
+    import distributed
+
+    import rsm_lrg
+
+    rows = -(-n // partitions)
+    parts = [dask.delayed(make)(min(rows, n - i * rows), k, i) for i in range(partitions) if n - i * rows > 0]
+    meta = make(2, k).iloc[:0]
+    specs = [f"x{i}=-1:1" for i in range(k)]
+    with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, memory_limit=memory_limit,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster):
+        ddf = dd.from_delayed(parts, meta=meta)
+        t0 = time.perf_counter()
+        r = rsm_lrg.fit(ddf, "y", factors=specs)
+        t = time.perf_counter() - t0
+    p = (k + 1) * (k + 2) // 2
+    print(f"dask fit: n {n}, k {k} ({p} terms), {len(parts)} partitions (each made on its worker), {workers} workers "
+          f"x 1 thread, memory limit {memory_limit} each: {t:.1f} s (includes making the runs); R2 {r.statistics.r2:.4f}, "
+          f"PRESS {r.statistics.press:.6g}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=float, nargs="+", default=[1e6])
     ap.add_argument("--k", type=int, nargs="+", default=[10])
+    ap.add_argument("--dask", type=float, default=None, metavar="N", help="fit N runs on a LocalCluster instead")
+    ap.add_argument("--partitions", type=int, default=16)
+    ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--memory-limit", default="1GB")
     ap.add_argument("--child", choices=["qr", "fit"], help=argparse.SUPPRESS)
     args = ap.parse_args()
+    if args.dask:
+        _dask(int(args.dask), args.k[0], args.partitions, args.workers, args.memory_limit)
+        return
     if args.child:
         print(json.dumps(_child(args.child, int(args.n[0]), args.k[0])))
         return
