@@ -24,6 +24,8 @@ version manager's shim on ``PATH`` (pyenv's adds a bash start-up of its own).
 
     python benchmarks/bench_cli.py               # 15 rounds
     python benchmarks/bench_cli.py --repeat 30 --json out.json
+    python benchmarks/bench_cli.py --floor       # also the bare imports of numpy, pandas, scipy
+    python benchmarks/bench_cli.py --root /tmp/old-checkout   # `python -m rsm_lrg` of another commit
 """
 
 from __future__ import annotations
@@ -65,6 +67,15 @@ def commands(other_root: bool = False) -> dict[str, list[str]]:
     return cmds
 
 
+#: ``--floor``: what the libraries alone cost, whatever rsm_lrg does (numpy and pandas are
+#: needed by every fit; scipy.special and scipy.linalg are what the model layer uses).
+FLOOR = {
+    "import numpy, pandas": "import numpy, pandas",
+    "  + scipy.special": "import numpy, pandas, scipy.special",
+    "  + scipy.special, linalg": "import numpy, pandas, scipy.special, scipy.linalg",
+}
+
+
 ENV = dict(os.environ)
 
 
@@ -89,6 +100,8 @@ def main() -> int:
                     help="keep PYTHONDONTWRITEBYTECODE (every run compiles the sources again)")
     ap.add_argument("--root", default=None,
                     help="run `python -m rsm_lrg` from another checkout (e.g. an older commit, for before/after)")
+    ap.add_argument("--floor", action="store_true",
+                    help="also time bare imports of numpy, pandas and scipy (the floor under any fit)")
     args = ap.parse_args()
     global ROOT
     if args.root:
@@ -96,6 +109,8 @@ def main() -> int:
     if not args.no_bytecode:
         ENV.pop("PYTHONDONTWRITEBYTECODE", None)
     cmds = commands(other_root=bool(args.root))
+    if args.floor:
+        cmds |= {k: [sys.executable, "-c", code] for k, code in FLOOR.items()}
     for cmd in cmds.values():  # warm-up: page cache, .pyc files, R's library
         run_once(cmd)
     times: dict[str, dict[str, list[float]]] = {k: {"wall": [], "cpu": []} for k in cmds}
@@ -114,12 +129,15 @@ def main() -> int:
     r = med.get("Rscript rsm fit")
     if r:
         print()
-        for k in ("python -m rsm_lrg fit", "rsm-lrg fit"):
+        for k in ("python -m rsm_lrg fit", "rsm-lrg fit", *(FLOOR if args.floor else ())):
             if k in med:
                 ratios = {m: statistics.median(a / b for a, b in zip(times[k][m], times["Rscript rsm fit"][m]))
                           for m in ("wall", "cpu")}
                 out[f"ratio {k} / R"] = ratios
                 verdict = "at or under" if ratios["cpu"] <= 3.0 else "OVER"
+                if k in FLOOR:
+                    print(f"{k.strip():28s} / R: CPU {ratios['cpu']:.2f}x (floor, not a fit)")
+                    continue
                 print(f"{k} / R: CPU {ratios['cpu']:.2f}x, wall {ratios['wall']:.2f}x "
                       f"(median of per-round ratios; target CPU <= 3x: {verdict})")
     h = med.get("rsm-lrg --help") or med.get("python -m rsm_lrg --help")
