@@ -7,6 +7,8 @@ the report layer never loads the paper layer; the one import below is the single
 listed in the import-linter contract (``ignore_imports`` in pyproject.toml).
 """
 
+import warnings as _warnings
+
 from ..paper.reproduction import *  # noqa: F403
 from ..paper.reproduction import (  # noqa: F401
     __all__ as _paper_all,
@@ -20,3 +22,6 @@ from ..paper.reproduction import (  # noqa: F401
 from .reproduction_page import _cell_css, banner, display_number  # noqa: F401
 
 __all__ = [*_paper_all, "banner", "display_number"]
+
+_warnings.warn("rsm_lrg.report.reproduce is deprecated: use rsm_lrg.paper (reproduce, write_reproduction) and "
+               "rsm_lrg.report.reproduction_page (banner, display_number)", DeprecationWarning, stacklevel=2)

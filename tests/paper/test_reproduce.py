@@ -103,9 +103,13 @@ def test_text_and_frame(rep):
 def test_old_import_path_still_works():
     # the reproduction moved from rsm_lrg.report.reproduce to rsm_lrg.paper (issue 11); the
     # old module is an alias of the same objects
+    import importlib
+
     import rsm_lrg.paper.reproduction as new
-    import rsm_lrg.report.reproduce as old
     import rsm_lrg.report.reproduction_page as page
+
+    with pytest.deprecated_call():
+        old = importlib.reload(importlib.import_module("rsm_lrg.report.reproduce"))
 
     for name in ("reproduce", "write_reproduction", "reproduction_html", "Row", "Reproduction", "VERDICTS",
                  "last_digit_unit", "_close", "_claim"):
