@@ -59,25 +59,31 @@ def _child(what: str, n: int, k: int) -> dict:
         from scipy.linalg import qr
 
         X = design_matrix(df[[f"x{i}" for i in range(k)]].to_numpy(), terms)
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         qr(X, mode="r")
-        return {"qr_s": time.perf_counter() - t0, "x_bytes": nbytes}
+        return {"qr_s": time.perf_counter() - t0, "qr_cpu": time.process_time() - c0, "x_bytes": nbytes}
     rsm_lrg.fit(make(200, 3), "y")  # warm-up: imports
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     r = rsm_lrg.fit(df, "y", factors=specs)
-    t_fit = time.perf_counter() - t0
+    t_fit, c_fit = time.perf_counter() - t0, time.process_time() - c0
     assert np.isfinite(r.statistics.press) and r.pure_error is not None
     del r
     tracemalloc.start()
     r = rsm_lrg.fit(df, "y", factors=specs)
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
-    return {"fit_s": t_fit, "peak_bytes": peak, "x_bytes": nbytes, "r2": r.statistics.r2}
+    return {"fit_s": t_fit, "fit_cpu": c_fit, "peak_bytes": peak, "x_bytes": nbytes, "r2": r.statistics.r2}
 
 
-def _run(what: str, n: int, k: int) -> dict:
+def _run(what: str, n: int, k: int, threads: int | None = None) -> dict:
+    import os
+
+    env = dict(os.environ)
+    if threads:
+        for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+            env[var] = str(threads)
     out = subprocess.run([sys.executable, __file__, "--child", what, "--n", str(n), "--k", str(k)],
-                         capture_output=True, text=True, check=True)
+                         capture_output=True, text=True, check=True, env=env)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -112,6 +118,8 @@ def main() -> None:
     ap.add_argument("--partitions", type=int, default=16)
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--memory-limit", default="1GB")
+    ap.add_argument("--threads", type=int, default=None,
+                    help="BLAS threads in both measurements (1 gives steady ratios on a shared machine)")
     ap.add_argument("--child", choices=["qr", "fit"], help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.dask:
@@ -120,15 +128,17 @@ def main() -> None:
     if args.child:
         print(json.dumps(_child(args.child, int(args.n[0]), args.k[0])))
         return
+    print("wall and CPU (process, all threads) seconds; the CPU ratio is the steadier one on a shared machine")
     print(f"{'n':>9} {'k':>3} {'terms':>5} {'X [MB]':>8} {'QR [s]':>8} {'fit [s]':>8} {'fit/QR':>7} "
-          f"{'peak [MB]':>10} {'peak/X':>7}")
+          f"{'QR cpu':>7} {'fit cpu':>7} {'cpu/cpu':>7} {'peak [MB]':>10} {'peak/X':>7}")
     for n in (int(v) for v in args.n):
         for k in args.k:
-            q = _run("qr", n, k)
-            f = _run("fit", n, k)
+            q = _run("qr", n, k, args.threads)
+            f = _run("fit", n, k, args.threads)
             p = (k + 1) * (k + 2) // 2
             print(f"{n:>9} {k:>3} {p:>5} {q['x_bytes'] / 1e6:>8.1f} {q['qr_s']:>8.2f} {f['fit_s']:>8.2f} "
-                  f"{f['fit_s'] / q['qr_s']:>7.2f} {f['peak_bytes'] / 1e6:>10.1f} {f['peak_bytes'] / q['x_bytes']:>7.2f}",
+                  f"{f['fit_s'] / q['qr_s']:>7.2f} {q['qr_cpu']:>7.2f} {f['fit_cpu']:>7.2f} "
+                  f"{f['fit_cpu'] / q['qr_cpu']:>7.2f} {f['peak_bytes'] / 1e6:>10.1f} {f['peak_bytes'] / q['x_bytes']:>7.2f}",
                   flush=True)
 
 
