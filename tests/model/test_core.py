@@ -224,3 +224,30 @@ def test_fit_summary_sequential_ss_from_one_factorisation_match_statsmodels_anov
         assert seq.loc[src, "sum_sq"] == pytest.approx(table["ss_diff"].iloc[row], rel=1e-9)
     stats = s.statistics.set_index("source")
     assert stats.loc["Quadratic", "press"] == pytest.approx(r.statistics.press, rel=1e-12)
+
+
+def test_core_against_r_rsm_on_a_ccd_with_replicates():
+    # r/core_check.R (R 4.2.2, rsm 2.10.6) on r/core_ccd4.csv (coded data, offset 1e4; made by
+    # r/make_data.py): coefficients, the sequential SS of rsm's summary (FO, TWI, PQ = the fit
+    # summary's Linear, 2FI, Quadratic rows), residual / lack of fit / pure error SS, PRESS, the hat
+    # diagonal and the VIF, all to 1e-9 relative.
+    from rsm_lrg.model.summary import fit_summary
+
+    d = pd.read_csv(R_DIR / "core_ccd4.csv")
+    ref = pd.read_csv(R_DIR / "core_expected.csv")
+    val = {(q, nm): v for q, nm, v in ref.itertuples(index=False)}
+    specs = [f"x{i}=-1:1" for i in range(1, 5)]
+    r = rsm_lrg.fit(d, "y", factors=specs)
+    np.testing.assert_allclose(r.coefficients["coded"], ref[ref.quantity == "coef"]["value"], rtol=1e-9)
+    an = r.anova.set_index("source")
+    for ours, theirs in (("Residual", "Residuals"), ("Lack of Fit", "Lack of fit"), ("Pure Error", "Pure error")):
+        assert an.loc[ours, "sum_sq"] == pytest.approx(val[("ss", theirs)], rel=1e-9)
+        assert an.loc[ours, "df"] == int(val[("df", theirs)])
+    assert r.statistics.press == pytest.approx(val[("press", "PRESS")], rel=1e-9)
+    np.testing.assert_allclose(r.hat, ref[ref.quantity == "hat"]["value"], rtol=1e-9)
+    np.testing.assert_allclose(r.coefficients["vif"].iloc[1:], ref[ref.quantity == "vif"]["value"], rtol=1e-9)
+    s = fit_summary(d, "y", factors=specs, orders=("linear", "2fi", "quadratic")).sequential.set_index("source")
+    for ours, theirs in (("Linear vs Mean", "FO(x1, x2, x3, x4)"), ("2FI vs Linear", "TWI(x1, x2, x3, x4)"),
+                         ("Quadratic vs 2FI", "PQ(x1, x2, x3, x4)")):
+        assert s.loc[ours, "sum_sq"] == pytest.approx(val[("ss", theirs)], rel=1e-9)
+        assert s.loc[ours, "df"] == int(val[("df", theirs)])

@@ -1,6 +1,7 @@
 """Writes the data sets that the R scripts beside it read (run once; the CSVs are committed).
 
-    python tests/model/r/make_data.py && Rscript tests/model/r/blocks_lof.R && Rscript tests/model/r/lm_accuracy.R
+    python tests/model/r/make_data.py && Rscript tests/model/r/blocks_lof.R && Rscript tests/model/r/lm_accuracy.R \
+        && Rscript tests/model/r/core_check.R
 
 Floats are written with 17 significant digits, so R reads exactly the numbers Python holds.
 """
@@ -84,7 +85,23 @@ def coded(name: str) -> None:
     _write(out, name.replace(".csv", "_coded.csv"))
 
 
+def core_data() -> None:
+    """A central composite design in 4 coded factors (axial 1.5, 4 centre runs, the cube
+    replicated once) plus 10 runs anywhere in the box, response on an offset of 1e4: the
+    regression core against R (core_check.R)."""
+    import itertools
+
+    rng = np.random.default_rng(11_2026)
+    cube = np.array(list(itertools.product([-1.0, 1.0], repeat=4)))
+    axial = np.vstack([s * 1.5 * np.eye(4)[i] for i in range(4) for s in (-1.0, 1.0)])
+    x = np.vstack([cube, cube, axial, np.zeros((4, 4)), rng.uniform(-1, 1, (10, 4))])
+    y = (1e4 + 3 * x[:, 0] - 2 * x[:, 1] + 0.5 * x[:, 2] + x[:, 0] * x[:, 3] - 1.2 * x[:, 1] ** 2
+         + 0.4 * x[:, 0] ** 2 * x[:, 1] + rng.normal(0, 0.5, len(x)))
+    _write(pd.DataFrame({"x1": x[:, 0], "x2": x[:, 1], "x3": x[:, 2], "x4": x[:, 3], "y": y}), "core_ccd4.csv")
+
+
 if __name__ == "__main__":
+    core_data()
     blocks_data()
     lm_data()
     coded("lm_scales.csv")
