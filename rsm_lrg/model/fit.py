@@ -195,6 +195,8 @@ class FitResult:
     def design_matrix(self) -> np.ndarray:
         """Full model matrix (intercept, block contrasts, terms), n x p, rebuilt from the coded
         settings on first access: a fit builds it in chunks and never holds it whole."""
+        if self.coded is None:
+            raise ValueError("a fit of a Dask DataFrame holds no per-run data (no design matrix, no statsmodels results)")
         bcodes = _block_codes(self.data, self.block)[0] if self.block is not None else None
         nb = len(self.column_names) - len(self.terms) + 1
         return _model_rows(self.coded.to_numpy(dtype=float), self.terms, bcodes, nb)
