@@ -63,7 +63,8 @@ def _many_files(path: str):
     csv = [f for f in files if f.lower().endswith(".csv")]
     pq = [f for f in files if f.lower().endswith((".parquet", ".pq"))]
     if not csv and not pq:
-        raise ValueError(f"{path}: no CSV or Parquet files found")
+        what = "directory" if os.path.isdir(path) else "pattern"
+        raise ValueError(f"{path}: a {what} with no CSV or Parquet files to read")
     if csv and pq:
         raise ValueError(f"{path}: holds both CSV and Parquet files; give a pattern that picks one kind")
     try:
