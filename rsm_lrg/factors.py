@@ -21,12 +21,12 @@ import re
 import string
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
-__all__ = ["Factor", "FactorSpace", "FactorChoice", "choose_factors", "letters_for", "parse_factor_spec",
-           "check_factor_name", "quote_value", "CODED_DECIMALS"]
+__all__ = ["Factor", "CategoricFactor", "FactorSpace", "FactorChoice", "choose_factors", "letters_for",
+           "parse_factor_spec", "parse_factor", "level_text", "check_factor_name", "quote_value", "CODED_DECIMALS"]
 
 #: Decimals kept in coded values (see the module docstring).
 CODED_DECIMALS = 12
@@ -125,6 +125,9 @@ class Factor:
     high: float
     letter: str
 
+    #: The factor's kind (``"numeric"``; :class:`CategoricFactor` is ``"categoric"``).
+    kind: ClassVar[str] = "numeric"
+
     def __post_init__(self) -> None:
         check_factor_name(self.name)
         low = finite_float(self.low, f"factor {quote_value(self.name)}: low level")
@@ -160,7 +163,139 @@ class Factor:
         return x if x.ndim else float(x)
 
     def to_dict(self) -> dict:
-        return {"letter": self.letter, "name": self.name, "low": self.low, "high": self.high}
+        return {"letter": self.letter, "name": self.name, "kind": "numeric", "low": self.low, "high": self.high}
+
+
+def level_text(value: Any) -> str:
+    """A categoric level as written: text as it is, whole numbers without ``.0``, other
+    numbers with up to 15 significant digits.
+
+    >>> level_text("rms"), level_text(2), level_text(2.0), level_text(0.1)
+    ('rms', '2', '2', '0.1')
+    """
+    if isinstance(value, str):
+        return value
+    if isinstance(value, (bool, np.bool_)):
+        return str(bool(value))
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        v = float(value)
+        return str(int(v)) if v.is_integer() and abs(v) < 1e15 else f"{v:.15g}"
+    return str(value)
+
+
+@dataclass(frozen=True)
+class CategoricFactor:
+    """A categoric (nominal) factor: a name, its levels in order, its letter.
+
+    In a coded settings array the factor holds its level index (0 .. L-1); in the model it
+    has L - 1 sum-to-zero (effect) columns, one per level but the last
+    (:func:`rsm_lrg.terms.effect_codes`), as Design-Expert and R's ``contr.sum`` code it.
+
+    Parameters
+    ----------
+    name : str
+        Column name (e.g. ``"stage"``).
+    levels : sequence of str
+        The levels as written in the data, in order (at least two, distinct).
+    letter : str
+
+    >>> f = CategoricFactor("stage", ("rfcms", "rms"), "E")
+    >>> f.encode(["rms", "rfcms"]).tolist(), f.decode(1.0)
+    ([1.0, 0.0], 'rms')
+    """
+
+    name: str
+    levels: tuple
+    letter: str
+
+    kind: ClassVar[str] = "categoric"
+
+    def __post_init__(self) -> None:
+        check_factor_name(self.name)
+        levels = tuple(level_text(v) for v in self.levels)
+        if len(levels) < 2:
+            raise ValueError(f"categoric factor {quote_value(self.name)} needs at least two levels")
+        if len(set(levels)) != len(levels):
+            dup = next(v for v in levels if levels.count(v) > 1)
+            raise ValueError(f"categoric factor {quote_value(self.name)}: level {quote_value(dup)} is given twice")
+        if any(not v.strip() for v in levels):
+            raise ValueError(f"categoric factor {quote_value(self.name)}: a level is empty")
+        object.__setattr__(self, "levels", levels)
+
+    @property
+    def n_levels(self) -> int:
+        return len(self.levels)
+
+    def index(self, value: Any) -> int:
+        """Level index of ``value`` (a level as written, or its text), or a ValueError."""
+        key = level_text(value)
+        try:
+            return self.levels.index(key)
+        except ValueError:
+            raise ValueError(f"factor {quote_value(self.name)}: {quote_value(key)} is not one of its levels "
+                             f"({', '.join(self.levels)})") from None
+
+    def encode(self, x):
+        """Level(s) to level index (float; an array for an array)."""
+        if isinstance(x, (str, bytes)) or np.ndim(x) == 0:
+            return float(self.index(x.item() if isinstance(x, np.generic) else x))
+        vals = np.asarray(x, dtype=object).ravel()
+        lut = {v: float(i) for i, v in enumerate(self.levels)}
+        out = np.empty(vals.size)
+        for j, v in enumerate(vals):
+            key = level_text(v)
+            if key not in lut:
+                self.index(key)  # raises, naming the value
+            out[j] = lut[key]
+        return out.reshape(np.shape(x))
+
+    def decode(self, c):
+        """Level index (indices) to level name(s)."""
+        if np.ndim(c) == 0:
+            return self.levels[self._checked(c)]
+        return np.array([self.levels[self._checked(v)] for v in np.ravel(c)], dtype=object).reshape(np.shape(c))
+
+    def _checked(self, c) -> int:
+        v = float(c)
+        if not (v.is_integer() and 0 <= v < len(self.levels)):
+            raise ValueError(f"factor {quote_value(self.name)}: {c!r} is not a level index 0..{len(self.levels) - 1}")
+        return int(v)
+
+    def to_dict(self) -> dict:
+        return {"letter": self.letter, "name": self.name, "kind": "categoric", "levels": list(self.levels)}
+
+
+#: ``NAME=cat`` or ``NAME=cat:L1,L2,...`` (a categoric factor spec).
+_CAT_SPEC = re.compile(r"^\s*(?P<name>[^=]+?)\s*=\s*cat(?:egoric)?\s*(?::(?P<levels>.*))?$", re.IGNORECASE | re.DOTALL)
+
+
+def parse_factor(spec: str) -> tuple:
+    """Parse a ``--factor`` spec of either kind.
+
+    Returns ``("numeric", name, low, high)`` (``low``/``high`` None for a bare name) or
+    ``("categoric", name, levels)`` (``levels`` None for ``NAME=cat``: in order of appearance).
+
+    >>> parse_factor("stage=cat:rfcms,rms")
+    ('categoric', 'stage', ('rfcms', 'rms'))
+    >>> parse_factor("stage=cat"), parse_factor("v=0.4:0.6")
+    (('categoric', 'stage', None), ('numeric', 'v', 0.4, 0.6))
+    """
+    if isinstance(spec, str):
+        m = _CAT_SPEC.match(spec)
+        if m:
+            name = m.group("name")
+            if m.group("levels") is None:
+                return "categoric", name, None
+            levels = tuple(v.strip() for v in m.group("levels").split(","))
+            if len(levels) < 2 or any(not v for v in levels):
+                raise ValueError(f"factor {quote_value(name)}: expected NAME=cat:L1,L2,... with two or more "
+                                 "non-empty levels")
+            if len(set(levels)) != len(levels):
+                raise ValueError(f"factor {quote_value(name)}: a level is given twice")
+            return "categoric", name, levels
+    return ("numeric", *parse_factor_spec(spec))
 
 
 _SPEC = re.compile(r"^\s*(?P<name>[^=]+?)\s*(=\s*(?P<low>[^:]+?)\s*:\s*(?P<high>.+?)\s*)?$")
@@ -175,9 +310,9 @@ def parse_factor_spec(spec: str) -> tuple[str, float | None, float | None]:
     ('stroke_m', None, None)
     """
     if not isinstance(spec, str) or not spec.strip():
-        raise ValueError("empty factor specification; expected NAME or NAME=LOW:HIGH")
+        raise ValueError("empty factor specification; expected NAME, NAME=LOW:HIGH or NAME=cat[:L1,L2,...]")
     if "=" in spec and ":" not in spec.split("=", 1)[1]:
-        raise ValueError(f"factor {quote_value(spec)}: expected NAME=LOW:HIGH")
+        raise ValueError(f"factor {quote_value(spec)}: expected NAME=LOW:HIGH (or NAME=cat for a categoric factor)")
     m = _SPEC.match(spec)
     if not m:
         raise ValueError(f"factor {quote_value(spec)}: expected NAME or NAME=LOW:HIGH")
@@ -215,21 +350,37 @@ class FactorSpace:
     # -- construction -------------------------------------------------------------
     @classmethod
     def from_ranges(cls, ranges: Mapping[str, tuple[float, float]] | Iterable[tuple[str, float, float]]) -> FactorSpace:
-        """From ``{name: (low, high)}`` or ``[(name, low, high), ...]``, in order."""
+        """From ``{name: (low, high)}`` or ``[(name, low, high), ...]``, in order (numeric factors)."""
         items = list(ranges.items()) if isinstance(ranges, Mapping) else [(n, (lo, hi)) for n, lo, hi in ranges]
         letters = letters_for(len(items))
         return cls(tuple(Factor(n, lo, hi, L) for (n, (lo, hi)), L in zip(items, letters)))
 
     @classmethod
+    def from_items(cls, items: Iterable[tuple]) -> FactorSpace:
+        """From ``("numeric", name, low, high)`` and ``("categoric", name, levels)`` items.
+
+        Letters go to the numeric factors first, in the order given, then to the categoric
+        ones (Design-Expert's convention), and the factors are held in letter order.
+        """
+        items = list(items)
+        num = [it for it in items if it[0] == "numeric"]
+        cat = [it for it in items if it[0] == "categoric"]
+        letters = letters_for(len(items))
+        out: list = [Factor(n, lo, hi, L) for (_, n, lo, hi), L in zip(num, letters)]
+        out += [CategoricFactor(n, tuple(lv), L) for (_, n, lv), L in zip(cat, letters[len(num):])]
+        return cls(tuple(out))
+
+    @classmethod
     def from_specs(cls, specs: Sequence[str]) -> FactorSpace:
-        """From ``["NAME=LOW:HIGH", ...]``; every spec must carry its levels."""
+        """From ``["NAME=LOW:HIGH", "NAME=cat:L1,L2", ...]``; every spec must carry its levels."""
         items = []
         for s in specs:
-            name, low, high = parse_factor_spec(s)
-            if low is None:
-                raise ValueError(f"factor {quote_value(name)}: levels are needed here; write NAME=LOW:HIGH")
-            items.append((name, low, high))
-        return cls.from_ranges(items)
+            parsed = parse_factor(s)
+            if parsed[2] is None:
+                how = "NAME=cat:L1,L2,..." if parsed[0] == "categoric" else "NAME=LOW:HIGH"
+                raise ValueError(f"factor {quote_value(parsed[1])}: levels are needed here; write {how}")
+            items.append(parsed)
+        return cls.from_items(items)
 
     @classmethod
     def from_data(cls, data, factors: Sequence[Any] | None = None, *, exclude: Iterable[str] = ()) -> FactorSpace:
@@ -238,14 +389,16 @@ class FactorSpace:
         Parameters
         ----------
         data : pandas.DataFrame
-        factors : sequence, FactorSpace or None
+        factors : sequence, mapping, FactorSpace or None
             ``None``: inferred (see :func:`choose_factors`): a design's factors when the
             data carry a design's ``coded_A``, ``coded_B``, ... columns, else every numeric
             column that is not in ``exclude``, not a bookkeeping column (``run``,
             ``order``, ``std``, ``std_order``, ``run_order``, ``block``). Otherwise items
-            that are names, ``"NAME=LOW:HIGH"`` strings, ``(name, low, high)`` tuples or
-            :class:`Factor` objects; a name without levels takes the observed minimum and
-            maximum of its column.
+            that are names, ``"NAME=LOW:HIGH"``, ``"NAME=cat"`` or ``"NAME=cat:L1,L2"``
+            strings, ``(name, low, high)`` tuples or :class:`Factor` /
+            :class:`CategoricFactor` objects, or a mapping ``{name: None | (low, high) |
+            "categoric" | [levels]}``; a numeric name without levels takes the observed
+            minimum and maximum of its column, a text column is categoric.
         exclude : iterable of str
             Columns never taken as factors (the response, the block column).
         """
@@ -276,33 +429,65 @@ class FactorSpace:
 
     @property
     def lows(self) -> np.ndarray:
-        return np.array([f.low for f in self.factors])
+        """Low levels (NaN for a categoric factor)."""
+        return np.array([f.low if f.kind == "numeric" else np.nan for f in self.factors])
 
     @property
     def highs(self) -> np.ndarray:
-        return np.array([f.high for f in self.factors])
+        """High levels (NaN for a categoric factor)."""
+        return np.array([f.high if f.kind == "numeric" else np.nan for f in self.factors])
+
+    @property
+    def numeric(self) -> list:
+        """The numeric factors, in order."""
+        return [f for f in self.factors if f.kind == "numeric"]
+
+    @property
+    def numeric_index(self) -> list[int]:
+        """Positions of the numeric factors."""
+        return [i for i, f in enumerate(self.factors) if f.kind == "numeric"]
+
+    @property
+    def categoric(self) -> dict:
+        """``{position: levels}`` of the categoric factors (what the model terms need)."""
+        return {i: f.levels for i, f in enumerate(self.factors) if f.kind == "categoric"}
+
+    @property
+    def has_categoric(self) -> bool:
+        return any(f.kind == "categoric" for f in self.factors)
+
+    def level_combinations(self) -> list[dict]:
+        """Every combination of the categoric factors' levels, ``[{name: level}, ...]``
+        (the first factor's level changing slowest; ``[{}]`` when there is none)."""
+        import itertools
+
+        cats = [f for f in self.factors if f.kind == "categoric"]
+        return [dict(zip([f.name for f in cats], combo)) for combo in itertools.product(*[f.levels for f in cats])]
 
     # -- coding ---------------------------------------------------------------------
     def encode(self, actual):
         """Actual -> coded.
 
-        ``actual`` is an (n, k) array (columns in factor order), a mapping
-        ``{name: value}``, or a DataFrame with the factor names as columns. Arrays give
-        arrays, mappings give ``{letter: value}``, frames give a frame whose columns are
-        the letters.
+        ``actual`` is an (n, k) array (columns in factor order; an object array holding the
+        levels of categoric factors), a mapping ``{name: value}``, or a DataFrame with the
+        factor names as columns. Arrays give arrays, mappings give ``{letter: value}``,
+        frames give a frame whose columns are the letters. A categoric factor codes to its
+        level index (0 .. L-1).
         """
         import pandas as pd
 
         if isinstance(actual, pd.DataFrame):
-            return pd.DataFrame({f.letter: f.encode(_numeric(actual, f.name).to_numpy()) for f in self.factors}, index=actual.index)
+            return pd.DataFrame({f.letter: _encode_column(actual, f) for f in self.factors}, index=actual.index)
         if isinstance(actual, Mapping):
             return {f.letter: f.encode(actual[f.name]) for f in self.factors}
-        a = np.asarray(actual, dtype=float)
-        cols = [f.encode(a[..., i]) for i, f in enumerate(self.factors)]
-        return np.stack(cols, axis=-1)
+        a = np.asarray(actual, dtype=object if self.has_categoric else float)
+        cols = [f.encode(a[..., i] if f.kind == "categoric" else np.asarray(a[..., i], dtype=float))
+                for i, f in enumerate(self.factors)]
+        return np.stack(cols, axis=-1).astype(float)
 
     def decode(self, coded):
-        """Coded -> actual; the inverse of :meth:`encode` (frames keyed by letter)."""
+        """Coded -> actual; the inverse of :meth:`encode` (frames keyed by letter; a
+        categoric factor decodes to its level, so arrays with one are object arrays)."""
         import pandas as pd
 
         if isinstance(coded, pd.DataFrame):
@@ -314,8 +499,27 @@ class FactorSpace:
         return np.stack(cols, axis=-1)
 
     def to_list(self) -> list[dict]:
-        """``[{"letter", "name", "low", "high"}, ...]`` as in the fit JSON."""
+        """``[{"letter", "name", "kind", "low", "high"} or {..., "levels"}, ...]`` as in the fit JSON."""
         return [f.to_dict() for f in self.factors]
+
+
+def _encode_column(data, f) -> np.ndarray:
+    """One factor column of a frame coded; errors name the column and the 1-based row."""
+    if f.kind == "numeric":
+        return f.encode(_numeric(data, f.name).to_numpy())
+    col = data[f.name]
+    lut = {v: float(i) for i, v in enumerate(f.levels)}
+    out = np.empty(len(col))
+    for j, v in enumerate(col.tolist()):
+        key = None if _is_empty(v) else level_text(v)
+        if key not in lut:
+            where = f"column {quote_value(f.name)}, row {j + 1}"
+            if key is None:
+                raise ValueError(f"{where}: is empty")
+            raise ValueError(f"{where}: holds {quote_value(key)}, not one of the levels of categoric factor "
+                             f"{quote_value(f.name)} ({_names(list(f.levels))})")
+        out[j] = lut[key]
+    return out
 
 
 #: Column names that are never factors (case-insensitive).
@@ -513,6 +717,74 @@ def _check_text_columns(data, exclude) -> None:
             _numeric(data, c)  # raises "column 'c', row i: holds 'text', not a finite number"
 
 
+def _is_number_column(col) -> bool:
+    import pandas as pd
+
+    if pd.api.types.is_bool_dtype(col):
+        return False
+    if pd.api.types.is_numeric_dtype(col):
+        return True
+    # mostly numbers (a typo in one cell is then an error naming its row, not a new level)
+    vals = col[~np.array([_is_empty(v) for v in col.tolist()], dtype=bool)]
+    return bool(len(vals)) and pd.to_numeric(vals, errors="coerce").notna().sum() * 2 >= len(vals)
+
+
+def _given_items(factors) -> list[tuple]:
+    """The factors as given, as ``("numeric", name, low, high)`` / ``("categoric", name, levels)``."""
+    if isinstance(factors, str):
+        factors = [factors]
+    if isinstance(factors, Mapping):
+        out = []
+        for name, spec in factors.items():
+            if spec is None:
+                out.append(("numeric", name, None, None))
+            elif isinstance(spec, str):
+                if spec.strip().lower() not in ("categoric", "cat", "categorical"):
+                    raise ValueError(f"factor {quote_value(str(name))}: {quote_value(spec)} is not a factor kind; "
+                                     "give 'categoric', a list of levels, (low, high) or None")
+                out.append(("categoric", name, None))
+            elif isinstance(spec, tuple) and len(spec) == 2 and all(isinstance(v, (int, float, np.number)) for v in spec):
+                out.append(("numeric", name, *spec))
+            else:
+                levels = tuple(level_text(v) for v in spec)
+                out.append(("categoric", name, levels))
+        return out
+    out = []
+    for it in factors:
+        if isinstance(it, Factor):
+            out.append(("numeric", it.name, it.low, it.high))
+        elif isinstance(it, CategoricFactor):
+            out.append(("categoric", it.name, it.levels))
+        elif isinstance(it, str):
+            out.append(parse_factor(it) if "=" in it else ("numeric", it, None, None))
+        else:
+            n, lo, hi = it
+            out.append(("numeric", n, lo, hi))
+    return out
+
+
+def _categoric_levels(data, name: str, levels) -> tuple:
+    """The levels of a categoric factor column: as given (every cell must be one), or in
+    order of first appearance; errors name the 1-based row."""
+    col = data[name].tolist()
+    seen: list = []
+    for j, v in enumerate(col):
+        if _is_empty(v):
+            raise ValueError(f"column {quote_value(name)}, row {j + 1}: is empty")
+        key = level_text(v)
+        if levels is not None and key not in levels:
+            raise ValueError(f"column {quote_value(name)}, row {j + 1}: holds {quote_value(key)}, not one of the "
+                             f"levels given for categoric factor {quote_value(name)} ({_names(list(levels))})")
+        if key not in seen:
+            seen.append(key)
+    if levels is None:
+        if len(seen) < 2:
+            raise ValueError(f"categoric factor column {quote_value(name)} has only one level; a factor needs at "
+                             "least two")
+        return tuple(seen)
+    return tuple(levels)
+
+
 def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) -> FactorChoice:
     """The factors of a data frame, inferred when not given, with notes on what is left out.
 
@@ -564,38 +836,33 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
                 if c not in exclude and not is_bookkeeping(c) and str(c).lower() != "block"
                 and pd.api.types.is_numeric_dtype(data[c]) and not pd.api.types.is_bool_dtype(data[c])
             ]
-            items: list[Any] = [(n, None, None) for n in names]  # column names, never NAME=LOW:HIGH specs
+            items: list[Any] = [("numeric", n, None, None) for n in names]  # column names, never specs
             if not items:
                 raise ValueError("no numeric factor columns found in the data")
         else:
             how = "given"
-            if isinstance(factors, str):
-                factors = [factors]
-            items = list(factors)
-        parsed: list[tuple[str, float | None, float | None]] = []
-        for it in items:
-            if isinstance(it, Factor):
-                parsed.append((it.name, it.low, it.high))
-            elif isinstance(it, str):
-                parsed.append(parse_factor_spec(it) if "=" in it else (it, None, None))
-            else:
-                n, lo, hi = it
-                parsed.append((n, lo, hi))
+            items = _given_items(factors)
         ranged = []
-        for name, low, high in parsed:
+        for kind, name, *levels in items:
             if name not in data.columns:
                 raise ValueError(f"factor column {quote_value(str(name))} is not in the data")
             if name in exclude:
                 raise ValueError(f"column {quote_value(str(name))} cannot be both a factor and the response or block")
+            check_factor_name(name)
+            if kind == "numeric" and levels[0] is None and how == "given" and not _is_number_column(data[name]):
+                kind, levels = "categoric", [None]  # a text column among the factors is categoric
+            if kind == "categoric":
+                ranged.append(("categoric", name, _categoric_levels(data, name, levels[0])))
+                continue
+            low, high = levels
             if low is None:
-                check_factor_name(name)
                 col = _numeric(data, name)
                 low, high = float(col.min()), float(col.max())
                 if not low < high:
                     raise ValueError(f"factor column {quote_value(str(name))} is constant ({low:g}); "
                                      "a factor needs at least two levels")
-            ranged.append((name, low, high))
-        space = FactorSpace.from_ranges(ranged)
+            ranged.append(("numeric", name, low, high))
+        space = FactorSpace.from_items(ranged)
     used = set(space.names) | exclude
     unused = [c for c in cols if c not in used and not is_bookkeeping(c)]
     text = [c for c in unused if not pd.api.types.is_numeric_dtype(data[c])]

@@ -97,7 +97,7 @@ def test_acceptance_json_shape(result):
     assert list(d)[:10] == ["response", "n", "model", "block", "factors", "coefficients", "std_errors",
                             "anova", "statistics", "stationary_point"]
     assert d["n"] == 27 and d["block"] is None and "block_effects" not in d
-    assert d["factors"][0] == {"letter": "A", "name": "thickness_m", "low": 0.0001, "high": 0.0005}
+    assert d["factors"][0] == {"letter": "A", "name": "thickness_m", "kind": "numeric", "low": 0.0001, "high": 0.0005}
     keys = ["Intercept", "A", "B", "C", "D", "AB", "AC", "AD", "BC", "BD", "CD", "A^2", "B^2", "C^2", "D^2"]
     assert list(d["coefficients"]["coded"]) == keys
     assert list(d["coefficients"]["actual"]) == keys
