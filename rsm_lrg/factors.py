@@ -680,6 +680,13 @@ def _design_factors(data, coded: list, exclude: set) -> tuple[list, list]:
     used: set = set()
     out = []
     for cc in coded:
+        if not pd.api.types.is_numeric_dtype(data[cc]) and not pd.api.types.is_bool_dtype(data[cc]):
+            # a categoric factor: its coded column holds the level (Design-Expert's layout), the
+            # same text as its actual column; levels in order of first appearance in std_order
+            match = _design_categoric(data, cc, cols, last, exclude, used)
+            used.add(match[0])
+            out.append(match)
+            continue
         cv = _numeric(data, cc).to_numpy(dtype=float)
         match = None
         for name in order:
@@ -697,6 +704,42 @@ def _design_factors(data, coded: list, exclude: set) -> tuple[list, list]:
         used.add(match[0])
         out.append(match)
     return out, list(coded)
+
+
+def _design_categoric(data, cc, cols: list, last: int, exclude: set, used: set) -> tuple:
+    """``(name, levels)`` of the text column that equals the categoric coded column ``cc``."""
+    import pandas as pd
+
+    text = [level_text(v) if not _is_empty(v) else None for v in data[cc].tolist()]
+    if any(v is None for v in text):
+        raise ValueError(f"the design column {quote_value(str(cc))} has an empty cell")
+    cand = [c for c in cols if c not in exclude and c not in used and not is_bookkeeping(c)
+            and str(c).lower() != "block"]
+    cand = [c for c in cand if cols.index(c) > last] + [c for c in cand if cols.index(c) < last]
+    for name in cand:
+        vals = [level_text(v) if not _is_empty(v) else None for v in data[name].tolist()]
+        if vals == text:
+            order = range(len(text))
+            if "std_order" in cols and pd.api.types.is_numeric_dtype(data["std_order"]):
+                order = np.argsort(data["std_order"].to_numpy(), kind="stable")
+            levels: list = []
+            for i in order:
+                if text[i] not in levels:
+                    levels.append(text[i])
+            if len(levels) < 2:
+                raise ValueError(f"the design column {quote_value(str(cc))} holds a single level; a factor needs "
+                                 "at least two")
+            return name, tuple(levels)
+    raise ValueError(f"the design column {quote_value(str(cc))} (a categoric factor's levels) matches no factor "
+                     "column holding the same levels; name the factors with --factor NAME")
+
+
+def _design_space(found: list) -> FactorSpace:
+    """The factor space of :func:`_design_factors`' pairs, letters in coded-column order
+    (``(name, low, high)`` numeric, ``(name, levels)`` categoric)."""
+    letters = letters_for(len(found))
+    return FactorSpace(tuple(CategoricFactor(it[0], it[1], L) if len(it) == 2 else Factor(*it, L)
+                             for it, L in zip(found, letters)))
 
 
 def _check_text_columns(data, exclude) -> None:
@@ -825,7 +868,7 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
     elif factors is None and coded_cols:
         _check_text_columns(data, exclude)
         out, coded_used = _design_factors(data, coded_cols, exclude)
-        how, space = "design", FactorSpace.from_ranges(out)
+        how, space = "design", _design_space(out)
     else:
         coded_used = []
         if factors is None:

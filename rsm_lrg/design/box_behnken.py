@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from .core import Design, as_factor_space
+from .core import Design, as_factor_space, cross_categoric, numeric_part
 
 __all__ = ["box_behnken", "BBD_SETS", "BBD_BLOCKS", "bbd_edge_runs"]
 
@@ -145,7 +145,7 @@ def box_behnken(
     (27, 3)
     """
     space = as_factor_space(factors)
-    k = len(space)
+    k = numeric_part(space)[1]
     if k not in BBD_SETS:
         raise ValueError(_k_message(k))
     center = _check_center(center)
@@ -171,6 +171,7 @@ def box_behnken(
         "factor_sets": [list(s) for s in BBD_SETS[k]],
         "source": "Box & Behnken (1960), Technometrics 2(4):455-475; sets as in R rsm bbd()",
     }
+    coded, bstd = cross_categoric(space, coded, bstd)
     return Design.from_standard(space, "box-behnken", coded, blocks_std=bstd, seed=seed,
                                 randomize=randomize, options=options)
 

@@ -38,7 +38,7 @@ from typing import Any
 import numpy as np
 
 from .box_behnken import _check_center
-from .core import Design, as_factor_space
+from .core import Design, as_factor_space, cross_categoric, numeric_part
 
 __all__ = ["central_composite", "ccd_alpha"]
 
@@ -157,7 +157,7 @@ def central_composite(
     (20, 1.682)
     """
     space = as_factor_space(factors)
-    k = len(space)
+    k = numeric_part(space)[1]
     if not 2 <= k <= _MAX_K:
         raise ValueError(f"a central composite design needs 2 to {_MAX_K} factors (got {k})")
     if not isinstance(face, str) or face.strip().lower() not in _FACES:
@@ -201,5 +201,6 @@ def central_composite(
         "cube_runs": int(len(cube)),
         "star_runs": 2 * k,
     }
+    coded, bstd = cross_categoric(space, coded, bstd)
     return Design.from_standard(space, "central-composite", coded, blocks_std=bstd, seed=seed,
                                 randomize=randomize, options=options)

@@ -23,7 +23,17 @@ from typing import Any
 
 import numpy as np
 
-from ..factors import BOOKKEEPING, Factor, FactorSpace, _design_factors, _numeric, letters_for, parse_factor_spec
+from ..factors import (
+    BOOKKEEPING,
+    CategoricFactor,
+    Factor,
+    FactorSpace,
+    _design_factors,
+    _numeric,
+    letters_for,
+    level_text,
+    parse_factor,
+)
 
 __all__ = [
     "Design",
@@ -33,6 +43,8 @@ __all__ = [
     "randomized_run_order",
     "CODED_PREFIX",
     "BLOCK_COLUMN",
+    "cross_categoric",
+    "numeric_part",
 ]
 
 #: Prefix of the coded columns in a design CSV (``coded_A``, ``coded_B``, ...).
@@ -50,24 +62,32 @@ def as_factor_space(factors: Any) -> FactorSpace:
     Parameters
     ----------
     factors : FactorSpace, mapping, or sequence
-        A ready :class:`FactorSpace`; a mapping ``{name: (low, high)}`` (in order); or a
-        sequence whose items are ``"NAME=LOW:HIGH"`` strings, ``(name, low, high)``
-        tuples or :class:`Factor` objects.
+        A ready :class:`FactorSpace`; a mapping ``{name: (low, high) | [levels]}`` (in
+        order; a list or tuple of texts is a categoric factor's levels); or a sequence
+        whose items are ``"NAME=LOW:HIGH"`` / ``"NAME=cat:L1,L2,..."`` strings,
+        ``(name, low, high)`` tuples or :class:`Factor` / :class:`CategoricFactor`
+        objects. Letters go to the numeric factors first, then the categoric ones.
 
     >>> as_factor_space(["x=0:10", "y=1:2"]).names
     ['x', 'y']
+    >>> sp = as_factor_space(["stage=cat:rfcms,rms", "v=0.4:0.6"])
+    >>> sp.names, sp.letters
+    (['v', 'stage'], ['A', 'B'])
     """
     if isinstance(factors, FactorSpace):
         return factors
+    items: list[tuple] = []
     if isinstance(factors, Mapping):
-        items = []
         for name, rng in factors.items():
+            if isinstance(rng, (list, tuple)) and rng and all(isinstance(v, str) for v in rng):
+                items.append(("categoric", name, tuple(rng)))
+                continue
             try:
                 low, high = rng
             except (TypeError, ValueError):
                 raise ValueError(f"factor {name!r}: expected a (low, high) pair, got {rng!r}") from None
-            items.append((name, low, high))
-        return FactorSpace.from_ranges(items)
+            items.append(("numeric", name, low, high))
+        return _space_from_items(items)
     if isinstance(factors, (str, bytes)):
         raise TypeError("factors must be a list of 'NAME=LOW:HIGH' strings, not a single string")
     try:
@@ -77,22 +97,67 @@ def as_factor_space(factors: Any) -> FactorSpace:
             "factors must be a FactorSpace, a mapping {name: (low, high)} or a list of "
             f"'NAME=LOW:HIGH' strings, not {type(factors).__name__}"
         ) from None
-    items = []
     for it in seq:
         if isinstance(it, Factor):
-            items.append((it.name, it.low, it.high))
+            items.append(("numeric", it.name, it.low, it.high))
+        elif isinstance(it, CategoricFactor):
+            items.append(("categoric", it.name, it.levels))
         elif isinstance(it, str):
-            name, low, high = parse_factor_spec(it)
-            if low is None:
-                raise ValueError(f"factor {name!r}: levels are needed here; write {name}=LOW:HIGH")
-            items.append((name, low, high))
+            parsed = parse_factor(it)
+            if parsed[2] is None:
+                how = "NAME=cat:L1,L2,..." if parsed[0] == "categoric" else "NAME=LOW:HIGH"
+                raise ValueError(f"factor {parsed[1]!r}: levels are needed here; write {how}")
+            items.append(parsed)
         else:
             try:
                 name, low, high = it
             except (TypeError, ValueError):
                 raise ValueError(f"factor {it!r}: expected 'NAME=LOW:HIGH' or (name, low, high)") from None
-            items.append((name, low, high))
-    return FactorSpace.from_ranges(items)
+            items.append(("numeric", name, low, high))
+    return _space_from_items(items)
+
+
+def _space_from_items(items: list) -> FactorSpace:
+    if all(it[0] == "numeric" for it in items):
+        return FactorSpace.from_ranges([it[1:] for it in items])
+    return FactorSpace.from_items(items)
+
+
+def numeric_part(space: FactorSpace) -> tuple[FactorSpace, int]:
+    """The numeric factors as a space of their own (letters A, B, ... as in ``space``, since
+    numeric factors take the first letters) and their number.
+
+    Raises ``ValueError`` when the categoric factors do not follow the numeric ones (a
+    space built by :func:`as_factor_space` always has them last).
+    """
+    kn = len(space.numeric)
+    if space.numeric_index != list(range(kn)):
+        raise ValueError("the numeric factors must come first (letters A, B, ...), the categoric ones after")
+    return FactorSpace(tuple(space.factors[:kn])), kn
+
+
+def cross_categoric(space: FactorSpace, coded_numeric: np.ndarray,
+                    blocks: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+    """Cross a numeric design with every combination of the categoric levels.
+
+    The numeric runs (standard order) are repeated once per combination of levels (the
+    first categoric factor's level changing slowest), Design-Expert's layout: centre points
+    are then per combination. A categoric factor's coded value is its level index. Blocks
+    of the numeric design are kept (each block holds every combination).
+
+    Returns the coded runs ``(n * combinations, k)`` and the blocks (or ``None``).
+    """
+    coded_numeric = np.asarray(coded_numeric, dtype=float)
+    cats = [f for f in space.factors if f.kind == "categoric"]
+    if not cats:
+        return coded_numeric, blocks
+    import itertools
+
+    combos = list(itertools.product(*[range(f.n_levels) for f in cats]))
+    n = coded_numeric.shape[0]
+    parts = [np.hstack([coded_numeric, np.tile(np.asarray(c, dtype=float), (n, 1))]) for c in combos]
+    b = None if blocks is None else np.tile(np.asarray(blocks, dtype=int), len(combos))
+    return np.vstack(parts), b
 
 
 def resolve_seed(seed: Any) -> tuple[np.random.Generator, int | None]:
@@ -250,8 +315,10 @@ class Design:
 
     @property
     def n_center(self) -> int:
-        """Number of centre runs (every coded value 0)."""
-        return int(np.sum(np.all(self.coded_runs == 0.0, axis=1)))
+        """Number of centre runs (every numeric factor's coded value 0; with categoric
+        factors, centre runs of every level combination count)."""
+        idx = self.factors.numeric_index
+        return int(np.sum(np.all(self.coded_runs[:, idx] == 0.0, axis=1)))
 
     def __len__(self) -> int:
         return self.n_runs
@@ -270,7 +337,8 @@ class Design:
         import pandas as pd
 
         return pd.DataFrame(
-            {f.name: _clean_actual(f, self.coded_runs[:, i]) for i, f in enumerate(self.factors)}
+            {f.name: (_clean_actual(f, self.coded_runs[:, i]) if f.kind == "numeric"
+                      else f.decode(self.coded_runs[:, i])) for i, f in enumerate(self.factors)}
         )
 
     def to_frame(self):
@@ -284,9 +352,12 @@ class Design:
         cols: dict[str, Any] = {"std_order": self.std_order.copy(), "run_order": self.run_order.copy()}
         if self.blocks is not None:
             cols[BLOCK_COLUMN] = self.blocks.copy()
-        for i, L in enumerate(self.factors.letters):
+        for i, f in enumerate(self.factors):
             c = self.coded_runs[:, i]
-            cols[CODED_PREFIX + L] = c.astype(int) if np.all(c == np.round(c)) else c.copy()
+            if f.kind == "categoric":  # Design-Expert shows the level as the coded value
+                cols[CODED_PREFIX + f.letter] = f.decode(c)
+                continue
+            cols[CODED_PREFIX + f.letter] = c.astype(int) if np.all(c == np.round(c)) else c.copy()
         actual = self.actual
         for f in self.factors:
             cols[f.name] = actual[f.name].to_numpy()
@@ -341,7 +412,10 @@ class Design:
         else:
             lines.append("run order: randomised from a numpy Generator")
         for f in self.factors:
-            lines.append(f"  {f.letter} {f.name}: {f.low:g} .. {f.high:g}")
+            if f.kind == "categoric":
+                lines.append(f"  {f.letter} {f.name}: categoric, levels {', '.join(f.levels)}")
+            else:
+                lines.append(f"  {f.letter} {f.name}: {f.low:g} .. {f.high:g}")
         return "\n".join(lines)
 
     def __repr__(self) -> str:
@@ -425,7 +499,8 @@ class Design:
         for r, row in enumerate(coded):
             key = tuple(np.round(row, 12) + 0.0)
             if not pool.get(key):
-                setting = ", ".join(f"{f.name}={v:g}" for f, v in zip(self.factors, data[self.factors.names].iloc[r]))
+                setting = ", ".join(f"{f.name}={level_text(v)}" for f, v in
+                                    zip(self.factors, data[self.factors.names].iloc[r]))
                 raise ValueError(f"row {r + 1} ({setting}) is not a run of the {self.kind} design (or is one too many)")
             i = pool[key].pop(0)
             std[r] = self.std_order[i]
@@ -480,20 +555,40 @@ class Design:
             expect = CODED_PREFIX + L
             if cc != expect:
                 raise ValueError(f"coded column {cc!r} found where {expect!r} was expected")
-        coded_all = [_numeric(df, cc).to_numpy() for cc in coded_cols]
+        import pandas as pd
+
+        std_rank = None
+        if "std_order" in cols and pd.api.types.is_numeric_dtype(df["std_order"]):
+            std_rank = np.argsort(df["std_order"].to_numpy(), kind="stable")
         try:
-            factors = [(name, *_levels_from_pairs(c, _numeric(df, name).to_numpy(), cc, name))
-                       for cc, name, c in zip(coded_cols, names, coded_all)]
+            built = []
+            for L, cc, name in zip(letters, coded_cols, names):
+                if _is_text_column(df[cc]):
+                    built.append(_categoric_pair(df, cc, name, L, std_rank))
+                else:
+                    lo_hi = _levels_from_pairs(_numeric(df, cc).to_numpy(), _numeric(df, name).to_numpy(), cc, name)
+                    built.append(Factor(name, *lo_hi, L))
         except ValueError as exc:
             # the actual columns moved (or others put between them): pair by values, as fit
             # does (rsm_lrg.factors.choose_factors), or report the positional problem
             try:
-                factors, _ = _design_factors(df, coded_cols, set())
+                found, _ = _design_factors(df, coded_cols, set())
             except ValueError:
                 raise exc from None
-            for name, _, _ in factors:
-                _numeric(df, name)
-        space = FactorSpace.from_ranges(factors)
+            built = []
+            for L, item in zip(letters, found):
+                if len(item) == 2:
+                    built.append(CategoricFactor(item[0], item[1], L))
+                else:
+                    _numeric(df, item[0])
+                    built.append(Factor(item[0], item[1], item[2], L))
+        space = FactorSpace(tuple(built))
+        coded_all = []
+        for f, cc in zip(built, coded_cols):
+            if f.kind == "categoric":
+                coded_all.append(f.encode(df[f.name].to_numpy(dtype=object)))
+            else:
+                coded_all.append(_numeric(df, cc).to_numpy())
         coded = np.column_stack(coded_all)
         n = len(df)
 
@@ -512,6 +607,35 @@ class Design:
             blocks = np.array([codes[v] for v in b.tolist()], dtype=int)
         return cls(space, kind, coded, _order("std_order"), _order("run_order"), blocks,
                    {"source": "file"})
+
+
+def _is_text_column(col) -> bool:
+    import pandas as pd
+
+    return not pd.api.types.is_numeric_dtype(col) and not pd.api.types.is_bool_dtype(col)
+
+
+def _categoric_pair(df, ccol: str, xcol: str, letter: str, std_rank) -> CategoricFactor:
+    """A categoric factor from its coded column (the level as text) and its actual column
+    (the same text on every row); levels in order of first appearance in standard order."""
+    from ..factors import _is_empty
+
+    c = [None if _is_empty(v) else level_text(v) for v in df[ccol].tolist()]
+    x = [None if _is_empty(v) else level_text(v) for v in df[xcol].tolist()]
+    for i, (u, v) in enumerate(zip(c, x)):
+        if u is None or v is None:
+            raise ValueError(f"row {i + 1}: {ccol if u is None else xcol} is empty")
+        if u != v:
+            raise ValueError(f"row {i + 1}: {xcol}={v!r} does not match {ccol}={u!r} (a categoric factor's "
+                             "coded column holds its level)")
+    order = range(len(c)) if std_rank is None else std_rank
+    levels: list = []
+    for i in order:
+        if c[i] not in levels:
+            levels.append(c[i])
+    if len(levels) < 2:
+        raise ValueError(f"column {ccol!r} holds a single level; a factor needs at least two")
+    return CategoricFactor(xcol, tuple(levels), letter)
 
 
 def _levels_from_pairs(c: np.ndarray, x: np.ndarray, ccol: str, xcol: str) -> tuple[float, float]:

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from .box_behnken import _check_center
-from .core import Design, as_factor_space
+from .core import Design, as_factor_space, cross_categoric, numeric_part
 
 __all__ = ["full_factorial"]
 
@@ -47,9 +47,9 @@ def full_factorial(
     (9, [0.0, 1.0, 2.0])
     """
     space = as_factor_space(factors)
-    k = len(space)
+    k = numeric_part(space)[1]
     if k < 1:
-        raise ValueError("a factorial design needs at least one factor")
+        raise ValueError("a factorial design needs at least one numeric factor")
     if isinstance(levels, (bool, np.bool_)) or int(levels) != levels or levels < 2:
         raise ValueError(f"levels must be a whole number of at least 2 (got {levels!r})")
     levels = int(levels)
@@ -62,5 +62,6 @@ def full_factorial(
     coded = 2.0 * idx / (levels - 1) - 1.0
     coded = np.vstack([coded, np.zeros((center, k))])
     options = {"levels": levels, "center": center}
+    coded, _ = cross_categoric(space, coded)
     return Design.from_standard(space, "full-factorial", coded, seed=seed, randomize=randomize,
                                 options=options)
