@@ -121,7 +121,7 @@ def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None
 def f_test(ms: float, df: int, ms_den: float, df_den: int) -> tuple[float, float]:
     """``F = ms / ms_den`` and its upper tail ``P(F(df, df_den) > F)`` (``scipy.special.fdtrc``);
     NaN where a mean square or the degrees of freedom are missing."""
-    from scipy import special
+    from . import statistics as special  # the t and F tails without importing SciPy
 
     if df > 0 and df_den > 0 and ms_den > 0 and ms == ms:
         f = ms / ms_den
@@ -147,7 +147,7 @@ def _row(source, ss, df, ms=np.nan, f=np.nan, p=np.nan):
 
 
 def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, ss_res, df_res,
-                ss_total, df_total, pe: PureError | None):
+                ss_total, df_total, pe: PureError | None, term_df=None):
     """Assemble the Design-Expert ANOVA rows (a DataFrame with :data:`ANOVA_COLUMNS`).
 
     F of a term or of the model is its mean square over the residual mean square; F of
@@ -163,8 +163,8 @@ def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, 
         return (ms, *f_test(ms, df, ms_res, df_res))
 
     rows = [_row("Model", ss_model, df_model, *test(ss_model, df_model))]
-    for name, ss in zip(term_names, term_ss):
-        rows.append(_row(name, ss, 1, *test(ss, 1)))
+    for name, ss, df in zip(term_names, term_ss, term_df if term_df is not None else [1] * len(term_names)):
+        rows.append(_row(name, ss, df, *test(ss, df)))
     if df_block:
         rows.append(_row("Block", ss_block, df_block, ss_block / df_block))
     rows.append(_row("Residual", ss_res, df_res, ms_res))

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["StationaryPoint", "quadratic_parts", "canonical_analysis"]
+__all__ = ["StationaryPoint", "quadratic_parts", "canonical_analysis", "numeric_surface"]
 
 
 @dataclass(frozen=True)
@@ -145,7 +145,7 @@ def quadratic_parts(coefs: Mapping[str, float], terms, k: int):
 
 
 def canonical_analysis(coefs: Mapping[str, float], terms, space, *, threshold: float | None = None,
-                       rel_tol: float = 1e-10) -> StationaryPoint:
+                       rel_tol: float = 1e-10, level: Mapping[str, str] | None = None) -> StationaryPoint:
     """Canonical analysis of the fitted surface (see the module docstring).
 
     Parameters
@@ -158,7 +158,13 @@ def canonical_analysis(coefs: Mapping[str, float], terms, space, *, threshold: f
         R ``rsm``'s threshold on ``|eigenvalue|`` [response units per coded unit²];
         ``None`` uses the exact inverse (eigenvalues below ``rel_tol`` times the largest
         count as zero and make ``B`` singular).
+    level : mapping, optional
+        With categoric factors: the level of each (``{"stage": "rms"}``) at which the
+        surface in the numeric factors is analysed; by default the first level of each
+        (the note says which).
     """
+    if space.has_categoric:
+        return _canonical_at_levels(coefs, terms, space, threshold=threshold, rel_tol=rel_tol, level=level)
     letters = tuple(space.letters)
     k = len(letters)
     has_square = any(t.order == 2 and max(t.powers) == 2 for t in terms)
@@ -197,3 +203,50 @@ def canonical_analysis(coefs: Mapping[str, float], terms, space, *, threshold: f
     inside = bool(np.all(np.abs(xs) <= 1.0 + 1e-12))
     note = "" if active.all() else f"eigenvalues with |value| <= {cut:g} treated as zero (R rsm threshold)"
     return StationaryPoint(coded, actual, eig, vecs, kind, pred, inside, note, letters)
+
+
+def numeric_surface(coefs: Mapping[str, float], terms, space, level: Mapping[str, str] | None = None):
+    """The fitted polynomial in the numeric factors at one combination of categoric levels.
+
+    Returns ``(coefs, terms, subspace, level)``: coded coefficients by term name of the
+    numeric terms (each categoric column weighted by its effect code at ``level`` and
+    added to its numeric monomial), those terms over the numeric factors only, the
+    :class:`~rsm_lrg.factors.FactorSpace` of the numeric factors (same letters) and the
+    level used (``{name: level}``; the first level of each factor by default).
+    """
+    from ..factors import FactorSpace
+    from ..terms import Term as _Term
+    from ..terms import effect_codes, term_name
+
+    cats = {i: f for i, f in enumerate(space.factors) if f.kind == "categoric"}
+    level = dict(level or {})
+    unknown = [k for k in level if k not in [f.name for f in cats.values()]]
+    if unknown:
+        raise ValueError(f"{unknown[0]!r} is not a categoric factor of this model")
+    chosen = {f.name: level.get(f.name, f.levels[0]) for f in cats.values()}
+    idx = {i: f.index(chosen[f.name]) for i, f in cats.items()}
+    num = space.numeric_index
+    letters = [space.letters[i] for i in num]
+    out: dict = {}
+    for t in terms:
+        pw = tuple(t.powers[i] for i in num)
+        for combo, col in zip(t.level_combinations() if t.cat else [()], t.columns):
+            w = 1.0
+            for (i, lv), j in zip(t.cat, combo):
+                w *= effect_codes(np.array([idx[i]]), len(lv))[0, j]
+            out[pw] = out.get(pw, 0.0) + w * float(coefs[col])
+    order = sorted(out, key=lambda p: (sum(p), max(p, default=0), [-x for x in p]))
+    new_terms = [_Term(p, term_name(p, letters)) for p in order]
+    return ({t.name: out[t.powers] for t in new_terms}, new_terms, FactorSpace(tuple(space.numeric)), chosen)
+
+
+def _canonical_at_levels(coefs, terms, space, *, threshold, rel_tol, level) -> StationaryPoint:
+    if not space.numeric:
+        return StationaryPoint(None, None, None, note="no canonical analysis: every factor is categoric")
+    c2, t2, sub, chosen = numeric_surface(coefs, terms, space, level)
+    sp = canonical_analysis(c2, t2, sub, threshold=threshold, rel_tol=rel_tol)
+    at = ", ".join(f"{k} = {v}" for k, v in chosen.items())
+    note = f"surface in the numeric factors at {at}" + (f"; {sp.note}" if sp.note else "")
+    from dataclasses import replace
+
+    return replace(sp, note=note)

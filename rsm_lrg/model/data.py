@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ..factors import FactorChoice, FactorSpace, _bad_cell, _numeric, choose_factors, quote_value
+from ..factors import FactorChoice, FactorSpace, _bad_cell, _encode_column, _numeric, choose_factors, quote_value
 
 __all__ = ["PreparedData", "prepare", "response_values"]
 
@@ -144,7 +144,7 @@ def prepare(data, response: str, factors=None, block: str | None = None) -> Prep
     exclude = [response] + ([block] if block is not None else [])
     choice = choose_factors(data, factors, exclude=exclude)
     for f in choice.space.factors:  # every row, the runs left out too: errors name the input row
-        _numeric(data, f.name)
+        _numeric(data, f.name) if f.kind == "numeric" else _encode_column(data, f)
     if block is not None:
         empty_b = np.flatnonzero(_empty_cells(data[block]))
         if empty_b.size:

@@ -39,9 +39,20 @@ from .canonical import StationaryPoint, canonical_analysis
 from .data import prepare
 from .least_squares import CHUNK_ROWS, Regression, factorise
 from .statistics import FitStatistics, fit_statistics
-from .terms import MODELS, Term, check_model_size, design_matrix, model_matrix, model_terms, term_name
+from .terms import (
+    MODELS,
+    Term,
+    check_model_size,
+    column_names,
+    design_matrix,
+    model_matrix,
+    model_terms,
+    n_columns,
+    term_columns,
+    term_name,
+)
 
-__all__ = ["fit", "FitResult", "actual_coefficients", "COEF_COLUMNS", "model_inputs", "ModelInputs"]
+__all__ = ["fit", "FitResult", "actual_coefficients", "actual_equations", "COEF_COLUMNS", "model_inputs", "ModelInputs"]
 
 #: Columns of :attr:`FitResult.coefficients`.
 COEF_COLUMNS = ["coded", "std_error", "t", "p", "ci_low", "ci_high", "vif", "actual"]
@@ -55,36 +66,83 @@ def actual_coefficients(coded: Mapping[str, float], terms: Sequence[Term], space
 
     Each coded monomial ``prod ((x_i - c_i) / h_i) ** e_i`` is expanded by the binomial
     theorem into monomials of the actual ``x_i``; the coefficients are collected by
-    monomial and returned under the same term names (``"A"`` is then the coefficient of
+    monomial and returned under the same column names (``"A"`` is then the coefficient of
     the actual thickness, and so on). For a hierarchical model (every standard model) the
-    keys are exactly the coded keys.
+    keys are exactly the coded keys. A categoric factor keeps its effect coding: the
+    coefficient of ``"AE[rms]"`` multiplies the actual A and the effect code of level rms
+    (:func:`actual_equations` gives one plain polynomial per level combination).
     """
+    acc, names = _actual_expansion(coded, terms, space)
+    out = {col: acc.get(key, 0.0) for key, col in names.items()}
+    for (pw, sig), v in acc.items():
+        if (pw, sig) not in names and v != 0.0:
+            out[_column_label(pw, sig, space)] = v
+    return out
+
+
+def _actual_expansion(coded: Mapping[str, float], terms: Sequence[Term], space: FactorSpace) -> tuple[dict, dict]:
+    """``({(numeric exponents, categoric (factor, level) pairs): actual coefficient}, {same key: column name})``."""
     from math import comb
 
     k = len(space)
-    centres = [f.center for f in space.factors]
-    halves = [f.half_range for f in space.factors]
+    num = [f.kind == "numeric" for f in space.factors]
+    centres = [f.center if nu else 0.0 for f, nu in zip(space.factors, num)]
+    halves = [f.half_range if nu else 1.0 for f, nu in zip(space.factors, num)]
     acc: dict[tuple, float] = {}
+    names: dict[tuple, str] = {}
     for t in terms:
-        c = float(coded[t.name])
-        # expand factor by factor: list of (powers, coefficient)
-        parts = [((), c)]
-        for i in range(k):
-            e = t.powers[i]
-            new = []
+        npw = t.numeric_powers
+        for combo, col in zip(t.level_combinations() if t.cat else [()], t.columns):
+            sig = tuple((i, j) for (i, _), j in zip(t.cat, combo))
+            names[(npw, sig)] = col
+            c = float(coded[col])
+            parts = [((), c)]  # expand factor by factor: list of (powers, coefficient)
+            for i in range(k):
+                e = npw[i]
+                new = []
+                for pw, v in parts:
+                    for m in range(e + 1):
+                        coef = comb(e, m) * (-centres[i]) ** (e - m) / halves[i] ** e
+                        new.append((pw + (m,), v * coef))
+                parts = new
             for pw, v in parts:
-                for m in range(e + 1):
-                    coef = comb(e, m) * (-centres[i]) ** (e - m) / halves[i] ** e
-                    new.append((pw + (m,), v * coef))
-            parts = new
-        for pw, v in parts:
-            acc[pw] = acc.get(pw, 0.0) + v
+                acc[(pw, sig)] = acc.get((pw, sig), 0.0) + v
+    return acc, names
+
+
+def _column_label(pw: tuple, sig: tuple, space: FactorSpace) -> str:
+    """Name of the column with numeric exponents ``pw`` and categoric ``(factor, level)`` ``sig``."""
+    powers = list(pw)
+    for i, _ in sig:
+        powers[i] = 1
     letters = space.letters
-    names = {t.powers: t.name for t in terms}
-    out = {t.name: acc.get(t.powers, 0.0) for t in terms}
-    for pw, v in acc.items():
-        if pw not in names and v != 0.0:
-            out[term_name(pw, letters)] = v
+    t = Term(tuple(powers), term_name(powers, letters), tuple((i, space.factors[i].levels) for i, _ in sig),
+             tuple(letters[i] for i, _ in sig))
+    return t.columns[t.level_combinations().index(tuple(j for _, j in sig))] if sig else t.name
+
+
+def actual_equations(result) -> list[tuple[dict, dict]]:
+    """The fitted polynomial in actual units once per combination of categoric levels
+    (Design-Expert's "stage = rfcms: ..." equations): ``[({name: level}, {term: coefficient})]``,
+    the terms being numeric monomials (``"A"``, ``"AB"``, ``"A^2"``, ``"Intercept"``).
+    One entry with an empty setting when every factor is numeric."""
+    space, letters = result.space, result.space.letters
+    cats = [i for i, f in enumerate(space.factors) if f.kind == "categoric"]
+    coded = dict(zip(result.coefficients.index, result.coefficients["coded"]))
+    acc, _ = _actual_expansion(coded, result.terms, space)
+    out = []
+    for setting in space.level_combinations():
+        idx = {i: space.factors[i].levels.index(setting[space.factors[i].name]) for i in cats}
+        eq: dict[str, float] = {}
+        for (pw, sig), v in acc.items():
+            for i, j in sig:
+                last = len(space.factors[i].levels) - 1
+                v *= 1.0 if idx[i] == j else (-1.0 if idx[i] == last else 0.0)
+            if sig and v == 0.0:
+                continue
+            key = term_name(pw, letters)
+            eq[key] = eq.get(key, 0.0) + v
+        out.append((setting, eq))
     return out
 
 
@@ -198,7 +256,7 @@ class FitResult:
         if self.coded is None:
             raise ValueError("a fit of a Dask DataFrame holds no per-run data (no design matrix, no statsmodels results)")
         bcodes = _block_codes(self.data, self.block)[0] if self.block is not None else None
-        nb = len(self.column_names) - len(self.terms) + 1
+        nb = len(self.column_names) - n_columns(self.terms) + 1
         return _model_rows(self.coded.to_numpy(dtype=float), self.terms, bcodes, nb)
 
     @cached_property
@@ -235,8 +293,8 @@ class FitResult:
     @property
     def _term_index(self) -> np.ndarray:
         """Positions of the model terms in ``design_matrix`` (blocks skipped)."""
-        nb = len(self.column_names) - len(self.terms)
-        return np.r_[0, np.arange(1 + nb, len(self.column_names))] if nb else np.arange(len(self.terms))
+        nb = len(self.column_names) - n_columns(self.terms)
+        return np.r_[0, np.arange(1 + nb, len(self.column_names))] if nb else np.arange(len(self.column_names))
 
     @property
     def studentized_residuals(self) -> np.ndarray:
@@ -259,17 +317,19 @@ class FitResult:
         with np.errstate(divide="ignore", invalid="ignore"):
             return self.studentized_residuals ** 2 * self.hat / (p * (1.0 - self.hat))
 
-    def canonical(self, threshold: float | None = None) -> StationaryPoint:
-        """Canonical analysis; ``threshold`` reproduces R ``rsm``'s ``canonical(threshold=)``."""
+    def canonical(self, threshold: float | None = None, level: Mapping[str, str] | None = None) -> StationaryPoint:
+        """Canonical analysis; ``threshold`` reproduces R ``rsm``'s ``canonical(threshold=)``;
+        ``level`` picks the categoric levels (``{"stage": "rms"}``; first levels by default)."""
         coefs = dict(zip(self.coefficients.index, self.coefficients["coded"]))
-        return canonical_analysis(coefs, self.terms, self.space, threshold=threshold)
+        return canonical_analysis(coefs, self.terms, self.space, threshold=threshold, level=level)
 
     # -- prediction ------------------------------------------------------------------
     def _coded_points(self, points, coded: bool) -> np.ndarray:
         import pandas as pd
 
         if isinstance(points, Mapping):
-            vals = {k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in points.items()}
+            vals = {k: np.atleast_1d(np.asarray(v, dtype=object if self.space.has_categoric else float))
+                    for k, v in points.items()}
             points = pd.DataFrame(vals)
         if isinstance(points, pd.Series):
             points = points.to_frame().T
@@ -281,14 +341,16 @@ class FitResult:
             if coded:
                 return np.column_stack([_numeric(points, c).to_numpy() for c in cols])
             return self.space.encode(points[cols]).to_numpy(dtype=float)
-        arr = np.asarray(points, dtype=float)
+        arr = np.asarray(points, dtype=object if self.space.has_categoric and not coded else float)
         if arr.ndim == 1:
             arr = arr[None, :]
         if arr.shape[-1] != len(self.space):
             raise ValueError(f"prediction points need {len(self.space)} columns (one per factor), got {arr.shape[-1]}")
+        if not coded:
+            arr = self.space.encode(arr)
         if not np.isfinite(arr).all():
             raise ValueError("prediction points must be finite numbers")
-        return arr if coded else self.space.encode(arr)
+        return arr
 
     def predict_coded(self, coded: np.ndarray) -> np.ndarray:
         """ŷ at coded settings (n x k array), average block [response units]."""
@@ -316,7 +378,8 @@ class FitResult:
             predictions are for the average block.
         """
         import pandas as pd
-        from scipy import special
+
+        from . import statistics as special  # the t and F tails without importing SciPy
 
         if interval not in (None, "confidence", "prediction", "both"):
             raise ValueError(f"interval must be None, 'confidence', 'prediction' or 'both', not {interval!r}")
@@ -445,7 +508,8 @@ class FitResult:
         leverage, studentized residuals, Cook's distance."""
         import pandas as pd
 
-        df = pd.DataFrame({f.name: self.data[f.name].to_numpy(dtype=float) for f in self.space.factors})
+        df = pd.DataFrame({f.name: self.data[f.name].to_numpy(dtype=float if f.kind == "numeric" else object)
+                           for f in self.space.factors})
         for L in self.space.letters:
             df[f"coded_{L}"] = self.coded[L].to_numpy()
         if self.block is not None:
@@ -497,7 +561,7 @@ def _block_codes(data, block: str):
     return codes.astype(int), keys, dict(zip(keys, shown))
 
 
-def _chosen_terms(names, letters) -> tuple:
+def _chosen_terms(names, letters, categoric=None) -> tuple:
     """The named terms (plus the intercept), without repeats, in Design-Expert order."""
     from .terms import parse_term
 
@@ -505,9 +569,9 @@ def _chosen_terms(names, letters) -> tuple:
         names = [names]
     chosen = {}
     for nm in ["Intercept", *names]:
-        t = parse_term(str(nm).strip(), letters) if not isinstance(nm, Term) else nm
+        t = parse_term(str(nm).strip(), letters, categoric) if not isinstance(nm, Term) else nm
         chosen[t.powers] = t
-    order = {t.powers: i for i, t in enumerate(model_terms(letters, "cubic"))}
+    order = {t.powers: i for i, t in enumerate(model_terms(letters, "cubic", categoric))}
     return tuple(sorted(chosen.values(), key=lambda t: (order.get(t.powers, len(order)), t.order, t.powers)))
 
 
@@ -529,7 +593,7 @@ def _check_magnitudes(space: FactorSpace, y: np.ndarray, response: str) -> None:
     if 0.0 < spread < 1.0 / MAX_MAGNITUDE:
         raise ValueError(f"response {response!r} varies only by {spread:.3g}, below the {1 / MAX_MAGNITUDE:.0e} a fit "
                          "computes with (its squares would underflow); rescale the column (e.g. change its unit)")
-    for f in space.factors:
+    for f in space.numeric:
         size = max(abs(f.low), abs(f.high), abs(f.center))
         if not size <= MAX_FACTOR_MAGNITUDE:
             raise ValueError(f"factor {f.name!r} reaches {size:.3g}, beyond the ±{MAX_FACTOR_MAGNITUDE:.0e} a fit "
@@ -593,14 +657,14 @@ class ModelInputs:
         return self.prep.choice.hint()
 
     def column_names(self, terms) -> list[str]:
-        names = [t.name for t in terms]
+        names = column_names(terms)
         if self.nb > 1:
             return ["Intercept"] + [f"Block[{k}]" for k in self.bkeys[:-1]] + names[1:]
         return names
 
     def term_columns(self, terms) -> np.ndarray:
         """Positions of the model terms among the columns (blocks skipped)."""
-        p = len(terms) + self.nb - 1
+        p = n_columns(terms) + self.nb - 1
         return np.r_[0, np.arange(self.nb, p)] if self.nb > 1 else np.arange(p)
 
     def rows(self, terms, start: int = 0, stop: int | None = None) -> np.ndarray:
@@ -703,15 +767,16 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     data, space, y, hint, nb, n = inp.prep.data, inp.space, inp.y, inp.hint, inp.nb, inp.n
     if terms is None:  # count the terms before building any (a cubic in 16 factors has 969)
         try:
-            check_model_size(n, len(space), model, nb - 1)
+            check_model_size(n, len(space), model, nb - 1, categoric=space.categoric)
         except ValueError as exc:
             raise ValueError(f"{exc}{hint}") from None
-    terms = tuple(model_terms(space.letters, model)) if terms is None else _chosen_terms(terms, space.letters)
+    terms = (tuple(model_terms(space.letters, model, space.categoric)) if terms is None
+             else _chosen_terms(terms, space.letters, space.categoric))
     col_names = inp.column_names(terms)
     p = len(col_names)
     if n < p:
-        what = f"{len(terms)} terms" + (f" and {nb - 1} block effects" if nb > 1 else "")
-        raise ValueError(f"{n} runs cannot fit {p} terms (the {model} model in {len(space)} factors has {what}){hint}")
+        what = f"{p - nb + 1} coefficients" + (f" and {nb - 1} block effects" if nb > 1 else "")
+        raise ValueError(f"{n} runs cannot fit {p} coefficients (the {model} model in {len(space)} factors has {what}){hint}")
 
     # one factorisation (in chunks of rows), one pass more for the hat diagonal and residuals
     chunks = inp.chunks(terms, int(chunk_rows))
@@ -730,10 +795,11 @@ def _assemble(*, response, model, block, space, terms, col_names, ls: Regression
               data, coded, y, input_notes=(), omitted_rows=(), omitted_data=None) -> FitResult:
     """The :class:`FitResult` of a factorised fit (both passes done) and its pure error."""
     import pandas as pd
-    from scipy import special
+
+    from . import statistics as special  # the t and F tails without importing SciPy
 
     names = [t.name for t in terms]
-    nb = len(col_names) - len(terms) + 1
+    nb = len(col_names) - n_columns(terms) + 1
     n, p = ls.n, ls.p
     beta, C = ls.params, ls.cov_unscaled
     df_res, ss_res, ss_total, sigma2 = ls.df_resid, ls.ss_res, ls.ss_total, ls.sigma2
@@ -741,8 +807,9 @@ def _assemble(*, response, model, block, space, terms, col_names, ls: Regression
     # blocks enter first (sequential SS), the model row is the rest; terms are Type III
     ss_block = ls.sequential_ss(np.arange(1, nb)) if nb > 1 else 0.0
     ss_model = ls.sequential_ss(tidx[1:]) if tidx.size > 1 else 0.0
-    df_model = len(terms) - 1
-    term_ss = [ls.partial_ss(j) for j in tidx[1:]]
+    df_model = len(tidx) - 1
+    groups = term_columns(terms[1:], 1)  # each term's columns among tidx (multi-df categoric terms)
+    term_ss = [ls.partial_ss(tidx[g]) for g in groups]
     notes = []
     if pe.df == 0:
         pe_used = None
@@ -762,7 +829,8 @@ def _assemble(*, response, model, block, space, terms, col_names, ls: Regression
     # coefficient is zero by symmetry) are stored as 0 with F 0 and p 1, as every face shows them.
     anova = clean_anova(anova_table(term_names=names[1:], term_ss=term_ss, ss_model=ss_model, df_model=df_model,
                                     ss_block=ss_block, df_block=nb - 1, ss_res=ss_res, df_res=df_res,
-                                    ss_total=ss_total, df_total=n - 1, pe=pe_used))
+                                    ss_total=ss_total, df_total=n - 1, pe=pe_used,
+                                    term_df=[t.df for t in terms[1:]]))
 
     # coefficients (coded), errors, VIF, actual
     b_t = beta[tidx]
@@ -776,12 +844,13 @@ def _assemble(*, response, model, block, space, terms, col_names, ls: Regression
         pval = np.full_like(b_t, np.nan)
         tq = np.nan
     vif = np.r_[np.nan, ls.vif(tidx[1:])]
-    coded_coefs = dict(zip(names, b_t.tolist()))
+    cols = column_names(terms)
+    coded_coefs = dict(zip(cols, b_t.tolist()))
     actual = actual_coefficients(coded_coefs, terms, space)
     coef = pd.DataFrame(
         {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se,
-         "ci_high": b_t + tq * se, "vif": vif, "actual": [actual[nm] for nm in names]},
-        index=pd.Index(names, name="term"),
+         "ci_high": b_t + tq * se, "vif": vif, "actual": [actual[nm] for nm in cols]},
+        index=pd.Index(cols, name="term"),
     )
     fitted_range = ls.pass_sums.fitted_max - ls.pass_sums.fitted_min
     statistics = fit_statistics(n=n, mean=ls.ybar, fitted_range=fitted_range, ss_res=ss_res,
