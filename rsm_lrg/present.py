@@ -137,6 +137,8 @@ def format_g(x, digits: int = 4, *, trim: bool = False) -> str:
     >>> format_g(0.99999, 4), format_g(0.0075, 6, trim=True), format_g(4.1667e-05, 5, trim=True)
     ('1.000', '0.0075', '4.1667e-05')
     """
+    if isinstance(x, str):  # a categoric level, shown as it is
+        return x
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
         return ""
     x = float(x)

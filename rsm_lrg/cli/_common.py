@@ -260,8 +260,10 @@ def check_option_specs(args: argparse.Namespace) -> None:
             if not isinstance(spec, str):
                 continue
             rest = spec.split("=", 1)[1].strip().lower() if "=" in spec else ""
-            if rest.startswith("cat"):
+            if rest.startswith("cat") and dest == "factor":
                 continue
+            if dest == "bound" and rest and ":" not in rest:
+                continue  # NAME=LEVEL[,LEVEL]: a categoric factor held at its level(s), checked with the data
             from ..factors import parse_factor_spec  # only when there is a spec: it loads numpy
 
             try:

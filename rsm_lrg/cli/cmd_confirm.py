@@ -49,19 +49,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _check_at(settings) -> None:
-    """Each --at value is NAME=VALUE with a finite VALUE (before any data is read)."""
+    """Each --at value is NAME=VALUE with a VALUE that is a finite number or, for a
+    categoric factor, a level (checked against the factor once the data are read)."""
     import math
 
     from ..io import InputError, quote_user_value
 
     for s in settings:
         name, sep, value = str(s).partition("=")
-        try:
-            ok = bool(sep and name.strip()) and math.isfinite(float(value))
-        except ValueError:
-            ok = False
+        ok = bool(sep and name.strip() and value.strip())
+        if ok:
+            try:
+                ok = math.isfinite(float(value))
+            except ValueError:
+                ok = True  # a categoric level
         if not ok:
-            raise InputError(f"--at {quote_user_value(s)}: expected NAME=VALUE with a finite number VALUE")
+            raise InputError(f"--at {quote_user_value(s)}: expected NAME=VALUE with a finite number VALUE "
+                             "(or a level of a categoric factor)")
 
 
 def run(args: argparse.Namespace) -> int:

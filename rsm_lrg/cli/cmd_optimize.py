@@ -43,7 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="desirability limits per response (multi-response; default: observed min:max)")
     add_factor_options(parser)
     parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
-                        help="tighter limits for a factor in actual units (repeatable)")
+                        help="tighter limits for a factor in actual units, or NAME=LEVEL[,LEVEL...] to hold a "
+                             "categoric factor at its level(s) (repeatable)")
     add_block_option(parser, "optimum for the average block")
     add_model_refinements(parser, per_response=True, model=True)
     add_json(parser)

@@ -121,14 +121,16 @@ def _column_label(pw: tuple, sig: tuple, space: FactorSpace) -> str:
     return t.columns[t.level_combinations().index(tuple(j for _, j in sig))] if sig else t.name
 
 
-def actual_equations(result) -> list[tuple[dict, dict]]:
+def actual_equations(result, coded: Mapping[str, float] | None = None) -> list[tuple[dict, dict]]:
     """The fitted polynomial in actual units once per combination of categoric levels
     (Design-Expert's "stage = rfcms: ..." equations): ``[({name: level}, {term: coefficient})]``,
     the terms being numeric monomials (``"A"``, ``"AB"``, ``"A^2"``, ``"Intercept"``).
-    One entry with an empty setting when every factor is numeric."""
+    One entry with an empty setting when every factor is numeric. ``coded`` replaces the
+    fitted coded coefficients (by column name)."""
     space, letters = result.space, result.space.letters
     cats = [i for i, f in enumerate(space.factors) if f.kind == "categoric"]
-    coded = dict(zip(result.coefficients.index, result.coefficients["coded"]))
+    if coded is None:
+        coded = dict(zip(result.coefficients.index, result.coefficients["coded"]))
     acc, _ = _actual_expansion(coded, result.terms, space)
     out = []
     for setting in space.level_combinations():

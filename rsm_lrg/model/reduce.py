@@ -5,7 +5,8 @@ Starting from a full model, one term at a time is removed:
 * ``criterion="p"`` (Design-Expert's "backward, alpha out"): among the terms that may be
   removed, the one with the largest partial-F p-value goes, while that p-value exceeds
   ``alpha_out`` (default 0.1). The p-values are those of the current model's ANOVA
-  (Type III, ``SS_j = b_j² / C_jj`` as in :mod:`rsm_lrg.model.anova`).
+  (Type III, ``SS_j = b_j² / C_jj`` as in :mod:`rsm_lrg.model.anova`; a categoric term with
+  L levels leaves as a whole, its L - 1 columns tested jointly).
 
 The starting model is factorised once (:mod:`rsm_lrg.model.least_squares`); every smaller
 model is a sub-model of that factor (a QR of a p x p matrix), never a refit of the runs.
@@ -69,17 +70,21 @@ def aicc(ss_res: float, n: int, p: int) -> float:
     return n * math.log(ss_res / n) + n * math.log(2 * math.pi) + n + 2 * K + 2 * K * (K + 1) / (n - K - 1)
 
 
-def _term_p_values(ls) -> np.ndarray:
-    """Partial-F p-values of every column of a fit (``SS_j = b_j^2 / C_jj`` over the
-    residual mean square; ``scipy.special.fdtrc``)."""
-    from scipy import special
+def _term_p_values(ls, groups: Sequence[Sequence[int]]) -> list[float]:
+    """Partial-F p-value of each group of columns of a fit (a term: its columns jointly,
+    ``F = (SS_S / |S|) / MS_res`` with ``SS_S = b_S' (C_SS)^-1 b_S`` as in the ANOVA;
+    ``fdtrc``)."""
+    from . import statistics as special  # the t and F tails without importing SciPy
 
     df = ls.df_resid
     if df <= 0:
-        return np.full(ls.p, np.nan)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        f = ls.params ** 2 / np.diag(ls.cov_unscaled) / ls.sigma2
-    return special.fdtrc(1, df, f)
+        return [math.nan] * len(groups)
+    out = []
+    for g in groups:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            f = ls.partial_ss(list(g)) / len(g) / ls.sigma2
+        out.append(float(special.fdtrc(len(g), df, f)))
+    return out
 
 
 @dataclass(frozen=True)
@@ -136,7 +141,7 @@ def reduce_terms(data, response: str, factors=None, block: str | None = None, mo
 
     from .fit import model_inputs
     from .least_squares import factorise
-    from .terms import check_model_size, model_terms, parse_term
+    from .terms import check_model_size, model_terms, n_columns, parse_term, term_columns
 
     crit = str(criterion).strip().lower()
     if crit not in CRITERIA:
@@ -144,57 +149,64 @@ def reduce_terms(data, response: str, factors=None, block: str | None = None, mo
     if not (isinstance(alpha_out, (int, float)) and 0.0 < alpha_out < 1.0):
         raise ValueError(f"alpha_out must lie between 0 and 1, not {alpha_out!r}")
     inp = model_inputs(data, response, factors, block)
-    letters = inp.space.letters
+    letters, cats = inp.space.letters, inp.space.categoric
     n, nb = inp.n, inp.nb - 1
-    check_model_size(n, len(letters), "linear", nb)
+    check_model_size(n, len(letters), "linear", nb, categoric=cats)
     if terms is None:
-        check_model_size(n, len(letters), model, nb)  # counted before any term is built
-        current = list(model_terms(letters, model))
+        check_model_size(n, len(letters), model, nb, categoric=cats)  # counted before any term is built
+        current = list(model_terms(letters, model, cats))
     else:
-        current = [parse_term("Intercept", letters)] + [parse_term(t, letters) for t in terms if t != "Intercept"]
-    if n <= len(current) + nb:
-        raise ValueError(f"{n} runs cannot fit {len(current) + nb} terms; start from a smaller model")
+        current = [parse_term("Intercept", letters)] + [parse_term(t, letters, cats) for t in terms
+                                                       if t != "Intercept"]
+    p_start = n_columns(current) + nb
+    if n <= p_start:
+        raise ValueError(f"{n} runs cannot fit {p_start} coefficients; start from a smaller model")
     # one factorisation of the starting model; every smaller model is a sub-model of its
     # factor (no pass over the runs again)
     start = list(current)
-    full = factorise(inp.chunks(start), len(start) + nb, inp.column_names(start))
+    full = factorise(inp.chunks(start), p_start, inp.column_names(start))
     full.require_full_rank("model to reduce")
-    col = {id(t): (0 if i == 0 else nb + i) for i, t in enumerate(start)}
+    col = {id(t): list(g) for t, g in zip(start[1:], term_columns(start[1:], 1 + nb))}
+
+    def columns(ts) -> list[int]:
+        return sorted([0, *range(1, nb + 1), *(c for t in ts[1:] for c in col[id(t)])])
 
     def fitted(ts):
-        return full.submodel(sorted(col[id(t)] for t in ts) if nb == 0 else
-                             sorted([col[id(ts[0])], *range(1, nb + 1), *(col[id(t)] for t in ts[1:])]))
+        return full.submodel(columns(ts))
+
+    def p_values(ls, ts) -> dict:
+        where = {c: i for i, c in enumerate(columns(ts))}
+        pv = _term_p_values(ls, [[where[c] for c in col[id(t)]] for t in ts[1:]])
+        return {id(t): v for t, v in zip(ts[1:], pv)}
 
     steps = []
     removed = []
     while True:
         ls = fitted(current)
-        p = _term_p_values(ls)
+        p = p_values(ls, current)
         ss = ls.ss_res
         cand = removable(current)
         if not cand:
             break
         a_now = aicc(ss, n, ls.p)
         if crit == "p":
-            pos = {id(t): 1 + nb + current[1:].index(t) for t in current[1:]}
-            pv = [(float(p[pos[id(t)]]), t) for t in cand]
+            pv = [(p[id(t)], t) for t in cand]
             worst_p, worst = max(pv, key=lambda z: z[0])
             if not (worst_p > alpha_out):
                 break
             ss2 = fitted([t for t in current if t is not worst]).ss_res
             steps.append({"step": len(steps) + 1, "term": worst.name, "p": worst_p,
-                          "aicc_before": a_now, "aicc_after": aicc(ss2, n, ls.p - 1)})
+                          "aicc_before": a_now, "aicc_after": aicc(ss2, n, ls.p - worst.df)})
         else:
             best = None
             for t in cand:
-                a2 = aicc(fitted([s for s in current if s is not t]).ss_res, n, ls.p - 1)
+                a2 = aicc(fitted([s for s in current if s is not t]).ss_res, n, ls.p - t.df)
                 if best is None or a2 < best[0]:
                     best = (a2, t)
             if best is None or not best[0] < a_now:
                 break
             worst = best[1]
-            pos = 1 + nb + current[1:].index(worst)
-            steps.append({"step": len(steps) + 1, "term": worst.name, "p": float(p[pos]),
+            steps.append({"step": len(steps) + 1, "term": worst.name, "p": p[id(worst)],
                           "aicc_before": a_now, "aicc_after": best[0]})
         current = [t for t in current if t is not worst]
         removed.append(worst.name)

@@ -196,7 +196,7 @@ def _finish(result, goal, kind, r, X) -> RidgePath:
                      names=tuple(result.space.names))
 
 
-def ridge(result, goal: str = "maximize", radius: float | None = None, step: float = 0.1) -> RidgePath:
+def ridge(result, goal: str = "maximize", radius: float | None = None, step: float = 0.1, level=None) -> RidgePath:
     """Ridge path (second order) or steepest path (first order) from the design centre.
 
     Parameters
@@ -209,7 +209,14 @@ def ridge(result, goal: str = "maximize", radius: float | None = None, step: flo
     step : float
         Spacing of the path points [coded units]; the path has a point at every multiple
         of ``step`` up to ``radius``, 0 included.
+    level : mapping, optional
+        With categoric factors: the level of each (``{"stage": "rms"}``; the first levels
+        by default); the path runs through the numeric factors at that combination.
     """
+    if result.space.has_categoric:  # the path through the numeric factors at one level combination
+        from .levels import LevelView
+
+        result = LevelView(result, level or {})
     g = _goal(goal)
     radii(0.0, step)  # validates step
     b0, b, B = _parts(result)

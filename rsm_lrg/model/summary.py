@@ -185,7 +185,7 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     from .fit import model_inputs
     from .least_squares import factorise
     from .statistics import fit_statistics
-    from .terms import MAX_TERMS, check_model_size, model_terms, n_model_terms
+    from .terms import MAX_TERMS, check_model_size, model_terms, n_columns, n_model_terms
 
     if not 0.0 < alpha < 1.0:
         raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
@@ -196,11 +196,12 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     orders = tuple(o for o in ORDERS if o in orders)
     inp = model_inputs(data, response, factors, block)
     y, n, nb, letters = inp.y, inp.n, inp.nb, inp.space.letters
-    check_model_size(n, len(letters), "linear", nb - 1)
+    cats = inp.space.categoric
+    check_model_size(n, len(letters), "linear", nb - 1, categoric=cats)
     notes = []
     fitted = []
     for order in orders:
-        count = n_model_terms(len(letters), order)
+        count = n_model_terms(len(letters), order, cats)
         if count > MAX_TERMS:  # counted, not built
             notes.append(f"The {_LABEL[order]} model in {len(letters)} factors has {count} terms and was not fitted "
                          f"(more than the {MAX_TERMS} this toolkit builds).")
@@ -208,13 +209,13 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
         fitted.append(order)
 
     # one factorisation of the largest model; its estimable columns, in order
-    terms = model_terms(letters, fitted[-1])
+    terms = model_terms(letters, fitted[-1], cats)
     chunks = inp.chunks(terms)
-    big = factorise(chunks, len(terms) + nb - 1, inp.column_names(terms))
-    big.submodel(range(nb + len(letters))).require_full_rank("linear model")
+    big = factorise(chunks, n_columns(terms) + nb - 1, inp.column_names(terms))
+    big.submodel(range(nb - 1 + n_model_terms(len(letters), "linear", cats))).require_full_rank("linear model")
     kept = np.asarray(big.kept)
     ls = big if big.full_rank else big.submodel(kept)
-    ends_all = {o: nb - 1 + n_model_terms(len(letters), o) for o in fitted}  # columns up to each order
+    ends_all = {o: nb - 1 + n_model_terms(len(letters), o, cats) for o in fitted}  # columns up to each order
     ends = {o: int(np.sum(kept < ends_all[o])) for o in fitted}  # estimable ones
     sub_chunks = chunks if big.full_rank else (lambda: ((X[:, kept], yy) for X, yy in chunks()))
     nested = dict(zip(fitted, ls.nested_press(sub_chunks, [ends[o] for o in fitted])))

@@ -10,43 +10,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..present import ROUND_OFF, format_g, format_p
+from ..present import clean as _clean
+
 __all__ = ["format_summary", "format_anova", "format_equation", "equation_terms", "EquationTerm", "format_g",
            "EQUATION_ACCURACY"]
 
 
-def format_g(x, digits: int = 4) -> str:
-    """A number with ``digits`` significant figures (scientific when small or large)."""
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return ""
-    x = float(x)
-    if x == 0:
-        return "0"
-    a = abs(x)
-    if 1e-3 <= a < 1e5:
-        decimals = max(digits - 1 - int(math.floor(math.log10(a))), 0)
-        s = f"{x:.{decimals}f}"
-        if decimals and abs(float(s)) >= 10.0 ** (digits - decimals):  # 0.99999 rounded up to 1.0000
-            s = f"{x:.{decimals - 1}f}"
-        return s
-    return f"{x:.{digits - 1}e}"
-
-
-#: Relative size below which a sum of squares or a coefficient is round-off and printed as 0
-#: (Design-Expert prints 0.000 for the AB and BC rows of the paper's Table 5).
-ROUND_OFF = 1e-12
-
-
-def _clean(x, scale):
-    """``x``, or 0.0 when it is round-off relative to ``scale``."""
-    if x is None or not math.isfinite(float(x)) or not math.isfinite(float(scale)):
-        return x
-    return 0.0 if abs(float(x)) <= ROUND_OFF * abs(float(scale)) else x
-
-
 def _p(p) -> str:
-    if p is None or not math.isfinite(p):
-        return ""
-    return "< 0.0001" if p < 1e-4 else f"{p:.4f}"
+    return format_p(p, style="ascii")
 
 
 def _table(header, rows, align=None) -> str:
@@ -108,16 +80,7 @@ class EquationTerm:
     text: str
 
 
-def _eq_number(x: float, digits: int) -> str:
-    """``x`` to ``digits`` significant figures like :func:`format_g`, without trailing zeros."""
-    s = format_g(x, digits)
-    mant, _, exp = s.partition("e")
-    if "." in mant:
-        mant = mant.rstrip("0").rstrip(".")
-    return mant + ("e" + exp if exp else "")
-
-
-def equation_terms(result, units: str = "coded") -> list[EquationTerm]:
+def equation_terms(result, units: str = "coded", level=None) -> list[EquationTerm]:
     """The terms of the fitted equation in ``"coded"`` or ``"actual"`` units — the one rule
     every equation writer uses (issue 10, item 4).
 
@@ -131,8 +94,13 @@ def equation_terms(result, units: str = "coded") -> list[EquationTerm]:
     ``|x_i|`` in the factor box (1 when coded), ``p`` the number of terms and ``Y`` the largest
     ``|ŷ|`` over the runs: the rounding of all printed coefficients together then moves a
     prediction in the box by at most ``EQUATION_ACCURACY · Y``.
+
+    With categoric factors the coded equation has one term per effect-coded column
+    (``"C[rms]"``) and the actual-units equation is the polynomial in the numeric factors
+    at one combination of levels, ``level`` (``{"stage": "rms"}``; the first levels by
+    default), as Design-Expert prints one equation per level.
     """
-    from .fit import actual_coefficients
+    from .fit import actual_coefficients, actual_equations
     from .terms import parse_term
 
     if units not in ("coded", "actual"):
@@ -141,12 +109,21 @@ def equation_terms(result, units: str = "coded") -> list[EquationTerm]:
     big = max((abs(v) for v in coded.values() if math.isfinite(v)), default=0.0)
     coded = {k: (0.0 if abs(v) <= ROUND_OFF * big else v) for k, v in coded.items()}
     letters = result.space.letters
+    col_powers = {c: t.powers for t in result.terms for c in t.columns}
     if units == "coded":
         values, mags = coded, [1.0] * len(letters)
     else:
-        values = actual_coefficients(coded, result.terms, result.space)
+        if result.space.has_categoric:
+            chosen = dict(level or {})
+            values = next(eq for setting, eq in actual_equations(result, coded)
+                          if all(setting[k] == v for k, v in chosen.items()))
+        else:
+            values = actual_coefficients(coded, result.terms, result.space)
         mags = []
         for f in result.space.factors:  # the box and the runs (a CCD's axial runs lie outside the box)
+            if f.kind == "categoric":
+                mags.append(1.0)
+                continue
             runs = (np.abs(np.asarray(result.coded[f.letter], dtype=float)) * f.half_range + abs(f.center)
                     if result.coded is not None else np.zeros(0))  # a Dask fit holds no runs
             mags.append(max(abs(f.low), abs(f.high), float(np.max(runs, initial=0.0))))
@@ -158,7 +135,7 @@ def equation_terms(result, units: str = "coded") -> list[EquationTerm]:
         scale = max(abs(sums.fitted_min), abs(sums.fitted_max))
     out = []
     for name, v in values.items():
-        powers = parse_term(name, letters).powers
+        powers = col_powers[name] if name in col_powers else parse_term(name, letters).powers
         if v == 0.0 and name != "Intercept":
             continue
         size = abs(v) * math.prod(m ** e for m, e in zip(mags, powers))
@@ -169,15 +146,26 @@ def equation_terms(result, units: str = "coded") -> list[EquationTerm]:
             digits = min(max(math.ceil(math.log10(need)), 6), 17) if need > 0 else 6
         else:
             digits = 17
-        out.append(EquationTerm(name=name, powers=tuple(powers), value=float(v), text=_eq_number(abs(v), digits)))
+        out.append(EquationTerm(name=name, powers=tuple(powers), value=float(v), text=format_g(abs(v), digits, trim=True)))
     return out
 
 
 def format_equation(result, units: str = "coded") -> str:
     """The fitted equation in ``"coded"`` (letters) or ``"actual"`` (factor names) terms,
-    one term a line, as :func:`equation_terms` gives them."""
+    one term a line, as :func:`equation_terms` gives them; in actual units with categoric
+    factors, one equation per combination of their levels ("stage = rfcms:")."""
+    if units == "actual" and result.space.has_categoric:
+        blocks = []
+        for setting in result.space.level_combinations():
+            head = ", ".join(f"{k} = {v}" for k, v in setting.items())
+            blocks.append(f"{head}:\n" + _equation_lines(result, units, setting))
+        return "\n".join(blocks)
+    return _equation_lines(result, units, None)
+
+
+def _equation_lines(result, units: str, level) -> str:
     lines = [f"{result.response} ="]
-    for t in equation_terms(result, units):
+    for t in equation_terms(result, units, level):
         if t.name == "Intercept":
             label = ""
         elif units == "coded":
@@ -198,7 +186,10 @@ def format_summary(result) -> str:
                + (f"   blocks: {result.block} ({len(result.block_effects)})" if result.block else ""))
     out.append("Factors (coded -1 .. +1):")
     for f in sp.factors:
-        out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6)} .. {format_g(f.high, 6)}")
+        if f.kind == "categoric":
+            out.append(f"  {f.letter}: {f.name}  categoric, levels {', '.join(f.levels)} (effect coded)")
+        else:
+            out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6)} .. {format_g(f.high, 6)}")
     out.append("")
     out.append("ANOVA for the " + {"linear": "linear", "2fi": "2FI", "quadratic": "quadratic", "cubic": "cubic"}[result.model]
                + " model (partial sum of squares - Type III)")
@@ -260,5 +251,7 @@ def format_summary(result) -> str:
             out.append(f"  Predicted response there:  {format_g(sp_.predicted, 6)}"
                        + ("" if sp_.inside else "  (outside the coded cube: extrapolation)"))
             out.append(f"  Kind: {sp_.kind}")
+            if sp_.note:
+                out.append(f"  Note: {sp_.note}")
         out.append("  Eigenvalues: " + ", ".join(format_g(v, 6) for v in sp_.eigenvalues))
     return "\n".join(out) + "\n"

@@ -39,7 +39,8 @@ __all__ = ["confirm", "ConfirmationResult", "parse_settings"]
 
 def parse_settings(space, at) -> dict:
     """``{factor name: value}`` (actual units) from a mapping keyed by name or letter or
-    from ``["NAME=VALUE", ...]``; every factor must be given exactly once."""
+    from ``["NAME=VALUE", ...]``; every factor must be given exactly once (a categoric
+    factor by one of its levels)."""
     items: dict = {}
     if isinstance(at, Mapping):
         pairs = list(at.items())
@@ -55,7 +56,7 @@ def parse_settings(space, at) -> dict:
             f = space[key]
         except KeyError:
             raise ValueError(f"setting for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
-        val = finite_float(v, f"setting for {f.name!r}")
+        val = f.levels[f.index(v)] if f.kind == "categoric" else finite_float(v, f"setting for {f.name!r}")
         if f.name in items:
             raise ValueError(f"factor {f.name!r} is set more than once")
         items[f.name] = val
@@ -192,7 +193,7 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
         raise ValueError("the model has no residual degrees of freedom: no prediction interval")
     space = result.space
     settings = parse_settings(space, at)
-    x_act = np.array([[settings[n] for n in space.names]])
+    x_act = np.array([[settings[n] for n in space.names]], dtype=object if space.has_categoric else float)
     x = np.asarray(space.encode(x_act), dtype=float)
     tr = getattr(result, "transform", None)
     pr = result.predict(x, coded=True).iloc[0]
@@ -227,10 +228,11 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
         if reference == 0 or not math.isfinite(reference):
             raise ValueError("reference must be a finite non-zero number")
         rel_ref = 100.0 * (mean - reference) / reference
-    extra = bool(np.any(np.abs(x) > 1 + 1e-9))
+    extra = bool(np.any(np.abs(x[:, space.numeric_index]) > 1 + 1e-9))
     warns = ("the settings lie outside the design range: the prediction is an extrapolation",) if extra else ()
     return ConfirmationResult(
-        response=result.response, actual=dict(settings), coded={L: float(v) for L, v in zip(space.letters, x[0])},
+        response=result.response, actual=dict(settings), coded={f.letter: (settings[f.name] if f.kind == "categoric" else float(v))
+                                                       for f, v in zip(space.factors, x[0])},
         predicted=yhat, observed=tuple(float(v) for v in obs), n=n, mean=mean, confidence=float(confidence),
         pi=(lo, hi), se_mean=se, inside=inside, relative_error_percent=rel, reference=reference,
         relative_error_vs_reference_percent=rel_ref, extrapolation=extra, warnings=warns, **tinfo,

@@ -224,14 +224,15 @@ class DesirabilityResult:
         return {"responses": list(self.responses), "goals": [g.to_dict() for g in self.goals],
                 "coded": dict(self.coded), "actual": dict(self.actual), "predicted": dict(self.predicted),
                 "desirability": self.desirability, "individual": dict(self.individual),
-                "bounds": {k: [v[0], v[1]] for k, v in self.bounds.items()}, "warnings": list(self.warnings)}
+                "bounds": {k: list(v) for k, v in self.bounds.items()}, "warnings": list(self.warnings)}
 
     def summary(self) -> str:
         from ..present import format_g
 
         lines = [f"Desirability optimum (D = {self.desirability:.4f})"]
         for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):
-            lines.append(f"  {L}: {name} = {format_g(a, 6)}   (coded {c:+.4f})")
+            lines.append(f"  {L}: {name} = {a}   (categoric)" if isinstance(a, str)
+                         else f"  {L}: {name} = {format_g(a, 6)}   (coded {c:+.4f})")
         for g in self.goals:
             what = g.goal if g.goal != "target" else f"target {format_g(g.target, 6)}"
             lines.append(f"  {g.response}: predicted {format_g(self.predicted[g.response], 6)}, d = "
@@ -262,7 +263,46 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
         Sobol starts (rounded up to a power of two); all starts are screened at once.
     n_polish : int
         The best starts polished by L-BFGS-B; the best result then by Nelder–Mead.
+
+    With categoric factors every combination of their levels (those allowed by ``bounds``,
+    e.g. ``{"stage": "rms"}``) is searched over the numeric factors, and the combination with
+    the highest overall desirability wins (its levels are in ``actual``).
     """
+    first = next(iter(fits.values()), None) if fits else None
+    if first is not None and first.space.has_categoric:
+        return _desirability_categoric(fits, goals, bounds, seed=seed, n_sobol=n_sobol, n_polish=n_polish)
+    return _desirability_numeric(fits, goals, bounds, seed=seed, n_sobol=n_sobol, n_polish=n_polish)
+
+
+def _desirability_categoric(fits, goals, bounds, *, seed, n_sobol, n_polish) -> DesirabilityResult:
+    from dataclasses import replace
+
+    from .single import LevelView, split_bounds
+
+    space = next(iter(fits.values())).space
+    numeric, held = split_bounds(space, bounds)
+    best = None
+    for combo in space.level_combinations():
+        if not all(combo[k] in v for k, v in held.items()):
+            continue
+        views = {}
+        for name, f in fits.items():
+            v = LevelView(f, combo)
+            v.y, v.transform = f.y, getattr(f, "transform", None)
+            views[name] = v
+        r = _desirability_numeric(views, goals, numeric, seed=seed, n_sobol=n_sobol, n_polish=n_polish)
+        if best is None or r.desirability > best[0].desirability:
+            best = (r, combo)
+    r, combo = best
+    letter = {f.name: f.letter for f in space.factors}
+    actual = {n: (combo[n] if n in combo else r.actual[n]) for n in space.names}
+    coded = {letter[n]: (combo[n] if n in combo else r.coded[letter[n]]) for n in space.names}
+    bnds = {n: (tuple(held.get(n, space[n].levels)) if n in combo else r.bounds[n]) for n in space.names}
+    return replace(r, actual=actual, coded=coded, bounds=bnds)
+
+
+def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish) -> DesirabilityResult:
+    """:func:`optimize_desirability` over numeric factors only."""
     from scipy import optimize as so
     from scipy.stats import qmc
 

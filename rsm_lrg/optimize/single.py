@@ -164,6 +164,7 @@ class OptimumResult:
     warnings: tuple = ()
     n_starts: int = 0
     method: str = "multistart"
+    by_level: tuple = ()
 
     def to_dict(self) -> dict:
         """The optimize JSON of INTERFACE.md (plus ``target``, ``bounds``, ``warnings``)."""
@@ -179,8 +180,10 @@ class OptimumResult:
         }
         if self.target is not None:
             out["target"] = self.target
-        out["bounds"] = {k: [v[0], v[1]] for k, v in self.bounds.items()}
+        out["bounds"] = {k: (list(v) if isinstance(v, tuple) else v) for k, v in self.bounds.items()}
         out["warnings"] = list(self.warnings)
+        if self.by_level:
+            out["by_level"] = [dict(r) for r in self.by_level]
         return out
 
     def to_frame(self):
@@ -200,12 +203,21 @@ class OptimumResult:
         g = self.goal if self.target is None else f"target {format_g(self.target, 6)}"
         lines = [f"Optimum of {self.response} ({g})"]
         for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):
-            lines.append(f"  {L}: {name} = {format_g(a, 6)}   (coded {c:+.4f})")
+            if isinstance(a, str):
+                lines.append(f"  {L}: {name} = {a}   (categoric)")
+            else:
+                lines.append(f"  {L}: {name} = {format_g(a, 6)}   (coded {c:+.4f})")
         pc = int(round(self.confidence * 100))
         lines.append(f"  predicted: {format_g(self.predicted, 6)}")
         lines.append(f"  {pc} % CI:  {format_g(self.ci[0], 6)} .. {format_g(self.ci[1], 6)}")
         lines.append(f"  {pc} % PI:  {format_g(self.pi[0], 6)} .. {format_g(self.pi[1], 6)}")
         lines.extend(f"  warning: {w}" for w in self.warnings)
+        if len(self.by_level) > 1:
+            lines.append("  best setting per level combination:")
+            for r in self.by_level:
+                lv = ", ".join(f"{k} = {v}" for k, v in r["level"].items())
+                at = ", ".join(f"{k} = {format_g(v, 6)}" for k, v in r["actual"].items() if k not in r["level"])
+                lines.append(f"    {lv}: {format_g(r['predicted'], 6)} at {at}")
         return "\n".join(lines) + "\n"
 
 
@@ -240,7 +252,13 @@ def _exact_quadratic(b, B, lo, hi, sign):
 
 def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
              allow_extrapolation: bool = False, seed: int = 0) -> OptimumResult:
-    """Optimise a fitted response inside the factor box.
+    """Optimise a fitted response inside the factor box (and over every combination of the
+    levels of its categoric factors).
+
+    With categoric factors the numeric surface at each combination of levels is optimised
+    as below, and the best combination wins; ``by_level`` of the result lists the best
+    setting of every combination. A categoric factor is held at one level (or a subset)
+    with ``bounds={"stage": "rms"}`` or ``["stage=rms"]`` (``"stage=rms,mixed"``).
 
     Parameters
     ----------
@@ -262,16 +280,26 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     -------
     OptimumResult
     """
-    from scipy import optimize as so
-
-    from ..model.canonical import quadratic_parts
-    from ..model.terms import design_gradient, design_matrix
-
     if not hasattr(fitted, "coefficients"):
         raise TypeError(f"optimize() takes a fitted result, not {type(fitted).__name__}: fit first, "
                         "e.g. rsm_lrg.optimize(rsm_lrg.fit(data, response), goal)")
     if not 0.0 < confidence < 1.0:
         raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
+    if fitted.space.has_categoric:
+        return _optimize_categoric(fitted, goal, bounds, confidence=confidence,
+                                   allow_extrapolation=allow_extrapolation, seed=seed)
+    return _optimize_numeric(fitted, goal, bounds, confidence=confidence, allow_extrapolation=allow_extrapolation,
+                             seed=seed)
+
+
+def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapolation: bool,
+                      seed: int) -> OptimumResult:
+    """:func:`optimize` for a fit (or a :class:`LevelView`) whose factors are all numeric."""
+    from scipy import optimize as so
+
+    from ..model.canonical import quadratic_parts
+    from ..model.terms import design_gradient, design_matrix
+
     kind, target = parse_goal(goal)
     space = fitted.space
     lo, hi, notes = parse_bounds(space, bounds, allow_extrapolation=allow_extrapolation)
@@ -381,3 +409,76 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
         ci=(float(pr["ci_low"]), float(pr["ci_high"])), pi=(float(pr["pi_low"]), float(pr["pi_high"])),
         se_fit=float(pr["se_fit"]), bounds=bnds, warnings=tuple(notes), n_starts=len(starts), method=method,
     )
+
+
+# ----------------------------------------------------------------------------------------
+# categoric factors: the numeric surface at each combination of levels
+# ----------------------------------------------------------------------------------------
+from ..model.levels import LevelView  # noqa: E402  (re-exported: the optimisers' view of one level)
+
+
+def split_bounds(space, bounds) -> tuple[Any, dict]:
+    """Numeric bounds (as :func:`parse_bounds` takes them) and ``{categoric name: [levels]}``
+    from ``{name: (low, high) | level | [levels]}`` or ``["NAME=LOW:HIGH", "stage=rms", ...]``."""
+    if bounds is None:
+        return None, {}
+    items = bounds.items() if isinstance(bounds, Mapping) else [_split_spec(s) for s in bounds]
+    numeric: dict = {}
+    levels: dict = {}
+    seen: set = set()
+    for key, val in items:
+        try:
+            f = space[key]
+        except KeyError:
+            raise ValueError(f"bound for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
+        if f.name in seen:
+            raise ValueError(f"bound for {f.name!r} is given more than once")
+        seen.add(f.name)
+        if f.kind == "categoric":
+            vals = [val] if isinstance(val, str) or not hasattr(val, "__iter__") else list(val)
+            levels[f.name] = [f.levels[f.index(v)] for v in vals]
+        else:
+            if isinstance(val, str):
+                from ..factors import parse_factor_spec
+
+                _, a, b = parse_factor_spec(f"{f.name}={val}")
+                val = (a, b)
+            numeric[f.name] = val
+    return numeric, levels
+
+
+def _split_spec(spec: str) -> tuple[str, str]:
+    if not isinstance(spec, str) or "=" not in spec:
+        raise ValueError(f"bound {spec!r}: expected NAME=LOW:HIGH (numeric) or NAME=LEVEL[,LEVEL...] (categoric)")
+    name, val = spec.split("=", 1)
+    name, val = name.strip(), val.strip()
+    if ":" in val:
+        return name, val
+    return name, [v.strip() for v in val.split(",")]
+
+
+def _optimize_categoric(fitted, goal, bounds, *, confidence, allow_extrapolation, seed) -> OptimumResult:
+    kind, target = parse_goal(goal)
+    space = fitted.space
+    numeric, held = split_bounds(space, bounds)
+    combos = [c for c in space.level_combinations() if all(c[k] in v for k, v in held.items())]
+    best, rows = None, []
+    for combo in combos:
+        if not space.numeric:
+            raise ValueError("every factor is categoric: compare the level predictions instead (no numeric optimum)")
+        view = LevelView(fitted, combo)
+        r = _optimize_numeric(view, goal, numeric, confidence=confidence, allow_extrapolation=allow_extrapolation,
+                              seed=seed)
+        score = r.predicted if kind == "minimize" else -r.predicted if kind == "maximize" else abs(r.predicted - target)
+        rows.append({"level": dict(combo), "actual": {**r.actual, **combo}, "predicted": r.predicted})
+        if best is None or score < best[0]:
+            best = (score, combo, r)
+    _, combo, r = best
+    order = space.names
+    letter = {f.name: f.letter for f in space.factors}
+    actual = {n: (combo[n] if n in combo else r.actual[n]) for n in order}
+    coded = {letter[n]: (combo[n] if n in combo else r.coded[letter[n]]) for n in order}
+    bnds = {n: (list(held.get(n, space[n].levels)) if n in combo else r.bounds[n]) for n in order}
+    from dataclasses import replace
+
+    return replace(r, coded=coded, actual=actual, bounds=bnds, by_level=tuple(rows))
