@@ -56,27 +56,51 @@ Chunks = Callable[[], Iterable[tuple[np.ndarray, np.ndarray]]]
 
 
 def _qr_r(A: np.ndarray) -> np.ndarray:
-    """Square upper-triangular factor (q x q) of ``A`` (m x q; overwritten), zero rows added
-    when m < q (LAPACK ``dgeqrf`` on a Fortran-ordered array: no copy, no m x q ``R``)."""
-    from scipy.linalg.lapack import dgeqrf
-
-    A = np.asfortranarray(A, dtype=float)
+    """Square upper-triangular factor (q x q) of ``A`` (m x q), zero rows added when m < q
+    (Householder QR, LAPACK ``dgeqrf`` through ``numpy.linalg.qr``: the same factorisation as
+    ``scipy.linalg.qr``, without importing SciPy)."""
+    A = np.asarray(A, dtype=float)
     q = A.shape[1]
     if A.shape[0] == 0:
         return np.zeros((q, q))
-    a, _, _, info = dgeqrf(A, overwrite_a=1)
-    if info != 0:
-        raise ValueError(f"the QR factorisation failed (LAPACK info {info})")
-    R = np.triu(a[:q])
+    R = np.linalg.qr(A, mode="r")
     if R.shape[0] < q:
         R = np.vstack([R, np.zeros((q - R.shape[0], q))])
     return R
 
 
-def _solve_r(R: np.ndarray, B: np.ndarray, trans: bool = False) -> np.ndarray:
-    from scipy.linalg import solve_triangular
+#: Rows of ``R`` solved together by :func:`_solve_r` (the rest of the work is matrix products).
+_SOLVE_BLOCK = 16
 
-    return solve_triangular(R, B, trans="T" if trans else "N", lower=False, check_finite=False)
+
+def _solve_r(R: np.ndarray, B: np.ndarray, trans: bool = False) -> np.ndarray:
+    """``R^-1 B`` (``R^-T B`` with ``trans``) for upper-triangular ``R`` (p x p) and ``B`` (p,)
+    or (p, m): blocked back (forward) substitution, as LAPACK's ``dtrtrs``/BLAS ``dtrsm``
+    arrange it: each block of rows is solved row by row, the rows below (above) it are
+    updated by one matrix product."""
+    B = np.asarray(B, dtype=float)
+    vec = B.ndim == 1
+    X = np.array(B.reshape(B.shape[0], -1), dtype=float, order="C")  # a copy: solved in place
+    p, nb = R.shape[0], _SOLVE_BLOCK
+    if not trans:
+        for e in range(p, 0, -nb):
+            s = max(0, e - nb)
+            if e < p:
+                X[s:e] -= R[s:e, e:] @ X[e:]
+            for i in range(e - 1, s - 1, -1):
+                if i + 1 < e:
+                    X[i] -= R[i, i + 1:e] @ X[i + 1:e]
+                X[i] /= R[i, i]
+    else:
+        for s in range(0, p, nb):
+            e = min(p, s + nb)
+            if s:
+                X[s:e] -= R[:s, s:e].T @ X[:s]
+            for i in range(s, e):
+                if i > s:
+                    X[i] -= R[s:i, i] @ X[s:i]
+                X[i] /= R[i, i]
+    return X[:, 0] if vec else X
 
 
 def _independent_columns(R: np.ndarray, tol: float = ALIAS_TOL) -> tuple:
