@@ -1,54 +1,131 @@
-"""``rsm-lrg report``: fit a model and write a self-contained HTML report."""
+"""``rsm-lrg report``: fit one or several responses and write a self-contained HTML report."""
 
 from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, add_model_inputs, print_notes
+from ._common import (
+    ResponseGroup,
+    about_file,
+    add_block_option,
+    add_factor_options,
+    add_force,
+    add_model_refinements,
+    print_notes,
+)
 
 NAME = "report"
-HELP = "fit a model and write a self-contained HTML report (ANOVA, diagnostics, surfaces, optimum)"
+HELP = "fit one or several responses and write a self-contained HTML report (profiler, overlay, ANOVA, diagnostics)"
 DESCRIPTION = (
-    "Fit a response-surface model and write one HTML file that opens offline: the study "
-    "summary, the data, the ANOVA laid out like the paper's Table 5 with significant terms "
-    "marked, the fit statistics, coefficients with confidence intervals and VIFs, the equation "
-    "in coded and actual units, six diagnostic plots, a 3-D surface and a contour for every "
-    "pair of factors, the stationary point and the optimum with its CI and PI."
+    "Fit response-surface models and write one HTML file that opens offline. By default the page "
+    "is interactive: a prediction profiler (a slider per factor, a level picker per categoric "
+    "factor; each response's prediction with its 95 % CI and PI, computed in the page from the "
+    "fitted models), an overlay (sweet-spot) plot with editable limits, rotatable 3-D surfaces and "
+    "contours that follow the profiler, buttons that jump to each optimum and to the desirability "
+    "optimum, and the setting as --at options for `rsm-lrg confirm`; then, per response, the "
+    "ANOVA laid out like the paper's Table 5, fit statistics, coefficients, equations, diagnostics "
+    "and the optimum. --static writes the page without scripts, with a static 3-D surface and "
+    "contour for every pair of factors (one response: the page of earlier versions). Several "
+    "responses: repeat --response; the model options that follow a --response apply to it only "
+    "(--response Y1 --reduce --response Y2 --transform log)."
 )
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_model_inputs(parser)
-    parser.add_argument("--goal", default="minimize", metavar="minimize|maximize|target=V",
-                        help="goal of the optimum section (default minimize, as in the paper)")
+    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
+    parser.add_argument("--response", required=True, action=ResponseGroup, metavar="COL",
+                        help="a response column; repeat for several responses in one page, each followed "
+                             "by its own model options")
+    add_factor_options(parser)
+    add_block_option(parser)
+    add_model_refinements(parser, per_response=True, model=True)
+    parser.add_argument("--goal", action="append", default=None, metavar="minimize|maximize|target=V",
+                        help="goal of each response's optimum, in --response order (default minimize, as in "
+                             "the paper)")
+    parser.add_argument("--limits", action="append", default=None, metavar="LOW:HIGH",
+                        help="overlay and desirability limits of each response, in --response order (default: "
+                             "minimize: at most the observed median, maximize: at least the median, else the "
+                             "observed range; either end may be left empty: :0.03)")
     parser.add_argument("--hold", default="center", choices=["center", "optimum"],
-                        help="where the factors off a surface's axes are held (default center)")
+                        help="where the factors off a surface's axes are held, and where the profiler starts "
+                             "(default center)")
+    parser.add_argument("--static", action="store_true",
+                        help="a page without scripts: static figures (a 3-D surface and a contour per pair)")
     parser.add_argument("--title", default=None, help="page title (default: 'Response surface report: COL')")
     parser.add_argument("-o", "--output", required=True, metavar="PATH.html", help="the HTML file to write")
     add_force(parser)
+
+
+def _per_response(values, n: int, what: str) -> list:
+    values = list(values or [])
+    if len(values) > n:
+        raise ValueError(f"--{what}: more values ({len(values)}) than --response options ({n})")
+    return values + [None] * (n - len(values))
+
+
+def _limits(text, response: str):
+    if text is None:
+        return None
+    lo, sep, hi = str(text).partition(":")
+    try:
+        out = (float(lo) if lo.strip() else None, float(hi) if hi.strip() else None)
+    except ValueError:
+        out = None
+    if not sep or out is None:
+        raise ValueError(f"--limits {text!r} (response {response!r}): expected LOW:HIGH")
+    return out
 
 
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..io import InputError, read_table
-    from ..model import fit
-    from ..report import write_report
+    from ._common import check_transform_option, fit_model, response_options
 
     out = Path(args.output)
     if out.exists() and not args.force:  # before the fit and the figures
         raise InputError(f"{out}: already exists; use --force to overwrite it")
     from ..optimize import parse_goal
 
-    try:  # a bad --goal is named before any data is read
-        parse_goal(args.goal)
-    except ValueError as exc:
-        raise InputError(f"--goal: {exc}") from None
+    responses = list(args.response)
+    n = len(responses)
+    if len(set(responses)) != n:
+        raise InputError("--response: each response may be given once")
+    goals = [g or "minimize" for g in _per_response(args.goal, n, "goal")]
+    for g in goals:
+        try:  # a bad --goal is named before any data is read
+            parse_goal(g)
+        except ValueError as exc:
+            raise InputError(f"--goal: {exc}") from None
+    limits = [_limits(t, r) for t, r in zip(_per_response(args.limits, n, "limits"), responses)]
+    for i in range(n):
+        check_transform_option(response_options(args, i))
     data = read_table(args.data)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
-        path = write_report(result, out, force=args.force, title=args.title, source_name=str(args.data),
-                            goal=args.goal, hold=args.hold)
-    print_notes(result.input_notes)  # the report shows them too
+        factors = args.factor
+        notes = []
+        if n > 1:  # one factor space for every response (no response is a factor of another)
+            from ..factors import choose_factors
+
+            choice = choose_factors(data, args.factor, exclude=responses + ([args.block] if args.block else []))
+            factors, notes = choice.space, list(choice.notes)
+        fits = {}
+        for i, r in enumerate(responses):
+            fits[r], _ = fit_model(data, r, response_options(args, i), factors=factors, block=args.block)
+            fit_notes = getattr(fits[r], "fit", fits[r]).input_notes
+            notes += [(f"{r}: {x}" if n > 1 else x) for x in fit_notes
+                      if x not in notes and (n == 1 or "left out (not a factor" not in x)]
+        if args.static and n == 1 and not hasattr(fits[responses[0]], "transform"):
+            from ..report import write_report
+
+            path = write_report(fits[responses[0]], out, force=args.force, title=args.title,
+                                source_name=str(args.data), goal=goals[0], hold=args.hold)
+        else:
+            from ..report.interactive import write_interactive_report
+
+            path = write_interactive_report(fits, out, force=args.force, title=args.title, goals=goals,
+                                            limits=limits, source_name=str(args.data), start=args.hold,
+                                            static=args.static)
+    print_notes(notes)  # the report shows them too
     print(f"wrote {path}")
     return 0

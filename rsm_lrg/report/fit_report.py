@@ -394,6 +394,8 @@ def _stationary(result) -> tuple[dict | None, str]:
         return None, why
     rows = []
     for f in result.space.factors:
+        if f.letter not in sp.coded:  # a categoric factor: the surface is at one level (see the note)
+            continue
         c = float(sp.coded[f.letter])
         rows.append({"letter": f.letter, "name": f.name, "coded": c, "actual": float(sp.actual[f.name]),
                      "inside": "yes" if -1.0 <= c <= 1.0 else "no (extrapolation)"})
@@ -408,11 +410,16 @@ def _stationary(result) -> tuple[dict | None, str]:
     return {"rows": rows, "sentence": sentence, "facts": facts}, ""
 
 
+def _number_or_level(v):
+    """A setting as shown: a float, or the level of a categoric factor as text."""
+    return v if isinstance(v, str) else float(v)
+
+
 def _optimum_section(result, optimum) -> tuple[dict | None, str]:
     if optimum is None:
         return None, "No optimum was computed."
-    rows = [{"letter": f.letter, "name": f.name, "coded": float(optimum.coded[f.letter]),
-             "actual": float(optimum.actual[f.name])} for f in result.space.factors]
+    rows = [{"letter": f.letter, "name": f.name, "coded": _number_or_level(optimum.coded[f.letter]),
+             "actual": _number_or_level(optimum.actual[f.name])} for f in result.space.factors]
     conf = 100 * float(optimum.confidence)
     goal = optimum.goal + (f" (target {fmt_num(optimum.target)})" if getattr(optimum, "target", None) is not None else "")
     sentence = (f"Goal: {goal} {result.response} inside the factor box. Predicted {result.response} at the "
@@ -461,6 +468,9 @@ def _tables(result, source_name: str | None, optimum) -> dict:
     return {
         "summary": summary,
         "factors": [{"letter": f.letter, "name": f.name, "low": f.low, "center": f.center, "high": f.high}
+                    if getattr(f, "kind", "numeric") != "categoric" else
+                    {"letter": f.letter, "name": f.name, "low": f.levels[0], "center": "categoric: " + ", ".join(f.levels),
+                     "high": f.levels[-1]}
                     for f in space.factors],
         "anova": {"rows": anova_rows, "notes": anova_notes,
                   "caption": f"ANOVA for the {result.model} model of {result.response} "
@@ -471,8 +481,12 @@ def _tables(result, source_name: str | None, optimum) -> dict:
         "coefficients": {"rows": _coefficients(result), "ci_label": "95 % CI"},
         "equations": [
             {"id": "equation-coded", "title": "In terms of coded factors", "lhs": result.response, "rhs": coded_eq,
-             "note": "Coded factors: " + ", ".join(f"{f.letter} = ({f.name} − {fmt_num(f.center)}) / {fmt_num(f.half_range)}"
-                                                  for f in space.factors)
+             "note": "Coded factors: " + ", ".join(
+                 f"{f.letter} = ({f.name} − {fmt_num(f.center)}) / {fmt_num(f.half_range)}"
+                 if getattr(f, "kind", "numeric") != "categoric" else
+                 f"{f.letter} = {f.name} (categoric, effect coded: {f.letter}[level] is 1 at that level, −1 at "
+                 f"{f.levels[-1]}, 0 otherwise)"
+                 for f in space.factors)
                      + ". Use it to compare effects: the coefficients are on one scale."},
             {"id": "equation-actual", "title": "In terms of actual factors", "lhs": result.response, "rhs": actual_eq,
              "note": "Actual factors in the units of the data columns. The same polynomial; do not compare "

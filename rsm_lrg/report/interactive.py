@@ -1,0 +1,548 @@
+"""The interactive report: a prediction profiler, an overlay (sweet-spot) plot and rotatable
+3-D surfaces of one or several fitted responses, in one self-contained HTML page.
+
+The page carries the fitted models themselves as data (per response: the model terms, the
+coded coefficients b, the unscaled covariance C = (X'X)⁻¹ without block columns, σ², the
+residual degrees of freedom and the t quantile t(0.975, df)), and a small script computes,
+at the setting of the factor controls, exactly what :meth:`rsm_lrg.model.FitResult.predict`
+computes with ``interval="both"``::
+
+    x  = row of the model matrix at the coded setting (rsm_lrg.terms.design_matrix)
+    ŷ  = x · b                          CI = ŷ ± t √(x C x' σ²)
+    se = √(x C x' σ²)                   PI = ŷ ± t √((1 + x C x') σ²)
+
+(back-transformed, interval ends sorted, for a fit of a transformed response, as
+:class:`rsm_lrg.model.transform.TransformedFit` does). The figures are drawn with Plotly
+(plotly.js from the ``plotly`` Python package, inlined so the page works offline); the page's
+Content-Security-Policy allows its two scripts by their SHA-256 hash and nothing else: no
+network, no other script, no ``eval``. Every piece of user text (column names, levels, file
+names, the title) reaches the page escaped: through Jinja2's autoescaping, as JSON with
+``<``, ``>`` and ``&`` written as ``\\u003c``..., through ``textContent`` in the script, and
+with its markup escaped for Plotly's labels.
+
+The page contract (stable; ../shared/INTERFACE.md): every factor control has
+``data-factor="NAME"`` (``<input type="range">`` in actual units, or ``<select>`` of the
+levels of a categoric factor) and reacts to ``input``/``change``; every displayed prediction
+has ``data-prediction``, ``data-response="COL"`` and the unrounded ``data-value``,
+``data-ci-low``, ``data-ci-high``, ``data-pi-low``, ``data-pi-high``.
+
+The only arithmetic here is presentation: the optimum of each response and the
+desirability optimum (from :mod:`rsm_lrg.optimize`) and the default overlay limits (the
+observed range of each response) are computed once, in Python, and embedded.
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import json
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = ["model_data", "interactive_html", "write_interactive_report", "Profiler", "profiler",
+           "plotly_js", "PAGE_IDS"]
+
+#: ``id`` of the page-wide sections of an interactive report, in page order (each response
+#: then has a section ``response-<i>`` with its own tables and diagnostics).
+PAGE_IDS = ("summary", "profiler", "overlay", "surfaces-3d", "data")
+
+_TITLES = {"summary": "Summary", "profiler": "Prediction profiler", "overlay": "Overlay (sweet spot)",
+           "surfaces-3d": "3-D surfaces and contours", "data": "Data"}
+
+
+# -- the numbers the page computes with --------------------------------------------------------
+
+def _finite_or_none(x) -> float | None:
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def _base_fit(result):
+    """The FitResult under a TransformedFit (the fit itself otherwise)."""
+    return getattr(result, "fit", result) if hasattr(result, "transform") else result
+
+
+def model_data(result, confidence: float = 0.95) -> dict:
+    """The fitted model of one response as plain JSON-safe data, for the page's script.
+
+    Parameters
+    ----------
+    result : FitResult or TransformedFit
+    confidence : float
+        Level of the CI and PI (the t quantile embedded is ``t(1 - α/2, df_resid)``).
+
+    Returns
+    -------
+    dict
+        ``response``, ``factors`` (``name``, ``letter``, ``kind``, ``low``/``high`` or
+        ``levels``), ``terms`` (``p``: numeric exponents, ``cat``: ``[[factor index, number of
+        levels], ...]``, ``combos``: level indices of each column), ``b`` (coded
+        coefficients), ``C`` ((X'X)⁻¹ without block rows/columns), ``sigma2`` [response
+        units²], ``df_resid``, ``t``, ``transform`` (``None`` or ``name``/``lam``/``constant``)
+        and ``coded_decimals`` (the rounding of :meth:`Factor.encode`).
+    """
+    from scipy import special
+
+    from ..factors import CODED_DECIMALS
+
+    if not 0.0 < confidence < 1.0:
+        raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
+    fit = _base_fit(result)
+    tr = getattr(result, "transform", None) if fit is not result else None
+    space = fit.space
+    factors = []
+    for f in space.factors:
+        if getattr(f, "kind", "numeric") == "categoric":
+            factors.append({"name": str(f.name), "letter": f.letter, "kind": "categoric",
+                            "levels": [str(v) for v in f.levels]})
+        else:
+            factors.append({"name": str(f.name), "letter": f.letter, "kind": "numeric",
+                            "low": float(f.low), "high": float(f.high)})
+    terms = []
+    for t in fit.terms:
+        cat = [[int(i), len(lv)] for i, lv in t.cat]
+        terms.append({"name": t.name, "p": [int(p) for p in t.numeric_powers], "cat": cat,
+                      "combos": [list(map(int, c)) for c in t.level_combinations()] if cat else []})
+    b = fit.coefficients["coded"].to_numpy(dtype=float)
+    idx = fit._term_index
+    C = np.asarray(fit.cov_unscaled, dtype=float)[np.ix_(idx, idx)]
+    n_cols = sum(max(1, len(t["combos"])) for t in terms)
+    if n_cols != len(b) or C.shape != (len(b), len(b)):
+        raise ValueError(f"response {fit.response!r}: {len(b)} coefficients but {n_cols} model columns")
+    df = int(fit.df_resid)
+    tq = float(special.stdtrit(df, 1 - (1 - confidence) / 2)) if df > 0 else float("nan")
+    return {
+        "response": str(getattr(result, "response", fit.response)),
+        "factors": factors,
+        "terms": terms,
+        "b": [float(v) for v in b],
+        "C": [[float(v) for v in row] for row in C],
+        "sigma2": _finite_or_none(fit.sigma2),
+        "df_resid": df,
+        "t": _finite_or_none(tq),
+        "confidence": float(confidence),
+        "transform": None if tr is None or tr.name == "none" and not tr.constant else
+        {"name": tr.name, "lam": tr.lam, "constant": float(tr.constant)},
+        "coded_decimals": int(CODED_DECIMALS),
+        "model": str(fit.model),
+    }
+
+
+def _json_for_script(obj) -> str:
+    """JSON that is inert inside ``<script type="application/json">`` (``<``, ``>``, ``&``
+    and the line separators written as escapes; NaN refused)."""
+    text = json.dumps(obj, allow_nan=False, ensure_ascii=False, separators=(",", ":"))
+    for ch, esc in (("<", "\\u003c"), (">", "\\u003e"), ("&", "\\u0026"), ("\u2028", "\\u2028"),
+                    ("\u2029", "\\u2029")):
+        text = text.replace(ch, esc)
+    return text
+
+
+def plotly_js() -> str:
+    """plotly.js as shipped inside the ``plotly`` Python package (read, never imported).
+
+    Raises ImportError with the install line when the package is missing.
+    """
+    import importlib.util
+
+    spec = importlib.util.find_spec("plotly")
+    if spec is None or spec.origin is None:
+        raise ImportError("the interactive report needs plotly.js from the 'plotly' package: "
+                          "pip install 'rsm-lrg[report]' (or pip install plotly), or write a static "
+                          "report (--static)")
+    path = Path(spec.origin).parent / "package_data" / "plotly.min.js"
+    if not path.exists():
+        raise ImportError(f"the plotly package has no {path.name} (looked in {path.parent})")
+    return _read_cached(str(path))
+
+
+_CACHE: dict = {}
+
+
+def _read_cached(path: str) -> str:
+    if path not in _CACHE:
+        text = Path(path).read_text(encoding="utf-8")
+        if "</script" in text.lower():  # would end the inline script early
+            raise ValueError(f"{path}: contains '</script', cannot be inlined")
+        _CACHE[path] = text
+    return _CACHE[path]
+
+
+def _app_js() -> str:
+    from importlib import resources
+
+    return resources.files("rsm_lrg.report").joinpath("templates", "profiler.js").read_text(encoding="utf-8")
+
+
+def _sha256(text: str) -> str:
+    return "'sha256-" + base64.b64encode(hashlib.sha256(text.encode("utf-8")).digest()).decode("ascii") + "'"
+
+
+# -- optima --------------------------------------------------------------------------------------
+
+def _optimum(result, goal):
+    """The optimum of one response (a transformed fit optimised on its own scale, as
+    ``rsm-lrg optimize`` does), or ``(None, reason)``."""
+    import dataclasses
+
+    from ..optimize import optimize, parse_goal
+
+    try:
+        tr = getattr(result, "transform", None)
+        fit = _base_fit(result)
+        if tr is None or fit is result:
+            return optimize(result, goal=goal), ""
+        kind, target = parse_goal(goal)
+        if kind == "target":
+            tr.check([target], "target")
+            on_fit = ("target", float(tr.forward([target])[0]))
+        else:
+            on_fit = kind if not tr.decreasing else ("minimize" if kind == "maximize" else "maximize")
+        best = optimize(fit, goal=on_fit)
+        pred = result.predict({k: [v] for k, v in best.actual.items()}, interval="both").iloc[0]
+        return dataclasses.replace(best, goal=kind, target=target, predicted=float(pred["predicted"]),
+                                   ci=(float(pred["ci_low"]), float(pred["ci_high"])),
+                                   pi=(float(pred["pi_low"]), float(pred["pi_high"]))), ""
+    except (ValueError, NotImplementedError, TypeError) as exc:
+        return None, str(exc)
+
+
+def _setting_json(actual: Mapping) -> dict:
+    out = {}
+    for k, v in actual.items():
+        out[str(k)] = v if isinstance(v, str) else float(v)
+    return out
+
+
+# -- the page ------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class ResponseSpec:
+    """One response of an interactive report: its fit, goal, overlay limits and label."""
+
+    result: Any
+    goal: Any = "minimize"
+    limits: tuple | None = None
+    label: str = ""
+    extra: dict = field(default_factory=dict)
+
+
+def _as_specs(results, goals, limits, labels) -> list[ResponseSpec]:
+    if isinstance(results, Mapping):
+        items = list(results.items())
+    elif isinstance(results, (list, tuple)):
+        items = [(str(getattr(r, "response", i)), r) for i, r in enumerate(results)]
+    else:
+        items = [(str(results.response), results)]
+    if not items:
+        raise ValueError("give at least one fitted response")
+    names = [n for n, _ in items]
+    if len(set(names)) != len(names):
+        raise ValueError("each response may appear once in a report")
+
+    def per(x, name, default):
+        if x is None:
+            return default
+        if isinstance(x, Mapping):
+            return x.get(name, default)
+        if isinstance(x, (list, tuple)) and not (len(x) == 2 and all(isinstance(v, (int, float)) for v in x)):
+            return x[names.index(name)] if names.index(name) < len(x) else default
+        return x
+
+    specs = []
+    for name, r in items:
+        lim = per(limits, name, None)
+        if lim is not None:
+            lo, hi = (None if v is None else float(v) for v in lim)
+            if lo is not None and hi is not None and not lo <= hi:
+                raise ValueError(f"limits of response {name!r}: low {lo:g} is above high {hi:g}")
+            lim = (lo, hi)
+        specs.append(ResponseSpec(result=r, goal=per(goals, name, "minimize"), limits=lim,
+                                  label=str(per(labels, name, "") or "")))
+    first = _base_fit(specs[0].result).space
+    for s in specs[1:]:
+        sp = _base_fit(s.result).space
+        if list(sp.names) != list(first.names):
+            raise ValueError(f"response {s.result.response!r} has factors {list(sp.names)}, but "
+                             f"{specs[0].result.response!r} has {list(first.names)}: one report needs one factor set")
+    return specs
+
+
+def _controls(specs) -> list[dict]:
+    """One control per factor: a range slider over the union of the responses' factor ranges
+    (actual units), or a level picker."""
+    spaces = [_base_fit(s.result).space for s in specs]
+    out = []
+    for j, f in enumerate(spaces[0].factors):
+        if getattr(f, "kind", "numeric") == "categoric":
+            out.append({"name": str(f.name), "letter": f.letter, "kind": "categoric",
+                        "levels": [str(v) for v in f.levels], "value": str(f.levels[0])})
+            continue
+        lo = min(float(sp.factors[j].low) for sp in spaces)
+        hi = max(float(sp.factors[j].high) for sp in spaces)
+        out.append({"name": str(f.name), "letter": f.letter, "kind": "numeric", "low": lo, "high": hi,
+                    "value": (lo + hi) / 2.0, "step": "any"})
+    return out
+
+
+def _observed_range(result) -> tuple[float, float]:
+    y = np.asarray(_base_fit(result).y, dtype=float)
+    tr = getattr(result, "transform", None)
+    if tr is not None and _base_fit(result) is not result:
+        y = tr.inverse(y)
+    y = y[np.isfinite(y)]
+    return (float(y.min()), float(y.max())) if y.size else (float("nan"), float("nan"))
+
+
+def _default_limits(result, goal, lo_obs: float, hi_obs: float) -> tuple:
+    """Overlay limits when none are given: for ``minimize`` at most the observed median (the
+    better half of the runs; no lower limit), for ``maximize`` at least the median,
+    otherwise the observed range."""
+    y = np.asarray(_base_fit(result).y, dtype=float)
+    tr = getattr(result, "transform", None)
+    if tr is not None and _base_fit(result) is not result:
+        y = tr.inverse(y)
+    y = y[np.isfinite(y)]
+    med = float(np.median(y)) if y.size else float("nan")
+    g = str(goal).strip().lower() if goal is not None else ""
+    if g.startswith("min"):
+        return (None, med)
+    if g.startswith("max"):
+        return (med, None)
+    return (lo_obs, hi_obs)
+
+
+def page_data(specs, *, confidence: float = 0.95, desirability=True) -> tuple[dict, list[str]]:
+    """The JSON the page's script reads, and notes for the page (optima that could not be found)."""
+    notes = []
+    models, optima = [], {}
+    for s in specs:
+        m = model_data(s.result, confidence)
+        lo_obs, hi_obs = _observed_range(s.result)
+        lim = s.limits or _default_limits(s.result, s.goal, lo_obs, hi_obs)
+        m["limits"] = [_finite_or_none(v) if v is not None else None for v in lim]
+        m["observed"] = [_finite_or_none(lo_obs), _finite_or_none(hi_obs)]
+        m["goal"] = str(s.goal)
+        m["label"] = s.label or m["response"]
+        models.append(m)
+        best, why = (None, "no goal given") if s.goal is None else _optimum(s.result, s.goal)
+        if best is None:
+            notes.append(f"No optimum of {m['response']}: {why}")
+        else:
+            optima[m["response"]] = {"setting": _setting_json(best.actual), "predicted": float(best.predicted),
+                                     "goal": str(best.goal)}
+    desir = None
+    if desirability and len(specs) > 1 and all(s.goal is not None for s in specs):
+        from ..optimize.desirability import optimize_desirability, parse_response_goal
+
+        try:
+            import dataclasses
+
+            goals = []
+            for s in specs:
+                g = parse_response_goal(str(s.result.response), str(s.goal))
+                lo, hi = s.limits or (None, None)
+                goals.append(dataclasses.replace(g, **({"low": lo} if lo is not None else {}),
+                                                 **({"high": hi} if hi is not None else {})))
+            d = optimize_desirability({str(s.result.response): s.result for s in specs}, goals)
+            desir = {"setting": _setting_json(d.actual), "desirability": float(d.desirability),
+                     "predicted": {k: float(v) for k, v in d.predicted.items()}}
+        except (ValueError, NotImplementedError, TypeError) as exc:
+            notes.append(f"No desirability optimum: {exc}")
+    data = {"models": models, "controls": _controls(specs), "optima": optima, "desirability": desir}
+    return data, notes
+
+
+def _response_sections(specs, source_name, static: bool = False, hold: str = "center") -> list[dict]:
+    """Per response: the static tables and diagnostics of today's report; the static 3-D
+    surfaces and contours of every pair only with ``static`` (the live page draws them)."""
+    from .fit_report import _diagnostics, _optimum_section, _surfaces, _tables
+
+    out = []
+    for i, s in enumerate(specs, start=1):
+        fit = _base_fit(s.result)
+        best, why = (None, "no goal given") if s.goal is None else _optimum(s.result, s.goal)
+        ctx = _tables(fit, source_name, None)
+        diag, diag_note = _diagnostics(fit)
+        opt, opt_missing = _optimum_section(fit, best) if best is not None else (None, why)
+        tr = getattr(s.result, "transform", None) if fit is not s.result else None
+        surfaces, surfaces_note = _surfaces(fit, hold, best) if static else ([], "")
+        out.append(ctx | {"surfaces": surfaces, "surfaces_note": surfaces_note,
+            "index": i, "response": str(s.result.response), "diagnostics": diag, "diagnostics_note": diag_note,
+            "optimum": opt, "optimum_missing": opt_missing,
+            "transform_note": (f"Fitted to the {tr.label}-transformed response: ANOVA, coefficients and "
+                               "equations are on that scale; predictions and intervals in the profiler are "
+                               "back-transformed.") if tr is not None else "",
+        })
+    return out
+
+
+def _start(data: dict, start: str) -> None:
+    """Put the controls' first values at the centre or at the optimum (the desirability
+    optimum with several responses, else the first response's optimum)."""
+    if start not in ("center", "optimum"):
+        raise ValueError(f"start must be 'center' or 'optimum', not {start!r}")
+    if start == "center":
+        return
+    opt = (data["desirability"] or {}).get("setting") or next(
+        (o["setting"] for o in data["optima"].values()), None)
+    for c in data["controls"] if opt else []:
+        if c["name"] in opt:
+            c["value"] = opt[c["name"]] if c["kind"] == "categoric" else float(opt[c["name"]])
+
+
+def interactive_context(results, *, goals=None, limits=None, labels=None, title: str | None = None,
+                        source_name: str | None = None, confidence: float = 0.95, tables: bool = True,
+                        start: str = "center", static: bool = False) -> dict:
+    """Everything the interactive page shows (plain values), the scripts not included."""
+    from .fit_report import _data_table, _run_numbers
+
+    specs = _as_specs(results, goals, limits, labels)
+    data, notes = page_data(specs, confidence=confidence)
+    _start(data, start)
+    names = [m["response"] for m in data["models"]]
+    first = _base_fit(specs[0].result)
+    space = first.space
+    numeric = [c for c in data["controls"] if c["kind"] == "numeric"]
+    summary = [("Responses", ", ".join(names)), ("Data", source_name or "a DataFrame"),
+               ("Runs", str(first.n)),
+               ("Factors", ", ".join(f"{f.letter} = {f.name}" for f in space.factors))]
+    for m in data["models"]:
+        summary.append((f"Model of {m['response']}", f"{m['model']}, {len(m['b'])} coefficients, "
+                                                     f"{m['df_resid']} residual df"
+                        + (f", {m['transform']['name']} transform" if m["transform"] else "")))
+    _, runs_from = _run_numbers(first)
+    return {
+        "title": title or ("Interactive response surface report: " + ", ".join(names)),
+        "subtitle": (f"{len(names)} response{'s' if len(names) > 1 else ''} over {len(space)} factors from "
+                     f"{first.n} runs" + (f" ({source_name})" if source_name else "") + "."),
+        "toc": [(sid, _TITLES[sid]) for sid in PAGE_IDS
+                if not (static and sid in ("profiler", "overlay", "surfaces-3d"))]
+        + [(f"response-{i}", f"Response {n}") for i, n in enumerate(names, start=1)],
+        "summary": summary,
+        "controls": data["controls"],
+        "numeric_controls": numeric,
+        "models": data["models"],
+        "optima": data["optima"],
+        "desirability": data["desirability"],
+        "notes": notes,
+        "confidence_pct": f"{100 * confidence:g}",
+        "data_json": _json_for_script(data),
+        "data": _data_table(first, runs_from) if tables else None,
+        "responses": _response_sections(specs, source_name, static, start) if tables else [],
+        "static": bool(static),
+    }
+
+
+def interactive_html(results, *, goals=None, limits=None, labels=None, title: str | None = None,
+                     source_name: str | None = None, confidence: float = 0.95, tables: bool = True,
+                     start: str = "center", static: bool = False) -> str:
+    """The interactive report of one or several fitted responses (a string).
+
+    Parameters
+    ----------
+    results : FitResult, TransformedFit, a list of them, or ``{response: fit}``
+        The fitted responses; they must share the factors (each its own model: order,
+        reduced terms, transform).
+    goals : str, list or mapping, optional
+        Goal per response (``"minimize"``, ``"maximize"``, ``"target=V"``; default
+        minimize) for the jump-to-optimum buttons and the desirability optimum;
+        ``None`` for a response: no optimum.
+    limits : (low, high), list or mapping, optional
+        Overlay (and desirability) limits per response [response units]; default the
+        observed range. Editable in the page.
+    labels : mapping, optional
+        Display labels per response.
+    title, source_name : str, optional
+    confidence : float
+        Level of the CI and PI shown (0.95).
+    tables : bool
+        Include each response's ANOVA, statistics, coefficients, equations and diagnostics.
+    start : {"center", "optimum"}
+        Where the profiler starts (the optimum: the desirability optimum with several
+        responses); with ``static``, where the factors off a surface's axes are held.
+    static : bool
+        A page without scripts (no profiler, overlay or live figures) with a static 3-D
+        surface and contour of every pair of factors per response, for printing and archives.
+    """
+    from markupsafe import Markup
+
+    from .html import render_page
+
+    ctx = interactive_context(results, goals=goals, limits=limits, labels=labels, title=title,
+                              source_name=source_name, confidence=confidence, tables=tables, start=start,
+                              static=static)
+    from .. import __version__
+
+    if static:
+        csp = ("default-src 'none'; img-src data:; style-src 'unsafe-inline'; script-src 'none'; "
+               "base-uri 'none'; form-action 'none'")
+        return render_page("interactive.html.j2", **ctx, csp=csp, lib_js="", app_js="",
+                           footer=f"Made by rsm-lrg {__version__}. Self-contained: no scripts, no network requests.")
+    lib, app = plotly_js(), _app_js()
+    csp = ("default-src 'none'; img-src data: blob:; style-src 'unsafe-inline'; "
+           f"script-src {_sha256(lib)} {_sha256(app)}; worker-src 'none'; connect-src 'none'; "
+           "base-uri 'none'; form-action 'none'; object-src 'none'")
+
+    ctx["data_json"] = Markup(ctx["data_json"])  # already inert (see _json_for_script)
+    return render_page("interactive.html.j2", **ctx, csp=csp, lib_js=Markup(lib), app_js=Markup(app),
+                       footer=f"Made by rsm-lrg {__version__}. Self-contained: plotly.js is inlined; "
+                              "the page makes no network requests.")
+
+
+def write_interactive_report(results, path, *, force: bool = False, **kwargs) -> Path:
+    """Write :func:`interactive_html` to ``path`` atomically (refuses to overwrite unless
+    ``force``). Returns the path written."""
+    from ..io import InputError, write_output
+
+    p = Path(path)
+    if p.exists() and not force:
+        raise InputError(f"{p}: already exists; use --force to overwrite it")
+    return write_output(p, interactive_html(results, **kwargs), force=force)
+
+
+# -- notebook --------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Profiler:
+    """The interactive page of one or several fits, for a notebook: ``_repr_html_`` shows it
+    in an ``<iframe srcdoc>`` (its scripts run inside the frame under the page's own
+    Content-Security-Policy, no server, no network); :meth:`save` writes it to a file.
+
+    Attributes
+    ----------
+    html : str
+        The whole page (:func:`interactive_html`).
+    height : int
+        Height of the notebook frame [px].
+    """
+
+    html: str = field(repr=False)
+    height: int = 900
+
+    def _repr_html_(self) -> str:
+        import html as _html
+
+        return (f'<iframe srcdoc="{_html.escape(self.html, quote=True)}" style="width: 100%; '
+                f'height: {int(self.height)}px; border: 1px solid #ccc" '
+                'sandbox="allow-scripts allow-downloads"></iframe>')
+
+    def save(self, path, *, force: bool = False) -> Path:
+        """Write the page to ``path`` (atomically; an existing file only with ``force``)."""
+        from ..io import write_output
+
+        return write_output(Path(path), self.html, force=force)
+
+
+def profiler(results, *, height: int = 900, tables: bool = False, **kwargs) -> Profiler:
+    """A :class:`Profiler` of ``results`` (see :func:`interactive_html`; the per-response
+    tables are left out unless ``tables=True``, to keep the notebook light).
+
+    This is ``FitResult.profiler()``.
+    """
+    return Profiler(html=interactive_html(results, tables=tables, **kwargs), height=height)

@@ -1,0 +1,371 @@
+/* rsm-lrg interactive report: the prediction profiler, overlay plot and live surfaces.
+ * Reads the fitted models from <script type="application/json" id="rsm-data"> and computes
+ * what FitResult.predict(points, interval="both") computes (rsm_lrg/report/interactive.py).
+ * User text only ever reaches the page through textContent or escaped for Plotly labels. */
+(function () {
+  "use strict";
+  var DATA = JSON.parse(document.getElementById("rsm-data").textContent);
+  var MODELS = DATA.models;
+  var CONTROLS = DATA.controls;
+  var NUMERIC = CONTROLS.filter(function (c) { return c.kind === "numeric"; });
+
+  function esc(s) {  /* Plotly reads <b>, <a href>, ... in labels: make user text plain */
+    return String(s).replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;");
+  }
+  function fmt(x, sig) {
+    if (x === null || x === undefined || !isFinite(x)) return "\u2014";
+    if (x === 0) return "0";
+    var a = Math.abs(x);
+    if (a >= 1e-4 && a < 1e5) return String(Number(x.toPrecision(sig || 4)));
+    return x.toExponential((sig || 4) - 1).replace("e", " \u00d7 10^");
+  }
+
+  // -- the model --------------------------------------------------------------------------
+  function encode(f, x, decimals) {
+    if (f.kind === "categoric") {
+      var i = f.levels.indexOf(String(x));
+      if (i < 0) throw new Error("not a level");
+      return i;
+    }
+    var c = ((x - f.low) - (f.high - x)) / (f.high - f.low);
+    var s = Math.pow(10, decimals);
+    var r = Math.round(c * s);
+    if (Math.abs(c * s - Math.trunc(c * s)) === 0.5) r = 2 * Math.round(c * s / 2);  /* numpy: half to even */
+    return r / s + 0.0;
+  }
+  function modelRow(m, xc) {
+    var row = [];
+    for (var j = 0; j < m.terms.length; j++) {
+      var t = m.terms[j];
+      var parts = [];
+      for (var i = 0; i < t.p.length; i++) {
+        if (t.p[i] === 1) parts.push(xc[i]);
+        else if (t.p[i] > 1) parts.push(Math.pow(xc[i], t.p[i]));
+      }
+      var v = 1.0;
+      if (parts.length) { v = parts[0]; for (var q = 1; q < parts.length; q++) v = v * parts[q]; }
+      if (!t.cat.length) { row.push(v); continue; }
+      for (var k = 0; k < t.combos.length; k++) {
+        var col = v;
+        for (var h = 0; h < t.cat.length; h++) {
+          var idx = xc[t.cat[h][0]], L = t.cat[h][1], lj = t.combos[k][h];
+          col *= (idx === L - 1) ? -1.0 : (idx === lj ? 1.0 : 0.0);
+        }
+        row.push(col);
+      }
+    }
+    return row;
+  }
+  function backTransform(tr, z) {
+    if (!tr) return z;
+    var v;
+    if (tr.name === "none") v = z;
+    else if (tr.name === "log10") v = Math.pow(10, z);
+    else if (tr.lam === 0) v = Math.exp(z);
+    else {
+      var ok = tr.lam > 0 ? z >= 0 : z > 0;
+      v = ok ? Math.pow(Math.abs(z), 1.0 / tr.lam) : NaN;
+    }
+    return v - tr.constant;
+  }
+  /* setting: {factor name: actual value or level}; returns predicted, se, ci, pi */
+  function predict(m, setting) {
+    var xc = m.factors.map(function (f) { return encode(f, setting[f.name], m.coded_decimals); });
+    var x = modelRow(m, xc);
+    var n = x.length, y = 0.0, qf = 0.0;
+    for (var i = 0; i < n; i++) y += x[i] * m.b[i];
+    for (var a = 0; a < n; a++) {
+      var s = 0.0, Ca = m.C[a];
+      for (var b = 0; b < n; b++) s += Ca[b] * x[b];
+      qf += x[a] * s;
+    }
+    var s2 = m.sigma2 === null ? NaN : m.sigma2;
+    var tq = m.t === null ? NaN : m.t;
+    var se = Math.sqrt(qf * s2), spi = Math.sqrt((1.0 + qf) * s2);
+    var out = {predicted: y, se: se, ci_low: y - tq * se, ci_high: y + tq * se,
+               pi_low: y - tq * spi, pi_high: y + tq * spi};
+    if (m.transform) {
+      var tr = m.transform;
+      out.predicted_transformed = y;
+      out.predicted = backTransform(tr, y);
+      [["ci_low", "ci_high"], ["pi_low", "pi_high"]].forEach(function (p) {
+        var u = backTransform(tr, out[p[0]]), w = backTransform(tr, out[p[1]]);
+        out[p[0]] = Math.min(u, w); out[p[1]] = Math.max(u, w);
+        if (isNaN(u) || isNaN(w)) { out[p[0]] = NaN; out[p[1]] = NaN; }
+      });
+    }
+    return out;
+  }
+
+  // -- the setting --------------------------------------------------------------------------
+  var ctl = {};   /* name -> control element */
+  var txt = {};   /* name -> number box */
+  document.querySelectorAll("[data-factor]").forEach(function (el) { ctl[el.getAttribute("data-factor")] = el; });
+  document.querySelectorAll("[data-factor-text]").forEach(function (el) { txt[el.getAttribute("data-factor-text")] = el; });
+
+  function setting() {
+    var s = {};
+    CONTROLS.forEach(function (c) {
+      var el = ctl[c.name];
+      s[c.name] = c.kind === "categoric" ? el.value : parseFloat(el.value);
+    });
+    return s;
+  }
+  function shq(s) {
+    s = String(s);
+    return /^[A-Za-z0-9_.,:=+\-\/@%]+$/.test(s) ? s : "'" + s.replace(/'/g, "'\\''") + "'";
+  }
+  function settingText(s) {
+    return CONTROLS.map(function (c) { return "--at " + shq(c.name + "=" + String(s[c.name])); }).join(" ");
+  }
+
+  var rows = {};
+  document.querySelectorAll("[data-prediction]").forEach(function (el) { rows[el.getAttribute("data-response")] = el; });
+
+  function showPredictions(s) {
+    MODELS.forEach(function (m) {
+      var el = rows[m.response];
+      if (!el) return;
+      var p = predict(m, s);
+      el.setAttribute("data-value", String(p.predicted));
+      el.setAttribute("data-ci-low", String(p.ci_low));
+      el.setAttribute("data-ci-high", String(p.ci_high));
+      el.setAttribute("data-pi-low", String(p.pi_low));
+      el.setAttribute("data-pi-high", String(p.pi_high));
+      el.querySelector(".pred-value").textContent = fmt(p.predicted, 5);
+      el.querySelector(".pred-ci").textContent = fmt(p.ci_low, 4) + " \u2026 " + fmt(p.ci_high, 4);
+      el.querySelector(".pred-pi").textContent = fmt(p.pi_low, 4) + " \u2026 " + fmt(p.pi_high, 4);
+    });
+    document.getElementById("setting-text").textContent = settingText(s);
+  }
+
+  // -- figures (drawn on the next animation frame, at most once a frame) --------------------
+  var hasPlotly = typeof window.Plotly !== "undefined";
+  var CONFIG = {displaylogo: false, responsive: true, modeBarButtonsToRemove: ["sendDataToCloud"]};
+  function linspace(a, b, n) {
+    var out = [];
+    for (var i = 0; i < n; i++) out.push(i === n - 1 ? b : a + (b - a) * i / (n - 1));
+    return out;
+  }
+
+  function drawProfiles(s) {
+    var el = document.getElementById("profile-plot");
+    if (!el) return;
+    var R = MODELS.length, K = CONTROLS.length, traces = [], layout = {
+      grid: {rows: R, columns: K, pattern: "independent", xgap: 0.12, ygap: 0.18},
+      showlegend: false, margin: {l: 60, r: 10, t: 20, b: 50}, height: Math.max(300, 220 * R + 60), shapes: []};
+    MODELS.forEach(function (m, r) {
+      CONTROLS.forEach(function (c, k) {
+        var n = r * K + k + 1, xa = "x" + (n === 1 ? "" : n), ya = "y" + (n === 1 ? "" : n);
+        var xs, lo = [], hi = [], ys = [];
+        var pts = c.kind === "categoric" ? c.levels.slice() : linspace(c.low, c.high, 41);
+        pts.forEach(function (v) {
+          var t = Object.assign({}, s); t[c.name] = v;
+          var p = predict(m, t); ys.push(p.predicted); lo.push(p.ci_low); hi.push(p.ci_high);
+        });
+        xs = pts.map(function (v) { return c.kind === "categoric" ? esc(v) : v; });
+        var cur = predict(m, s);
+        if (c.kind === "categoric") {
+          traces.push({x: xs, y: ys, type: "scatter", mode: "markers", xaxis: xa, yaxis: ya, marker: {size: 9, color: "#1f4e79"},
+                       error_y: {type: "data", symmetric: false,
+                                 array: hi.map(function (h, i) { return h - ys[i]; }),
+                                 arrayminus: lo.map(function (l, i) { return ys[i] - l; })}});
+        } else {
+          traces.push({x: xs, y: lo, type: "scatter", mode: "lines", line: {width: 0}, xaxis: xa, yaxis: ya,
+                       hoverinfo: "skip"});
+          traces.push({x: xs, y: hi, type: "scatter", mode: "lines", line: {width: 0}, fill: "tonexty",
+                       fillcolor: "rgba(31,78,121,0.18)", xaxis: xa, yaxis: ya, hoverinfo: "skip"});
+          traces.push({x: xs, y: ys, type: "scatter", mode: "lines", line: {color: "#1f4e79", width: 2},
+                       xaxis: xa, yaxis: ya});
+        }
+        traces.push({x: [c.kind === "categoric" ? esc(s[c.name]) : s[c.name]], y: [cur.predicted], type: "scatter",
+                     mode: "markers", marker: {color: "#a11d1d", size: 8}, xaxis: xa, yaxis: ya});
+        if (c.kind === "numeric") {
+          layout.shapes.push({type: "line", xref: xa, yref: ya + " domain", x0: s[c.name], x1: s[c.name],
+                              y0: 0, y1: 1, line: {color: "#a11d1d", width: 1, dash: "dot"}});
+        }
+        var ax = n === 1 ? "" : n;
+        layout["xaxis" + ax] = {title: {text: r === R - 1 ? esc(c.letter + ": " + c.name) : ""}, automargin: true};
+        layout["yaxis" + ax] = {title: {text: k === 0 ? esc(m.response) : ""}, automargin: true};
+      });
+    });
+    Plotly.react(el, traces, layout, CONFIG);
+  }
+
+  function limitsOf(m) {
+    var lo = document.querySelector('[data-limit-low="' + cssq(m.response) + '"]');
+    var hi = document.querySelector('[data-limit-high="' + cssq(m.response) + '"]');
+    var a = lo && lo.value !== "" ? parseFloat(lo.value) : NaN;
+    var b = hi && hi.value !== "" ? parseFloat(hi.value) : NaN;
+    return [a, b];
+  }
+  function cssq(s) { return String(s).replace(/\\/g, "\\\\").replace(/"/g, '\\"'); }
+  function inside(s) {
+    for (var i = 0; i < MODELS.length; i++) {
+      var lim = limitsOf(MODELS[i]), y = predict(MODELS[i], s).predicted;
+      if (!isFinite(y)) return false;
+      if (isFinite(lim[0]) && y < lim[0]) return false;
+      if (isFinite(lim[1]) && y > lim[1]) return false;
+    }
+    return true;
+  }
+  function control(name) { for (var i = 0; i < CONTROLS.length; i++) if (CONTROLS[i].name === name) return CONTROLS[i]; }
+  function pairOf(xid, yid) {
+    var xs = document.getElementById(xid), ys = document.getElementById(yid);
+    return xs && ys ? [control(xs.value), control(ys.value)] : null;
+  }
+  var GRID = 61;
+  function overlayGrid(s) {
+    var pair = pairOf("overlay-x", "overlay-y");
+    if (!pair || pair[0].name === pair[1].name) return null;
+    var fx = pair[0], fy = pair[1], xs = linspace(fx.low, fx.high, GRID), ys = linspace(fy.low, fy.high, GRID);
+    var z = [], zr = MODELS.map(function () { return []; });
+    for (var j = 0; j < ys.length; j++) {
+      var row = [], rr = MODELS.map(function () { return []; });
+      for (var i = 0; i < xs.length; i++) {
+        var t = Object.assign({}, s); t[fx.name] = xs[i]; t[fy.name] = ys[j];
+        row.push(inside(t) ? 1 : 0);
+        MODELS.forEach(function (m, k) { rr[k].push(predict(m, t).predicted); });
+      }
+      z.push(row);
+      rr.forEach(function (r, k) { zr[k].push(r); });
+    }
+    return {fx: fx, fy: fy, x: xs, y: ys, z: z, zr: zr};
+  }
+  var COLORS = ["#1f4e79", "#a11d1d", "#1d6b2f", "#9a5b00", "#5b2a86", "#00707a"];
+  function drawOverlay(s) {
+    var el = document.getElementById("overlay-plot");
+    if (!el) return;
+    var g = overlayGrid(s), out = document.getElementById("overlay-readout");
+    if (!g) { out.textContent = "Choose two different factors."; Plotly.purge(el); return; }
+    var traces = [{type: "heatmap", x: g.x, y: g.y, z: g.z, zmin: 0, zmax: 1, showscale: false,
+                   colorscale: [[0, "rgba(255,255,255,0)"], [1, "rgba(240,200,0,0.55)"]], hoverinfo: "skip",
+                   name: "inside every limit"}];
+    MODELS.forEach(function (m, k) {
+      var lim = limitsOf(m);
+      [0, 1].forEach(function (e) {
+        if (!isFinite(lim[e])) return;
+        traces.push({type: "contour", x: g.x, y: g.y, z: g.zr[k], showscale: false, hoverinfo: "skip",
+                     contours: {coloring: "none", start: lim[e], end: lim[e], size: 1, showlabels: true},
+                     line: {color: COLORS[k % COLORS.length], width: 2, dash: e ? "solid" : "dash"},
+                     name: esc(m.response + (e ? " high limit" : " low limit"))});
+      });
+    });
+    var opt = DATA.desirability ? DATA.desirability.setting : (MODELS.length && DATA.optima[MODELS[0].response]
+      ? DATA.optima[MODELS[0].response].setting : null);
+    if (opt) traces.push({type: "scatter", mode: "markers", x: [opt[g.fx.name]], y: [opt[g.fy.name]],
+                          marker: {symbol: "star", size: 16, color: "#a11d1d"}, name: "optimum"});
+    traces.push({type: "scatter", mode: "markers", x: [s[g.fx.name]], y: [s[g.fy.name]],
+                 marker: {symbol: "circle-open", size: 12, color: "#1b1f24", line: {width: 2}}, name: "current setting"});
+    var n = 0; g.z.forEach(function (r) { r.forEach(function (v) { n += v; }); });
+    out.textContent = "Inside every limit: " + (100 * n / (GRID * GRID)).toFixed(1) + " % of the " + GRID + " \u00d7 " +
+      GRID + " grid. The current setting is " + (inside(s) ? "inside." : "outside.");
+    Plotly.react(el, traces, {margin: {l: 70, r: 20, t: 20, b: 60}, showlegend: true,
+                              legend: {orientation: "h", y: -0.18},
+                              xaxis: {title: {text: esc(g.fx.letter + ": " + g.fx.name)}},
+                              yaxis: {title: {text: esc(g.fy.letter + ": " + g.fy.name)}}}, CONFIG);
+  }
+
+  function drawSurface(s) {
+    var el3 = document.getElementById("surface-plot"), el2 = document.getElementById("contour-plot");
+    if (!el3) return;
+    var pair = pairOf("surface-x", "surface-y");
+    var m = MODELS[parseInt(document.getElementById("surface-response").value, 10) || 0];
+    if (!pair || pair[0].name === pair[1].name) { Plotly.purge(el3); Plotly.purge(el2); return; }
+    var fx = pair[0], fy = pair[1], xs = linspace(fx.low, fx.high, 31), ys = linspace(fy.low, fy.high, 31), z = [];
+    ys.forEach(function (yv) {
+      z.push(xs.map(function (xv) { var t = Object.assign({}, s); t[fx.name] = xv; t[fy.name] = yv; return predict(m, t).predicted; }));
+    });
+    var cur = predict(m, s).predicted;
+    var xl = esc(fx.letter + ": " + fx.name), yl = esc(fy.letter + ": " + fy.name), zl = esc(m.response);
+    var keepCamera = el3.layout && el3.layout.scene && el3.layout.scene.camera;
+    Plotly.react(el3, [
+      {type: "surface", x: xs, y: ys, z: z, colorscale: "Viridis", showscale: false, name: zl},
+      {type: "scatter3d", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], z: [cur], marker: {size: 5, color: "#a11d1d"},
+       name: "current setting"}],
+      {margin: {l: 0, r: 0, t: 10, b: 0}, showlegend: false, uirevision: "keep",
+       scene: {aspectmode: "cube", xaxis: {title: {text: xl}}, yaxis: {title: {text: yl}}, zaxis: {title: {text: zl}},
+               camera: keepCamera || undefined}}, CONFIG);
+    Plotly.react(el2, [
+      {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true}, colorbar: {title: {text: zl}}},
+      {type: "scatter", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], marker: {size: 10, color: "#a11d1d"},
+       name: "current setting"}],
+      {margin: {l: 70, r: 20, t: 20, b: 60}, showlegend: false, uirevision: "keep",
+       xaxis: {title: {text: xl}}, yaxis: {title: {text: yl}}}, CONFIG);
+  }
+
+  var pending = false;
+  function drawAll() {
+    pending = false;
+    if (!hasPlotly) return;
+    var s = setting();
+    try { drawProfiles(s); drawOverlay(s); drawSurface(s); }
+    catch (e) { console.error(e); }
+  }
+  function schedule() {
+    if (pending) return;
+    pending = true;
+    window.requestAnimationFrame(drawAll);
+  }
+  function update() {
+    var s = setting();
+    CONTROLS.forEach(function (c) { if (txt[c.name] && document.activeElement !== txt[c.name]) txt[c.name].value = String(s[c.name]); });
+    showPredictions(s);
+    schedule();
+  }
+
+  // -- events ----------------------------------------------------------------------------------
+  Object.keys(ctl).forEach(function (name) {
+    ctl[name].addEventListener("input", update);
+    ctl[name].addEventListener("change", update);
+  });
+  Object.keys(txt).forEach(function (name) {
+    txt[name].addEventListener("change", function () {
+      var v = parseFloat(txt[name].value), c = control(name);
+      if (isFinite(v)) { ctl[name].value = String(Math.min(c.high, Math.max(c.low, v))); }
+      update();
+    });
+  });
+  function jumpTo(set) {
+    CONTROLS.forEach(function (c) {
+      if (!(c.name in set)) return;
+      ctl[c.name].value = String(set[c.name]);
+    });
+    update();
+  }
+  document.querySelectorAll("[data-jump]").forEach(function (b) {
+    b.addEventListener("click", function () {
+      var kind = b.getAttribute("data-jump");
+      if (kind === "center") {
+        var set = {};
+        CONTROLS.forEach(function (c) { set[c.name] = c.kind === "categoric" ? c.levels[0] : (c.low + c.high) / 2; });
+        jumpTo(set);
+      } else if (kind === "desirability" && DATA.desirability) jumpTo(DATA.desirability.setting);
+      else if (kind === "optimum") {
+        var o = DATA.optima[b.getAttribute("data-response")];
+        if (o) jumpTo(o.setting);
+      }
+    });
+  });
+  document.querySelectorAll("[data-limit-low], [data-limit-high], #overlay-x, #overlay-y, #surface-x, #surface-y, #surface-response")
+    .forEach(function (el) { el.addEventListener("input", schedule); el.addEventListener("change", schedule); });
+  var pre = document.getElementById("setting-text");
+  pre.addEventListener("click", function () {
+    var r = document.createRange(); r.selectNodeContents(pre);
+    var sel = window.getSelection(); sel.removeAllRanges(); sel.addRange(r);
+  });
+
+  /* for scripts that drive the page (tests, notebooks): the page's own arithmetic */
+  window.rsmReport = {
+    predict: function (response, s) {
+      for (var i = 0; i < MODELS.length; i++) if (MODELS[i].response === response) return predict(MODELS[i], s);
+      throw new Error("no such response");
+    },
+    setting: setting, settingText: function () { return settingText(setting()); },
+    insideLimits: function (s) { return inside(Object.assign(setting(), s)); },
+    overlayGrid: function () { return overlayGrid(setting()); },
+    drawNow: drawAll
+  };
+  update();
+  if (hasPlotly) drawAll();
+})();

@@ -1,0 +1,308 @@
+"""The interactive report in real headless Chromium: the profiler's numbers are the model's.
+
+The page computes predictions in the browser from the embedded model numbers; here every
+factor control of a two-response, four-factor report (the paper's Table 4 κ, and the
+surrogate's wear at the same 27 settings, ``simulate(seed=1)``) is moved and the displayed
+prediction, CI and PI are compared with ``FitResult.predict(..., interval="both")`` at the
+setting read back from the controls (tolerance 1e-9 relative, the done-when of issue 14).
+The overlay's shaded grid is compared with a Python evaluation at 100 random nodes and the
+page's in-limits test at 100 random points; the 3-D surface with ``predict`` at random nodes.
+"""
+
+from __future__ import annotations
+
+import shlex
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import rsm_lrg
+from rsm_lrg.report.interactive import write_interactive_report
+
+pytestmark = pytest.mark.browser
+
+FACTORS = ["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]
+RTOL = 1e-9  # issue 14: browser equals FitResult.predict to 1e-9 relative
+COLS = ("predicted", "ci_low", "ci_high", "pi_low", "pi_high")
+ATTRS = ("value", "ciLow", "ciHigh", "piLow", "piHigh")
+
+
+def table4_with_wear() -> pd.DataFrame:
+    """Table 4 (κ measured) with the surrogate's wear rate at the same settings."""
+    df = rsm_lrg.load_table4()
+    sim = rsm_lrg.simulate(df[FACTORS], seed=1)
+    df["wear_volume_m3_per_h"] = sim["wear_volume_m3_per_h"].to_numpy()
+    return df
+
+
+@pytest.fixture(scope="module")
+def two_response(tmp_path_factory):
+    df = table4_with_wear()
+    fits = {"tcr_c_per_min": rsm_lrg.fit(df, "tcr_c_per_min", factors=FACTORS),
+            "wear_volume_m3_per_h": rsm_lrg.fit(df, "wear_volume_m3_per_h", factors=FACTORS).reduce()}
+    path = write_interactive_report(fits, tmp_path_factory.mktemp("ir") / "two.html",
+                                    goals=["minimize", "minimize"], source_name="table4 + surrogate wear")
+    return path, fits
+
+
+def open_page(chromium, path):
+    """A page of ``path`` with every request but the page itself refused and recorded."""
+    url = path.resolve().as_uri()
+    ctx = chromium.new_context(viewport={"width": 1280, "height": 900}, offline=True)
+    page = ctx.new_page()
+    log = {"console": [], "errors": [], "requests": [], "dialogs": []}
+    page.on("console", lambda m: log["console"].append((m.type, m.text)))
+    page.on("pageerror", lambda e: log["errors"].append(str(e)))
+    page.on("request", lambda r: log["requests"].append(r.url))
+    page.on("dialog", lambda d: (log["dialogs"].append(d.message), d.dismiss()))
+    page.route("**/*", lambda route: route.continue_() if route.request.url == url else route.abort())
+    page.goto(url, wait_until="load")
+    page.wait_for_function("() => window.rsmReport !== undefined")
+    return ctx, page, log, url
+
+
+@pytest.fixture(scope="module")
+def page2(chromium, two_response):
+    ctx, page, log, url = open_page(chromium, two_response[0])
+    yield page, log, url, two_response[1]
+    ctx.close()
+
+
+SET = """([name, value, kind]) => {
+  const el = Array.from(document.querySelectorAll('[data-factor]')).find(e => e.dataset.factor === name);
+  el.value = String(value);
+  el.dispatchEvent(new Event(kind, {bubbles: true}));
+  return el.value;
+}"""
+
+READ = """() => ({
+  setting: Object.fromEntries(Array.from(document.querySelectorAll('[data-factor]')).map(
+      e => [e.dataset.factor, e.tagName === 'SELECT' ? e.value : parseFloat(e.value)])),
+  rows: Array.from(document.querySelectorAll('[data-prediction]')).map(e => ({
+      response: e.dataset.response, value: e.dataset.value, ciLow: e.dataset.ciLow, ciHigh: e.dataset.ciHigh,
+      piLow: e.dataset.piLow, piHigh: e.dataset.piHigh, text: e.innerText})),
+  text: document.getElementById('setting-text').textContent
+})"""
+
+
+def compare(fits, state) -> float:
+    """Largest relative difference between the page's numbers and FitResult.predict."""
+    point = pd.DataFrame({k: [v] for k, v in state["setting"].items()})
+    worst = 0.0
+    assert {r["response"] for r in state["rows"]} == set(fits)
+    for row in state["rows"]:
+        ref = fits[row["response"]].predict(point, interval="both").iloc[0]
+        got = np.array([float(row[a]) for a in ATTRS])
+        want = ref[list(COLS)].to_numpy(dtype=float)
+        np.testing.assert_allclose(got, want, rtol=RTOL, atol=0, err_msg=f"{row['response']} at {state['setting']}")
+        worst = max(worst, float(np.max(np.abs(got - want) / np.abs(want))))
+    return worst
+
+
+def test_every_control_moves_and_predictions_equal_python(page2):
+    page, log, _, fits = page2
+    controls = page.evaluate("() => Array.from(document.querySelectorAll('[data-factor]')).map(e => "
+                             "({name: e.dataset.factor, tag: e.tagName, type: e.type, min: e.min, max: e.max}))")
+    assert [c["name"] for c in controls] == FACTORS
+    assert all(c["tag"] == "INPUT" and c["type"] == "range" for c in controls)
+    rng = np.random.default_rng(14)
+    worst = compare(fits, page.evaluate(READ))  # the starting point (centre)
+    n = 0
+    for rnd in range(4):
+        for c in controls:
+            lo, hi = float(c["min"]), float(c["max"])
+            v = lo if rnd == 0 else (hi if rnd == 1 else float(rng.uniform(lo, hi)))
+            page.evaluate(SET, [c["name"], repr(v), "input" if rnd % 2 == 0 else "change"])
+            state = page.evaluate(READ)
+            assert state["setting"][c["name"]] == pytest.approx(v, rel=1e-15)  # the slider took it as given
+            worst = max(worst, compare(fits, state))
+            n += 1
+            # the setting text is pasteable into `rsm-lrg confirm`: --at NAME=VALUE, the exact numbers
+            words = shlex.split(state["text"])
+            at = dict(w.split("=", 1) for w in words[1::2])
+            assert words[0::2] == ["--at"] * len(FACTORS)
+            assert {k: float(x) for k, x in at.items()} == state["setting"]
+    assert n == 16
+    print(f"max relative difference browser vs FitResult.predict: {worst:.3g} over {n + 1} settings x 2 responses")
+    assert log["errors"] == [] and [t for k, t in log["console"] if k == "error"] == []
+
+
+def test_setting_text_is_accepted_by_confirm(page2, tmp_path):
+    from rsm_lrg.cli import main
+
+    page, _, _, fits = page2
+    page.evaluate(SET, ["velocity_m_s", "0.45", "input"])
+    text = page.evaluate(READ)["text"]
+    data = tmp_path / "t4.csv"
+    table4_with_wear().to_csv(data, index=False)
+    rc = main(["confirm", str(data), "--response", "tcr_c_per_min",
+               *[a for f in FACTORS for a in ("--factor", f)], *shlex.split(text), "--observed", "0.03"])
+    assert rc == 0
+
+
+def test_jump_buttons_reach_the_optima(page2):
+    page, log, _, fits = page2
+    data = page.evaluate("() => JSON.parse(document.getElementById('rsm-data').textContent)")
+    buttons = page.evaluate("() => Array.from(document.querySelectorAll('[data-jump]')).map(b => "
+                            "[b.dataset.jump, b.dataset.response || null])")
+    assert ["desirability", None] in buttons and ["center", None] in buttons
+    assert {r for k, r in buttons if k == "optimum"} == set(fits)
+    for kind, resp in buttons:
+        sel = f'[data-jump="{kind}"]' + (f'[data-response="{resp}"]' if resp else "")
+        page.click(sel)
+        state = page.evaluate(READ)
+        compare(fits, state)
+        if kind == "optimum":
+            best = fits[resp].optimize("minimize")
+            assert state["setting"] == pytest.approx({k: float(v) for k, v in best.actual.items()}, rel=1e-12)
+            got = next(float(r["value"]) for r in state["rows"] if r["response"] == resp)
+            assert got == pytest.approx(best.predicted, rel=1e-9)
+        if kind == "desirability":
+            assert state["setting"] == pytest.approx(data["desirability"]["setting"], rel=1e-12)
+    assert log["errors"] == []
+
+
+def _inside(fits, limits, frame) -> np.ndarray:
+    ok = np.ones(len(frame), dtype=bool)
+    for name, f in fits.items():
+        y = f.predict(frame)["predicted"].to_numpy()
+        lo, hi = limits[name]
+        if lo is not None:
+            ok &= y >= lo
+        if hi is not None:
+            ok &= y <= hi
+    return ok
+
+
+def _limits(page) -> dict:
+    return page.evaluate("""() => Object.fromEntries(Array.from(document.querySelectorAll('[data-limit-low]')).map(
+        e => { const r = e.dataset.limitLow;
+               const h = Array.from(document.querySelectorAll('[data-limit-high]')).find(x => x.dataset.limitHigh === r);
+               return [r, [e.value === '' ? null : parseFloat(e.value), h.value === '' ? null : parseFloat(h.value)]]; }))""")
+
+
+@pytest.mark.parametrize("case", ["default", "pair-CD-limits-edited", "pair-BA-moved"])
+def test_overlay_agrees_with_python_grid(page2, case):
+    page, log, _, fits = page2
+    rng = np.random.default_rng({"default": 1, "pair-CD-limits-edited": 2, "pair-BA-moved": 3}[case])
+    page.click('[data-jump="center"]')
+    page.evaluate("""() => JSON.parse(document.getElementById('rsm-data').textContent).models.forEach(m => {
+        document.querySelector(`[data-limit-low="${m.response}"]`).value = m.limits[0] === null ? '' : String(m.limits[0]);
+        document.querySelector(`[data-limit-high="${m.response}"]`).value = m.limits[1] === null ? '' : String(m.limits[1]);
+    })""")  # the embedded defaults (minimize: at most the observed median)
+    if case == "pair-CD-limits-edited":
+        page.select_option("#overlay-x", "velocity_m_s")
+        page.select_option("#overlay-y", "acceleration_m_s2")
+        page.fill('[data-limit-high="tcr_c_per_min"]', "0.031")
+        page.fill('[data-limit-low="wear_volume_m3_per_h"]', "3.5e-11")
+        page.evaluate(SET, ["thickness_m", "0.0002", "input"])
+    elif case == "pair-BA-moved":
+        page.select_option("#overlay-x", "stroke_m")
+        page.select_option("#overlay-y", "thickness_m")
+        page.evaluate(SET, ["velocity_m_s", "0.45", "input"])
+        page.evaluate(SET, ["acceleration_m_s2", "37", "input"])
+    page.evaluate("() => window.rsmReport.drawNow()")
+    shown = page.evaluate("""() => { const d = document.getElementById('overlay-plot');
+        return {x: d.data[0].x, y: d.data[0].y, z: d.data[0].z,
+                xname: document.getElementById('overlay-x').value, yname: document.getElementById('overlay-y').value}; }""")
+    state = page.evaluate(READ)
+    limits = _limits(page)
+    x, y, z = np.array(shown["x"]), np.array(shown["y"]), np.array(shown["z"], dtype=float)
+    # 100 random nodes of the shaded grid, evaluated in Python
+    i, j = rng.integers(0, len(x), 100), rng.integers(0, len(y), 100)
+    frame = pd.DataFrame({k: np.full(100, v) for k, v in state["setting"].items()})
+    frame[shown["xname"]], frame[shown["yname"]] = x[i], y[j]
+    want = _inside(fits, limits, frame)
+    assert np.array_equal(z[j, i] == 1, want)
+    if case != "default":  # these cases show a boundary inside the box
+        assert 0.05 < z.mean() < 0.95, z.mean()
+    # and the page's in-limits test at 100 random points of the pair's box
+    xs = rng.uniform(x.min(), x.max(), 100)
+    ys = rng.uniform(y.min(), y.max(), 100)
+    got = page.evaluate("([xn, yn, xs, ys]) => xs.map((v, k) => window.rsmReport.insideLimits({[xn]: v, [yn]: ys[k]}))",
+                        [shown["xname"], shown["yname"], xs.tolist(), ys.tolist()])
+    frame = pd.DataFrame({k: np.full(100, v) for k, v in state["setting"].items()})
+    frame[shown["xname"]], frame[shown["yname"]] = xs, ys
+    assert np.array_equal(np.array(got), _inside(fits, limits, frame))
+    assert log["errors"] == []
+
+
+def test_surface_follows_the_profiler(page2):
+    page, log, _, fits = page2
+    page.select_option("#surface-response", "1")
+    page.select_option("#surface-x", "thickness_m")
+    page.select_option("#surface-y", "velocity_m_s")
+    page.evaluate(SET, ["stroke_m", "0.058", "input"])
+    page.evaluate("() => window.rsmReport.drawNow()")
+    surf = page.evaluate("""() => { const d = document.getElementById('surface-plot'); const c = document.getElementById('contour-plot');
+        return {type: d.data[0].type, x: d.data[0].x, y: d.data[0].y, z: d.data[0].z, cz: c.data[0].z}; }""")
+    assert surf["type"] == "surface" and surf["z"] == surf["cz"]
+    state = page.evaluate(READ)
+    rng = np.random.default_rng(5)
+    i, j = rng.integers(0, len(surf["x"]), 20), rng.integers(0, len(surf["y"]), 20)
+    frame = pd.DataFrame({k: np.full(20, v) for k, v in state["setting"].items()})
+    frame["thickness_m"], frame["velocity_m_s"] = np.array(surf["x"])[i], np.array(surf["y"])[j]
+    want = fits["wear_volume_m3_per_h"].predict(frame)["predicted"].to_numpy()
+    np.testing.assert_allclose(np.array(surf["z"])[j, i], want, rtol=RTOL)
+    assert log["errors"] == []
+
+
+def test_no_network_no_console_error(page2):
+    page, log, url, _ = page2
+    page.wait_for_timeout(200)
+    assert [u for u in log["requests"] if u != url] == []
+    assert [t for k, t in log["console"] if k == "error"] == []
+    assert log["errors"] == [] and log["dialogs"] == []
+    # three scripts: the data (JSON, not run), plotly.js and the page's own, all allowed by hash
+    assert page.evaluate("() => Array.from(document.scripts).map(s => s.type || 'js')") == \
+        ["application/json", "js", "js"]
+
+
+XSS = ["<script>alert(1)</script>", "<img src=x onerror=alert(2)>", "\"><svg onload=alert(3)>", "<b>d</b>&amp;"]
+
+
+@pytest.fixture(scope="module")
+def xss_page(chromium, tmp_path_factory):
+    df = table4_with_wear()
+    df = df.rename(columns=dict(zip(FACTORS, XSS)) | {"tcr_c_per_min": "<i onmouseover=alert(4)>k</i>",
+                                                     "wear_volume_m3_per_h": "<a href='javascript:alert(5)'>w</a>"})
+    from rsm_lrg.factors import choose_factors
+
+    responses = ["<i onmouseover=alert(4)>k</i>", "<a href='javascript:alert(5)'>w</a>"]
+    space = choose_factors(df.drop(columns=["order"]), None, exclude=responses).space  # names with '=' are no specs
+    fits = {r: rsm_lrg.fit(df, r, factors=space) for r in responses}
+    path = write_interactive_report(fits, tmp_path_factory.mktemp("xss") / "xss.html",
+                                    title="<script>alert(6)</script>", source_name="<img src=y onerror=alert(7)>")
+    ctx, page, log, url = open_page(chromium, path)
+    yield page, log, url, fits
+    ctx.close()
+
+
+def test_markup_in_column_names_is_inert(xss_page):
+    page, log, url, fits = xss_page
+    controls = page.evaluate("() => Array.from(document.querySelectorAll('[data-factor]')).map(e => e.dataset.factor)")
+    assert controls == XSS
+    page.evaluate(SET, [XSS[1], page.evaluate("() => document.querySelector('[data-factor]').max"), "input"])
+    page.evaluate(SET, [XSS[0], page.evaluate("() => document.querySelector('[data-factor]').max"), "input"])
+    page.evaluate("() => window.rsmReport.drawNow()")
+    compare(fits, page.evaluate(READ))
+    page.hover("#title")
+    page.mouse.move(300, 300)
+    assert log["dialogs"] == [] and log["errors"] == []
+    assert [t for k, t in log["console"] if k == "error"] == []
+    assert [u for u in log["requests"] if u != url] == []
+    text = page.evaluate("() => document.body.innerText")
+    for name in XSS + list(fits) + ["<script>alert(6)</script>"]:
+        assert name in text, name
+    counts = page.evaluate("""() => ({
+        scripts: document.scripts.length, b: document.querySelectorAll('b[onmouseover], i[onmouseover]').length,
+        links: document.querySelectorAll('a[href^="javascript"]').length,
+        handlers: Array.from(document.querySelectorAll('*')).filter(
+            e => Array.from(e.attributes).some(a => a.name.startsWith('on'))).length})""")
+    assert counts == {"scripts": 3, "b": 0, "links": 0, "handlers": 0}
+    # Plotly's axis titles show the names as text too
+    titles = page.evaluate("() => Array.from(document.querySelectorAll('#profile-plot text[class*=title], #overlay-plot .legendtext'))"
+                           ".map(e => e.textContent)")
+    assert any(XSS[0] in t for t in titles) and any("<i onmouseover=alert(4)>k</i>" in t for t in titles)
+    assert page.title() == "<script>alert(6)</script>"

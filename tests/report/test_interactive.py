@@ -1,0 +1,160 @@
+"""The interactive report without a browser: the embedded model numbers, the page's
+Content-Security-Policy, its size, the static variant, and ``rsm-lrg report`` with several
+responses (the browser checks are in tests/browser/test_interactive_report.py)."""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import json
+import re
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import rsm_lrg
+from rsm_lrg.report.interactive import _json_for_script, interactive_html, model_data
+from rsm_lrg.terms import design_matrix
+
+FACTORS = ["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]
+
+
+def data() -> pd.DataFrame:
+    df = rsm_lrg.load_table4()
+    df["wear_volume_m3_per_h"] = rsm_lrg.simulate(df[FACTORS], seed=1)["wear_volume_m3_per_h"].to_numpy()
+    return df
+
+
+@pytest.fixture(scope="module")
+def fits():
+    df = data()
+    return {"tcr_c_per_min": rsm_lrg.fit(df, "tcr_c_per_min", factors=FACTORS),
+            "wear_volume_m3_per_h": rsm_lrg.fit(df, "wear_volume_m3_per_h", factors=FACTORS)}
+
+
+@pytest.fixture(scope="module")
+def page(fits):
+    return interactive_html(fits, goals=["minimize", "minimize"], source_name="table4.csv")
+
+
+def _scripts(html: str) -> list[tuple[str, str]]:
+    return re.findall(r"<script( type=\"application/json\" id=\"rsm-data\")?>(.*?)</script>", html, re.S)
+
+
+def test_model_data_is_the_fit(fits):
+    """The numbers the page multiplies are the fit's own: b, C without blocks, σ², t."""
+    from scipy import special
+
+    f = fits["tcr_c_per_min"]
+    m = model_data(f)
+    assert m["b"] == f.coefficients["coded"].tolist()
+    np.testing.assert_array_equal(np.array(m["C"]), f.cov_unscaled[np.ix_(f._term_index, f._term_index)])
+    assert m["sigma2"] == f.sigma2 and m["df_resid"] == f.df_resid == 12
+    assert m["t"] == float(special.stdtrit(12, 0.975))  # t(0.975, 12) = 2.1788 (tables)
+    assert m["t"] == pytest.approx(2.178813, abs=1e-6)
+    # the page's row of the model matrix: for each term, the product of coded factors to their powers
+    rng = np.random.default_rng(0)
+    x = rng.uniform(-1, 1, (5, 4))
+    X = design_matrix(x, f.terms)
+    rows = np.array([[np.prod([xi[i] ** p for i, p in enumerate(t["p"]) if p]) for t in m["terms"]] for xi in x])
+    np.testing.assert_allclose(rows, X, rtol=1e-15)
+    # ŷ, CI, PI by the page's formulas in numpy equal predict
+    ref = f.predict(x, coded=True, interval="both")
+    q = np.einsum("ij,jk,ik->i", rows, np.array(m["C"]), rows)
+    y = rows @ np.array(m["b"])
+    np.testing.assert_allclose(y - m["t"] * np.sqrt(q * m["sigma2"]), ref["ci_low"], rtol=1e-12)
+    np.testing.assert_allclose(y + m["t"] * np.sqrt((1 + q) * m["sigma2"]), ref["pi_high"], rtol=1e-12)
+
+
+def test_model_data_with_a_categoric_factor():
+    df = data()
+    df["stage"] = np.random.default_rng(2).choice(["rfcms", "rms", "mix"], len(df))
+    f = rsm_lrg.fit(df, "tcr_c_per_min", factors=FACTORS + ["stage"], model="2fi")
+    m = model_data(f)
+    assert m["factors"][4] == {"name": "stage", "letter": "E", "kind": "categoric", "levels": list(f.space.factors[4].levels)}
+    assert sum(max(1, len(t["combos"])) for t in m["terms"]) == len(m["b"]) == len(f.column_names)
+    e = next(t for t in m["terms"] if t["name"] == "E")
+    assert e["cat"] == [[4, 3]] and e["combos"] == [[0], [1]]
+
+
+def test_json_in_the_page_is_inert():
+    text = _json_for_script({"name": "</script><script>alert(1)</script>", "x": "a&b\u2028"})
+    assert "<" not in text and ">" not in text and "&" not in text and "\u2028" not in text
+    assert json.loads(text) == {"name": "</script><script>alert(1)</script>", "x": "a&b\u2028"}
+    with pytest.raises(ValueError):
+        _json_for_script({"x": float("nan")})
+
+
+def test_csp_allows_exactly_the_page_scripts_by_hash(page):
+    import html
+
+    csp = html.unescape(re.search(r'http-equiv="Content-Security-Policy" content="([^"]+)"', page).group(1))
+    src = re.search(r"script-src ([^;]+);", csp).group(1).split()
+    assert "default-src 'none'" in csp and "'unsafe-eval'" not in csp
+    assert all(s.startswith("'sha256-") for s in src)  # no 'unsafe-inline', no host: only these scripts
+    scripts = _scripts(page)
+    assert [bool(j) for j, _ in scripts] == [True, False, False]
+    hashes = ["'sha256-" + base64.b64encode(hashlib.sha256(body.encode()).digest()).decode() + "'"
+              for j, body in scripts if not j]
+    assert sorted(src) == sorted(hashes)
+    assert "connect-src 'none'" in csp
+
+
+def test_page_contract_and_size(page, fits):
+    """Two responses, four factors: under 8 MB (issue 14), one control per factor and one
+    prediction element per response with the data attributes."""
+    size = len(page.encode("utf-8"))
+    print(f"two-response four-factor page: {size / 1e6:.2f} MB")
+    assert size < 8_000_000
+    for f in FACTORS:
+        assert re.search(rf'<input type="range" id="ctl-\d" data-factor="{f}" min="[^"]+" max="[^"]+" step="any"', page)
+    for r in fits:
+        assert re.search(rf'<tr data-prediction data-response="{r}" data-value="" data-ci-low="" data-ci-high="" '
+                         r'data-pi-low="" data-pi-high="">', page)
+    for sid in ("summary", "profiler", "overlay", "surfaces-3d", "data", "response-1", "response-2"):
+        assert f'id="{sid}"' in page
+    assert "221.92" in page and "26.03" in page  # Table 5 F values in the first response's ANOVA
+
+
+def test_static_variant_has_no_script(fits):
+    html = interactive_html(fits, static=True)
+    import html as _html
+
+    assert "<script" not in html and "script-src 'none'" in _html.unescape(html)
+    assert html.count('class="diag"') == 2 * (6 + 12)  # per response: six diagnostics, six surfaces, six contours
+
+
+def test_bad_inputs_are_named(fits):
+    df = data()
+    other = rsm_lrg.fit(df, "tcr_c_per_min", factors=FACTORS[:3])
+    with pytest.raises(ValueError, match="one report needs one factor set"):
+        interactive_html({"a": fits["tcr_c_per_min"], "b": other})
+    with pytest.raises(ValueError, match="low 2 is above high 1"):
+        interactive_html(fits["tcr_c_per_min"], limits=(2.0, 1.0))
+    with pytest.raises(ValueError, match="start must be"):
+        interactive_html(fits["tcr_c_per_min"], start="middle")
+
+
+def test_cli_two_responses_with_their_own_options(tmp_path, capsys):
+    from rsm_lrg.cli import main
+
+    src = tmp_path / "d.csv"
+    data().to_csv(src, index=False)
+    out = tmp_path / "r.html"
+    rc = main(["report", str(src), "--response", "tcr_c_per_min", "--reduce", "--response", "wear_volume_m3_per_h",
+               "--transform", "log", "--goal", "minimize", "--goal", "minimize", "--limits", ":0.03",
+               "--hold", "optimum", "-o", str(out)])
+    assert rc == 0, capsys.readouterr().err
+    html = out.read_text(encoding="utf-8")
+    d = json.loads(re.search(r'id="rsm-data">(.*?)</script>', html, re.S).group(1))
+    m1, m2 = d["models"]
+    assert m1["response"] == "tcr_c_per_min" and len(m1["b"]) < 15  # reduced
+    assert m2["transform"] == {"name": "log", "lam": 0.0, "constant": 0.0} and len(m2["b"]) == 15
+    assert m1["limits"] == [None, 0.03]
+    # --hold optimum starts the profiler at the desirability optimum
+    assert [c["value"] for c in d["controls"]] == [d["desirability"]["setting"][f] for f in FACTORS]
+    assert "log-transformed response" in html
+    # a bad --limits is named before any work
+    rc = main(["report", str(src), "--response", "tcr_c_per_min", "--limits", "x", "-o", str(tmp_path / "x.html")])
+    assert rc == 2 and "--limits" in capsys.readouterr().err
