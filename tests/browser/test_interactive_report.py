@@ -306,3 +306,47 @@ def test_markup_in_column_names_is_inert(xss_page):
                            ".map(e => e.textContent)")
     assert any(XSS[0] in t for t in titles) and any("<i onmouseover=alert(4)>k</i>" in t for t in titles)
     assert page.title() == "<script>alert(6)</script>"
+
+
+@pytest.fixture(scope="module")
+def categoric_page(chromium, tmp_path_factory):
+    """Four numeric factors and the stage (categoric, two levels), two responses: the wear of
+    the surrogate at each run's stage, and Table 4's κ."""
+    df = rsm_lrg.load_table4()
+    df["stage"] = np.random.default_rng(7).choice(["rfcms", "rms"], len(df))
+    df["wear_volume_m3_per_h"] = rsm_lrg.simulate(df[FACTORS + ["stage"]], seed=1)["wear_volume_m3_per_h"].to_numpy()
+    factors = FACTORS + ["stage"]
+    fits = {"tcr_c_per_min": rsm_lrg.fit(df, "tcr_c_per_min", factors=factors, model="2fi"),
+            "wear_volume_m3_per_h": rsm_lrg.fit(df, "wear_volume_m3_per_h", factors=factors)}
+    path = write_interactive_report(fits, tmp_path_factory.mktemp("cat") / "cat.html", tables=False)
+    ctx, page, log, url = open_page(chromium, path)
+    yield page, log, url, fits
+    ctx.close()
+
+
+def test_categoric_factor_has_a_level_picker_and_equals_python(categoric_page):
+    page, log, url, fits = categoric_page
+    kinds = page.evaluate("() => Array.from(document.querySelectorAll('[data-factor]')).map(e => [e.dataset.factor, "
+                          "e.tagName, Array.from(e.options || []).map(o => o.value)])")
+    levels = list(fits["tcr_c_per_min"].space.factors[4].levels)  # in the order of the data
+    assert kinds[-1] == ["stage", "SELECT", levels] and sorted(levels) == ["rfcms", "rms"]
+    assert [k[1] for k in kinds[:4]] == ["INPUT"] * 4
+    rng = np.random.default_rng(9)
+    worst = 0.0
+    for rnd in range(3):
+        for name, tag, levels in kinds:
+            if tag == "SELECT":
+                page.select_option('[data-factor="stage"]', levels[(rnd + 1) % 2])  # fires input and change
+            else:
+                lo, hi = page.evaluate(f"() => [document.querySelector('[data-factor=\"{name}\"]').min, "
+                                       f"document.querySelector('[data-factor=\"{name}\"]').max]")
+                page.evaluate(SET, [name, repr(float(rng.uniform(float(lo), float(hi)))), "input"])
+            worst = max(worst, compare(fits, page.evaluate(READ)))
+    assert page.evaluate(READ)["setting"]["stage"] in ("rfcms", "rms")
+    print(f"categoric: max relative difference {worst:.3g}")
+    # the stage's profile is one point with its CI per level
+    page.evaluate("() => window.rsmReport.drawNow()")
+    xs = page.evaluate("() => document.getElementById('profile-plot').data.filter(t => t.error_y).map(t => t.x)")
+    assert xs == [levels, levels]
+    assert log["errors"] == [] and [t for k, t in log["console"] if k == "error"] == []
+    assert [u for u in log["requests"] if u != url] == []
