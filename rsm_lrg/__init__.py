@@ -65,6 +65,7 @@ _register("rsm_lrg.physics.params", "LRGParams")
 _registry.register("FitResult.optimize", "rsm_lrg.optimize.single:optimize")
 _registry.register("FitResult.to_html", "rsm_lrg.report.fit_report:to_html")
 _registry.register("FitResult.notebook_html", "rsm_lrg.report.fit_report:notebook_html")
+_registry.register("FitResult.profiler", "rsm_lrg.report.interactive:profiler")
 
 #: Top-level names that are sub-packages as well: always the (callable) package.
 _PACKAGES = {"optimize"}

@@ -1,6 +1,6 @@
 """Conveniences that a lower layer offers and a higher layer provides.
 
-``FitResult.optimize``, ``FitResult.to_html`` and ``FitResult._repr_html_`` are methods of
+``FitResult.optimize``, ``FitResult.to_html``, ``FitResult.profiler`` and ``FitResult._repr_html_`` are methods of
 the model layer, but the work is done by the optimize and report layers above it. The model
 must not import them (the layers are one-way, checked by import-linter), so the methods ask
 this registry for the function registered under a name and call it.
@@ -12,7 +12,7 @@ first call. A higher layer (or a user) may also register a function object direc
 
 >>> from rsm_lrg import registry
 >>> registry.names()
-['FitResult.notebook_html', 'FitResult.optimize', 'FitResult.to_html']
+['FitResult.notebook_html', 'FitResult.optimize', 'FitResult.profiler', 'FitResult.to_html']
 """
 
 from __future__ import annotations

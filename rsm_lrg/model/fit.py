@@ -469,6 +469,14 @@ class FitResult:
 
         return lookup("FitResult.to_html")(self, **kwargs)
 
+    def profiler(self, **kwargs):
+        """The interactive prediction profiler of this fit, shown inline in a notebook (no
+        server): see :func:`rsm_lrg.report.interactive.profiler` (``.save(path)`` writes the
+        page). Provided by the report layer through :mod:`rsm_lrg.registry`."""
+        from ..registry import lookup
+
+        return lookup("FitResult.profiler")(self, **kwargs)
+
     def _repr_html_(self) -> str:
         """Notebook face: summary, ANOVA, statistics, coefficients, equations and the
         stationary point as one small HTML fragment, without figures (a few tens of kB);

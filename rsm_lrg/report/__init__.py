@@ -3,7 +3,10 @@
 ``plots`` (matplotlib figures from arrays, as ``data:`` URIs), ``html`` (the Jinja2
 environment, autoescaping on, with the number formats of :mod:`rsm_lrg.present` as
 filters), ``fit_report`` (:func:`to_html`, :func:`write_report`: the self-contained HTML
-report of a fit; :func:`notebook_html`: the small, figure-free notebook face) and
+report of a fit; :func:`notebook_html`: the small, figure-free notebook face), ``interactive``
+(:func:`interactive_html`, :func:`write_interactive_report`: the page with the prediction
+profiler, overlay plot and live surfaces of one or several responses; :func:`profiler`: that
+page in a notebook) and
 ``reproduction_page`` (the terminal table and HTML page of the paper reproduction, which
 :mod:`rsm_lrg.paper` computes; ``reproduce`` is a deprecated alias of that module and is
 not imported here, so the report layer never loads the paper layer).
@@ -14,5 +17,7 @@ not imported here, so the report layer never loads the paper layer).
 """
 
 from .fit_report import SECTION_IDS, notebook_html, report_context, to_html, write_report
+from .interactive import interactive_html, profiler, write_interactive_report
 
-__all__ = ["to_html", "write_report", "report_context", "notebook_html", "SECTION_IDS"]
+__all__ = ["to_html", "write_report", "report_context", "notebook_html", "SECTION_IDS", "interactive_html",
+           "write_interactive_report", "profiler"]

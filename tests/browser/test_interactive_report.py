@@ -350,3 +350,30 @@ def test_categoric_factor_has_a_level_picker_and_equals_python(categoric_page):
     assert xs == [levels, levels]
     assert log["errors"] == [] and [t for k, t in log["console"] if k == "error"] == []
     assert [u for u in log["requests"] if u != url] == []
+
+
+def test_notebook_profiler_runs_in_its_frame(chromium, tmp_path):
+    """``FitResult.profiler()._repr_html_()`` as a notebook shows it: an iframe whose page
+    computes the same numbers (no server, no network)."""
+    fit = rsm_lrg.fit(rsm_lrg.load_table4(), "tcr_c_per_min")
+    prof = fit.profiler()
+    host = tmp_path / "notebook.html"
+    host.write_text("<!DOCTYPE html><html><body><h1>cell output</h1>" + prof._repr_html_() + "</body></html>",
+                    encoding="utf-8")
+    ctx = chromium.new_context(viewport={"width": 1280, "height": 900}, offline=True)
+    try:
+        page = ctx.new_page()
+        errors, requests = [], []
+        page.on("pageerror", lambda e: errors.append(str(e)))
+        page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+        page.on("request", lambda r: requests.append(r.url))
+        page.goto(host.as_uri(), wait_until="load")
+        frame = page.frames[1]
+        frame.wait_for_function("() => document.querySelector('[data-prediction]').dataset.value !== ''")
+        frame.evaluate(SET, ["velocity_m_s", "0.55", "input"])
+        compare({"tcr_c_per_min": fit}, frame.evaluate(READ))
+        assert errors == [] and [u for u in requests if u not in (host.as_uri(), "about:srcdoc")] == []
+    finally:
+        ctx.close()
+    saved = prof.save(tmp_path / "p.html")
+    assert saved.read_text(encoding="utf-8") == prof.html
