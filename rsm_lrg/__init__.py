@@ -48,6 +48,8 @@ def _register(module: str, *names: str) -> None:
 
 # Filled in by the layers as they land (kept here so the top-level API is in one place).
 _register("rsm_lrg.design", "Design", "box_behnken", "central_composite", "full_factorial", "read_design")
+_register("rsm_lrg.design", "optimal", "augment", "Constraints", "definitive_screening", "fractional_factorial",
+          "plackett_burman", "latin_hypercube", "sobol")
 _register("rsm_lrg.model", "fit", "FitResult")
 _register("rsm_lrg.optimize", "optimize", "OptimumResult")
 _register("rsm_lrg.surrogate", "simulate", "calibrate", "Calibration")

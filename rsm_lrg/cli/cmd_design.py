@@ -7,7 +7,8 @@ import argparse
 from ._common import add_force, whole_number
 
 NAME = "design"
-HELP = "write a design CSV (box-behnken, central-composite, full-factorial)"
+HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, augment, "
+        "definitive-screening, fractional-factorial, plackett-burman, latin-hypercube, sobol)")
 DESCRIPTION = (
     "Generate an experimental design and write it as CSV: std_order, run_order, block (when "
     "blocked), the coded columns coded_A, coded_B, ... and the actual columns named after the "
@@ -26,8 +27,84 @@ def _common(p: argparse.ArgumentParser, center_default, center_help: str) -> Non
     add_force(p)
 
 
+def _base(p: argparse.ArgumentParser, factors: bool = True, constraint: bool = False) -> None:
+    if factors:
+        p.add_argument("--factor", action="append", required=True, metavar="SPEC",
+                       help="NAME=LOW:HIGH (numeric) or NAME=cat:L1,L2,... (categoric); repeat for each factor")
+    if constraint:
+        p.add_argument("--constraint", action="append", default=[], metavar="EXPR",
+                       help="an inequality in actual units, e.g. '0.5*A + B <= 1.2' or "
+                            "'velocity_m_s**2/acceleration_m_s2 <= stroke_m' (repeatable)")
+    p.add_argument("--seed", type=whole_number(0), default=None, metavar="N",
+                   help="seed of the search and of the randomised run order (default: drawn and printed)")
+    p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
+    p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
+    add_force(p)
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     sub = parser.add_subparsers(dest="kind", metavar="KIND", required=True)
+    op = sub.add_parser("optimal", help="D-, I- or A-optimal design by coordinate exchange",
+                        description="Exact optimal design by coordinate exchange (Meyer & Nachtsheim 1995) for "
+                                    "numeric and categoric factors, on a box or a constrained region.")
+    _base(op, constraint=True)
+    op.add_argument("--criterion", default="I", type=str.upper, choices=["D", "I", "A"],
+                    help="optimality criterion (default I, as Design-Expert)")
+    op.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
+                    help="the model the design supports (default quadratic)")
+    op.add_argument("--runs", type=whole_number(1), default=None, metavar="N",
+                    help="total runs (default: model terms + 5 lack-of-fit points + 5 replicates)")
+    op.add_argument("--lof-points", type=whole_number(0), default=None, metavar="L",
+                    help="lack-of-fit points spread by distance (default 5 without --runs, else 0)")
+    op.add_argument("--replicates", type=whole_number(0), default=None, metavar="R",
+                    help="replicated model points (default 5 without --runs, else 0)")
+    op.add_argument("--starts", type=whole_number(1), default=None, metavar="N",
+                    help="random starts of the exchange (default by model size)")
+    ag = sub.add_parser("augment", help="add runs to a design CSV (optimal, star + centre points, fold-over)",
+                        description="Add runs to the runs of DESIGN.csv, which are kept untouched and first, "
+                                    "with their responses: D/I/A-optimal runs for a bigger model, star and "
+                                    "centre points (a two-level factorial becomes a CCD), or the fold-over.")
+    ag.add_argument("design", metavar="DESIGN.csv", help="the design (or data) CSV whose runs are kept")
+    ag.add_argument("--method", default="optimal", choices=["optimal", "ccd", "foldover"],
+                    help="how to add runs (default optimal)")
+    ag.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
+                    help="optimal: the model the augmented design supports (default quadratic)")
+    ag.add_argument("--criterion", default="D", type=str.upper, choices=["D", "I", "A"],
+                    help="optimal: criterion of the added runs (default D)")
+    ag.add_argument("--runs", type=whole_number(1), default=None, metavar="N", help="optimal: runs to add")
+    ag.add_argument("--alpha", default="rotatable", metavar="RULE|X",
+                    help="ccd: rotatable (default), face, orthogonal, practical or a number")
+    ag.add_argument("--center", type=whole_number(0), default=2, metavar="N", help="ccd: centre points added (default 2)")
+    ag.add_argument("--fold", action="append", default=None, metavar="FACTOR",
+                    help="foldover: a factor (name or letter) whose signs are reversed (default all; repeatable)")
+    ag.add_argument("--new-block", action="store_true", help="put the added runs in a new block")
+    ag.add_argument("--constraint", action="append", default=[], metavar="EXPR",
+                    help="optimal: an inequality every added run satisfies (repeatable)")
+    ag.add_argument("--starts", type=whole_number(1), default=None, metavar="N", help=argparse.SUPPRESS)
+    _base(ag, factors=False)
+    ds = sub.add_parser("definitive-screening", help="definitive screening design (Jones & Nachtsheim 2011)",
+                        description="Three-level definitive screening design from an exact conference matrix.")
+    _base(ds)
+    ds.add_argument("--center", type=whole_number(0), default=1, metavar="N", help="centre runs (default 1)")
+    fr = sub.add_parser("fractional-factorial", help="two-level fractional factorial (by resolution or generators)",
+                        description="Two-level fractional factorial; the alias structure is printed.")
+    _base(fr)
+    g = fr.add_mutually_exclusive_group(required=True)
+    g.add_argument("--resolution", type=whole_number(3), metavar="R", help="resolution (3, 4, 5, ...)")
+    g.add_argument("--generator", metavar="WORDS", help="generators in factor letters, e.g. 'A B C ABC'")
+    fr.add_argument("--center", type=whole_number(0), default=0, metavar="N", help="centre runs (default 0)")
+    pb = sub.add_parser("plackett-burman", help="Plackett-Burman screening design",
+                        description="Plackett-Burman two-level screening design (runs a multiple of 4).")
+    _base(pb)
+    pb.add_argument("--center", type=whole_number(0), default=0, metavar="N", help="centre runs (default 0)")
+    for name, hlp in (("latin-hypercube", "Latin hypercube (space-filling, for virtual runs)"),
+                      ("sobol", "scrambled Sobol' points (space-filling, for virtual runs)")):
+        sp = sub.add_parser(name, help=hlp, description=hlp + "; on a box or a constrained region.")
+        _base(sp, constraint=True)
+        sp.add_argument("--runs", type=whole_number(2), required=True, metavar="N", help="number of runs")
+        if name == "latin-hypercube":
+            sp.add_argument("--criterion", default="discrepancy", choices=["discrepancy", "maximin"],
+                            help="space-filling criterion (default discrepancy)")
     bb = sub.add_parser("box-behnken", help="Box-Behnken design, 3 to 7 factors (Box & Behnken 1960)",
                         description="Box-Behnken design for 3 to 7 factors as published by Box & Behnken (1960).")
     _common(bb, "3", "centre runs (per block when blocked; default 3)")
@@ -82,6 +159,14 @@ def run(args) -> int:
     out = Path(args.output)
     if out.exists() and not args.force:
         raise InputError(f"{out}: already exists; use --force to overwrite it")
+    if args.kind == "augment":
+        return _augment(args, out)
+    if args.kind in _NEW_KINDS:
+        design = _new_kind(args)
+        design.to_csv(out, force=args.force)
+        print(design.summary())
+        print(f"wrote {out}")
+        return 0
     space = as_factor_space(args.factor)
     randomize = not args.no_randomize
     if args.kind == "box-behnken":
@@ -105,5 +190,132 @@ def run(args) -> int:
                                 seed=args.seed, randomize=randomize)
     design.to_csv(out, force=args.force)
     print(design.summary())
+    print(f"wrote {out}")
+    return 0
+
+
+#: Kinds handled by :func:`_new_kind` (added with issue 13).
+_NEW_KINDS = ("optimal", "definitive-screening", "fractional-factorial", "plackett-burman", "latin-hypercube",
+              "sobol")
+
+
+def _space(args):
+    from ..design import as_factor_space
+    from ..io import InputError
+
+    try:
+        return as_factor_space(args.factor)
+    except ValueError as exc:
+        raise InputError(f"--factor: {exc}") from None
+
+
+def _constraints(args, space):
+    from ..design.constraints import Constraints
+    from ..io import InputError
+
+    try:
+        return Constraints.parse(list(getattr(args, "constraint", []) or []), space)
+    except ValueError as exc:
+        raise InputError(f"--constraint: {exc}") from None
+
+
+def _new_kind(args):
+    from ..io import InputError
+
+    space = _space(args)
+    randomize = not args.no_randomize
+    if args.kind == "optimal":
+        from ..design.optimal import optimal
+
+        cons = _constraints(args, space)
+        try:
+            return optimal(space, model=args.model, criterion=args.criterion, runs=args.runs,
+                           lof_points=args.lof_points, replicates=args.replicates, constraints=cons,
+                           seed=args.seed, starts=args.starts, randomize=randomize)
+        except ValueError as exc:
+            msg = str(exc)
+            opt = "--runs" if "runs" in msg or "model points" in msg else "--factor"
+            raise InputError(f"{opt}: {msg}") from None
+    try:
+        if args.kind == "definitive-screening":
+            from ..design.screening import definitive_screening
+
+            return definitive_screening(space, center=args.center, seed=args.seed, randomize=randomize)
+        if args.kind == "fractional-factorial":
+            from ..design.screening import fractional_factorial
+
+            try:
+                return fractional_factorial(space, resolution=args.resolution, generators=args.generator,
+                                            center=args.center, seed=args.seed, randomize=randomize)
+            except ValueError as exc:
+                raise InputError(f"{'--generator' if args.generator else '--resolution'}: {exc}") from None
+        if args.kind == "plackett-burman":
+            from ..design.screening import plackett_burman
+
+            return plackett_burman(space, center=args.center, seed=args.seed, randomize=randomize)
+        from ..design.spacefill import latin_hypercube, sobol
+
+        cons = _constraints(args, space)
+        if args.kind == "latin-hypercube":
+            return latin_hypercube(space, args.runs, criterion=args.criterion, constraints=cons, seed=args.seed,
+                                   randomize=randomize)
+        return sobol(space, args.runs, constraints=cons, seed=args.seed, randomize=randomize)
+    except InputError:
+        raise
+    except ValueError as exc:
+        raise InputError(f"--factor: {exc}") from None
+
+
+def _augment(args, out) -> int:
+    """Read DESIGN.csv, add runs, write the original rows untouched and the new ones after."""
+    from pathlib import Path
+
+    import pandas as pd
+
+    from ..design import Design
+    from ..design.augment import augment
+    from ..design.core import BLOCK_COLUMN
+    from ..io import InputError, read_table, write_output
+
+    src = Path(args.design)
+    if src.exists() and out.exists() and src.resolve() == out.resolve():
+        raise InputError(f"-o/--output: {out} is the input design; an input file is never overwritten")
+    df = read_table(src)
+    try:
+        design = Design.from_frame(df)
+    except ValueError as exc:
+        raise InputError(f"{src}: {exc}") from None
+    alpha = args.alpha
+    try:
+        alpha = float(alpha)
+    except ValueError:
+        pass
+    cons = None
+    if args.constraint:
+        cons = _constraints(args, design.factors)
+    try:
+        aug = augment(design, args.method, model=args.model, criterion=args.criterion, runs=args.runs,
+                      alpha=alpha, center=args.center, fold=args.fold, new_block=args.new_block,
+                      constraints=cons, seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
+    except ValueError as exc:
+        msg = str(exc)
+        opt = {"fold": "--fold", "alpha": "--alpha", "runs": "--runs"}
+        name = next((v for k, v in opt.items() if msg.startswith(k) or f" {k}" in msg[:40]), "--method")
+        raise InputError(f"{name}: {msg}") from None
+    new = aug.to_frame()
+    new = new[new["std_order"] > design.n_runs]
+    old = df.copy()
+    if BLOCK_COLUMN in new.columns and BLOCK_COLUMN not in old.columns:
+        pos = list(old.columns).index("run_order") + 1 if "run_order" in old.columns else 0
+        old.insert(pos, BLOCK_COLUMN, 1)
+    # the added rows in the columns of the input (responses and other columns left empty)
+    names = {f.name for f in design.factors}
+    add = pd.DataFrame({c: (new[c].to_numpy() if c in new.columns else [None] * len(new)) for c in old.columns})
+    missing = [c for c in new.columns if c not in old.columns and c not in names]
+    if missing:
+        raise InputError(f"{src}: lacks the column(s) {', '.join(missing)} of a design CSV")
+    merged = pd.concat([old, add.astype(object)], ignore_index=True) if len(old) else add
+    write_output(out, merged.to_csv(index=False, lineterminator="\n"), force=args.force)
+    print(aug.summary())
     print(f"wrote {out}")
     return 0

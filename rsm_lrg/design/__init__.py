@@ -1,4 +1,7 @@
-"""Experimental designs on a factor space: Box–Behnken, central composite, full factorial.
+"""Experimental designs on a factor space: Box–Behnken, central composite, full factorial
+(each crossed with categoric factors), optimal designs (D/I/A, constraints), augmentation,
+screening designs (definitive screening, fractional factorial, Plackett–Burman) and
+space-filling designs (Latin hypercube, Sobol').
 
 Every generator returns a :class:`Design` (standard order kept, run order randomised from a
 seed) whose :meth:`Design.to_frame` / :meth:`Design.to_csv` give the design CSV layout that
@@ -6,11 +9,22 @@ seed) whose :meth:`Design.to_frame` / :meth:`Design.to_csv` give the design CSV 
 :func:`read_design`.
 """
 
+from .augment import augment
 from .box_behnken import BBD_BLOCKS, BBD_SETS, box_behnken
 from .composite import ccd_alpha, central_composite
+from .constraints import Constraints
 from .core import Design, as_factor_space, read_design
 from .factorial import full_factorial
+from .optimal import criterion_value, optimal
 from .paper import paper_design
+from .screening import (
+    alias_matrix,
+    conference_matrix,
+    definitive_screening,
+    fractional_factorial,
+    plackett_burman,
+)
+from .spacefill import latin_hypercube, sobol
 
 __all__ = [
     "Design",
@@ -23,4 +37,15 @@ __all__ = [
     "paper_design",
     "BBD_SETS",
     "BBD_BLOCKS",
+    "optimal",
+    "criterion_value",
+    "augment",
+    "Constraints",
+    "definitive_screening",
+    "conference_matrix",
+    "fractional_factorial",
+    "plackett_burman",
+    "alias_matrix",
+    "latin_hypercube",
+    "sobol",
 ]

@@ -405,6 +405,18 @@ class Design:
         if self.kind == "central-composite" and "alpha" in self.options:
             lines.append(f"alpha {self.options['alpha']:.6g} ({self.options.get('alpha_rule')}), "
                          f"face {self.options.get('face')}")
+        o = self.options
+        if self.kind == "optimal":
+            lines.append(f"{o.get('criterion')}-optimal for the {o.get('model')} model ({o.get('model_terms')} terms): "
+                         f"criterion {o.get('criterion_value', float('nan')):.6g}; {o.get('model_points')} model points, "
+                         f"{o.get('replicates')} replicates, {o.get('lof_points')} lack-of-fit points")
+        if o.get("constraints"):
+            lines.append("constraints: " + "; ".join(o["constraints"]))
+        if self.kind == "augmented":
+            lines.append(f"augmented: {o.get('original_runs')} original runs kept (std_order 1..{o.get('original_runs')}), "
+                         f"{self.n_runs - o.get('original_runs', 0)} added ({o.get('method')})")
+        if o.get("note"):
+            lines.append(str(o["note"]))
         if not rnd:
             lines.append("run order: standard order (not randomised)")
         elif seed is not None:

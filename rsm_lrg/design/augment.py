@@ -1,0 +1,198 @@
+"""Augmenting a design: runs added to the runs already made, which stay as they are.
+
+Three ways, as in Design-Expert's and JMP's *Augment Design*:
+
+``method="optimal"``
+    Add ``runs`` runs chosen D-, I- or A-optimally **given** the existing runs (coordinate
+    exchange on the new runs only; :mod:`rsm_lrg.design.optimal`) so that a bigger model
+    (linear -> 2FI -> quadratic -> cubic) becomes estimable; constraints respected.
+``method="ccd"``
+    Star points at ±alpha on every numeric factor's axis and centre points: a two-level
+    factorial (with or without centre points) becomes a central composite design (Box &
+    Wilson 1951). ``alpha="rotatable"`` by default (F^(1/4), F the factorial runs), or
+    ``"face"``, ``"orthogonal"``, ``"practical"`` or a number (see
+    :func:`~rsm_lrg.design.ccd_alpha`).
+``method="foldover"``
+    The fold-over of a two-level screening design: every run with the signs of the chosen
+    factors reversed (all factors by default, the full fold-over, which frees the main
+    effects from their two-factor-interaction aliases; Box, Hunter & Hunter 2005,
+    section 6.8). Centre runs are not repeated.
+
+The original runs keep their settings, their ``std_order`` (1..n0) and their run order
+(they come first); the added runs follow (``std_order`` n0+1..), their run order
+randomised from the seed. With ``new_block=True`` the added runs form a new block (the
+original runs are block 1 when the design was not blocked). The optimal criterion ignores
+the block shift (a block effect is orthogonal to the terms only in balanced cases): the
+block column is there for the fit.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .core import Design, resolve_seed
+
+__all__ = ["augment", "METHODS"]
+
+#: Augmentation methods.
+METHODS = ("optimal", "ccd", "foldover")
+
+
+def augment(
+    design: Design,
+    method: str = "optimal",
+    *,
+    model: str = "quadratic",
+    criterion: str = "D",
+    runs: int | None = None,
+    alpha: Any = "rotatable",
+    center: int = 2,
+    fold: list | None = None,
+    new_block: bool = False,
+    constraints: Any = None,
+    seed: Any = None,
+    starts: int | None = None,
+    randomize: bool = True,
+) -> Design:
+    """Add runs to ``design``; the original runs are kept untouched and first.
+
+    Parameters
+    ----------
+    design : Design
+        The runs already made (e.g. from :func:`~rsm_lrg.design.read_design`).
+    method : {"optimal", "ccd", "foldover"}
+    model : str
+        ``optimal``: the model the augmented design must support.
+    criterion : {"D", "I", "A"}
+        ``optimal``: the criterion of the added runs given the existing ones.
+    runs : int or None
+        ``optimal``: runs to add (default: enough for the model, ``p - n0`` but at least
+        ``max(4, p // 2)``).
+    alpha : str or float
+        ``ccd``: star distance [coded units].
+    center : int
+        ``ccd``: centre points added with the star points.
+    fold : list of str or None
+        ``foldover``: names or letters of the factors whose signs are reversed (default all).
+    new_block : bool
+        Put the added runs in a new block.
+    constraints : str, list or Constraints
+        ``optimal``: every added run satisfies them.
+    seed, starts, randomize
+        Search starts and run order of the added runs.
+    """
+    if not isinstance(design, Design):
+        raise TypeError("design must be a Design (read one with rsm_lrg.design.read_design)")
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)} (got {method!r})")
+    space = design.factors
+    n0 = design.n_runs
+    order0 = np.argsort(design.run_order, kind="stable")
+    old = design.coded_runs[order0]  # run order
+    num = space.numeric_index
+    rng, used = resolve_seed(seed)
+    options: dict = {"original_runs": n0, "method": method}
+    if method == "optimal":
+        from ..terms import model_terms, n_columns
+        from .constraints import Constraints
+        from .optimal import _criterion, _pool, _Problem, criterion_value, moment_matrix
+
+        crit = _criterion(criterion)
+        terms = model_terms(space.letters, model, space.categoric or None)
+        p = n_columns(terms)
+        if runs is None:
+            runs = max(p - n0, 4, p // 2)
+        if isinstance(runs, (bool, np.bool_)) or int(runs) != runs or runs < 1:
+            raise ValueError(f"runs to add must be a whole number >= 1 (got {runs!r})")
+        runs = int(runs)
+        if n0 + runs < p:
+            raise ValueError(f"{n0} runs + {runs} added cannot fit the {model} model's {p} terms; add at least "
+                             f"{p - n0} runs")
+        if constraints is not None and not isinstance(constraints, Constraints):
+            constraints = Constraints.parse(constraints, space)
+        W = moment_matrix(space, terms, constraints) if crit == "I" else None
+        prob = _Problem(space, terms, crit, W, constraints, _pool(space, constraints, seed=int(rng.integers(2 ** 31))))
+        nstarts = starts or (8 if p <= 21 else 3)
+        best, best_v = None, np.inf
+        plan = ["greedy"] + ["coarse"] * nstarts + ["continuous"] * nstarts
+        for how in plan:
+            if how == "greedy":
+                new0 = prob.greedy_start(runs, fixed=old)
+            else:
+                new0 = prob.random_start(runs, rng, grid=how == "coarse")
+            D, v = prob.improve(np.vstack([old, new0]), fixed=n0, coarse=how != "continuous")
+            if best is None or v < best_v:
+                best, best_v = D, v
+        best, _ = prob.improve(best, fixed=n0, polish=True)
+        new = best[n0:]
+        options.update(criterion=crit, model=model, model_terms=p,
+                       criterion_value=criterion_value(best, terms, crit, W),
+                       constraints=[] if constraints is None else constraints.expressions)
+    elif method == "ccd":
+        from .composite import ccd_alpha
+
+        kn = len(num)
+        if kn < 2:
+            raise ValueError("a central composite design needs at least two numeric factors")
+        c = old[:, num]
+        fact = np.all(np.isin(c, (-1.0, 1.0)), axis=1)
+        if not np.all(fact | np.all(c == 0.0, axis=1)):
+            raise ValueError("the design is not a two-level factorial with centre points (a run has a numeric "
+                             "setting other than -1, 0 or +1); use method='optimal'")
+        if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
+            raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
+        F = int(fact.sum())
+        a = float(alpha) if isinstance(alpha, (int, float)) else None
+        if a is None:
+            if str(alpha).lower() in ("rotatable", "r"):
+                a = F ** 0.25
+            else:
+                a = ccd_alpha(kn, alpha, (int(np.sum(~fact)), int(center)), new_block)
+        if not (np.isfinite(a) and a > 0):
+            raise ValueError(f"alpha must be a finite number > 0 (got {alpha!r})")
+        base = old[0].copy()
+        base[num] = 0.0
+        star = []
+        for j in num:
+            for sgn in (-1.0, 1.0):
+                r = base.copy()
+                r[j] = sgn * a
+                star.append(r)
+        star += [base.copy() for _ in range(int(center))]
+        new = np.array(star)
+        options.update(alpha=a, center_added=int(center), factorial_runs=F)
+    else:
+        cols = list(num)
+        if fold:
+            cols = []
+            for name in fold:
+                try:
+                    f = space[name]
+                except KeyError:
+                    raise ValueError(f"fold: {name!r} is not a factor of the design") from None
+                if f.kind != "numeric":
+                    raise ValueError(f"fold: {name!r} is categoric; only numeric factors are folded")
+                cols.append(space.factors.index(f))
+        keep = ~np.all(old[:, num] == 0.0, axis=1)
+        new = old[keep].copy()
+        new[:, cols] = -new[:, cols]
+        new = new + 0.0
+        options.update(fold=[space.factors[j].letter for j in cols])
+    if not len(new):
+        raise ValueError("nothing to add")
+    n_new = len(new)
+    coded = np.vstack([old, new])
+    std = np.concatenate([design.std_order[order0], np.arange(n0 + 1, n0 + n_new + 1)])
+    perm = rng.permutation(n_new) if randomize else np.arange(n_new)
+    run_new = np.empty(n_new, dtype=int)
+    run_new[perm] = np.arange(n0 + 1, n0 + n_new + 1)
+    run = np.concatenate([np.arange(1, n0 + 1), run_new])
+    blocks = None
+    if new_block or design.blocks is not None:
+        b0 = design.blocks[order0] if design.blocks is not None else np.ones(n0, dtype=int)
+        bn = int(b0.max()) + 1 if new_block else int(b0.max())
+        blocks = np.concatenate([b0, np.full(n_new, bn)])
+    options.update(seed=used, randomize=bool(randomize), new_block=bool(new_block))
+    return Design(space, "augmented", coded, std, run, blocks, options)
