@@ -45,11 +45,53 @@ def make(n: int, k: int, seed: int = 0):
     return df
 
 
-def _child(what: str, n: int, k: int) -> dict:
+class _PeakRSS:
+    """Peak resident memory [bytes] of this process while the ``with`` block runs, above
+    its resident memory at entry (sampled every 2 ms from /proc/self/statm; it sees what
+    ``tracemalloc`` does not: LAPACK work arrays that NumPy allocates with ``malloc``)."""
+
+    def __enter__(self):
+        import os
+        import threading
+
+        self._page = os.sysconf("SC_PAGE_SIZE")
+        self.base = self._rss()
+        self.peak = self.base
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._poll, daemon=True)
+        self._thread.start()
+        return self
+
+    def _rss(self) -> int:
+        with open("/proc/self/statm") as fh:
+            return int(fh.read().split()[1]) * self._page
+
+    def _poll(self):
+        while not self._stop.wait(0.002):
+            self.peak = max(self.peak, self._rss())
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        self._thread.join()
+        self.peak = max(self.peak, self._rss())
+        self.above = self.peak - self.base
+        return False
+
+
+def _terms_api():
+    try:
+        from rsm_lrg.terms import design_matrix, model_terms
+    except ImportError:  # before the terms moved to the base layer
+        from rsm_lrg.model.terms import design_matrix, model_terms
+    return design_matrix, model_terms
+
+
+def _child(what: str, n: int, k: int, chunk_rows: int | None = None) -> dict:
     import tracemalloc
 
     import rsm_lrg
-    from rsm_lrg.model.terms import design_matrix, model_terms
+
+    design_matrix, model_terms = _terms_api()
 
     df = make(n, k)
     specs = [f"x{i}=-1:1" for i in range(k)]
@@ -62,27 +104,31 @@ def _child(what: str, n: int, k: int) -> dict:
         t0, c0 = time.perf_counter(), time.process_time()
         qr(X, mode="r")
         return {"qr_s": time.perf_counter() - t0, "qr_cpu": time.process_time() - c0, "x_bytes": nbytes}
+    kw = {"chunk_rows": chunk_rows} if chunk_rows else {}
     rsm_lrg.fit(make(200, 3), "y")  # warm-up: imports
-    t0, c0 = time.perf_counter(), time.process_time()
-    r = rsm_lrg.fit(df, "y", factors=specs)
-    t_fit, c_fit = time.perf_counter() - t0, time.process_time() - c0
+    with _PeakRSS() as rss:
+        t0, c0 = time.perf_counter(), time.process_time()
+        r = rsm_lrg.fit(df, "y", factors=specs, **kw)
+        t_fit, c_fit = time.perf_counter() - t0, time.process_time() - c0
     assert np.isfinite(r.statistics.press) and r.pure_error is not None
     del r
     tracemalloc.start()
-    r = rsm_lrg.fit(df, "y", factors=specs)
+    r = rsm_lrg.fit(df, "y", factors=specs, **kw)
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
-    return {"fit_s": t_fit, "fit_cpu": c_fit, "peak_bytes": peak, "x_bytes": nbytes, "r2": r.statistics.r2}
+    return {"fit_s": t_fit, "fit_cpu": c_fit, "peak_bytes": peak, "rss_bytes": rss.above, "x_bytes": nbytes,
+            "r2": r.statistics.r2}
 
 
-def _run(what: str, n: int, k: int, threads: int | None = None) -> dict:
+def _run(what: str, n: int, k: int, threads: int | None = None, chunk_rows: int | None = None) -> dict:
     import os
 
     env = dict(os.environ)
     if threads:
         for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
             env[var] = str(threads)
-    out = subprocess.run([sys.executable, __file__, "--child", what, "--n", str(n), "--k", str(k)],
+    extra = ["--chunk-rows", str(chunk_rows)] if chunk_rows else []
+    out = subprocess.run([sys.executable, __file__, "--child", what, "--n", str(n), "--k", str(k), *extra],
                          capture_output=True, text=True, check=True, env=env)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
@@ -111,9 +157,14 @@ def _dask(n: int, k: int, partitions: int, workers: int, memory_limit: str) -> N
 
 
 def main() -> None:
+    import statistics
+
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=float, nargs="+", default=[1e6])
     ap.add_argument("--k", type=int, nargs="+", default=[10])
+    ap.add_argument("--repeat", type=int, default=1,
+                    help="rounds, QR and fit alternating; medians and the median of per-round ratios are printed")
+    ap.add_argument("--chunk-rows", type=int, default=None, help="rows per chunk of the fit (default: the core's)")
     ap.add_argument("--dask", type=float, default=None, metavar="N", help="fit N runs on a LocalCluster instead")
     ap.add_argument("--partitions", type=int, default=16)
     ap.add_argument("--workers", type=int, default=2)
@@ -126,19 +177,32 @@ def main() -> None:
         _dask(int(args.dask), args.k[0], args.partitions, args.workers, args.memory_limit)
         return
     if args.child:
-        print(json.dumps(_child(args.child, int(args.n[0]), args.k[0])))
+        print(json.dumps(_child(args.child, int(args.n[0]), args.k[0], args.chunk_rows)))
         return
-    print("wall and CPU (process, all threads) seconds; the CPU ratio is the steadier one on a shared machine")
+    import os
+
+    print(f"wall and CPU (process, all threads) seconds, BLAS threads {args.threads or 'default'}, "
+          f"{os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}; {args.repeat} round(s), medians. "
+          "peak: tracemalloc (Python/NumPy allocations); rss: resident memory above the start of the fit")
     print(f"{'n':>9} {'k':>3} {'terms':>5} {'X [MB]':>8} {'QR [s]':>8} {'fit [s]':>8} {'fit/QR':>7} "
-          f"{'QR cpu':>7} {'fit cpu':>7} {'cpu/cpu':>7} {'peak [MB]':>10} {'peak/X':>7}")
+          f"{'QR cpu':>7} {'fit cpu':>7} {'cpu/cpu':>7} {'peak [MB]':>10} {'peak/X':>7} {'rss/X':>6}")
+    med = statistics.median
     for n in (int(v) for v in args.n):
         for k in args.k:
-            q = _run("qr", n, k, args.threads)
-            f = _run("fit", n, k, args.threads)
+            qs, fs = [], []
+            for _ in range(args.repeat):
+                qs.append(_run("qr", n, k, args.threads))
+                fs.append(_run("fit", n, k, args.threads, args.chunk_rows))
             p = (k + 1) * (k + 2) // 2
-            print(f"{n:>9} {k:>3} {p:>5} {q['x_bytes'] / 1e6:>8.1f} {q['qr_s']:>8.2f} {f['fit_s']:>8.2f} "
-                  f"{f['fit_s'] / q['qr_s']:>7.2f} {q['qr_cpu']:>7.2f} {f['fit_cpu']:>7.2f} "
-                  f"{f['fit_cpu'] / q['qr_cpu']:>7.2f} {f['peak_bytes'] / 1e6:>10.1f} {f['peak_bytes'] / q['x_bytes']:>7.2f}",
+            xb = qs[0]["x_bytes"]
+            wall = med(f["fit_s"] / q["qr_s"] for q, f in zip(qs, fs))
+            cpu = med(f["fit_cpu"] / q["qr_cpu"] for q, f in zip(qs, fs))
+            spread = (f" (per-round fit/QR {min(f['fit_s'] / q['qr_s'] for q, f in zip(qs, fs)):.2f}"
+                      f"-{max(f['fit_s'] / q['qr_s'] for q, f in zip(qs, fs)):.2f})") if args.repeat > 1 else ""
+            print(f"{n:>9} {k:>3} {p:>5} {xb / 1e6:>8.1f} {med(q['qr_s'] for q in qs):>8.2f} "
+                  f"{med(f['fit_s'] for f in fs):>8.2f} {wall:>7.2f} {med(q['qr_cpu'] for q in qs):>7.2f} "
+                  f"{med(f['fit_cpu'] for f in fs):>7.2f} {cpu:>7.2f} {med(f['peak_bytes'] for f in fs) / 1e6:>10.1f} "
+                  f"{med(f['peak_bytes'] for f in fs) / xb:>7.2f} {med(f['rss_bytes'] for f in fs) / xb:>6.2f}{spread}",
                   flush=True)
 
 

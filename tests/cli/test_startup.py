@@ -10,8 +10,9 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-HEAVY = ("scipy", "statsmodels", "matplotlib", "dask", "pyarrow", "jinja2", "charset_normalizer",
-         "rsm_lrg.optimize", "rsm_lrg.report")
+# (pyarrow is not listed: pandas imports it by itself whenever it is installed)
+HEAVY = ("scipy", "statsmodels", "matplotlib", "dask", "jinja2", "charset_normalizer", "rsm_lrg.optimize",
+         "rsm_lrg.report")
 THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
 
 

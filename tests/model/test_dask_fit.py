@@ -93,3 +93,46 @@ def test_fit_command_reads_a_directory_or_glob_of_csv_files(tmp_path, capsys):
             assert out["coefficients"]["coded"][k] == pytest.approx(v, rel=1e-10, abs=1e-10 * abs(ref["Intercept"]))
     assert main(["fit", str(tmp_path), "--response", "y", "--reduce"]) == 2
     assert "--reduce is not available when fitting several files" in capsys.readouterr().err
+
+
+@pytest.mark.cluster
+@pytest.mark.slow
+def test_dask_fit_of_parquet_files_on_worker_processes(tmp_path):
+    # worker processes (everything a partition needs is pickled to them), bounded memory per
+    # worker, partitions read from Parquet files (pyarrow) on the workers: equals the pandas fit
+    distributed = pytest.importorskip("distributed")
+    pytest.importorskip("pyarrow")
+    df = _data(4000, 3, seed=3)
+    for i in range(4):
+        df.iloc[1000 * i:1000 * (i + 1)].to_parquet(tmp_path / f"part{i}.parquet", index=False)
+    ref = rsm_lrg.fit(df, "y")
+    with distributed.LocalCluster(processes=True, n_workers=2, threads_per_worker=1, memory_limit="600MB",
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        assert len(client.scheduler_info()["workers"]) == 2
+        ddf = dd.read_parquet(sorted(str(p) for p in tmp_path.glob("*.parquet")))
+        assert ddf.npartitions == 4
+        got = rsm_lrg.fit(ddf, "y", chunk_rows=300)
+    _same_fit(got, ref)
+    assert got.n == 3999 and got.hat is None
+
+
+def test_fit_command_reads_a_directory_of_parquet_files(tmp_path, capsys):
+    import json
+
+    from rsm_lrg.cli import main
+
+    pytest.importorskip("pyarrow")
+    df = _data(900, 2, seed=5)
+    for i in range(3):
+        df.iloc[300 * i:300 * (i + 1)].to_parquet(tmp_path / f"part{i}.parquet", index=False)
+    one = tmp_path / "one.csv"
+    df.to_csv(one, index=False)
+    assert main(["fit", str(one), "--response", "y", "--json", "-"]) == 0
+    ref = json.loads(capsys.readouterr().out)
+    assert main(["fit", str(tmp_path / "*.parquet"), "--response", "y", "--json", "-"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert got["n"] == ref["n"] == 899
+    for k, v in ref["coefficients"]["coded"].items():
+        assert got["coefficients"]["coded"][k] == pytest.approx(v, rel=1e-10, abs=1e-10 * abs(ref["coefficients"]["coded"]["Intercept"]))
+    assert main(["fit", str(tmp_path), "--response", "y"]) == 2  # CSV and Parquet files together: refused
+    assert "holds both CSV and Parquet files" in capsys.readouterr().err
