@@ -85,7 +85,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     ds = sub.add_parser("definitive-screening", help="definitive screening design (Jones & Nachtsheim 2011)",
                         description="Three-level definitive screening design from an exact conference matrix.")
     _base(ds)
-    ds.add_argument("--center", type=whole_number(0), default=1, metavar="N", help="centre runs (default 1)")
+    ds.add_argument("--center", type=whole_number(0), default=None, metavar="N",
+                    help="centre runs (default 1; 2 with two-level categoric factors, one at each level)")
     fr = sub.add_parser("fractional-factorial", help="two-level fractional factorial (by resolution or generators)",
                         description="Two-level fractional factorial; the alias structure is printed.")
     _base(fr)

@@ -149,15 +149,19 @@ def conference_order(m: int) -> int:
                 raise
 
 
-def definitive_screening(factors: Any, center: int = 1, seed: Any = None, randomize: bool = True) -> Design:
-    """Definitive screening design (Jones & Nachtsheim 2011) for 4 or more numeric factors.
+def definitive_screening(factors: Any, center: int | None = None, seed: Any = None, randomize: bool = True) -> Design:
+    """Definitive screening design (Jones & Nachtsheim 2011) for 4 or more factors.
 
     Parameters
     ----------
     factors : FactorSpace, mapping or list
-        Numeric factors (categoric ones are not taken here).
-    center : int, default 1
-        Centre runs (the published design has one).
+        Numeric factors, and optionally two-level categoric factors (the extension of
+        Jones & Nachtsheim 2013, *JQT* 45(2), 121-129: a categoric factor takes a column
+        of the conference matrix with its zero replaced by +1 in ``C`` and -1 in ``-C``,
+        so the fold-over pairs stay; the centre runs alternate its two levels).
+    center : int or None
+        Centre runs (numeric factors at 0). Default 1 (the published design), 2 with
+        categoric factors (one at each level).
     seed, randomize
         Run order, as for the other designs.
 
@@ -172,19 +176,33 @@ def definitive_screening(factors: Any, center: int = 1, seed: Any = None, random
     (13, [-1.0, 0.0, 1.0])
     """
     space = as_factor_space(factors)
-    if space.has_categoric:
-        raise ValueError("a definitive screening design here takes numeric factors only")
+    _, mn = numeric_part(space)
+    cats = [f for f in space.factors if f.kind == "categoric"]
+    bad = [f.name for f in cats if f.n_levels != 2]
+    if bad:
+        raise ValueError(f"a definitive screening design takes two-level categoric factors only ({bad[0]!r} has "
+                         "more levels)")
     m = len(space)
     if not 4 <= m <= MAX_DSD_FACTORS:
         raise ValueError(f"a definitive screening design needs 4 to {MAX_DSD_FACTORS} factors (got {m})")
+    if center is None:
+        center = 2 if cats else 1
     if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
         raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
+    center = int(center)
     n = conference_order(m)
     C = conference_matrix(n)[:, :m].astype(float)
-    coded = np.vstack([C, -C, np.zeros((int(center), m))])
-    options = {"conference_order": n, "center": int(center), "columns_dropped": n - m,
-               "source": "Jones & Nachtsheim (2011), JQT 43(1):1-15; conference matrix by Paley (1933) "
-                         "or doubling"}
+    top, bottom = C.copy(), -C
+    for j in range(mn, m):  # categoric columns: the zero becomes +1 / -1, levels coded 0 / 1
+        top[j, j], bottom[j, j] = 1.0, -1.0
+    mid = np.zeros((center, m))
+    for r in range(center):
+        mid[r, mn:] = 1.0 if r % 2 == 0 else -1.0
+    coded = np.vstack([top, bottom, mid])
+    coded[:, mn:] = (coded[:, mn:] + 1.0) / 2.0  # -1 -> first level, +1 -> second
+    options = {"conference_order": n, "center": center, "columns_dropped": n - m, "categoric": len(cats),
+               "source": "Jones & Nachtsheim (2011), JQT 43(1):1-15; categoric: Jones & Nachtsheim (2013), "
+                         "JQT 45(2):121-129; conference matrix by Paley (1933) or doubling"}
     return Design.from_standard(space, "definitive-screening", coded, seed=seed, randomize=randomize,
                                 options=options)
 

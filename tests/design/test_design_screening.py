@@ -81,3 +81,21 @@ def test_plackett_burman_orthogonal():
     d = plackett_burman([f"x{i}=0:1" for i in range(11)], randomize=False)
     X = d.coded_runs
     assert d.n_runs == 12 and np.array_equal(X.T @ X, 12 * np.eye(11))
+
+
+def test_definitive_screening_with_two_level_categoric_factors():
+    # Jones & Nachtsheim (2013), JQT 45(2): numeric mains still orthogonal to each other and
+    # every main effect (categoric as -1/+1) orthogonal to 2FIs and numeric squares
+    d = definitive_screening([f"x{i}=0:1" for i in range(6)] + ["g=cat:p,q", "h=cat:u,v"], randomize=False)
+    assert d.n_runs == 2 * 8 + 2
+    X = d.coded_runs.copy()
+    X[:, 6:] = 2 * X[:, 6:] - 1
+    assert set(X[:, 6].tolist()) == {-1.0, 1.0}
+    num = X[:, :6]
+    G = num.T @ num
+    assert np.array_equal(G, np.diag(np.diag(G)))
+    for j in range(8):
+        others = [X[:, a] * X[:, b] for a, b in itertools.combinations(range(8), 2)]
+        others += [X[:, a] ** 2 for a in range(6)]
+        assert all(float(X[:, j] @ o) == 0.0 for o in others)
+    assert sorted(d.to_frame()["g"].value_counts().tolist()) == [9, 9]
