@@ -377,3 +377,39 @@ def test_notebook_profiler_runs_in_its_frame(chromium, tmp_path):
         ctx.close()
     saved = prof.save(tmp_path / "p.html")
     assert saved.read_text(encoding="utf-8") == prof.html
+
+
+def readme_screenshot(out: str) -> None:
+    """The README's picture: the profiler of the showcase report (Table 4 κ and the
+    surrogate's wear, ``rsm-lrg report ... --response tcr_c_per_min --response
+    wear_volume_m3_per_h --reduce``) at velocity 0.45 m/s with the long stroke (0.06 m).
+    Run ``python tests/browser/test_interactive_report.py docs/profiler.png``."""
+    import tempfile
+    from pathlib import Path
+
+    from conftest import CHROMIUM, CHROMIUM_ARGS
+    from playwright.sync_api import sync_playwright
+
+    from rsm_lrg.cli import main
+
+    with tempfile.TemporaryDirectory() as d:
+        src, page_path = Path(d) / "table4_wear.csv", Path(d) / "report.html"
+        table4_with_wear().to_csv(src, index=False)
+        assert main(["report", str(src), "--response", "tcr_c_per_min", "--response", "wear_volume_m3_per_h",
+                     "--reduce", "-o", str(page_path)]) == 0
+        with sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS, headless=True)
+            page = browser.new_page(viewport={"width": 1280, "height": 900})
+            page.goto(page_path.as_uri(), wait_until="load")
+            for name, v in (("velocity_m_s", "0.45"), ("stroke_m", "0.06")):
+                page.evaluate(SET, [name, v, "input"])
+            page.evaluate("() => window.rsmReport.drawNow()")
+            page.wait_for_timeout(500)
+            page.query_selector("#profiler").screenshot(path=out)
+            browser.close()
+
+
+if __name__ == "__main__":
+    import sys
+
+    readme_screenshot(sys.argv[1] if len(sys.argv) > 1 else "docs/profiler.png")

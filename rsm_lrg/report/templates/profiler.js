@@ -17,8 +17,13 @@
     if (x === 0) return "0";
     var a = Math.abs(x);
     if (a >= 1e-4 && a < 1e5) return String(Number(x.toPrecision(sig || 4)));
-    return x.toExponential((sig || 4) - 1).replace("e", " \u00d7 10^");
+    var parts = x.toExponential((sig || 4) - 1).split("e");
+    var sup = {"-": "\u207b", "+": "", "0": "\u2070", "1": "\u00b9", "2": "\u00b2", "3": "\u00b3", "4": "\u2074",
+               "5": "\u2075", "6": "\u2076", "7": "\u2077", "8": "\u2078", "9": "\u2079"};
+    return String(Number(parts[0])) + " \u00d7 10" + parts[1].split("").map(function (ch) { return sup[ch]; }).join("");
   }
+  var AX = {exponentformat: "power", automargin: true};
+  function axis(title) { return Object.assign({title: {text: title}}, AX); }
 
   // -- the model --------------------------------------------------------------------------
   function encode(f, x, decimals) {
@@ -152,7 +157,7 @@
     var el = document.getElementById("profile-plot");
     if (!el) return;
     var R = MODELS.length, K = CONTROLS.length, traces = [], layout = {
-      grid: {rows: R, columns: K, pattern: "independent", xgap: 0.12, ygap: 0.18},
+      grid: {rows: R, columns: K, pattern: "independent", xgap: 0.2, ygap: 0.2},
       showlegend: false, margin: {l: 60, r: 10, t: 20, b: 50}, height: Math.max(300, 220 * R + 60), shapes: []};
     MODELS.forEach(function (m, r) {
       CONTROLS.forEach(function (c, k) {
@@ -185,8 +190,8 @@
                               y0: 0, y1: 1, line: {color: "#a11d1d", width: 1, dash: "dot"}});
         }
         var ax = n === 1 ? "" : n;
-        layout["xaxis" + ax] = {title: {text: r === R - 1 ? esc(c.letter + ": " + c.name) : ""}, automargin: true};
-        layout["yaxis" + ax] = {title: {text: k === 0 ? esc(m.response) : ""}, automargin: true};
+        layout["xaxis" + ax] = axis(r === R - 1 ? esc(c.letter + ": " + c.name) : "");
+        layout["yaxis" + ax] = axis(k === 0 ? esc(m.response) : "");
       });
     });
     Plotly.react(el, traces, layout, CONFIG);
@@ -262,8 +267,8 @@
       GRID + " grid. The current setting is " + (inside(s) ? "inside." : "outside.");
     Plotly.react(el, traces, {margin: {l: 70, r: 20, t: 20, b: 60}, showlegend: true,
                               legend: {orientation: "h", y: -0.18},
-                              xaxis: {title: {text: esc(g.fx.letter + ": " + g.fx.name)}},
-                              yaxis: {title: {text: esc(g.fy.letter + ": " + g.fy.name)}}}, CONFIG);
+                              xaxis: axis(esc(g.fx.letter + ": " + g.fx.name)),
+                              yaxis: axis(esc(g.fy.letter + ": " + g.fy.name))}, CONFIG);
   }
 
   function drawSurface(s) {
@@ -284,29 +289,55 @@
       {type: "scatter3d", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], z: [cur], marker: {size: 5, color: "#a11d1d"},
        name: "current setting"}],
       {margin: {l: 0, r: 0, t: 10, b: 0}, showlegend: false, uirevision: "keep",
-       scene: {aspectmode: "cube", xaxis: {title: {text: xl}}, yaxis: {title: {text: yl}}, zaxis: {title: {text: zl}},
+       scene: {aspectmode: "cube", xaxis: axis(xl), yaxis: axis(yl), zaxis: axis(zl),
                camera: keepCamera || undefined}}, CONFIG);
     Plotly.react(el2, [
-      {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true}, colorbar: {title: {text: zl}}},
+      {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true}, colorbar: {title: {text: zl}, exponentformat: "power"}},
       {type: "scatter", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], marker: {size: 10, color: "#a11d1d"},
        name: "current setting"}],
       {margin: {l: 70, r: 20, t: 20, b: 60}, showlegend: false, uirevision: "keep",
-       xaxis: {title: {text: xl}}, yaxis: {title: {text: yl}}}, CONFIG);
+       xaxis: axis(xl), yaxis: axis(yl)}, CONFIG);
   }
 
+  /* a figure is redrawn when it is on screen (or comes on screen) and out of date */
+  var FIGS = {"profile-plot": drawProfiles, "overlay-plot": drawOverlay, "surface-plot": drawSurface};
+  var onScreen = {}, stale = {};
   var pending = false;
-  function drawAll() {
+  function drawFig(id, s) {
+    stale[id] = false;
+    try { FIGS[id](s); } catch (e) { console.error(e); }
+  }
+  function drawAll() {  /* every figure, now */
     pending = false;
     if (!hasPlotly) return;
     var s = setting();
-    try { drawProfiles(s); drawOverlay(s); drawSurface(s); }
-    catch (e) { console.error(e); }
+    Object.keys(FIGS).forEach(function (id) { drawFig(id, s); });
+  }
+  function drawVisible() {
+    pending = false;
+    if (!hasPlotly) return;
+    var s = setting();
+    Object.keys(FIGS).forEach(function (id) {
+      if (onScreen[id] || !("IntersectionObserver" in window)) drawFig(id, s);
+    });
   }
   function schedule() {
+    Object.keys(FIGS).forEach(function (id) { stale[id] = true; });
     if (pending) return;
     pending = true;
-    window.requestAnimationFrame(drawAll);
+    window.requestAnimationFrame(drawVisible);
   }
+  if ("IntersectionObserver" in window) {
+    var io = new IntersectionObserver(function (entries) {
+      entries.forEach(function (en) {
+        var id = en.target.id;  /* the contour sits beside the surface and is drawn with it */
+        onScreen[id] = en.isIntersecting;
+        if (en.isIntersecting && stale[id] && hasPlotly) drawFig(id, setting());
+      });
+    });
+    Object.keys(FIGS).forEach(function (id) { var el = document.getElementById(id); if (el) io.observe(el); });
+  }
+  window.addEventListener("beforeprint", drawAll);
   function update() {
     var s = setting();
     CONTROLS.forEach(function (c) { if (txt[c.name] && document.activeElement !== txt[c.name]) txt[c.name].value = String(s[c.name]); });
