@@ -310,21 +310,22 @@ def test_markup_in_column_names_is_inert(xss_page):
 
 @pytest.fixture(scope="module")
 def categoric_page(chromium, tmp_path_factory):
-    """Four numeric factors and the stage (categoric, two levels), two responses: the wear of
-    the surrogate at each run's stage, and Table 4's κ."""
+    """Four numeric factors and the stage (categoric, two levels), two responses: Table 4's κ
+    and the surrogate's wear at each run's stage, fitted on the log scale."""
     df = rsm_lrg.load_table4()
     df["stage"] = np.random.default_rng(7).choice(["rfcms", "rms"], len(df))
     df["wear_volume_m3_per_h"] = rsm_lrg.simulate(df[FACTORS + ["stage"]], seed=1)["wear_volume_m3_per_h"].to_numpy()
     factors = FACTORS + ["stage"]
     fits = {"tcr_c_per_min": rsm_lrg.fit(df, "tcr_c_per_min", factors=factors, model="2fi"),
-            "wear_volume_m3_per_h": rsm_lrg.fit(df, "wear_volume_m3_per_h", factors=factors)}
+            # a transformed response: the page back-transforms as TransformedFit.predict does
+            "wear_volume_m3_per_h": rsm_lrg.fit_transformed(df, "wear_volume_m3_per_h", "log", factors=factors)}
     path = write_interactive_report(fits, tmp_path_factory.mktemp("cat") / "cat.html", tables=False)
     ctx, page, log, url = open_page(chromium, path)
     yield page, log, url, fits
     ctx.close()
 
 
-def test_categoric_factor_has_a_level_picker_and_equals_python(categoric_page):
+def test_categoric_factor_and_transformed_response_equal_python(categoric_page):
     page, log, url, fits = categoric_page
     kinds = page.evaluate("() => Array.from(document.querySelectorAll('[data-factor]')).map(e => [e.dataset.factor, "
                           "e.tagName, Array.from(e.options || []).map(o => o.value)])")

@@ -158,3 +158,18 @@ def test_cli_two_responses_with_their_own_options(tmp_path, capsys):
     # a bad --limits is named before any work
     rc = main(["report", str(src), "--response", "tcr_c_per_min", "--limits", "x", "-o", str(tmp_path / "x.html")])
     assert rc == 2 and "--limits" in capsys.readouterr().err
+
+
+def test_model_data_of_a_blocked_fit_predicts_the_average_block():
+    """With blocks, the page's b and C leave the block columns out (as predict does)."""
+    df = data()
+    df["day"] = np.where(np.arange(len(df)) < 14, "one", "two")
+    f = rsm_lrg.fit(df, "tcr_c_per_min", factors=FACTORS, block="day")
+    m = model_data(f)
+    assert len(m["b"]) == len(f.terms) == 15 and np.array(m["C"]).shape == (15, 15)
+    x = np.random.default_rng(1).uniform(-1, 1, (4, 4))
+    X = design_matrix(x, f.terms)
+    ref = f.predict(x, coded=True, interval="both")
+    q = np.einsum("ij,jk,ik->i", X, np.array(m["C"]), X)
+    np.testing.assert_allclose(X @ np.array(m["b"]), ref["predicted"], rtol=1e-13)
+    np.testing.assert_allclose(X @ np.array(m["b"]) - m["t"] * np.sqrt(q * m["sigma2"]), ref["ci_low"], rtol=1e-12)
