@@ -259,7 +259,7 @@ def test_no_network_no_console_error(page2):
         ["application/json", "js", "js"]
 
 
-XSS = ["<script>alert(1)</script>", "<img src=x onerror=alert(2)>", "\"><svg onload=alert(3)>", "<b>d</b>&amp;"]
+XSS = ["<script>alert(1)</script>", "<img src=x onerror=alert(2)>", "\"><svg onload=alert(3)>", "<b>d</b>&amp;\\\"]"]
 
 
 @pytest.fixture(scope="module")

@@ -197,14 +197,16 @@
     Plotly.react(el, traces, layout, CONFIG);
   }
 
+  var LIM = {};  /* response -> [low input, high input], matched by the attribute's value (no selector built from user text) */
+  document.querySelectorAll("[data-limit-low]").forEach(function (el) { (LIM[el.getAttribute("data-limit-low")] = LIM[el.getAttribute("data-limit-low")] || [])[0] = el; });
+  document.querySelectorAll("[data-limit-high]").forEach(function (el) { (LIM[el.getAttribute("data-limit-high")] = LIM[el.getAttribute("data-limit-high")] || [])[1] = el; });
   function limitsOf(m) {
-    var lo = document.querySelector('[data-limit-low="' + cssq(m.response) + '"]');
-    var hi = document.querySelector('[data-limit-high="' + cssq(m.response) + '"]');
+    var pair = LIM[m.response] || [];
+    var lo = pair[0], hi = pair[1];
     var a = lo && lo.value !== "" ? parseFloat(lo.value) : NaN;
     var b = hi && hi.value !== "" ? parseFloat(hi.value) : NaN;
     return [a, b];
   }
-  function cssq(s) { return String(s).replace(/\\/g, "\\\\").replace(/"/g, '\\"'); }
   function inside(s) {
     for (var i = 0; i < MODELS.length; i++) {
       var lim = limitsOf(MODELS[i]), y = predict(MODELS[i], s).predicted;
@@ -251,7 +253,7 @@
       [0, 1].forEach(function (e) {
         if (!isFinite(lim[e])) return;
         traces.push({type: "contour", x: g.x, y: g.y, z: g.zr[k], showscale: false, hoverinfo: "skip",
-                     contours: {coloring: "none", start: lim[e], end: lim[e], size: 1, showlabels: true},
+                     contours: {coloring: "none", start: lim[e], end: lim[e], size: 1, showlabels: true, labelformat: ".4~g"},
                      line: {color: COLORS[k % COLORS.length], width: 2, dash: e ? "solid" : "dash"},
                      name: esc(m.response + (e ? " high limit" : " low limit"))});
       });
@@ -292,7 +294,7 @@
        scene: {aspectmode: "cube", xaxis: axis(xl), yaxis: axis(yl), zaxis: axis(zl),
                camera: keepCamera || undefined}}, CONFIG);
     Plotly.react(el2, [
-      {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true}, colorbar: {title: {text: zl}, exponentformat: "power"}},
+      {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true, labelformat: ".4~g"}, colorbar: {title: {text: zl}, exponentformat: "power"}},
       {type: "scatter", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], marker: {size: 10, color: "#a11d1d"},
        name: "current setting"}],
       {margin: {l: 70, r: 20, t: 20, b: 60}, showlegend: false, uirevision: "keep",
