@@ -1,7 +1,8 @@
 """Issue 15: calibrate the two thickness mechanisms on Table 4 and compare them (not a test).
 
 Run: python docs/analysis/compare_thickness_mechanisms.py [OUTDIR] [MODEL ...] [--no-loo]
-Writes OUTDIR/calibration_<model>.toml for models v3 (leaf conduction) and v3-overconstraint,
+Writes OUTDIR/calibration_<model>.toml for models v4 (drive viscous friction through the leaves),
+v4-coulomb (its Coulomb friction), v3 (a constant drive heat) and v3-overconstraint,
 and prints R², leave-one-out R² and the parameters with standard errors; then what else each
 predicts at the Fig. 9 settings (RMS against RFCMS, v = 0.5 m/s, a = 10 m/s², 0.3 mm).
 A few minutes each on two cores.
@@ -43,7 +44,7 @@ def main(out="."):
     out = Path(out)
     t4 = load_table4()
     sha = file_sha256(data_path("table4.csv"))
-    for model in [a for a in sys.argv[2:] if not a.startswith("--")] or ("v3", "v3-overconstraint"):
+    for model in [a for a in sys.argv[2:] if not a.startswith("--")] or ("v4", "v4-coulomb", "v3", "v3-overconstraint"):
         t = time.time()
         loo = "--no-loo" not in sys.argv
         cal = calibrate(t4, "tcr_c_per_min", model=model, source="table4.csv", data_sha256=sha, loo=loo,

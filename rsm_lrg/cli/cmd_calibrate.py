@@ -9,13 +9,16 @@ from ._common import about_file, add_force, add_json
 NAME = "calibrate"
 HELP = "fit the surrogate's unknown parameters to measured runs"
 DESCRIPTION = (
-    "Fit at most three parameters the paper does not give (model v3, the default: the share of "
-    "the friction heat that enters the guide, the viscous friction of the block, and the drive's "
-    "heat conducted through the leaves; --model v3-overconstraint: the over-constraint misfit "
-    "instead of the drive heat; --model v2: the earlier calibration, small-deflection hinge with "
-    "the frame damping calibrated) "
+    "Fit at most three parameters the paper does not give (model v4, the default: the share of "
+    "the friction heat that enters the guide, the viscous friction of the block, and the viscous "
+    "friction of the drive element on the working stage, whose heat reaches the carriage through "
+    "the leaves; --model v4-coulomb: the drive element's Coulomb friction instead; --model v3: a "
+    "constant drive heat; --model v3-overconstraint: the over-constraint misfit instead of the "
+    "drive heat; --model v2: the earlier calibration, small-deflection hinge with the frame "
+    "damping calibrated, reproduced with data/calibration_v2.toml) "
     "by bounded least squares to the measured response of noise-free virtual runs; report R2, "
-    "RMSE, standard errors and leave-one-out cross-validation, and write them with the data's "
+    "RMSE, standard errors and leave-one-out cross-validation next to the paper's quadratic's "
+    "PRESS R2 (0.818), and write them with the data's "
     "name and SHA-256 to a TOML file that `rsm-lrg simulate --calibration PATH` reads "
     "(data/calibration.toml is the shipped default)."
 )
@@ -24,12 +27,14 @@ DESCRIPTION = (
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("data", metavar="DATA.csv", help="measured runs: the design columns and the response")
     p.add_argument("--response", required=True, metavar="COL", help="the measured column (e.g. tcr_c_per_min)")
-    p.add_argument("--model", default="v3", choices=("v3", "v3-overconstraint", "v2"),
-                   help="calibration model: the physics it fixes and its default parameters (default v3: "
-                        "elastic hinge with held ends, leaf-conduction thickness mechanism; v2 reproduces the "
-                        "earlier calibration)")
+    p.add_argument("--model", default="v4", choices=("v4", "v4-coulomb", "v3", "v3-overconstraint", "v2"),
+                   help="calibration model: the physics it fixes and its default parameters (default v4: "
+                        "elastic hinge with held ends, the drive's viscous friction heat conducted through the "
+                        "leaves; v2 reproduces the earlier calibration)")
     p.add_argument("--parameter", action="append", default=None, metavar="NAME",
-                   help="a parameter to calibrate (repeatable, at most 3; default: the model's -- v3: "
+                   help="a parameter to calibrate (repeatable, at most 3; default: the model's -- v4: "
+                        "heat_partition, viscous_friction_n_s_m, drive_viscous_n_s_m; v4-coulomb: "
+                        "drive_friction_n instead of drive_viscous_n_s_m; v3: "
                         "heat_partition, viscous_friction_n_s_m, drive_heat_w; v3-overconstraint: "
                         "overconstraint_misfit_m instead of drive_heat_w; v2: heat_partition, "
                         "viscous_friction_n_s_m, hinge_damping_ratio; also hinge_length_m, hinge_width_m, "

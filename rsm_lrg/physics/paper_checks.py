@@ -25,7 +25,7 @@ from . import convection, hinge
 from .params import LRGParams
 
 __all__ = ["ThermalCase", "thermal_cases", "RAIL_LENGTHS_M", "RAIL_BOUNDARIES", "WearReading", "wear_readings",
-           "PAPER_MAX_RISE_K", "PAPER_EQUILIBRIUM_H", "PAPER_WEAR_RATIO"]
+           "PAPER_MAX_RISE_K", "PAPER_EQUILIBRIUM_H", "PAPER_WEAR_RATIO", "RAIL_LENGTH_SOURCES"]
 
 #: Paper Section 3.1 (ANSYS): 29.038 °C at 25 °C ambient, the maximum steady rise [K].
 PAPER_MAX_RISE_K = 4.038
@@ -40,6 +40,15 @@ PAPER_WEAR_RATIO = 0.5893
 #: up to 75 mm of stroke, plus clearance); 0.4 m: the documented default (``rail_length_m``);
 #: 1.0 m: a long rail of a laboratory stage.
 RAIL_LENGTHS_M = (0.16, 0.28, 0.4, 1.0)
+
+#: Where each rail length of :data:`RAIL_LENGTHS_M` comes from (shown beside each case).
+RAIL_LENGTH_SOURCES = {
+    0.16: "THK's shortest standard SHS15 rail (standard lengths 160 + 60 k mm, THK General Catalog, SHS)",
+    0.28: "the least the rig needs: two 64.4 mm blocks on one rail (Section 4.1), each with up to 75 mm of "
+          "stroke, plus clearance",
+    0.4: "the documented default rail_length_m (data/lrg_shs15v.toml), a standard cut length",
+    1.0: "a long rail of a laboratory stage",
+}
 
 #: Rail boundary underneath: (label, h of the rail's bottom face [W/(m² K)], source).
 RAIL_BOUNDARIES = (

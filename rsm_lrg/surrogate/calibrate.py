@@ -29,6 +29,7 @@ __all__ = [
     "Calibration", "calibrate", "load_calibration", "resolve_calibration", "calibration_toml",
     "OTHER_PARAMETERS", "file_sha256", "documented_bounds", "MODELS", "CalibrationModel", "DEFAULT_MODEL",
     "PAPER_PRESS_R2",
+    "DRIVE_FRICTION", "DRIVE_VISCOUS",
 ]
 
 #: The paper's quadratic (Eq. 19) predicts unseen runs with R² 0.818 (PRESS 2.079e-4 against
@@ -78,6 +79,23 @@ OVERCONSTRAINT = ParameterSpec(
     "misfit of the stage's and frame's clamping faces in the leaves' stiff in-plane direction; "
     "loads the guide through the leaves with n E y w^3/l^3 e (proportional to y), added to "
     "F0 + m_t g in the friction of Eqs. 2 and 8 (RFCMS only)")
+DRIVE_FRICTION = ParameterSpec(
+    "drive_friction_n", 0.0, 20.0, 1.0, "N",
+    "Coulomb friction force of the drive element fixed to the working stage (nut, coupling, "
+    "cable carrier): its heat F_d <|v|> (<|v|> = 2 s / T, the stage's mean speed) enters the "
+    "working stage, which loses it to the air (G_s) and conducts the rest through the leaves "
+    "(G = n lambda w y / l, proportional to y) into the carriage, P G/(G + G_s), behind the "
+    "stage's heat capacity (tau = m_ws c/(G + G_s)); the RMS's rigid joint passes all of it. "
+    "Upper bound 20 N: four times the guide's own breakaway force (Eq. 2, 5.2 N) -- a drive "
+    "dragging more would defeat the stage's fine positioning")
+DRIVE_VISCOUS = ParameterSpec(
+    "drive_viscous_n_s_m", 0.0, 30.0, 1.0, "N s/m",
+    "speed-proportional friction of the drive element fixed to the working stage (lubricated nut, "
+    "seal, or the eddy-current drag of a linear motor): its heat c_d <v^2> enters the working "
+    "stage, which loses it to the air (G_s) and conducts the rest through the leaves (G = n "
+    "lambda w y / l, proportional to y) into the carriage, P G/(G + G_s), behind the stage's heat "
+    "capacity (tau = m_ws c/(G + G_s)); the RMS's rigid joint passes all of it. Bounds those of "
+    "the block's own viscous friction c_v")
 VISCOUS = DEFAULT_PARAMETERS[1]
 
 
@@ -105,10 +123,19 @@ MODELS = {
         "v3-overconstraint", (), (DEFAULT_PARAMETERS[0], VISCOUS, OVERCONSTRAINT),
         "elastic hinge with held ends and the thickness mechanism 'over-constraint' (a clamping "
         "misfit loads the guide through the leaves' stiff direction, stiffness ~ y)"),
+    "v4": CalibrationModel(
+        "v4", (), (DEFAULT_PARAMETERS[0], VISCOUS, DRIVE_VISCOUS),
+        "elastic hinge with held ends (frame damping fixed at 0.02) and the thickness mechanism "
+        "'drive friction through the leaves': the heat of the drive element's viscous friction, "
+        "c_d <v^2>, enters the working stage and reaches the carriage through the leaves "
+        "(conductance ~ y) behind the stage's heat capacity"),
+    "v4-coulomb": CalibrationModel(
+        "v4-coulomb", (), (DEFAULT_PARAMETERS[0], VISCOUS, DRIVE_FRICTION),
+        "as v4, with the drive element's Coulomb friction, F_d <|v|>, instead of its viscous friction"),
 }
 
 #: The model ``rsm-lrg calibrate`` uses by default.
-DEFAULT_MODEL = "v3"
+DEFAULT_MODEL = "v4"
 
 #: Other parameters one may calibrate instead (``--parameter NAME``).
 OTHER_PARAMETERS = (
@@ -228,7 +255,8 @@ def _specs(parameters, model: str = DEFAULT_MODEL) -> tuple:
     if parameters is None:
         return MODELS[model].parameters
     out = []
-    by_name = {s.name: s for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS + (DRIVE_HEAT, OVERCONSTRAINT)}
+    by_name = {s.name: s for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS + (DRIVE_HEAT, OVERCONSTRAINT,
+                                                                             DRIVE_FRICTION, DRIVE_VISCOUS)}
     for p in parameters:
         if isinstance(p, ParameterSpec):
             out.append(p)
@@ -254,6 +282,8 @@ def _specs(parameters, model: str = DEFAULT_MODEL) -> tuple:
             plo, phi = PHYSICAL_RANGES[s.name]
         elif s.name == "heat_partition":
             plo, phi = 0.0, 1.0
+        elif s.name in ("drive_friction_n", "drive_viscous_n_s_m"):
+            plo, phi = 0.0, 1e4
         elif s.name not in param_names():
             raise ValueError(f"unknown calibration parameter {s.name!r}")
         else:
@@ -270,7 +300,7 @@ def _r2(obs, pred) -> float:
 
 
 #: Calibratable parameters that do not enter the stage dynamics (cheap to vary).
-_HEAT_ONLY = ("heat_partition", "drive_heat_w")
+_HEAT_ONLY = ("heat_partition", "drive_heat_w", "drive_friction_n", "drive_viscous_n_s_m")
 
 
 def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=None,
@@ -291,8 +321,10 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
         One to three parameters (default: those of ``model``).
     model : str
         A key of :data:`MODELS`: the physics it fixes (``v2``: the small-deflection hinge)
-        and its default parameters. ``v3`` (default): elastic hinge with held ends and the
-        leaf-conduction thickness mechanism; ``v3-overconstraint`` the other mechanism.
+        and its default parameters. ``v4`` (default): elastic hinge with held ends and the
+        heat of the drive's viscous friction conducted through the leaves; ``v4-coulomb`` its
+        Coulomb friction; ``v3`` a constant drive heat; ``v3-overconstraint`` the
+        over-constraint load instead.
     params : LRGParams, optional
         Base physical parameters.
     duration_min : float
@@ -528,7 +560,7 @@ def documented_bounds(name: str) -> tuple[float, float, str]:
     :data:`rsm_lrg.physics.params.PHYSICAL_RANGES` (``heat_partition``: (0, 1])."""
     from ..physics.params import PHYSICAL_RANGES
 
-    for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS + (DRIVE_HEAT, OVERCONSTRAINT):
+    for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS + (DRIVE_HEAT, OVERCONSTRAINT, DRIVE_FRICTION, DRIVE_VISCOUS):
         if s.name == name:
             return s.lower, s.upper, "documented in rsm_lrg.surrogate.calibrate"
     if name in PHYSICAL_RANGES:

@@ -172,6 +172,8 @@ def read_design_arrays(df, params=None) -> DesignArrays:
         columns[c] = _float_column(df, c)
     for c, (rule, bad) in {
         "heat_partition": ("must lie in (0, 1]", lambda x: (x <= 0) | (x > 1)),
+        "drive_friction_n": ("must lie in [0, 1e4] N", lambda x: ~((x >= 0) & (x <= 1e4))),
+        "drive_viscous_n_s_m": ("must lie in [0, 1e4] N s/m", lambda x: ~((x >= 0) & (x <= 1e4))),
     }.items():
         if c in columns and bad(columns[c]).any():
             raise _bad_row(c, df[c].tolist(), bad(columns[c]), rule)

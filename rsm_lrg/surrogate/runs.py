@@ -57,6 +57,12 @@ def check_duration(value, name: str = "duration_min") -> float:
 SURROGATE_PARAMETERS = {
     "heat_partition": (1.0, "1", "share of the friction heat (Eq. 8) that enters the guide; "
                                  "the rest leaves through the stage, the lubricant and the seals"),
+    "drive_friction_n": (0.0, "N", "Coulomb friction force of the drive element fixed to the working "
+                                   "stage (nut, coupling, cable carrier) whose heat F_d <|v|> enters the "
+                                   "working stage; conducted to the carriage like drive_heat_w"),
+    "drive_viscous_n_s_m": (0.0, "N s/m", "speed-proportional (viscous) friction of the drive element fixed to "
+                                          "the working stage, whose heat c_d <v^2> enters the working stage; "
+                                          "conducted to the carriage like drive_heat_w"),
 }
 
 #: Parameters that enter the convection coefficients (Eqs. 10-12).
@@ -112,6 +118,25 @@ def _rise_at(values: dict, dur: np.ndarray):
     return np.interp(dur, knots, hist), float(net.steady_rise_per_w)
 
 
+def _lagged_rise_at(values: dict, dur: np.ndarray, tau: np.ndarray, unit: np.ndarray, q: np.ndarray):
+    """Unit rise [K/W] at the durations ``dur`` [min] of a heat that arrives through the lag
+    ``tau`` [s] (the drive heat behind the working stage's heat capacity), read like
+    :func:`_rise_at` (linear between whole minutes); ``unit`` (the step's) where ``tau`` is
+    0 or no drive heat flows (nothing to compute)."""
+    out = np.array(unit, float)
+    need = (tau > 0) & (q != 0)
+    if not need.any():
+        return out
+    net = _network_cached(_thermal_items(values))
+    d, t = dur[need], tau[need]
+    lo, hi = np.floor(d), np.ceil(d)
+    r_lo = net.lagged_response(lo * 60.0, t)
+    r_hi = net.lagged_response(hi * 60.0, t)
+    w = np.where(hi > lo, d - lo, 0.0)
+    out[need] = r_lo + w * (r_hi - r_lo)
+    return out
+
+
 # ----------------------------------------------------------------------------------------
 # stage dynamics (a row's result does not depend on its batch)
 # ----------------------------------------------------------------------------------------
@@ -154,7 +179,8 @@ def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
 _MAX_STEPS = 10_000
 
 #: Parameters that do not enter the stage dynamics (calibrating them reuses the memo).
-_NOT_DYNAMICS = ("drive_heat_w", "stage_loss_conductance_w_k", "hinge_yield_pa", "hinge_conductivity_w_mk")
+_NOT_DYNAMICS = ("drive_heat_w", "stage_loss_conductance_w_k", "hinge_yield_pa", "hinge_conductivity_w_mk",
+                 "stage_specific_heat_j_kgk")
 
 
 class _Base:
@@ -245,11 +271,25 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     power = (col("mu_k") * load * slide + visc) / T
     q = power / p.thermal_equivalent_j_per_cal if p.heat_in_calories else power
     q = q * extra["heat_partition"]
-    # drive heat through the joint between stage and carriage: the leaves (RFCMS), rigid (RMS)
+    q_fric = np.broadcast_to(q, (n,)).astype(float)
+    # drive heat (a constant drive_heat_w, the drive element's Coulomb friction F_d <|v|> with
+    # the working stage's mean speed 2 s / T, its viscous friction c_d <v^2>) through the joint
+    # between stage and carriage: the leaves (RFCMS), rigid (RMS); it arrives behind the working
+    # stage's heat capacity
     g_joint = np.where(rigid, np.inf, heat.leaf_conductance(hv["hinge_count"], hv["hinge_conductivity_w_mk"],
                                                             hv["hinge_width_m"], y, hv["hinge_length_m"]))
-    q = q + heat.drive_heat_to_carriage(hv["drive_heat_w"], g_joint, hv["stage_loss_conductance_w_k"])
-    q = np.broadcast_to(q, (n,)).astype(float)
+    p_drive = np.asarray(hv["drive_heat_w"], float) + extra["drive_friction_n"] * 2.0 * s / T
+    if np.any(extra["drive_viscous_n_s_m"] != 0):
+        from ..physics import motion
+
+        p_drive = p_drive + extra["drive_viscous_n_s_m"] * motion.mean_square_speed(s, v, a, col("dwell_s"))
+    q_drive = np.broadcast_to(heat.drive_heat_to_carriage(p_drive, g_joint, hv["stage_loss_conductance_w_k"]),
+                              (n,)).astype(float)
+    tau_stage = np.broadcast_to(heat.stage_time_constant(
+        (1.0 - np.asarray(hv["frame_mass_fraction"], float)) * np.asarray(hv["stage_mass_kg"], float)
+        * np.asarray(hv["stage_specific_heat_j_kgk"], float), g_joint, hv["stage_loss_conductance_w_k"]),
+        (n,)).astype(float)
+    q = q_fric + q_drive
     # peak stress of the leaves (bending + membrane) against the yield strength
     stress = np.where(rigid, 0.0, hinge.hinge_peak_stress(hv["hinge_modulus_pa"], y, hv["hinge_length_m"], peak,
                                                           membrane=bool(p.hinge_membrane)))
@@ -267,17 +307,19 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         inv = inv.reshape(-1)
     else:
         uniq, inv = np.zeros((1, 0)), np.zeros(n, dtype=int)
+    lag_end = np.empty(n)
     for g, row in enumerate(uniq):
         vals = dict(base, **dict(zip(th_names, row)))
         m = inv == g
         try:
             unit_end[m], steady[m] = _rise_at(vals, dur[m])
+            lag_end[m] = _lagged_rise_at(vals, dur[m], tau_stage[m], unit_end[m], q_drive[m])
         except ValueError as exc:
             if not th_names:  # the base parameters themselves
                 raise
             i = int(np.flatnonzero(m)[0])
             raise ValueError(f"row {row_start + i + 1}: {exc}") from None
-    rise_true = q * unit_end
+    rise_true = q_fric * unit_end + q_drive * lag_end
     if noise_sd > 0:
         rows = np.arange(row_start, row_start + n, dtype=np.uint64)
         z0 = reading_noise(seed, rows, [0])[:, 0, :].mean(axis=1)

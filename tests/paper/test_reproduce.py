@@ -115,3 +115,47 @@ def test_old_import_path_still_works():
                  "last_digit_unit", "_close", "_claim"):
         assert getattr(old, name) is getattr(new, name)
     assert old.banner is page.banner and old.display_number is page.display_number
+
+
+def test_thermal_row_compares_the_maximum_rise_and_shows_every_case(rep):
+    # issue 15, Build 4: like with like -- the FEM's 4.038 K is a maximum (Section 3.1); the
+    # plausible rail lengths x boundaries of rsm_lrg.physics.paper_checks each with its sources
+    # and the paper statements it cannot meet
+    from rsm_lrg.physics.paper_checks import RAIL_BOUNDARIES, RAIL_LENGTHS_M
+
+    main = _row(rep, "steady temperature rise, maximum")
+    assert main.paper == "4.038" and main.verdict in ("pass", "not yet")
+    assert "rail length" in main.note and "no plausible case meets both" in main.note
+    cases = [r for r in rep.rows if r.quantity.startswith("thermal case:")]
+    assert len(cases) == len(RAIL_LENGTHS_M) * len(RAIL_BOUNDARIES)
+    for r in cases:
+        assert r.verdict == "info" and "95 % at" in r.toolkit and "Rail:" in r.note and "Boundary:" in r.note
+        assert "cannot meet" in r.note or "meets the rise and the time" in r.note
+    # the default case's value is the main row's
+    default = next(r for r in cases if "rail 0.4 m, adiabatic base" in r.quantity)
+    assert default.toolkit_value == main.toolkit_value
+
+
+def test_wear_rows_show_each_reading_and_the_deflection_it_needs(rep):
+    # issue 15, Build 4: Eq. 13 is linear in the sliding distance, so each reading of
+    # Eqs. 13-17 fixes the hinge deflection: 30.8, 30.8, 15.4, 18.5, 7.7 mm at s = 0.075 m
+    # (DIGEST §3; paper_checks.wear_readings, exact algebra), to 0.05 mm
+    readings = [r for r in rep.rows if r.quantity.startswith("wear ratio 58.93 %, reading:")]
+    assert [round(1e3 * r.toolkit_value, 1) for r in readings] == [30.8, 30.8, 15.4, 18.5, 7.7]
+    for r in readings:
+        assert "→ Δδ =" in r.toolkit and "held ends" in r.toolkit
+    main = _row(rep, "wear volume per unit time, RFCMS / RMS")
+    assert "7.7-30.8 mm" in main.note
+
+
+def test_surrogate_loo_is_reported_next_to_the_paper_press_r2(rep):
+    # issue 15, Build 3: the calibrated surrogate's leave-one-out R2 beside Eq. 19's PRESS R2
+    # (0.818: Table 4 refitted, DIGEST §5, to 0.0005)
+    from rsm_lrg.datasets import data_path
+    from rsm_lrg.surrogate.calibrate import load_calibration
+
+    r = _row(rep, "surrogate leave-one-out R²")
+    cal = load_calibration(data_path("calibration.toml"))
+    assert r.paper.startswith("0.818")
+    assert f"LOO R² {cal.loo_r2:.3f}" in r.toolkit
+    assert r.verdict == ("pass" if cal.loo_r2 >= 0.8184 else "not yet")

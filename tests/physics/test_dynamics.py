@@ -130,16 +130,39 @@ def test_thin_hinge_overshoot_is_a_documented_model_result():
     assert m.sliding_distance_m > 0.15
 
 
-def test_elastic_hinge_slides_within_a_fraction_of_a_percent_of_the_rms():
-    # Model finding with held ends (membrane stiffening) at the comparative motion of Fig. 9
-    # (0.5 m/s, 10 m/s^2, strokes 0.075 / 0.06 / 0.04 m), 0.3 mm: the leaves deflect at most
-    # ~0.3 mm (a few tenths of a percent of the stroke) and the frame rings after each stop at
-    # a flexure's damping (zeta 0.02), so the carriage slides within 0.5 % of the RMS's 2 s,
-    # slightly MORE; the paper's 41 % less (58.93 %) would need a 31 mm deflection (wear.py).
-    s = np.array([0.075, 0.06, 0.04])
-    m = dynamics.cycle_metrics(s, 0.5, 10.0, hinge_thickness_m=0.0003, method="integrate")
-    ratio = m.sliding_distance_m / (2 * s)
-    assert np.all(np.abs(ratio - 1) < 0.005)
+_FIG9_STROKES = np.array([0.075, 0.06, 0.04])  # paper Section 4.2 (0.5 m/s, 10 m/s^2)
+
+
+@pytest.mark.parametrize("y", [0.0001, 0.0003, 0.0005])
+def test_elastic_hinge_sliding_is_bounded_by_its_swing(y):
+    # Kinematics, exact for any damping: over one stroke the frame's net travel differs from the
+    # stage's s by the change of the hinge deflection, at most 2 * peak deflection, and the
+    # sliding (path length) is at least the net travel: L >= 2 s - 4 d_peak per cycle. The
+    # elastic leaves (held ends) swing well under a millimetre, so the carriage slides within
+    # a few tenths of a percent of the RMS's 2 s at every Fig. 9 stroke.
+    m = dynamics.cycle_metrics(_FIG9_STROKES, 0.5, 10.0, hinge_thickness_m=y, method="integrate")
+    assert np.all(m.peak_deflection_m < 1e-3)
+    assert np.all(m.sliding_distance_m >= 2 * _FIG9_STROKES - 4 * m.peak_deflection_m * (1 + 1e-9))
+    # at a flexure's damping (zeta 0.02) the frame rings after each stop and may slide back and
+    # forth a little: the excess over 2 s stays a fraction of the swing (model finding: 0.1-0.2 %
+    # more than the RMS at 0.3 mm, i.e. 0.09-0.29 of 4 d_peak)
+    assert np.all(m.sliding_distance_m - 2 * _FIG9_STROKES < 4 * m.peak_deflection_m)
+
+
+def test_elastic_hinge_slides_less_than_rms_once_the_frame_does_not_ring():
+    # Section 2.3's claim (RFCMS slides less than the RMS) on the elastic hinge with held ends:
+    # it holds at every Fig. 9 stroke and Table 3 thickness when the frame is damped enough not
+    # to ring (zeta = 1, critical for the linear hinge); at a flexure's zeta = 0.02 the 0.3 mm
+    # rows slide MORE than at zeta = 1: the excess is the ringing after each stop, not the
+    # integrator (the same rows, only the damping changed).
+    rows = np.repeat(_FIG9_STROKES, 3)
+    ys = np.tile([0.0001, 0.0003, 0.0005], 3)
+    damped = dynamics.cycle_metrics(rows, 0.5, 10.0, hinge_thickness_m=ys, method="integrate",
+                                    params=LRGParams(hinge_damping_ratio=1.0))
+    assert np.all(damped.sliding_distance_m < 2 * rows)
+    ringing = dynamics.cycle_metrics(rows, 0.5, 10.0, hinge_thickness_m=ys, method="integrate")
+    mid = ys == 0.0003
+    assert np.all(ringing.sliding_distance_m[mid] > damped.sliding_distance_m[mid])
 
 
 def test_auto_uses_quasi_static_only_where_it_is_accurate():
