@@ -344,6 +344,15 @@ def test_categoric_factor_and_transformed_response_equal_python(categoric_page):
                 page.evaluate(SET, [name, repr(float(rng.uniform(float(lo), float(hi)))), "input"])
             worst = max(worst, compare(fits, page.evaluate(READ)))
     assert page.evaluate(READ)["setting"]["stage"] in ("rfcms", "rms")
+    # the optima buttons set the level picker too (optimum over every level, from rsm_lrg.optimize)
+    data = page.evaluate("() => JSON.parse(document.getElementById('rsm-data').textContent)")
+    for resp, opt in data["optima"].items():
+        page.click(f'[data-jump="optimum"][data-response="{resp}"]')
+        state = page.evaluate(READ)
+        assert state["setting"] == pytest.approx(opt["setting"], rel=1e-12)
+        compare(fits, state)
+    page.click('[data-jump="desirability"]')
+    assert page.evaluate(READ)["setting"]["stage"] == data["desirability"]["setting"]["stage"]
     print(f"categoric: max relative difference {worst:.3g}")
     # the stage's profile is one point with its CI per level
     page.evaluate("() => window.rsmReport.drawNow()")
