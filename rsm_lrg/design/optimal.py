@@ -158,11 +158,72 @@ class _Problem:
                 q[:, cats] = c
                 reps.append(q)
             cands = np.vstack(reps)
+        self._P = None
+        if not cats:  # all numeric: model rows as products of powers (fast path)
+            self._P = np.array([t.powers for t in terms], dtype=int)
         self.candidates = cands
-        self.cand_rows = design_matrix(cands, terms)
+        self.cand_rows = self.rows(cands)
+        self._cache_key = None
         self.values = []
         for f in space.factors:
             self.values.append(GRID if f.kind == "numeric" else np.arange(f.n_levels, dtype=float))
+
+    def rows(self, coded: np.ndarray) -> np.ndarray:
+        """Model rows of coded points (:func:`rsm_lrg.terms.design_matrix`)."""
+        if self._P is not None:
+            return np.prod(coded[:, None, :] ** self._P[None, :, :], axis=2)
+        return design_matrix(coded, self.terms)
+
+    def _prepared(self, M: np.ndarray):
+        """``(A, K, base)`` for ``M`` (cached while ``M`` is the same array), or None when
+        ``M`` is badly conditioned."""
+        if self._cache_key is not None and self._cache_key[0] is M:
+            return self._cache_key[1]
+        out = None
+        if np.linalg.cond(M) < 1e8:
+            A = np.linalg.inv(M)
+            if self.crit == "D":
+                out = (A, None, np.linalg.slogdet(M)[1])
+            elif self.crit == "I":
+                out = (A, A @ self.W @ A, float(np.trace(A @ self.W)))
+            else:
+                out = (A, A @ A, float(np.trace(A)))
+        self._cache_key = (M, out)
+        return out
+
+    def batch(self, M: np.ndarray, f: np.ndarray | None, G: np.ndarray) -> np.ndarray:
+        """Criterion (to minimise) of ``M - f f' + g g'`` for every row g of ``G`` (``f``
+        None: nothing removed). With ``A = M^-1`` the updates cost ``O(p^2)`` per candidate:
+        ``det`` times ``(1 + g'Ag)(1 - f'Af) + (f'Ag)^2`` (Meyer & Nachtsheim 1995) and the
+        rank-two Woodbury identity for the traces of A and I; a badly conditioned ``M`` falls
+        back to exact factorisations."""
+        if f is None:
+            f = np.zeros(M.shape[0])
+        prep = self._prepared(M)
+        if prep is not None:
+            A, K, base = prep
+            AG = G @ A
+            gAg = np.einsum("ij,ij->i", AG, G)
+            fA = A @ f
+            fAf = float(fA @ f)
+            fAg = G @ fA
+            with np.errstate(all="ignore"):
+                if self.crit == "D":
+                    r = (1.0 + gAg) * (1.0 - fAf) + fAg ** 2
+                    v = -(base + np.log(r))
+                    ok = r > 0
+                else:
+                    KG = G @ K
+                    t11 = np.einsum("ij,ij->i", KG, G)
+                    t12 = KG @ f
+                    t22 = float(f @ K @ f)
+                    s11, s12, s22 = 1.0 + gAg, fAg, fAf - 1.0
+                    det = s11 * s22 - s12 ** 2
+                    v = base - (s22 * t11 - 2.0 * s12 * t12 + s11 * t22) / det
+                    ok = np.abs(det) > 1e-12
+            return np.where(ok & np.isfinite(v), v, np.inf)
+        base = M - np.outer(f, f)
+        return _value(base[None, :, :] + G[:, :, None] * G[:, None, :], self.crit, self.W)
 
     def ridge(self, n):
         return 1e-9 * max(n, 1) * np.eye(self.p)
@@ -200,17 +261,16 @@ class _Problem:
                             if not ok.any():
                                 continue
                             cand = cand[ok]
-                        G = design_matrix(cand, self.terms)
+                        G = self.rows(cand)
+                        v = self.batch(M, F[i], G)
                         base = M - np.outer(F[i], F[i])
-                        Ms = base[None, :, :] + G[:, :, None] * G[:, None, :]
-                        v = _value(Ms, self.crit, self.W)
                         b = int(np.argmin(v))
                         if v[b] < cur - 1e-10 * max(1.0, abs(cur)):
-                            D[i] = cand[b]
-                            F[i] = G[b]
-                            M = base + np.outer(G[b], G[b])
-                            cur = float(v[b])
-                            improved = True
+                            M2 = base + np.outer(G[b], G[b])
+                            v2 = float(_value(M2, self.crit, self.W))  # exact: accept real gains only
+                            if v2 < cur - 1e-10 * max(1.0, abs(cur)):
+                                D[i], F[i], M, cur = cand[b], G[b], M2, v2
+                                improved = True
                 if not improved:
                     break
         return D, cur
@@ -235,16 +295,16 @@ class _Problem:
                 base = M - np.outer(F[i], F[i])
                 best_v, best_j = cur, -1
                 for lo in range(0, len(G), 2048):
-                    Gc = G[lo:lo + 2048]
-                    v = _value(base[None] + Gc[:, :, None] * Gc[:, None, :], self.crit, self.W)
+                    v = self.batch(M, F[i], G[lo:lo + 2048])
                     j = int(np.argmin(v))
                     if v[j] < best_v - 1e-10 * max(1.0, abs(best_v)):
                         best_v, best_j = float(v[j]), lo + j
                 if best_j >= 0:
-                    D[i], F[i] = cands[best_j], G[best_j]
-                    M = base + np.outer(G[best_j], G[best_j])
-                    cur = best_v
-                    improved = True
+                    M2 = base + np.outer(G[best_j], G[best_j])
+                    v2 = float(_value(M2, self.crit, self.W))  # exact: accept real gains only
+                    if v2 < cur - 1e-10 * max(1.0, abs(cur)):
+                        D[i], F[i], M, cur = cands[best_j], G[best_j], M2, v2
+                        improved = True
             if not improved:
                 break
         return D, cur
@@ -272,7 +332,7 @@ class _Problem:
             F = design_matrix(np.array(rows), self.terms)
             M = M + F.T @ F
         for _ in range(n):
-            v = _value(M[None] + G[:, :, None] * G[:, None, :], self.crit, self.W)
+            v = self.batch(M, None, G)
             j = int(np.argmin(v))
             rows.append(cands[j])
             M = M + np.outer(G[j], G[j])
