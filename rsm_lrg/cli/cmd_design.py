@@ -58,7 +58,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                     help="lack-of-fit points spread by distance (default 5 without --runs, else 0)")
     op.add_argument("--replicates", type=whole_number(0), default=None, metavar="R",
                     help="replicated model points (default 5 without --runs, else 0)")
-    op.add_argument("--starts", type=whole_number(1), default=None, metavar="N",
+    op.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
                     help="random starts of the exchange (default by model size)")
     ag = sub.add_parser("augment", help="add runs to a design CSV (optimal, star + centre points, fold-over)",
                         description="Add runs to the runs of DESIGN.csv, which are kept untouched and first, "
@@ -80,7 +80,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     ag.add_argument("--new-block", action="store_true", help="put the added runs in a new block")
     ag.add_argument("--constraint", action="append", default=[], metavar="EXPR",
                     help="optimal: an inequality every added run satisfies (repeatable)")
-    ag.add_argument("--starts", type=whole_number(1), default=None, metavar="N", help=argparse.SUPPRESS)
+    ag.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N", help=argparse.SUPPRESS)
     _base(ag, factors=False)
     ds = sub.add_parser("definitive-screening", help="definitive screening design (Jones & Nachtsheim 2011)",
                         description="Three-level definitive screening design from an exact conference matrix.")
@@ -235,7 +235,12 @@ def _new_kind(args):
                            seed=args.seed, starts=args.starts, randomize=randomize)
         except ValueError as exc:
             msg = str(exc)
-            opt = "--runs" if "runs" in msg or "model points" in msg else "--factor"
+            if "an optimal design is searched for" in msg:
+                opt = "--model"
+            elif "runs" in msg or "model points" in msg:
+                opt = "--runs"
+            else:
+                opt = "--factor"
             raise InputError(f"{opt}: {msg}") from None
     try:
         if args.kind == "definitive-screening":
@@ -264,7 +269,11 @@ def _new_kind(args):
     except InputError:
         raise
     except ValueError as exc:
-        raise InputError(f"--factor: {exc}") from None
+        msg = str(exc)
+        opt = "--runs" if msg.startswith("runs") else ("--center" if msg.startswith("center") else "--factor")
+        if msg.startswith("runs: "):
+            msg = msg[len("runs: "):]
+        raise InputError(f"{opt}: {msg}") from None
 
 
 def _augment(args, out) -> int:

@@ -97,16 +97,19 @@ def augment(
     if method == "optimal":
         from ..terms import model_terms, n_columns
         from .constraints import Constraints
-        from .optimal import _criterion, _pool, _Problem, criterion_value, moment_matrix
+        from .optimal import MAX_RUNS, _criterion, _pool, _Problem, check_columns, criterion_value, moment_matrix
 
         crit = _criterion(criterion)
         terms = model_terms(space.letters, model, space.categoric or None)
         p = n_columns(terms)
+        check_columns(p, model, len(space))
         if runs is None:
             runs = max(p - n0, 4, p // 2)
         if isinstance(runs, (bool, np.bool_)) or int(runs) != runs or runs < 1:
             raise ValueError(f"runs to add must be a whole number >= 1 (got {runs!r})")
         runs = int(runs)
+        if n0 + runs > MAX_RUNS:
+            raise ValueError(f"at most {MAX_RUNS} runs in all (got {n0} + {runs} to add)")
         if n0 + runs < p:
             raise ValueError(f"{n0} runs + {runs} added cannot fit the {model} model's {p} terms; add at least "
                              f"{p - n0} runs")

@@ -52,11 +52,25 @@ _COARSE = np.array([-1.0, 0.0, 1.0])
 #: Largest design :func:`optimal` builds [runs].
 MAX_RUNS = 2000
 
+#: Largest model (columns) :func:`optimal` and augmentation search for (the exchange grows
+#: as columns^3 per move: beyond this a run would take hours).
+MAX_COLUMNS = 120
+
+#: Most random starts accepted.
+MAX_STARTS = 1000
+
 
 def _criterion(c: Any) -> str:
     if not isinstance(c, str) or c.strip().upper() not in CRITERIA:
         raise ValueError(f"criterion must be one of {', '.join(CRITERIA)} (got {c!r})")
     return c.strip().upper()
+
+
+def check_columns(p: int, model: str, k: int) -> None:
+    """ValueError when the model is beyond :data:`MAX_COLUMNS` columns."""
+    if p > MAX_COLUMNS:
+        raise ValueError(f"the {model} model in {k} factors has {p} coefficients, beyond the {MAX_COLUMNS} an optimal "
+                         "design is searched for here; choose a smaller model (e.g. 2fi or quadratic)")
 
 
 def information(coded: np.ndarray, terms) -> np.ndarray:
@@ -462,6 +476,7 @@ def optimal(
     crit = _criterion(criterion)
     terms = model_terms(space.letters, model, space.categoric or None)
     p = n_columns(terms)
+    check_columns(p, model, len(space))
     if constraints is not None and not isinstance(constraints, Constraints):
         constraints = Constraints.parse(constraints, space)
     for name, v in (("runs", runs), ("lof_points", lof_points), ("replicates", replicates), ("starts", starts)):
@@ -487,7 +502,7 @@ def optimal(
     prob = _Problem(space, terms, crit, W, constraints, pool)
     if starts is None:
         starts = 10 if p <= 10 else (6 if p <= 21 else 3)
-    starts = max(1, int(starts))
+    starts = min(max(1, int(starts)), MAX_STARTS)
     best, best_v = None, math.inf
     # starts on the -1/0/+1 grid (cheap, discrete: the levels of the classical designs), then
     # continuous random starts; the sequential (greedy) build is one more start

@@ -33,6 +33,10 @@ __all__ = ["latin_hypercube", "sobol"]
 
 #: Largest space-filling design built [runs].
 MAX_RUNS = 100_000
+#: Largest maximin Latin hypercube (pairwise distances) [runs].
+MAX_MAXIMIN = 5000
+#: Largest Latin hypercube whose discrepancy is optimised (beyond: a plain one) [runs].
+MAX_DISCREPANCY = 1000
 
 
 def _prepare(factors, runs, constraints):
@@ -85,10 +89,14 @@ def latin_hypercube(factors: Any, runs: int, criterion: str = "discrepancy", con
     space, n, cons = _prepare(factors, runs, constraints)
     if criterion not in ("discrepancy", "maximin"):
         raise ValueError(f"criterion must be 'discrepancy' or 'maximin' (got {criterion!r})")
+    if criterion == "maximin" and n > MAX_MAXIMIN:
+        raise ValueError(f"runs: the maximin criterion compares every pair of runs; at most {MAX_MAXIMIN} runs "
+                         f"(got {n}); use criterion='discrepancy'")
     rng, used = resolve_seed(seed)
     d = len(space.numeric_index)
     if criterion == "discrepancy":
-        U = qmc.LatinHypercube(d, optimization="random-cd", seed=rng).random(n)
+        opt = "random-cd" if n <= MAX_DISCREPANCY else None
+        U = qmc.LatinHypercube(d, optimization=opt, seed=rng).random(n)
     else:
         best, best_d = None, -1.0
         for _ in range(max(1, int(tries))):
@@ -119,6 +127,8 @@ def latin_hypercube(factors: Any, runs: int, criterion: str = "discrepancy", con
                 coded[i] = pt
                 keep = np.vstack([keep, pt])
                 pool = np.delete(pool, j, axis=0)
+    if criterion == "discrepancy" and n > MAX_DISCREPANCY:
+        criterion = "none (plain Latin hypercube: more runs than the discrepancy optimisation takes)"
     options = {"criterion": criterion, "replaced_for_constraints": replaced,
                "constraints": [] if cons is None else cons.expressions,
                "note": (f"{replaced} runs moved inside the constraints (the Latin property holds for the others)"

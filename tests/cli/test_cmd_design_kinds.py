@@ -112,6 +112,10 @@ def test_crossed_box_behnken_from_the_cli(tmp_path, capsys):
     (["design", "sobol", *GUIDE, "--runs", "8", "--constraint", "stroke_m <= 0"], "--constraint"),
     (["design", "fractional-factorial", *GUIDE, "--generator", "A B Z"], "--generator"),
     (["design", "definitive-screening", *GUIDE], "factor"),
+    (["design", "latin-hypercube", *GUIDE, "--runs", "9000", "--criterion", "maximin"], "--runs"),
+    (["design", "optimal", *GUIDE, "--factor", "t=0:1", "--factor", "u=0:1", "--factor", "w=0:1",
+      "--factor", "z=0:1", "--factor", "q=0:1", "--model", "cubic"], "--model"),
+    (["design", "optimal", *GUIDE, "--starts", "100000"], "--starts"),
 ])
 def test_bad_input_names_the_option(argv, expect, tmp_path, capsys):
     rc = main([*argv, "-o", str(tmp_path / "x.csv")])
@@ -128,6 +132,12 @@ def test_augment_bad_input(tmp_path, capsys):
     line = _error_line(capsys, main(["design", "augment", str(base), "--method", "foldover", "--fold", "Q",
                                      "-o", str(tmp_path / "f.csv")]))
     assert "--fold" in line
+    line = _error_line(capsys, main(["design", "augment", str(base), "--method", "ccd", "--alpha", "-2",
+                                     "-o", str(tmp_path / "f.csv")]))
+    assert "--alpha" in line
+    line = _error_line(capsys, main(["design", "augment", str(base), "--model", "cubic", "--runs", "2",
+                                     "-o", str(tmp_path / "f.csv")]))
+    assert "--runs" in line
     line = _error_line(capsys, main(["design", "augment", str(base), "--force", "-o", str(base)]))
     assert "input" in line
     (tmp_path / "junk.csv").write_text("a,b\n1,2\n")
