@@ -9,7 +9,8 @@ Three ways, as in Design-Expert's and JMP's *Augment Design*:
 ``method="ccd"``
     Star points at ±alpha on every numeric factor's axis and centre points: a two-level
     factorial (with or without centre points) becomes a central composite design (Box &
-    Wilson 1951). ``alpha="rotatable"`` by default (F^(1/4), F the factorial runs), or
+    Wilson 1951); with categoric factors at every combination of their levels.
+    ``alpha="rotatable"`` by default (F^(1/4), F the factorial runs), or
     ``"face"``, ``"orthogonal"``, ``"practical"`` or a number (see
     :func:`~rsm_lrg.design.ccd_alpha`).
 ``method="foldover"``
@@ -28,6 +29,7 @@ block column is there for the fit.
 
 from __future__ import annotations
 
+import itertools
 from typing import Any
 
 import numpy as np
@@ -146,7 +148,11 @@ def augment(
                              "setting other than -1, 0 or +1); use method='optimal'")
         if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
             raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
-        F = int(fact.sum())
+        n_combos = 1
+        for j in range(len(space)):
+            if j not in num:
+                n_combos *= space.factors[j].n_levels
+        F = max(1, int(fact.sum()) // n_combos)  # factorial runs per level combination
         a = float(alpha) if isinstance(alpha, (int, float)) else None
         if a is None:
             if str(alpha).lower() in ("rotatable", "r"):
@@ -155,15 +161,20 @@ def augment(
                 a = ccd_alpha(kn, alpha, (int(np.sum(~fact)), int(center)), new_block)
         if not (np.isfinite(a) and a > 0):
             raise ValueError(f"alpha must be a finite number > 0 (got {alpha!r})")
-        base = old[0].copy()
-        base[num] = 0.0
+        cat = [j for j in range(len(space)) if j not in num]
+        combos = [()]
+        if cat:  # star and centre points at every level combination (the crossed layout)
+            combos = list(itertools.product(*[range(space.factors[j].n_levels) for j in cat]))
         star = []
-        for j in num:
-            for sgn in (-1.0, 1.0):
-                r = base.copy()
-                r[j] = sgn * a
-                star.append(r)
-        star += [base.copy() for _ in range(int(center))]
+        for combo in combos:
+            base = np.zeros(len(space))
+            base[cat] = combo
+            for j in num:
+                for sgn in (-1.0, 1.0):
+                    r = base.copy()
+                    r[j] = sgn * a
+                    star.append(r)
+            star += [base.copy() for _ in range(int(center))]
         new = np.array(star)
         options.update(alpha=a, center_added=int(center), factorial_runs=F)
     else:

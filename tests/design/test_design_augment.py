@@ -75,3 +75,12 @@ def test_augment_errors():
     bbd = full_factorial(CUBE, levels=3, randomize=False)
     with pytest.raises(ValueError, match="two-level"):
         augment(bbd, "ccd")
+
+
+def test_ccd_augment_of_a_crossed_factorial_adds_stars_per_level():
+    d = full_factorial(["a=0:1", "b=0:1", "stage=cat:rfcms,rms"], levels=2, seed=1)
+    a = augment(d, "ccd", center=1, seed=1)
+    new = a.coded_runs[d.n_runs:]
+    assert len(new) == 2 * (4 + 1) and a.options["alpha"] == pytest.approx(4 ** 0.25)  # 2^2 cube per level
+    for lv in (0.0, 1.0):
+        assert int(np.sum(new[:, 2] == lv)) == 5
