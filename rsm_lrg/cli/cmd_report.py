@@ -98,6 +98,13 @@ def run(args: argparse.Namespace) -> int:
         except ValueError as exc:
             raise InputError(f"--goal: {exc}") from None
     limits = [_limits(t, r) for t, r in zip(_per_response(args.limits, n, "limits"), responses)]
+    if not args.static:
+        from ..report.interactive import plotly_js
+
+        try:  # before any work: the interactive page inlines plotly.js
+            plotly_js()
+        except ImportError as exc:
+            raise InputError(str(exc)) from None
     for i in range(n):
         check_transform_option(response_options(args, i))
     data = read_table(args.data)

@@ -173,3 +173,18 @@ def test_model_data_of_a_blocked_fit_predicts_the_average_block():
     q = np.einsum("ij,jk,ik->i", X, np.array(m["C"]), X)
     np.testing.assert_allclose(X @ np.array(m["b"]), ref["predicted"], rtol=1e-13)
     np.testing.assert_allclose(X @ np.array(m["b"]) - m["t"] * np.sqrt(q * m["sigma2"]), ref["ci_low"], rtol=1e-12)
+
+
+def test_without_plotly_the_cli_says_so_in_one_line(tmp_path, capsys, monkeypatch):
+    import importlib.util
+
+    from rsm_lrg.cli import main
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "plotly" else real(name, *a))
+    src = tmp_path / "d.csv"
+    rsm_lrg.load_table4().to_csv(src, index=False)
+    rc = main(["report", str(src), "--response", "tcr_c_per_min", "-o", str(tmp_path / "r.html")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1 and "pip install" in err[0] and "--static" in err[0]
+    assert not (tmp_path / "r.html").exists()
