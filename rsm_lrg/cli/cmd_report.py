@@ -51,7 +51,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(default center)")
     parser.add_argument("--static", action="store_true",
                         help="a page without scripts: static figures (a 3-D surface and a contour per pair)")
-    parser.add_argument("--title", default=None, help="page title (default: 'Response surface report: COL')")
+    parser.add_argument("--title", default=None, help="page title (default: the responses' names)")
     parser.add_argument("-o", "--output", required=True, metavar="PATH.html", help="the HTML file to write")
     add_force(parser)
 

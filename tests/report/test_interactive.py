@@ -114,6 +114,9 @@ def test_page_contract_and_size(page, fits):
                          r'data-pi-low="" data-pi-high="">', page)
     for sid in ("summary", "profiler", "overlay", "surfaces-3d", "data", "response-1", "response-2"):
         assert f'id="{sid}"' in page
+    for i in (1, 2):  # every section of the one-response report, per response (surfaces: live above)
+        for sid in ("anova", "statistics", "coefficients", "equation", "diagnostics", "stationary-point", "optimum"):
+            assert f'id="{sid}-{i}"' in page
     assert "221.92" in page and "26.03" in page  # Table 5 F values in the first response's ANOVA
 
 
