@@ -301,8 +301,11 @@ def _runs(n: int) -> str:
 
 def _on_slice(optimum, space, held, i: int, j: int) -> bool:
     """Whether the optimum lies on the slice of pair (i, j): every other factor at its held value."""
-    return all(abs(float(optimum.coded[L]) - held[m]) <= 1e-6
-               for m, L in enumerate(space.letters) if m not in (i, j))
+    def code(f, v) -> float:  # a categoric factor's coded value is its level index
+        return float(f.levels.index(v)) if isinstance(v, str) else float(v)
+
+    return all(abs(code(f, optimum.coded[f.letter]) - held[m]) <= 1e-6
+               for m, f in enumerate(space.factors) if m not in (i, j))
 
 
 def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
@@ -316,10 +319,16 @@ def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
 
     space = result.space
     k = len(space)
-    if k < 2:
-        return [], "Surfaces need at least two factors."
+    categoric = [getattr(f, "kind", "numeric") == "categoric" for f in space.factors]
+    numeric = [m for m in range(k) if not categoric[m]]
+    if len(numeric) < 2:
+        return [], "Surfaces need at least two numeric factors."
+
+    def code(f, v) -> float:  # a categoric factor's coded value is its level index
+        return float(f.levels.index(v)) if isinstance(v, str) else float(v)
+
     if hold == "optimum" and optimum is not None:
-        held = np.array([float(optimum.coded[L]) for L in space.letters])
+        held = np.array([code(f, optimum.coded[f.letter]) for f in space.factors])
         held_text = "at the optimum"
     else:
         held = np.zeros(k)
@@ -328,7 +337,7 @@ def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
     y = np.asarray(result.y, dtype=float)
     out = []
     off_slice = 0
-    for i, j in itertools.combinations(range(k), 2):
+    for i, j in itertools.combinations(numeric, 2):
         fi, fj = space.factors[i], space.factors[j]
         others = [f for m, f in enumerate(space.factors) if m not in (i, j)]
 
@@ -347,7 +356,8 @@ def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
                                 result.data[fj.name].to_numpy(dtype=float)[at_held], y[at_held]])
         pts2 = np.column_stack([result.data[fi.name].to_numpy(dtype=float),
                                 result.data[fj.name].to_numpy(dtype=float)])
-        held_values = [(f, float(f.decode(held[space.letters.index(f.letter)]))) for f in others]
+        held_values = [(f, f.levels[int(held[space.letters.index(f.letter)])] if categoric[space.letters.index(f.letter)]
+                        else float(f.decode(held[space.letters.index(f.letter)]))) for f in others]
         held_desc = ", ".join(f"{f.letter} ({f.name}) = {fmt_num(v)}" for f, v in held_values)
         hold_sentence = (f"Other factors held {held_text}: {held_desc}." if others else "")
         fig_note = ("held: " + ", ".join(f"{f.letter} = {fmt_num(v)}" for f, v in held_values)) if others else None
@@ -362,7 +372,7 @@ def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
                 star = " Star: the optimum, which lies on this slice."
             else:
                 off_slice += 1
-                where = ", ".join(f"{f.letter} = {fmt_num(float(optimum.actual[f.name]))}" for f in others)
+                where = ", ".join(f"{f.letter} = {fmt_num(optimum.actual[f.name])}" for f in others)
                 star = (f" The optimum is not on this slice (it has {where}), so it is not marked here; "
                         "hold the other factors at the optimum to see it.")
         surf = P.render(
@@ -377,7 +387,7 @@ def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
             f"contour-{pair}", f"Contour, {title}",
             f"{hold_sentence} Red points: all {len(y)} design points projected onto this pair.{star}", "svg")
         out.append({"pair": pair, "surface": surf, "contour": cont})
-    note = (f"Every pair of the {k} factors: {len(out)} surfaces and {len(out)} contours of the fitted model, "
+    note = (f"Every pair of the {len(numeric)} numeric factors: {len(out)} surfaces and {len(out)} contours of the fitted model, "
             f"with the other factors held {held_text}.")
     if optimum is not None and off_slice:
         note += (f" The optimum's star appears only on slices that contain it ({len(out) - off_slice} of "

@@ -191,3 +191,17 @@ def test_without_plotly_the_cli_says_so_in_one_line(tmp_path, capsys, monkeypatc
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1 and "pip install" in err[0] and "--static" in err[0]
     assert not (tmp_path / "r.html").exists()
+
+
+def test_static_pages_with_a_categoric_factor():
+    """Surfaces over the numeric pairs only, the stage held at a level (named in the caption)."""
+    from rsm_lrg.report import to_html
+
+    df = data()
+    df["stage"] = np.random.default_rng(7).choice(["rfcms", "rms"], len(df))
+    f = rsm_lrg.fit(df, "tcr_c_per_min", factors=FACTORS + ["stage"], model="2fi")
+    static = interactive_html(f, static=True)
+    assert static.count('class="diag"') == 6 + 2 * 6  # six diagnostics, a surface and a contour per numeric pair
+    page = to_html(f, hold="optimum")
+    level = f.optimize("minimize").actual["stage"]
+    assert f"E (stage) = {level}" in page and page.count("<figure") == 18
