@@ -20,7 +20,7 @@ import pytest
 import rsm_lrg
 from rsm_lrg.report.interactive import write_interactive_report
 
-pytestmark = pytest.mark.browser
+pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
 FACTORS = ["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]
 RTOL = 1e-9  # issue 14: browser equals FitResult.predict to 1e-9 relative
