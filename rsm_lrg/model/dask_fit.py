@@ -10,10 +10,13 @@ partitions, each a reduction:
 2. per partition the triangular factor of ``[X | y - shift]``
    (:class:`~rsm_lrg.model.least_squares.Accumulator` over chunks of rows), merged pairwise
    in a tree (TSQR) into the factor of all the runs;
+   In the same pass, per partition, the pure-error sums of every distinct factor setting
+   (count, sum and sum of squares of ``y - shift``), added up setting by setting along the
+   same tree: ``SS_pe = sum_g (S2_g - S1_g^2 / n_g)`` on ``n - g`` degrees of freedom;
 3. per partition the second-pass sums (residual SS, PRESS, range of the fitted values,
-   total SS; :class:`~rsm_lrg.model.least_squares.PassSums`), and the pure error from a
-   group-by on the factor settings: count, sum and sum of squares of ``y - shift`` per
-   distinct setting, ``SS_pe = sum_g (S2_g - S1_g^2 / n_g)`` on ``n - g`` degrees of freedom.
+   total SS; :class:`~rsm_lrg.model.least_squares.PassSums`).
+
+Each pass reads every partition once (three reads of the data in all).
 
 The result is the same :class:`~rsm_lrg.model.fit.FitResult` (coefficients, ANOVA with
 lack of fit, statistics with PRESS, canonical analysis) without the per-run arrays:
@@ -64,12 +67,32 @@ def _chunks(x, y, terms, rows: int):
         yield design_matrix(x[s:s + rows], terms), y[s:s + rows]
 
 
+def _setting_sums(pdf, names, response, shift):
+    """Count, sum and sum of squares of ``y - shift`` per distinct factor setting (the runs
+    with a response), indexed by the settings."""
+    pdf = pdf[pdf[response].notna()]
+    yc = pdf[response].to_numpy(dtype=float) - shift
+    cols = {nm: pdf[nm].to_numpy() for nm in names}
+    frame = pdf.__class__(cols | {"_n": 1.0, "_s1": yc, "_s2": yc * yc})
+    return frame.groupby(list(names), sort=False).sum()
+
+
 def _factor_partition(pdf, space, response, terms, p, shift, rows):
     x, y = _partition_rows(pdf, space, response)
     acc = Accumulator(p=p, shift=shift)
     for X, yy in _chunks(x, y, terms, rows):
         acc.add(X, yy)
-    return acc
+    return acc, _setting_sums(pdf, space.names, response, shift)
+
+
+def _merge(a, b):
+    """Two partitions' (factor, setting sums) merged: the factor of all their rows, the sums
+    added setting by setting."""
+    import pandas as pd
+
+    acc = a[0].merge(b[0])
+    sums = pd.concat([a[1], b[1]]).groupby(level=list(range(a[1].index.nlevels)), sort=False).sum()
+    return acc, sums
 
 
 def _sums_partition(pdf, space, response, terms, ls, rows):
@@ -131,31 +154,25 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
     shift = float(total) / n
     rows = int(chunk_rows)
 
-    # pass 2: one factor per partition, merged in a tree
+    # pass 2: one factor and the setting sums per partition, merged in a tree
     parts = ddf[space.names + [response]].to_delayed()
     accs = [dask.delayed(_factor_partition)(d, space, response, terms, p, shift, rows) for d in parts]
     while len(accs) > 1:
-        accs = [dask.delayed(Accumulator.merge)(accs[i], accs[i + 1]) if i + 1 < len(accs) else accs[i]
+        accs = [dask.delayed(_merge)(accs[i], accs[i + 1]) if i + 1 < len(accs) else accs[i]
                 for i in range(0, len(accs), 2)]
-    acc = accs[0].compute()
+    acc, agg = dask.compute(accs[0])[0]
     if not np.all(np.isfinite(acc.raug)):
         raise ValueError("a factor or response cell is empty or not a number; every run needs numeric factor settings")
     ls = acc.result(names)
     ls.require_full_rank(f"{model} model")
 
-    # pass 3: second-pass sums per partition; pure error from a group-by on the settings
+    # pass 3: second-pass sums per partition
     sums = [dask.delayed(_sums_partition)(d, space, response, terms, ls, rows) for d in parts]
-    g = ddf[space.names + [response]]
-    g = g.dropna(subset=[response])
-    g = g.assign(_yc=g[response] - shift)
-    g = g.assign(_yc2=g["_yc"] ** 2)
-    agg = g.groupby(space.names).agg({"_yc": ["sum", "count"], "_yc2": "sum"})
-    sums = dask.compute(*sums)
-    agg = agg.compute()
-    ls = ls.with_pass_sums(sums)
-    s1 = agg[("_yc", "sum")].to_numpy(dtype=float)
-    cnt = agg[("_yc", "count")].to_numpy(dtype=float)
-    s2 = agg[("_yc2", "sum")].to_numpy(dtype=float)
+    ls = ls.with_pass_sums(dask.compute(*sums))
+    # pure error from the setting sums
+    s1 = agg["_s1"].to_numpy(dtype=float)
+    cnt = agg["_n"].to_numpy(dtype=float)
+    s2 = agg["_s2"].to_numpy(dtype=float)
     n_groups = int(cnt.size)
     ss_pe = float(max(np.sum(s2 - s1 ** 2 / cnt), 0.0))
     pe = PureError(groups=np.zeros(0, dtype=int), n_groups=n_groups, ss=ss_pe, df=int(n - n_groups))
