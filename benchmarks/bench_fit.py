@@ -144,16 +144,27 @@ def _dask(n: int, k: int, partitions: int, workers: int, memory_limit: str) -> N
     parts = [dask.delayed(make)(min(rows, n - i * rows), k, i) for i in range(partitions) if n - i * rows > 0]
     meta = make(2, k).iloc[:0]
     specs = [f"x{i}=-1:1" for i in range(k)]
+    import os
+    import resource
+
+    def peak_rss() -> int:  # peak resident memory of the calling process [bytes] (Linux: ru_maxrss in KiB)
+        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+
     with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, memory_limit=memory_limit,
-                                  dashboard_address=None) as cluster, distributed.Client(cluster):
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
         ddf = dd.from_delayed(parts, meta=meta)
         t0 = time.perf_counter()
         r = rsm_lrg.fit(ddf, "y", factors=specs)
         t = time.perf_counter() - t0
+        worker_peaks = sorted(client.run(peak_rss).values())
     p = (k + 1) * (k + 2) // 2
-    print(f"dask fit: n {n}, k {k} ({p} terms), {len(parts)} partitions (each made on its worker), {workers} workers "
-          f"x 1 thread, memory limit {memory_limit} each: {t:.1f} s (includes making the runs); R2 {r.statistics.r2:.4f}, "
-          f"PRESS {r.statistics.press:.6g}")
+    x_mb = n * p * 8 / 1e6
+    print(f"dask fit: n {n}, k {k} ({p} terms; the n x p model matrix would be {x_mb:.0f} MB), {len(parts)} partitions "
+          f"(each made on its worker), {workers} workers x 1 thread, memory limit {memory_limit} each, "
+          f"{os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}: {t:.1f} s (includes making the runs, three "
+          f"times: one per pass); peak resident memory per worker {', '.join(f'{b / 1e6:.0f}' for b in worker_peaks)} MB, "
+          f"client {peak_rss() / 1e6:.0f} MB; R2 {r.statistics.r2:.4f}, PRESS {r.statistics.press:.6g}, "
+          f"pure error df {r.pure_error.df}", flush=True)
 
 
 def main() -> None:

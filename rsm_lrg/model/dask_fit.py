@@ -11,8 +11,10 @@ partitions, each a reduction:
    (:class:`~rsm_lrg.model.least_squares.Accumulator` over chunks of rows), merged pairwise
    in a tree (TSQR) into the factor of all the runs;
    In the same pass, per partition, the pure-error sums of every distinct factor setting
-   (count, sum and sum of squares of ``y - shift``), added up setting by setting along the
-   same tree: ``SS_pe = sum_g (S2_g - S1_g^2 / n_g)`` on ``n - g`` degrees of freedom;
+   (count, sum and sum of squares of ``y - shift``, keyed by a 64-bit hash of the setting,
+   with a second hash kept to detect two settings sharing a key), added up setting by
+   setting along the same tree: ``SS_pe = sum_g (S2_g - S1_g^2 / n_g)`` on ``n - g``
+   degrees of freedom;
 3. per partition the second-pass sums (residual SS, PRESS, range of the fitted values,
    total SS; :class:`~rsm_lrg.model.least_squares.PassSums`).
 
@@ -67,14 +69,37 @@ def _chunks(x, y, terms, rows: int):
         yield design_matrix(x[s:s + rows], terms), y[s:s + rows]
 
 
+#: Odd 64-bit multipliers of the two row hashes of :func:`_row_hash` (golden ratio; MurmurHash3's fmix).
+_MULTIPLIERS = (0x9E3779B97F4A7C15, 0xFF51AFD7ED558CCD)
+_AGG = {"_n": "sum", "_s1": "sum", "_s2": "sum", "_lo": "min", "_hi": "max"}
+
+
+def _row_hash(values: np.ndarray, which: int) -> np.ndarray:
+    """A 64-bit hash of the bit pattern of each row of ``values`` (m x k floats; -0.0 read as
+    0.0), ``which`` = 0 or 1 for two different hash functions."""
+    bits = np.ascontiguousarray(np.asarray(values, dtype=float) + 0.0).view(np.uint64)
+    mult, shift = np.uint64(_MULTIPLIERS[which]), np.uint64(31 + 2 * which)
+    h = np.full(bits.shape[0], np.uint64(which + 1), dtype=np.uint64)
+    for j in range(bits.shape[1]):
+        h ^= bits[:, j]
+        h *= mult
+        h ^= h >> shift
+    return h
+
+
 def _setting_sums(pdf, names, response, shift):
-    """Count, sum and sum of squares of ``y - shift`` per distinct factor setting (the runs
-    with a response), indexed by the settings."""
+    """Count, sum and sum of squares of ``y - shift`` per distinct factor setting of one
+    partition (the runs with a response), keyed by a 64-bit hash of the setting; ``_lo`` and
+    ``_hi`` keep the smallest and largest value of a second, different hash in each group, so
+    that two settings sharing a key would show (:func:`_pure_error_sums` refuses them)."""
+    import pandas as pd
+
     pdf = pdf[pdf[response].notna()]
     yc = pdf[response].to_numpy(dtype=float) - shift
-    cols = {nm: pdf[nm].to_numpy() for nm in names}
-    frame = pdf.__class__(cols | {"_n": 1.0, "_s1": yc, "_s2": yc * yc})
-    return frame.groupby(list(names), sort=False).sum()
+    x = pdf[list(names)].to_numpy(dtype=float)
+    check = _row_hash(x, 1)
+    frame = pd.DataFrame({"_key": _row_hash(x, 0), "_n": 1.0, "_s1": yc, "_s2": yc * yc, "_lo": check, "_hi": check})
+    return frame.groupby("_key", sort=False).agg(_AGG)
 
 
 def _factor_partition(pdf, space, response, terms, p, shift, rows):
@@ -90,9 +115,18 @@ def _merge(a, b):
     added setting by setting."""
     import pandas as pd
 
-    acc = a[0].merge(b[0])
-    sums = pd.concat([a[1], b[1]]).groupby(level=list(range(a[1].index.nlevels)), sort=False).sum()
-    return acc, sums
+    return a[0].merge(b[0]), pd.concat([a[1], b[1]]).groupby(level=0, sort=False).agg(_AGG)
+
+
+def _pure_error_sums(agg) -> tuple[int, float]:
+    """``(number of distinct settings, SS_pe)`` from the merged setting sums."""
+    if np.any(agg["_lo"].to_numpy() != agg["_hi"].to_numpy()):
+        raise ValueError("two different factor settings share a 64-bit hash (a chance of about n^2 / 2^65); "
+                         "fit these data as a pandas DataFrame")
+    s1 = agg["_s1"].to_numpy(dtype=float)
+    cnt = agg["_n"].to_numpy(dtype=float)
+    s2 = agg["_s2"].to_numpy(dtype=float)
+    return int(cnt.size), float(max(np.sum(s2 - s1 ** 2 / cnt), 0.0))
 
 
 def _sums_partition(pdf, space, response, terms, ls, rows):
@@ -169,12 +203,7 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
     # pass 3: second-pass sums per partition
     sums = [dask.delayed(_sums_partition)(d, space, response, terms, ls, rows) for d in parts]
     ls = ls.with_pass_sums(dask.compute(*sums))
-    # pure error from the setting sums
-    s1 = agg["_s1"].to_numpy(dtype=float)
-    cnt = agg["_n"].to_numpy(dtype=float)
-    s2 = agg["_s2"].to_numpy(dtype=float)
-    n_groups = int(cnt.size)
-    ss_pe = float(max(np.sum(s2 - s1 ** 2 / cnt), 0.0))
+    n_groups, ss_pe = _pure_error_sums(agg)  # pure error from the setting sums
     pe = PureError(groups=np.zeros(0, dtype=int), n_groups=n_groups, ss=ss_pe, df=int(n - n_groups))
     return _assemble(response=response, model=model, block=None, space=space, terms=terms, col_names=names,
                      ls=ls, pe=pe, bkeys=None, blevels=None, data=ddf, coded=None, y=None, input_notes=notes)

@@ -136,3 +136,23 @@ def test_fit_command_reads_a_directory_of_parquet_files(tmp_path, capsys):
         assert got["coefficients"]["coded"][k] == pytest.approx(v, rel=1e-10, abs=1e-10 * abs(ref["coefficients"]["coded"]["Intercept"]))
     assert main(["fit", str(tmp_path), "--response", "y"]) == 2  # CSV and Parquet files together: refused
     assert "holds both CSV and Parquet files" in capsys.readouterr().err
+
+
+def test_setting_sums_key_settings_by_their_bits_and_detect_shared_keys():
+    # the pure-error sums of a Dask fit group the runs by a 64-bit hash of their setting
+    # (rsm_lrg.model.dask_fit): equal settings (0.0 and -0.0 alike) share a key, different
+    # ones (even by one ulp) do not, and a second hash exposes two settings sharing a key
+    from rsm_lrg.model import dask_fit
+
+    x = np.array([[0.0, 1.0], [-0.0, 1.0], [0.0, np.nextafter(1.0, 2.0)], [1.0, 0.0], [0.0, 1.0]])
+    for which in (0, 1):
+        h = dask_fit._row_hash(x, which)
+        assert h[0] == h[1] == h[4] and len({h[0], h[2], h[3]}) == 3
+    pdf = pd.DataFrame(x, columns=["a", "b"]).assign(y=[1.0, 2.0, 5.0, 7.0, 3.0])
+    agg = dask_fit._setting_sums(pdf, ["a", "b"], "y", 0.0)
+    n_groups, ss = dask_fit._pure_error_sums(agg)
+    assert n_groups == 3 and ss == pytest.approx(2.0, rel=1e-15)  # settings (0, 1) x 3: y 1, 2, 3
+    bad = agg.copy()
+    bad.iloc[0, bad.columns.get_loc("_hi")] += np.uint64(1)
+    with pytest.raises(ValueError, match="share a 64-bit hash"):
+        dask_fit._pure_error_sums(bad)
