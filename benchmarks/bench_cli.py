@@ -14,6 +14,12 @@ counted). It prints the medians and the median ratios Python / R.
 
 Targets: CPU time of the fit at most 3x R's; ``rsm-lrg --help`` under 0.15 s wall.
 
+What remains is mostly the floor: ``import numpy, pandas`` (``--floor``), which also imports
+pyarrow when it is installed (the ``all`` extra brings it for Dask; 0.06-0.1 s). The fit
+loads no SciPy (the core uses NumPy's LAPACK and its own t/F tails) and asks for one BLAS
+thread for a small input file (OpenBLAS's threads cost ~0.2 s CPU at start-up), so it can
+cost less CPU than the bare ``import numpy, pandas`` line, which keeps the default threads.
+
 The children run as an installed package runs: with byte-code caches (``__pycache__``, which
 ``pip install`` writes), so ``PYTHONDONTWRITEBYTECODE`` is removed from their environment and
 the warm-up round writes the caches. ``--no-bytecode`` keeps the variable (then every run

@@ -8,17 +8,31 @@ fresh subprocess so that one measurement's memory does not colour the next:
 * the whole ``rsm_lrg.fit`` (model matrix built and factorised in chunks, hat diagonal
   in a second pass, ANOVA with Type III SS, lack of fit / pure error, PRESS, VIF,
   canonical analysis): wall time, and the peak of memory allocated during the fit
-  (``tracemalloc``, in a second run; the input DataFrame, made before, is not counted).
+  (``tracemalloc``, in a second run; the input DataFrame, made before, is not counted)
+  and the peak resident memory above that at the start of the fit (sampled; it also sees
+  LAPACK work arrays, which tracemalloc does not).
 
 It prints ``fit / QR`` time and ``peak / size of X`` ratios (issue 11 targets: at most 3
-and 1.5 for 10^6 runs x 10 factors).
+and 1.5 for 10^6 runs x 10 factors). With ``--repeat`` the QR and the fit alternate and
+the median of the per-round ratios is printed with their range.
 
     python benchmarks/bench_fit.py                 # n = 1e6, k = 10
+    python benchmarks/bench_fit.py --threads 1 --repeat 3
     python benchmarks/bench_fit.py --n 3e5 --k 10 4
-    python benchmarks/bench_fit.py --dask 1e6 --partitions 16 --workers 2 --memory-limit 1GB
+    python benchmarks/bench_fit.py --dask 1e7 --partitions 64 --workers 2 --memory-limit 1GB
+
+BLAS threads: on an idle machine the ratio is about 1 with one or two OpenBLAS threads. On
+a machine whose cores are busy with other work (load above the core count) two threads make
+the fit slower than the QR (measured 2x at load 3.8 on 2 cores, 0.97x at load 1.9): LAPACK's
+``dgeqrf`` factorises matrices of at most 128 columns column by column with level-2 BLAS
+calls that OpenBLAS splits over its threads, and each call waits until every thread has had
+a core; the fit makes those calls once per chunk of 32768 rows, the one QR once in all.
+Larger chunks (``--chunk-rows``) make fewer such calls but lose the cache (about 1.5x slower
+with one thread), so the default stays.
 
 With ``--dask N`` it fits N runs made partition by partition on a ``distributed.LocalCluster``
-(the runs are never in one process; needs ``dask[dataframe]``) and prints the time.
+(the runs are never in one process; needs ``dask[dataframe]``) and prints the time and the
+peak resident memory of each worker and of the client.
 """
 
 from __future__ import annotations
