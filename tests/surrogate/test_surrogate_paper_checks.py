@@ -49,23 +49,54 @@ def test_stored_figures_are_what_the_surrogate_gives_now(cal, table4_runs):
 
 def test_calibrated_fit_to_table4_reached_figures(cal):
     # Figures reached by honest physics with three calibrated parameters (Table 4, 27 runs,
-    # noise-free): R2 0.829, leave-one-out R2 0.791 (viscous friction acting on the carriage
-    # in the dynamics as well as in the heat). Pinned here so they cannot silently get worse.
-    assert cal.r2 >= 0.82
-    assert cal.loo_r2 >= 0.78
+    # noise-free; model v4, issue 15): R2 0.877, leave-one-out R2 0.860 (each run left out, the
+    # three parameters refitted). Pinned here so they cannot silently get worse.
+    assert cal.model == "v4"
+    assert cal.r2 >= 0.87
+    assert cal.loo_r2 >= 0.85
 
 
 def test_calibrated_fit_to_table4_issue_target_loo(cal):
-    # issue 4 "Done when": leave-one-out R2 >= 0.75 against Table 4
-    assert cal.loo_r2 >= 0.75
+    # issue 4 "Done when": leave-one-out R2 >= 0.75 against Table 4; issue 15: >= 0.84, above
+    # the paper's own quadratic (Eq. 19 refitted: PRESS R2 0.818, DIGEST Section 5)
+    assert cal.loo_r2 >= 0.84
 
 
-@pytest.mark.xfail(strict=True, reason="issue 4 target R2 >= 0.85 not reached by the physics (0.829): no "
-                   "mechanism gives a thickness effect linear in y (Eq. 1 makes the hinge compliance ~ y^-3, "
-                   "a step between 0.1 and 0.3 mm) or the full acceleration effect")
 def test_calibrated_fit_to_table4_issue_target_r2(cal):
-    # issue 4 "Done when": R2 >= 0.85 against Table 4
-    assert cal.r2 >= 0.85
+    # issue 4 "Done when": R2 >= 0.85; issue 15: R2 >= 0.86 (no longer an expected failure:
+    # the drive's friction heat conducted through the leaves gives the thickness effect)
+    assert cal.r2 >= 0.86
+
+
+def test_calibrated_parameters_are_inside_their_bounds_with_standard_errors(cal):
+    # issue 15 "Done when": at most 3 parameters, none at a bound, each with a standard error
+    import math
+
+    assert len(cal.parameters) <= 3
+    for p in cal.parameters:
+        assert not p.at_bound and p.lower < p.value < p.upper
+        assert math.isfinite(p.std_error) and 0 < p.std_error < abs(p.value)
+
+
+def test_earlier_calibration_stays_loadable():
+    # issue 15: the calibration shipped before (model v2) is kept as data/calibration_v2.toml
+    v2 = load_calibration(data_path("calibration_v2.toml"))
+    assert v2.model == "v2" and v2.r2 == pytest.approx(0.8285009144173278, rel=1e-12)
+    assert v2.parameter_values()["hinge_membrane"] is False
+
+
+def test_no_leaf_yields_in_the_table3_box_with_the_shipped_calibration():
+    # issue 15 "Done when": the 16 corners and the centre of the Table 3 box, virtual runs with
+    # the shipped calibration: the peak stress of every leaf (bending + membrane, over the
+    # periodic cycle) below the yield strength of 65Mn (785 MPa, GB/T 1222-2016)
+    import itertools
+
+    levels = [(1e-4, 5e-4), (0.04, 0.06), (0.4, 0.6), (20.0, 40.0)]
+    rows = list(itertools.product(*levels)) + [(3e-4, 0.05, 0.5, 30.0)]
+    d = pd.DataFrame(rows, columns=["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"])
+    out = simulate(d, noise_sd=0)
+    assert not out.hinge_yields.any()
+    assert (out.hinge_peak_stress_pa < 785e6).all()
 
 
 def test_uncalibrated_centre_run(cal):
@@ -74,15 +105,38 @@ def test_uncalibrated_centre_run(cal):
     assert simulate(d, noise_sd=0, calibration=None).tcr_c_per_min[0] == pytest.approx(0.03367, rel=0.30)
 
 
-def test_fig9_rms_hotter_and_wearing_more_than_rfcms():
+def _fig9():
     # Section 4.2 / Fig. 9: v = 0.5 m/s, a = 10 m/s^2, strokes 0.075 / 0.06 / 0.04 m; the
     # paper does not give the hinge of the comparative test: Table 3 centre, 0.3 mm
     rows = [dict(thickness_m=3e-4, stroke_m=s, velocity_m_s=0.5, acceleration_m_s2=10.0, stage=st)
             for s in (0.075, 0.06, 0.04) for st in ("rfcms", "rms")]
     out = simulate(pd.DataFrame(rows), noise_sd=0)
-    rf, rms = out[out.stage == "rfcms"].reset_index(), out[out.stage == "rms"].reset_index()
+    return out[out.stage == "rfcms"].reset_index(), out[out.stage == "rms"].reset_index()
+
+
+def test_fig9_rms_hotter_than_rfcms():
+    # Fig. 9 (measured): the RMS's TCR above the RFCMS's at every stroke
+    rf, rms = _fig9()
     assert (rms.tcr_c_per_min > rf.tcr_c_per_min).all()
+
+
+@pytest.mark.xfail(strict=True, reason="issue 15, model finding: with the elastic hinge at a flexure's damping "
+                   "(zeta 0.02) and the calibrated block friction (c_v 2.5 N s/m) the frame rings after each "
+                   "stop and its carriage slides 0.005-0.26 % MORE than the RMS's, so it wears that much more; "
+                   "the paper's FEM (Section 3.2) has it wearing 41 % less, which needs a 7.7-31 mm hinge "
+                   "deflection (physics.paper_checks.wear_readings). Held with model v2 only because its "
+                   "damping ran to the bound 3.0")
+def test_fig9_rms_wears_more_than_rfcms():
+    rf, rms = _fig9()
     assert (rms.wear_volume_m3_per_h > rf.wear_volume_m3_per_h).all()
+
+
+def test_fig9_wear_of_the_two_stages_differs_by_the_hinge_swing_only():
+    # what the physics does say (kinematic bound, tests/physics/test_dynamics.py): the carriage
+    # sliding, and with the same load the Archard wear (Eq. 13), of the RFCMS is within 4 peak
+    # leaf deflections per cycle of the RMS's 2 s; at 0.3 mm that is below 0.5 %
+    rf, rms = _fig9()
+    assert np.all(np.abs(rf.wear_volume_m3_per_h / rms.wear_volume_m3_per_h - 1) < 0.005)
 
 
 @pytest.fixture(scope="module")
