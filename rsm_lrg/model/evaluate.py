@@ -151,8 +151,10 @@ class DesignEvaluation:
                 f"Scaled prediction variance n·x'(X'X)⁻¹x: centre {format_g(self.spv_center)}, "
                 f"max at a design point {format_g(self.spv_max_design)}; over the {self.region}: "
                 f"min {format_g(self.spv_region['min'])}, mean {format_g(self.spv_region['mean'])}, max {format_g(self.spv_region['max'])}",
-                "  (maximum by exact search of every face, edge and vertex; at coded "
-                + ", ".join(f"{L} {v:+.4g}" for L, v in self.spv_max_at.items())
+                ("  (maximum by exact search of every face, edge and vertex; at coded "
+                 if not any(isinstance(v, str) for v in self.spv_max_at.values()) else
+                 "  (maximum of the region sample, categoric levels drawn evenly; at coded ")
+                + ", ".join(f"{L} {v}" if isinstance(v, str) else f"{L} {v:+.4g}" for L, v in self.spv_max_at.items())
                 + f"; G-efficiency p/max SPV = {100 * self.g_efficiency:.1f} %)",
                 "", "Fraction of design space (unscaled variance x'(X'X)⁻¹x)"]
         rows = [[f"{r.fraction:.1f}", format_g(r.variance), format_g(r.spv)] for r in self.fds.itertuples(index=False)]
@@ -355,13 +357,23 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     from ..factors import letters_for
     from .anova import pure_error
     from .least_squares import least_squares
-    from .terms import MAX_TERMS, check_model_size, design_matrix, model_matrix, model_terms, n_model_terms
+    from .terms import (
+        MAX_TERMS,
+        check_model_size,
+        column_names,
+        design_matrix,
+        model_matrix,
+        model_terms,
+        n_model_terms,
+    )
 
-    blocks = None
+    blocks, cats, levels_of = None, {}, {}
     if hasattr(design, "coded_runs"):
         coded = np.asarray(design.coded_runs, dtype=float)
         letters = list(design.factors.letters)
         blocks = design.blocks
+        cats = design.factors.categoric  # {position: levels}; their coded value is the level index
+        levels_of = cats
     else:
         coded = np.asarray(design, dtype=float)
         if coded.ndim != 2:
@@ -376,12 +388,12 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     n, k = coded.shape
     # counted before any term is built: far more parameters than runs is refused at once
     # (naming each of thousands of aliased terms would take minutes and help nobody)
-    n_par = n_model_terms(k, model)
+    n_par = n_model_terms(k, model, cats)
     if n_par > MAX_TERMS or (n < n_par and n_par > MAX_ALIAS_LISTED):
-        check_model_size(n, k, model)  # raises with the count ("N runs cannot fit P terms ...")
+        check_model_size(n, k, model, categoric=cats)  # raises with the count ("N runs cannot fit P terms ...")
         raise ValueError(f"the {model} model in {k} factors has {n_par} terms and {n} runs cannot estimate "
                          "them; choose a smaller model or add runs")
-    terms = model_terms(letters, model)
+    terms = model_terms(letters, model, cats)
     nb, codes = 1, None
     if blocks is not None and len(set(np.asarray(blocks).tolist())) > 1:
         levels = sorted(set(np.asarray(blocks).tolist()))
@@ -392,7 +404,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         keys = coded
     X = model_matrix(coded, terms, codes, nb)
     p = X.shape[1]
-    names = [t.name for t in terms]
+    names = column_names(terms)
     # pure error as fit() splits it: residual of (blocks +) one mean per distinct setting
     pe = pure_error(coded, np.zeros(n), codes if nb > 1 else None)
     df_res = n - p
@@ -410,7 +422,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
                                 aliased=bad or ("(unidentified)",), alias_relations=tuple(relations), rank=rank,
                                 n_distinct=n_distinct, letters=tuple(letters), region=region, alpha=alpha,
                                 effect_sd=effect_sd)
-    df = {"model": len(terms) - 1, "residual": df_res, "lack_of_fit": df_res - pe.df,
+    df = {"model": len(names) - 1, "residual": df_res, "lack_of_fit": df_res - pe.df,
           "pure_error": pe.df, "blocks": nb - 1}
     C = ls.cov_unscaled
     tidx = np.r_[0, np.arange(nb, p)] if nb > 1 else np.arange(p)
@@ -435,9 +447,18 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     radius = float(np.max(np.linalg.norm(coded, axis=1)))
     m = int(math.ceil(math.log2(max(n_region, 16))))
     pts = _region_sample(k, region, radius if radius > 0 else 1.0, m, seed)
+    if cats:  # categoric factors: their levels drawn evenly; the maximum is that of the sample
+        for i, lv in cats.items():
+            u = (pts[:, i] + 1.0) / 2.0 if region == "cube" else np.random.default_rng(seed + i).random(len(pts))
+            pts[:, i] = np.minimum(np.floor(np.clip(u, 0.0, 1.0) * len(lv)), len(lv) - 1)
+        v0 = float(np.mean([var(np.array([[j if q in cats else 0.0 for q in range(k)]]))[0]
+                            for j in range(min(len(lv) for lv in cats.values()))]))
     vs = var(pts)
     E = np.array([t.powers for t in terms], dtype=int)
-    if region == "cube":
+    if cats:
+        i_max = int(np.argmax(vs))
+        vmax, xmax = float(vs[i_max]), pts[i_max]
+    elif region == "cube":
         vmax, xmax = _max_variance_cube(E, Ct, k, seed)
     else:
         vmax, xmax = _max_variance_ball(E, Ct, k, radius if radius > 0 else 1.0, pts, vs)
@@ -453,6 +474,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         spv_max_design=float(n * vd.max()),
         spv_region={"min": float(n * vr[0]), "mean": float(n * vr.mean()), "max": float(n * vmax)},
         fds=fds, region=region, alpha=float(alpha), effect_sd=float(effect_sd), letters=tuple(letters),
-        spv_max_at={L: float(v) for L, v in zip(letters, xmax)}, g_efficiency=float(len(terms) / (n * vmax)),
+        spv_max_at={L: (levels_of[i][int(v)] if i in levels_of else float(v)) for i, (L, v) in enumerate(zip(letters, xmax))},
+        g_efficiency=float(len(names) / (n * vmax)),
         rank=rank, n_distinct=n_distinct,
     )
