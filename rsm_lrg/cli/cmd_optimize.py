@@ -45,6 +45,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
                         help="tighter limits for a factor in actual units, or NAME=LEVEL[,LEVEL...] to hold a "
                              "categoric factor at its level(s) (repeatable)")
+    parser.add_argument("--constraint", action="append", default=None, metavar="EXPR",
+                        help="an inequality on the factors in actual units the optimum must satisfy, e.g. "
+                             "\"velocity_m_s**2/acceleration_m_s2 <= stroke_m\" or \"0.5*A + B <= 1.2\" "
+                             "(repeatable; one response)")
     add_block_option(parser, "optimum for the average block")
     add_model_refinements(parser, per_response=True, model=True)
     add_json(parser)
@@ -61,6 +65,9 @@ def run(args: argparse.Namespace) -> int:
     for i in range(len(responses)):
         check_transform_option(response_options(args, i))
     if len(responses) > 1 or args.weight or args.importance or args.limits:
+        if args.constraint:
+            raise ValueError("--constraint: constraints apply to one --response (the desirability search of "
+                             "several responses does not take them yet)")
         return _multi(args)
     if len(goals) > 1:
         raise ValueError("one --goal per --response")
@@ -71,7 +78,12 @@ def run(args: argparse.Namespace) -> int:
     data = read_table(args.data)
     with about_file(args.data):
         result, _ = fit_model(data, args.response, opts, factors=args.factor, block=args.block)
-        best = _optimize_on_fit_scale(optimize, result, args.goal, args.bound)
+        try:
+            best = _optimize_on_fit_scale(optimize, result, args.goal, args.bound, args.constraint)
+        except ValueError as exc:
+            if args.constraint and str(exc).startswith("constraint "):
+                raise ValueError(f"--constraint: {exc}") from None
+            raise
     print_notes(result.input_notes)
     if args.json and args.json != "-":
         dump_json(best.to_dict(), args.json, force=args.force)
@@ -83,7 +95,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _optimize_on_fit_scale(optimize, result, goal, bounds):
+def _optimize_on_fit_scale(optimize, result, goal, bounds, constraints=None):
     """Optimise a fit; a transformed fit is optimised on its own scale (a decreasing transform
     swaps minimum and maximum, a target T becomes g(T)) and reported in response units."""
     import dataclasses
@@ -92,14 +104,14 @@ def _optimize_on_fit_scale(optimize, result, goal, bounds):
 
     tr = getattr(result, "transform", None)
     if tr is None:
-        return optimize(result, goal=goal, bounds=bounds)
+        return optimize(result, goal=goal, bounds=bounds, constraints=constraints)
     kind, target = parse_goal(goal)
     if kind == "target":
         tr.check([target], "target")
         on_fit = ("target", float(tr.forward([target])[0]))
     else:
         on_fit = kind if not tr.decreasing else ("minimize" if kind == "maximize" else "maximize")
-    best = optimize(result, goal=on_fit, bounds=bounds)
+    best = optimize(result, goal=on_fit, bounds=bounds, constraints=constraints)
     note = (f"model fitted to the {tr.label}-transformed response; prediction and intervals back-transformed "
             "(standard error on the transformed scale)")
     return dataclasses.replace(best, goal=kind, target=target, warnings=tuple(best.warnings) + (note,))

@@ -251,7 +251,7 @@ def _exact_quadratic(b, B, lo, hi, sign):
 
 
 def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
-             allow_extrapolation: bool = False, seed: int = 0) -> OptimumResult:
+             allow_extrapolation: bool = False, seed: int = 0, constraints=None) -> OptimumResult:
     """Optimise a fitted response inside the factor box (and over every combination of the
     levels of its categoric factors).
 
@@ -275,6 +275,11 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
         Level of the confidence and prediction intervals (0.95).
     seed : int
         Seed of the Sobol start set (the search is deterministic for a given seed).
+    constraints : str or list of str, optional
+        Inequalities on the numeric factors in actual units, as for the designs
+        (:class:`rsm_lrg.design.constraints.Constraints`: ``"velocity_m_s**2/acceleration_m_s2
+        <= stroke_m"``, ``"0.5*A + B <= 1.2"``): the optimum satisfies every one (SLSQP from
+        feasible starts; the exact face enumeration is used only where it is feasible).
 
     Returns
     -------
@@ -285,15 +290,26 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
                         "e.g. rsm_lrg.optimize(rsm_lrg.fit(data, response), goal)")
     if not 0.0 < confidence < 1.0:
         raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
+    exprs = _constraint_texts(constraints)
     if fitted.space.has_categoric:
         return _optimize_categoric(fitted, goal, bounds, confidence=confidence,
-                                   allow_extrapolation=allow_extrapolation, seed=seed)
+                                   allow_extrapolation=allow_extrapolation, seed=seed, constraints=exprs)
     return _optimize_numeric(fitted, goal, bounds, confidence=confidence, allow_extrapolation=allow_extrapolation,
-                             seed=seed)
+                             seed=seed, constraints=exprs)
+
+
+def _constraint_texts(constraints) -> list[str]:
+    if constraints is None:
+        return []
+    if isinstance(constraints, str):
+        return [constraints]
+    if hasattr(constraints, "expressions"):
+        return list(constraints.expressions)
+    return [str(c) for c in constraints]
 
 
 def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapolation: bool,
-                      seed: int) -> OptimumResult:
+                      seed: int, constraints=()) -> OptimumResult:
     """:func:`optimize` for a fit (or a :class:`LevelView`) whose factors are all numeric."""
     from scipy import optimize as so
 
@@ -303,6 +319,11 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
     kind, target = parse_goal(goal)
     space = fitted.space
     lo, hi, notes = parse_bounds(space, bounds, allow_extrapolation=allow_extrapolation)
+    cons = None
+    if constraints:
+        from ..design.constraints import Constraints
+
+        cons = Constraints.parse(list(constraints), space)
     terms = fitted.terms
     beta = fitted.coefficients["coded"].to_numpy(dtype=float)
     k = len(space)
@@ -360,7 +381,10 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
         if candidates:
             method = "exact-faces+multistart"
 
-    exact = bool(candidates)
+    if cons is not None:  # the face enumeration ignores the constraints: keep its point only if feasible
+        candidates = [c for c in candidates if bool(cons.feasible_coded(c[None, :])[0])]
+        method = "exact-faces+multistart" if candidates else "multistart"
+    exact = bool(candidates) and cons is None
     starts = [np.clip(np.zeros(k), lo, hi)]
     if not exact:
         starts.append((lo + hi) / 2.0)
@@ -378,14 +402,27 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
         sob = qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m)
         starts += list(lo + sob * (hi - lo))
     box = list(zip(lo, hi))
+    if cons is not None:  # feasible starts from the region sample too
+        reg = np.asarray(cons.region_sample(256, seed), dtype=float)
+        reg = reg[cons.feasible_coded(reg) & np.all((reg >= lo) & (reg <= hi), axis=1)]
+        starts += list(reg[:32])
+        ineq = {"type": "ineq", "fun": lambda x: cons.margin_coded(np.asarray(x)[None, :])[0]}
     for x0 in starts:
         try:
-            r = so.minimize(obj, x0, jac=True, method="L-BFGS-B", bounds=box,
-                            options={"ftol": 1e-15, "gtol": 1e-10, "maxiter": 300})
+            if cons is None:
+                r = so.minimize(obj, x0, jac=True, method="L-BFGS-B", bounds=box,
+                                options={"ftol": 1e-15, "gtol": 1e-10, "maxiter": 300})
+            else:
+                r = so.minimize(obj, x0, jac=True, method="SLSQP", bounds=box, constraints=[ineq],
+                                options={"ftol": 1e-15, "maxiter": 300})
             candidates.append(np.clip(r.x, lo, hi))
         except (ValueError, FloatingPointError):
             continue
         candidates.append(np.clip(x0, lo, hi))
+    if cons is not None:
+        candidates = [c for c in candidates if bool(cons.feasible_coded(c[None, :])[0])]
+        if not candidates:
+            raise ValueError("no feasible setting found inside the bounds and the constraints")
 
     values = np.array([obj(c)[0] for c in candidates])
     i_best = int(np.argmin(values))
@@ -457,7 +494,8 @@ def _split_spec(spec: str) -> tuple[str, str]:
     return name, [v.strip() for v in val.split(",")]
 
 
-def _optimize_categoric(fitted, goal, bounds, *, confidence, allow_extrapolation, seed) -> OptimumResult:
+def _optimize_categoric(fitted, goal, bounds, *, confidence, allow_extrapolation, seed,
+                        constraints=()) -> OptimumResult:
     kind, target = parse_goal(goal)
     space = fitted.space
     numeric, held = split_bounds(space, bounds)
@@ -468,7 +506,7 @@ def _optimize_categoric(fitted, goal, bounds, *, confidence, allow_extrapolation
             raise ValueError("every factor is categoric: compare the level predictions instead (no numeric optimum)")
         view = LevelView(fitted, combo)
         r = _optimize_numeric(view, goal, numeric, confidence=confidence, allow_extrapolation=allow_extrapolation,
-                              seed=seed)
+                              seed=seed, constraints=constraints)
         score = r.predicted if kind == "minimize" else -r.predicted if kind == "maximize" else abs(r.predicted - target)
         rows.append({"level": dict(combo), "actual": {**r.actual, **combo}, "predicted": r.predicted})
         if best is None or score < best[0]:
