@@ -167,6 +167,9 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
             raise ValueError(f"factor column {missing[0]!r} is not in the data")
     else:
         space, notes = _space_and_notes(ddf, response, factors, numeric, lo, hi)
+    if space.has_categoric:
+        raise ValueError("categoric factors are not supported for a Dask DataFrame yet; fit it as a pandas "
+                         "DataFrame (or fit each level's partitions separately)")
     for f in space.factors:
         if not lo[f.name] < hi[f.name]:
             raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")
