@@ -250,6 +250,7 @@ class FitResult:
     omitted_rows: tuple = field(default=(), repr=False)
     omitted_data: Any = field(default=None, repr=False)
     least_squares: Regression | None = field(default=None, repr=False)
+    term_vif: dict = field(default_factory=dict, repr=False)
 
     @cached_property
     def design_matrix(self) -> np.ndarray:
@@ -509,6 +510,8 @@ class FitResult:
         ]
         out["statistics"] = {k: _f(v) for k, v in self.statistics.to_dict().items()}
         out["stationary_point"] = self.stationary_point.to_dict()
+        if self.term_vif:
+            out["term_vif"] = {k: _f(v) for k, v in self.term_vif.items()}
         out["notes"] = list(self.notes)
         out["omitted_rows"] = list(self.omitted_rows)  # 1-based data rows without a response
         return out
@@ -854,6 +857,9 @@ def _assemble(*, response, model, block, space, terms, col_names, ls: Regression
         pval = np.full_like(b_t, np.nan)
         tq = np.nan
     vif = np.r_[np.nan, ls.vif(tidx[1:])]
+    # generalised VIF of each term (one per multi-df categoric term; the VIF for a 1-df term)
+    term_vif = dict(zip([t.name for t in terms[1:]], ls.gvif([tidx[g] for g in groups]).tolist())) \
+        if any(t.df > 1 for t in terms) else {}
     cols = column_names(terms)
     coded_coefs = dict(zip(cols, b_t.tolist()))
     actual = actual_coefficients(coded_coefs, terms, space)
@@ -881,5 +887,5 @@ def _assemble(*, response, model, block, space, terms, col_names, ls: Regression
         block_effects=block_effects, block_levels=blevels, pure_error=pe_used,
         actual_coefficients=actual, notes=tuple(input_notes) + tuple(notes),
         input_notes=tuple(input_notes), omitted_rows=tuple(omitted_rows), omitted_data=omitted_data,
-        least_squares=ls,
+        least_squares=ls, term_vif=term_vif,
     )

@@ -441,6 +441,26 @@ class Regression:
         centred = np.einsum("ij,ij->j", sub.R[1:, pos], sub.R[1:, pos])  # sum (x - mean)^2, scaled
         return np.diag(sub._cov_scaled)[pos] * centred
 
+    def gvif(self, groups: Sequence[Sequence[int]]) -> np.ndarray:
+        """Generalised variance inflation factors (Fox & Monette 1992, JASA 87:178) of groups
+        of columns (a categoric term's effect columns), among the columns of all the groups
+        (the intercept in column 0; other columns, e.g. blocks, left out):
+        ``GVIF_S = det(R_SS) det(R^-1_SS)`` with ``R`` the correlation matrix of those
+        columns; for a single column it is the VIF [-]."""
+        groups = [[int(c) for c in g] for g in groups]
+        cols = sorted({c for g in groups for c in g})
+        if not cols:
+            return np.zeros(0)
+        sub = self.submodel([0, *cols])
+        pos = {c: i + 1 for i, c in enumerate(cols)}
+        M = sub.R[1:, 1:].T @ sub.R[1:, 1:]  # centred cross-products of the scaled columns
+        C = sub._cov_scaled[1:, 1:]
+        out = []
+        for g in groups:
+            ix = [pos[c] - 1 for c in g]
+            out.append(float(np.linalg.det(M[np.ix_(ix, ix)]) * np.linalg.det(C[np.ix_(ix, ix)])))
+        return np.array(out)
+
     # -- sub-models ----------------------------------------------------------------------
     def submodel(self, cols: Sequence[int]) -> Regression:
         """The least-squares fit of the columns ``cols`` only, from the p x p factor (no pass

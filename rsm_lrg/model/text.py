@@ -228,6 +228,11 @@ def format_summary(result) -> str:
         rows.append([name, format_g(_clean(r["coded"], cscale)), format_g(r["std_error"]), format_g(r["ci_low"]),
                      format_g(r["ci_high"]), (f"{r['vif']:.2f}" if r["vif"] == r["vif"] else ""), _p(r["p"])])
     out.append(_table(["Term", "Estimate", "Std Error", "95% CI Low", "95% CI High", "VIF", "p-value"], rows))
+    multi = {k: v for k, v in (getattr(result, "term_vif", None) or {}).items()
+             if next(t for t in result.terms if t.name == k).df > 1}
+    if multi:
+        out.append("Generalised VIF of the multi-df terms (Fox & Monette): "
+                   + ", ".join(f"{k} {v:.2f}" for k, v in multi.items()))
     if result.block_effects:
         out.append("Block effects (sum to zero): " + ", ".join(
             f"{k} ({result.block_levels[k]}) {format_g(v)}" for k, v in result.block_effects.items()))

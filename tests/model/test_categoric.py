@@ -158,3 +158,22 @@ def test_numeric_fit_unchanged_by_the_categoric_code():
     assert list(r.coefficients.index) == ["Intercept", "A", "B", "C", "D", "AB", "AC", "AD", "BC", "BD", "CD",
                                           "A^2", "B^2", "C^2", "D^2"]
     assert all(f.kind == "numeric" for f in r.space)
+
+
+def test_generalised_vif_matches_the_correlation_matrix_route():
+    # Fox & Monette (1992): GVIF_S = det(R_SS) det(R_OO) / det(R), R the correlation matrix of
+    # the model columns without the intercept; computed here directly with NumPy
+    df = pd.read_csv(R / "cat_f2x2x3.csv").iloc[:-5]  # unbalanced: drop a few runs
+    r = rsm_lrg.fit(df, "y", factors=["x1", "x2", "stage", "material"])
+    X = r.design_matrix[:, 1:]
+    Rm = np.corrcoef(X, rowvar=False)
+    pos = 1
+    for t in r.terms[1:]:
+        s = list(range(pos - 1, pos - 1 + t.df))
+        o = [j for j in range(X.shape[1]) if j not in s]
+        want = np.linalg.det(Rm[np.ix_(s, s)]) * np.linalg.det(Rm[np.ix_(o, o)]) / np.linalg.det(Rm)
+        np.testing.assert_allclose(r.term_vif[t.name], want, rtol=1e-9, err_msg=t.name)
+        if t.df == 1:
+            np.testing.assert_allclose(r.coefficients.loc[t.columns[0], "vif"], want, rtol=1e-9)
+        pos += t.df
+    assert "Generalised VIF" in r.summary() and "term_vif" in r.to_dict()
