@@ -31,6 +31,8 @@ from typing import Any
 
 import numpy as np
 
+from ..model.levels import LevelView  # the optimisers' view of a fit at one level combination
+
 __all__ = ["optimize", "OptimumResult", "parse_goal", "parse_bounds"]
 
 _GOALS = {"minimize": "minimize", "minimise": "minimize", "min": "minimize",
@@ -451,9 +453,6 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
 # ----------------------------------------------------------------------------------------
 # categoric factors: the numeric surface at each combination of levels
 # ----------------------------------------------------------------------------------------
-from ..model.levels import LevelView  # noqa: E402  (re-exported: the optimisers' view of one level)
-
-
 def split_bounds(space, bounds) -> tuple[Any, dict]:
     """Numeric bounds (as :func:`parse_bounds` takes them) and ``{categoric name: [levels]}``
     from ``{name: (low, high) | level | [levels]}`` or ``["NAME=LOW:HIGH", "stage=rms", ...]``."""
