@@ -159,7 +159,7 @@ def test_jump_buttons_reach_the_optima(page2):
             got = next(float(r["value"]) for r in state["rows"] if r["response"] == resp)
             assert got == pytest.approx(best.predicted, rel=1e-9)
         if kind == "desirability":
-            assert state["setting"] == pytest.approx(data["desirability"]["setting"], rel=1e-12)
+            _same_setting(state["setting"], data["desirability"]["setting"])
     assert log["errors"] == []
 
 
@@ -349,7 +349,7 @@ def test_categoric_factor_and_transformed_response_equal_python(categoric_page):
     for resp, opt in data["optima"].items():
         page.click(f'[data-jump="optimum"][data-response="{resp}"]')
         state = page.evaluate(READ)
-        assert state["setting"] == pytest.approx(opt["setting"], rel=1e-12)
+        _same_setting(state["setting"], opt["setting"])
         compare(fits, state)
     page.click('[data-jump="desirability"]')
     assert page.evaluate(READ)["setting"]["stage"] == data["desirability"]["setting"]["stage"]
@@ -423,3 +423,13 @@ if __name__ == "__main__":
     import sys
 
     readme_screenshot(sys.argv[1] if len(sys.argv) > 1 else "docs/profiler.png")
+
+
+def _same_setting(got: dict, want: dict) -> None:
+    """Numbers to 1e-12 relative, categoric levels exactly (pytest.approx takes no text)."""
+    assert set(got) == set(want)
+    for k, v in want.items():
+        if isinstance(v, str):
+            assert got[k] == v, k
+        else:
+            assert got[k] == pytest.approx(v, rel=1e-12), k
