@@ -48,7 +48,6 @@ from rsm_lrg.physics.params import LRGParams
 from rsm_lrg.surrogate.design_input import read_design_arrays
 from rsm_lrg.surrogate.runs import evaluate_rows
 
-
 CV = (0.0, 2.0, 4.0, 6.0, 8.0, 10.0, 15.0, 20.0, 30.0)
 
 
