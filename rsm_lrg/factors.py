@@ -373,14 +373,7 @@ class FactorSpace:
     @classmethod
     def from_specs(cls, specs: Sequence[str]) -> FactorSpace:
         """From ``["NAME=LOW:HIGH", "NAME=cat:L1,L2", ...]``; every spec must carry its levels."""
-        items = []
-        for s in specs:
-            parsed = parse_factor(s)
-            if parsed[2] is None:
-                how = "NAME=cat:L1,L2,..." if parsed[0] == "categoric" else "NAME=LOW:HIGH"
-                raise ValueError(f"factor {quote_value(parsed[1])}: levels are needed here; write {how}")
-            items.append(parsed)
-        return cls.from_items(items)
+        return cls.from_items([_spec_with_levels(s) for s in specs])
 
     @classmethod
     def from_data(cls, data, factors: Sequence[Any] | None = None, *, exclude: Iterable[str] = ()) -> FactorSpace:
@@ -772,14 +765,40 @@ def _is_number_column(col) -> bool:
     return bool(len(vals)) and pd.to_numeric(vals, errors="coerce").notna().sum() * 2 >= len(vals)
 
 
-def _given_items(factors) -> list[tuple]:
-    """The factors as given, as ``("numeric", name, low, high)`` / ``("categoric", name, levels)``."""
+def _spec_with_levels(spec) -> tuple:
+    """:func:`parse_factor` of a spec that must carry its levels (``NAME=LOW:HIGH`` or
+    ``NAME=cat:L1,L2,...``), for a design's factors."""
+    parsed = parse_factor(spec)
+    if parsed[2] is None:
+        how = "NAME=cat:L1,L2,..." if parsed[0] == "categoric" else "NAME=LOW:HIGH"
+        raise ValueError(f"factor {quote_value(parsed[1])}: levels are needed here; write {how}")
+    return parsed
+
+
+def _given_items(factors, *, need_levels: bool = False) -> list[tuple]:
+    """The factors as given, as ``("numeric", name, low, high)`` / ``("categoric", name, levels)``.
+
+    ``need_levels=False`` (factors of data, :func:`choose_factors`): a bare name, a mapping
+    value ``None`` or ``"categoric"`` leave the levels (``None``) to the data, a mapping
+    value is ``(low, high)`` only as a tuple of two numbers, any other sequence is levels.
+    ``need_levels=True`` (a design's factors, :func:`rsm_lrg.design.as_factor_space`):
+    every factor must carry its levels, and a mapping value that is not a list of texts is
+    ``(low, high)``.
+    """
     if isinstance(factors, str):
         factors = [factors]
+    out = []
     if isinstance(factors, Mapping):
-        out = []
         for name, spec in factors.items():
-            if spec is None:
+            if isinstance(spec, (list, tuple)) and spec and all(isinstance(v, str) for v in spec):
+                out.append(("categoric", name, tuple(spec)))
+            elif need_levels:
+                try:
+                    low, high = spec
+                except (TypeError, ValueError):
+                    raise ValueError(f"factor {name!r}: expected a (low, high) pair, got {spec!r}") from None
+                out.append(("numeric", name, low, high))
+            elif spec is None:
                 out.append(("numeric", name, None, None))
             elif isinstance(spec, str):
                 if spec.strip().lower() not in ("categoric", "cat", "categorical"):
@@ -789,20 +808,24 @@ def _given_items(factors) -> list[tuple]:
             elif isinstance(spec, tuple) and len(spec) == 2 and all(isinstance(v, (int, float, np.number)) for v in spec):
                 out.append(("numeric", name, *spec))
             else:
-                levels = tuple(level_text(v) for v in spec)
-                out.append(("categoric", name, levels))
+                out.append(("categoric", name, tuple(level_text(v) for v in spec)))
         return out
-    out = []
     for it in factors:
         if isinstance(it, Factor):
             out.append(("numeric", it.name, it.low, it.high))
         elif isinstance(it, CategoricFactor):
             out.append(("categoric", it.name, it.levels))
         elif isinstance(it, str):
-            out.append(parse_factor(it) if "=" in it else ("numeric", it, None, None))
+            if need_levels:
+                out.append(_spec_with_levels(it))
+            else:
+                out.append(parse_factor(it) if "=" in it else ("numeric", it, None, None))
         else:
-            n, lo, hi = it
-            out.append(("numeric", n, lo, hi))
+            try:
+                name, low, high = it
+            except (TypeError, ValueError):
+                raise ValueError(f"factor {it!r}: expected 'NAME=LOW:HIGH' or (name, low, high)") from None
+            out.append(("numeric", name, low, high))
     return out
 
 

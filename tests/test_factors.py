@@ -165,3 +165,27 @@ def test_read_design_pairs_moved_columns_like_fit(tmp_path):
     d = Design.from_frame(f[order])
     assert d.factors.names == list(PAPER)
     assert [(fa.low, fa.high) for fa in d.factors] == list(PAPER.values())
+
+
+@pytest.mark.parametrize("bad", [("x", 0), 5, None])
+def test_a_bad_factor_item_gets_one_message_for_designs_and_data(bad):
+    """as_factor_space and choose_factors convert factor items with one routine
+    (factors._given_items), so a malformed item gets the same sentence from both."""
+    from rsm_lrg.design import as_factor_space
+
+    df = pd.DataFrame({"x": [0.0, 1.0, 2.0]})
+    msg = "expected 'NAME=LOW:HIGH' or \\(name, low, high\\)"
+    with pytest.raises(ValueError, match=msg):
+        as_factor_space([bad])
+    with pytest.raises(ValueError, match=msg):
+        choose_factors(df, [bad])
+
+
+def test_design_and_data_factor_items_agree():
+    """The same levelled items give the same space through both entry points."""
+    from rsm_lrg.design import as_factor_space
+
+    df = pd.DataFrame({"v": [0.4, 0.5, 0.6], "stage": ["rms", "rfcms", "rms"]})
+    items = ["stage=cat:rfcms,rms", "v=0.4:0.6"]
+    assert as_factor_space(items) == choose_factors(df, items).space == FactorSpace.from_specs(items)
+    assert as_factor_space({"v": (0.4, 0.6)}) == FactorSpace.from_ranges({"v": (0.4, 0.6)})

@@ -29,10 +29,10 @@ from ..factors import (
     Factor,
     FactorSpace,
     _design_factors,
+    _given_items,
     _numeric,
     letters_for,
     level_text,
-    parse_factor,
 )
 
 __all__ = [
@@ -76,51 +76,17 @@ def as_factor_space(factors: Any) -> FactorSpace:
     """
     if isinstance(factors, FactorSpace):
         return factors
-    items: list[tuple] = []
-    if isinstance(factors, Mapping):
-        for name, rng in factors.items():
-            if isinstance(rng, (list, tuple)) and rng and all(isinstance(v, str) for v in rng):
-                items.append(("categoric", name, tuple(rng)))
-                continue
-            try:
-                low, high = rng
-            except (TypeError, ValueError):
-                raise ValueError(f"factor {name!r}: expected a (low, high) pair, got {rng!r}") from None
-            items.append(("numeric", name, low, high))
-        return _space_from_items(items)
     if isinstance(factors, (str, bytes)):
         raise TypeError("factors must be a list of 'NAME=LOW:HIGH' strings, not a single string")
-    try:
-        seq = list(factors)
-    except TypeError:
-        raise TypeError(
-            "factors must be a FactorSpace, a mapping {name: (low, high)} or a list of "
-            f"'NAME=LOW:HIGH' strings, not {type(factors).__name__}"
-        ) from None
-    for it in seq:
-        if isinstance(it, Factor):
-            items.append(("numeric", it.name, it.low, it.high))
-        elif isinstance(it, CategoricFactor):
-            items.append(("categoric", it.name, it.levels))
-        elif isinstance(it, str):
-            parsed = parse_factor(it)
-            if parsed[2] is None:
-                how = "NAME=cat:L1,L2,..." if parsed[0] == "categoric" else "NAME=LOW:HIGH"
-                raise ValueError(f"factor {parsed[1]!r}: levels are needed here; write {how}")
-            items.append(parsed)
-        else:
-            try:
-                name, low, high = it
-            except (TypeError, ValueError):
-                raise ValueError(f"factor {it!r}: expected 'NAME=LOW:HIGH' or (name, low, high)") from None
-            items.append(("numeric", name, low, high))
-    return _space_from_items(items)
-
-
-def _space_from_items(items: list) -> FactorSpace:
-    if all(it[0] == "numeric" for it in items):
-        return FactorSpace.from_ranges([it[1:] for it in items])
-    return FactorSpace.from_items(items)
+    if not isinstance(factors, Mapping):
+        try:
+            factors = list(factors)
+        except TypeError:
+            raise TypeError(
+                "factors must be a FactorSpace, a mapping {name: (low, high)} or a list of "
+                f"'NAME=LOW:HIGH' strings, not {type(factors).__name__}"
+            ) from None
+    return FactorSpace.from_items(_given_items(factors, need_levels=True))
 
 
 def numeric_part(space: FactorSpace) -> tuple[FactorSpace, int]:
