@@ -22,9 +22,28 @@ Three ways, as in Design-Expert's and JMP's *Augment Design*:
 The original runs keep their settings, their ``std_order`` (1..n0) and their run order
 (they come first); the added runs follow (``std_order`` n0+1..), their run order
 randomised from the seed. With ``new_block=True`` the added runs form a new block (the
-original runs are block 1 when the design was not blocked). The optimal criterion ignores
-the block shift (a block effect is orthogonal to the terms only in balanced cases): the
-block column is there for the fit.
+original runs are block 1 when the design was not blocked).
+
+Blocks in the optimal criterion. When the augmented design has two or more blocks (a new
+block, or a blocked design added to), the block effects are nuisance parameters of the fit
+and the criterion accounts for them: each run's row of the information matrix is the model
+row ``f(x)`` followed by its block contrasts, coded exactly as the fit codes a block column
+(:func:`rsm_lrg.terms.block_contrasts`, sum-to-zero; blocks numbered in sorted order, the
+added runs' block last), ``M = [X B]'[X B]``. Then
+
+``D``  maximises ``det(M)`` of the full matrix. This equals
+       ``det(B'B) det(X'(I - P_B)X)``, and ``B'B`` is fixed by the block sizes, so it is the
+       same as maximising the determinant of the model part adjusted for blocks.
+``A``  minimises ``trace`` of the model-term block of ``M^-1`` (the coefficient variances
+       after the blocks are estimated; block effects not counted).
+``I``  minimises ``trace(M^-1 W_b)`` with ``W_b`` the region moment matrix ``W`` padded
+       with zeros for the block columns: the average prediction variance over the region
+       of the average block (the intercept is the mean over blocks, as in the fit).
+
+A block shift absorbs the mean of the added runs, so only their spread about their own mean
+informs the model: a run set that is best ignoring the block can be poor with it (e.g. the
+added runs' intercept information is lost). ``options["block_aware"]`` says whether the
+criterion included the blocks.
 """
 
 from __future__ import annotations
@@ -79,7 +98,9 @@ def augment(
     fold : list of str or None
         ``foldover``: names or letters of the factors whose signs are reversed (default all).
     new_block : bool
-        Put the added runs in a new block.
+        Put the added runs in a new block. ``optimal``: whenever the result has two or more
+        blocks the criterion includes the block effects as nuisance parameters (module
+        docstring); ``options["block_aware"]`` records it.
     constraints : str, list or Constraints
         ``optimal``: every added run satisfies them.
     seed, starts, randomize
@@ -118,7 +139,27 @@ def augment(
         if constraints is not None and not isinstance(constraints, Constraints):
             constraints = Constraints.parse(constraints, space)
         W = moment_matrix(space, terms, constraints) if crit == "I" else None
-        prob = _Problem(space, terms, crit, W, constraints, _pool(space, constraints, seed=int(rng.integers(2 ** 31))))
+        pool = _pool(space, constraints, seed=int(rng.integers(2 ** 31)))
+        b_old, b_new = _block_labels(design, order0, new_block)
+        labels = np.unique(np.concatenate([b_old, [b_new]]))
+        block_aware = len(labels) > 1
+        old_p, search_crit = p, crit
+        if block_aware and n0 + runs < p + len(labels) - 1:
+            raise ValueError(f"{n0} runs + {runs} added cannot fit the {model} model's {p} terms and "
+                             f"{len(labels) - 1} block effects; add at least {p + len(labels) - 1 - n0} runs")
+        if block_aware:  # the block contrasts as one more (held) coordinate and term
+            codes = np.searchsorted(labels, b_old).astype(float)
+            new_code = float(np.searchsorted(labels, b_new))
+            if crit == "A":  # trace of the model-term block of M^-1 = trace(M^-1 W) with W = I padded
+                W = np.eye(p)
+            xspace, terms, W, cons_x = _with_block(space, terms, W, constraints, len(labels))
+            old = np.column_stack([old, codes])
+            pool = np.column_stack([pool, np.full(len(pool), new_code)])
+            search_crit = "I" if crit == "A" else crit  # A on the model part: trace(M^-1 [I 0; 0 0])
+            prob = _blocked_problem_class()(xspace, terms, search_crit, W, cons_x, pool)
+            prob.hold_block(new_code)
+        else:
+            prob = _Problem(space, terms, crit, W, constraints, pool)
         nstarts = starts or (8 if p <= 21 else 3)
         best, best_v = None, np.inf
         plan = ["greedy"] + ["coarse"] * nstarts + ["continuous"] * nstarts
@@ -131,9 +172,11 @@ def augment(
             if best is None or v < best_v:
                 best, best_v = D, v
         best, _ = prob.improve(best, fixed=n0, polish=True)
-        new = best[n0:]
-        options.update(criterion=crit, model=model, model_terms=p,
-                       criterion_value=criterion_value(best, terms, crit, W),
+        value = criterion_value(best, terms, search_crit, W)
+        new = best[n0:, :len(space)]
+        old = old[:, :len(space)]
+        options.update(criterion=crit, model=model, model_terms=old_p, criterion_value=value,
+                       block_aware=bool(block_aware),
                        constraints=[] if constraints is None else constraints.expressions)
     elif method == "ccd":
         from .composite import ccd_alpha
@@ -205,8 +248,81 @@ def augment(
     run = np.concatenate([np.arange(1, n0 + 1), run_new])
     blocks = None
     if new_block or design.blocks is not None:
-        b0 = design.blocks[order0] if design.blocks is not None else np.ones(n0, dtype=int)
-        bn = int(b0.max()) + 1 if new_block else int(b0.max())
+        b0, bn = _block_labels(design, order0, new_block)
         blocks = np.concatenate([b0, np.full(n_new, bn)])
     options.update(seed=used, randomize=bool(randomize), new_block=bool(new_block))
     return Design(space, "augmented", coded, std, run, blocks, options)
+
+
+def _block_labels(design: Design, order0: np.ndarray, new_block: bool) -> tuple[np.ndarray, int]:
+    """Block of each original run (run order; all 1 when not blocked) and of the added runs."""
+    n0 = design.n_runs
+    b0 = design.blocks[order0] if design.blocks is not None else np.ones(n0, dtype=int)
+    bn = int(b0.max()) + 1 if new_block else int(b0.max())
+    return b0, bn
+
+
+class _HeldColumns:
+    """Constraints seen through the factor columns only (the block coordinate dropped)."""
+
+    def __init__(self, constraints, k: int):
+        self.c, self.k = constraints, k
+
+    def __bool__(self) -> bool:
+        return bool(self.c)
+
+    def feasible_coded(self, coded, tol: float = 1e-9) -> np.ndarray:
+        return self.c.feasible_coded(np.asarray(coded)[:, :self.k], tol)
+
+
+def _with_block(space, terms, W, constraints, n_blocks: int):
+    """The factor space and terms with the block as one more categoric coordinate (level
+    index = block code 0..b-1) and one more term whose columns are the fit's block
+    contrasts; ``W`` padded with zeros for them; constraints on the factor columns only.
+
+    The block term's columns are :func:`rsm_lrg.terms.effect_codes` of the code, which is
+    what :func:`rsm_lrg.terms.block_contrasts` (the fit's block coding, through
+    :func:`rsm_lrg.terms.model_matrix`) returns: the same routine, not a second one.
+    """
+    from ..factors import CategoricFactor, FactorSpace, letters_for
+    from ..terms import Term, n_columns
+
+    k = len(space)
+    names = {f.name for f in space.factors}
+    name = "augment_block"
+    while name in names:
+        name += "_"
+    used = {f.letter for f in space.factors}
+    letter = next(L for L in letters_for(k + 27) if L not in used)
+    levels = tuple(str(i + 1) for i in range(n_blocks))
+    xspace = FactorSpace(tuple(space.factors) + (CategoricFactor(name, levels, letter),))
+    bterm = Term(powers=(0,) * k + (1,), name="Block", cat=((k, levels),), cat_letters=(letter,))
+    xterms = list(terms) + [bterm]
+    Wx = None
+    if W is not None:
+        Wx = np.zeros((n_columns(xterms),) * 2)
+        Wx[:W.shape[0], :W.shape[1]] = W
+    cons = None if constraints is None else _HeldColumns(constraints, k)
+    return xspace, xterms, Wx, cons
+
+
+def _blocked_problem_class():
+    from .optimal import _Problem
+
+    class _Blocked(_Problem):
+        """Exchange with the block coordinate held at the added runs' block."""
+
+        def hold_block(self, code: float) -> None:
+            j = len(self.space) - 1
+            self.code = code
+            self.values[j] = np.array([code])
+            keep = self.candidates[:, j] == code
+            self.candidates, self.cand_rows = self.candidates[keep], self.cand_rows[keep]
+
+        def random_start(self, n: int, rng, grid: bool = False) -> np.ndarray:
+            D = super().random_start(n, rng, grid)
+            D[:, -1] = self.code
+            return D
+
+    return _Blocked
+
