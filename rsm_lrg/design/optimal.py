@@ -155,25 +155,21 @@ def criterion_value(coded: np.ndarray, terms, criterion: str = "D", W: np.ndarra
     return float(_value(M, crit, W))
 
 
+def _gains(v: float, cur: float) -> bool:
+    """Whether criterion value ``v`` (to minimise) is a real gain on ``cur`` (more than a
+    relative 1e-10, so that rounding never cycles an exchange)."""
+    return v < cur - 1e-10 * max(1.0, abs(cur))
+
+
 class _Problem:
     def __init__(self, space, terms, crit, W, constraints, pool):
         self.space, self.terms, self.crit, self.W, self.cons = space, terms, crit, W, constraints
         self.k = len(space)
         self.p = n_columns(terms)
         self.pool = pool
-        cats = [i for i, f in enumerate(space.factors) if f.kind == "categoric"]
-        cands = pool
-        if cats:
-            import itertools
-
-            reps = []
-            for c in itertools.product(*[range(space.factors[i].n_levels) for i in cats]):
-                q = pool.copy()
-                q[:, cats] = c
-                reps.append(q)
-            cands = np.vstack(reps)
+        cands = _at_every_level(pool, space)
         self._P = None
-        if not cats:  # all numeric: model rows as products of powers (fast path)
+        if not space.has_categoric:  # all numeric: model rows as products of powers (fast path)
             self._P = np.array([t.powers for t in terms], dtype=int)
         self.candidates = cands
         self.cand_rows = self.rows(cands)
@@ -246,6 +242,20 @@ class _Problem:
         M = information(D, self.terms) + self.ridge(len(D))
         return float(_value(M, self.crit, self.W))
 
+    def _replace(self, D: np.ndarray, F: np.ndarray, i: int, x: np.ndarray, g: np.ndarray, M: np.ndarray,
+                 cur: float) -> tuple[np.ndarray, float] | None:
+        """The acceptance step of both exchanges: run ``i`` of ``D`` (model row ``F[i]``;
+        information ``M``, criterion ``cur``) is replaced by the point ``x`` (model row ``g``)
+        only if the exact criterion of the new information matrix is a real gain (the
+        rank-one updates of :meth:`batch` only rank the candidates). On a gain ``D`` and
+        ``F`` are updated in place and the new ``(M, criterion)`` returned; else None."""
+        M2 = M - np.outer(F[i], F[i]) + np.outer(g, g)
+        v2 = float(_value(M2, self.crit, self.W))
+        if not _gains(v2, cur):
+            return None
+        D[i], F[i] = x, g
+        return M2, v2
+
     def exchange(self, D: np.ndarray, fixed: int = 0, polish: bool = True, coarse: bool = False) -> tuple[np.ndarray, float]:
         """Coordinate exchange on rows ``fixed..`` of ``D`` (earlier rows held); ``coarse``:
         numeric coordinates at -1, 0, +1 only (the levels of the classical designs)."""
@@ -277,14 +287,10 @@ class _Problem:
                             cand = cand[ok]
                         G = self.rows(cand)
                         v = self.batch(M, F[i], G)
-                        base = M - np.outer(F[i], F[i])
                         b = int(np.argmin(v))
-                        if v[b] < cur - 1e-10 * max(1.0, abs(cur)):
-                            M2 = base + np.outer(G[b], G[b])
-                            v2 = float(_value(M2, self.crit, self.W))  # exact: accept real gains only
-                            if v2 < cur - 1e-10 * max(1.0, abs(cur)):
-                                D[i], F[i], M, cur = cand[b], G[b], M2, v2
-                                improved = True
+                        if _gains(v[b], cur) and (got := self._replace(D, F, i, cand[b], G[b], M, cur)):
+                            M, cur = got
+                            improved = True
                 if not improved:
                     break
         return D, cur
@@ -306,19 +312,15 @@ class _Problem:
         for _ in range(50):
             improved = False
             for i in range(fixed, n):
-                base = M - np.outer(F[i], F[i])
                 best_v, best_j = cur, -1
                 for lo in range(0, len(G), 2048):
                     v = self.batch(M, F[i], G[lo:lo + 2048])
                     j = int(np.argmin(v))
-                    if v[j] < best_v - 1e-10 * max(1.0, abs(best_v)):
+                    if _gains(v[j], best_v):
                         best_v, best_j = float(v[j]), lo + j
-                if best_j >= 0:
-                    M2 = base + np.outer(G[best_j], G[best_j])
-                    v2 = float(_value(M2, self.crit, self.W))  # exact: accept real gains only
-                    if v2 < cur - 1e-10 * max(1.0, abs(cur)):
-                        D[i], F[i], M, cur = cands[best_j], G[best_j], M2, v2
-                        improved = True
+                if best_j >= 0 and (got := self._replace(D, F, i, cands[best_j], G[best_j], M, cur)):
+                    M, cur = got
+                    improved = True
             if not improved:
                 break
         return D, cur
@@ -328,7 +330,7 @@ class _Problem:
         D, v = self.exchange(D, fixed, polish=polish, coarse=coarse)
         for _ in range(10):
             D2, v2 = self.row_exchange(D, fixed, coarse=coarse)
-            if not v2 < v - 1e-10 * max(1.0, abs(v)):
+            if not _gains(v2, v):
                 break
             D, v = self.exchange(D2, fixed, polish=polish, coarse=coarse)
         return D, v
@@ -389,22 +391,29 @@ def _pool(space, constraints, n: int = 512, seed: int = 0) -> np.ndarray:
     return full
 
 
+def _at_every_level(pool: np.ndarray, space) -> np.ndarray:
+    """The coded points of ``pool`` repeated at every combination of the categoric levels
+    (the first categoric factor's level changing slowest); ``pool`` itself when there are
+    no categoric factors."""
+    cats = [i for i, f in enumerate(space.factors) if f.kind == "categoric"]
+    if not cats:
+        return pool
+    import itertools
+
+    reps = []
+    for c in itertools.product(*[range(space.factors[i].n_levels) for i in cats]):
+        q = pool.copy()
+        q[:, cats] = c
+        reps.append(q)
+    return np.vstack(reps)
+
+
 def _lof_points(D: np.ndarray, pool: np.ndarray, space, count: int) -> np.ndarray:
     """``count`` candidates each farthest (coded distance; a categoric mismatch counts 2)
     from every run so far: Design-Expert's lack-of-fit points, spread by distance."""
     num = space.numeric_index
     cat = [i for i in range(len(space)) if i not in num]
-    cands = pool.copy()
-    if cat:  # every candidate at every level combination
-        import itertools
-
-        combos = list(itertools.product(*[range(space.factors[i].n_levels) for i in cat]))
-        reps = []
-        for c in combos:
-            q = cands.copy()
-            q[:, cat] = c
-            reps.append(q)
-        cands = np.vstack(reps)
+    cands = _at_every_level(pool, space)
     out = []
     cur = D.copy()
     for _ in range(count):
