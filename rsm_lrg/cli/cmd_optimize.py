@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 
 from ._common import (
     ResponseGroup,
@@ -48,7 +49,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--constraint", action="append", default=None, metavar="EXPR",
                         help="an inequality on the factors in actual units the optimum must satisfy, e.g. "
                              "\"velocity_m_s**2/acceleration_m_s2 <= stroke_m\" or \"0.5*A + B <= 1.2\" "
-                             "(repeatable; one response)")
+                             "(repeatable; with several responses the desirability optimum satisfies them)")
     add_block_option(parser, "optimum for the average block")
     add_model_refinements(parser, per_response=True, model=True)
     add_json(parser)
@@ -65,9 +66,6 @@ def run(args: argparse.Namespace) -> int:
     for i in range(len(responses)):
         check_transform_option(response_options(args, i))
     if len(responses) > 1 or args.weight or args.importance or args.limits:
-        if args.constraint:
-            raise ValueError("--constraint: constraints apply to one --response (the desirability search of "
-                             "several responses does not take them yet)")
         return _multi(args)
     if len(goals) > 1:
         raise ValueError("one --goal per --response")
@@ -78,12 +76,8 @@ def run(args: argparse.Namespace) -> int:
     data = read_table(args.data)
     with about_file(args.data):
         result, _ = fit_model(data, args.response, opts, factors=args.factor, block=args.block)
-        try:
+        with _constraint_errors(args.constraint):
             best = _optimize_on_fit_scale(optimize, result, args.goal, args.bound, args.constraint)
-        except ValueError as exc:
-            if args.constraint and str(exc).startswith("constraint "):
-                raise ValueError(f"--constraint: {exc}") from None
-            raise
     print_notes(result.input_notes)
     if args.json and args.json != "-":
         dump_json(best.to_dict(), args.json, force=args.force)
@@ -115,6 +109,21 @@ def _optimize_on_fit_scale(optimize, result, goal, bounds, constraints=None):
     note = (f"model fitted to the {tr.label}-transformed response; prediction and intervals back-transformed "
             "(standard error on the transformed scale)")
     return dataclasses.replace(best, goal=kind, target=target, warnings=tuple(best.warnings) + (note,))
+
+
+@contextlib.contextmanager
+def _constraint_errors(constraints):
+    """A ValueError about the constraints (a bad expression, an empty region, no feasible
+    setting inside the bounds) gets the option's name in front: ``--constraint: ...``."""
+    from ..optimize.region import INFEASIBLE
+
+    try:
+        yield
+    except ValueError as exc:
+        text = str(exc)
+        if constraints and (text.startswith(("constraint ", "constraints ", "constraint:")) or text == INFEASIBLE):
+            raise ValueError(f"--constraint: {text}") from None
+        raise
 
 
 def _per_response(values, n, what):
@@ -155,7 +164,8 @@ def _multi(args) -> int:
             # the choice's notes cover the columns; each fit adds its runs left out
             fit_notes = getattr(fits[r], "fit", fits[r]).input_notes
             notes += [f"{r}: {n}" for n in fit_notes if n not in choice.notes and "left out (not a factor" not in n]
-        best = optimize_desirability(fits, specs, bounds=args.bound)
+        with _constraint_errors(args.constraint):
+            best = optimize_desirability(fits, specs, bounds=args.bound, constraints=args.constraint)
     print_notes(notes)
     out = best.to_dict()
     out["models"] = models

@@ -243,7 +243,8 @@ class DesirabilityResult:
 
 
 def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal], bounds=None, *,
-                          seed: int = 0, n_sobol: int = 256, n_polish: int = 6) -> DesirabilityResult:
+                          seed: int = 0, n_sobol: int = 256, n_polish: int = 6,
+                          constraints=None) -> DesirabilityResult:
     """Maximise the overall desirability of several fitted responses.
 
     Parameters
@@ -263,6 +264,13 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
         Sobol starts (rounded up to a power of two); all starts are screened at once.
     n_polish : int
         The best starts polished by L-BFGS-B; the best result then by Nelder–Mead.
+    constraints : str or list of str, optional
+        Inequalities on the numeric factors in actual units, as for the designs and the
+        single-response :func:`~rsm_lrg.optimize.optimize` (``"v**2/a <= s"``,
+        ``"0.5*A + B <= 1.2"``): the optimum satisfies every one. The search is the same
+        constrained search (:mod:`rsm_lrg.optimize.region`): the starts are screened feasible
+        first, the best polished by SLSQP with the constraints, the winner by Nelder–Mead
+        inside the region; a region with no feasible setting is a ``ValueError``.
 
     With categoric factors every combination of their levels (those allowed by ``bounds``,
     e.g. ``{"stage": "rms"}``) is searched over the numeric factors, and the combination with
@@ -270,11 +278,13 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     """
     first = next(iter(fits.values()), None) if fits else None
     if first is not None and first.space.has_categoric:
-        return _desirability_categoric(fits, goals, bounds, seed=seed, n_sobol=n_sobol, n_polish=n_polish)
-    return _desirability_numeric(fits, goals, bounds, seed=seed, n_sobol=n_sobol, n_polish=n_polish)
+        return _desirability_categoric(fits, goals, bounds, seed=seed, n_sobol=n_sobol, n_polish=n_polish,
+                                       constraints=constraints)
+    return _desirability_numeric(fits, goals, bounds, seed=seed, n_sobol=n_sobol, n_polish=n_polish,
+                                 constraints=constraints)
 
 
-def _desirability_categoric(fits, goals, bounds, *, seed, n_sobol, n_polish) -> DesirabilityResult:
+def _desirability_categoric(fits, goals, bounds, *, seed, n_sobol, n_polish, constraints=None) -> DesirabilityResult:
     from dataclasses import replace
 
     from .single import LevelView, split_bounds
@@ -282,6 +292,7 @@ def _desirability_categoric(fits, goals, bounds, *, seed, n_sobol, n_polish) -> 
     space = next(iter(fits.values())).space
     numeric, held = split_bounds(space, bounds)
     best = None
+    infeasible = None
     for combo in space.level_combinations():
         if not all(combo[k] in v for k, v in held.items()):
             continue
@@ -290,9 +301,20 @@ def _desirability_categoric(fits, goals, bounds, *, seed, n_sobol, n_polish) -> 
             v = LevelView(f, combo)
             v.y, v.transform = f.y, getattr(f, "transform", None)
             views[name] = v
-        r = _desirability_numeric(views, goals, numeric, seed=seed, n_sobol=n_sobol, n_polish=n_polish)
+        try:
+            r = _desirability_numeric(views, goals, numeric, seed=seed, n_sobol=n_sobol, n_polish=n_polish,
+                                      constraints=constraints)
+        except ValueError as exc:  # no feasible setting at this level combination: try the others
+            from .region import INFEASIBLE
+
+            if str(exc) != INFEASIBLE:
+                raise
+            infeasible = exc
+            continue
         if best is None or r.desirability > best[0].desirability:
             best = (r, combo)
+    if best is None:
+        raise infeasible if infeasible is not None else ValueError("no level combination is allowed by the bounds")
     r, combo = best
     letter = {f.name: f.letter for f in space.factors}
     actual = {n: (combo[n] if n in combo else r.actual[n]) for n in space.names}
@@ -301,12 +323,13 @@ def _desirability_categoric(fits, goals, bounds, *, seed, n_sobol, n_polish) -> 
     return replace(r, actual=actual, coded=coded, bounds=bnds)
 
 
-def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish) -> DesirabilityResult:
+def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, constraints=None) -> DesirabilityResult:
     """:func:`optimize_desirability` over numeric factors only."""
     from scipy import optimize as so
     from scipy.stats import qmc
 
     from ..model.terms import design_matrix
+    from .region import feasible_mask, feasible_only, is_feasible, local_minima, parse_constraints, region_starts
     from .single import optimize as single_optimize
     from .single import parse_bounds
 
@@ -331,6 +354,7 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish) -> De
     goals = [g.with_limits(float(np.nanmin(observed(fits[g.response]))), float(np.nanmax(observed(fits[g.response]))))
              for g in goals]
     lo, hi, notes = parse_bounds(space, bounds)
+    cons = parse_constraints(constraints, space)
     k = len(space)
     polys = []
     inverses = []
@@ -397,41 +421,45 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish) -> De
                     continue
                 goal = ("target", zt)
         try:
-            o = single_optimize(fits[g.response], goal=goal, bounds=bounds)
+            o = single_optimize(fits[g.response], goal=goal, bounds=bounds, constraints=constraints)
             starts.append(np.array([o.coded[L] for L in space.letters]))
         except ValueError:
             pass
     m = max(3, int(math.ceil(math.log2(max(n_sobol, 8)))))
     sob = qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m)
     starts += list(lo + sob * (hi - lo))
+    starts += region_starts(cons, lo, hi, seed)
     S = np.clip(np.array(starts), lo, hi)
-    # screen every start (vectorised), polish the most promising ones
+    # screen every start (vectorised), feasible ones first; polish the most promising ones
     vals = objective_many(S)
-    order = np.argsort(vals, kind="stable")[:n_polish]
-    box = list(zip(lo, hi))
-    best_x, best_v = S[order[0]], float(vals[order[0]])
-    for i in order:
-        try:
-            r = so.minimize(objective, S[i], method="L-BFGS-B", bounds=box,
-                            options={"ftol": 1e-14, "gtol": 1e-10, "maxiter": 200})
-        except (ValueError, FloatingPointError):
-            continue
-        c = np.clip(r.x, lo, hi)
-        v = objective(c)
-        if v < best_v - 1e-15:
-            best_x, best_v = c, v
-    # D has kinks (limits, targets): finish with a derivative-free polish of the best point
-    r2 = so.minimize(objective, best_x, method="Nelder-Mead",
+    ok = feasible_mask(S, cons)
+    order = np.lexsort((vals, ~ok))[:n_polish]
+    cands = local_minima(objective, S[order], lo, hi, cons, maxiter=200)
+    cands = feasible_only(cands, cons)
+    cvals = [objective(c) for c in cands]
+    best_x = cands[int(np.argmin(cvals))]
+    best_v = float(min(cvals))
+
+    # D has kinks (limits, targets): finish with a derivative-free polish of the best point,
+    # kept inside the box and the constraints (a point outside scores +inf)
+    def inside(x):
+        x = np.asarray(x, dtype=float)
+        if np.any(x < lo) or np.any(x > hi) or not is_feasible(x, cons):
+            return math.inf
+        return objective(x)
+
+    r2 = so.minimize(inside if cons is not None else objective, best_x, method="Nelder-Mead",
                      options={"xatol": 1e-10, "fatol": 1e-15, "maxiter": 400 * k})
     c = np.clip(r2.x, lo, hi)
-    if objective(c) < best_v:
+    if objective(c) < best_v and is_feasible(c, cons):
         best_x, best_v = c, objective(c)
     x = best_x + 0.0
     D, ys = D_of(x)
     ds = [float(individual_desirability(y, g)[0]) for y, g in zip(ys, goals)]
     warns = list(notes)
     if D[0] <= 0:
-        warns.append("no setting in the box meets every response's limits (D = 0); the point shown is the closest")
+        where = "the box and the constraints" if cons is not None else "the box"
+        warns.append(f"no setting in {where} meets every response's limits (D = 0); the point shown is the closest")
     return DesirabilityResult(
         responses=tuple(names), goals=tuple(goals),
         coded={L: float(v) for L, v in zip(space.letters, x)},

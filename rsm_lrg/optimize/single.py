@@ -301,13 +301,9 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
 
 
 def _constraint_texts(constraints) -> list[str]:
-    if constraints is None:
-        return []
-    if isinstance(constraints, str):
-        return [constraints]
-    if hasattr(constraints, "expressions"):
-        return list(constraints.expressions)
-    return [str(c) for c in constraints]
+    from .region import constraint_texts
+
+    return constraint_texts(constraints)
 
 
 def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapolation: bool,
@@ -317,15 +313,12 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
 
     from ..model.canonical import quadratic_parts
     from ..model.terms import design_gradient, design_matrix
+    from .region import feasible_only, is_feasible, local_minima, parse_constraints, region_starts
 
     kind, target = parse_goal(goal)
     space = fitted.space
     lo, hi, notes = parse_bounds(space, bounds, allow_extrapolation=allow_extrapolation)
-    cons = None
-    if constraints:
-        from ..design.constraints import Constraints
-
-        cons = Constraints.parse(list(constraints), space)
+    cons = parse_constraints(list(constraints or []), space)
     terms = fitted.terms
     beta = fitted.coefficients["coded"].to_numpy(dtype=float)
     k = len(space)
@@ -384,7 +377,7 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
             method = "exact-faces+multistart"
 
     if cons is not None:  # the face enumeration ignores the constraints: keep its point only if feasible
-        candidates = [c for c in candidates if bool(cons.feasible_coded(c[None, :])[0])]
+        candidates = [c for c in candidates if is_feasible(c, cons)]
         method = "exact-faces+multistart" if candidates else "multistart"
     exact = bool(candidates) and cons is None
     starts = [np.clip(np.zeros(k), lo, hi)]
@@ -403,28 +396,9 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
         m = max(3, int(math.ceil(math.log2(max(8, 4 * k)))))
         sob = qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m)
         starts += list(lo + sob * (hi - lo))
-    box = list(zip(lo, hi))
-    if cons is not None:  # feasible starts from the region sample too
-        reg = np.asarray(cons.region_sample(256, seed), dtype=float)
-        reg = reg[cons.feasible_coded(reg) & np.all((reg >= lo) & (reg <= hi), axis=1)]
-        starts += list(reg[:32])
-        ineq = {"type": "ineq", "fun": lambda x: cons.margin_coded(np.asarray(x)[None, :])[0]}
-    for x0 in starts:
-        try:
-            if cons is None:
-                r = so.minimize(obj, x0, jac=True, method="L-BFGS-B", bounds=box,
-                                options={"ftol": 1e-15, "gtol": 1e-10, "maxiter": 300})
-            else:
-                r = so.minimize(obj, x0, jac=True, method="SLSQP", bounds=box, constraints=[ineq],
-                                options={"ftol": 1e-15, "maxiter": 300})
-            candidates.append(np.clip(r.x, lo, hi))
-        except (ValueError, FloatingPointError):
-            continue
-        candidates.append(np.clip(x0, lo, hi))
-    if cons is not None:
-        candidates = [c for c in candidates if bool(cons.feasible_coded(c[None, :])[0])]
-        if not candidates:
-            raise ValueError("no feasible setting found inside the bounds and the constraints")
+    starts += region_starts(cons, lo, hi, seed)  # feasible starts from the region sample too
+    candidates += local_minima(obj, starts, lo, hi, cons, jac=True)
+    candidates = feasible_only(candidates, cons)
 
     values = np.array([obj(c)[0] for c in candidates])
     i_best = int(np.argmin(values))
