@@ -2,7 +2,8 @@
 
 ``least_squares`` (the regression core: one factorisation, every statistic derived from
 it), ``terms`` (model terms and the design matrix), ``fit`` (:func:`fit`, :class:`FitResult`;
-``dask_fit`` for a Dask DataFrame), ``summary`` (fit summary), ``reduce`` (backward
+``dask_fit`` for a Dask DataFrame), ``summary`` (fit summary), ``effects`` (Lenth's PSE and half-normal scores of
+screening effects), ``reduce`` (backward
 elimination), ``evaluate`` (design evaluation), ``diagnostics``,
 ``anova`` (Design-Expert ANOVA, Table 5), ``statistics`` (R², PRESS, adequate precision),
 ``canonical`` (stationary point and eigen-analysis), ``text`` (the summary text).

@@ -470,6 +470,13 @@ class FitResult:
 
         return lookup("FitResult.to_html")(self, **kwargs)
 
+    def effects(self, alpha: float = 0.05):
+        """Effects of the one-df terms with Lenth's PSE, ME and SME and half-normal scores
+        (:func:`rsm_lrg.model.effects.screening_effects`), for unreplicated screening fits."""
+        from .effects import screening_effects
+
+        return screening_effects(self, alpha=alpha)
+
     def profiler(self, **kwargs):
         """The interactive prediction profiler of this fit, shown inline in a notebook (no
         server): see :func:`rsm_lrg.report.interactive.profiler` (``.save(path)`` writes the

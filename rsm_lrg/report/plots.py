@@ -37,12 +37,14 @@ __all__ = [
     "Rendered",
     "render",
     "to_data_uri",
+    "figure_bytes",
     "normal_probability_plot",
     "residuals_vs_predicted",
     "residuals_vs_run",
     "predicted_vs_actual",
     "cooks_distance_plot",
     "leverage_plot",
+    "half_normal_plot",
     "evaluate_on_grid",
     "surface_3d",
     "contour_plot",
@@ -102,8 +104,8 @@ def _finish(ax, title: str | None, xlabel: str | None, ylabel: str | None) -> No
 
 # -- output -------------------------------------------------------------------------------
 
-def to_data_uri(fig: Figure, fmt: str = "png", *, dpi: int = DEFAULT_DPI) -> str:
-    """A figure as a ``data:`` URI.
+def figure_bytes(fig: Figure, fmt: str = "png", *, dpi: int = DEFAULT_DPI) -> bytes:
+    """A figure as PNG or SVG bytes, free of dates (reproducible files).
 
     Parameters
     ----------
@@ -123,8 +125,14 @@ def to_data_uri(fig: Figure, fmt: str = "png", *, dpi: int = DEFAULT_DPI) -> str
 
     with matplotlib.rc_context({"svg.hashsalt": "rsm-lrg"}):  # stable SVG ids
         fig.savefig(buf, format=fmt, dpi=dpi, metadata=meta)
+    return buf.getvalue()
+
+
+def to_data_uri(fig: Figure, fmt: str = "png", *, dpi: int = DEFAULT_DPI) -> str:
+    """A figure as a ``data:`` URI (:func:`figure_bytes` in base64)."""
+    data = figure_bytes(fig, fmt, dpi=dpi)
     mime = "image/png" if fmt == "png" else "image/svg+xml"
-    return f"data:{mime};base64,{base64.b64encode(buf.getvalue()).decode('ascii')}"
+    return f"data:{mime};base64,{base64.b64encode(data).decode('ascii')}"
 
 
 @dataclass(frozen=True)
@@ -302,6 +310,45 @@ def leverage_plot(leverage, run_order=None, *, threshold: float | None = None,
 
 
 # -- response surfaces --------------------------------------------------------------------
+
+def half_normal_plot(abs_effects, scores, labels, *, me: float | None = None, sme: float | None = None,
+                     title: str | None = "Half-normal plot of effects") -> Figure:
+    """Half-normal plot (Daniel 1959): ``|effect|`` against its half-normal score.
+
+    Parameters
+    ----------
+    abs_effects, scores : array_like
+        ``|effect|`` of each term and its half-normal score, both from the model layer
+        (:func:`rsm_lrg.model.effects.screening_effects`) [response units, -].
+    labels : sequence of str
+        Term names; the effects beyond ``me`` are labelled on the plot.
+    me, sme : float, optional
+        Lenth's margin and simultaneous margin of error, drawn as dashed vertical lines.
+    """
+    x = _vector(abs_effects, "abs_effects")
+    y = _vector(scores, "scores")
+    _same_length(x, y, "abs_effects", "scores")
+    labels = [str(s) for s in labels]
+    if len(labels) != x.size:
+        raise ValueError(f"labels: {len(labels)} given for {x.size} effects")
+    fig = _new_figure()
+    ax = fig.add_subplot()
+    ax.scatter(x, y, s=22, **_POINT_STYLE)
+    small = x <= (me if me is not None else np.inf)
+    if small.sum() >= 2 and np.any(x[small] > 0):  # the line through the origin of the inactive effects
+        slope = float(np.sum(x[small] * y[small]) / np.sum(x[small] ** 2))
+        xs = np.array([0.0, min(float(x.max()), float(y.max()) / slope)])
+        ax.plot(xs, slope * xs, color=_LINE_COLOR, linewidth=1)
+    for value, name in ((me, "ME"), (sme, "SME")):
+        if value is not None and math.isfinite(value):
+            ax.axvline(value, color="#b5261e", linewidth=0.8, linestyle="--")
+            ax.annotate(name, (value, 0.02), xycoords=("data", "axes fraction"), fontsize=7, color="#b5261e")
+    for xi, yi, lab in zip(x, y, labels):
+        if me is not None and xi > me:
+            ax.annotate(_t(lab), (xi, yi), xytext=(4, -3), textcoords="offset points", fontsize=8)
+    _finish(ax, title, "|Effect|", "Half-normal quantile")
+    return fig
+
 
 def evaluate_on_grid(predict: Callable[[np.ndarray, np.ndarray], np.ndarray],
                      x_range: tuple[float, float], y_range: tuple[float, float], n: int = 31):

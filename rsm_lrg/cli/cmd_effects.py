@@ -1,0 +1,85 @@
+"""``rsm-lrg effects``: effects of a screening experiment, Lenth's PSE and the half-normal plot."""
+
+from __future__ import annotations
+
+import argparse
+
+from ._common import about_file, add_block_option, add_factor_options, add_force, add_json, output_option, print_notes
+
+NAME = "effects"
+HELP = "effects of a two-level or screening design: Lenth's PSE, ME, SME and the half-normal plot"
+DESCRIPTION = (
+    "Fit the runs in coded units and list the effect of every one-df term (twice its coded "
+    "coefficient: the change from -1 to +1) with its half-normal score and Lenth's (1989) "
+    "pseudo standard error, margin of error (ME) and simultaneous margin of error (SME), for "
+    "unreplicated designs where the ANOVA has no error to test against. --model full fits "
+    "every interaction of the factors (the saturated model of a 2^k factorial); --term picks "
+    "the terms. --plot writes the half-normal plot (PNG or SVG by the file's extension)."
+)
+
+#: The models the command fits: the standard orders up to two-factor interactions, or every
+#: interaction of the factors (products of distinct factors).
+MODELS = ("linear", "2fi", "full")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    from ._common import probability
+
+    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
+    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    add_factor_options(parser)
+    add_block_option(parser)
+    parser.add_argument("--model", default="full", choices=list(MODELS),
+                        help="main effects, + two-factor interactions, or every interaction (default full)")
+    parser.add_argument("--term", action="append", default=None, metavar="TERM",
+                        help="fit only these terms (repeatable, e.g. --term A --term AB); overrides --model")
+    parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
+                        help="level of ME and SME (default 0.05)")
+    output_option(parser.add_argument("--plot", metavar="PATH.png", default=None,
+                                      help="write the half-normal plot (.png or .svg)"))
+    add_json(parser)
+    add_force(parser)
+
+
+def _full_terms(letters) -> list[str]:
+    """Every product of distinct factors: ``A, B, ..., AB, ..., ABC...``."""
+    from itertools import combinations
+
+    return ["".join(c) for r in range(1, len(letters) + 1) for c in combinations(letters, r)]
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..io import dump_json, read_table, write_output
+    from ..model import fit
+    from ..model.effects import screening_effects
+
+    fmt = None
+    if args.plot is not None:
+        fmt = args.plot.rsplit(".", 1)[-1].lower() if "." in args.plot else ""
+        if fmt not in ("png", "svg"):
+            raise ValueError(f"--plot: {args.plot!r} must end in .png or .svg")
+    data = read_table(args.data)
+    with about_file(args.data):
+        terms = args.term
+        model = "2fi" if args.model == "full" else args.model
+        if terms is None and args.model == "full":  # the factors as the fit finds them, then all their products
+            first = fit(data, args.response, factors=args.factor, block=args.block, model="linear")
+            terms = _full_terms([f.letter for f in first.space.factors])
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=model, terms=terms)
+        eff = screening_effects(result, alpha=args.alpha)
+    figure = None
+    if args.plot is not None:
+        from ..report.plots import figure_bytes, half_normal_plot
+
+        f = eff.to_frame()
+        figure = figure_bytes(half_normal_plot(f["abs_effect"], f["half_normal"], f["term"], me=eff.me, sme=eff.sme,
+                                               title=f"Half-normal plot: {args.response}"), fmt)
+    print_notes(result.input_notes)
+    if figure is not None:
+        write_output(args.plot, figure, force=args.force)
+    if args.json:
+        dump_json(eff.to_dict(), args.json, force=args.force)
+    if args.json != "-":
+        print(f"Data: {args.data}")
+        print(eff.summary(), end="")
+    return 0
