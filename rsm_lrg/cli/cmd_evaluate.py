@@ -4,24 +4,30 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, add_json, add_model_option
+from ._common import about_file, add_force, add_json, add_model_option, output_option
 
 NAME = "evaluate"
-HELP = "evaluate a design for a model before any data: VIF, leverage, prediction variance, FDS, power"
+HELP = ("evaluate a design for a model before any data: VIF, leverage, prediction variance, FDS, power, "
+        "D/A/G/I efficiency, alias map; compare designs side by side")
 DESCRIPTION = (
     "Read a design CSV (as written by 'rsm-lrg design') and report, for the chosen model, the "
     "degrees of freedom, each term's standard error (in units of sigma), VIF and power to "
     "detect a 2-sigma effect at alpha 0.05, the leverage of every run, the scaled prediction "
     "variance at the centre, at the design points and over the region (its maximum by an exact "
     "search of every face, edge and vertex of the cube), the G-efficiency and the "
-    "fraction-of-design-space curve. A model the design cannot estimate is refused (exit 2) "
+    "fraction-of-design-space curve, the D-, A- and G-efficiencies and the average prediction "
+    "variance I, and the alias matrix and correlation map of the model and the potential terms "
+    "(--potential: the next bigger model by default). Two or more designs are compared side by "
+    "side: a table of the criteria (with efficiencies relative to the best design) and the FDS "
+    "curves, drawn on one plot with --plot PATH.png|svg. A model the design cannot estimate is refused (exit 2) "
     "with the aliased terms named. A data CSV without coded columns is read as well: its "
     "numeric columns (minus --exclude) are the factors, coded from their observed range."
 )
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("design", metavar="DESIGN.csv", help="the design")
+    parser.add_argument("design", metavar="DESIGN.csv", nargs="+",
+                        help="the design; two or more are compared side by side")
     add_model_option(parser, what="model to evaluate")
     parser.add_argument("--region", default="cube", choices=["cube", "sphere"],
                         help="region for the prediction variance (default: the coded cube)")
@@ -33,6 +39,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="effect to detect, in standard deviations (default 2)")
     parser.add_argument("--exclude", action="append", default=[], metavar="COL",
                         help="a column that is not a factor (data CSVs only; repeatable)")
+    parser.add_argument("--potential", default="auto", choices=["auto", "none", "2fi", "quadratic", "cubic"],
+                        help="model whose extra terms are the potential terms of the alias map (default auto: "
+                             "the next bigger model; none: no alias map)")
+    output_option(parser.add_argument("--plot", metavar="PATH.png", default=None,
+                                      help="write the fraction-of-design-space curve(s) on one plot (.png or .svg)"))
     add_json(parser)
     add_force(parser)
 
@@ -61,19 +72,62 @@ def _load(path, exclude):
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import dump_json
-    from ..model.evaluate import evaluate_design
+    from ..io import dump_json, write_output
+    from ..model.evaluate import compare_designs, evaluate_design
 
-    with about_file(args.design):
-        design = _load(args.design, args.exclude)
-        ev = evaluate_design(design, args.model, region=args.region, alpha=args.alpha, effect_sd=args.effect)
-        if not ev.estimable:  # a clear refusal naming the aliased terms (exit 2), never negative df
-            raise ValueError(ev.not_estimable_message())
-    if args.json and args.json != "-":
-        dump_json(ev.to_dict(), args.json, force=args.force)
-    if args.json == "-":
-        dump_json(ev.to_dict(), "-")
+    fmt = None
+    if args.plot is not None:
+        fmt = args.plot.rsplit(".", 1)[-1].lower() if "." in args.plot else ""
+        if fmt not in ("png", "svg"):
+            raise ValueError(f"--plot: {args.plot!r} must end in .png or .svg")
+    potential = None if args.potential == "none" else args.potential
+    paths = list(args.design)
+    if len(set(paths)) != len(paths):
+        raise ValueError("each DESIGN.csv may be given once")
+    designs = []
+    for path in paths:
+        with about_file(path):
+            designs.append(_load(path, args.exclude))
+    opts = dict(region=args.region, alpha=args.alpha, effect_sd=args.effect, potential=potential)
+    if len(paths) == 1:
+        with about_file(paths[0]):
+            ev = evaluate_design(designs[0], args.model, **opts)
+            if not ev.estimable:  # a clear refusal naming the aliased terms (exit 2), never negative df
+                raise ValueError(ev.not_estimable_message())
+        result, evs = ev, [ev]
     else:
-        print(f"Design: {args.design}")
-        print(ev.summary(), end="")
+        result = compare_designs(designs, args.model, names=paths, **opts)
+        evs = list(result.evaluations)
+    figure = None
+    if fmt is not None:
+        from ..report.plots import figure_bytes
+
+        figure = figure_bytes(_fds_figure(evs, paths), fmt)
+        write_output(args.plot, figure, force=args.force)
+    if args.json and args.json != "-":
+        dump_json(result.to_dict(), args.json, force=args.force)
+    if args.json == "-":
+        dump_json(result.to_dict(), "-")
+    else:
+        print(f"Design: {paths[0]}" if len(paths) == 1 else "Designs: " + ", ".join(paths))
+        print(result.summary(), end="")
     return 0
+
+
+def _fds_figure(evaluations, names):
+    """The FDS curves (unscaled variance against the fraction of the region) on one plot."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(5.0, 3.6))
+    fig.subplots_adjust(left=0.15, right=0.97, bottom=0.14, top=0.91)
+    ax = fig.add_subplot(1, 1, 1)
+    for ev, name in zip(evaluations, names):
+        c = ev.fds_curve
+        ax.plot(c["fraction"], c["variance"], label=str(name).replace("$", r"\$"), linewidth=1.4)
+    ax.set_xlabel("Fraction of design space")
+    ax.set_ylabel("Prediction variance x'(X'X)^-1 x [sigma^2]")
+    ax.set_title(f"FDS, {evaluations[0].model} model over the {evaluations[0].region}", fontsize=10)
+    ax.set_xlim(0.0, 1.0)
+    ax.grid(True, color="#dddddd", linewidth=0.6)
+    ax.legend(fontsize=8)
+    return fig

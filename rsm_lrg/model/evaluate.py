@@ -21,6 +21,27 @@ From the coded design matrix X (n runs, p terms; blocks as sum-to-zero contrasts
 
 For a Box–Behnken design the intercept is the mean of the centre runs, so
 ``SPV(0) = n / n0`` exactly (27/3 = 9 for the paper's design).
+
+Design criteria (JMP's *Design Diagnostics*; the same criteria the optimal designs use,
+:mod:`rsm_lrg.design.optimal`), with X the full model matrix (block contrasts included):
+
+* **D-efficiency** ``det(X'X)^(1/p) / n`` (1 for an orthogonal ±1 design);
+* **A-efficiency** ``p / (n trace((X'X)⁻¹))``;
+* **G-efficiency** ``p / max SPV`` over the region (above);
+* **I**: the average prediction variance ``trace((X'X)⁻¹ W)`` over the region (model terms,
+  average block), ``W`` the region moment matrix (exact moments of the uniform measure on
+  the coded cube, :func:`rsm_lrg.design.optimal.moment_matrix`; over the sphere the mean of
+  the region sample), and the average SPV ``n I``. The I-optimal design of a region is known
+  only by search, so there is no absolute I-efficiency: :func:`compare_designs` reports the
+  relative I-efficiency ``min_j(n_j I_j) / (n I)`` among the designs compared (and the
+  relative D-, A- and G-efficiencies likewise, each per run).
+
+The **alias map**: with the fitted model X1 and the *potential* terms X2 of the next bigger
+model (linear → 2FI → quadratic → cubic), the alias matrix ``A = (X1'X1)⁻¹ X1'X2`` (the
+bias ``E[b1] = β1 + A β2`` when the potential terms are active: Box & Draper's alias
+matrix, as :func:`rsm_lrg.design.screening.alias_matrix` computes it for screening designs)
+and the correlation map of every model and potential column
+(intercept left out, columns centred: JMP's *Color Map on Correlations*).
 """
 
 from __future__ import annotations
@@ -31,7 +52,11 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["evaluate_design", "DesignEvaluation", "FDS_FRACTIONS"]
+__all__ = ["evaluate_design", "DesignEvaluation", "FDS_FRACTIONS", "compare_designs", "DesignComparison",
+           "POTENTIAL"]
+
+#: The potential terms of each model: the next bigger model's (cubic: none).
+POTENTIAL = {"linear": "2fi", "2fi": "quadratic", "quadratic": "cubic", "cubic": None}
 
 #: Boundary search of the SPV maximum: iterations of the stacked L-BFGS-B over all faces, points
 #: polished one by one, and the largest k with extra starts per face.
@@ -39,6 +64,9 @@ MAXITER, NPOL, EXTRA_K = 100, 32, 3
 #: Largest model with fewer runs than terms whose aliased terms are listed one by one; a
 #: larger one is refused from its term count.
 MAX_ALIAS_LISTED = 200
+
+#: Most columns (model and potential terms) of an alias map; beyond, ``potential="auto"`` gives none.
+MAX_ALIAS_COLUMNS = 200
 
 #: Fractions at which the FDS curve is reported.
 FDS_FRACTIONS = tuple(np.round(np.linspace(0.0, 1.0, 11), 2))
@@ -81,6 +109,20 @@ class DesignEvaluation:
         Coded point where the SPV over the region is largest (exact boundary search).
     g_efficiency : float
         ``p / max SPV`` over the region (Myers, Montgomery & Anderson-Cook, Sec. 8.2.1) [-].
+    d_efficiency, a_efficiency : float
+        ``det(X'X)^(1/p) / n`` and ``p / (n trace((X'X)⁻¹))`` [-].
+    i_average : float
+        Average prediction variance ``trace((X'X)⁻¹ W)`` over the region [σ²]; ``n i_average``
+        is the average SPV.
+    potential : str or None
+        The model whose extra terms are the potential terms of the alias map.
+    alias_matrix : pandas.DataFrame or None
+        Rows the model columns, columns the potential columns: ``(X1'X1)⁻¹ X1'X2``.
+    correlation : pandas.DataFrame or None
+        Correlations of the model and potential columns (intercept left out; NaN for a
+        constant column).
+    fds_curve : pandas.DataFrame or None
+        The FDS curve at 101 fractions 0, 0.01, ..., 1 (``fraction, variance, spv``), for plots.
     """
 
     model: str
@@ -103,6 +145,13 @@ class DesignEvaluation:
     n_distinct: int = 0
     spv_max_at: dict = field(default_factory=dict)
     g_efficiency: float = math.nan
+    d_efficiency: float = math.nan
+    a_efficiency: float = math.nan
+    i_average: float = math.nan
+    potential: str | None = None
+    alias_matrix: Any = field(default=None, repr=False)
+    correlation: Any = field(default=None, repr=False)
+    fds_curve: Any = field(default=None, repr=False)
 
     @property
     def estimable(self) -> bool:
@@ -121,7 +170,12 @@ class DesignEvaluation:
                 "region": self.region, "power_alpha": self.alpha, "power_effect_sd": self.effect_sd,
                 "aliased": list(self.aliased), "alias_relations": list(self.alias_relations),
                 "estimable": self.estimable, "rank": self.rank, "n_distinct": self.n_distinct,
-                "spv_max_at": dict(self.spv_max_at), "g_efficiency": f(self.g_efficiency)}
+                "spv_max_at": dict(self.spv_max_at), "g_efficiency": f(self.g_efficiency),
+                "d_efficiency": f(self.d_efficiency), "a_efficiency": f(self.a_efficiency),
+                "i_average": f(self.i_average), "spv_average": f(self.n * self.i_average),
+                "potential": self.potential,
+                "alias_matrix": _frame_dict(self.alias_matrix, f),
+                "correlation": _frame_dict(self.correlation, f)}
 
     def not_estimable_message(self) -> str:
         """One sentence naming the aliased terms (empty when the model is estimable)."""
@@ -159,7 +213,39 @@ class DesignEvaluation:
                 "", "Fraction of design space (unscaled variance x'(X'X)⁻¹x)"]
         rows = [[f"{r.fraction:.1f}", format_g(r.variance), format_g(r.spv)] for r in self.fds.itertuples(index=False)]
         out.append(_table(["Fraction", "Variance [σ²]", "SPV"], rows))
+        out += ["", f"Efficiencies: D {100 * self.d_efficiency:.1f} %, A {100 * self.a_efficiency:.1f} %, "
+                    f"G {100 * self.g_efficiency:.1f} %; I (average prediction variance over the {self.region}) "
+                    f"{format_g(self.i_average)} σ², average SPV {format_g(self.n * self.i_average)}"]
+        out += self._alias_lines()
         return "\n".join(out) + "\n"
+
+    def _alias_lines(self, tol: float = 1e-9, most: int = 12) -> list[str]:
+        """The alias matrix's non-zero entries per model term and the largest correlations."""
+        from .text import format_g
+
+        if self.alias_matrix is None or self.potential is None:
+            return []
+        A = self.alias_matrix
+        out = ["", f"Alias matrix (model terms biased by the {self.potential} model's extra terms; "
+                   "non-zero entries):"]
+        any_ = False
+        for term, row in A.iterrows():
+            nz = [(c, v) for c, v in row.items() if abs(v) > tol]
+            if nz:
+                any_ = True
+                text = " ".join(f"{'+' if v > 0 else '-'} {format_g(abs(v), 4)} {c}" for c, v in nz[:most])
+                out.append(f"  [{term}] = {term} {text}{' ...' if len(nz) > most else ''}")
+        if not any_:
+            out.append("  none: no potential term biases a model term")
+        R = self.correlation
+        cols = list(R.columns)
+        pairs = [(abs(R.iat[i, j]), cols[i], cols[j], R.iat[i, j]) for i in range(len(cols))
+                 for j in range(i + 1, len(cols)) if np.isfinite(R.iat[i, j]) and abs(R.iat[i, j]) > tol]
+        pairs.sort(key=lambda z: (-z[0], z[1], z[2]))
+        out.append("Largest correlations between model and potential columns"
+                   + (":" if pairs else ": none (all columns orthogonal)"))
+        out += [f"  {a} ~ {b}: {r:+.3f}" for _, a, b, r in pairs[:most]]
+        return out
 
     def __str__(self) -> str:
         return self.summary()
@@ -333,7 +419,8 @@ def _max_variance_ball(E: np.ndarray, Ct: np.ndarray, k: int, radius: float, sam
 
 
 def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", alpha: float = 0.05,
-                    effect_sd: float = 2.0, n_region: int = 4096, seed: int = 0) -> DesignEvaluation:
+                    effect_sd: float = 2.0, n_region: int = 4096, seed: int = 0,
+                    potential: str | None = "auto") -> DesignEvaluation:
     """Evaluate a design for a model before any data (see the module docstring).
 
     Parameters
@@ -350,6 +437,10 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         Effect to detect, in σ, over the coded range -1..+1 (coefficient = effect_sd / 2 σ).
     n_region : int
         Sobol sample size over the region (rounded up to a power of two).
+    potential : str or None
+        Model whose extra terms are the potential terms of the alias map (``"auto"``: the
+        next bigger model, :data:`POTENTIAL`, when the map has at most
+        :data:`MAX_ALIAS_COLUMNS` columns; ``None``: no alias map).
     """
     import pandas as pd
     from scipy import special
@@ -394,6 +485,24 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         raise ValueError(f"the {model} model in {k} factors has {n_par} terms and {n} runs cannot estimate "
                          "them; choose a smaller model or add runs")
     terms = model_terms(letters, model, cats)
+    auto = potential == "auto"
+    if auto:
+        potential = POTENTIAL.get(model)
+    potential_terms = None
+    if potential is not None:
+        if potential not in POTENTIAL:
+            raise ValueError(f"potential must be one of {', '.join(POTENTIAL)} (got {potential!r})")
+        n_all = n_model_terms(k, potential, cats)
+        if n_all > MAX_ALIAS_COLUMNS:  # a map of thousands of columns helps nobody (and is slow)
+            if not auto:
+                raise ValueError(f"potential {potential!r}: the alias map would have {n_all} columns, beyond the "
+                                 f"{MAX_ALIAS_COLUMNS} shown; choose a smaller potential model")
+            potential = None
+        else:
+            have = {t.name for t in terms}
+            potential_terms = [t for t in model_terms(letters, potential, cats) if t.name not in have]
+            if not potential_terms:
+                raise ValueError(f"potential {potential!r} adds no term to the {model} model; choose a bigger model")
     nb, codes = 1, None
     if blocks is not None and len(set(np.asarray(blocks).tolist())) > 1:
         levels = sorted(set(np.asarray(blocks).tolist()))
@@ -464,11 +573,26 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         vmax, xmax = _max_variance_ball(E, Ct, k, radius if radius > 0 else 1.0, pts, vs)
     if float(vs.max()) > vmax:  # never below the sample
         vmax, xmax = float(vs.max()), pts[int(np.argmax(vs))]
+    # the design criteria (module docstring)
+    sign, logdet = np.linalg.slogdet(X.T @ X)
+    d_eff = float(math.exp(logdet / p) / n) if sign > 0 else 0.0
+    a_eff = float(p / (n * np.trace(C)))
+    if region == "cube":
+        i_avg = float(np.trace(Ct @ _cube_moments(design, letters, terms)))
+    else:
+        i_avg = float(vs.mean())
+    alias, corr = None, None
+    if potential is not None:
+        alias, corr = _alias_map(coded, terms, potential_terms, X, tidx, names)
     vr = np.sort(vs)
     fr = np.array(FDS_FRACTIONS)
     q = np.quantile(vr, fr)
     q[-1] = vmax  # the curve ends at the exact maximum over the region (boundary search)
     fds = pd.DataFrame({"fraction": fr, "variance": q, "spv": n * q})
+    fr2 = np.linspace(0.0, 1.0, 101)
+    q2 = np.quantile(vr, fr2)
+    q2[-1] = vmax
+    fds_curve = pd.DataFrame({"fraction": fr2, "variance": q2, "spv": n * q2})
     return DesignEvaluation(
         model=model, n=n, p=p, df=df, terms=term_frame, leverage=hat, spv_center=n * v0,
         spv_max_design=float(n * vd.max()),
@@ -477,4 +601,165 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         spv_max_at={L: (levels_of[i][int(v)] if i in levels_of else float(v)) for i, (L, v) in enumerate(zip(letters, xmax))},
         g_efficiency=float(len(names) / (n * vmax)),
         rank=rank, n_distinct=n_distinct,
+        d_efficiency=d_eff, a_efficiency=a_eff, i_average=i_avg,
+        potential=potential, alias_matrix=alias, correlation=corr, fds_curve=fds_curve,
     )
+
+
+def _frame_dict(frame, f) -> dict | None:
+    """``{row: {column: value}}`` of a DataFrame (None stays None)."""
+    if frame is None:
+        return None
+    return {str(r): {str(c): f(v) for c, v in row.items()} for r, row in frame.iterrows()}
+
+
+def _cube_moments(design, letters, terms) -> np.ndarray:
+    """Region moment matrix W of the model terms over the coded cube (uniform on the cube,
+    categoric levels equally weighted): the I criterion's, from the optimal designs."""
+    from ..design.optimal import moment_matrix
+    from ..factors import FactorSpace
+
+    space = design.factors if hasattr(design, "factors") else FactorSpace.from_ranges(
+        [(f"x{i + 1}", -1.0, 1.0) for i in range(len(letters))])
+    return moment_matrix(space, terms)
+
+
+def _alias_map(coded, terms, potential_terms, X, tidx, names):
+    """Alias matrix (model columns x potential columns) and the correlation map."""
+    import pandas as pd
+
+    from .terms import column_names, design_matrix
+
+    X2 = design_matrix(coded, potential_terms)
+    pnames = column_names(potential_terms)
+    A = np.linalg.pinv(X.T @ X) @ X.T @ X2
+    A = A[tidx]
+    A[np.abs(A) < 1e-12] = 0.0
+    alias = pd.DataFrame(A + 0.0, index=pd.Index(names, name="term"), columns=pnames)
+    Z = np.column_stack([X[:, tidx[1:]], X2])
+    Z = Z - Z.mean(axis=0)
+    norm = np.sqrt((Z ** 2).sum(axis=0))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        R = (Z.T @ Z) / np.outer(norm, norm)
+    R[:, norm < 1e-12] = np.nan
+    R[norm < 1e-12, :] = np.nan
+    R[np.abs(R) < 1e-12] = 0.0
+    allnames = list(names[1:]) + pnames
+    return alias, pd.DataFrame(R + 0.0, index=allnames, columns=allnames)
+
+
+@dataclass(frozen=True)
+class DesignComparison:
+    """Two or more designs evaluated for the same model, side by side (frozen).
+
+    Attributes
+    ----------
+    names : tuple of str
+        The designs' names (file names on the command line).
+    evaluations : tuple of DesignEvaluation
+    table : pandas.DataFrame
+        One row per design: ``runs, parameters, d_efficiency, a_efficiency, g_efficiency,
+        i_average`` [σ²], ``spv_average, spv_max`` and the relative efficiencies
+        ``rel_d, rel_a, rel_g, rel_i`` (each per run, 1 for the best design compared).
+    """
+
+    names: tuple
+    evaluations: tuple = field(repr=False)
+    table: Any = field(repr=False)
+
+    def to_frame(self):
+        """The criteria table (a copy)."""
+        return self.table.copy()
+
+    def to_dict(self) -> dict:
+        f = lambda v: float(v) if v is not None and math.isfinite(float(v)) else None  # noqa: E731
+        rows = []
+        for name, row in self.table.iterrows():
+            r = {"design": str(name)}
+            r.update({c: (int(v) if c in ("runs", "parameters") else f(v)) for c, v in row.items()})
+            rows.append(r)
+        return {"model": self.evaluations[0].model, "region": self.evaluations[0].region,
+                "designs": list(self.names), "criteria": rows,
+                "evaluations": [e.to_dict() for e in self.evaluations]}
+
+    def summary(self) -> str:
+        from .text import _table, format_g
+
+        e0 = self.evaluations[0]
+        out = [f"Design comparison for a {e0.model} model over the {e0.region} ({len(self.names)} designs)"]
+        heads = ["Design", "Runs", "p", "D-eff", "A-eff", "G-eff", "I [σ²]", "avg SPV", "max SPV",
+                 "rel D", "rel A", "rel G", "rel I"]
+        pc = lambda v: f"{100 * v:.1f} %"  # noqa: E731
+        rows = [[str(n), str(int(r.runs)), str(int(r.parameters)), pc(r.d_efficiency), pc(r.a_efficiency),
+                 pc(r.g_efficiency), format_g(r.i_average, 4), format_g(r.spv_average, 4), format_g(r.spv_max, 4),
+                 f"{r.rel_d:.3f}", f"{r.rel_a:.3f}", f"{r.rel_g:.3f}", f"{r.rel_i:.3f}"]
+                for n, r in self.table.iterrows()]
+        out += ["", _table(heads, rows), "",
+                "Efficiencies per run (D det(X'X)^(1/p)/n, A p/(n tr((X'X)^-1)), G p/max SPV); I the average "
+                "prediction variance; rel: each divided by the best of the designs compared (I: best n*I / n*I).",
+                "", "Fraction of design space (unscaled variance x'(X'X)⁻¹x [σ²])"]
+        fr = self.evaluations[0].fds["fraction"].to_numpy()
+        rows = [[f"{x:.1f}"] + [format_g(e.fds["variance"].iat[i], 4) for e in self.evaluations]
+                for i, x in enumerate(fr)]
+        out.append(_table(["Fraction"] + [str(n) for n in self.names], rows))
+        return "\n".join(out) + "\n"
+
+    def __str__(self) -> str:
+        return self.summary()
+
+
+def compare_designs(designs, model: str = "quadratic", *, names=None, region: str = "cube", **kwargs) -> DesignComparison:
+    """Evaluate two or more designs for ``model`` and tabulate their criteria side by side.
+
+    Parameters
+    ----------
+    designs : sequence of Design or (n, k) arrays
+        At least two; all with the same number of factors (and the same categoric factors).
+    model : str
+    names : sequence of str, optional
+        Their names (default ``design 1``, ``design 2``, ...).
+    region, **kwargs
+        As :func:`evaluate_design`.
+
+    Returns
+    -------
+    DesignComparison
+        ``ValueError`` naming the design when one cannot estimate the model or has other
+        factors than the first.
+    """
+    import pandas as pd
+
+    designs = list(designs)
+    if len(designs) < 2:
+        raise ValueError("compare at least two designs")
+    names = [f"design {i + 1}" for i in range(len(designs))] if names is None else [str(n) for n in names]
+    if len(names) != len(designs):
+        raise ValueError(f"{len(names)} names for {len(designs)} designs")
+    if len(set(names)) != len(names):
+        raise ValueError("each design needs its own name")
+
+    def shape(d):
+        if hasattr(d, "factors"):
+            return len(d.factors), sorted((i, tuple(v)) for i, v in d.factors.categoric.items())
+        return np.asarray(d).shape[1], []
+
+    k0 = shape(designs[0])
+    evs = []
+    for name, d in zip(names, designs):
+        if shape(d) != k0:
+            raise ValueError(f"{name}: has {shape(d)[0]} factors (categoric {shape(d)[1] or 'none'}), {names[0]} has "
+                             f"{k0[0]} (categoric {k0[1] or 'none'}); compare designs for the same factors")
+        e = evaluate_design(d, model, region=region, **kwargs)
+        if not e.estimable:
+            raise ValueError(f"{name}: {e.not_estimable_message()}")
+        evs.append(e)
+    t = pd.DataFrame({
+        "runs": [e.n for e in evs], "parameters": [e.p for e in evs],
+        "d_efficiency": [e.d_efficiency for e in evs], "a_efficiency": [e.a_efficiency for e in evs],
+        "g_efficiency": [e.g_efficiency for e in evs], "i_average": [e.i_average for e in evs],
+        "spv_average": [e.n * e.i_average for e in evs], "spv_max": [e.spv_region["max"] for e in evs],
+    }, index=pd.Index(names, name="design"))
+    for c, col in (("rel_d", "d_efficiency"), ("rel_a", "a_efficiency"), ("rel_g", "g_efficiency")):
+        t[c] = t[col] / t[col].max()
+    t["rel_i"] = t["spv_average"].min() / t["spv_average"]
+    return DesignComparison(names=tuple(names), evaluations=tuple(evs), table=t)
