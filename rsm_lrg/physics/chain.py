@@ -258,7 +258,7 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
     dd_k = float(hinge.hinge_deflection(p.mu_k * load, p.hinge_count, k_here))
     f_i = float(wear.ball_normal_force(load, p.n_balls, p.contact_angle_deg))
     hb = float(wear.brinell_to_pa(p.hardness_hb))
-    t_cyc = float(motion.cycle_time(p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, p.dwell_s))
+    t_cyc = float(motion.cycle_time(p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, p.dwell_s, p.jerk_time_s))
     dd_paper = float(wear.deflection_for_wear_ratio(PAPER_WEAR_RATIO, p.stroke_m))
     details = {
         "rfcms_over_rms_eq14": float(wear.rfcms_sliding_distance(p.stroke_m, dd) / p.stroke_m),

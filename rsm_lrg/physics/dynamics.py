@@ -311,6 +311,8 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         raise ValueError("n_cycles must be at least 2")
     dwell = columns.pop("dwell_s", p.dwell_s)
     check_values("dwell_s", dwell)
+    jerk = columns.pop("jerk_time_s", p.jerk_time_s)
+    check_values("jerk_time_s", jerk)
     stage_rigid = _stage_is_rigid(stage)
     if np.ndim(stage) and columns:
         # RMS rows ignore the hinge and frame columns (they may be empty/NaN there)
@@ -325,14 +327,15 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
     arrays = np.broadcast_arrays(np.asarray(stroke, float), np.asarray(velocity, float),
                                  np.asarray(acceleration, float), np.asarray(dwell, float),
                                  *(np.asarray(getattr(const, f.name), float) for f in fields(const)),
-                                 stage_rigid)
+                                 stage_rigid, np.asarray(jerk, float))
     shape = arrays[0].shape
     n = int(np.prod(shape)) if shape else 1
     s, v, a, dw, k, c, m, fs, fk, cv, k3 = (np.ravel(x).astype(float) for x in arrays[:11])
     rigid = np.ravel(arrays[11]).copy()
+    tj = np.ravel(arrays[12]).astype(float)
 
-    T = motion.cycle_time(s, v, a, dw)
-    stage_visc = cv * motion.mean_square_speed(s, v, a, dw) * T  # ∫c_v·ẋ_ws² dt per cycle
+    T = motion.cycle_time(s, v, a, dw, tj)
+    stage_visc = cv * motion.mean_square_speed(s, v, a, dw, tj) * T  # ∫c_v·ẋ_ws² dt per cycle
     slide = np.empty(n)
     visc = np.zeros(n)
     peak = np.zeros(n)
@@ -355,7 +358,7 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
     visc[qs] = stage_visc[qs] * slide[qs] / (2.0 * s[qs])
     todo = np.flatnonzero(~rigid & ~qs)
     if todo.size:
-        key = np.column_stack([x[todo] for x in (s, v, a, dw, k, c, m, fs, fk, cv, k3)])
+        key = np.column_stack([x[todo] for x in (s, v, a, dw, k, c, m, fs, fk, cv, k3, tj)])
         uniq, inv = np.unique(key, axis=0, return_inverse=True)
         inv = np.ravel(inv)
         d, pk, e, vw = _integrate_grouped(uniq, int(n_cycles), float(h), int(max_steps_per_cycle),
@@ -371,13 +374,13 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
 
 def _integrate_grouped(rows, n_cycles, h, max_steps, max_cycles, rtol):
     """Integrate rows in groups of similar stiffness (steps per cycle within a factor 2)."""
-    s, v, a, dw, k, c, m, fs, fk, cv, k3 = rows.T
-    need = _omega_step(s, v, a, k, m, fs, cv, k3) * motion.cycle_time(s, v, a, dw) / h
+    s, v, a, dw, k, c, m, fs, fk, cv, k3, tj = rows.T
+    need = _omega_step(s, v, a, k, m, fs, cv, k3) * motion.cycle_time(s, v, a, dw, tj) / h
     grp = np.floor(np.log2(np.maximum(need, 1.0))).astype(int)
     out = [np.empty(len(rows)) for _ in range(4)]
     for g in np.unique(grp):
         i = np.flatnonzero(grp == g)
-        res = _integrate_rows(*rows[i].T, n_cycles, h, max_steps, max_cycles, rtol)
+        res = _integrate_rows(*rows[i].T[:11], n_cycles, h, max_steps, max_cycles, rtol, tj=rows[i].T[11])
         for o, r in zip(out, res):
             o[i] = r
     return tuple(out)
@@ -409,6 +412,20 @@ def _stage_xv(t, s, vp, a, ta, ts, dw, T):
     return np.where(back, s - x, x), np.where(back, -v, v)
 
 
+def _stage_xv_j(t, s, v, vp, a, ta, ts, tj, dw, T):
+    """Stage position and velocity at times ``t`` (rows) with S-curve strokes where the jerk
+    time ``tj`` > 0 (:func:`.motion.scurve_stroke`, period ``T`` = 2·(t_s + t_j + dwell)) and
+    the trapezoid of :func:`_stage_xv` (bit for bit) where it is 0."""
+    x, vv = _stage_xv(t, s, vp, a, ta, ts, dw, T)
+    on = tj > 0
+    tm = np.mod(t, T)
+    tsj = ts + tj
+    back = tm >= tsj + dw
+    tau = np.where(back, tm - tsj - dw, tm)
+    xj, vj, _ = motion.scurve_stroke(tau, s, v, a, np.where(on, tj, 1.0))
+    return (np.where(on, np.where(back, s - xj, xj), x), np.where(on, np.where(back, -vj, vj), vv))
+
+
 def _omega_step(s, v, a, k, m, fs, cv, k3):
     """Angular frequency [rad/s] that sets a row's time step: ``sqrt(n·K_n/m_f)`` for a linear
     hinge; with membrane stiffening the tangent ``sqrt((n·K_n + 3·n·k₃·δ_e²)/m_f)`` at the
@@ -432,7 +449,8 @@ def _tangent(z, k, k3, c, cv, m):
     return w, zeta, 2.0 * k3 * z ** 3 / m
 
 
-def _slide(z, wrel, sigma, accel, w, zeta, fk_m, p11, p12, p21, p22, cv_m=0.0, vstage=0.0, tau=0.0, ext=0.0):
+def _slide(z, wrel, sigma, accel, w, zeta, fk_m, p11, p12, p21, p22, cv_m=0.0, vstage=0.0, tau=0.0, ext=0.0,
+           jerk=None):
     """Exact sliding step over ``tau`` of the relative coordinate z = x_ws − x_rf, wrel = ż.
 
     While sliding, ``z̈ + 2ζω·ż + ω²·z = a + σ·f_k/m + (c_v/m)·ẋ_ws(t)`` with the stage
@@ -442,7 +460,19 @@ def _slide(z, wrel, sigma, accel, w, zeta, fk_m, p11, p12, p21, p22, cv_m=0.0, v
     homogeneous propagator ``p``. Returns z and ż at the end of the step. A stiffening hinge
     enters through its tangent at the start of the step (ω, ζ of :func:`_tangent` and the
     constant ``ext``): exact for the linear hinge, second order in the step for the cubic.
+
+    ``jerk`` (S-curve strokes): the stage acceleration ``accel + jerk·t`` is linear in the step
+    (ẋ_ws quadratic); the particular solution gains ``C·t²`` with ``C = (c_v/m)·jerk/(2ω²)``,
+    ``B = (jerk + (c_v/m)·a − 4ζω·C)/ω²`` and ``A`` loses ``2·C/ω²``. With ``jerk`` 0 the
+    result is that of ``jerk=None`` bit for bit (every added term is an exact zero).
     """
+    if jerk is not None:
+        C = 0.5 * cv_m * jerk / w ** 2
+        B = (jerk + cv_m * accel - 4.0 * zeta * w * C) / w ** 2
+        A = (accel + fk_m * sigma + cv_m * vstage + ext - 2.0 * zeta * w * B - 2.0 * C) / w ** 2
+        zr = z - A
+        wr = wrel - B
+        return A + B * tau + C * tau * tau + p11 * zr + p12 * wr, B + 2.0 * C * tau + p21 * zr + p22 * wr
     B = cv_m * accel / w ** 2
     A = (accel + fk_m * sigma + cv_m * vstage + ext - 2.0 * zeta * w * B) / w ** 2
     zr = z - A
@@ -450,7 +480,8 @@ def _slide(z, wrel, sigma, accel, w, zeta, fk_m, p11, p12, p21, p22, cv_m=0.0, v
     return A + B * tau + p11 * zr + p12 * wr, B + p21 * zr + p22 * wr
 
 
-def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps, max_cycles=12, rtol=1e-5):
+def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps, max_cycles=12, rtol=1e-5,
+                    tj=None):
     """Stick-slip integration of many rows at once with exact linear steps.
 
     Each row uses its own step Δt = T/N_i, N_i = max(ceil(ω_n·T/h), 200); the loop runs to the
@@ -465,13 +496,21 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
     :func:`_slide`); its work ∫c_v·ẋ_rf² dt is summed by the trapezoidal rule. Leaves with held
     ends (k₃ > 0) stiffen: every step is taken with the hinge's tangent at its start
     (:func:`_tangent`), the step size from :func:`_omega_step`.
+    Rows with a jerk time ``tj`` > 0 follow S-curve strokes (:func:`_stage_xv_j`): in each step
+    the stage moves on the cubic that matches its exact position and velocity at both ends
+    (Hermite; exact between the kinks of the S-curve, whose acceleration is piecewise linear),
+    with the linear acceleration in the sliding step (:func:`_slide` with ``jerk``) and the
+    breakaway time refined on the cubic by Newton steps. Rows with ``tj`` 0 are integrated
+    exactly as without it.
     Returns (mean sliding per cycle over the last two cycles, peak deflection of the last
     cycle, |difference of the last two cycles' sliding|, viscous work per cycle, mean of the
     last two cycles).
     """
     n = len(s)
     out_d, out_p, out_e, out_v = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
-    T = motion.cycle_time(s, v, a, dw)
+    jerky = tj is not None and bool(np.any(np.asarray(tj) > 0))
+    tj = np.zeros(n) if tj is None else np.asarray(tj, dtype=float)
+    T = motion.cycle_time(s, v, a, dw, tj) if jerky else motion.cycle_time(s, v, a, dw)
     vp = motion.peak_velocity(s, v, a)
     ta = vp / a
     ts = s / vp + ta
@@ -510,8 +549,17 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
         for j in range(N):
             act = j < Ni
             t = (cyc * Ni + np.minimum(j, Ni - 1) + 1) * dt
-            x1, v1 = _stage_xv(t, s, vp, a, ta, ts, dw, T)
+            if jerky:
+                x1, v1 = _stage_xv_j(t, s, v, vp, a, ta, ts, tj, dw, T)
+            else:
+                x1, v1 = _stage_xv(t, s, vp, a, ta, ts, dw, T)
             acc = (v1 - v0) / dt
+            if jerky:  # cubic stage motion in the step (Hermite), S-curve rows only
+                jon = tj > 0
+                jrk = np.where(jon, 6.0 * (acc - 2.0 * (x1 - x0 - v0 * dt) / dt ** 2) / dt, 0.0)
+                alpha = np.where(jon, acc - 0.5 * jrk * dt, acc)
+            else:
+                jrk, alpha = None, acc
             xf_old = xf.copy()
             u_old = u
             stuck_old = stuck
@@ -523,7 +571,7 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
             else:
                 wt, zt, ext, P = w, zeta, 0.0, (p11, p12, p21, p22)
             # sliding rows: one exact step
-            zn, wn = _slide(z0, v0 - u, np.sign(u), acc, wt, zt, fk_m, *P, cv_m, v0, dt, ext)
+            zn, wn = _slide(z0, v0 - u, np.sign(u), alpha, wt, zt, fk_m, *P, cv_m, v0, dt, ext, jrk)
             un = v1 - wn
             stop = sl & (un * u <= 0.0)
             go = sl & ~stop
@@ -548,14 +596,35 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
                 ki = k[i] + 3.0 * k3[i] * zi * zi
                 tau = _first_root(0.5 * ki * ai, ki * v0i + c[i] * ai,
                                   k[i] * zi + k3[i] * zi ** 3 + c[i] * v0i - sig * fs[i], dt[i])
+                ji = None
+                if jerky:  # S-curve rows: the stage moves on a cubic, refine the root on it
+                    ji, al = jrk[i], alpha[i]
+                    f0 = k[i] * zi + k3[i] * zi ** 3 + c[i] * v0i - sig * fs[i]
+                    tn = tau
+                    for _ in range(4):
+                        g = f0 + ki * (v0i * tn + 0.5 * al * tn ** 2 + ji * tn ** 3 / 6.0) + c[i] * (
+                            al * tn + 0.5 * ji * tn ** 2)
+                        dg = ki * (v0i + al * tn + 0.5 * ji * tn ** 2) + c[i] * (al + ji * tn)
+                        with np.errstate(divide="ignore", invalid="ignore"):
+                            tn = np.clip(tn - np.where(dg != 0, g / dg, 0.0), 0.0, dt[i])
+                    jon_i = tj[i] > 0
+                    tau = np.where(jon_i, tn, tau)
+                    ai = np.where(jon_i, al, ai)
                 xs_t = x0[i] + v0i * tau + 0.5 * ai * tau ** 2
+                if ji is not None:
+                    xs_t = xs_t + ji * tau ** 3 / 6.0
                 if membrane:
                     wb, zb, eb = _tangent(xs_t - xf[i], k[i], k3[i], c[i], cv[i], m[i])
                 else:
                     wb, zb, eb = w[i], zeta[i], 0.0
                 Q = _propagator(wb, zb, dt[i] - tau)
-                zn_b, wn_b = _slide(xs_t - xf[i], v0i + ai * tau, sig, ai, wb, zb, fk_m[i], *Q,
-                                    cv_m[i], v0i + ai * tau, dt[i] - tau, eb)
+                if ji is None:
+                    zn_b, wn_b = _slide(xs_t - xf[i], v0i + ai * tau, sig, ai, wb, zb, fk_m[i], *Q,
+                                        cv_m[i], v0i + ai * tau, dt[i] - tau, eb)
+                else:
+                    vs_t = v0i + ai * tau + 0.5 * ji * tau ** 2
+                    zn_b, wn_b = _slide(xs_t - xf[i], vs_t, sig, ai + ji * tau, wb, zb, fk_m[i], *Q,
+                                        cv_m[i], vs_t, dt[i] - tau, eb, ji)
                 un_b = v1[i] - wn_b
                 ok = un_b * sig > 0.0
                 xf[i] = np.where(ok, x1[i] - zn_b, xf[i])
@@ -588,9 +657,9 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
             break
         keep = ~done
         (rows, s, v, a, dw, k, c, m, fs, T, vp, ta, ts, w, zeta, dt, p11, p12, p21, p22, fk_m, xf, u,
-         stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni, k3) = (x[keep] for x in (
+         stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni, k3, tj) = (x[keep] for x in (
             rows, s, v, a, dw, k, c, m, fs, T, vp, ta, ts, w, zeta, dt, p11, p12, p21, p22, fk_m, xf, u,
-            stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni, k3))
+            stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni, k3, tj))
         N = int(np.max(Ni))
     # a row that has not settled (period-2 stick-slip, say) reports the mean of its last two cycles
     return out_d, out_p, out_e, out_v
@@ -646,7 +715,14 @@ class StageHistory:
                              "v_frame_m_s": self.v_frame})
 
 
-def _breakpoints(s, v, a, dw, n_cycles):
+def _breakpoints(s, v, a, dw, n_cycles, tj=0.0):
+    if tj > 0:  # S-curve: the kinks of both strokes (motion.stroke_kinks)
+        kinks = [float(x) for x in motion.stroke_kinks(s, v, a, tj)]
+        ts = float(motion.stroke_time(s, v, a, tj))
+        one = kinks + [ts + dw + x for x in kinks]
+        T = 2 * (ts + dw)
+        pts = sorted({round(c * T + x, 15) for c in range(n_cycles) for x in one} | {n_cycles * T})
+        return np.array(pts), T
     ta = float(motion.accel_time(s, v, a))
     ts = float(motion.stroke_time(s, v, a))
     one = [0.0, ta, ts - ta, ts, ts + dw, ts + dw + ta, 2 * ts + dw - ta, 2 * ts + dw]
@@ -661,6 +737,8 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
 
     Integrates ``n_cycles`` cycles from rest with scipy's DOP853 between the kinks of the
     motion profile, with events at breakaway (|F_h| = f_µmax) and at stop (ẋ_rf = 0).
+    The stage follows S-curve strokes where ``params.jerk_time_s`` > 0 (closed form of
+    :func:`.motion.scurve_stroke`; the kinks of its acceleration are breakpoints).
     """
     from scipy.integrate import solve_ivp
 
@@ -673,12 +751,40 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
     dw = p.dwell_s
     cst = stage_constants(p)
     k, c, m, fs, fk, cv, k3 = (float(getattr(cst, f.name)) for f in fields(cst))
-    bps, T = _breakpoints(s, v, a, dw, n_cycles)
+    tj = float(p.jerk_time_s)
+    bps, T = _breakpoints(s, v, a, dw, n_cycles, tj)
 
     vp = float(motion.peak_velocity(s, v, a))
     ta_, ts_ = vp / a, s / vp + vp / a
 
-    def stage(t):  # scalar closed form of motion.reciprocating_profile (fast in the ODE loop)
+    def trap(u):  # trapezoidal stroke: position and its time integral from 0 (motion._trap)
+        tt = min(max(u, 0.0), ts_)
+        r = ts_ - tt
+        if tt < ta_:
+            x, F = 0.5 * a * tt * tt, a * tt ** 3 / 6.0
+        elif tt < ts_ - ta_:
+            x = 0.5 * a * ta_ * ta_ + vp * (tt - ta_)
+            F = a * ta_ ** 3 / 6.0 + 0.5 * a * ta_ * ta_ * (tt - ta_) + 0.5 * vp * (tt - ta_) ** 2
+        else:
+            x, F = s - 0.5 * a * r * r, 0.5 * s * ts_ - s * r + a * r ** 3 / 6.0
+        return x, F + s * max(u - ts_, 0.0)
+
+    def stage_j(t):  # scalar closed form of motion.reciprocating_profile with S-curve strokes
+        tsj = ts_ + tj
+        tm = math.fmod(t, T)
+        back = tm >= tsj + dw
+        tau = tm - tsj - dw if back else tm
+        if tau <= 0.0:
+            x, vv = 0.0, 0.0
+        elif tau >= tsj:
+            x, vv = s, 0.0
+        else:
+            x1, F1 = trap(tau)
+            x0, F0 = trap(tau - tj)
+            x, vv = (F1 - F0) / tj, (x1 - x0) / tj
+        return (s - x, -vv) if back else (x, vv)
+
+    def stage_t(t):  # scalar closed form of motion.reciprocating_profile (fast in the ODE loop)
         tm = math.fmod(t, T)
         back = tm >= ts_ + dw
         tau = min(tm - ts_ - dw if back else tm, ts_)
@@ -690,11 +796,12 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
         vv = min(a * tau, a * (ts_ - tau), vp)
         return (s - x, -vv) if back else (x, vv)
 
+    stage = stage_j if tj > 0 else stage_t
     grid = np.linspace(0.0, n_cycles * T, n_cycles * samples_per_cycle + 1)
     if rigid:
-        xs, vs, _ = motion.reciprocating_profile(grid, s, v, a, dw)
+        xs, vs, _ = motion.reciprocating_profile(grid, s, v, a, dw, tj)
         per = np.full(n_cycles, 2 * s)
-        visc = cv * float(motion.mean_square_speed(s, v, a, dw)) * T
+        visc = cv * float(motion.mean_square_speed(s, v, a, dw, tj)) * T
         return StageHistory(grid, xs, xs.copy(), vs, per, 0.0, fk * 2 * s, T, 0, visc)
 
     # state: x_f, u, distance, viscous work; mode: 0 stuck, +1 / -1 sliding
@@ -782,7 +889,7 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
     per = np.diff([mk[0] for mk in marks])
     visc_last = marks[-1][1] - marks[-2][1]
     tt = np.array(ts_out)
-    xs_h, _, _ = motion.reciprocating_profile(tt, s, v, a, dw)
+    xs_h, _, _ = motion.reciprocating_profile(tt, s, v, a, dw, tj)
     xf_h = np.array(xf_out)
     last = tt >= (n_cycles - 1) * T - 1e-12
     peak = float(np.max(np.abs(xs_h[last] - xf_h[last])))

@@ -69,7 +69,7 @@ def _d(name: str):
 # Validation rules (name -> (kind, low, high)); every other float must be > 0.
 _CLOSED_UNIT = {"mu_s", "mu_k"}
 _OPEN_UNIT = {"frame_mass_fraction"}
-_NONNEG = {"dwell_s", "hinge_damping_ratio", "preload_n", "viscous_friction_n_s_m", "drive_heat_w",
+_NONNEG = {"dwell_s", "jerk_time_s", "hinge_damping_ratio", "preload_n", "viscous_friction_n_s_m", "drive_heat_w",
            "overconstraint_misfit_m"}
 _INTS = {"hinge_count", "ball_rows", "balls_per_row"}
 _BOOLS = {"heat_in_calories", "hinge_membrane"}
@@ -96,6 +96,9 @@ PHYSICAL_RANGES: dict[str, tuple[float, float]] = {
     "air_conductivity_w_mk": (1e-3, 1.0), "air_specific_heat_j_kgk": (100.0, 2e4),
     "wear_coefficient": (1e-12, 1.0), "hardness_hb": (1.0, 2000.0),
     "stroke_m": (1e-5, 10.0), "acceleration_m_s2": (1e-3, 1e4), "dwell_s": (0.0, 60.0),
+    # jerk time: 0 (trapezoid) up to a second, the acceleration time of a slow stage (v/a of
+    # 0.1 m/s at 0.1 m/s^2); the meaningful range is 0 to the acceleration time v/a
+    "jerk_time_s": (0.0, 1.0),
     "ambient_c": (-100.0, 200.0), "test_duration_min": (1.0, 1e5),
     # geometry: up to about twice the largest miniature-to-large guides (THK SHS65: block
     # 126 x 255 x 90 mm, rail 63 x 53 mm; a 2 m rail is five times the rig's); larger guides
@@ -178,6 +181,7 @@ class LRGParams:
     stroke_m: float = _d("stroke_m")
     acceleration_m_s2: float = _d("acceleration_m_s2")
     dwell_s: float = _d("dwell_s")
+    jerk_time_s: float = _d("jerk_time_s")
     # thermal environment and test
     ambient_c: float = _d("ambient_c")
     test_duration_min: float = _d("test_duration_min")

@@ -282,7 +282,8 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     if np.any(extra["drive_viscous_n_s_m"] != 0):
         from ..physics import motion
 
-        p_drive = p_drive + extra["drive_viscous_n_s_m"] * motion.mean_square_speed(s, v, a, col("dwell_s"))
+        p_drive = p_drive + extra["drive_viscous_n_s_m"] * motion.mean_square_speed(s, v, a, col("dwell_s"),
+                                                                                  col("jerk_time_s"))
     q_drive = np.broadcast_to(heat.drive_heat_to_carriage(p_drive, g_joint, hv["stage_loss_conductance_w_k"]),
                               (n,)).astype(float)
     tau_stage = np.broadcast_to(heat.stage_time_constant(
