@@ -69,8 +69,7 @@ def test_scurve_stroke_kinematics(s, v, a, frac):
 
 def test_scurve_exact_numbers():
     # s = 0.075, v = 0.5, a = 10, t_j = 0.01: cruise 0.1 s >= t_j, so the peak stays 0.5 m/s; the
-    # stroke lasts 0.2 + 0.01 s; ∫ẋ² = v·s − v³/(3a) − v²·t_j/6 (each of the two ramps, smoothed
-    # over t_j, loses a²t_j³/... : by the exact quadrature 0.0332533..., checked by sampling above)
+    # stroke lasts 0.2 + 0.01 s
     assert float(motion.peak_velocity(0.075, 0.5, 10.0, 0.01)) == pytest.approx(0.5, rel=1e-14)
     assert float(motion.cycle_time(0.075, 0.5, 10.0, 0.05, 0.01)) == pytest.approx(0.52, rel=1e-14)
     assert float(motion.mean_speed(0.075, 0.5, 10.0, 0.0, 0.01)) == pytest.approx(0.15 / 0.42, rel=1e-14)
@@ -78,6 +77,15 @@ def test_scurve_exact_numbers():
     np.testing.assert_allclose(ks, [0, 0.01, 0.05, 0.06, 0.15, 0.16, 0.2, 0.21], atol=1e-15)
     # window of the whole stroke: the mean speed of the trapezoid (s / t_s)
     assert float(motion.peak_velocity(0.004, 0.5, 10.0, 0.04)) == pytest.approx(0.1, rel=1e-12)
+    # ∫ẋ_J² per stroke in closed form where t_j <= the ramp time and <= the cruise time (derived
+    # by hand: the box lowers the speed at each of the two corners at the peak speed by an area
+    # a·t_j²/24 (half the kink a times the box's variance t_j²/12), so ∫ẋ² loses 2·v·a·t_j²/24
+    # there; the quadratic pieces add a²·t_j³/120 at each of the four corners):
+    # v·s − v³/(3a) − v·a·t_j²/6 + a²·t_j³/30
+    for s, v, a, tj in ((0.075, 0.5, 10.0, 0.01), (0.06, 0.6, 40.0, 0.005), (0.04, 0.5, 10.0, 0.03)):
+        per_stroke = float(motion.mean_square_speed(s, v, a, 0.0, tj)) * float(motion.cycle_time(s, v, a, 0.0, tj)) / 2
+        assert per_stroke == pytest.approx(v * s - v ** 3 / (3 * a) - v * a * tj ** 2 / 6 + a ** 2 * tj ** 3 / 30,
+                                           rel=1e-13)
     m = motion.MotionProfile(0.075, 0.5, 10.0, 0.0, 0.01)
     assert m.cycle_time == pytest.approx(0.42) and m.peak_velocity == pytest.approx(0.5)
     x, vel, acc = m(np.array([0.105, 0.21 + 0.105]))
