@@ -191,10 +191,15 @@ def add_block_option(p: argparse.ArgumentParser, role: str = "effects sum to zer
     p.add_argument("--block", metavar="COL", default=None, help=f"block column ({role})")
 
 
-def add_model_inputs(parser: argparse.ArgumentParser) -> None:
-    """DATA.csv, --response, --factor, --block and --model: the inputs of a fitted model."""
+def add_data_response(parser: argparse.ArgumentParser) -> None:
+    """DATA.csv (the runs) and ``--response COL``: what every analysis command reads."""
     parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
     parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+
+
+def add_model_inputs(parser: argparse.ArgumentParser) -> None:
+    """DATA.csv, --response, --factor, --block and --model: the inputs of a fitted model."""
+    add_data_response(parser)
     add_factor_options(parser)
     add_block_option(parser)
     add_model_option(parser)

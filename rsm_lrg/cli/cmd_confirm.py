@@ -7,6 +7,7 @@ import argparse
 from ._common import (
     about_file,
     add_block_option,
+    add_data_response,
     add_factor_options,
     add_force,
     add_json,
@@ -27,8 +28,7 @@ DESCRIPTION = (
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    add_data_response(parser)
     from ._common import number, probability
 
     parser.add_argument("--at", action="extend", nargs="+", required=True, metavar="NAME=VALUE",

@@ -4,7 +4,16 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_block_option, add_factor_options, add_force, add_json, output_option, print_notes
+from ._common import (
+    about_file,
+    add_block_option,
+    add_data_response,
+    add_factor_options,
+    add_force,
+    add_json,
+    output_option,
+    print_notes,
+)
 
 NAME = "effects"
 HELP = "effects of a two-level or screening design: Lenth's PSE, ME, SME and the half-normal plot"
@@ -25,8 +34,7 @@ MODELS = ("linear", "2fi", "full")
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     from ._common import probability
 
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    add_data_response(parser)
     add_factor_options(parser)
     add_block_option(parser)
     parser.add_argument("--model", default="full", choices=list(MODELS),

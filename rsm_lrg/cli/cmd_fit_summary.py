@@ -4,7 +4,15 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_block_option, add_factor_options, add_force, add_json, print_notes
+from ._common import (
+    about_file,
+    add_block_option,
+    add_data_response,
+    add_factor_options,
+    add_force,
+    add_json,
+    print_notes,
+)
 
 NAME = "fit-summary"
 HELP = "compare linear, 2FI, quadratic and cubic models; suggest one"
@@ -18,8 +26,7 @@ DESCRIPTION = (
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    add_data_response(parser)
     add_factor_options(parser)
     add_block_option(parser, "entered first")
     from ._common import probability

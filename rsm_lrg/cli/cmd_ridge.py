@@ -8,6 +8,7 @@ from ._common import (
     MODEL_ORDERS,
     about_file,
     add_block_option,
+    add_data_response,
     add_factor_options,
     add_force,
     add_json,
@@ -27,8 +28,7 @@ DESCRIPTION = (
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    add_data_response(parser)
     parser.add_argument("--goal", default="maximize", choices=["maximize", "minimize"],
                         help="ascent (maximize, default) or descent (minimize)")
     from ._common import number
