@@ -197,6 +197,21 @@ def add_data_response(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--response", required=True, metavar="COL", help="the response column")
 
 
+def print_summary_or_json(args: argparse.Namespace, result) -> None:
+    """The output of an analysis command: ``--json FILE`` writes ``result.to_dict()`` (and
+    the text still prints), ``--json -`` prints it instead of the text; the text is
+    ``Data: DATA.csv`` and ``result.summary()``."""
+    from ..io import dump_json
+
+    if args.json and args.json != "-":
+        dump_json(result.to_dict(), args.json, force=args.force)
+    if args.json == "-":
+        dump_json(result.to_dict(), "-")
+    else:
+        print(f"Data: {args.data}")
+        print(result.summary(), end="")
+
+
 def add_model_inputs(parser: argparse.ArgumentParser) -> None:
     """DATA.csv, --response, --factor, --block and --model: the inputs of a fitted model."""
     add_data_response(parser)

@@ -12,6 +12,7 @@ from ._common import (
     add_force,
     add_json,
     print_notes,
+    print_summary_or_json,
 )
 
 NAME = "fit-summary"
@@ -38,7 +39,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import dump_json, read_table
+    from ..io import read_table
     from ..model.data import prepare
     from ..model.summary import fit_summary
 
@@ -47,11 +48,5 @@ def run(args: argparse.Namespace) -> int:
         notes = prepare(data, args.response, args.factor, args.block).notes
         s = fit_summary(data, args.response, factors=args.factor, block=args.block, alpha=args.alpha)
     print_notes(notes)  # after the work: a failed command prints one error line only
-    if args.json and args.json != "-":
-        dump_json(s.to_dict(), args.json, force=args.force)
-    if args.json == "-":
-        dump_json(s.to_dict(), "-")
-    else:
-        print(f"Data: {args.data}")
-        print(s.summary(), end="")
+    print_summary_or_json(args, s)
     return 0

@@ -14,6 +14,7 @@ from ._common import (
     add_json,
     add_model_option,
     print_notes,
+    print_summary_or_json,
 )
 
 NAME = "ridge"
@@ -44,7 +45,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import dump_json, read_table
+    from ..io import read_table
     from ..model import fit
     from ..model.ridge import radii, ridge
 
@@ -54,11 +55,5 @@ def run(args: argparse.Namespace) -> int:
         result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
         path = ridge(result, goal=args.goal, radius=args.radius, step=args.step)
     print_notes(result.input_notes)  # after the work: a failed command prints one error line only
-    if args.json and args.json != "-":
-        dump_json(path.to_dict(), args.json, force=args.force)
-    if args.json == "-":
-        dump_json(path.to_dict(), "-")
-    else:
-        print(f"Data: {args.data}")
-        print(path.summary(), end="")
+    print_summary_or_json(args, path)
     return 0
