@@ -242,6 +242,22 @@ class _Problem:
         M = information(D, self.terms) + self.ridge(len(D))
         return float(_value(M, self.crit, self.W))
 
+    def _start(self, D: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        """A copy of ``D`` to exchange on, its model rows ``F``, information ``M`` (with the
+        small ridge) and criterion value."""
+        D = D.copy()
+        F = design_matrix(D, self.terms)
+        M = F.T @ F + self.ridge(len(D))
+        return D, F, M, float(_value(M, self.crit, self.W))
+
+    def _on_grid(self, points: np.ndarray, *rows: np.ndarray) -> tuple[np.ndarray, ...]:
+        """``points`` (and the matching ``rows``) with every numeric coordinate at -1, 0 or
+        +1, when there are at least two such points; else all of them."""
+        on = np.all(np.isin(points[:, self.space.numeric_index], _COARSE), axis=1)
+        if on.sum() >= 2:
+            return (points[on], *(r[on] for r in rows))
+        return (points, *rows)
+
     def _replace(self, D: np.ndarray, F: np.ndarray, i: int, x: np.ndarray, g: np.ndarray, M: np.ndarray,
                  cur: float) -> tuple[np.ndarray, float] | None:
         """The acceptance step of both exchanges: run ``i`` of ``D`` (model row ``F[i]``;
@@ -259,11 +275,8 @@ class _Problem:
     def exchange(self, D: np.ndarray, fixed: int = 0, polish: bool = True, coarse: bool = False) -> tuple[np.ndarray, float]:
         """Coordinate exchange on rows ``fixed..`` of ``D`` (earlier rows held); ``coarse``:
         numeric coordinates at -1, 0, +1 only (the levels of the classical designs)."""
-        D = D.copy()
+        D, F, M, cur = self._start(D)
         n = len(D)
-        F = design_matrix(D, self.terms)
-        M = F.T @ F + self.ridge(n)
-        cur = float(_value(M, self.crit, self.W))
         num = self.space.numeric_index
         for phase in (0, 1, 2) if polish else (0,):
             coords = range(self.k) if phase == 0 else num
@@ -298,17 +311,9 @@ class _Problem:
     def row_exchange(self, D: np.ndarray, fixed: int = 0, coarse: bool = False) -> tuple[np.ndarray, float]:
         """Replace whole runs by the best candidate point (the feasible pool at every level
         combination), run by run, until no replacement improves the criterion."""
-        D = D.copy()
+        D, F, M, cur = self._start(D)
         n = len(D)
-        cands = self.candidates
-        G = self.cand_rows
-        if coarse:
-            on = np.all(np.isin(cands[:, self.space.numeric_index], _COARSE), axis=1)
-            if on.sum() >= 2:
-                cands, G = cands[on], G[on]
-        F = design_matrix(D, self.terms)
-        M = F.T @ F + self.ridge(n)
-        cur = float(_value(M, self.crit, self.W))
+        cands, G = self._on_grid(self.candidates, self.cand_rows) if coarse else (self.candidates, self.cand_rows)
         for _ in range(50):
             improved = False
             for i in range(fixed, n):
@@ -338,10 +343,7 @@ class _Problem:
     def greedy_start(self, n: int, fixed: np.ndarray | None = None) -> np.ndarray:
         """Sequential build (Dykstra 1971): add, one at a time, the candidate point (numeric
         coordinates at -1, 0, +1 where the pool has them) that most improves the criterion."""
-        cands, G = self.candidates, self.cand_rows
-        on = np.all(np.isin(cands[:, self.space.numeric_index], _COARSE), axis=1)
-        if on.sum() >= 2:
-            cands, G = cands[on], G[on]
+        cands, G = self._on_grid(self.candidates, self.cand_rows)
         rows = [] if fixed is None else list(fixed)
         M = self.ridge(n) * 1e3
         if rows:
@@ -355,11 +357,7 @@ class _Problem:
         return np.array(rows)[0 if fixed is None else len(fixed):]
 
     def random_start(self, n: int, rng, grid: bool = False) -> np.ndarray:
-        src = self.pool
-        if grid:  # points with every numeric coordinate at -1, 0 or +1, when there are any
-            on = np.all(np.isin(self.pool[:, self.space.numeric_index], (-1.0, 0.0, 1.0)), axis=1)
-            if on.sum() >= 2:
-                src = self.pool[on]
+        src = self._on_grid(self.pool)[0] if grid else self.pool
         idx = rng.integers(0, len(src), size=n)
         D = src[idx].copy()
         for j, f in enumerate(self.space.factors):
