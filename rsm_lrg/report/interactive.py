@@ -290,12 +290,18 @@ def _controls(specs) -> list[dict]:
     return out
 
 
-def _observed_range(result) -> tuple[float, float]:
+def _observed(result) -> np.ndarray:
+    """The finite observed responses, on the response's own scale (back-transformed when
+    the fit is on a transformed scale)."""
     y = np.asarray(_base_fit(result).y, dtype=float)
     tr = getattr(result, "transform", None)
     if tr is not None and _base_fit(result) is not result:
         y = tr.inverse(y)
-    y = y[np.isfinite(y)]
+    return y[np.isfinite(y)]
+
+
+def _observed_range(result) -> tuple[float, float]:
+    y = _observed(result)
     return (float(y.min()), float(y.max())) if y.size else (float("nan"), float("nan"))
 
 
@@ -303,11 +309,7 @@ def _default_limits(result, goal, lo_obs: float, hi_obs: float) -> tuple:
     """Overlay limits when none are given: for ``minimize`` at most the observed median (the
     better half of the runs; no lower limit), for ``maximize`` at least the median,
     otherwise the observed range."""
-    y = np.asarray(_base_fit(result).y, dtype=float)
-    tr = getattr(result, "transform", None)
-    if tr is not None and _base_fit(result) is not result:
-        y = tr.inverse(y)
-    y = y[np.isfinite(y)]
+    y = _observed(result)
     med = float(np.median(y)) if y.size else float("nan")
     g = str(goal).strip().lower() if goal is not None else ""
     if g.startswith("min"):
