@@ -83,6 +83,21 @@ def _same_length(a: np.ndarray, b: np.ndarray, what_a: str, what_b: str) -> None
         raise ValueError(f"{what_a} has {a.size} values but {what_b} has {b.size}; they must match")
 
 
+def _paired(a, b, what_a: str, what_b: str) -> tuple[np.ndarray, np.ndarray]:
+    """``a`` and ``b`` as float vectors of the same length (errors name ``what_a``/``what_b``)."""
+    a, b = _vector(a, what_a), _vector(b, what_b)
+    _same_length(a, b, what_a, what_b)
+    return a, b
+
+
+def _run_numbers(run_order, y: np.ndarray, what: str) -> np.ndarray:
+    """The x axis of a plot in run order: ``run_order``, or 1..n when it is None, one per
+    value of ``y`` (``what``)."""
+    x = np.arange(1, y.size + 1, dtype=float) if run_order is None else _vector(run_order, "run order")
+    _same_length(x, y, "run order", what)
+    return x
+
+
 def _new_figure(size=PANEL_SIZE) -> Figure:
     # Fixed margins rather than a layout engine: constrained layout costs more than the
     # drawing itself, and these panels all have the same furniture.
@@ -234,9 +249,7 @@ def normal_probability_plot(residuals, *, label: str = "Externally studentized r
 def residuals_vs_predicted(predicted, residuals, *, limits: float | None = None,
                            label: str = "Residuals", title: str | None = "Residuals vs predicted") -> Figure:
     """Residuals against predicted values; optional ±``limits`` lines (e.g. ±3 for studentized)."""
-    x = _vector(predicted, "predicted")
-    y = _vector(residuals, "residuals")
-    _same_length(x, y, "predicted", "residuals")
+    x, y = _paired(predicted, residuals, "predicted", "residuals")
     fig = _new_figure()
     ax = fig.add_subplot()
     ax.scatter(x, y, s=22, **_POINT_STYLE)
@@ -249,8 +262,7 @@ def residuals_vs_run(residuals, run_order=None, *, limits: float | None = None,
                      label: str = "Residuals", title: str | None = "Residuals vs run order") -> Figure:
     """Residuals in run order (connected), to show drift or time effects."""
     y = _vector(residuals, "residuals")
-    x = np.arange(1, y.size + 1, dtype=float) if run_order is None else _vector(run_order, "run order")
-    _same_length(x, y, "run order", "residuals")
+    x = _run_numbers(run_order, y, "residuals")
     o = np.argsort(x, kind="stable")
     fig = _new_figure()
     ax = fig.add_subplot()
@@ -264,9 +276,7 @@ def residuals_vs_run(residuals, run_order=None, *, limits: float | None = None,
 def predicted_vs_actual(actual, predicted, *, response: str = "response",
                         title: str | None = "Predicted vs actual") -> Figure:
     """Predicted against actual values with the 45° line of perfect prediction."""
-    x = _vector(actual, "actual")
-    y = _vector(predicted, "predicted")
-    _same_length(x, y, "actual", "predicted")
+    x, y = _paired(actual, predicted, "actual", "predicted")
     fig = _new_figure()
     ax = fig.add_subplot()
     lo = float(np.nanmin([x.min(), y.min()]))
@@ -282,8 +292,7 @@ def predicted_vs_actual(actual, predicted, *, response: str = "response",
 
 def _index_bars(values, run_order, threshold, ylabel, title, what) -> Figure:
     y = _vector(values, what)
-    x = np.arange(1, y.size + 1, dtype=float) if run_order is None else _vector(run_order, "run order")
-    _same_length(x, y, "run order", what)
+    x = _run_numbers(run_order, y, what)
     fig = _new_figure()
     ax = fig.add_subplot()
     ax.vlines(x, 0.0, y, color=_LINE_COLOR, linewidth=1.2)
@@ -325,9 +334,7 @@ def half_normal_plot(abs_effects, scores, labels, *, me: float | None = None, sm
     me, sme : float, optional
         Lenth's margin and simultaneous margin of error, drawn as dashed vertical lines.
     """
-    x = _vector(abs_effects, "abs_effects")
-    y = _vector(scores, "scores")
-    _same_length(x, y, "abs_effects", "scores")
+    x, y = _paired(abs_effects, scores, "abs_effects", "scores")
     labels = [str(s) for s in labels]
     if len(labels) != x.size:
         raise ValueError(f"labels: {len(labels)} given for {x.size} effects")
@@ -527,12 +534,10 @@ def temperature_history(curves: Mapping[str, tuple[Sequence[float], Sequence[flo
     fig = _new_figure(size)
     ax = fig.add_subplot()
     for label, (t, T) in (curves or {}).items():
-        t, T = _vector(t, f"time of {label!r}"), _vector(T, f"temperature of {label!r}")
-        _same_length(t, T, f"time of {label!r}", f"temperature of {label!r}")
+        t, T = _paired(t, T, f"time of {label!r}", f"temperature of {label!r}")
         ax.plot(t, T, linewidth=1.5, label=_t(label))
     for label, (t, T) in (measured or {}).items():
-        t, T = _vector(t, f"time of {label!r}"), _vector(T, f"temperature of {label!r}")
-        _same_length(t, T, f"time of {label!r}", f"temperature of {label!r}")
+        t, T = _paired(t, T, f"time of {label!r}", f"temperature of {label!r}")
         ax.plot(t, T, linestyle="none", marker="o", markersize=4, label=_t(label))
     for label, v in (hlines or {}).items():
         ax.axhline(float(v), color="#777777", linestyle="--", linewidth=0.8, label=_t(label))
@@ -583,8 +588,7 @@ def grouped_curves(curves: Mapping[str, tuple[Sequence[float], Sequence[float]]]
     fig = _new_figure(size)
     ax = fig.add_subplot()
     for label, (x, y) in curves.items():
-        x, y = _vector(x, f"x of {label!r}"), _vector(y, f"y of {label!r}")
-        _same_length(x, y, f"x of {label!r}", f"y of {label!r}")
+        x, y = _paired(x, y, f"x of {label!r}", f"y of {label!r}")
         ax.plot(x, y, marker="o" if markers else None, markersize=3, linewidth=1.2, label=_t(label))
     ax.legend(fontsize=8, frameon=False)
     _finish(ax, title, xlabel, ylabel)
