@@ -399,6 +399,15 @@ def _points(points, what="design points"):
     return p
 
 
+def _grid(X, Y, Z) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A response grid (:func:`evaluate_on_grid`) as three float arrays, checked to be 2-D
+    and of one shape."""
+    X, Y, Z = (np.asarray(a, dtype=float) for a in (X, Y, Z))
+    if not (X.shape == Y.shape == Z.shape) or X.ndim != 2:
+        raise ValueError("X, Y and Z must be 2-D arrays of one shape")
+    return X, Y, Z
+
+
 def surface_3d(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y", zlabel: str = "response",
                title: str | None = None, size=(5.0, 4.0), note: str | None = None, mark=None,
                mark_label: str | None = None) -> Figure:
@@ -416,9 +425,7 @@ def surface_3d(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y", zl
     mark : (float, float, float), optional
         One point to highlight (e.g. the optimum on this slice), drawn as a star.
     """
-    X, Y, Z = (np.asarray(a, dtype=float) for a in (X, Y, Z))
-    if not (X.shape == Y.shape == Z.shape) or X.ndim != 2:
-        raise ValueError("X, Y and Z must be 2-D arrays of one shape")
+    X, Y, Z = _grid(X, Y, Z)
     fig = Figure(figsize=size)
     fig.subplots_adjust(left=0.0, right=0.95, bottom=0.03, top=0.95)
     ax = fig.add_subplot(projection="3d")
@@ -472,9 +479,7 @@ def contour_plot(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y",
     note : str, optional
         One line of small text at the top of the figure (e.g. where the other factors are held).
     """
-    X, Y, Z = (np.asarray(a, dtype=float) for a in (X, Y, Z))
-    if not (X.shape == Y.shape == Z.shape) or X.ndim != 2:
-        raise ValueError("X, Y and Z must be 2-D arrays of one shape")
+    X, Y, Z = _grid(X, Y, Z)
     fig = Figure(figsize=size)
     fig.subplots_adjust(left=0.15, right=0.98, bottom=0.13, top=0.89)
     ax = fig.add_subplot()
