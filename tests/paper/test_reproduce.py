@@ -159,3 +159,14 @@ def test_surrogate_loo_is_reported_next_to_the_paper_press_r2(rep):
     assert r.paper.startswith("0.818")
     assert f"LOO R² {cal.loo_r2:.3f}" in r.toolkit
     assert r.verdict == ("pass" if cal.loo_r2 >= 0.8184 else "not yet")
+
+
+def test_fig9_wear_row_shows_both_motion_profiles(rep):
+    # issue 15: the wear ordering of the Fig. 9 setting under the default trapezoidal strokes
+    # (RFCMS slides 0.005-0.26 % more: frame ringing) and under 10 ms jerk-limited strokes
+    # (RFCMS below RMS at every stroke), from the surrogate (tests/surrogate for the numbers)
+    r = _row(rep, "Fig. 9 setting: wear of RFCMS / RMS")
+    trap, scurve = r.toolkit.split("; S-curve 10 ms ")
+    ratios = lambda text: [float(x.split(": ")[1]) for x in text.removeprefix("trapezoid ").split(", ")]  # noqa: E731
+    assert all(v > 1 for v in ratios(trap)) and all(v < 1 for v in ratios(scurve))
+    assert "Akribis" in r.note
