@@ -578,6 +578,30 @@ def is_bookkeeping(column) -> bool:
     return low in BOOKKEEPING or low.startswith(CODED_COLUMN_PREFIX)
 
 
+class Note(str):
+    """A note on the input (plain text) that also says what it is about in ``kind``, so that a
+    command can pick notes by kind rather than by their wording.
+
+    >>> n = Note("Text column x left out (not a factor, response or block): x.", "columns_left_out")
+    >>> n.kind, n.startswith("Text")
+    ('columns_left_out', True)
+    """
+
+    kind: str
+
+    def __new__(cls, text: str, kind: str = ""):
+        self = super().__new__(cls, text)
+        self.kind = kind
+        return self
+
+    def __reduce__(self):  # keep the kind through pickling (Dask workers, process pools)
+        return (Note, (str(self), self.kind))
+
+
+#: ``Note.kind`` of the notes that list the data columns a fit left out.
+COLUMNS_LEFT_OUT = "columns_left_out"
+
+
 @dataclass(frozen=True)
 class FactorChoice:
     """Which columns are the factors, and what was left out (see :func:`choose_factors`).
@@ -942,14 +966,14 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
                      "(name other factors with --factor).")
     numeric_unused = [c for c in unused if c not in text]
     if numeric_unused:
-        notes.append(f"Numeric column{'s' if len(numeric_unused) > 1 else ''} left out (not a factor, response or "
-                     f"block): {_names(numeric_unused)}.")
+        notes.append(Note(f"Numeric column{'s' if len(numeric_unused) > 1 else ''} left out (not a factor, response "
+                          f"or block): {_names(numeric_unused)}.", COLUMNS_LEFT_OUT))
     blocks = [c for c in numeric_unused if str(c).lower() == "block"]
     if blocks:
         notes.append(f"Column {blocks[0]} looks like a design's block column; give --block {blocks[0]} to fit "
                      "block effects.")
     if text:
-        notes.append(f"Text column{'s' if len(text) > 1 else ''} left out (not a factor, response or block): "
-                     f"{_names(text)}.")
+        notes.append(Note(f"Text column{'s' if len(text) > 1 else ''} left out (not a factor, response or block): "
+                          f"{_names(text)}.", COLUMNS_LEFT_OUT))
     return FactorChoice(space=space, how=how, coded_columns=tuple(coded_used), unused=tuple(unused),
                         text_columns=tuple(text), notes=tuple(notes))

@@ -160,6 +160,22 @@ def _samefile(a, b) -> bool:
         return False
 
 
+def add_plot_option(p: argparse.ArgumentParser, what: str) -> None:
+    """``--plot PATH.png|PATH.svg``: an output file holding ``what``."""
+    output_option(p.add_argument("--plot", metavar="PATH.png", default=None, help=f"write {what} (.png or .svg)"))
+
+
+def plot_format(path: str | None) -> str | None:
+    """``"png"`` or ``"svg"`` from the ``--plot`` file's extension (None without --plot); any
+    other extension is an error naming the option, raised before any work."""
+    if path is None:
+        return None
+    fmt = path.rsplit(".", 1)[-1].lower() if "." in path else ""
+    if fmt not in ("png", "svg"):
+        raise ValueError(f"--plot: {path!r} must end in .png or .svg")
+    return fmt
+
+
 def add_force(p: argparse.ArgumentParser) -> None:
     p.add_argument("--force", action="store_true", help="overwrite existing output files")
 

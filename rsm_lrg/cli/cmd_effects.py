@@ -11,7 +11,8 @@ from ._common import (
     add_factor_options,
     add_force,
     add_json,
-    output_option,
+    add_plot_option,
+    plot_format,
     print_notes,
 )
 
@@ -43,8 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="fit only these terms (repeatable, e.g. --term A --term AB); overrides --model")
     parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
                         help="level of ME and SME (default 0.05)")
-    output_option(parser.add_argument("--plot", metavar="PATH.png", default=None,
-                                      help="write the half-normal plot (.png or .svg)"))
+    add_plot_option(parser, "the half-normal plot")
     add_json(parser)
     add_force(parser)
 
@@ -61,11 +61,7 @@ def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ..model.effects import screening_effects
 
-    fmt = None
-    if args.plot is not None:
-        fmt = args.plot.rsplit(".", 1)[-1].lower() if "." in args.plot else ""
-        if fmt not in ("png", "svg"):
-            raise ValueError(f"--plot: {args.plot!r} must end in .png or .svg")
+    fmt = plot_format(args.plot)
     data = read_table(args.data)
     with about_file(args.data):
         terms = args.term

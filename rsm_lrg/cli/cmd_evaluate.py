@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, add_json, add_model_option, output_option
+from ._common import about_file, add_force, add_json, add_model_option, add_plot_option, plot_format
 
 NAME = "evaluate"
 HELP = ("evaluate a design for a model before any data: VIF, leverage, prediction variance, FDS, power, "
@@ -42,8 +42,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--potential", default="auto", choices=["auto", "none", "2fi", "quadratic", "cubic"],
                         help="model whose extra terms are the potential terms of the alias map (default auto: "
                              "the next bigger model; none: no alias map)")
-    output_option(parser.add_argument("--plot", metavar="PATH.png", default=None,
-                                      help="write the fraction-of-design-space curve(s) on one plot (.png or .svg)"))
+    add_plot_option(parser, "the fraction-of-design-space curve(s) on one plot")
     add_json(parser)
     add_force(parser)
 
@@ -75,11 +74,7 @@ def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, write_output
     from ..model.evaluate import compare_designs, evaluate_design
 
-    fmt = None
-    if args.plot is not None:
-        fmt = args.plot.rsplit(".", 1)[-1].lower() if "." in args.plot else ""
-        if fmt not in ("png", "svg"):
-            raise ValueError(f"--plot: {args.plot!r} must end in .png or .svg")
+    fmt = plot_format(args.plot)
     potential = None if args.potential == "none" else args.potential
     paths = list(args.design)
     if len(set(paths)) != len(paths):

@@ -57,9 +57,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import dump_json, read_table
+    from ..io import read_table
     from ..optimize import optimize, parse_goal
-    from ._common import check_transform_option, fit_model, print_notes, response_options
+    from ._common import check_transform_option, fit_model, print_notes, print_summary_or_json, response_options
 
     responses = args.response
     goals = args.goal or []
@@ -79,13 +79,7 @@ def run(args: argparse.Namespace) -> int:
         with _constraint_errors(args.constraint):
             best = _optimize_on_fit_scale(optimize, result, args.goal, args.bound, args.constraint)
     print_notes(result.input_notes)
-    if args.json and args.json != "-":
-        dump_json(best.to_dict(), args.json, force=args.force)
-    if args.json == "-":
-        dump_json(best.to_dict(), "-")
-    else:
-        print(f"Data: {args.data}")
-        print(best.summary(), end="")
+    print_summary_or_json(args, best)
     return 0
 
 
@@ -150,7 +144,7 @@ def _multi(args) -> int:
              for r, g, w, i, lim in zip(args.response, goals, weights, imps, limits)]
     data = read_table(args.data)
     with about_file(args.data):
-        from ..factors import choose_factors
+        from ..factors import COLUMNS_LEFT_OUT, choose_factors
 
         # one factor space for every response (no response is a factor of another)
         choice = choose_factors(data, args.factor, exclude=list(args.response) + ([args.block] if args.block else []))
@@ -163,7 +157,7 @@ def _multi(args) -> int:
             models[r] = model_label(opts, extra)
             # the choice's notes cover the columns; each fit adds its runs left out
             fit_notes = getattr(fits[r], "fit", fits[r]).input_notes
-            notes += [f"{r}: {n}" for n in fit_notes if n not in choice.notes and "left out (not a factor" not in n]
+            notes += [f"{r}: {n}" for n in fit_notes if n not in choice.notes and getattr(n, "kind", "") != COLUMNS_LEFT_OUT]
         with _constraint_errors(args.constraint):
             best = optimize_desirability(fits, specs, bounds=args.bound, constraints=args.constraint)
     print_notes(notes)

@@ -109,11 +109,11 @@ def run(args: argparse.Namespace) -> int:
         check_transform_option(response_options(args, i))
     data = read_table(args.data)
     with about_file(args.data):
+        from ..factors import COLUMNS_LEFT_OUT, choose_factors
+
         factors = args.factor
         notes = []
         if n > 1:  # one factor space for every response (no response is a factor of another)
-            from ..factors import choose_factors
-
             choice = choose_factors(data, args.factor, exclude=responses + ([args.block] if args.block else []))
             factors, notes = choice.space, list(choice.notes)
         fits = {}
@@ -121,7 +121,7 @@ def run(args: argparse.Namespace) -> int:
             fits[r], _ = fit_model(data, r, response_options(args, i), factors=factors, block=args.block)
             fit_notes = getattr(fits[r], "fit", fits[r]).input_notes
             notes += [(f"{r}: {x}" if n > 1 else x) for x in fit_notes
-                      if x not in notes and (n == 1 or "left out (not a factor" not in x)]
+                      if x not in notes and (n == 1 or getattr(x, "kind", "") != COLUMNS_LEFT_OUT)]
         if args.static and n == 1 and not hasattr(fits[responses[0]], "transform"):
             from ..report import write_report
 
