@@ -310,25 +310,26 @@ def _stdtrit(df: float, p: float) -> float:
     return sign * t
 
 
+def _f_tails(dfn: float, dfd: float, f: float) -> tuple[float, float]:
+    """``(P(F > f), P(F <= f))`` for the F distribution with ``dfn`` and ``dfd`` degrees of
+    freedom [-], from the incomplete beta function at ``dfd / (dfd + dfn f)``."""
+    if not (dfn > 0 and dfd > 0) or math.isnan(f) or f < 0:
+        return math.nan, math.nan
+    if math.isinf(f):
+        return 0.0, 1.0
+    u = dfn * f
+    return _ibeta_tails(0.5 * dfd, 0.5 * dfn, dfd / (dfd + u), u / (dfd + u))
+
+
 def _fdtrc(dfn: float, dfd: float, f: float) -> float:
     """Upper tail ``P(F > f)`` of the F distribution with ``dfn`` and ``dfd`` degrees of
     freedom [-] (``scipy.special.fdtrc``; the p-value of an F test)."""
-    if not (dfn > 0 and dfd > 0) or math.isnan(f) or f < 0:
-        return math.nan
-    if math.isinf(f):
-        return 0.0
-    u = dfn * f
-    return _ibeta_tails(0.5 * dfd, 0.5 * dfn, dfd / (dfd + u), u / (dfd + u))[0]
+    return _f_tails(dfn, dfd, f)[0]
 
 
 def _fdtr(dfn: float, dfd: float, f: float) -> float:
     """Distribution function ``P(F <= f)`` of the F distribution [-] (``scipy.special.fdtr``)."""
-    if not (dfn > 0 and dfd > 0) or math.isnan(f) or f < 0:
-        return math.nan
-    if math.isinf(f):
-        return 1.0
-    u = dfn * f
-    return _ibeta_tails(0.5 * dfd, 0.5 * dfn, dfd / (dfd + u), u / (dfd + u))[1]
+    return _f_tails(dfn, dfd, f)[1]
 
 
 betainc = _elementwise(_betainc)
