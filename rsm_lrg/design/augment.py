@@ -48,7 +48,6 @@ criterion included the blocks.
 
 from __future__ import annotations
 
-import itertools
 from typing import Any
 
 import numpy as np
@@ -204,21 +203,16 @@ def augment(
                 a = ccd_alpha(kn, alpha, (int(np.sum(~fact)), int(center)), new_block)
         if not (np.isfinite(a) and a > 0):
             raise ValueError(f"alpha must be a finite number > 0 (got {alpha!r})")
-        cat = [j for j in range(len(space)) if j not in num]
-        combos = [()]
-        if cat:  # star and centre points at every level combination (the crossed layout)
-            combos = list(itertools.product(*[range(space.factors[j].n_levels) for j in cat]))
-        star = []
-        for combo in combos:
-            base = np.zeros(len(space))
-            base[cat] = combo
-            for j in num:
-                for sgn in (-1.0, 1.0):
-                    r = base.copy()
-                    r[j] = sgn * a
-                    star.append(r)
-            star += [base.copy() for _ in range(int(center))]
-        new = np.array(star)
+        star = []  # star and centre points, repeated at every level combination (the crossed layout)
+        for j in num:
+            for sgn in (-1.0, 1.0):
+                r = np.zeros(len(space))
+                r[j] = sgn * a
+                star.append(r)
+        star += [np.zeros(len(space)) for _ in range(int(center))]
+        from .optimal import _at_every_level
+
+        new = _at_every_level(np.array(star), space)
         options.update(alpha=a, center_added=int(center), factorial_runs=F)
     else:
         cols = list(num)
