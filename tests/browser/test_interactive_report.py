@@ -362,6 +362,29 @@ def test_categoric_factor_and_transformed_response_equal_python(categoric_page):
     assert [u for u in log["requests"] if u != url] == []
 
 
+def _not_ours(errors, html):
+    """``errors`` less the CSP reports about an inline script that is not one of the page's own.
+
+    Under heavy CPU load Chromium occasionally reports "Executing inline script violates ...
+    a hash ('sha256-X')" in the srcdoc frame for a script X that the page does not contain
+    (seen in 1 of 5 runs with two busy cores, never idle): not one of the page's scripts, which
+    all ran (the numbers below are computed by them). A report naming one of the page's own
+    scripts, and every other error, still fails the test.
+    """
+    import base64
+    import hashlib
+    import re
+
+    own = {base64.b64encode(hashlib.sha256(s.encode("utf-8")).digest()).decode("ascii")
+           for s in re.findall(r"<script>(.*?)</script>", html, re.S)}
+    keep = []
+    for e in errors:
+        m = re.search(r"^Executing inline script violates .* a hash \('sha256-([A-Za-z0-9+/=]+)'\)", e, re.S)
+        if not (m and m.group(1) not in own):
+            keep.append(e)
+    return keep
+
+
 def test_notebook_profiler_runs_in_its_frame(chromium, tmp_path):
     """``FitResult.profiler()._repr_html_()`` as a notebook shows it: an iframe whose page
     computes the same numbers (no server, no network)."""
@@ -382,7 +405,8 @@ def test_notebook_profiler_runs_in_its_frame(chromium, tmp_path):
         frame.wait_for_function("() => document.querySelector('[data-prediction]').dataset.value !== ''")
         frame.evaluate(SET, ["velocity_m_s", "0.55", "input"])
         compare({"tcr_c_per_min": fit}, frame.evaluate(READ))
-        assert errors == [] and [u for u in requests if u not in (host.as_uri(), "about:srcdoc")] == []
+        assert _not_ours(errors, prof.html) == []
+        assert [u for u in requests if u not in (host.as_uri(), "about:srcdoc")] == []
     finally:
         ctx.close()
     saved = prof.save(tmp_path / "p.html")
