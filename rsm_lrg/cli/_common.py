@@ -385,6 +385,21 @@ def add_model_refinements(parser: argparse.ArgumentParser, *, per_response: bool
                         help="add K to the response before transforming (default 0)", **kw)
 
 
+def add_goal_options(parser: argparse.ArgumentParser, *, goal_help: str, limits_help: str,
+                     goal_metavar: str = "minimize|maximize|target=V", desirability: bool = False) -> None:
+    """Each response's ``--goal`` and ``--limits`` (repeatable, one per ``--response``), and with
+    ``desirability`` its ``--weight`` and ``--importance`` (Derringer-Suich, Stat-Ease
+    conventions): the options ``optimize`` and ``report`` share. ``goal_help`` and
+    ``limits_help`` say what the command does with them."""
+    parser.add_argument("--goal", action="append", default=None, metavar=goal_metavar, help=goal_help)
+    if desirability:
+        parser.add_argument("--weight", action="append", default=None, metavar="W[,W2]",
+                            help="desirability weight 0.1..10 per response (multi-response; default 1)")
+        parser.add_argument("--importance", action="append", default=None, metavar="R",
+                            help="importance 1..5 per response (multi-response; default 3)")
+    parser.add_argument("--limits", action="append", default=None, metavar="LOW:HIGH", help=limits_help)
+
+
 def check_transform_option(opts: argparse.Namespace) -> None:
     """A bad ``--transform`` is named before any data is read."""
     if getattr(opts, "transform", None) is None:

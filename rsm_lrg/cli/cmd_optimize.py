@@ -11,6 +11,7 @@ from ._common import (
     add_block_option,
     add_factor_options,
     add_force,
+    add_goal_options,
     add_json,
     add_model_refinements,
 )
@@ -34,14 +35,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--response", required=True, action=ResponseGroup, metavar="COL",
                         help="the response column; repeat (each followed by its --goal and its own model "
                              "options) for a multi-response desirability optimisation")
-    parser.add_argument("--goal", action="append", default=None, metavar="minimize|maximize|target=V|range",
-                        help="what to do with the response before it (default minimize)")
-    parser.add_argument("--weight", action="append", default=None, metavar="W[,W2]",
-                        help="desirability weight 0.1..10 per response (multi-response; default 1)")
-    parser.add_argument("--importance", action="append", default=None, metavar="R",
-                        help="importance 1..5 per response (multi-response; default 3)")
-    parser.add_argument("--limits", action="append", default=None, metavar="LOW:HIGH",
-                        help="desirability limits per response (multi-response; default: observed min:max)")
+    add_goal_options(parser, goal_metavar="minimize|maximize|target=V|range", desirability=True,
+                     goal_help="what to do with the response before it (default minimize)",
+                     limits_help="desirability limits per response (multi-response; default: observed min:max)")
     add_factor_options(parser)
     parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
                         help="tighter limits for a factor in actual units, or NAME=LEVEL[,LEVEL...] to hold a "

@@ -10,6 +10,7 @@ from ._common import (
     add_block_option,
     add_factor_options,
     add_force,
+    add_goal_options,
     add_model_refinements,
     print_notes,
 )
@@ -39,13 +40,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_block_option(parser)
     add_model_refinements(parser, per_response=True, model=True)
-    parser.add_argument("--goal", action="append", default=None, metavar="minimize|maximize|target=V",
-                        help="goal of each response's optimum, in --response order (default minimize, as in "
-                             "the paper)")
-    parser.add_argument("--limits", action="append", default=None, metavar="LOW:HIGH",
-                        help="overlay and desirability limits of each response, in --response order (default: "
-                             "minimize: at most the observed median, maximize: at least the median, else the "
-                             "observed range; either end may be left empty: :0.03)")
+    add_goal_options(parser,
+                     goal_help="goal of each response's optimum, in --response order (default minimize, as in "
+                               "the paper)",
+                     limits_help="overlay and desirability limits of each response, in --response order (default: "
+                                 "minimize: at most the observed median, maximize: at least the median, else the "
+                                 "observed range; either end may be left empty: :0.03)")
     parser.add_argument("--hold", default="center", choices=["center", "optimum"],
                         help="where the factors off a surface's axes are held, and where the profiler starts "
                              "(default center)")
