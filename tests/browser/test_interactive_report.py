@@ -228,6 +228,80 @@ def test_overlay_agrees_with_python_grid(page2, case):
     assert log["errors"] == []
 
 
+def _margins(fits, limits, frame, data) -> np.ndarray:
+    """The smallest margin to the limits, each response in units of its observed range in
+    ``data`` (the quantity the page's "deepest inside every limit" button maximises), in Python."""
+    worst = np.full(len(frame), np.inf)
+    for name, f in fits.items():
+        y = f.predict(frame)["predicted"].to_numpy(dtype=float)
+        scale = float(data[name].max() - data[name].min())
+        lo, hi = limits[name]
+        if lo is not None:
+            worst = np.minimum(worst, (y - lo) / scale)
+        if hi is not None:
+            worst = np.minimum(worst, (hi - y) / scale)
+    return worst
+
+
+def _box_sample(fits, n, rng, levels=None) -> pd.DataFrame:
+    """``n`` uniform random settings in the factors' box (every categoric level equally often)."""
+    space = next(iter(fits.values())).space
+    frame = pd.DataFrame({f.name: rng.uniform(f.low, f.high, n) for f in space.factors if f.kind == "numeric"})
+    for f in space.factors:
+        if f.kind == "categoric":
+            frame[f.name] = np.resize(np.asarray(f.levels, dtype=object), n)
+    return frame
+
+
+DEEPEST = """() => { const b = window.rsmReport.goDeepest();
+    return {margin: b === null ? null : b.margin, readout: document.getElementById('deepest-readout').textContent}; }"""
+
+
+@pytest.mark.parametrize("case", ["default-limits", "tight-limits", "impossible-limits"])
+def test_deepest_setting_inside_the_limits_beats_a_dense_random_search(page2, case):
+    # the button moves the profiler to the setting with the largest smallest margin to the
+    # limits; that setting's margin, computed in Python from FitResult.predict, is the page's
+    # (1e-9) and at least the best of 20 000 random settings of the box (an independent route)
+    page, log, _, fits = page2
+    page.click('[data-jump="center"]')
+    page.evaluate("""() => JSON.parse(document.getElementById('rsm-data').textContent).models.forEach(m => {
+        document.querySelector(`[data-limit-low="${m.response}"]`).value = m.limits[0] === null ? '' : String(m.limits[0]);
+        document.querySelector(`[data-limit-high="${m.response}"]`).value = m.limits[1] === null ? '' : String(m.limits[1]);
+    })""")
+    if case == "tight-limits":  # a small region where both responses are inside
+        page.fill('[data-limit-high="tcr_c_per_min"]', "0.026")
+        page.fill('[data-limit-low="tcr_c_per_min"]', "0.024")
+    elif case == "impossible-limits":  # below the smallest κ the model predicts in the box
+        page.fill('[data-limit-high="tcr_c_per_min"]', "0.0")
+    got = page.evaluate(DEEPEST)
+    state = page.evaluate(READ)
+    limits = _limits(page)
+    at = pd.DataFrame({k: [v] for k, v in state["setting"].items()})
+    data = table4_with_wear()
+    mine = float(_margins(fits, limits, at, data)[0])
+    assert got["margin"] == pytest.approx(mine, rel=1e-9, abs=1e-12)
+    sample = _box_sample(fits, 20000, np.random.default_rng(11))
+    best = float(_margins(fits, limits, sample, data).max())
+    assert mine >= best - 1e-12, (mine, best)
+    assert bool(_inside(fits, limits, at)[0]) == (mine >= 0)
+    if case == "impossible-limits":
+        assert mine < 0 and got["readout"].startswith("No setting meets every limit")
+    else:
+        assert mine > 0 and got["readout"].startswith("Moved to the setting deepest inside every limit")
+    assert log["errors"] == []
+
+
+def test_deepest_setting_needs_a_limit(page2):
+    page, log, _, fits = page2
+    page.click('[data-jump="center"]')
+    before = page.evaluate(READ)["setting"]
+    page.evaluate("() => document.querySelectorAll('[data-limit-low], [data-limit-high]').forEach(e => { e.value = ''; })")
+    got = page.evaluate(DEEPEST)
+    assert got["margin"] is None and got["readout"] == "Set at least one limit first."
+    assert page.evaluate(READ)["setting"] == before
+    assert log["errors"] == []
+
+
 def test_surface_follows_the_profiler(page2):
     page, log, _, fits = page2
     page.select_option("#surface-response", "1")
@@ -308,13 +382,19 @@ def test_markup_in_column_names_is_inert(xss_page):
     assert page.title() == "<script>alert(6)</script>"
 
 
+def categoric_data() -> pd.DataFrame:
+    """Table 4 with a random stage per run and the surrogate's wear at each run's stage."""
+    df = rsm_lrg.load_table4()
+    df["stage"] = np.random.default_rng(7).choice(["rfcms", "rms"], len(df))
+    df["wear_volume_m3_per_h"] = rsm_lrg.simulate(df[FACTORS + ["stage"]], seed=1)["wear_volume_m3_per_h"].to_numpy()
+    return df
+
+
 @pytest.fixture(scope="module")
 def categoric_page(chromium, tmp_path_factory):
     """Four numeric factors and the stage (categoric, two levels), two responses: Table 4's κ
     and the surrogate's wear at each run's stage, fitted on the log scale."""
-    df = rsm_lrg.load_table4()
-    df["stage"] = np.random.default_rng(7).choice(["rfcms", "rms"], len(df))
-    df["wear_volume_m3_per_h"] = rsm_lrg.simulate(df[FACTORS + ["stage"]], seed=1)["wear_volume_m3_per_h"].to_numpy()
+    df = categoric_data()
     factors = FACTORS + ["stage"]
     fits = {"tcr_c_per_min": rsm_lrg.fit(df, "tcr_c_per_min", factors=factors, model="2fi"),
             # a transformed response: the page back-transforms as TransformedFit.predict does
@@ -457,3 +537,21 @@ def _same_setting(got: dict, want: dict) -> None:
             assert got[k] == v, k
         else:
             assert got[k] == pytest.approx(v, rel=1e-12), k
+
+
+def test_deepest_setting_searches_every_level(categoric_page):
+    # with a categoric factor the search covers each level; κ limited to a band: the page's
+    # setting is at least as deep as the best of 20 000 random settings over both stages
+    page, log, _, fits = categoric_page
+    page.fill('[data-limit-low="tcr_c_per_min"]', "0.03")
+    page.fill('[data-limit-high="tcr_c_per_min"]', "0.034")
+    got = page.evaluate(DEEPEST)
+    state = page.evaluate(READ)
+    limits = _limits(page)
+    at = pd.DataFrame({k: [v] for k, v in state["setting"].items()})
+    data = categoric_data()
+    mine = float(_margins(fits, limits, at, data)[0])
+    assert got["margin"] == pytest.approx(mine, rel=1e-9, abs=1e-12)
+    best = float(_margins(fits, limits, _box_sample(fits, 20000, np.random.default_rng(12)), data).max())
+    assert mine >= best - 1e-12 and mine > 0, (mine, best)
+    assert log["errors"] == []

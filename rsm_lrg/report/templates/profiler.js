@@ -221,6 +221,114 @@
     var xs = document.getElementById(xid), ys = document.getElementById(yid);
     return xs && ys ? [control(xs.value), control(ys.value)] : null;
   }
+  // -- the setting deepest inside every limit -------------------------------------------------
+  function scaleOf(m) {  /* a response's observed range (1 when it has none) */
+    var o = m.observed || [], w = (o.length === 2 && o[0] !== null && o[1] !== null) ? o[1] - o[0] : NaN;
+    return isFinite(w) && w > 0 ? w : 1.0;
+  }
+  /* The smallest margin of the predictions to their limits, each in units of its response's
+     observed range: >= 0 exactly where inside() holds, < 0 outside, +Infinity with no limit set. */
+  function margin(s) {
+    var worst = Infinity;
+    for (var i = 0; i < MODELS.length; i++) {
+      var m = MODELS[i], lim = limitsOf(m), y = predict(m, s).predicted, sc = scaleOf(m);
+      if (!isFinite(y)) return -Infinity;
+      if (isFinite(lim[0])) worst = Math.min(worst, (y - lim[0]) / sc);
+      if (isFinite(lim[1])) worst = Math.min(worst, (lim[1] - y) / sc);
+    }
+    return worst;
+  }
+  function halton(i, b) { var f = 1, r = 0; while (i > 0) { f /= b; r += f * (i % b); i = Math.floor(i / b); } return r; }
+  var PRIMES = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97];
+  var MAX_COMBOS = 256;
+  function levelCombos(current) {  /* every combination of the categoric levels (the current ones beyond MAX_COMBOS) */
+    var out = [{}], held = false;
+    CONTROLS.forEach(function (c) {
+      if (c.kind !== "categoric") return;
+      if (out.length * c.levels.length > MAX_COMBOS) {
+        held = true;
+        out.forEach(function (o) { o[c.name] = current[c.name]; });
+        return;
+      }
+      var next = [];
+      out.forEach(function (o) { c.levels.forEach(function (lv) { var t = Object.assign({}, o); t[c.name] = lv; next.push(t); }); });
+      out = next;
+    });
+    return {combos: out, held: held};
+  }
+  function rng(seed) {  /* mulberry32: the same directions on every run */
+    return function () {
+      seed = (seed + 0x6D2B79F5) | 0;
+      var t = Math.imul(seed ^ (seed >>> 15), 1 | seed);
+      t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+      return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+    };
+  }
+  /* pattern search from s: the coordinate directions and as many random ones (the margin is a
+     minimum of smooth functions, so a ridge can need a diagonal step), each step halved when no
+     direction gains, down to 1e-9 of each factor's range */
+  function climb(s, ms, rand) {
+    var K = NUMERIC.length, step = 0.25;
+    while (step > 1e-9 && K > 0) {
+      var dirs = [];
+      for (var k = 0; k < K; k++) { var e = NUMERIC.map(function () { return 0; }); e[k] = 1; dirs.push(e); }
+      for (var r = 0; r < K; r++) {
+        var d = NUMERIC.map(function () { return 2 * rand() - 1; });
+        var nrm = Math.sqrt(d.reduce(function (a, v) { return a + v * v; }, 0)) || 1;
+        dirs.push(d.map(function (v) { return v / nrm; }));
+      }
+      var moved = false;
+      dirs.forEach(function (d) {
+        [-1, 1].forEach(function (sg) {
+          var t = Object.assign({}, s);
+          NUMERIC.forEach(function (c, k) {
+            t[c.name] = Math.min(c.high, Math.max(c.low, s[c.name] + sg * step * d[k] * (c.high - c.low)));
+          });
+          var mt = margin(t);
+          if (mt > ms) { s = t; ms = mt; moved = true; }
+        });
+      });
+      if (!moved) step /= 2;
+    }
+    return {setting: s, margin: ms};
+  }
+  /* {setting, margin, held} with the largest margin over the factors' box and every level
+     combination: 256 Halton points per combination, the best three refined by climb(); null
+     when no limit is set */
+  function deepest(current) {
+    var lc = levelCombos(current), best = null, rand = rng(12345);
+    if (margin(current) === Infinity) return null;  /* no limit set */
+    lc.combos.forEach(function (base) {
+      var starts = [];
+      for (var i = 0; i <= 256; i++) {
+        var s = Object.assign({}, current, base);
+        NUMERIC.forEach(function (c, k) {
+          s[c.name] = i === 0 ? (c.low + c.high) / 2 : c.low + (c.high - c.low) * halton(i, PRIMES[k % PRIMES.length]);
+        });
+        starts.push({setting: s, margin: margin(s)});
+      }
+      starts.sort(function (a, b) { return b.margin - a.margin; });
+      starts.slice(0, 3).forEach(function (st) {
+        var r = climb(st.setting, st.margin, rand);
+        if (best === null || r.margin > best.margin) best = r;
+      });
+    });
+    if (best) best.held = lc.held;
+    return best;
+  }
+  function goDeepest() {
+    var out = document.getElementById("deepest-readout");
+    var b = deepest(setting());
+    if (b === null) { out.textContent = "Set at least one limit first."; return null; }
+    jumpTo(b.setting);
+    var pct = fmt(100 * Math.abs(b.margin), 3) + " % of its observed range";
+    out.textContent = (b.margin >= 0
+      ? "Moved to the setting deepest inside every limit: the nearest limit is " + pct + " away."
+      : "No setting meets every limit; moved to the one that misses them least: by " + pct + ".") +
+      (b.held ? " Categoric factors with too many level combinations were held at their current levels." : "");
+    return b;
+  }
+
   var GRID = 61;
   function overlayGrid(s) {
     var pair = pairOf("overlay-x", "overlay-y");
@@ -380,6 +488,8 @@
       }
     });
   });
+  var deepBtn = document.getElementById("overlay-deepest");
+  if (deepBtn) deepBtn.addEventListener("click", goDeepest);
   document.querySelectorAll("[data-limit-low], [data-limit-high], #overlay-x, #overlay-y, #surface-x, #surface-y, #surface-response")
     .forEach(function (el) { el.addEventListener("input", schedule); el.addEventListener("change", schedule); });
   var pre = document.getElementById("setting-text");
@@ -397,6 +507,8 @@
     setting: setting, settingText: function () { return settingText(setting()); },
     insideLimits: function (s) { return inside(Object.assign(setting(), s)); },
     overlayGrid: function () { return overlayGrid(setting()); },
+    margin: function (s) { return margin(Object.assign(setting(), s)); },
+    goDeepest: goDeepest,
     drawNow: drawAll
   };
   update();
