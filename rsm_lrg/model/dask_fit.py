@@ -33,6 +33,8 @@ values.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from .least_squares import CHUNK_ROWS, Accumulator
@@ -122,8 +124,14 @@ def _space_and_notes(ddf, response: str, factors, numeric: list[str], lo, hi, se
                 if name in ddf.columns:
                     raise ValueError(f"factor column {name!r} is neither numeric nor text")
                 raise ValueError(f"factor column {name!r} is not in the data")
-    choice = choose_factors(frame, factors, exclude=[response])
+    try:
+        choice = choose_factors(frame, factors, exclude=[response])
+    except ValueError as exc:  # a row of the stand-in frame is no row of the data: name the column only
+        raise ValueError(re.sub(r", row \d+:", ":", str(exc))) from None
     for f in choice.space.factors:
+        if f.kind == "numeric" and f.name not in numeric:
+            raise ValueError(f"factor column {f.name!r} is stored as text in the Dask DataFrame; convert it to "
+                             f"numbers first (ddf[{f.name!r}] = ddf[{f.name!r}].astype(float))")
         if f.kind != "categoric":
             continue
         vals, empty = seen[f.name]

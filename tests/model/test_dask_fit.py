@@ -71,6 +71,14 @@ def test_dask_fit_refuses_constant_factors_and_names_bad_blocks():
         rsm_lrg.fit(ddf, "y", factors=["x0", "x1"], block="blk")
     with pytest.raises(ValueError, match="block column 'nope' not found"):
         rsm_lrg.fit(ddf, "y", factors=["x0", "x1"], block="nope")
+    # a text cell in a factor column: named by column (a partition's row is no row of the data)
+    text = df.assign(x0=df["x0"].astype(object)).astype({"x0": object})
+    text.loc[3, "x0"] = "abc"
+    with pytest.raises(ValueError, match=r"^column 'x0': holds 'abc', not a finite number$"):
+        rsm_lrg.fit(dd.from_pandas(text, npartitions=2), "y", factors=["x0", "x1"])
+    # numbers stored as text (object dtype): refused, the range would come from distinct values only
+    with pytest.raises(ValueError, match="'x0' is stored as text in the Dask DataFrame"):
+        rsm_lrg.fit(dd.from_pandas(df.astype({"x0": object}), npartitions=2), "y", factors=["x0", "x1"])
 
 
 def _blocked_categoric(n: int, seed: int = 1) -> pd.DataFrame:
