@@ -254,7 +254,16 @@ def _new_kind(args):
                 return fractional_factorial(space, resolution=args.resolution, generators=args.generator,
                                             center=args.center, seed=args.seed, randomize=randomize)
             except ValueError as exc:
-                raise InputError(f"{'--generator' if args.generator else '--resolution'}: {exc}") from None
+                msg = str(exc)
+                if msg.startswith(("a fractional", "a two-level")):
+                    opt = "--factor"
+                elif msg.startswith("center"):
+                    opt = "--center"
+                else:
+                    opt = "--generator" if args.generator is not None else "--resolution"
+                for word in ("generators: ", "resolution: "):
+                    msg = msg[len(word):] if msg.startswith(word) else msg
+                raise InputError(f"{opt}: {msg}") from None
         if args.kind == "plackett-burman":
             from ..design.screening import plackett_burman
 

@@ -207,86 +207,281 @@ def definitive_screening(factors: Any, center: int | None = None, seed: Any = No
                                 options=options)
 
 
+#: Minimum-aberration two-level fractions for 3 to 15 factors: ``k: [(q, resolution, generators)]``
+#: with ``2^q`` runs, the first ``q`` factors basic (A, B, C, ... in Yates order) and one word of
+#: basic letters per added factor (all signs +). Montgomery, *Design and Analysis of
+#: Experiments*, 8th ed. (2013), Table 8.14 "Selected 2^(k-p) fractional factorial designs"
+#: (from Box, Hunter & Hunter 2005); the resolution of every entry is recomputed from its
+#: defining relation before use.
+_FF_TABLE: dict[int, list[tuple[int, int, tuple[str, ...]]]] = {
+    3: [(2, 3, ("AB",))],
+    4: [(3, 4, ("ABC",))],
+    5: [(4, 5, ("ABCD",)), (3, 3, ("AB", "AC"))],
+    6: [(5, 6, ("ABCDE",)), (4, 4, ("ABC", "BCD")), (3, 3, ("AB", "AC", "BC"))],
+    7: [(6, 7, ("ABCDEF",)), (5, 4, ("ABCD", "ABDE")), (4, 4, ("ABC", "BCD", "ACD")),
+        (3, 3, ("AB", "AC", "BC", "ABC"))],
+    8: [(6, 5, ("ABCD", "ABEF")), (5, 4, ("ABC", "ABD", "BCDE")), (4, 4, ("BCD", "ACD", "ABC", "ABD"))],
+    9: [(7, 6, ("ACDFG", "BCEFG")), (6, 4, ("ABCD", "ACEF", "CDEF")), (5, 4, ("BCDE", "ACDE", "ABDE", "ABCE")),
+        (4, 3, ("ABC", "BCD", "ACD", "ABD", "ABCD"))],
+    10: [(7, 5, ("ABCG", "BCDE", "ACDF")), (6, 4, ("BCDF", "ACDF", "ABDE", "ABCE")),
+         (5, 4, ("ABCD", "ABCE", "ABDE", "ACDE", "BCDE")), (4, 3, ("ABC", "BCD", "ACD", "ABD", "ABCD", "AB"))],
+    11: [(7, 5, ("ABCG", "BCDE", "ACDF", "ABCDEFG")), (6, 4, ("CDE", "ABCD", "ABF", "BDEF", "ADEF")),
+         (5, 4, ("ABC", "BCD", "CDE", "ACD", "ADE", "BDE")),
+         (4, 3, ("ABC", "BCD", "ACD", "ABD", "ABCD", "AB", "AC"))],
+}
+for _k in range(12, 16):  # 16-run resolution III designs, one added column per factor
+    _FF_TABLE[_k] = [(4, 3, ("ABC", "BCD", "ACD", "ABD", "ABCD", "AB", "AC", "AD", "BC", "BD", "CD")[:_k - 4])]
+del _k
+
+#: Most runs of a two-level fraction built here (a guard against a typo asking for 2^30).
+MAX_FRACTION_RUNS = 4096
+
+_ROMAN = {2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII", 9: "IX", 10: "X"}
+
+
+def _table_masks(words) -> list[int]:
+    """Generator words in basic letters (A, B, ..., no I) as bit masks of the basic factors."""
+    from ..factors import letters_for
+
+    alphabet = letters_for(25)
+    return [sum(1 << alphabet.index(c) for c in w) for w in words]
+
+
+def _defining_words(q: int, gens: list[int]) -> list[int]:
+    """Every word of the defining relation (bit masks over the q basic + p added factors)."""
+    group = [0]
+    for j, g in enumerate(gens):
+        w = g | (1 << (q + j))
+        group += [w ^ x for x in group]
+    return group[1:]
+
+
+def _fraction_resolution(q: int, gens: list[int]) -> int | None:
+    """Resolution: the length of the shortest word of the defining relation (None: no words).
+
+    With up to 2^16 words every word is listed; beyond, the shortest word is searched by
+    length (a set of r columns whose masks over the basic factors cancel), meeting in the
+    middle (all r//2-subsets against the rest), which stays quick for the short words that
+    designs with that many added factors have."""
+    if not gens:
+        return None
+    if len(gens) <= 16:
+        return min(bin(w).count("1") for w in _defining_words(q, gens))
+    cols = [1 << j for j in range(q)] + list(gens)
+    n = len(cols)
+    for r in range(2, n + 1):
+        a = r // 2
+        half: dict[int, list[tuple[int, ...]]] = {}
+        for combo in itertools.combinations(range(n), a):
+            x = 0
+            for i in combo:
+                x ^= cols[i]
+            half.setdefault(x, []).append(combo)
+        for combo in itertools.combinations(range(n), r - a):
+            x = 0
+            for i in combo:
+                x ^= cols[i]
+            for other in half.get(x, ()):
+                if not set(other) & set(combo):
+                    return r
+    return None
+
+
+def _fraction_runs(q: int, gens: list[int]) -> np.ndarray:
+    """The 2^q runs in Yates standard order (first basic factor changing fastest), one column
+    per basic factor and then one per generator (the product of its basic columns)."""
+    r = np.arange(2 ** q)
+    base = np.column_stack([np.where((r >> j) & 1, 1.0, -1.0) for j in range(q)])
+    cols = [np.prod(base[:, [j for j in range(q) if g >> j & 1]], axis=1) for g in gens]
+    return np.column_stack([base, *cols]) if cols else base
+
+
+def _fraction_by_resolution(k: int, resolution: int) -> tuple[int, list[int], str]:
+    """(q, generator masks, source) of the smallest two-level fraction of k factors with
+    resolution >= ``resolution``: the table above for 3 to 15 factors, else a construction
+    (resolution III: distinct interaction columns of a 2^q; IV: odd-length words, a fold-over;
+    V and more: a greedy search); the full factorial when no fraction reaches it."""
+    entries = [e for e in _FF_TABLE.get(k, []) if e[1] >= resolution]
+    if entries:
+        q, _, words = min(entries, key=lambda e: e[0])
+        return q, _table_masks(words), "Montgomery (2013), Table 8.14 (minimum aberration)"
+    if resolution > k:
+        # every fraction has a word of length <= k (the half fraction I = AB...K is the best)
+        return k, [], "full factorial: no fraction reaches the resolution"
+    q = 1
+    while True:
+        q += 1
+        if 2 ** q > MAX_FRACTION_RUNS:
+            raise ValueError(f"resolution: no {k}-factor fraction of resolution {resolution} with at most "
+                             f"{MAX_FRACTION_RUNS} runs is built here; give --generator")
+        cands = [m for m in range(1, 2 ** q) if bin(m).count("1") >= max(2, resolution - 1)]
+        if resolution == 4:
+            cands = [m for m in cands if bin(m).count("1") % 2 == 1]
+        if len(cands) < k - q:
+            continue
+        order = sorted(cands, key=lambda m: (-bin(m).count("1"), m))
+        if resolution <= 4:
+            return q, order[:k - q], "constructed (resolution III: distinct interactions; IV: odd-length words)"
+        for ranked in (order, sorted(cands, key=lambda m: (bin(m).count("1"), m))):
+            gens: list[int] = []
+            for m in ranked:
+                res = _fraction_resolution(q, gens + [m])
+                if res is not None and res >= resolution:
+                    gens.append(m)
+                    if len(gens) == k - q:
+                        return q, gens, ("constructed by a greedy search (not necessarily minimum aberration or "
+                                         "the fewest runs)")
+
+
 def fractional_factorial(factors: Any, resolution: int | None = None, generators: str | None = None,
                          center: int = 0, seed: Any = None, randomize: bool = True) -> Design:
-    """Two-level fractional factorial by resolution or by generators (pyDOE3 ``fracfact``).
+    """Two-level fractional factorial by resolution or by generators.
 
     Parameters
     ----------
     resolution : int or None
-        The resolution wanted (III, IV, V, ... as 3, 4, 5); pyDOE3's ``fracfact_by_res``
-        picks the generators.
+        The least resolution wanted (III, IV, V, ... as 3, 4, 5). The design is the smallest
+        fraction of that resolution or more: the minimum-aberration fractions of Montgomery,
+        *Design and Analysis of Experiments*, 8th ed., Table 8.14, for 3 to 15 factors (e.g.
+        2^(4-1)_IV with D = ABC, 2^(7-4)_III, 2^(8-2)_V); the full factorial when no fraction
+        reaches the resolution (4 factors at resolution V), as ``options["note"]`` says.
     generators : str or None
-        pyDOE3's generator string in the factor letters, e.g. ``"A B C ABC"`` (the fourth
-        factor D = ABC); lower-case works too.
+        One word per factor in the factor letters, e.g. ``"A B C ABC"`` (a factor whose word
+        is its own letter is a basic factor; here D = ABC), or the added factors only,
+        ``"D=ABC"`` (every factor not named is basic); a word may start with ``-``.
+        Lower-case works too. The basic factors are the first ones.
     center : int
         Centre runs added.
 
-    ``options["aliases"]`` lists the alias groups of main effects and two-factor
-    interactions (:func:`alias_groups`).
+    The runs are in Yates standard order (the first basic factor changing fastest).
+    ``options`` records the generators (``"D = ABC"``), the ``resolution`` (``None`` for
+    a full factorial) and the alias groups of main effects and two-factor interactions
+    (:func:`alias_groups`).
+
+    >>> d = fractional_factorial([f"x{i}=0:1" for i in range(4)], resolution=4, randomize=False)
+    >>> d.n_runs, d.options["resolution"], d.options["generators"]
+    (8, 4, 'D = ABC')
     """
     space = as_factor_space(factors)
     _, k = numeric_part(space)
     if space.has_categoric:
         raise ValueError("a two-level fractional factorial here takes numeric factors only")
     if k < 3:
-        raise ValueError("a fractional factorial needs at least 3 factors")
+        raise ValueError(f"a fractional factorial needs at least 3 factors (got {k})")
     if (resolution is None) == (generators is None):
         raise ValueError("give either a resolution or generators")
-    import pyDOE3
-
+    if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
+        raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
+    letters = space.letters
+    source = None
     if generators is not None:
-        gen = _generator_string(generators, space.letters)
-        X = np.asarray(pyDOE3.fracfact(gen), dtype=float)
-        if X.shape[1] != k:
-            raise ValueError(f"generators {generators!r} give {X.shape[1]} columns for {k} factors")
+        q, gens, signs = _parse_generators(generators, letters)
     else:
         if isinstance(resolution, (bool, np.bool_)) or int(resolution) != resolution or resolution < 3:
             raise ValueError(f"resolution must be a whole number >= 3 (got {resolution!r})")
-        try:
-            X = np.asarray(pyDOE3.fracfact_by_res(k, int(resolution)), dtype=float)
-        except ValueError as exc:
-            raise ValueError(f"no {k}-factor fractional factorial of resolution {resolution}: {exc}") from None
-        gen = None
-    if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
-        raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
+        q, gens, source = _fraction_by_resolution(k, int(resolution))
+        signs = [1.0] * len(gens)
+    if 2 ** q > MAX_FRACTION_RUNS:
+        what = "generators" if generators is not None else "resolution"
+        raise ValueError(f"{what}: 2^{q} = {2 ** q} runs is more than this generator makes ({MAX_FRACTION_RUNS})")
+    X = _fraction_runs(q, gens) * np.array([1.0] * q + list(signs))
+    res = _fraction_resolution(q, gens)
+    if resolution is not None and res is not None and res < resolution:  # never a lower resolution silently
+        raise ArithmeticError(f"the {k}-factor fraction built has resolution {res}, not {resolution}")
+    gen_text = ", ".join(f"{letters[q + j]} = {'-' if s < 0 else ''}{''.join(letters[i] for i in range(q) if g >> i & 1)}"
+                         for j, (g, s) in enumerate(zip(gens, signs)))
     coded = np.vstack([X, np.zeros((int(center), k))])
-    groups = alias_groups(X, space.letters)
-    res = _resolution(X)
-    options = {"generators": gen, "resolution": res, "center": int(center),
-               "aliases": groups,
-               "note": "aliases: " + "; ".join(" = ".join(g) for g in groups if len(g) > 1)}
+    groups = alias_groups(X, letters)
+    if gens:
+        head = f"2^({k}-{k - q}) fraction, resolution {_ROMAN.get(res, res)}, generators {gen_text}"
+    else:
+        head = f"full 2^{k} factorial" + (f" (no fraction of {k} factors has resolution {resolution} or more)"
+                                          if resolution is not None else "")
+    aliased = "; ".join(" = ".join(g) for g in groups if len(g) > 1)
+    options = {"generators": gen_text or None, "resolution": res, "center": int(center), "aliases": groups,
+               "note": f"{head}\naliases: {aliased or 'none among main effects and two-factor interactions'}"}
+    if source:
+        options["source"] = source
     return Design.from_standard(space, "fractional-factorial", coded, seed=seed, randomize=randomize,
                                 options=options)
 
 
-def _generator_string(gen: str, letters: list[str]) -> str:
+def _parse_generators(gen: str, letters: list[str]) -> tuple[int, list[int], list[float]]:
+    """``(q, generator masks over the basic factors, signs)`` from ``"A B C ABC"`` or ``"D=ABC"``;
+    the basic factors must be the first q factors (A, B, ...), the generated ones the rest."""
     import re
 
-    toks = gen.replace(",", " ").split()
-    if len(toks) != len(letters):
-        raise ValueError(f"generators {gen!r}: expected {len(letters)} words (one per factor), got {len(toks)}")
-    known = {L.lower() for L in letters}
-    for t in toks:
-        if not re.fullmatch(r"[+-]?[A-Za-z]+", t):
-            raise ValueError(f"generators {gen!r}: {t!r} is not a word of factor letters")
-        bad = [c for c in t.lstrip("+-").lower() if c not in known]
+    text = str(gen)
+    upper = [L.upper() for L in letters]
+    k = len(letters)
+    spaced = re.sub(r"\s*=\s*", "=", text.replace(",", " "))
+    toks = spaced.split()
+    if not toks:
+        raise ValueError("generators: empty; give one word per factor ('A B C ABC') or the added ones ('D=ABC')")
+    pattern = re.compile("|".join(re.escape(L) for L in sorted(upper, key=len, reverse=True)))
+
+    def split(word: str, tok: str) -> list[int]:
+        w = word.upper()
+        if not w:
+            raise ValueError(f"generators {text!r}: {tok!r} has an empty word")
+        pos, out = 0, []
+        while pos < len(w):
+            m = pattern.match(w, pos)
+            if not m:
+                raise ValueError(f"generators {text!r}: {w[pos]!r} in {tok!r} is not a factor letter "
+                                 f"({', '.join(letters)})")
+            out.append(upper.index(m.group()))
+            pos = m.end()
+        return out
+
+    words: dict[int, tuple[list[int], float]] = {}
+    if any("=" in t for t in toks):
+        for t in toks:
+            name, eq, word = t.partition("=")
+            if not eq or not name or not word:
+                raise ValueError(f"generators {text!r}: {t!r} is not of the form D=ABC")
+            who = split(name, t)
+            if len(who) != 1:
+                raise ValueError(f"generators {text!r}: {name!r} in {t!r} is not one factor letter")
+            if who[0] in words:
+                raise ValueError(f"generators {text!r}: factor {letters[who[0]]} has two generators")
+            words[who[0]] = (split(word.lstrip("+-"), t), -1.0 if word.startswith("-") else 1.0)
+        basic = [i for i in range(k) if i not in words]
+    else:
+        if len(toks) != k:
+            raise ValueError(f"generators {text!r}: expected {k} words (one per factor), got {len(toks)}")
+        basic = []
+        for i, t in enumerate(toks):
+            idx, sign = split(t.lstrip("+-"), t), (-1.0 if t.startswith("-") else 1.0)
+            if idx == [i] and sign > 0:
+                basic.append(i)
+            else:
+                words[i] = (idx, sign)
+    q = len(basic)
+    if basic != list(range(q)):
+        raise ValueError(f"generators {text!r}: the basic factors (whose word is their own letter) must be the "
+                         f"first ones ({', '.join(letters[:q])}) and the generated ones follow")
+    if q < 2:
+        raise ValueError(f"generators {text!r}: at least two basic factors are needed")
+    gens, signs = [], []
+    for i in range(q, k):
+        idx, sign = words[i]
+        bad = [j for j in idx if j >= q]
         if bad:
-            raise ValueError(f"generators {gen!r}: {bad[0].upper()!r} in {t!r} is not a factor letter "
-                             f"({', '.join(letters)})")
-    return " ".join(t.lower() for t in toks)
-
-
-def _resolution(X: np.ndarray) -> int | None:
-    """Shortest word of the defining relation (the smallest set of columns whose product
-    is constant)."""
-    k = X.shape[1]
-    for r in range(2, k + 1):
-        for combo in itertools.combinations(range(k), r):
-            v = np.prod(X[:, combo], axis=1)
-            if np.all(v == v[0]):
-                return r
-    return None
+            raise ValueError(f"generators {text!r}: the word of {letters[i]} uses {letters[bad[0]]}, which is not a "
+                             f"basic factor ({', '.join(letters[:q])})")
+        if len(set(idx)) != len(idx):
+            raise ValueError(f"generators {text!r}: the word of {letters[i]} repeats a letter")
+        if len(idx) < 2:
+            raise ValueError(f"generators {text!r}: {letters[i]} = {'-' if sign < 0 else ''}{letters[idx[0]]} "
+                             "confounds two main effects (resolution II)")
+        gens.append(sum(1 << j for j in idx))
+        signs.append(sign)
+    res = _fraction_resolution(q, gens)
+    if res is not None and res < 3:
+        raise ValueError(f"generators {text!r}: two factors get the same column (main effects confounded, "
+                         "resolution II)")
+    return q, gens, signs
 
 
 def plackett_burman(factors: Any, center: int = 0, seed: Any = None, randomize: bool = True) -> Design:
