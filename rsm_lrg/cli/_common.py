@@ -391,13 +391,53 @@ def add_goal_options(parser: argparse.ArgumentParser, *, goal_help: str, limits_
     ``desirability`` its ``--weight`` and ``--importance`` (Derringer-Suich, Stat-Ease
     conventions): the options ``optimize`` and ``report`` share. ``goal_help`` and
     ``limits_help`` say what the command does with them."""
-    parser.add_argument("--goal", action="append", default=None, metavar=goal_metavar, help=goal_help)
+    kw = {"action": ResponseValue, "default": None}
+    parser.add_argument("--goal", metavar=goal_metavar, help=goal_help, **kw)
     if desirability:
-        parser.add_argument("--weight", action="append", default=None, metavar="W[,W2]",
-                            help="desirability weight 0.1..10 per response (multi-response; default 1)")
-        parser.add_argument("--importance", action="append", default=None, metavar="R",
-                            help="importance 1..5 per response (multi-response; default 3)")
-    parser.add_argument("--limits", action="append", default=None, metavar="LOW:HIGH", help=limits_help)
+        parser.add_argument("--weight", metavar="W[,W2]",
+                            help="desirability weight 0.1..10 per response (multi-response; default 1)", **kw)
+        parser.add_argument("--importance", metavar="R",
+                            help="importance 1..5 per response (multi-response; default 3)", **kw)
+    parser.add_argument("--limits", metavar="LOW:HIGH", help=limits_help, **kw)
+
+
+class ResponseValue(argparse.Action):
+    """A repeatable per-response value (``--goal``, ``--limits``, ...): each one is kept with
+    the index of the ``--response`` it follows (-1 before the first), for
+    :func:`per_response_values`."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        items = list(getattr(namespace, self.dest, None) or [])
+        items.append((len(getattr(namespace, "response", None) or []) - 1, values))
+        setattr(namespace, self.dest, items)
+
+
+def per_response_values(items, n: int, option: str) -> list:
+    """The values of a :class:`ResponseValue` option for ``n`` responses (None where not given).
+
+    A value given right after a ``--response`` belongs to that response (``--response Y1
+    --response Y2 --goal maximize`` maximises Y2); values listed together (several after the
+    same ``--response``, or before the first) are taken in ``--response`` order (``--response
+    Y1 --response Y2 --goal maximize --goal minimize``). More values than responses is an
+    error naming the option.
+
+    >>> per_response_values([(1, "maximize")], 2, "--goal")
+    [None, 'maximize']
+    >>> per_response_values([(1, "maximize"), (1, "minimize")], 2, "--goal")
+    ['maximize', 'minimize']
+    >>> per_response_values(["minimize"], 2, "--goal")  # plain values: in order
+    ['minimize', None]
+    """
+    items = [v if isinstance(v, tuple) else (-1, v) for v in (items or [])]
+    if len(items) > n:
+        raise InputError(f"{option}: more values ({len(items)}) than --response options ({n})")
+    positions = [p for p, _ in items]
+    if all(p >= 0 for p in positions) and all(a < b for a, b in zip(positions, positions[1:])):
+        out = [None] * n
+        for p, v in items:
+            out[p] = v
+        return out
+    return [v for _, v in items] + [None] * (n - len(items))
 
 
 def check_transform_option(opts: argparse.Namespace) -> None:

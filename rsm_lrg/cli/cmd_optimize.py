@@ -36,7 +36,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the response column; repeat (each followed by its --goal and its own model "
                              "options) for a multi-response desirability optimisation")
     add_goal_options(parser, goal_metavar="minimize|maximize|target=V|range", desirability=True,
-                     goal_help="what to do with the response before it (default minimize)",
+                     goal_help="what to do with the response before it (default minimize; several listed together after the "
+                               "last --response: in --response order)",
                      limits_help="desirability limits per response (multi-response; default: observed min:max)")
     add_factor_options(parser)
     parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
@@ -55,19 +56,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..io import read_table
     from ..optimize import optimize, parse_goal
-    from ._common import check_transform_option, fit_model, print_notes, print_summary_or_json, response_options
+    from ._common import (
+        check_transform_option,
+        fit_model,
+        per_response_values,
+        print_notes,
+        print_summary_or_json,
+        response_options,
+    )
 
     responses = args.response
-    goals = args.goal or []
     for i in range(len(responses)):
         check_transform_option(response_options(args, i))
     if len(responses) > 1 or args.weight or args.importance or args.limits:
         return _multi(args)
-    if len(goals) > 1:
-        raise ValueError("one --goal per --response")
     opts = response_options(args, 0)
     args.response = responses[0]
-    args.goal = goals[0] if goals else "minimize"
+    args.goal = per_response_values(args.goal, 1, "--goal")[0] or "minimize"
     parse_goal(args.goal)  # a bad goal fails before any work
     data = read_table(args.data)
     with about_file(args.data):
@@ -116,26 +121,19 @@ def _constraint_errors(constraints):
         raise
 
 
-def _per_response(values, n, what):
-    values = values or []
-    if len(values) > n:
-        raise ValueError(f"more --{what} options ({len(values)}) than --response options ({n})")
-    return list(values) + [None] * (n - len(values))
-
-
 def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
     from ..io import dump_json, read_table
     from ..optimize.desirability import optimize_desirability, parse_response_goal
-    from ._common import fit_model, model_label, print_notes, response_options
+    from ._common import fit_model, model_label, per_response_values, print_notes, response_options
 
     n = len(args.response)
     if len(set(args.response)) != n:
         raise ValueError("each --response may be given once")
-    goals = _per_response(args.goal, n, "goal")
-    weights = _per_response(args.weight, n, "weight")
-    imps = _per_response(args.importance, n, "importance")
-    limits = _per_response(args.limits, n, "limits")
+    goals = per_response_values(args.goal, n, "--goal")
+    weights = per_response_values(args.weight, n, "--weight")
+    imps = per_response_values(args.importance, n, "--importance")
+    limits = per_response_values(args.limits, n, "--limits")
     specs = [parse_response_goal(r, g or "minimize", weight=w, importance=i, limits=lim)
              for r, g, w, i, lim in zip(args.response, goals, weights, imps, limits)]
     data = read_table(args.data)

@@ -41,9 +41,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_block_option(parser)
     add_model_refinements(parser, per_response=True, model=True)
     add_goal_options(parser,
-                     goal_help="goal of each response's optimum, in --response order (default minimize, as in "
-                               "the paper)",
-                     limits_help="overlay and desirability limits of each response, in --response order (default: "
+                     goal_help="goal of the response it follows (several listed together: in --response order; "
+                               "default minimize, as in the paper)",
+                     limits_help="overlay and desirability limits of the response it follows (several listed together: in "
+                                 "--response order; default: "
                                  "minimize: at most the observed median, maximize: at least the median, else the "
                                  "observed range; either end may be left empty: :0.03)")
     parser.add_argument("--hold", default="center", choices=["center", "optimum"],
@@ -54,13 +55,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--title", default=None, help="page title (default: the responses' names)")
     parser.add_argument("-o", "--output", required=True, metavar="PATH.html", help="the HTML file to write")
     add_force(parser)
-
-
-def _per_response(values, n: int, what: str) -> list:
-    values = list(values or [])
-    if len(values) > n:
-        raise ValueError(f"--{what}: more values ({len(values)}) than --response options ({n})")
-    return values + [None] * (n - len(values))
 
 
 def _limits(text, response: str):
@@ -80,7 +74,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..io import InputError, read_table
-    from ._common import check_transform_option, fit_model, response_options
+    from ._common import check_transform_option, fit_model, per_response_values, response_options
 
     out = Path(args.output)
     if out.exists() and not args.force:  # before the fit and the figures
@@ -91,13 +85,13 @@ def run(args: argparse.Namespace) -> int:
     n = len(responses)
     if len(set(responses)) != n:
         raise InputError("--response: each response may be given once")
-    goals = [g or "minimize" for g in _per_response(args.goal, n, "goal")]
+    goals = [g or "minimize" for g in per_response_values(args.goal, n, "--goal")]
     for g in goals:
         try:  # a bad --goal is named before any data is read
             parse_goal(g)
         except ValueError as exc:
             raise InputError(f"--goal: {exc}") from None
-    limits = [_limits(t, r) for t, r in zip(_per_response(args.limits, n, "limits"), responses)]
+    limits = [_limits(t, r) for t, r in zip(per_response_values(args.limits, n, "--limits"), responses)]
     if not args.static:
         from ..report.interactive import plotly_js
 

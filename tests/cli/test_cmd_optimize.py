@@ -145,3 +145,30 @@ def test_single_response_with_a_decreasing_transform(capsys, tmp_path):
     grid_max = tf.predict(P, coded=True)["predicted"].max()
     assert out["predicted"] >= grid_max - 1e-9 and out["predicted"] <= grid_max + 1e-3
     assert out["pi"][0] < out["predicted"] < out["pi"][1]
+
+
+def test_goal_and_limits_belong_to_the_response_they_follow(capsys, tmp_path):
+    # Documented in --help ("what to do with the response before it"): a --goal or --limits
+    # right after the second --response is that response's, even when the first has none.
+    # Reference: the same run with every response's options written out (exact equality).
+    d = _montgomery_three_responses()
+    path = tmp_path / "m11.csv"
+    d.to_csv(path, index=False)
+
+    def run(*argv):
+        assert main(["optimize", str(path), *FAC, *argv, "--json", "-"]) == 0
+        return json.loads(capsys.readouterr().out)
+
+    short = run("--response", "y", "--response", "visc", *GOALS["visc"])
+    full = run("--response", "y", "--goal", "minimize", "--response", "visc", *GOALS["visc"])
+    assert [g["goal"] for g in short["goals"]] == ["minimize", "target"]
+    assert short == full
+    # several listed together after the last --response: in --response order (as before)
+    listed = run("--response", "y", "--response", "visc", "--goal", "minimize", "--goal", "target=65",
+                 "--limits", "74:81", "--limits", "62:68")
+    assert listed == run("--response", "y", "--goal", "minimize", "--limits", "74:81",
+                         "--response", "visc", *GOALS["visc"])
+    # too many is an error naming the option
+    assert main(["optimize", str(path), *FAC, "--response", "y", "--goal", "maximize", "--goal", "minimize"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["error: --goal: more values (2) than --response options (1)"]
