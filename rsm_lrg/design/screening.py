@@ -33,7 +33,7 @@ import numpy as np
 from .core import Design, as_factor_space, numeric_part
 
 __all__ = ["conference_matrix", "conference_order", "definitive_screening", "fractional_factorial",
-           "plackett_burman", "alias_matrix", "alias_groups", "MAX_DSD_FACTORS"]
+           "plackett_burman", "hadamard_matrix", "alias_matrix", "alias_groups", "MAX_DSD_FACTORS"]
 
 #: Largest number of factors of :func:`definitive_screening`.
 MAX_DSD_FACTORS = 48
@@ -484,23 +484,106 @@ def _parse_generators(gen: str, letters: list[str]) -> tuple[int, list[int], lis
     return q, gens, signs
 
 
+#: First rows of Plackett & Burman's (1946) cyclic designs (Biometrika 33, 305-325, Table 1;
+#: as printed in Montgomery, Design and Analysis of Experiments, 8th ed., Table 8.22): the
+#: runs are the N - 1 cyclic shifts of the row, then a row of minus signs.
+PB_GENERATORS = {
+    8: "+++-+--",
+    12: "++-+++---+-",
+    20: "++--++++-+-+----++-",
+    24: "+++++-+-++--++--+-+----",
+}
+
+#: Largest Plackett-Burman design built (runs).
+MAX_PB_RUNS = 4096
+
+
+def hadamard_matrix(n: int) -> np.ndarray:
+    """An exact Hadamard matrix of order ``n`` (``H H' = n I``, entries ±1).
+
+    Built from Plackett & Burman's cyclic rows (n = 8, 12, 20, 24), Paley's first
+    construction (n - 1 an odd prime power ≡ 3 mod 4: ``H = I + C``, C the antisymmetric
+    conference matrix), Paley's second (n/2 - 1 ≡ 1 mod 4: ``[[C+I, C-I], [C-I, -C-I]]``,
+    C symmetric) or doubling (``[[H, H], [H, -H]]``, Sylvester 1867). Orders 4..100 are all
+    built but 92 (a Williamson matrix, not built here). Every matrix is checked.
+
+    >>> H = hadamard_matrix(28)
+    >>> bool((H @ H.T == 28 * np.eye(28)).all())
+    True
+    """
+    n = int(n)
+    if n in (1, 2):
+        H = np.array([[1]]) if n == 1 else np.array([[1, 1], [1, -1]])
+        return H
+    if n < 4 or n % 4:
+        raise ValueError(f"Hadamard matrices have order 1, 2 or a multiple of 4 (got {n})")
+    H = None
+    if n in PB_GENERATORS:
+        g = np.array([1 if c == "+" else -1 for c in PB_GENERATORS[n]])
+        rows = np.array([np.roll(g, i) for i in range(n - 1)])
+        H = np.hstack([np.ones((n, 1), dtype=int), np.vstack([rows, -np.ones((1, n - 1), dtype=int)])])
+    if H is None:
+        pe = _prime_power(n - 1)
+        if pe is not None and pe[0] != 2 and pe[1] <= 2 and (n - 1) % 4 == 3:
+            H = _paley(n - 1) + np.eye(n, dtype=int)
+    if H is None and n % 8 == 4:
+        pe = _prime_power(n // 2 - 1)
+        if pe is not None and pe[0] != 2 and pe[1] <= 2 and (n // 2 - 1) % 4 == 1:
+            C = _paley(n // 2 - 1)
+            eye = np.eye(n // 2, dtype=int)
+            H = np.block([[C + eye, C - eye], [C - eye, -C - eye]])
+    if H is None and n % 8 == 0:
+        try:
+            h = hadamard_matrix(n // 2)
+        except ValueError:
+            h = None
+        if h is not None:
+            H = np.block([[h, h], [h, -h]])
+    if H is None:
+        raise ValueError(f"no Hadamard matrix of order {n} is built here")
+    if not np.array_equal(H @ H.T, n * np.eye(n, dtype=int)):
+        raise ArithmeticError(f"the constructed matrix of order {n} is not a Hadamard matrix")
+    return H
+
+
 def plackett_burman(factors: Any, center: int = 0, seed: Any = None, randomize: bool = True) -> Design:
-    """Plackett–Burman two-level screening design (pyDOE3 ``pbdesign``: runs a multiple of 4
-    above the number of factors; Plackett & Burman 1946, *Biometrika* 33, 305-325)."""
+    """Plackett–Burman two-level screening design (Plackett & Burman 1946, *Biometrika* 33,
+    305-325): N runs, N the smallest multiple of 4 above the number of factors k.
+
+    The runs are Plackett & Burman's cyclic designs for N = 8, 12, 20, 24 (first row as
+    published, then its cyclic shifts and a row of minus signs), else the columns 2..N of a
+    normalised Hadamard matrix of order N (:func:`hadamard_matrix`; N = 4, 16, 28, 32, 36,
+    ...); the factors take the first k columns. Every column is balanced and orthogonal to
+    the others (``X'X = N I``). N = 92 (89 to 91 factors) is not built.
+    """
     space = as_factor_space(factors)
     if space.has_categoric:
         raise ValueError("a Plackett-Burman design here takes numeric factors only")
     k = len(space)
     if k < 2:
-        raise ValueError("a Plackett-Burman design needs at least 2 factors")
-    import pyDOE3
-
-    X = np.asarray(pyDOE3.pbdesign(k), dtype=float)
+        raise ValueError(f"a Plackett-Burman design needs at least 2 factors (got {k})")
     if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
         raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
+    n = 4 * (k // 4 + 1)
+    if n > MAX_PB_RUNS:
+        raise ValueError(f"a Plackett-Burman design of {k} factors needs {n} runs, more than this generator "
+                         f"makes ({MAX_PB_RUNS})")
+    try:
+        H = hadamard_matrix(n)
+    except ValueError:
+        raise ValueError(f"a Plackett-Burman design of {k} factors needs {n} runs, and no Hadamard matrix of "
+                         f"order {n} is built here; use fewer or more factors") from None
+    if n in PB_GENERATORS:
+        X = H[:, 1:]
+    else:
+        H = H * H[:, :1]  # rows signed so that the first column is +1: the others are balanced
+        X = H[:, 1:]
+    X = np.asarray(X[:, :k], dtype=float)
     coded = np.vstack([X, np.zeros((int(center), k))])
+    source = ("Plackett & Burman (1946), cyclic first row" if n in PB_GENERATORS
+              else "Plackett & Burman (1946) via a Hadamard matrix (Paley 1933 / Sylvester 1867)")
     return Design.from_standard(space, "plackett-burman", coded, seed=seed, randomize=randomize,
-                                options={"center": int(center), "source": "Plackett & Burman (1946) via pyDOE3"})
+                                options={"center": int(center), "runs": n, "source": source})
 
 
 def alias_matrix(coded: np.ndarray, letters, model: str = "linear", potential: str = "2fi") -> tuple:

@@ -99,3 +99,39 @@ def test_definitive_screening_with_two_level_categoric_factors():
         others += [X[:, a] ** 2 for a in range(6)]
         assert all(float(X[:, j] @ o) == 0.0 for o in others)
     assert sorted(d.to_frame()["g"].value_counts().tolist()) == [9, 9]
+
+
+@pytest.mark.parametrize("k", list(range(2, 48)) + [51, 59, 67, 71, 75, 83, 87, 99])
+def test_plackett_burman_every_size(k):
+    # N = the smallest multiple of 4 above k (Plackett & Burman 1946 give N = 4..100 but 92);
+    # pyDOE3 built only N = 2^e, 12 * 2^e and 20 * 2^e and refused 24 to 27 factors (N = 28).
+    # Exact integers: X'X = N I, every column balanced.
+    d = plackett_burman([f"x{i}=0:1" for i in range(k)], randomize=False)
+    X = d.coded_runs
+    n = 4 * (k // 4 + 1)
+    assert d.n_runs == n and np.array_equal(X.T @ X, n * np.eye(k)) and not X.sum(axis=0).any()
+
+
+def test_plackett_burman_published_rows():
+    # the first rows of Plackett & Burman (1946), Table 1, as printed by Montgomery (2013),
+    # Table 8.22, then the cyclic shifts and a row of minus signs
+    rows = {11: "++-+++---+-", 19: "++--++++-+-+----++-", 23: "+++++-+-++--++--+-+----"}
+    for k, first in rows.items():
+        X = plackett_burman([f"x{i}=0:1" for i in range(k)], randomize=False).coded_runs
+        g = np.array([1.0 if c == "+" else -1.0 for c in first])
+        assert np.array_equal(X[0], g) and np.array_equal(X[1], np.roll(g, 1))
+        assert np.array_equal(X[-1], -np.ones(k))
+
+
+def test_hadamard_orders_and_the_gap():
+    from rsm_lrg.design.screening import hadamard_matrix
+
+    for n in [1, 2] + list(range(4, 101, 4)):
+        if n == 92:
+            continue
+        H = hadamard_matrix(n)
+        assert np.array_equal(H @ H.T, n * np.eye(n, dtype=int)) and set(np.unique(H)) <= {-1, 1}
+    with pytest.raises(ValueError, match="order 92"):
+        hadamard_matrix(92)
+    with pytest.raises(ValueError, match="92 runs"):
+        plackett_burman([f"x{i}=0:1" for i in range(90)])
