@@ -176,6 +176,22 @@ def plot_format(path: str | None) -> str | None:
     return fmt
 
 
+#: Option values that begin with '-' but are values, not options: a negative number in any
+#: form (``-2.5e-1``, ``-1E3``), a negative range (``-3:12``, ``-3:``) and an inequality
+#: (``-A+B<=1``). argparse (3.11) takes only ``-2`` and ``-0.5`` for values.
+NEGATIVE_VALUE = r"^-(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?(:.*)?$|^-[^<>]*[<>]"
+
+
+def accept_negative_values(parser: argparse.ArgumentParser) -> None:
+    """Let ``parser``'s options take values that begin with '-' (:data:`NEGATIVE_VALUE`):
+    ``--observed -2.5e-1``, ``--limits -3:12``, ``--constraint "-A+B<=1"``; argparse would
+    read them as unknown options and answer "expected one argument"."""
+    import re
+
+    if hasattr(parser, "_negative_number_matcher"):  # argparse's own test for '-2' (3.11 to 3.13)
+        parser._negative_number_matcher = re.compile(NEGATIVE_VALUE)
+
+
 def add_force(p: argparse.ArgumentParser) -> None:
     p.add_argument("--force", action="store_true", help="overwrite existing output files")
 

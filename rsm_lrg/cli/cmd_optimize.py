@@ -8,6 +8,7 @@ import contextlib
 from ._common import (
     ResponseGroup,
     about_file,
+    accept_negative_values,
     add_block_option,
     add_factor_options,
     add_force,
@@ -49,6 +50,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(repeatable; with several responses the desirability optimum satisfies them)")
     add_block_option(parser, "optimum for the average block")
     add_model_refinements(parser, per_response=True, model=True)
+    accept_negative_values(parser)
     add_json(parser)
     add_force(parser)
 

@@ -7,6 +7,7 @@ import argparse
 from ._common import (
     ResponseGroup,
     about_file,
+    accept_negative_values,
     add_block_option,
     add_factor_options,
     add_force,
@@ -40,6 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_block_option(parser)
     add_model_refinements(parser, per_response=True, model=True)
+    accept_negative_values(parser)
     add_goal_options(parser,
                      goal_help="goal of the response it follows (several listed together: in --response order; "
                                "default minimize, as in the paper)",

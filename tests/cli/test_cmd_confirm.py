@@ -53,3 +53,22 @@ def test_reduced_and_transformed_models(capsys, tmp_path):
     assert "Model: quadratic, reduced" in out and "sqrt transform" in out and "back-transformed" in out
     assert main(base + ["--transform", "cube"]) == 2
     assert capsys.readouterr().err.startswith("error: --transform")
+
+
+def test_negative_values_in_any_number_form(capsys, tmp_path):
+    # argparse (3.11) reads '-2.5e-1' as an unknown option ("expected at least one argument");
+    # reference: the same values written so that argparse cannot misread them (the result is
+    # identical, exact equality). Shifted Montgomery Example 11.2 response: y - 80 < 0.
+    from tests.model._published import MONTGOMERY_11_2
+
+    d = MONTGOMERY_11_2.copy()
+    d["y"] = d["y"] - 80.0
+    path = tmp_path / "shifted.csv"
+    d.to_csv(path, index=False)
+    base = ["confirm", str(path), "--response", "y", "--factor", "x1=-1:1", "--factor", "x2=-1:1",
+            "--at", "x1=0.5", "x2=0.5", "--json", "-"]
+    assert main(base + ["--observed", "-2.5e-1", "-1E-1", "--reference", "-1e-1"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert main(base + ["--reference=-0.1", "--observed", "-0.25", "-0.1"]) == 0
+    assert got == json.loads(capsys.readouterr().out)
+    assert got["observed"] == [-0.25, -0.1] and got["reference"] == -0.1

@@ -172,3 +172,19 @@ def test_goal_and_limits_belong_to_the_response_they_follow(capsys, tmp_path):
     assert main(["optimize", str(path), *FAC, "--response", "y", "--goal", "maximize", "--goal", "minimize"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert err == ["error: --goal: more values (2) than --response options (1)"]
+
+
+def test_negative_limits_and_constraints_are_values(capsys, tmp_path):
+    # '--limits -3:12' and '--constraint "-x1+x2<=0.5"' are values, not unknown options
+    # (argparse 3.11 answered "expected one argument"). Reference: the '--opt=value' spelling,
+    # which argparse always reads as a value (identical JSON).
+    d = _montgomery_three_responses()
+    d["y"] = d["y"] - 80.0  # a response with negative values, limits -4.5:0.5
+    path = tmp_path / "m11.csv"
+    d.to_csv(path, index=False)
+    base = ["optimize", str(path), *FAC, "--response", "y", "--goal", "maximize", "--json", "-"]
+    assert main(base + ["--limits", "-4.5:0.5", "--constraint", "-x1+x2<=0.5"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert main(base + ["--limits=-4.5:0.5", "--constraint=-x1+x2<=0.5"]) == 0
+    assert got == json.loads(capsys.readouterr().out)
+    assert got["goals"][0]["low"] == -4.5 and -got["actual"]["x1"] + got["actual"]["x2"] <= 0.5 + 1e-9
