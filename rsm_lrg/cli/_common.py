@@ -269,6 +269,25 @@ def about_file(path):
         raise InputError(f"{path}: {msg}") from None
 
 
+@contextmanager
+def about_response(response: str, several: bool):
+    """With ``several`` responses, a ValueError from one response's fit names that response
+    (``response 'y2': the quadratic model cannot be estimated ...``) unless it already does
+    or is about an option; :func:`about_file` then puts the file name in front."""
+    if not several:
+        yield
+        return
+    try:
+        yield
+    except InputError:
+        raise
+    except ValueError as exc:
+        msg = str(exc)
+        if msg.startswith("-") or option_of_message(msg) or quote_user_value(response) in msg:
+            raise
+        raise ValueError(f"response {quote_user_value(response)}: {msg}") from None
+
+
 #: Library messages about an option's value begin with the parameter's name: the option that
 #: gives it (so that ``alpha_out must lie ...`` reads ``--alpha-out: alpha_out must lie ...``).
 OPTION_MESSAGES = {

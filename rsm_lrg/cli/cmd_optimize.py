@@ -127,7 +127,7 @@ def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
     from ..io import dump_json, read_table
     from ..optimize.desirability import optimize_desirability, parse_response_goal
-    from ._common import fit_model, model_label, per_response_values, print_notes, response_options
+    from ._common import about_response, fit_model, model_label, per_response_values, print_notes, response_options
 
     n = len(args.response)
     if len(set(args.response)) != n:
@@ -149,7 +149,8 @@ def _multi(args) -> int:
         models = {}
         for i, r in enumerate(args.response):
             opts = response_options(args, i)
-            fits[r], extra = fit_model(data, r, opts, factors=choice.space, block=args.block)
+            with about_response(r, n > 1):
+                fits[r], extra = fit_model(data, r, opts, factors=choice.space, block=args.block)
             models[r] = model_label(opts, extra)
             # the choice's notes cover the columns; each fit adds its runs left out
             fit_notes = getattr(fits[r], "fit", fits[r]).input_notes

@@ -76,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..io import InputError, read_table
-    from ._common import check_transform_option, fit_model, per_response_values, response_options
+    from ._common import about_response, check_transform_option, fit_model, per_response_values, response_options
 
     out = Path(args.output)
     if out.exists() and not args.force:  # before the fit and the figures
@@ -114,7 +114,8 @@ def run(args: argparse.Namespace) -> int:
             factors, notes = choice.space, list(choice.notes)
         fits = {}
         for i, r in enumerate(responses):
-            fits[r], _ = fit_model(data, r, response_options(args, i), factors=factors, block=args.block)
+            with about_response(r, n > 1):
+                fits[r], _ = fit_model(data, r, response_options(args, i), factors=factors, block=args.block)
             fit_notes = getattr(fits[r], "fit", fits[r]).input_notes
             notes += [(f"{r}: {x}" if n > 1 else x) for x in fit_notes
                       if x not in notes and (n == 1 or getattr(x, "kind", "") != COLUMNS_LEFT_OUT)]

@@ -188,3 +188,16 @@ def test_negative_limits_and_constraints_are_values(capsys, tmp_path):
     assert main(base + ["--limits=-4.5:0.5", "--constraint=-x1+x2<=0.5"]) == 0
     assert got == json.loads(capsys.readouterr().out)
     assert got["goals"][0]["low"] == -4.5 and -got["actual"]["x1"] + got["actual"]["x2"] <= 0.5 + 1e-9
+
+
+def test_a_failing_fit_among_several_names_its_response(capsys, tmp_path):
+    # Montgomery Example 11.2 CCD + a 2^2 corner-only response column: with the quadratic
+    # default, the response measured only at the corners cannot be fitted; the one error line
+    # must say which response (the other is fine).
+    d = _montgomery_three_responses()
+    d["corners"] = [1.0, 2.0, 3.0, 4.5] + [None] * (len(d) - 4)  # the 4 factorial runs only
+    path = tmp_path / "m11.csv"
+    d.to_csv(path, index=False)
+    assert main(["optimize", str(path), *FAC, "--response", "y", "--response", "corners"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"error: {path}: response 'corners': "), err
