@@ -59,6 +59,8 @@ def quote_user_value(value: Any, limit: int = 40) -> str:
             return shown
         quote, body = shown[0], shown[1:-1]
         return quote + body[: limit - 1] + "\u2026" + quote
+    if type(value).__module__ == "numpy" and hasattr(value, "item"):
+        value = value.item()  # a numpy scalar reads as the number, not np.float64(inf)
     try:
         text = repr(value)
     except Exception:  # any object must be quotable (str of a 5000-digit int raises)

@@ -111,3 +111,15 @@ def test_long_cells_are_cut_in_messages():
     with pytest.raises(ValueError) as e:
         rsm_lrg.fit(df, Y, factors=list(PAPER))
     assert "'velocity_m_s', row 5" in str(e.value) and len(str(e.value)) < 200
+
+
+@pytest.mark.parametrize("column", [Y, "stroke_m"])
+def test_an_infinite_cell_is_named_as_the_number(column):
+    # a CSV cell 'inf' is read as a numpy float: the error shows 'inf' as written, not numpy's
+    # repr np.float64(inf) (exact text; row 3 is the 1-based data row)
+    d = _table4()
+    d.loc[2, column] = np.inf
+    with pytest.raises(ValueError) as err:
+        rsm_lrg.fit(d, Y)
+    assert f"column '{column}', row 3: holds inf, not a finite number" in str(err.value)
+    assert "np." not in str(err.value)
