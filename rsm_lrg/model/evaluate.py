@@ -239,11 +239,13 @@ class DesignEvaluation:
             out.append("  none: no potential term biases a model term")
         R = self.correlation
         cols = list(R.columns)
+        fitted = set(A.index)  # pairs of two potential terms say nothing about the fitted model
         pairs = [(abs(R.iat[i, j]), cols[i], cols[j], R.iat[i, j]) for i in range(len(cols))
-                 for j in range(i + 1, len(cols)) if np.isfinite(R.iat[i, j]) and abs(R.iat[i, j]) > tol]
+                 for j in range(i + 1, len(cols)) if (cols[i] in fitted or cols[j] in fitted)
+                 and np.isfinite(R.iat[i, j]) and abs(R.iat[i, j]) > tol]
         pairs.sort(key=lambda z: (-z[0], z[1], z[2]))
-        out.append("Largest correlations between model and potential columns"
-                   + (":" if pairs else ": none (all columns orthogonal)"))
+        out.append("Largest correlations of model columns (with each other and with potential columns)"
+                   + (":" if pairs else ": none (all orthogonal)"))
         out += [f"  {a} ~ {b}: {r:+.3f}" for _, a, b, r in pairs[:most]]
         return out
 

@@ -113,3 +113,25 @@ def test_compare_errors():
         compare_designs([bbd])
     with pytest.raises(ValueError, match="potential"):
         evaluate_design(bbd, "quadratic", potential="linear")
+
+
+def test_correlation_lines_name_model_columns_only():
+    # 12-run Plackett-Burman, 8 factors: each main effect is correlated +-1/3 with the 2FIs
+    # that do not contain it (complex aliasing: Montgomery 2013, section 8.6.1; exact thirds, tol 1e-12);
+    # its fold-over makes mains orthogonal to every 2FI. Pairs of two potential terms (AB ~ CD,
+    # +-1/3 in both designs) say nothing about the linear model and are not listed.
+    from rsm_lrg.design.augment import augment
+    from rsm_lrg.design.screening import plackett_burman
+
+    d = plackett_burman([f"x{i}=0:1" for i in range(8)], randomize=False)
+    lines = evaluate_design(d, "linear", potential="2fi").summary().splitlines()
+    start = next(i for i, t in enumerate(lines) if t.startswith("Largest correlations"))
+    pairs = [t.strip() for t in lines[start + 1:] if " ~ " in t]
+    assert pairs and all(p.split(" ~ ")[0] in "ABCDEFGH" for p in pairs)
+    assert all(abs(abs(float(p.rsplit(": ", 1)[1])) - 1 / 3) < 1e-3 for p in pairs)
+    e = evaluate_design(d, "linear", potential="2fi")
+    assert abs(e.correlation.loc["A", "CF"]) == pytest.approx(1 / 3, abs=1e-12)
+    folded = augment(d, "foldover", seed=1)
+    text = evaluate_design(folded, "linear", potential="2fi").summary()
+    assert "Largest correlations of model columns (with each other and with potential columns): none" in text
+    assert " ~ " not in text
