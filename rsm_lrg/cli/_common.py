@@ -229,19 +229,26 @@ def add_data_response(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--response", required=True, metavar="COL", help="the response column")
 
 
-def print_summary_or_json(args: argparse.Namespace, result) -> None:
-    """The output of an analysis command: ``--json FILE`` writes ``result.to_dict()`` (and
-    the text still prints), ``--json -`` prints it instead of the text; the text is
-    ``Data: DATA.csv`` and ``result.summary()``."""
+def print_summary_or_json(args: argparse.Namespace, result, *, extra: dict | None = None,
+                          header: tuple[str, ...] = ()) -> None:
+    """The output of an analysis command: ``--json FILE`` writes ``result.to_dict()`` updated
+    with ``extra`` (and the text still prints), ``--json -`` prints it instead of the text; the
+    text is ``Data: DATA.csv``, the ``header`` lines (``Model: ...``) and ``result.summary()``
+    (ending in one newline)."""
     from ..io import dump_json
 
+    out = result.to_dict()
+    out.update(extra or {})
     if args.json and args.json != "-":
-        dump_json(result.to_dict(), args.json, force=args.force)
+        dump_json(out, args.json, force=args.force)
     if args.json == "-":
-        dump_json(result.to_dict(), "-")
+        dump_json(out, "-")
     else:
         print(f"Data: {args.data}")
-        print(result.summary(), end="")
+        for line in header:
+            print(line)
+        text = result.summary()
+        print(text, end="" if text.endswith("\n") else "\n")
 
 
 def add_model_inputs(parser: argparse.ArgumentParser) -> None:

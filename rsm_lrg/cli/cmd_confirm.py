@@ -71,9 +71,9 @@ def _check_at(settings) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import dump_json, read_table
+    from ..io import read_table
     from ..optimize.confirm import confirm
-    from ._common import check_transform_option, fit_model, model_label, print_notes
+    from ._common import check_transform_option, fit_model, model_label, print_notes, print_summary_or_json
 
     _check_at(args.at)
     check_transform_option(args)
@@ -91,17 +91,7 @@ def run(args: argparse.Namespace) -> int:
     with about_file(args.data):
         c = confirm(result, settings, args.observed, confidence=args.confidence, reference=args.reference)
     print_notes(getattr(result, "fit", result).input_notes)
-    out = c.to_dict()
-    out["model"] = model_label(args, extra)
-    out.update(extra)
-    if args.json and args.json != "-":
-        dump_json(out, args.json, force=args.force)
-    if args.json == "-":
-        dump_json(out, "-")
-    else:
-        print(f"Data: {args.data}")
-        if args.reduce or args.transform is not None:
-            print(f"Model: {model_label(args, extra)}")
-        text = c.summary()
-        print(text, end="" if text.endswith("\n") else "\n")
+    label = model_label(args, extra)
+    header = (f"Model: {label}",) if args.reduce or args.transform is not None else ()
+    print_summary_or_json(args, c, extra={"model": label, **extra}, header=header)
     return 0

@@ -125,9 +125,17 @@ def _constraint_errors(constraints):
 
 def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
-    from ..io import dump_json, read_table
+    from ..io import read_table
     from ..optimize.desirability import optimize_desirability, parse_response_goal
-    from ._common import about_response, fit_model, model_label, per_response_values, print_notes, response_options
+    from ._common import (
+        about_response,
+        fit_model,
+        model_label,
+        per_response_values,
+        print_notes,
+        print_summary_or_json,
+        response_options,
+    )
 
     n = len(args.response)
     if len(set(args.response)) != n:
@@ -158,14 +166,6 @@ def _multi(args) -> int:
         with _constraint_errors(args.constraint):
             best = optimize_desirability(fits, specs, bounds=args.bound, constraints=args.constraint)
     print_notes(notes)
-    out = best.to_dict()
-    out["models"] = models
-    if args.json and args.json != "-":
-        dump_json(out, args.json, force=args.force)
-    if args.json == "-":
-        dump_json(out, "-")
-    else:
-        print(f"Data: {args.data}")
-        print("Models: " + "; ".join(f"{r} {m}" for r, m in models.items()))
-        print(best.summary(), end="")
+    print_summary_or_json(args, best, extra={"models": models},
+                          header=("Models: " + "; ".join(f"{r} {m}" for r, m in models.items()),))
     return 0
