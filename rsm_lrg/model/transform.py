@@ -49,7 +49,7 @@ class Transform:
     @property
     def label(self) -> str:
         s = self.name if self.name != "power" else f"power={self.lam:g}"
-        return s + (f" (+{self.constant:g})" if self.constant else "")
+        return s + (f" ({self.constant:+g})" if self.constant else "")  # (+2), (-0.01)
 
     @property
     def decreasing(self) -> bool:

@@ -58,3 +58,11 @@ def test_bad_values_and_specs():
     for bad in ("cube", "power", "power=x", "power=inf"):
         with pytest.raises(ValueError, match="transform|power"):
             parse_transform(bad)
+
+
+@pytest.mark.parametrize("constant, label", [(2.0, "log (+2)"), (-0.01, "log (-0.01)"), (0.0, "log")])
+def test_label_shows_the_constant_with_its_own_sign(constant, label):
+    # the label read 'log (+-0.01)' for a negative constant (exact text)
+    from rsm_lrg.model.transform import parse_transform
+
+    assert parse_transform("log", constant).label == label
