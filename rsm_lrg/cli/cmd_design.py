@@ -235,7 +235,9 @@ def _new_kind(args):
                            seed=args.seed, starts=args.starts, randomize=randomize)
         except ValueError as exc:
             msg = str(exc)
-            if "an optimal design is searched for" in msg:
+            if msg.startswith("constraint"):
+                opt = "--constraint"
+            elif "an optimal design is searched for" in msg:
                 opt = "--model"
             elif "runs" in msg or "model points" in msg:
                 opt = "--runs"
@@ -279,7 +281,8 @@ def _new_kind(args):
         raise
     except ValueError as exc:
         msg = str(exc)
-        opt = "--runs" if msg.startswith("runs") else ("--center" if msg.startswith("center") else "--factor")
+        opt = ("--runs" if msg.startswith("runs") else "--center" if msg.startswith("center")
+               else "--constraint" if msg.startswith("constraint") else "--factor")
         if msg.startswith("runs: "):
             msg = msg[len("runs: "):]
         raise InputError(f"{opt}: {msg}") from None
@@ -318,7 +321,7 @@ def _augment(args, out) -> int:
                       constraints=cons, seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
     except ValueError as exc:
         msg = str(exc)
-        opt = {"fold": "--fold", "alpha": "--alpha", "runs": "--runs"}
+        opt = {"constraint": "--constraint", "fold": "--fold", "alpha": "--alpha", "runs": "--runs"}
         name = next((v for k, v in opt.items() if msg.startswith(k) or f" {k}" in msg[:40]), "--method")
         raise InputError(f"{name}: {msg}") from None
     new = aug.to_frame()

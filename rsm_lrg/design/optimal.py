@@ -115,10 +115,18 @@ def moment_matrix(space, terms, constraints=None, n_sample: int = 2 ** 14, seed:
     full[:, num] = pts
     ok = constraints.feasible_coded(full)
     if not ok.any():
-        raise ValueError("no point of the factor region satisfies the constraints")
+        raise _thin_region(constraints)
     pts = pts[ok]
     G = np.prod(pts[:, None, :] ** P[None, :, :], axis=2)  # numeric monomial of every column
     return (G.T @ G / G.shape[0]) * C
+
+
+def _thin_region(constraints) -> ValueError:
+    """The error for a constrained region that holds no point of the search (empty, or too
+    thin to design in: ``x + y <= 0`` on ``x, y >= 0`` is one corner)."""
+    texts = "; ".join(repr(c.text) for c in getattr(constraints, "items", ()))
+    return ValueError(f"constraints {texts}: no point of the search satisfies them (the constrained region is "
+                      "empty or too thin to design in, e.g. a single point or a line)")
 
 
 def _value(M: np.ndarray, crit: str, W: np.ndarray | None) -> float:
@@ -385,7 +393,7 @@ def _pool(space, constraints, n: int = 512, seed: int = 0) -> np.ndarray:
     if constraints is not None and constraints:
         full = full[constraints.feasible_coded(full)]
         if not len(full):
-            raise ValueError("no point of the factor region satisfies the constraints")
+            raise _thin_region(constraints)
     return full
 
 

@@ -116,6 +116,13 @@ def test_crossed_box_behnken_from_the_cli(tmp_path, capsys):
     (["design", "optimal", *GUIDE, "--factor", "t=0:1", "--factor", "u=0:1", "--factor", "w=0:1",
       "--factor", "z=0:1", "--factor", "q=0:1", "--model", "cubic"], "--model"),
     (["design", "optimal", *GUIDE, "--starts", "100000"], "--starts"),
+    # a region of measure zero (one corner: velocity 0.2 and acceleration 5 only) passes the
+    # emptiness check on the corners but holds no point of the search: the constraint is named
+    (["design", "optimal", *GUIDE, "--constraint", "velocity_m_s + acceleration_m_s2 <= 5.2"], "error: --constraint:"),
+    (["design", "latin-hypercube", *GUIDE, "--runs", "5", "--constraint", "velocity_m_s + acceleration_m_s2 <= 5.2"],
+     "error: --constraint:"),
+    (["design", "sobol", *GUIDE, "--runs", "5", "--constraint", "velocity_m_s + acceleration_m_s2 <= 5.2"],
+     "error: --constraint:"),
 ])
 def test_bad_input_names_the_option(argv, expect, tmp_path, capsys):
     rc = main([*argv, "-o", str(tmp_path / "x.csv")])
