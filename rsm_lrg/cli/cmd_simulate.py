@@ -50,7 +50,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     cal.add_argument("--uncalibrated", action="store_true",
                      help="the raw physics: the paper's inputs and the documented assumptions")
     p.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
-                   help="override a physical parameter for every row (repeatable)")
+                   help="override a physical parameter for every row (repeatable): a name of "
+                        "`rsm-lrg physics --list-params` or heat_partition, drive_friction_n, drive_viscous_n_s_m; "
+                        "it replaces a calibrated value of the same name; not a design factor or a design column")
     prog = p.add_mutually_exclusive_group()
     prog.add_argument("--progress", dest="progress", action="store_true", default=None,
                       help="always show a progress bar on stderr")
@@ -69,6 +71,60 @@ def _calibration(args):
 
         return load_calibration(args.calibration)
     return "default"
+
+
+#: ``--param`` names that are factors of the design (the design's column wins on every row).
+DESIGN_FACTOR_PARAMS = {"hinge_thickness_m": "thickness_m", "stroke_m": "stroke_m",
+                        "velocity_m_s": "velocity_m_s", "acceleration_m_s2": "acceleration_m_s2"}
+
+
+def _surrogate_assignments(items):
+    """Split ``--param`` items into those of LRGParams (returned as they are) and the
+    surrogate's own parameters (``heat_partition``, ``drive_friction_n``,
+    ``drive_viscous_n_s_m``: ``{name: float}``, checked against their documented bounds)."""
+    from ..io import InputError, quote_user_value
+    from ..surrogate.calibrate import documented_bounds
+    from ..surrogate.runs import SURROGATE_PARAMETERS
+
+    rest, own = [], {}
+    for item in items:
+        name, eq, text = item.partition("=")
+        name = name.strip()
+        if not eq or name not in SURROGATE_PARAMETERS:
+            rest.append(item)
+            continue
+        if name in own:
+            raise InputError(f"--param {quote_user_value(item, 60)}: {name} is given more than once")
+        try:
+            v = float(text)
+        except ValueError:
+            v = None
+        lo, hi, _ = documented_bounds(name)
+        if v is None or not lo <= v <= hi:
+            unit = SURROGATE_PARAMETERS[name][1]
+            raise InputError(f"--param {quote_user_value(item, 60)}: {name} must be a number in "
+                             f"[{lo:g}, {hi:g}]" + ("" if unit == "1" else f" {unit}"))
+        own[name] = v
+    return rest, own
+
+
+def _calibration_with_overrides(calibration, overrides, surrogate):
+    """The calibration to run with: ``--param`` wins over a calibrated value of the same name
+    (said on stderr); the surrogate's own ``--param`` values join it."""
+    import sys
+
+    if not overrides and not surrogate:
+        return calibration
+    from ..surrogate.calibrate import resolve_calibration
+
+    cal = resolve_calibration(calibration)
+    values = cal.parameter_values() if cal is not None else {}
+    given = {**overrides, **surrogate}
+    for name in sorted(set(values) & set(given)):
+        print(f"simulate: --param {name}={given[name]!r} replaces the calibrated {values[name]!r}", file=sys.stderr)
+    values = {k: v for k, v in values.items() if k not in given}
+    values.update(surrogate)
+    return values if values else None
 
 
 def run(args) -> int:
@@ -91,10 +147,15 @@ def run(args) -> int:
     if args.noise_sd is not None and args.noise_sd > MAX_NOISE_SD:
         raise InputError(f"--noise-sd must be at most {MAX_NOISE_SD:g} degC (the SD of one thermocouple "
                          f"reading), got {args.noise_sd:g}")
-    overrides = parse_assignments(args.param)
+    lrg_items, surrogate = _surrogate_assignments(args.param)
+    overrides = parse_assignments(lrg_items)
     for name, option in (("test_duration_min", "--duration-min"),):
         if name in overrides:
             raise InputError(f"--param {name}: give the test duration with {option} (or a {name} column)")
+    for name in overrides:
+        if name in DESIGN_FACTOR_PARAMS:
+            raise InputError(f"--param {name}: a factor of the design; give it in the design's column "
+                             f"{DESIGN_FACTOR_PARAMS[name]!r}, row by row")
     params = LRGParams().with_overrides(**overrides) if overrides else LRGParams()
     if overrides:  # parameters that no design can rescue are the option's fault, not the file's
         from ..surrogate.runs import thermal_unit_response
@@ -105,6 +166,11 @@ def run(args) -> int:
             raise InputError(f"--param: {exc}") from None
     calibration = _calibration(args)
     design = read_table(args.design)
+    for name in (*overrides, *surrogate):  # the design's column would silently win
+        if name in design.columns:
+            raise InputError(f"--param {name}: {args.design}: the design's column {name!r} sets it row by row; "
+                             f"drop the option or the column")
+    calibration = _calibration_with_overrides(calibration, overrides, surrogate)
     noise = DEFAULT_NOISE_SD if args.noise_sd is None else args.noise_sd
     seed = args.seed
     if seed is None and noise > 0:

@@ -372,6 +372,8 @@ def check_values(name: str, values) -> None:
 def parse_assignments(items: Iterable[str]) -> dict[str, Any]:
     """``["mu_k=0.01", "hinge_count=2"]`` -> ``{"mu_k": 0.01, "hinge_count": 2}``, validated.
 
+    A name given twice raises ``ValueError`` (the later value would silently win).
+
     >>> parse_assignments(["mu_k=0.01", "heat_in_calories=false"])
     {'mu_k': 0.01, 'heat_in_calories': False}
     """
@@ -383,6 +385,10 @@ def parse_assignments(items: Iterable[str]) -> dict[str, Any]:
             raise ValueError(f"--param {quote_user_value(item, 60)}: expected NAME=VALUE")
         name, _, text = item.partition("=")
         name, text = name.strip(), text.strip()
+        if name in out:  # the later one would silently win
+            from ..io import quote_user_value
+
+            raise ValueError(f"--param {quote_user_value(item, 60)}: {name} is given more than once")
         try:
             _check_names({name: None})
             out[name] = _coerce(name, text)

@@ -86,7 +86,9 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
         Calibrated parameters: ``"default"`` the shipped ``data/calibration.toml``; ``None``
         the raw physics (paper inputs and the documented assumptions).
     params : LRGParams, optional
-        Base physical parameters (default: ``data/lrg_shs15v.toml``).
+        Base physical parameters (default: ``data/lrg_shs15v.toml``). A parameter set away
+        from its default here that the calibration also sets raises ``ValueError`` (the
+        calibrated value would replace it); a design column of the same name wins over both.
     batch_rows : int, optional
         Rows per batch (default 16384; the same for every executor, see
         :data:`DEFAULT_BATCH_ROWS`).
@@ -120,6 +122,8 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
     if not isinstance(design, pd.DataFrame) and hasattr(design, "to_frame"):
         design = design.to_frame()  # a rsm_lrg.design.Design
     cal = resolve_calibration(calibration)
+    if cal is not None:
+        _check_no_conflict(params, cal.parameter_values())
     seed_int = resolve_seed(seed) if noise_sd > 0 else 0
     arrays = read_design_arrays(design, params)
     n = arrays.n
@@ -163,6 +167,20 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
             out[k] = v
     out.attrs.clear()
     return out
+
+
+def _check_no_conflict(params, cal_values: dict) -> None:
+    """A parameter set away from its default in ``params`` that the calibration also sets
+    would be silently replaced by the calibrated value: refuse it, naming both values."""
+    from ..physics.params import LRGParams
+
+    default = LRGParams()
+    for name, value in cal_values.items():
+        mine = getattr(params, name, None)
+        if mine is not None and mine != getattr(default, name) and mine != value:
+            raise ValueError(f"params sets {name} = {mine!r} but the calibration sets it to {value!r}, which "
+                             f"would replace it: drop it from the calibration (calibration={{...}} without "
+                             f"{name!r}) or pass calibration=None")
 
 
 def _check_nonneg(name, x) -> float:

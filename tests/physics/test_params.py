@@ -99,3 +99,10 @@ def test_check_values_on_columns():
     check_values("hinge_thickness_m", np.array([1e-4, 3e-4]))
     with pytest.raises(ValueError, match=r"row 2"):
         check_values("mu_k", np.array([0.01, 0.02, 1.5]))
+
+
+def test_a_name_given_twice_is_refused():
+    # the later value used to win silently (rsm-lrg physics/simulate --param mu_k=.. --param mu_k=..)
+    with pytest.raises(ValueError, match="mu_k is given more than once"):
+        parse_assignments(["mu_k=0.05", " mu_k = 0.01"])
+    assert parse_assignments(["mu_k=0.05", "mu_s=0.1"]) == {"mu_k": 0.05, "mu_s": 0.1}
