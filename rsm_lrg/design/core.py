@@ -174,10 +174,11 @@ def _clean_actual(f: Factor, coded: np.ndarray) -> np.ndarray:
     """Decode, keeping low/high exact and trimming float noise off the other levels.
 
     ``(0.0001 + 0.0005) / 2`` is ``0.00030000000000000003`` in binary floating point; a
-    design CSV should say ``0.0003``. A value is rounded to 12 significant digits only when
-    the rounded value still codes to the same coded value (coded values are themselves
-    kept to 12 decimals, see :mod:`rsm_lrg.factors`); otherwise the neighbouring float
-    that codes back exactly is taken when there is one. When the range is very narrow
+    design CSV should say ``0.0003``. A value is rounded to the fewest significant digits
+    (12 to 16) whose rounded value still codes to the same coded value (coded values are
+    themselves kept to 12 decimals, see :mod:`rsm_lrg.factors`): ``-0.2071067811865``, not
+    ``-0.20710678118650006``; otherwise the neighbouring float that codes back exactly is
+    taken when there is one. When the range is very narrow
     compared with the levels (e.g. 128 to 128.001) no float may code back exactly; the
     round trip is then exact only to float resolution, about
     ``eps * max(|low|, |high|) / half_range`` in coded units.
@@ -188,7 +189,7 @@ def _clean_actual(f: Factor, coded: np.ndarray) -> np.ndarray:
         if c in (-1.0, 1.0):
             continue
         target = f.encode(v) if f.encode(v) == c else c
-        cands = [float(f"{v:.12g}"), v]
+        cands = [float(f"{v:.{digits}g}") for digits in range(12, 17)] + [v]  # the shortest that codes back
         cands += [float(np.nextafter(v, d * np.inf)) for d in (-1, 1)]
         for cand in cands:
             if f.encode(cand) == target:

@@ -165,3 +165,28 @@ def test_ccd_actual_round_trip(rng_map, alpha, face):
     tol = np.array([8 * np.finfo(float).eps * (max(abs(f.low), abs(f.high)) + 2 * f.half_range)
                     / f.half_range for f in d.factors])
     assert np.all(np.abs(back - d.coded_runs) <= tol + 1e-12)
+
+
+def test_star_points_written_with_the_shortest_decimal_that_codes_back():
+    # x = 0.5 + 0.5 * coded on 0..1 and y = 5 * coded on -5..5; coded +-1.414213562373 (12
+    # decimals) decodes exactly (decimal arithmetic) to -0.2071067811865 / 1.2071067811865 and
+    # -+7.071067811865. Binary floating point gives -0.20710678118650006 and -7.071067811864999;
+    # the CSV says the 13-digit decimals, which code back to the same coded values (tol 0).
+    from decimal import Decimal
+    from io import StringIO
+
+    from rsm_lrg.design.core import as_factor_space
+
+    a = 1.414213562373
+    space = as_factor_space(["x=0:1", "y=-5:5"])
+    d = Design.from_standard(space, "test", np.array([[-a, 0.0], [a, 0.0], [0.0, -a], [0.0, a]]), randomize=False)
+    text = d.to_frame().to_csv(index=False)
+    exact = {str(Decimal("0.5") - Decimal("0.5") * Decimal(str(a))), str(Decimal("0.5") + Decimal("0.5") * Decimal(str(a))),
+             str(-Decimal(5) * Decimal(str(a))), str(Decimal(5) * Decimal(str(a)))}
+    assert exact == {"-0.2071067811865", "1.2071067811865", "-7.071067811865", "7.071067811865"}
+    for value in exact:
+        assert value in text
+    assert "0.20710678118650006" not in text and "7.071067811864999" not in text
+    back = pd.read_csv(StringIO(text))
+    assert np.array_equal(space.factors[0].encode(back["x"].to_numpy()), d.coded_runs[:, 0])
+    assert np.array_equal(space.factors[1].encode(back["y"].to_numpy()), d.coded_runs[:, 1])
