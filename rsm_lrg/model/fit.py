@@ -735,7 +735,7 @@ def fit(data, response: str, factors=None, block: str | None = None, model: str 
     ----------
     data : pandas.DataFrame or dask.dataframe.DataFrame
         One row per run. A Dask DataFrame is fitted partition by partition without being
-        collected (:mod:`rsm_lrg.model.dask_fit`; no blocks; the result holds no per-run arrays).
+        collected (:mod:`rsm_lrg.model.dask_fit`; the result holds no per-run arrays).
     response : str
         Response column (e.g. ``"tcr_c_per_min"`` [°C/min]).
     factors : None, sequence or FactorSpace

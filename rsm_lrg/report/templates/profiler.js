@@ -73,12 +73,19 @@
     }
     return v - tr.constant;
   }
+  function rowAt(m, setting) {
+    return modelRow(m, m.factors.map(function (f) { return encode(f, setting[f.name], m.coded_decimals); }));
+  }
+  function fitted(m, x) { var y = 0.0; for (var i = 0; i < x.length; i++) y += x[i] * m.b[i]; return y; }
+  /* the prediction alone, on the response's own scale (no intervals: what a search needs) */
+  function predictValue(m, setting) {
+    var y = fitted(m, rowAt(m, setting));
+    return m.transform ? backTransform(m.transform, y) : y;
+  }
   /* setting: {factor name: actual value or level}; returns predicted, se, ci, pi */
   function predict(m, setting) {
-    var xc = m.factors.map(function (f) { return encode(f, setting[f.name], m.coded_decimals); });
-    var x = modelRow(m, xc);
-    var n = x.length, y = 0.0, qf = 0.0;
-    for (var i = 0; i < n; i++) y += x[i] * m.b[i];
+    var x = rowAt(m, setting);
+    var n = x.length, y = fitted(m, x), qf = 0.0;
     for (var a = 0; a < n; a++) {
       var s = 0.0, Ca = m.C[a];
       for (var b = 0; b < n; b++) s += Ca[b] * x[b];
@@ -209,7 +216,7 @@
   }
   function inside(s) {
     for (var i = 0; i < MODELS.length; i++) {
-      var lim = limitsOf(MODELS[i]), y = predict(MODELS[i], s).predicted;
+      var lim = limitsOf(MODELS[i]), y = predictValue(MODELS[i], s);
       if (!isFinite(y)) return false;
       if (isFinite(lim[0]) && y < lim[0]) return false;
       if (isFinite(lim[1]) && y > lim[1]) return false;
@@ -231,7 +238,7 @@
   function margin(s) {
     var worst = Infinity;
     for (var i = 0; i < MODELS.length; i++) {
-      var m = MODELS[i], lim = limitsOf(m), y = predict(m, s).predicted, sc = scaleOf(m);
+      var m = MODELS[i], lim = limitsOf(m), y = predictValue(m, s), sc = scaleOf(m);
       if (!isFinite(y)) return -Infinity;
       if (isFinite(lim[0])) worst = Math.min(worst, (y - lim[0]) / sc);
       if (isFinite(lim[1])) worst = Math.min(worst, (lim[1] - y) / sc);
@@ -266,10 +273,10 @@
   }
   /* pattern search from s: the coordinate directions and as many random ones (the margin is a
      minimum of smooth functions, so a ridge can need a diagonal step), each step halved when no
-     direction gains, down to 1e-9 of each factor's range */
-  function climb(s, ms, rand) {
-    var K = NUMERIC.length, step = 0.25;
-    while (step > 1e-9 && K > 0) {
+     direction gains, from `step` down to `tol` of each factor's range */
+  function climb(s, ms, rand, step, tol) {
+    var K = NUMERIC.length;
+    while (step > tol && K > 0) {
       var dirs = [];
       for (var k = 0; k < K; k++) { var e = NUMERIC.map(function () { return 0; }); e[k] = 1; dirs.push(e); }
       for (var r = 0; r < K; r++) {
@@ -290,13 +297,13 @@
       });
       if (!moved) step /= 2;
     }
-    return {setting: s, margin: ms};
+    return {setting: s, margin: ms, step: step};
   }
   /* {setting, margin, held} with the largest margin over the factors' box and every level
-     combination: 256 Halton points per combination, the best three refined by climb(); null
-     when no limit is set */
+     combination: per combination the centre and 256 Halton points, the best three climbed to
+     1e-3 of each range; the best three of all those climbed on to 1e-9; null when no limit is set */
   function deepest(current) {
-    var lc = levelCombos(current), best = null, rand = rng(12345);
+    var lc = levelCombos(current), found = [], rand = rng(12345);
     if (margin(current) === Infinity) return null;  /* no limit set */
     lc.combos.forEach(function (base) {
       var starts = [];
@@ -308,10 +315,13 @@
         starts.push({setting: s, margin: margin(s)});
       }
       starts.sort(function (a, b) { return b.margin - a.margin; });
-      starts.slice(0, 3).forEach(function (st) {
-        var r = climb(st.setting, st.margin, rand);
-        if (best === null || r.margin > best.margin) best = r;
-      });
+      starts.slice(0, 3).forEach(function (st) { found.push(climb(st.setting, st.margin, rand, 0.25, 1e-3)); });
+    });
+    found.sort(function (a, b) { return b.margin - a.margin; });
+    var best = null;
+    found.slice(0, 3).forEach(function (f) {
+      var r = climb(f.setting, f.margin, rand, f.step, 1e-9);
+      if (best === null || r.margin > best.margin) best = r;
     });
     if (best) best.held = lc.held;
     return best;
@@ -340,7 +350,7 @@
       for (var i = 0; i < xs.length; i++) {
         var t = Object.assign({}, s); t[fx.name] = xs[i]; t[fy.name] = ys[j];
         row.push(inside(t) ? 1 : 0);
-        MODELS.forEach(function (m, k) { rr[k].push(predict(m, t).predicted); });
+        MODELS.forEach(function (m, k) { rr[k].push(predictValue(m, t)); });
       }
       z.push(row);
       rr.forEach(function (r, k) { zr[k].push(r); });
@@ -389,7 +399,7 @@
     if (!pair || pair[0].name === pair[1].name) { Plotly.purge(el3); Plotly.purge(el2); return; }
     var fx = pair[0], fy = pair[1], xs = linspace(fx.low, fx.high, 31), ys = linspace(fy.low, fy.high, 31), z = [];
     ys.forEach(function (yv) {
-      z.push(xs.map(function (xv) { var t = Object.assign({}, s); t[fx.name] = xv; t[fy.name] = yv; return predict(m, t).predicted; }));
+      z.push(xs.map(function (xv) { var t = Object.assign({}, s); t[fx.name] = xv; t[fy.name] = yv; return predictValue(m, t); }));
     });
     var cur = predict(m, s).predicted;
     var xl = esc(fx.letter + ": " + fx.name), yl = esc(fy.letter + ": " + fy.name), zl = esc(m.response);
