@@ -506,6 +506,9 @@ def optimal(
         L = 0 if lof_points is None else int(lof_points)
         R = 0 if replicates is None else int(replicates)
     n_model = runs - L - R
+    if n_model < 0:
+        raise ValueError(f"{L} lack-of-fit points and {R} replicates are more than the {runs} runs; the {model} "
+                         f"model in {len(space)} factors needs at least {p} model points besides them")
     if n_model < p:
         raise ValueError(f"{runs} runs leave {n_model} model points after {L} lack-of-fit points and {R} replicates; "
                          f"the {model} model in {len(space)} factors needs at least {p} (one per coefficient)")

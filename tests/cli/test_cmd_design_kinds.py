@@ -116,6 +116,9 @@ def test_crossed_box_behnken_from_the_cli(tmp_path, capsys):
     (["design", "optimal", *GUIDE, "--factor", "t=0:1", "--factor", "u=0:1", "--factor", "w=0:1",
       "--factor", "z=0:1", "--factor", "q=0:1", "--model", "cubic"], "--model"),
     (["design", "optimal", *GUIDE, "--starts", "100000"], "--starts"),
+    # more replicates than runs: said so, not "12 runs leave -8 model points"
+    (["design", "optimal", *GUIDE, "--runs", "12", "--replicates", "20"], "--runs: 0 lack-of-fit points and 20 replicates "
+                                                                        "are more than the 12 runs"),
     # a region of measure zero (one corner: velocity 0.2 and acceleration 5 only) passes the
     # emptiness check on the corners but holds no point of the search: the constraint is named
     (["design", "optimal", *GUIDE, "--constraint", "velocity_m_s + acceleration_m_s2 <= 5.2"], "error: --constraint:"),
