@@ -21,6 +21,9 @@ two the same, the directory writable. The command then runs inside
 :func:`rsm_lrg.io.output_transaction`, so its outputs appear together at the end or not at all.
 A single-valued option given twice is an error (nothing is dropped silently).
 
+A reader that closes standard output early (``| head``) does not stop the command: the rest
+of what it prints is dropped, its output files are written, and it exits 0.
+
 Exit status: 0 success; 2 bad usage or bad input, reported as one ``error:`` line on stderr
 of under 300 characters (``--debug`` adds the traceback), including numbers or sizes beyond
 computing (OverflowError, FloatingPointError, MemoryError); 1 an internal fault. Library
@@ -103,6 +106,18 @@ def _chosen_command(argv: list[str]) -> str:
     return ""
 
 
+def _accept_negative_values(p: argparse.ArgumentParser) -> None:
+    """Values that begin with '-' (``--observed -2.5e-1``, ``--constraint "-A+B<=1"``) for
+    ``p`` and the sub-commands under it (``design optimal``, ...)."""
+    from ._common import accept_negative_values
+
+    accept_negative_values(p)
+    for action in p._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for child in action.choices.values():
+                _accept_negative_values(child)
+
+
 def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
     """The ``rsm-lrg`` parser. With ``argv``, only the command it names gets its options
     (the others are listed with their one-line help), which keeps ``rsm-lrg --help`` and
@@ -125,6 +140,7 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
         p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show a traceback on errors")
         if chosen is None or mod.NAME == chosen:
             mod.add_arguments(p)
+            _accept_negative_values(p)
             p.set_defaults(_run=mod.run, _module=mod)
             mark_outputs(p)
     return parser
@@ -161,8 +177,58 @@ def _input_name(args) -> str:
     return ""
 
 
+class _PipeGuard:
+    """Standard output that a closed pipe (``rsm-lrg ... | head -2``) cannot break: once the
+    reader has gone, what is printed is dropped (and the stream is pointed at the null
+    device, so the interpreter's last flush is quiet), and the command finishes its work and
+    writes its output files as without the pipe."""
+
+    def __init__(self, stream):
+        self.stream = stream
+        self.broken = False
+
+    def _closed(self) -> None:
+        import os
+
+        self.broken = True
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, self.stream.fileno())
+            os.close(devnull)
+        except (OSError, ValueError, AttributeError):  # not a real file (captured in-process)
+            pass
+
+    def write(self, text):
+        if not self.broken:
+            try:
+                return self.stream.write(text)
+            except BrokenPipeError:
+                self._closed()
+        return len(text)
+
+    def flush(self):
+        if not self.broken:
+            try:
+                self.stream.flush()
+            except BrokenPipeError:
+                self._closed()
+
+    def __getattr__(self, name):
+        return getattr(self.stream, name)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of ``rsm-lrg`` and ``python -m rsm_lrg``; returns the exit status."""
+    guard = _PipeGuard(sys.stdout)
+    sys.stdout = guard
+    try:
+        return _main(argv)
+    finally:
+        if sys.stdout is guard:
+            sys.stdout = guard.stream
+
+
+def _main(argv: list[str] | None) -> int:
     from ..io import output_transaction
 
     argv = sys.argv[1:] if argv is None else list(argv)

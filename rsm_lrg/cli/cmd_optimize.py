@@ -139,7 +139,10 @@ def _multi(args) -> int:
 
     n = len(args.response)
     if len(set(args.response)) != n:
-        raise ValueError("each --response may be given once")
+        from ..io import quote_user_value
+
+        dup = next(r for i, r in enumerate(args.response) if r in args.response[:i])
+        raise ValueError(f"--response: each response may be given once ({quote_user_value(dup)} is given twice)")
     goals = per_response_values(args.goal, n, "--goal")
     weights = per_response_values(args.weight, n, "--weight")
     imps = per_response_values(args.importance, n, "--importance")

@@ -413,6 +413,11 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
 
     alpha = 1.0 - confidence
     pr = fitted.predict(best[None, :], interval="both", alpha=alpha, coded=True).iloc[0]
+    if kind == "target" and abs(float(pr["predicted"]) - target) > 1e-3 * scale:
+        from ..present import format_g
+
+        notes.append(f"the target {format_g(target, 6)} cannot be reached inside the region: the closest "
+                     f"predicted value is {format_g(float(pr['predicted']), 6)}")
     coded = {L: float(v) for L, v in zip(space.letters, best)}
     actual = {f.name: float(f.decode(v)) for f, v in zip(space.factors, best)}
     bnds = {f.name: (float(f.decode(a)), float(f.decode(b))) for f, a, b in zip(space.factors, lo, hi)}

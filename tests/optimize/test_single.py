@@ -46,6 +46,17 @@ def test_maximum_and_target(fitted):
     assert tg.goal == "target" and tg.target == 0.03
     assert tg.predicted == pytest.approx(0.03, abs=1e-9)
     assert fitted.optimize("target=0.03").predicted == pytest.approx(0.03, abs=1e-9)
+    assert tg.warnings == ()
+
+
+def test_unreachable_target_gives_the_nearest_extreme_and_says_so(fitted):
+    # a target above the largest (below the smallest) prediction in the box: the optimum is the
+    # box maximum (minimum) found by "maximize" ("minimize"), with a warning naming the gap
+    for target, other in ((0.5, "maximize"), (0.0, "minimize")):
+        tg = fitted.optimize(f"target={target}")
+        assert tg.predicted == pytest.approx(fitted.optimize(other).predicted, rel=1e-9)
+        assert len(tg.warnings) == 1 and "cannot be reached inside the region" in tg.warnings[0]
+        assert "closest predicted value" in tg.summary() and tg.to_dict()["warnings"] == list(tg.warnings)
 
 
 def test_bounds_in_actual_units(fitted):
