@@ -137,3 +137,17 @@ def test_design_csv_feeds_default_factor_selection(tmp_path, capsys):
     df = pd.read_csv(p)
     df["y"] = 1.0 + np.arange(len(df))
     assert FactorSpace.from_data(df, exclude=["y"]).names == [s.split("=")[0] for s in PAPER]
+
+
+def test_constraint_beginning_with_a_minus_is_a_value(tmp_path, capsys):
+    # argparse alone reads "-A+B<=1" as an unknown option ("expected one argument")
+    import pandas as pd
+
+    from rsm_lrg.cli import main
+
+    out = tmp_path / "d.csv"
+    assert main(["design", "optimal", "--factor", "A=-1:1", "--factor", "B=-1:1", "--model", "quadratic",
+                 "--runs", "8", "--constraint", "-A+B<=1", "--seed", "3", "-o", str(out)]) == 0
+    d = pd.read_csv(out)
+    assert len(d) == 8 and bool(((-d["A"] + d["B"]) <= 1 + 1e-12).all())
+    assert "constraints: -A+B <= 1" in capsys.readouterr().out
