@@ -22,7 +22,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["FACTOR_COLUMNS", "STAGES", "DesignArrays", "read_design_arrays", "OUTPUT_COLUMNS"]
+__all__ = ["FACTOR_COLUMNS", "STAGES", "DesignArrays", "read_design_arrays", "OUTPUT_COLUMNS",
+           "EXTRA_OUTPUT_COLUMNS"]
 
 #: The four factors of the paper's study (Table 3), in order.
 FACTOR_COLUMNS = ("thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2")
@@ -35,6 +36,10 @@ OUTPUT_COLUMNS = (
     "tcr_c_per_min", "temperature_rise_k", "steady_rise_k", "wear_volume_m3_per_h",
     "sliding_distance_m_per_cycle", "heat_w", "cycle_time_s",
 )
+
+#: Further columns the surrogate adds (the leaves' peak stress [Pa] and whether it is above
+#: ``hinge_yield_pa``).
+EXTRA_OUTPUT_COLUMNS = ("hinge_peak_stress_pa", "hinge_yields")
 
 #: Parameters that are factors of the design, or fixed by the stage, or per-run switches
 #: that cannot vary row by row.
@@ -83,6 +88,8 @@ def _float_column(df, name: str, allow_empty=None) -> np.ndarray:
     raw = df[name]
     num = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=float, na_value=np.nan)
     bad = ~np.isfinite(num)
+    if pd.api.types.is_bool_dtype(raw.dtype) or raw.dtype == object:  # True is not 1 m/s
+        bad |= raw.map(lambda x: isinstance(x, (bool, np.bool_))).to_numpy(dtype=bool)
     if allow_empty is not None:
         empty = raw.isna().to_numpy() | (raw.astype(str).str.strip() == "").to_numpy()
         bad &= ~(empty & allow_empty)
@@ -95,6 +102,23 @@ def _float_column(df, name: str, allow_empty=None) -> np.ndarray:
 
         raise ValueError(f"column {name!r}, row {i + 1}: holds {quote_user_value(v)}, not a finite number")
     return num
+
+
+def _check_near_names(cols) -> None:
+    """A column whose name differs from one the surrogate reads only in case or surrounding
+    spaces (``Stage``, ``Mu_K``, `` stroke_m``) would pass through unused -- a ``Stage``
+    column of ``rms`` rows would run them as RFCMS: refuse it, naming the column."""
+    from ..physics.params import param_names
+    from .runs import SURROGATE_PARAMETERS
+
+    known = {*FACTOR_COLUMNS, "stage", *param_names(), *SURROGATE_PARAMETERS}
+    folded = {k.lower(): k for k in known}
+    for c in cols:
+        if c not in known and c.strip().lower() in folded and folded[c.strip().lower()] not in cols:
+            from ..io import quote_user_value
+
+            raise ValueError(f"column {quote_user_value(c)}: the surrogate reads {folded[c.strip().lower()]!r} "
+                             f"(names are case-sensitive); rename the column, or it would pass through unused")
 
 
 def read_design_arrays(df, params=None) -> DesignArrays:
@@ -127,6 +151,7 @@ def read_design_arrays(df, params=None) -> DesignArrays:
         dup = sorted({c for c in cols if cols.count(c) > 1})[0]
         raise ValueError(f"column {dup!r} appears more than once")
     n = int(df.shape[0])
+    _check_near_names(cols)
 
     # stage
     if "stage" in df.columns:
@@ -152,8 +177,9 @@ def read_design_arrays(df, params=None) -> DesignArrays:
             f"found: {', '.join(cols)})")
     if "hinge_thickness_m" in df.columns:
         raise ValueError("column 'hinge_thickness_m': give the hinge thickness as column 'thickness_m'")
-    if "heat_in_calories" in df.columns:
-        raise ValueError("column 'heat_in_calories' cannot vary row by row; set it in the parameters")
+    for c in ("heat_in_calories", "hinge_membrane"):  # switches of the physics, one per run
+        if c in df.columns:
+            raise ValueError(f"column {c!r} cannot vary row by row; set it in the parameters")
 
     columns: dict[str, np.ndarray] = {}
     if "thickness_m" in df.columns:

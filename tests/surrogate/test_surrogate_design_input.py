@@ -96,3 +96,31 @@ def test_surrogate_parameters_may_vary_by_row():
         read_design_arrays(design(heat_partition=[0.2, 1.5, 1.0]))
     with pytest.raises(ValueError, match=r"column 'viscous_friction_n_s_m', row 1"):
         read_design_arrays(design(viscous_friction_n_s_m=[-1.0, 0.0, 1.0]))
+
+
+@pytest.mark.parametrize("name,reads", [("Stage", "stage"), ("Mu_K", "mu_k"), ("HEAT_PARTITION", "heat_partition"),
+                                        ("Stroke_M", "stroke_m")])
+def test_a_known_name_in_other_case_is_refused(name, reads):
+    # a 'Stage' column of rms rows used to pass through unused: the rows ran as RFCMS
+    d = design(**{name: ["rms", "rms", "rms"] if reads == "stage" else [0.5, 0.5, 0.5]})
+    if reads == "stroke_m":
+        d = d.drop(columns=["stroke_m"])
+    with pytest.raises(ValueError, match=f"column '{name}': the surrogate reads '{reads}'"):
+        read_design_arrays(d)
+    # with the exact name present too, the other one is just another column
+    if reads != "stroke_m":
+        read_design_arrays(d.assign(**{reads: ["rms"] * 3 if reads == "stage" else [0.5] * 3}))
+
+
+@pytest.mark.parametrize("switch", ["hinge_membrane", "heat_in_calories"])
+def test_a_physics_switch_column_is_refused_by_name(switch):
+    # hinge_membrane used to fail with NumPy's 'truth value of an array ... is ambiguous'
+    with pytest.raises(ValueError, match=f"column '{switch}' cannot vary row by row"):
+        read_design_arrays(design(**{switch: [True, False, True]}))
+
+
+@pytest.mark.parametrize("values", [[True, True, True], [0.5, True, 0.6]])
+def test_booleans_are_not_numbers(values):
+    # pandas turns True into 1.0: a velocity of True ran at 1 m/s
+    with pytest.raises(ValueError, match="column 'velocity_m_s', row [12]: holds True"):
+        read_design_arrays(design(velocity_m_s=values))
