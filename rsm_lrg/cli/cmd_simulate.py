@@ -210,6 +210,11 @@ def run(args) -> int:
     write_output(out_path, runs.to_csv(index=False, float_format="%.10g", lineterminator="\n"), force=args.force)
     note = f" (noise seed drawn: rerun with --seed {seed} to repeat)" if drawn else ""
     print(f"simulate: {len(runs)} runs -> {out_path}{note}", file=sys.stderr)
+    names = [str(c) for c in design.columns]
+    kept = [c for c in names if f"{c}_input" in runs.columns and f"{c}_input" not in names]
+    if kept:
+        print(f"simulate: the design's column(s) {', '.join(kept)} are kept as "
+              f"{', '.join(c + '_input' for c in kept)} (the surrogate writes those names)", file=sys.stderr)
     if "hinge_yields" in runs.columns and runs["hinge_yields"].any():
         rows = [str(i + 1) for i in runs.index[runs["hinge_yields"].to_numpy(dtype=bool)][:10]]
         print(f"simulate: WARNING: the hinge leaves would yield in {int(runs['hinge_yields'].sum())} row(s) "

@@ -18,7 +18,7 @@ from concurrent.futures import Executor, as_completed
 
 import numpy as np
 
-from .design_input import OUTPUT_COLUMNS, read_design_arrays
+from .design_input import EXTRA_OUTPUT_COLUMNS, OUTPUT_COLUMNS, read_design_arrays
 from .noise import resolve_seed
 
 __all__ = ["simulate", "DEFAULT_NOISE_SD", "DEFAULT_BATCH_ROWS", "MAX_NOISE_SD"]
@@ -127,6 +127,11 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
     seed_int = resolve_seed(seed) if noise_sd > 0 else 0
     arrays = read_design_arrays(design, params)
     n = arrays.n
+    names = [str(c) for c in design.columns]
+    for c in names:  # an input column the surrogate writes is kept as NAME_input: that name must be free
+        if c in OUTPUT_COLUMNS + EXTRA_OUTPUT_COLUMNS and f"{c}_input" in names:
+            raise ValueError(f"column {c!r} would be kept as {c + '_input'!r}, which the design already has; "
+                             f"rename one of them")
 
     _executor_workers(executor)
     if batch_rows is None:
