@@ -365,7 +365,8 @@ class Design:
         seed = self.options.get("seed")
         rnd = self.options.get("randomize", True)
         lines = [
-            f"{self.kind} design: {self.n_factors} factors, {self.n_runs} runs "
+            f"{self.kind} design: {self.n_factors} factor{'s' if self.n_factors != 1 else ''}, "
+            f"{self.n_runs} run{'s' if self.n_runs != 1 else ''} "
             f"({self.n_runs - self.n_center} non-centre + {self.n_center} centre), "
             f"{self.n_blocks} block{'s' if self.n_blocks != 1 else ''}",
         ]
