@@ -154,7 +154,9 @@ class PhysicsResult:
             val = "n/a" if value is None else f"{value:12.5g}"
             pap = "" if paper is None else f"{paper:g}"
             lines.append(f"{name:<{w}}  {val:>12}  {unit:<18}  {pap}")
-        if any(self.thermal.get(k) is None for k in _THERMAL_KEYS):
+        if self.details.get("thermal_skipped"):
+            lines.append("(thermal: n/a = not computed, thermal=False / --no-thermal)")
+        elif any(self.thermal.get(k) is None for k in _THERMAL_KEYS):
             lines.append("(thermal: n/a = rsm_lrg.physics.thermal.thermal_summary is not available)")
         ylds = [f"{h.thickness_m * 1e3:g} mm" for h in self.hinge if h.yields]
         if ylds:
@@ -276,10 +278,14 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
         "wear_rfcms_m3_per_h": float(wear.wear_rate_per_hour(p.wear_coefficient, f_i, l_rf, t_cyc, hb)),
         "wear_rms_m3_per_h": float(wear.wear_rate_per_hour(p.wear_coefficient, f_i, l_rms, t_cyc, hb)),
         "deflection_for_paper_ratio_m": dd_paper,
+        # no static friction (mu_s = 0): no leaf deflects at breakaway, none gives the ratio (None, not 0)
         "thickness_for_paper_ratio_m": float(hinge.hinge_thickness_for_deflection(
-            dd_paper, fmax, p.hinge_count, p.hinge_modulus_pa, p.hinge_width_m, p.hinge_length_m)),
+            dd_paper, fmax, p.hinge_count, p.hinge_modulus_pa, p.hinge_width_m, p.hinge_length_m))
+        if fmax > 0 else None,
         "heat_friction_power_w": float(heat.friction_heat(p.mu_k, load, p.velocity_m_s, in_calories=False)),
         "ball_volume_m3": vt,
     }
     th = _thermal(p, q, hs, hf) if thermal else {k: None for k in _THERMAL_KEYS}
+    if not thermal:
+        details["thermal_skipped"] = True
     return PhysicsResult(load, fmax, q, phi, re, pr, hs, hf, tuple(rows), th, ratio, p, details)

@@ -63,3 +63,23 @@ def test_with_thermal_model():
 def test_list_params():
     out = run("--list-params")
     assert out.returncode == 0 and "hinge_width_m" in out.stdout and "ASSUMPTION" in out.stdout
+
+
+def test_no_thermal_says_it_was_skipped():
+    # it used to say 'rsm_lrg.physics.thermal.thermal_summary is not available'
+    out = run("--no-thermal")
+    assert out.returncode == 0, out.stderr
+    assert "not computed" in out.stdout and "not available" not in out.stdout
+
+
+def test_no_static_friction_has_no_thickness_for_the_paper_ratio():
+    # mu_s = 0: f_mu_max = 0, Eq. 2 gives no deflection at any thickness; the inverse gave 0 m
+    from rsm_lrg.physics.chain import physics_chain
+
+    r = physics_chain(thermal=False, mu_s=0.0)
+    assert r.f_mu_max_n == 0.0 and r.details["thickness_for_paper_ratio_m"] is None
+    assert "thickness_for_paper_ratio_m" in r.to_text() and "n/a" in r.to_text()
+    # default: the inverse of Eqs. 1-2, y = (f l^3 / (n dd E w))^(1/3) with dd = 0.075 (1 - 0.5893) m
+    # (Eq. 14), f = 5.2094 N, l = 0.02 m, w = 0.01 m, E = 211 GPa, n = 4: 5.4323e-5 m (hand, rel 1e-4)
+    d = physics_chain(thermal=False).details
+    assert d["thickness_for_paper_ratio_m"] == pytest.approx(5.4323e-5, rel=1e-4)
