@@ -553,6 +553,10 @@ _PARAM_KEYS = {"value": float, "std_error": float, "lower": float, "upper": floa
 _RUN_KEYS = ("observed", "predicted", "loo_predicted")
 
 
+#: LRGParams switches (true/false): fixed by a calibration model, never a calibrated number.
+_SWITCHES = ("hinge_membrane", "heat_in_calories")
+
+
 def documented_bounds(name: str) -> tuple[float, float, str]:
     """``(lower, upper, where)``: the documented range of a calibratable parameter -- the
     bounds of its :class:`ParameterSpec` (:data:`DEFAULT_PARAMETERS`,
@@ -655,6 +659,9 @@ def _calibration_from_toml(raw: dict, lrg_names, surrogate_names, outputs) -> Ca
         where = f"[parameters.{name}]"
         if not isinstance(t, dict):
             raise ValueError(f"{where} must be a table with value = NUMBER, not {quote_user_value(t)}")
+        if name in _SWITCHES:  # documented_bounds would call it 'a share of the heat'
+            raise ValueError(f"{where}: {name} is a switch of the physics, not a calibrated number; the "
+                             f"[calibration] model sets it ({', '.join(MODELS)})")
         for k in t:
             if k not in _PARAM_KEYS:
                 raise _unknown_key(where, k, _PARAM_KEYS)

@@ -96,3 +96,13 @@ def test_bad_files(tmp_path):
     p.write_text("not toml [")
     with pytest.raises(ValueError, match="not valid TOML"):
         load_calibration(p)
+
+
+@pytest.mark.parametrize("value", ["3", "false", "0.5"])
+@pytest.mark.parametrize("switch", ["hinge_membrane", "heat_in_calories"])
+def test_a_switch_is_not_a_calibrated_number(tmp_path, switch, value):
+    # value = 3 used to be 'outside its bounds [0, 1] (a share of the heat)'; false: 'must be a number'
+    p = tmp_path / "c.toml"
+    p.write_text(f"[parameters.{switch}]\nvalue = {value}\n")
+    with pytest.raises(ValueError, match=rf"\[parameters\.{switch}\]: {switch} is a switch of the physics"):
+        load_calibration(p)
