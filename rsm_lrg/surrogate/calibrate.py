@@ -263,13 +263,14 @@ def _specs(parameters, model: str = DEFAULT_MODEL) -> tuple:
         elif isinstance(p, str) and p in by_name:
             out.append(by_name[p])
         else:
-            raise ValueError(f"unknown calibration parameter {p!r}; give a ParameterSpec or one of "
-                             f"{', '.join(by_name)}")
+            raise ValueError(f"unknown calibration parameter {p!r}; one of {', '.join(by_name)} "
+                             f"(or a ParameterSpec)")
     if not 1 <= len(out) <= 3:
         raise ValueError(f"calibrate at most three parameters (got {len(out)})")
     names = [s.name for s in out]
     if len(set(names)) != len(names):
-        raise ValueError("a calibration parameter is given twice")
+        twice = next(n for n in names if names.count(n) > 1)
+        raise ValueError(f"the calibration parameter {twice} is given twice")
     from ..physics.params import PHYSICAL_RANGES, param_names
 
     for s in out:

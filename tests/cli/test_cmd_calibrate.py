@@ -61,6 +61,8 @@ def test_json_and_force(measured, tmp_path, capsys):
     (["--parameter", "offset"], "unknown calibration parameter"),
     (["--parameter", "heat_partition", "--parameter", "viscous_friction_n_s_m", "--parameter", "hinge_length_m",
       "--parameter", "hinge_width_m"], "at most three"),
+    # the repeated name is named (it was 'a calibration parameter is given twice')
+    (["--parameter", "heat_partition", "--parameter", "heat_partition"], "heat_partition is given twice"),
 ])
 def test_bad_parameters_are_one_error_line(measured, extra, needle):
     p, d = measured
