@@ -369,7 +369,8 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     obs = _numeric(data, response).to_numpy()
     n = obs.size
     if n <= len(specs) + 1:
-        raise ValueError(f"{n} runs are too few to calibrate {len(specs)} parameters")
+        k = len(specs)
+        raise ValueError(f"{n} run{' is' if n == 1 else 's are'} too few to calibrate {k} parameter{'s' if k != 1 else ''}")
     p = params if params is not None else LRGParams()
     if MODELS[model].fixed:
         p = p.with_overrides(**dict(MODELS[model].fixed))
