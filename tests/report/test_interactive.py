@@ -145,8 +145,10 @@ def test_cli_two_responses_with_their_own_options(tmp_path, capsys):
     src = tmp_path / "d.csv"
     data().to_csv(src, index=False)
     out = tmp_path / "r.html"
-    rc = main(["report", str(src), "--response", "tcr_c_per_min", "--reduce", "--response", "wear_volume_m3_per_h",
-               "--transform", "log", "--goal", "minimize", "--goal", "minimize", "--limits", ":0.03",
+    # a --limits right after a --response is that response's; the two --goal listed together
+    # after the last --response are taken in --response order (cli._common.per_response_values)
+    rc = main(["report", str(src), "--response", "tcr_c_per_min", "--reduce", "--limits", ":0.03",
+               "--response", "wear_volume_m3_per_h", "--transform", "log", "--goal", "minimize", "--goal", "minimize",
                "--hold", "optimum", "-o", str(out)])
     assert rc == 0, capsys.readouterr().err
     html = out.read_text(encoding="utf-8")
@@ -154,7 +156,7 @@ def test_cli_two_responses_with_their_own_options(tmp_path, capsys):
     m1, m2 = d["models"]
     assert m1["response"] == "tcr_c_per_min" and len(m1["b"]) < 15  # reduced
     assert m2["transform"] == {"name": "log", "lam": 0.0, "constant": 0.0} and len(m2["b"]) == 15
-    assert m1["limits"] == [None, 0.03]
+    assert m1["limits"] == [None, 0.03] and m2["limits"] != [None, 0.03]
     # --hold optimum starts the profiler at the desirability optimum
     assert [c["value"] for c in d["controls"]] == [d["desirability"]["setting"][f] for f in FACTORS]
     assert "log-transformed response" in html
