@@ -175,6 +175,14 @@ def _inside(fits, limits, frame) -> np.ndarray:
     return ok
 
 
+def _reset_limits(page) -> None:
+    """Put every limit box back to the page's embedded default."""
+    page.evaluate("""() => JSON.parse(document.getElementById('rsm-data').textContent).models.forEach(m => {
+        document.querySelector(`[data-limit-low="${m.response}"]`).value = m.limits[0] === null ? '' : String(m.limits[0]);
+        document.querySelector(`[data-limit-high="${m.response}"]`).value = m.limits[1] === null ? '' : String(m.limits[1]);
+    })""")
+
+
 def _limits(page) -> dict:
     return page.evaluate("""() => Object.fromEntries(Array.from(document.querySelectorAll('[data-limit-low]')).map(
         e => { const r = e.dataset.limitLow;
@@ -187,10 +195,7 @@ def test_overlay_agrees_with_python_grid(page2, case):
     page, log, _, fits = page2
     rng = np.random.default_rng({"default": 1, "pair-CD-limits-edited": 2, "pair-BA-moved": 3}[case])
     page.click('[data-jump="center"]')
-    page.evaluate("""() => JSON.parse(document.getElementById('rsm-data').textContent).models.forEach(m => {
-        document.querySelector(`[data-limit-low="${m.response}"]`).value = m.limits[0] === null ? '' : String(m.limits[0]);
-        document.querySelector(`[data-limit-high="${m.response}"]`).value = m.limits[1] === null ? '' : String(m.limits[1]);
-    })""")  # the embedded defaults (minimize: at most the observed median)
+    _reset_limits(page)  # the embedded defaults (minimize: at most the observed median)
     if case == "pair-CD-limits-edited":
         page.select_option("#overlay-x", "velocity_m_s")
         page.select_option("#overlay-y", "acceleration_m_s2")
@@ -257,6 +262,20 @@ DEEPEST = """() => { const b = window.rsmReport.goDeepest();
     return {margin: b === null ? null : b.margin, readout: document.getElementById('deepest-readout').textContent}; }"""
 
 
+def _deepest_against_random(page, fits, data, seed):
+    """Press "deepest inside every limit"; return the page's answer, the margin of the setting
+    it moved to computed in Python (checked equal to the page's, 1e-9), the best margin of
+    20 000 random settings of the box, and whether the setting is inside every limit."""
+    got = page.evaluate(DEEPEST)
+    state = page.evaluate(READ)
+    limits = _limits(page)
+    at = pd.DataFrame({k: [v] for k, v in state["setting"].items()})
+    mine = float(_margins(fits, limits, at, data)[0])
+    assert got["margin"] == pytest.approx(mine, rel=1e-9, abs=1e-12)
+    best = float(_margins(fits, limits, _box_sample(fits, 20000, np.random.default_rng(seed)), data).max())
+    return got, mine, best, bool(_inside(fits, limits, at)[0])
+
+
 @pytest.mark.parametrize("case", ["default-limits", "tight-limits", "impossible-limits"])
 def test_deepest_setting_inside_the_limits_beats_a_dense_random_search(page2, case):
     # the button moves the profiler to the setting with the largest smallest margin to the
@@ -264,26 +283,15 @@ def test_deepest_setting_inside_the_limits_beats_a_dense_random_search(page2, ca
     # (1e-9) and at least the best of 20 000 random settings of the box (an independent route)
     page, log, _, fits = page2
     page.click('[data-jump="center"]')
-    page.evaluate("""() => JSON.parse(document.getElementById('rsm-data').textContent).models.forEach(m => {
-        document.querySelector(`[data-limit-low="${m.response}"]`).value = m.limits[0] === null ? '' : String(m.limits[0]);
-        document.querySelector(`[data-limit-high="${m.response}"]`).value = m.limits[1] === null ? '' : String(m.limits[1]);
-    })""")
+    _reset_limits(page)
     if case == "tight-limits":  # a small region where both responses are inside
         page.fill('[data-limit-high="tcr_c_per_min"]', "0.026")
         page.fill('[data-limit-low="tcr_c_per_min"]', "0.024")
     elif case == "impossible-limits":  # below the smallest κ the model predicts in the box
         page.fill('[data-limit-high="tcr_c_per_min"]', "0.0")
-    got = page.evaluate(DEEPEST)
-    state = page.evaluate(READ)
-    limits = _limits(page)
-    at = pd.DataFrame({k: [v] for k, v in state["setting"].items()})
-    data = table4_with_wear()
-    mine = float(_margins(fits, limits, at, data)[0])
-    assert got["margin"] == pytest.approx(mine, rel=1e-9, abs=1e-12)
-    sample = _box_sample(fits, 20000, np.random.default_rng(11))
-    best = float(_margins(fits, limits, sample, data).max())
+    got, mine, best, inside = _deepest_against_random(page, fits, table4_with_wear(), seed=11)
     assert mine >= best - 1e-12, (mine, best)
-    assert bool(_inside(fits, limits, at)[0]) == (mine >= 0)
+    assert inside == (mine >= 0)
     if case == "impossible-limits":
         assert mine < 0 and got["readout"].startswith("No setting meets every limit")
     else:
@@ -545,13 +553,6 @@ def test_deepest_setting_searches_every_level(categoric_page):
     page, log, _, fits = categoric_page
     page.fill('[data-limit-low="tcr_c_per_min"]', "0.03")
     page.fill('[data-limit-high="tcr_c_per_min"]', "0.034")
-    got = page.evaluate(DEEPEST)
-    state = page.evaluate(READ)
-    limits = _limits(page)
-    at = pd.DataFrame({k: [v] for k, v in state["setting"].items()})
-    data = categoric_data()
-    mine = float(_margins(fits, limits, at, data)[0])
-    assert got["margin"] == pytest.approx(mine, rel=1e-9, abs=1e-12)
-    best = float(_margins(fits, limits, _box_sample(fits, 20000, np.random.default_rng(12)), data).max())
-    assert mine >= best - 1e-12 and mine > 0, (mine, best)
+    got, mine, best, inside = _deepest_against_random(page, fits, categoric_data(), seed=12)
+    assert mine >= best - 1e-12 and mine > 0 and inside, (mine, best)
     assert log["errors"] == []
