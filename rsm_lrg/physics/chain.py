@@ -196,6 +196,18 @@ def _peak_deflections(p: LRGParams, thicknesses):
     return np.atleast_1d(np.asarray(cm.peak_deflection_m, dtype=float))
 
 
+def _check_geometry(p: LRGParams) -> None:
+    """The checks :func:`rsm_lrg.simulate` makes of every run, for one parameter set: the
+    carriage stays on the rail, a leaf is thinner than it is long."""
+    room = p.rail_length_m - p.block_length_m
+    if p.stroke_m > room:
+        raise ValueError(f"stroke_m = {p.stroke_m:g} m: the carriage must stay on the rail: stroke_m <= "
+                         f"rail_length_m - block_length_m = {room:g} m")
+    if p.hinge_thickness_m >= p.hinge_length_m:
+        raise ValueError(f"hinge_thickness_m = {p.hinge_thickness_m:g} m: a leaf hinge must be thinner than its "
+                         f"length (hinge_length_m = {p.hinge_length_m:g} m)")
+
+
 def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
                   thicknesses=TABLE3_THICKNESSES_M, **overrides) -> PhysicsResult:
     """Run the chain for ``params`` (default: the shipped defaults) with ``overrides``.
@@ -222,6 +234,7 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
     hinge width and length.
     """
     p = (params or LRGParams()).with_overrides(**overrides) if overrides else (params or LRGParams())
+    _check_geometry(p)
     load = float(hinge.normal_load(p.preload_n, p.stage_mass_kg, p.gravity_m_s2))
     fmax = float(p.mu_s * load)
     q = float(heat.friction_heat(p.mu_k, load, p.velocity_m_s, p.thermal_equivalent_j_per_cal,

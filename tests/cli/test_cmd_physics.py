@@ -83,3 +83,18 @@ def test_no_static_friction_has_no_thickness_for_the_paper_ratio():
     # (Eq. 14), f = 5.2094 N, l = 0.02 m, w = 0.01 m, E = 211 GPa, n = 4: 5.4323e-5 m (hand, rel 1e-4)
     d = physics_chain(thermal=False).details
     assert d["thickness_for_paper_ratio_m"] == pytest.approx(5.4323e-5, rel=1e-4)
+
+
+def test_physics_refuses_geometry_that_simulate_refuses(capsys):
+    # the same checks as simulate's (surrogate.design_input): the carriage stays on the rail
+    # (stroke <= 0.4 m rail - 0.0644 m block = 0.3356 m, data/lrg_shs15v.toml), a leaf is
+    # thinner than its 20 mm length
+    from rsm_lrg.cli import main
+
+    assert main(["physics", "--no-thermal", "--param", "stroke_m=0.3356"]) == 0
+    capsys.readouterr()
+    assert main(["physics", "--no-thermal", "--param", "stroke_m=0.34"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: stroke_m = 0.34 m: the carriage must stay on the rail") and "\n" not in err
+    assert main(["physics", "--no-thermal", "--param", "hinge_thickness_m=0.02"]) == 2
+    assert "a leaf hinge must be thinner than its length" in capsys.readouterr().err
