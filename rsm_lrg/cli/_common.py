@@ -454,6 +454,15 @@ class ResponseValue(argparse.Action):
         setattr(namespace, self.dest, items)
 
 
+def check_distinct_responses(responses) -> None:
+    """Each ``--response`` once: a repeated one is an error naming it."""
+    seen = set()
+    for r in responses:
+        if r in seen:
+            raise InputError(f"--response: each response may be given once ({quote_user_value(r)} is given twice)")
+        seen.add(r)
+
+
 def per_response_values(items, n: int, option: str) -> list:
     """The values of a :class:`ResponseValue` option for ``n`` responses (None where not given).
 

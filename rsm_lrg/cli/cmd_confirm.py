@@ -6,7 +6,6 @@ import argparse
 
 from ._common import (
     about_file,
-    accept_negative_values,
     add_block_option,
     add_data_response,
     add_factor_options,
@@ -45,7 +44,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_block_option(parser, "prediction for the average block")
     add_model_option(parser)
     add_model_refinements(parser)
-    accept_negative_values(parser)
     add_json(parser)
     add_force(parser)
 

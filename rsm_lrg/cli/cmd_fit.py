@@ -6,7 +6,6 @@ import argparse
 
 from ._common import (
     about_file,
-    accept_negative_values,
     add_boxcox_rule_option,
     add_force,
     add_json,
@@ -30,7 +29,6 @@ DESCRIPTION = (
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_model_inputs(parser)
     add_model_refinements(parser)
-    accept_negative_values(parser)
     parser.add_argument("--diagnostics", action="store_true",
                         help="also print per-run diagnostics and the Box-Cox recommendation (JSON key 'diagnostics')")
     add_boxcox_rule_option(parser)

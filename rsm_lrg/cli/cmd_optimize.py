@@ -8,7 +8,6 @@ import contextlib
 from ._common import (
     ResponseGroup,
     about_file,
-    accept_negative_values,
     add_block_option,
     add_factor_options,
     add_force,
@@ -50,7 +49,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(repeatable; with several responses the desirability optimum satisfies them)")
     add_block_option(parser, "optimum for the average block")
     add_model_refinements(parser, per_response=True, model=True)
-    accept_negative_values(parser)
     add_json(parser)
     add_force(parser)
 
@@ -129,6 +127,7 @@ def _multi(args) -> int:
     from ..optimize.desirability import optimize_desirability, parse_response_goal
     from ._common import (
         about_response,
+        check_distinct_responses,
         fit_model,
         model_label,
         per_response_values,
@@ -138,11 +137,7 @@ def _multi(args) -> int:
     )
 
     n = len(args.response)
-    if len(set(args.response)) != n:
-        from ..io import quote_user_value
-
-        dup = next(r for i, r in enumerate(args.response) if r in args.response[:i])
-        raise ValueError(f"--response: each response may be given once ({quote_user_value(dup)} is given twice)")
+    check_distinct_responses(args.response)
     goals = per_response_values(args.goal, n, "--goal")
     weights = per_response_values(args.weight, n, "--weight")
     imps = per_response_values(args.importance, n, "--importance")

@@ -7,7 +7,6 @@ import argparse
 from ._common import (
     ResponseGroup,
     about_file,
-    accept_negative_values,
     add_block_option,
     add_factor_options,
     add_force,
@@ -41,7 +40,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_block_option(parser)
     add_model_refinements(parser, per_response=True, model=True)
-    accept_negative_values(parser)
     add_goal_options(parser,
                      goal_help="goal of the response it follows (several listed together: in --response order; "
                                "default minimize, as in the paper)",
@@ -76,7 +74,14 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..io import InputError, read_table
-    from ._common import about_response, check_transform_option, fit_model, per_response_values, response_options
+    from ._common import (
+        about_response,
+        check_distinct_responses,
+        check_transform_option,
+        fit_model,
+        per_response_values,
+        response_options,
+    )
 
     out = Path(args.output)
     if out.exists() and not args.force:  # before the fit and the figures
@@ -85,8 +90,7 @@ def run(args: argparse.Namespace) -> int:
 
     responses = list(args.response)
     n = len(responses)
-    if len(set(responses)) != n:
-        raise InputError("--response: each response may be given once")
+    check_distinct_responses(responses)
     goals = [g or "minimize" for g in per_response_values(args.goal, n, "--goal")]
     for g in goals:
         try:  # a bad --goal is named before any data is read
