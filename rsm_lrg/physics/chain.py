@@ -199,13 +199,13 @@ def _peak_deflections(p: LRGParams, thicknesses):
 def _check_geometry(p: LRGParams) -> None:
     """The checks :func:`rsm_lrg.simulate` makes of every run, for one parameter set: the
     carriage stays on the rail, a leaf is thinner than it is long."""
-    room = p.rail_length_m - p.block_length_m
-    if p.stroke_m > room:
-        raise ValueError(f"stroke_m = {p.stroke_m:g} m: the carriage must stay on the rail: stroke_m <= "
-                         f"rail_length_m - block_length_m = {room:g} m")
-    if p.hinge_thickness_m >= p.hinge_length_m:
-        raise ValueError(f"hinge_thickness_m = {p.hinge_thickness_m:g} m: a leaf hinge must be thinner than its "
-                         f"length (hinge_length_m = {p.hinge_length_m:g} m)")
+    from .params import LEAF_TOO_THICK, OFF_THE_RAIL, leaf_too_thick, off_the_rail
+
+    if off_the_rail(p.stroke_m, p.rail_length_m, p.block_length_m):
+        raise ValueError(f"stroke_m = {p.stroke_m:g} m: {OFF_THE_RAIL} = {p.rail_length_m - p.block_length_m:g} m")
+    if leaf_too_thick(p.hinge_thickness_m, p.hinge_length_m):
+        raise ValueError(f"hinge_thickness_m = {p.hinge_thickness_m:g} m, hinge_length_m = {p.hinge_length_m:g} m: "
+                         f"{LEAF_TOO_THICK}")
 
 
 def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,

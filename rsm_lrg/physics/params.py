@@ -319,6 +319,22 @@ def _coerce(name: str, value: Any) -> Any:
     return x
 
 
+#: The geometry a run must have, as the rules are printed in an error.
+OFF_THE_RAIL = "the carriage must stay on the rail: stroke <= rail_length_m - block_length_m"
+LEAF_TOO_THICK = "a leaf hinge must be thinner than its length (hinge_length_m)"
+
+
+def off_the_rail(stroke_m, rail_length_m, block_length_m):
+    """Where a stroke would take the carriage off the rail [bool, broadcast]: ``stroke_m >
+    rail_length_m - block_length_m`` (every length in m)."""
+    return np.asarray(stroke_m, dtype=float) > np.asarray(rail_length_m, dtype=float) - np.asarray(block_length_m, dtype=float)
+
+
+def leaf_too_thick(thickness_m, hinge_length_m):
+    """Where a leaf is not thinner than it is long [bool, broadcast] (Eq. 1 is a thin-beam law)."""
+    return np.asarray(thickness_m, dtype=float) >= np.asarray(hinge_length_m, dtype=float)
+
+
 def check_values(name: str, values) -> None:
     """Validate a scalar or a whole column of values of parameter ``name``.
 

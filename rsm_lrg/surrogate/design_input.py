@@ -139,7 +139,15 @@ def read_design_arrays(df, params=None) -> DesignArrays:
     """
     import pandas as pd
 
-    from ..physics.params import LRGParams, check_values, param_names
+    from ..physics.params import (
+        LEAF_TOO_THICK,
+        OFF_THE_RAIL,
+        LRGParams,
+        check_values,
+        leaf_too_thick,
+        off_the_rail,
+        param_names,
+    )
 
     if not isinstance(df, pd.DataFrame):
         raise TypeError(f"the design must be a pandas DataFrame, not {type(df).__name__}")
@@ -226,16 +234,14 @@ def read_design_arrays(df, params=None) -> DesignArrays:
     if bad.any():
         raise _bad_row("thickness_m", df["thickness_m"].tolist(), bad, "must be > 0")
     length = columns.get("hinge_length_m", np.full(n, p.hinge_length_m))
-    bad = ~rigid & (yv >= length)
+    bad = ~rigid & leaf_too_thick(yv, length)
     if bad.any():
-        raise _bad_row("thickness_m", df["thickness_m"].tolist(), bad,
-                       "a leaf hinge must be thinner than its length (hinge_length_m)")
+        raise _bad_row("thickness_m", df["thickness_m"].tolist(), bad, LEAF_TOO_THICK)
     rail = columns.get("rail_length_m", np.full(n, p.rail_length_m))
     block = columns.get("block_length_m", np.full(n, p.block_length_m))
-    bad = columns["stroke_m"] > rail - block
+    bad = off_the_rail(columns["stroke_m"], rail, block)
     if bad.any():
-        raise _bad_row("stroke_m", df["stroke_m"].tolist(), bad,
-                       "the carriage must stay on the rail: stroke <= rail_length_m - block_length_m")
+        raise _bad_row("stroke_m", df["stroke_m"].tolist(), bad, OFF_THE_RAIL)
     if "test_duration_min" in columns:
         bad = columns["test_duration_min"] < 1.0
         if bad.any():
