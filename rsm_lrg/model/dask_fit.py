@@ -282,15 +282,11 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
 
     from ..factors import FactorSpace
     from .anova import PureError
+    from .data import check_response_block
     from .fit import _assemble, _check_magnitudes, _chosen_terms
     from .terms import check_model_size, column_names, model_terms
 
-    if response not in ddf.columns:
-        raise ValueError(f"response column {response!r} not found (columns: {', '.join(map(str, ddf.columns))})")
-    if block is not None and block not in ddf.columns:
-        raise ValueError(f"block column {block!r} not found (columns: {', '.join(map(str, ddf.columns))})")
-    if block is not None and block == response:
-        raise ValueError(f"column {response!r} cannot be both the response and the block")
+    check_response_block(ddf, response, block)
     if not pd.api.types.is_numeric_dtype(ddf.dtypes[response]):
         raise ValueError(f"response column {response!r} is not numeric")
     numeric = [c for c in ddf.columns if pd.api.types.is_numeric_dtype(ddf.dtypes[c])

@@ -106,6 +106,16 @@ def _rows(rows) -> str:
     return shown + (f" and {len(rows) - _ROW_LIMIT} more" if len(rows) > _ROW_LIMIT else "")
 
 
+def check_response_block(data, response: str, block: str | None) -> None:
+    """The response and block columns are in ``data`` (a pandas or Dask DataFrame) and differ."""
+    if response not in data.columns:
+        raise ValueError(f"response column {quote_value(str(response))} not found (columns: {_columns(data)})")
+    if block is not None and block not in data.columns:
+        raise ValueError(f"block column {quote_value(str(block))} not found (columns: {_columns(data)})")
+    if block is not None and block == response:
+        raise ValueError(f"column {quote_value(str(response))} cannot be both the response and the block")
+
+
 def prepare(data, response: str, factors=None, block: str | None = None) -> PreparedData:
     """Check the columns, choose the factors and leave out the runs without a response.
 
@@ -135,12 +145,7 @@ def prepare(data, response: str, factors=None, block: str | None = None) -> Prep
 
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
-    if response not in data.columns:
-        raise ValueError(f"response column {quote_value(str(response))} not found (columns: {_columns(data)})")
-    if block is not None and block not in data.columns:
-        raise ValueError(f"block column {quote_value(str(block))} not found (columns: {_columns(data)})")
-    if block is not None and block == response:
-        raise ValueError(f"column {quote_value(str(response))} cannot be both the response and the block")
+    check_response_block(data, response, block)
     exclude = [response] + ([block] if block is not None else [])
     choice = choose_factors(data, factors, exclude=exclude)
     for f in choice.space.factors:  # every row, the runs left out too: errors name the input row
