@@ -24,13 +24,14 @@ import contextlib
 import contextvars
 import math
 import os
+import re
 import sys
 from pathlib import Path
 from typing import Any
 
 __all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "check_output",
            "output_transaction", "read_table", "read_toml", "toml_value", "write_output", "dump_json",
-           "to_jsonable", "numeric_column"]
+           "to_jsonable", "numeric_column", "float_column", "is_empty_cell", "cell_error", "COMMA_NUMBER"]
 
 
 class InputError(ValueError):
@@ -259,14 +260,47 @@ def toml_value(x: Any) -> str:
     return '"' + "".join(out) + '"'
 
 
+#: A number written with a comma (``1,234`` or ``0,5``): ambiguous, refused with a hint.
+COMMA_NUMBER = re.compile(r"^\s*[+-]?(\d{1,3}(,\d{3})+(\.\d*)?|\d*,\d+)\s*$")
+
+
+def is_empty_cell(raw) -> bool:
+    """An empty cell: None, NaN, blank text, pandas' NA or NaT."""
+    return raw is None or (isinstance(raw, float) and math.isnan(raw)) or str(raw).strip() == "" \
+        or type(raw).__name__ in ("NAType", "NaTType")
+
+
+def cell_error(name: str, row: int, raw) -> ValueError:
+    """The error for one bad cell (row is 1-based): empty, a comma number, or not a number."""
+    where = f"column {quote_user_value(name)}, row {row}"
+    if is_empty_cell(raw):
+        return ValueError(f"{where}: is empty")
+    if isinstance(raw, str) and COMMA_NUMBER.match(raw):
+        return ValueError(f"{where}: holds {quote_user_value(raw.strip())}, a number with a comma (a thousands "
+                          "separator or a decimal comma is ambiguous); write it with a decimal point and no commas")
+    return ValueError(f"{where}: holds {quote_user_value(raw)}, not a finite number")
+
+
+def float_column(data, name: str):
+    """The column ``name`` as floats, or a ValueError naming the first bad row (1-based)."""
+    import numpy as np
+    import pandas as pd
+
+    col = data[name]
+    num = pd.to_numeric(col, errors="coerce")
+    bad = num.isna() | ~np.isfinite(num.to_numpy(dtype=float, na_value=np.nan))
+    if bad.any():
+        i = int(np.flatnonzero(bad.to_numpy())[0])
+        raise cell_error(name, i + 1, col.iloc[i])
+    return num.astype(float)
+
+
 def numeric_column(df, name: str, where: str = ""):
     """Column ``name`` of ``df`` as float, or InputError naming the first bad row (1-based)."""
-    from .factors import _numeric
-
     if name not in df.columns:
         raise InputError(f"{where}column {name!r} not found (columns: {', '.join(map(str, df.columns))})")
     try:
-        return _numeric(df, name)
+        return float_column(df, name)
     except ValueError as exc:
         raise InputError(f"{where}{exc}") from None
 

@@ -23,17 +23,10 @@ from typing import Any
 
 import numpy as np
 
-from ..factors import (
-    BOOKKEEPING,
-    CategoricFactor,
-    Factor,
-    FactorSpace,
-    _design_factors,
-    _given_items,
-    _numeric,
-    letters_for,
-    level_text,
-)
+from ..factors import CategoricFactor, Factor, FactorSpace, letters_for, level_text
+from ..factors.columns import BOOKKEEPING, design_factors
+from ..factors.spec import given_items
+from ..io import float_column, is_empty_cell
 
 __all__ = [
     "Design",
@@ -86,7 +79,7 @@ def as_factor_space(factors: Any) -> FactorSpace:
                 "factors must be a FactorSpace, a mapping {name: (low, high)} or a list of "
                 f"'NAME=LOW:HIGH' strings, not {type(factors).__name__}"
             ) from None
-    return FactorSpace.from_items(_given_items(factors, need_levels=True))
+    return FactorSpace.from_items(given_items(factors, need_levels=True))
 
 
 def numeric_part(space: FactorSpace) -> tuple[FactorSpace, int]:
@@ -489,7 +482,7 @@ class Design:
         if run_order is None:
             ro = np.arange(1, len(data) + 1)
         else:
-            ro = _numeric(data, run_order).to_numpy()
+            ro = float_column(data, run_order).to_numpy()
             if not np.all(ro == np.round(ro)):
                 raise ValueError(f"column {run_order!r} must hold whole numbers")
             ro = ro.astype(int)
@@ -546,13 +539,13 @@ class Design:
                 if _is_text_column(df[cc]):
                     built.append(_categoric_pair(df, cc, name, L, std_rank))
                 else:
-                    lo_hi = _levels_from_pairs(_numeric(df, cc).to_numpy(), _numeric(df, name).to_numpy(), cc, name)
+                    lo_hi = _levels_from_pairs(float_column(df, cc).to_numpy(), float_column(df, name).to_numpy(), cc, name)
                     built.append(Factor(name, *lo_hi, L))
         except ValueError as exc:
             # the actual columns moved (or others put between them): pair by values, as fit
             # does (rsm_lrg.factors.choose_factors), or report the positional problem
             try:
-                found, _ = _design_factors(df, coded_cols, set())
+                found, _ = design_factors(df, coded_cols, set())
             except ValueError:
                 raise exc from None
             built = []
@@ -560,7 +553,7 @@ class Design:
                 if len(item) == 2:
                     built.append(CategoricFactor(item[0], item[1], L))
                 else:
-                    _numeric(df, item[0])
+                    float_column(df, item[0])
                     built.append(Factor(item[0], item[1], item[2], L))
         space = FactorSpace(tuple(built))
         coded_all = []
@@ -568,14 +561,14 @@ class Design:
             if f.kind == "categoric":
                 coded_all.append(f.encode(df[f.name].to_numpy(dtype=object)))
             else:
-                coded_all.append(_numeric(df, cc).to_numpy())
+                coded_all.append(float_column(df, cc).to_numpy())
         coded = np.column_stack(coded_all)
         n = len(df)
 
         def _order(col):
             if col not in cols:
                 return np.arange(1, n + 1)
-            v = _numeric(df, col).to_numpy()
+            v = float_column(df, col).to_numpy()
             if not np.all(v == np.round(v)):
                 raise ValueError(f"column {col!r} must hold whole numbers")
             return v.astype(int)
@@ -598,10 +591,8 @@ def _is_text_column(col) -> bool:
 def _categoric_pair(df, ccol: str, xcol: str, letter: str, std_rank) -> CategoricFactor:
     """A categoric factor from its coded column (the level as text) and its actual column
     (the same text on every row); levels in order of first appearance in standard order."""
-    from ..factors import _is_empty
-
-    c = [None if _is_empty(v) else level_text(v) for v in df[ccol].tolist()]
-    x = [None if _is_empty(v) else level_text(v) for v in df[xcol].tolist()]
+    c = [None if is_empty_cell(v) else level_text(v) for v in df[ccol].tolist()]
+    x = [None if is_empty_cell(v) else level_text(v) for v in df[xcol].tolist()]
     for i, (u, v) in enumerate(zip(c, x)):
         if u is None or v is None:
             raise ValueError(f"row {i + 1}: {ccol if u is None else xcol} is empty")

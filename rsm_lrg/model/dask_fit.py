@@ -51,13 +51,13 @@ def _first_seen(pdf, cols) -> dict:
     of one partition."""
     import pandas as pd
 
-    from ..factors import _is_empty
+    from ..io import is_empty_cell
 
     out = {}
     for c in cols:
         vals = pd.unique(pdf[c].to_numpy(dtype=object))
-        empty = [v for v in vals if _is_empty(v)]
-        out[c] = ([v for v in vals if not _is_empty(v)][:_MAX_LEVELS + 1], bool(empty))
+        empty = [v for v in vals if is_empty_cell(v)]
+        out[c] = ([v for v in vals if not is_empty_cell(v)][:_MAX_LEVELS + 1], bool(empty))
     return out
 
 
@@ -85,13 +85,14 @@ def _merge_seen(parts: list) -> dict:
 def _categoric_names(factors) -> list[str]:
     """Columns named as categoric factors (``NAME=cat``, a list of levels, a FactorSpace's
     categoric factors)."""
-    from ..factors import FactorSpace, _given_items
+    from ..factors import FactorSpace
+    from ..factors.spec import given_items
 
     if factors is None:
         return []
     if isinstance(factors, FactorSpace):
         return [f.name for f in factors.factors if f.kind == "categoric"]
-    return [it[1] for it in _given_items(factors) if it[0] == "categoric"]
+    return [it[1] for it in given_items(factors) if it[0] == "categoric"]
 
 
 def _stand_in(numeric: list[str], lo, hi, seen: dict):

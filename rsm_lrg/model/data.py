@@ -27,7 +27,9 @@ from typing import Any
 
 import numpy as np
 
-from ..factors import FactorChoice, FactorSpace, _bad_cell, _encode_column, _numeric, choose_factors, quote_value
+from ..factors import FactorChoice, FactorSpace, choose_factors, quote_value
+from ..factors.space import encode_column
+from ..io import cell_error, float_column
 
 __all__ = ["PreparedData", "prepare", "response_values"]
 
@@ -96,7 +98,7 @@ def response_values(data, response: str) -> tuple[np.ndarray, np.ndarray]:
     bad = ~empty & ~np.isfinite(num)
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        raise _bad_cell(response, i + 1, col.iloc[i])
+        raise cell_error(response, i + 1, col.iloc[i])
     y = np.where(empty, np.nan, num)
     return y, empty
 
@@ -149,7 +151,7 @@ def prepare(data, response: str, factors=None, block: str | None = None) -> Prep
     exclude = [response] + ([block] if block is not None else [])
     choice = choose_factors(data, factors, exclude=exclude)
     for f in choice.space.factors:  # every row, the runs left out too: errors name the input row
-        _numeric(data, f.name) if f.kind == "numeric" else _encode_column(data, f)
+        float_column(data, f.name) if f.kind == "numeric" else encode_column(data, f)
     if block is not None:
         empty_b = np.flatnonzero(_empty_cells(data[block]))
         if empty_b.size:

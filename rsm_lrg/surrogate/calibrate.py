@@ -364,9 +364,9 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
         raise ValueError(f"column {quote_user_value(str(response))} not found (columns: {shown}{more})")
     if response not in OUTPUT_COLUMNS:
         raise ValueError(f"the surrogate does not produce {response!r}; choose one of {', '.join(OUTPUT_COLUMNS)}")
-    from ..factors import _numeric
+    from ..io import float_column
 
-    obs = _numeric(data, response).to_numpy()
+    obs = float_column(data, response).to_numpy()
     n = obs.size
     if n <= len(specs) + 1:
         k = len(specs)

@@ -1,0 +1,120 @@
+"""Factor choice: the factors of a data frame with notes on what was inferred and what is
+left out (:func:`choose_factors`, :class:`FactorChoice`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from typing import Any
+
+from .columns import COLUMNS_LEFT_OUT, Note, infer_items, is_bookkeeping
+from .space import FactorSpace, inferred_space
+from .values import name_list
+
+__all__ = ["FactorChoice", "choose_factors"]
+
+
+@dataclass(frozen=True)
+class FactorChoice:
+    """Which columns are the factors, and what was left out (see :func:`choose_factors`).
+
+    Attributes
+    ----------
+    space : FactorSpace
+        The factors with their coding.
+    how : {"given", "design", "numeric"}
+        Factors as given; inferred from a design's coded columns; inferred as the
+        numeric columns.
+    coded_columns : tuple of str
+        With ``how == "design"``: the coded column of each factor (``coded_A`` ...).
+    unused : tuple of str
+        Columns that are neither a factor, excluded (response, block) nor bookkeeping.
+    text_columns : tuple of str
+        The non-numeric columns among ``unused``.
+    notes : tuple of str
+        Sentences for the user: which columns are the factors (when inferred) and which
+        columns are left out.
+    """
+
+    space: FactorSpace
+    how: str
+    coded_columns: tuple = ()
+    unused: tuple = ()
+    text_columns: tuple = ()
+    notes: tuple = ()
+
+    @property
+    def inferred(self) -> bool:
+        """True when the factors were not given."""
+        return self.how != "given"
+
+    def hint(self) -> str:
+        """A clause naming the inferred factors and suggesting ``--factor`` (empty when given)."""
+        if not self.inferred:
+            return ""
+        listed = name_list([f"{f.letter} {f.name}" for f in self.space.factors])
+        return f"; the factors were taken to be {listed}: if that is wrong, name them with --factor NAME"
+
+
+def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) -> FactorChoice:
+    """The factors of a data frame, inferred when not given, with notes on what is left out.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+    factors : None, sequence or FactorSpace
+        ``None`` infers the factors:
+
+        * data carrying a design's coded columns (``coded_`` and a letter: ``coded_A``,
+          ``coded_B``, ...; a design CSV, or a file made from one such as ``simulate``'s
+          output): one factor per coded column, the numeric column that is a rising linear map of it (``x = centre +
+          half_range * coded`` on every row; the columns right after the coded ones are
+          tried first, so column order settles a tie), coded as the design codes it
+          (the actual values at coded -1 and +1, so axial points stay at ±alpha);
+        * otherwise every numeric column that is not excluded and not bookkeeping
+          (``run``, ``order``, ``std``, ``std_order``, ``run_order``, ``block``),
+          coded from its observed minimum and maximum.
+
+        Otherwise as for :meth:`FactorSpace.from_data`.
+    exclude : iterable of str
+        The response and block columns: never factors, never listed as unused.
+
+    Returns
+    -------
+    FactorChoice
+    """
+    import pandas as pd
+
+    exclude = set(exclude)
+    cols = list(data.columns)
+    if isinstance(factors, FactorSpace):
+        factors.require_columns(data)
+        how, space, coded_used = "given", factors, []
+    else:
+        how, items, coded_used = infer_items(data, factors, exclude)
+        space = inferred_space(how, items)
+    used = set(space.names) | exclude
+    unused = [c for c in cols if c not in used and not is_bookkeeping(c)]
+    text = [c for c in unused if not pd.api.types.is_numeric_dtype(data[c])]
+    notes = []
+    if how == "design":
+        pairs = [f"{f.letter} {f.name} ({cc})" for f, cc in zip(space.factors, coded_used)]
+        notes.append(f"Factors taken from the design's coded columns: {name_list(pairs)}; coded as the design codes "
+                     "them (name other factors with --factor).")
+    elif how == "numeric":
+        notes.append(f"Factors taken to be the numeric columns: {name_list([f'{f.letter} {f.name}' for f in space])} "
+                     "(name other factors with --factor).")
+    numeric_unused = [c for c in unused if c not in text]
+    if numeric_unused:
+        notes.append(Note(f"Numeric column{'s' if len(numeric_unused) > 1 else ''} left out (not a factor, response "
+                          f"or block): {name_list(numeric_unused)}.", COLUMNS_LEFT_OUT))
+    blocks = [c for c in numeric_unused if str(c).lower() == "block"]
+    if blocks:
+        notes.append(f"Column {blocks[0]} looks like a design's block column; give --block {blocks[0]} to fit "
+                     "block effects.")
+    if text:
+        notes.append(Note(f"Text column{'s' if len(text) > 1 else ''} left out (not a factor, response or block): "
+                          f"{name_list(text)}.", COLUMNS_LEFT_OUT))
+    return FactorChoice(space=space, how=how, coded_columns=tuple(coded_used), unused=tuple(unused),
+                        text_columns=tuple(text), notes=tuple(notes))
