@@ -8,8 +8,7 @@ report of a fit; :func:`notebook_html`: the small, figure-free notebook face), `
 profiler, overlay plot and live surfaces of one or several responses; :func:`profiler`: that
 page in a notebook) and
 ``reproduction_page`` (the terminal table and HTML page of the paper reproduction, which
-:mod:`rsm_lrg.paper` computes; ``reproduce`` is a deprecated alias of that module and is
-not imported here, so the report layer never loads the paper layer).
+:mod:`rsm_lrg.paper` computes; the report layer never imports the paper layer).
 
 >>> from rsm_lrg.report import SECTION_IDS
 >>> SECTION_IDS[:3]

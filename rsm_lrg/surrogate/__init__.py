@@ -9,7 +9,8 @@ A design goes in, one row of responses per run comes out, as if the rig of Su, Z
 - :mod:`.noise`: per-row random streams for the thermocouple reading noise;
 - :mod:`.design_input`: reading and checking a design;
 - :mod:`.calibrate`: the calibrated parameters (``data/calibration.toml``), bounded least
-  squares and leave-one-out cross-validation.
+  squares and leave-one-out cross-validation;
+- :mod:`.progress`: the progress bar on stderr both of them show.
 """
 
 from .calibrate import Calibration, ParameterEstimate, calibrate, load_calibration

@@ -414,9 +414,9 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
         m = int(grid_points) if grid_points is not None else (13 if len(stage_idx) == 1 else 7)
         axes = [np.geomspace(lo[i], hi[i], m) if lo[i] > 0 else np.linspace(lo[i], hi[i], m) for i in stage_idx]
         grid = list(itertools.product(*axes))
-    from .execute import _progress_bar
+    from .progress import progress_bar
 
-    bar = _progress_bar(len(grid) + 1 + (n if loo else 0), bool(progress), desc="calibration fits", unit="fit")
+    bar = progress_bar(len(grid) + 1 + (n if loo else 0), bool(progress), desc="calibration fits", unit="fit")
     try:
         cal = _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar,
                                arrays, p, duration_min, response, source, data_sha256, evaluate_rows)

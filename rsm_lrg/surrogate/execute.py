@@ -13,13 +13,13 @@ number of workers or the executor.
 from __future__ import annotations
 
 import math
-import sys
 from concurrent.futures import Executor, as_completed
 
 import numpy as np
 
 from .design_input import EXTRA_OUTPUT_COLUMNS, OUTPUT_COLUMNS, read_design_arrays
 from .noise import resolve_seed
+from .progress import progress_bar
 
 __all__ = ["simulate", "DEFAULT_NOISE_SD", "DEFAULT_BATCH_ROWS", "MAX_NOISE_SD"]
 
@@ -140,7 +140,7 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
         raise ValueError(f"batch_rows must be a positive integer, got {batch_rows!r}")
     starts = list(range(0, n, int(batch_rows)))
     show = (n >= PROGRESS_MIN_ROWS) if progress is None else bool(progress)
-    bar = _progress_bar(n, show)
+    bar = progress_bar(n, show)
     pieces = {}
     cal_dict = cal.parameter_values() if cal is not None else {}
     try:
@@ -216,21 +216,3 @@ def _executor_workers(executor) -> int:
         except Exception:  # noqa: BLE001 - only a sizing hint
             return 2
     return 2
-
-
-class _NoBar:
-    def update(self, n):
-        pass
-
-    def close(self):
-        pass
-
-
-def _progress_bar(total: int, show: bool, desc: str = "virtual runs", unit: str = "run"):
-    if not show:
-        return _NoBar()
-    try:
-        from tqdm import tqdm
-    except ImportError:  # tqdm is in the 'parallel' extra
-        return _NoBar()
-    return tqdm(total=total, unit=unit, desc=desc, file=sys.stderr, dynamic_ncols=True)

@@ -93,7 +93,7 @@ def test_harness_sees_what_it_must_forbid(visit, tmp_path):
 
 @pytest.mark.slow
 def test_paper_reproduction_page_renders_offline(visit, tmp_path):
-    from rsm_lrg.report.reproduce import reproduce, write_reproduction
+    from rsm_lrg.paper import reproduce, write_reproduction
 
     rep = reproduce()
     page = write_reproduction(rep, tmp_path / "reports")
@@ -169,7 +169,7 @@ def test_table4_report_reads_well_at_1280px(visit, reports):
 
 @pytest.mark.slow
 def test_paper_reproduction_page_reads_well_at_1280px(visit, tmp_path):
-    from rsm_lrg.report.reproduce import reproduce, write_reproduction
+    from rsm_lrg.paper import reproduce, write_reproduction
 
     rep = reproduce()
     page = write_reproduction(rep, tmp_path / "reports")

@@ -100,21 +100,16 @@ def test_text_and_frame(rep):
     assert d["ok"] is True and sum(d["counts"].values()) == len(rep.rows)
 
 
-def test_old_import_path_still_works():
-    # the reproduction moved from rsm_lrg.report.reproduce to rsm_lrg.paper (issue 11); the
-    # old module is an alias of the same objects
-    import importlib
+def test_the_deprecated_report_alias_is_gone():
+    # issue 21, "the house": rsm_lrg.report.reproduce (deprecated in issue 11) imported the
+    # paper layer from the report layer below it; it is removed, the report layer imports no
+    # higher layer, and the reproduction is at rsm_lrg.paper
+    import importlib.util
 
-    import rsm_lrg.paper.reproduction as new
-    import rsm_lrg.report.reproduction_page as page
+    import rsm_lrg.paper as paper
 
-    with pytest.deprecated_call():
-        old = importlib.reload(importlib.import_module("rsm_lrg.report.reproduce"))
-
-    for name in ("reproduce", "write_reproduction", "reproduction_html", "Row", "Reproduction", "VERDICTS",
-                 "last_digit_unit", "_close", "_claim"):
-        assert getattr(old, name) is getattr(new, name)
-    assert old.banner is page.banner and old.display_number is page.display_number
+    assert importlib.util.find_spec("rsm_lrg.report.reproduce") is None
+    assert paper.reproduce.__module__ == "rsm_lrg.paper.reproduction"
 
 
 def test_thermal_row_compares_the_maximum_rise_and_shows_every_case(rep):
