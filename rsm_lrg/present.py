@@ -38,7 +38,7 @@ import re
 from numbers import Number
 
 __all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_g", "format_sci", "format_p", "format_f",
-           "format_cell", "clean_anova", "anova_rows", "unicode_number"]
+           "format_cell", "clean_anova", "anova_rows", "unicode_number", "is_missing"]
 
 #: Relative size at or below which a value is round-off and shown as 0.
 ROUND_OFF = 1e-12
@@ -49,7 +49,8 @@ DASH = "—"
 _SUPERSCRIPT = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺")
 
 
-def _missing(x) -> bool:
+def is_missing(x) -> bool:
+    """Whether ``x`` is shown as a dash: None, or a number that is not finite (NaN, ±inf)."""
     if x is None:
         return True
     if isinstance(x, Number) and not isinstance(x, bool):
@@ -66,7 +67,7 @@ def clean(x, scale):
     >>> clean(-3e-20, 1.0), clean(0.5, 1.0), clean(None, 1.0)
     (0.0, 0.5, None)
     """
-    if _missing(x) or _missing(scale):
+    if is_missing(x) or is_missing(scale):
         return x
     return 0.0 if abs(float(x)) <= ROUND_OFF * abs(float(scale)) else x
 
@@ -105,7 +106,7 @@ def format_number(x, digits: int = 4, *, style: str = "unicode", trim: bool = Tr
     """
     if style not in ("unicode", "ascii"):
         raise ValueError(f"style must be 'unicode' or 'ascii', not {style!r}")
-    if _missing(x):
+    if is_missing(x):
         return missing
     if isinstance(x, bool):
         return "yes" if x else "no"
@@ -192,7 +193,7 @@ def format_sci(x, digits: int = 3) -> str:
     >>> format_sci(0.0), format_sci(1.108e-3), format_sci(12.5)
     ('0.000', '1.11 × 10⁻³', '12.5')
     """
-    if _missing(x):
+    if is_missing(x):
         return ""
     xf = float(x)
     if xf == 0.0:
@@ -209,7 +210,7 @@ def format_f(x) -> str:
     >>> format_f(221.918), format_f(0.0822), format_f(0.00304), format_f(0.0)
     ('221.92', '0.082', '3.04 × 10⁻³', '0.00')
     """
-    if _missing(x):
+    if is_missing(x):
         return ""
     xf = float(x)
     if xf == 0.0 or abs(xf) >= 0.1:
@@ -223,7 +224,7 @@ def format_p(p, *, style: str = "unicode") -> str:
     """A p value with four decimals, ``<0.0001`` below that (Design-Expert); ``""`` if missing.
 
     ``style="ascii"`` writes ``< 0.0001`` (the CLI's text tables)."""
-    if _missing(p):
+    if is_missing(p):
         return ""
     pf = float(p)
     if pf < 1e-4:
@@ -250,11 +251,11 @@ def clean_anova(anova):
     scale = float(tot.iloc[0]) if len(tot) else float(a["sum_sq"].abs().max())
     for i in a.index:
         ss = a.at[i, "sum_sq"]
-        if clean(ss, scale) == 0.0 and not _missing(ss):
+        if clean(ss, scale) == 0.0 and not is_missing(ss):
             a.at[i, "sum_sq"] = 0.0
-            if not _missing(a.at[i, "mean_sq"]):
+            if not is_missing(a.at[i, "mean_sq"]):
                 a.at[i, "mean_sq"] = 0.0
-            if not _missing(a.at[i, "f"]):
+            if not is_missing(a.at[i, "f"]):
                 a.at[i, "f"] = 0.0
                 a.at[i, "p"] = 1.0
     return a

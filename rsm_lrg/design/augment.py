@@ -119,9 +119,17 @@ def augment(
     if method == "optimal":
         from ..terms import model_terms, n_columns
         from .constraints import Constraints
-        from .optimal import MAX_RUNS, _criterion, _pool, _Problem, check_columns, criterion_value, moment_matrix
+        from .exchange import (
+            MAX_RUNS,
+            ExchangeProblem,
+            candidate_pool,
+            check_columns,
+            check_criterion,
+            criterion_value,
+            moment_matrix,
+        )
 
-        crit = _criterion(criterion)
+        crit = check_criterion(criterion)
         terms = model_terms(space.letters, model, space.categoric or None)
         p = n_columns(terms)
         check_columns(p, model, len(space))
@@ -138,7 +146,7 @@ def augment(
         if constraints is not None and not isinstance(constraints, Constraints):
             constraints = Constraints.parse(constraints, space)
         W = moment_matrix(space, terms, constraints) if crit == "I" else None
-        pool = _pool(space, constraints, seed=int(rng.integers(2 ** 31)))
+        pool = candidate_pool(space, constraints, seed=int(rng.integers(2 ** 31)))
         b_old, b_new = _block_labels(design, order0, new_block)
         labels = np.unique(np.concatenate([b_old, [b_new]]))
         block_aware = len(labels) > 1
@@ -158,7 +166,7 @@ def augment(
             prob = _blocked_problem_class()(xspace, terms, search_crit, W, cons_x, pool)
             prob.hold_block(new_code)
         else:
-            prob = _Problem(space, terms, crit, W, constraints, pool)
+            prob = ExchangeProblem(space, terms, crit, W, constraints, pool)
         nstarts = starts or (8 if p <= 21 else 3)
         best, best_v = None, np.inf
         plan = ["greedy"] + ["coarse"] * nstarts + ["continuous"] * nstarts
@@ -210,9 +218,9 @@ def augment(
                 r[j] = sgn * a
                 star.append(r)
         star += [np.zeros(len(space)) for _ in range(int(center))]
-        from .optimal import _at_every_level
+        from .exchange import at_every_level
 
-        new = _at_every_level(np.array(star), space)
+        new = at_every_level(np.array(star), space)
         options.update(alpha=a, center_added=int(center), factorial_runs=F)
     else:
         cols = list(num)
@@ -301,9 +309,9 @@ def _with_block(space, terms, W, constraints, n_blocks: int):
 
 
 def _blocked_problem_class():
-    from .optimal import _Problem
+    from .exchange import ExchangeProblem
 
-    class _Blocked(_Problem):
+    class _Blocked(ExchangeProblem):
         """Exchange with the block coordinate held at the added runs' block."""
 
         def hold_block(self, code: float) -> None:

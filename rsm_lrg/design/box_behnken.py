@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from .core import Design, as_factor_space, cross_categoric, numeric_part
+from .core import Design, as_factor_space, check_center, cross_categoric, numeric_part
 
 __all__ = ["box_behnken", "BBD_SETS", "BBD_BLOCKS", "bbd_edge_runs"]
 
@@ -148,7 +148,7 @@ def box_behnken(
     k = numeric_part(space)[1]
     if k not in BBD_SETS:
         raise ValueError(_k_message(k))
-    center = _check_center(center)
+    center = check_center(center)
     nb = _check_blocks(blocks, k)
     edge, which = bbd_edge_runs(k)
     if nb == 1:
@@ -174,20 +174,6 @@ def box_behnken(
     coded, bstd = cross_categoric(space, coded, bstd)
     return Design.from_standard(space, "box-behnken", coded, blocks_std=bstd, seed=seed,
                                 randomize=randomize, options=options)
-
-
-def _check_center(center: Any) -> int:
-    if isinstance(center, (bool, np.bool_)):
-        raise TypeError("center must be a whole number of centre runs")
-    try:
-        c = int(center)
-    except (TypeError, ValueError):
-        raise TypeError(f"center must be a whole number of centre runs, not {center!r}") from None
-    if c != center:
-        raise ValueError(f"center must be a whole number of centre runs (got {center!r})")
-    if c < 0:
-        raise ValueError(f"the number of centre points must not be negative (got {c})")
-    return c
 
 
 def _check_blocks(blocks: Any, k: int) -> int:

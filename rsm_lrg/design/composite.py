@@ -37,8 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from .box_behnken import _check_center
-from .core import Design, as_factor_space, cross_categoric, numeric_part
+from .core import Design, as_factor_space, check_center, cross_categoric, numeric_part
 
 __all__ = ["central_composite", "ccd_alpha"]
 
@@ -111,8 +110,8 @@ def _centers(center: Any, blocked: bool) -> tuple[int, int]:
     if isinstance(center, (tuple, list)):
         if len(center) != 2:
             raise ValueError("center must be one number or a pair (cube centre runs, star centre runs)")
-        return _check_center(center[0]), _check_center(center[1])
-    c = _check_center(center)
+        return check_center(center[0]), check_center(center[1])
+    c = check_center(center)
     return (c, c) if blocked else (c, 0)
 
 

@@ -38,6 +38,7 @@ __all__ = [
     "BLOCK_COLUMN",
     "cross_categoric",
     "numeric_part",
+    "check_center",
 ]
 
 #: Prefix of the coded columns in a design CSV (``coded_A``, ``coded_B``, ...).
@@ -662,3 +663,17 @@ def read_design(path) -> Design:
     except ValueError as exc:
         raise InputError(f"{path}: {exc}") from None
 
+
+def check_center(center: Any) -> int:
+    """``center`` as a number of centre runs (a whole number >= 0), or a TypeError/ValueError."""
+    if isinstance(center, (bool, np.bool_)):
+        raise TypeError("center must be a whole number of centre runs")
+    try:
+        c = int(center)
+    except (TypeError, ValueError):
+        raise TypeError(f"center must be a whole number of centre runs, not {center!r}") from None
+    if c != center:
+        raise ValueError(f"center must be a whole number of centre runs (got {center!r})")
+    if c < 0:
+        raise ValueError(f"the number of centre points must not be negative (got {c})")
+    return c

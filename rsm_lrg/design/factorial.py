@@ -10,8 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from .box_behnken import _check_center
-from .core import Design, as_factor_space, cross_categoric, numeric_part
+from .core import Design, as_factor_space, check_center, cross_categoric, numeric_part
 
 __all__ = ["full_factorial"]
 
@@ -53,7 +52,7 @@ def full_factorial(
     if isinstance(levels, (bool, np.bool_)) or int(levels) != levels or levels < 2:
         raise ValueError(f"levels must be a whole number of at least 2 (got {levels!r})")
     levels = int(levels)
-    center = _check_center(center)
+    center = check_center(center)
     if levels ** k + center > MAX_RUNS:
         raise ValueError(f"{levels}^{k} = {levels ** k} runs is more than this generator makes ({MAX_RUNS})")
     from pyDOE3 import fullfact

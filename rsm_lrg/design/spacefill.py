@@ -114,9 +114,9 @@ def latin_hypercube(factors: Any, runs: int, criterion: str = "discrepancy", con
             pool = _full(space, _sobol_unit(d, 8192, rng), rng)
             pool = pool[cons.feasible_coded(pool)]
             if not len(pool):
-                from .optimal import _thin_region
+                from .exchange import thin_region_error
 
-                raise _thin_region(cons)
+                raise thin_region_error(cons)
             keep = coded[ok]
             num = space.numeric_index
             for i in np.flatnonzero(~ok):
@@ -160,9 +160,9 @@ def sobol(factors: Any, runs: int, constraints: Any = None, seed: Any = None, ra
             c = c[cons.feasible_coded(c)]
         pts.append(c)
         if drawn > 200 * n + 65536 and not sum(len(p) for p in pts):
-            from .optimal import _thin_region
+            from .exchange import thin_region_error
 
-            raise _thin_region(cons)
+            raise thin_region_error(cons)
     coded = np.vstack(pts)[:n]
     for j, f in enumerate(space.factors):  # levels in turn over the runs kept
         if f.kind == "categoric":

@@ -46,7 +46,7 @@ DASH = _present.DASH
 
 
 def _missing(x) -> bool:
-    return _present._missing(x)
+    return _present.is_missing(x)
 
 
 def fmt_num(x, sig: int = 4) -> str:
