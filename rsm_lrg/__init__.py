@@ -28,7 +28,7 @@ import importlib
 
 from . import registry as _registry
 
-__version__ = "0.1.0"
+__version__ = "0.1.0"  # the one version source: pyproject.toml reads it ([tool.setuptools.dynamic])
 
 # public name -> module that defines it
 _LAZY = {
