@@ -12,7 +12,7 @@ See :mod:`rsm_lrg.design.optimal` for the criteria's definitions and the search.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -109,7 +109,7 @@ def thin_region_error(constraints) -> ValueError:
                       "empty or too thin to design in, e.g. a single point or a line)")
 
 
-def _value(M: np.ndarray, crit: str, W: np.ndarray | None) -> float:
+def _value(M: np.ndarray, crit: str, W: np.ndarray | None) -> Any:
     """Criterion to minimise (``-log det`` for D), batched over leading axes; inf if singular."""
     if crit == "D":
         sign, logdet = np.linalg.slogdet(M)
@@ -119,7 +119,7 @@ def _value(M: np.ndarray, crit: str, W: np.ndarray | None) -> float:
             inv = np.linalg.inv(M)
             v = np.trace(inv, axis1=-2, axis2=-1)
         else:
-            v = np.trace(np.linalg.solve(M, np.broadcast_to(W, M.shape)), axis1=-2, axis2=-1)
+            v = np.trace(np.linalg.solve(M, np.broadcast_to(cast(np.ndarray, W), M.shape)), axis1=-2, axis2=-1)
     except np.linalg.LinAlgError:
         return np.full(M.shape[:-2], np.inf) if M.ndim > 2 else np.inf
     return np.where(np.isfinite(v) & (v > 0), v, np.inf)
@@ -182,7 +182,7 @@ class ExchangeProblem:
         ``M`` is badly conditioned."""
         if self._cache_key is not None and self._cache_key[0] is M:
             return self._cache_key[1]
-        out = None
+        out: tuple | None = None
         if np.linalg.cond(M) < 1e8:
             A = np.linalg.inv(M)
             if self.crit == "D":

@@ -140,9 +140,9 @@ def optimal(
     check_columns(p, model, len(space))
     if constraints is not None and not isinstance(constraints, Constraints):
         constraints = Constraints.parse(constraints, space)
-    for name, v in (("runs", runs), ("lof_points", lof_points), ("replicates", replicates), ("starts", starts)):
-        if v is not None and (isinstance(v, (bool, np.bool_)) or int(v) != v or v < 0):
-            raise ValueError(f"{name} must be a whole number >= 0 (got {v!r})")
+    for name, given in (("runs", runs), ("lof_points", lof_points), ("replicates", replicates), ("starts", starts)):
+        if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 0):
+            raise ValueError(f"{name} must be a whole number >= 0 (got {given!r})")
     if runs is None:
         L = 5 if lof_points is None else int(lof_points)
         R = 5 if replicates is None else int(replicates)
@@ -167,7 +167,8 @@ def optimal(
     if starts is None:
         starts = 10 if p <= 10 else (6 if p <= 21 else 3)
     starts = min(max(1, int(starts)), MAX_STARTS)
-    best, best_v = None, math.inf
+    best: Any = None
+    best_v: float = math.inf
     # starts on the -1/0/+1 grid (cheap, discrete: the levels of the classical designs), then
     # continuous random starts; the sequential (greedy) build is one more start
     plan = ["greedy"] + ["coarse"] * (2 * starts) + ["continuous"] * starts

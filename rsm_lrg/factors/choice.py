@@ -90,7 +90,8 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
     cols = list(data.columns)
     if isinstance(factors, FactorSpace):
         factors.require_columns(data)
-        how, space, coded_used = "given", factors, []
+        coded_used: list = []
+        how, space = "given", factors
     else:
         how, items, coded_used = infer_items(data, factors, exclude)
         space = inferred_space(how, items)

@@ -123,12 +123,12 @@ def design_factors(data, coded: list, exclude: set) -> tuple[list, list]:
         if not pd.api.types.is_numeric_dtype(data[cc]) and not pd.api.types.is_bool_dtype(data[cc]):
             # a categoric factor: its coded column holds the level (Design-Expert's layout), the
             # same text as its actual column; levels in order of first appearance in std_order
-            match = _design_categoric(data, cc, cols, last, exclude, used)
-            used.add(match[0])
-            out.append(match)
+            levels_of = _design_categoric(data, cc, cols, last, exclude, used)
+            used.add(levels_of[0])
+            out.append(levels_of)
             continue
         cv = float_column(data, cc).to_numpy(dtype=float)
-        match = None
+        match: tuple | None = None
         for name in order:
             if name in used:
                 continue
@@ -159,7 +159,7 @@ def _design_categoric(data, cc, cols: list, last: int, exclude: set, used: set) 
     for name in cand:
         vals = [level_text(v) if not is_empty_cell(v) else None for v in data[name].tolist()]
         if vals == text:
-            order = range(len(text))
+            order: Any = range(len(text))
             if "std_order" in cols and pd.api.types.is_numeric_dtype(data["std_order"]):
                 order = np.argsort(data["std_order"].to_numpy(), kind="stable")
             levels: list = []
@@ -262,7 +262,7 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
     else:
         how = "given"
         items = given_items(factors)
-    ranged = []
+    ranged: list[tuple] = []
     for kind, name, *levels in items:
         if name not in data.columns:
             raise ValueError(f"factor column {quote_value(str(name))} is not in the data")

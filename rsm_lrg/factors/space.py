@@ -146,7 +146,7 @@ class FactorSpace:
     @property
     def categoric(self) -> dict:
         """``{position: levels}`` of the categoric factors (what the model terms need)."""
-        return {i: f.levels for i, f in enumerate(self.factors) if f.kind == "categoric"}
+        return {i: f.levels for i, f in enumerate(self.factors) if isinstance(f, CategoricFactor)}
 
     @property
     def has_categoric(self) -> bool:
@@ -157,7 +157,7 @@ class FactorSpace:
         (the first factor's level changing slowest; ``[{}]`` when there is none)."""
         import itertools
 
-        cats = [f for f in self.factors if f.kind == "categoric"]
+        cats = [f for f in self.factors if isinstance(f, CategoricFactor)]
         return [dict(zip([f.name for f in cats], combo)) for combo in itertools.product(*[f.levels for f in cats])]
 
     # -- coding ---------------------------------------------------------------------
@@ -220,8 +220,9 @@ def design_space(found: list) -> FactorSpace:
     """The factor space of :func:`design_factors`' pairs, letters in coded-column order
     (``(name, low, high)`` numeric, ``(name, levels)`` categoric)."""
     letters = letters_for(len(found))
-    return FactorSpace(tuple(CategoricFactor(it[0], it[1], L) if len(it) == 2 else Factor(*it, L)
-                             for it, L in zip(found, letters)))
+    factors: list[Any] = [CategoricFactor(it[0], it[1], L) if len(it) == 2 else Factor(it[0], it[1], it[2], L)
+                          for it, L in zip(found, letters)]
+    return FactorSpace(tuple(factors))
 
 
 def inferred_space(how: str, items: list) -> FactorSpace:

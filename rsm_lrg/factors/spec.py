@@ -96,7 +96,7 @@ def given_items(factors, *, need_levels: bool = False) -> list[tuple]:
     """
     if isinstance(factors, str):
         factors = [factors]
-    out = []
+    out: list[tuple] = []
     if isinstance(factors, Mapping):
         for name, spec in factors.items():
             if isinstance(spec, (list, tuple)) and spec and all(isinstance(v, str) for v in spec):
