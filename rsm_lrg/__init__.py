@@ -50,13 +50,13 @@ def _register(module: str, *names: str) -> None:
 _register("rsm_lrg.design", "Design", "box_behnken", "central_composite", "full_factorial", "read_design")
 _register("rsm_lrg.design", "optimal", "augment", "Constraints", "definitive_screening", "fractional_factorial",
           "plackett_burman", "latin_hypercube", "sobol")
-_register("rsm_lrg.model", "fit", "FitResult")
+_register("rsm_lrg.model", "fit", "FitResult", "ModelSpec", "Transform")
 _register("rsm_lrg.optimize", "optimize", "OptimumResult")
 _register("rsm_lrg.surrogate", "simulate", "calibrate", "Calibration")
 _register("rsm_lrg.model.summary", "fit_summary")
 _register("rsm_lrg.model.reduce", "reduce_terms")
 _register("rsm_lrg.model.ridge", "ridge")
-_register("rsm_lrg.model.transform", "fit_transformed")
+_register("rsm_lrg.model.fit", "fit_transformed")
 _register("rsm_lrg.model.evaluate", "evaluate_design", "compare_designs")
 _register("rsm_lrg.model.effects", "screening_effects", "EffectsResult")
 _register("rsm_lrg.optimize.confirm", "confirm")
@@ -65,6 +65,7 @@ _register("rsm_lrg.physics.chain", "physics_chain", "PhysicsResult")
 _register("rsm_lrg.physics.params", "LRGParams")
 
 # The higher layers provide the model's conveniences (resolved on first use).
+_registry.register("fit", "rsm_lrg.model.fit:fit")  # FitResult.reduce refits through it
 _registry.register("FitResult.optimize", "rsm_lrg.optimize.single:optimize")
 _registry.register("FitResult.to_html", "rsm_lrg.report.fit_report:to_html")
 _registry.register("FitResult.notebook_html", "rsm_lrg.report.fit_report:notebook_html")

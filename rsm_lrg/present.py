@@ -247,7 +247,7 @@ def clean_anova(anova):
     notebook show the same numbers.
     """
     a = anova.copy()
-    tot = a.loc[a["source"] == "Cor Total", "sum_sq"]
+    tot = a.loc[a["source"].isin(("Cor Total", "Uncor Total")), "sum_sq"]  # corrected, or without an intercept
     scale = float(tot.iloc[0]) if len(tot) else float(a["sum_sq"].abs().max())
     for i in a.index:
         ss = a.at[i, "sum_sq"]

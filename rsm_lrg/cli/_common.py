@@ -218,6 +218,19 @@ def add_model_option(p: argparse.ArgumentParser, orders=MODEL_ORDERS, what: str 
     p.add_argument("--model", default="quadratic", choices=list(orders), help=f"{what} (default quadratic)")
 
 
+def add_terms_options(parser: argparse.ArgumentParser, *, per_response: bool = False) -> None:
+    """``--terms "A B AB A^2"`` (an explicit model; beside ``--model``) and ``--no-intercept``."""
+    kw = {"action": PerResponseOption} if per_response else {}
+    flag = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} if per_response \
+        else {"action": "store_true"}
+    parser.add_argument("--terms", default=None, metavar='"A B AB A^2"',
+                        help="fit exactly these terms instead of --model: letters, products (AB), powers of any "
+                             "degree (A^3, A^2B), categoric terms as in the ANOVA; space- or comma-separated", **kw)
+    parser.add_argument("--no-intercept",
+                        help="fit without an intercept (with --terms; the ANOVA total is then uncorrected, as R's lm)",
+                        **flag)
+
+
 def add_block_option(p: argparse.ArgumentParser, role: str = "effects sum to zero") -> None:
     """``--block COL``; ``role`` says what the command does with the blocks."""
     p.add_argument("--block", metavar="COL", default=None, help=f"block column ({role})")
@@ -268,6 +281,8 @@ def about_file(path):
         raise
     except ValueError as exc:
         msg = str(exc)
+        if getattr(exc, "option", None):  # the error says which option it concerns
+            raise option_error(exc) from None
         if msg.startswith("-"):  # it names the option at fault, not the file
             raise InputError(msg) from None
         option = option_of_message(msg)
@@ -409,13 +424,14 @@ def add_model_refinements(parser: argparse.ArgumentParser, *, per_response: bool
     """fit's model options: ``--reduce``, ``--alpha-out``, ``--criterion``, ``--transform``,
     ``--transform-constant`` (and ``--model`` when ``model``). With ``per_response`` each one
     given after a ``--response`` (declared with :class:`ResponseGroup`) applies to that
-    response only; see :func:`response_options` and :func:`fit_model`."""
+    response only; see :func:`response_options` and :func:`model_spec`."""
     kw = {"action": PerResponseOption} if per_response else {}
     flag = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} if per_response \
         else {"action": "store_true"}
     if model:
         parser.add_argument("--model", default="quadratic", choices=list(MODEL_ORDERS),
                             help="model order (default quadratic)", **kw)
+    add_terms_options(parser, per_response=per_response)
     parser.add_argument("--reduce", help="backward elimination keeping hierarchy", **flag)
     parser.add_argument("--alpha-out", type=number(0, 1, above=True, below=True), default=0.1, metavar="A",
                         help="with --reduce and --criterion p: remove terms while p > A (default 0.1)", **kw)
@@ -491,67 +507,40 @@ def per_response_values(items, n: int, option: str) -> list:
     return [v for _, v in items] + [None] * (n - len(items))
 
 
-def check_transform_option(opts: argparse.Namespace) -> None:
-    """A bad ``--transform`` is named before any data is read."""
-    if getattr(opts, "transform", None) is None:
-        return
-    from ..model.transform import parse_transform
+#: The command-line option of each part of a model specification (SpecError.option).
+SPEC_OPTIONS = {"model": "--model", "terms": "--terms", "transform": "--transform", "reduce": "--alpha-out"}
 
+
+def model_spec(opts: argparse.Namespace, *, order: str | None = None):
+    """The :class:`~rsm_lrg.model.spec.ModelSpec` of a command's model options (``--model``,
+    ``--terms``, ``--no-intercept``, ``--transform``, ``--transform-constant``, ``--reduce``,
+    ``--alpha-out``, ``--criterion``; those a command lacks take their defaults). A bad value
+    is an InputError naming its option, before any data is read."""
+    from ..model.spec import ModelSpec, SpecError
+
+    reduce = ({"criterion": getattr(opts, "criterion", "p"), "alpha_out": getattr(opts, "alpha_out", 0.1)}
+              if getattr(opts, "reduce", False) else None)
     try:
-        parse_transform(opts.transform, opts.transform_constant)
-    except ValueError as exc:
-        raise InputError(f"--transform {quote_user_value(opts.transform)}: {exc}") from None
+        return ModelSpec.build(order or getattr(opts, "model", None) or "quadratic", terms=getattr(opts, "terms", None),
+                               intercept=not getattr(opts, "no_intercept", False),
+                               transform=getattr(opts, "transform", None),
+                               transform_constant=getattr(opts, "transform_constant", 0.0), reduce=reduce)
+    except SpecError as exc:
+        raise option_error(exc, opts) from None
 
 
-def fit_model(data, response: str, opts: argparse.Namespace, *, factors=None, block=None):
-    """Fit ``response`` as ``rsm-lrg fit`` does with the options of
-    :func:`add_model_refinements` (``opts.model``, ``reduce``, ``alpha_out``, ``criterion``,
-    ``transform``, ``transform_constant``): transform (runs without a response left out),
-    backward elimination, fit. Returns ``(result, extra)``: a FitResult, or a
-    :class:`~rsm_lrg.model.transform.TransformedFit` with ``--transform``; ``extra`` holds
-    ``{"reduction": ...}`` with ``--reduce``."""
-    from ..model import fit
-
-    extra = {}
-    tr = None
-    if getattr(opts, "transform", None) is not None:
-        from ..model.data import response_values
-        from ..model.transform import parse_transform
-
-        tr = parse_transform(opts.transform, opts.transform_constant)
-        if response not in data.columns:
-            raise ValueError(f"response column {response!r} not found")
-        y = response_values(data, response)[0]  # NaN where empty: that run is left out
-        tr.check(y, response)
-        data = data.copy()
-        data[response] = tr.forward(y)
-    terms = None
-    if getattr(opts, "reduce", False):
-        from ..model.reduce import reduce_terms
-
-        red = reduce_terms(data, response, factors=factors, block=block, model=opts.model,
-                           alpha_out=opts.alpha_out, criterion=opts.criterion)
-        terms = list(red.kept[1:])
-        extra["reduction"] = red.to_dict()
-    result = fit(data, response, factors=factors, block=block, model=opts.model, terms=terms)
-    if tr is not None:
-        from ..model.transform import TransformedFit
-
-        result = TransformedFit(fit=result, transform=tr, response=response)
-    return result, extra
+def option_error(exc: Exception, opts: argparse.Namespace | None = None) -> InputError:
+    """An InputError naming the option of an error that carries one (``exc.option``, e.g. a
+    :class:`~rsm_lrg.model.spec.SpecError`), with the value given when it is short."""
+    flag = SPEC_OPTIONS.get(str(getattr(exc, "option", "")), "--" + str(getattr(exc, "option", "model")))
+    value = getattr(opts, flag[2:].replace("-", "_"), None) if opts is not None else None
+    shown = f" {quote_user_value(value)}" if isinstance(value, str) else ""
+    return InputError(f"{flag}{shown}: {exc}")
 
 
-def model_label(opts: argparse.Namespace, extra: dict | None = None) -> str:
-    """``"quadratic, reduced (removed AB, B^2), log transform"``: the model a command used."""
-    parts = [str(getattr(opts, "model", "quadratic"))]
-    red = (extra or {}).get("reduction")
-    if red is not None:
-        parts.append(f"reduced (removed {', '.join(red['removed']) or 'nothing'})")
-    if getattr(opts, "transform", None) is not None:
-        from ..model.transform import parse_transform
-
-        parts.append(f"{parse_transform(opts.transform, opts.transform_constant).label} transform")
-    return ", ".join(parts)
+def check_transform_option(opts: argparse.Namespace) -> None:
+    """The model options are checked (and a bad one named) before any data is read."""
+    model_spec(opts)
 
 
 def add_boxcox_rule_option(parser: argparse.ArgumentParser) -> None:

@@ -71,13 +71,15 @@ def _check_at(settings) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..io import read_table
     from ..optimize.confirm import confirm
-    from ._common import check_transform_option, fit_model, model_label, print_notes, print_summary_or_json
+    from ..model import fit
+    from ._common import model_spec, print_notes, print_summary_or_json
 
     _check_at(args.at)
-    check_transform_option(args)
+    spec = model_spec(args)
     data = read_table(args.data)
     with about_file(args.data):
-        result, extra = fit_model(data, args.response, args, factors=args.factor, block=args.block)
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=spec)
+    extra = {"reduction": result.reduction.to_dict()} if result.reduction is not None else {}
     try:  # the settings are an option: an error names --at, not the data file
         from ..optimize.confirm import parse_settings
 
@@ -88,8 +90,8 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--at: {exc}") from None
     with about_file(args.data):
         c = confirm(result, settings, args.observed, confidence=args.confidence, reference=args.reference)
-    print_notes(getattr(result, "fit", result).input_notes)
-    label = model_label(args, extra)
-    header = (f"Model: {label}",) if args.reduce or args.transform is not None else ()
+    print_notes(result.input_notes)
+    label = result.label
+    header = (f"Model: {label}",) if args.reduce or args.transform is not None or args.terms else ()
     print_summary_or_json(args, c, extra={"model": label, **extra}, header=header)
     return 0

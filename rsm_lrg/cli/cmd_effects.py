@@ -42,6 +42,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="main effects, + two-factor interactions, or every interaction (default full)")
     parser.add_argument("--term", action="append", default=None, metavar="TERM",
                         help="fit only these terms (repeatable, e.g. --term A --term AB); overrides --model")
+    from ._common import add_terms_options
+
+    add_terms_options(parser)
     parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
                         help="level of ME and SME (default 0.05)")
     add_plot_option(parser, "the half-normal plot")
@@ -63,13 +66,16 @@ def run(args: argparse.Namespace) -> int:
 
     fmt = plot_format(args.plot)
     data = read_table(args.data)
+    from ._common import model_spec
+
+    terms = (args.term or []) + list(model_spec(args).terms or ()) or None  # --term and --terms together
     with about_file(args.data):
-        terms = args.term
         model = "2fi" if args.model == "full" else args.model
         if terms is None and args.model == "full":  # the factors as the fit finds them, then all their products
             first = fit(data, args.response, factors=args.factor, block=args.block, model="linear")
             terms = _full_terms([f.letter for f in first.space.factors])
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=model, terms=terms)
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=model, terms=terms,
+                     intercept=not args.no_intercept)
         eff = screening_effects(result, alpha=args.alpha)
     figure = None
     if args.plot is not None:

@@ -29,6 +29,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("design", metavar="DESIGN.csv", nargs="+",
                         help="the design; two or more are compared side by side")
     add_model_option(parser, what="model to evaluate")
+    from ._common import add_terms_options
+
+    add_terms_options(parser)
     parser.add_argument("--region", default="cube", choices=["cube", "sphere"],
                         help="region for the prediction variance (default: the coded cube)")
     from ._common import number, probability
@@ -86,7 +89,7 @@ def run(args: argparse.Namespace) -> int:
     opts = dict(region=args.region, alpha=args.alpha, effect_sd=args.effect, potential=potential)
     if len(paths) == 1:
         with about_file(paths[0]):
-            ev = evaluate_design(designs[0], args.model, **opts)
+            ev = evaluate_design(designs[0], args.model, terms=args.terms, intercept=not args.no_intercept, **opts)
             if not ev.estimable:  # a clear refusal naming the aliased terms (exit 2), never negative df
                 raise ValueError(ev.not_estimable_message())
         result, evs = ev, [ev]

@@ -11,8 +11,7 @@ from ._common import (
     add_json,
     add_model_inputs,
     add_model_refinements,
-    check_transform_option,
-    fit_model,
+    model_spec,
     print_notes,
 )
 
@@ -105,7 +104,9 @@ def run(args: argparse.Namespace) -> int:
     _one_blas_thread(str(args.data))
     from ..io import dump_json, read_table
 
-    check_transform_option(args)  # a bad --transform is named before any data is read
+    from ..model import fit
+
+    model_spec(args)  # a bad --model/--terms/--transform is named before any data is read
     many = _many_files(str(args.data))  # a directory or glob: fitted partition by partition (Dask)
     if many is not None:
         unsupported = [o for o in ("reduce", "transform", "diagnostics", "report") if getattr(args, o, None)]
@@ -113,12 +114,12 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(f"{args.data}: --{unsupported[0]} is not available when fitting several files")
     data = many if many is not None else read_table(args.data)
     with about_file(args.data):
-        shown, extra = fit_model(data, args.response, args, factors=args.factor, block=args.block)
-        result = getattr(shown, "fit", shown)  # the FitResult behind a transformed fit
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=model_spec(args))
+        extra: dict = {}
         if args.diagnostics:
             diag = result.diagnostics(boxcox_rule=args.boxcox_rule)
             extra["diagnostics"] = diag.to_dict()
-    out = dict(shown.to_dict(), **extra)
+    out = dict(result.to_dict(), **extra)
     if args.json and args.json != "-":
         dump_json(out, args.json, force=args.force)
     if args.report:
@@ -128,11 +129,11 @@ def run(args: argparse.Namespace) -> int:
         dump_json(out, "-")
     else:
         print(f"Data: {args.data}")
-        if "reduction" in extra:
-            r = extra["reduction"]
+        if result.reduction is not None:
+            r = result.reduction.to_dict()
             print(f"Backward elimination ({'p > ' + format(args.alpha_out, 'g') if r['criterion'] == 'p' else 'AICc'}, "
                   f"hierarchy kept): removed {', '.join(r['removed']) or 'nothing'}")
-        print(shown.summary(), end="")
+        print(result.summary(), end="")
         if args.diagnostics:
             print()
             print(diag.summary(), end="")

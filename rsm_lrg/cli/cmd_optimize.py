@@ -56,9 +56,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..io import read_table
     from ..optimize import optimize, parse_goal
+    from ..model import fit
     from ._common import (
-        check_transform_option,
-        fit_model,
+        model_spec,
         per_response_values,
         print_notes,
         print_summary_or_json,
@@ -66,44 +66,20 @@ def run(args: argparse.Namespace) -> int:
     )
 
     responses = args.response
-    for i in range(len(responses)):
-        check_transform_option(response_options(args, i))
+    specs = [model_spec(response_options(args, i)) for i in range(len(responses))]  # bad options named first
     if len(responses) > 1 or args.weight or args.importance or args.limits:
         return _multi(args)
-    opts = response_options(args, 0)
     args.response = responses[0]
     args.goal = per_response_values(args.goal, 1, "--goal")[0] or "minimize"
     parse_goal(args.goal)  # a bad goal fails before any work
     data = read_table(args.data)
     with about_file(args.data):
-        result, _ = fit_model(data, args.response, opts, factors=args.factor, block=args.block)
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=specs[0])
         with _constraint_errors(args.constraint):
-            best = _optimize_on_fit_scale(optimize, result, args.goal, args.bound, args.constraint)
+            best = optimize(result, goal=args.goal, bounds=args.bound, constraints=args.constraint)
     print_notes(result.input_notes)
     print_summary_or_json(args, best)
     return 0
-
-
-def _optimize_on_fit_scale(optimize, result, goal, bounds, constraints=None):
-    """Optimise a fit; a transformed fit is optimised on its own scale (a decreasing transform
-    swaps minimum and maximum, a target T becomes g(T)) and reported in response units."""
-    import dataclasses
-
-    from ..optimize import parse_goal
-
-    tr = getattr(result, "transform", None)
-    if tr is None:
-        return optimize(result, goal=goal, bounds=bounds, constraints=constraints)
-    kind, target = parse_goal(goal)
-    if kind == "target":
-        tr.check([target], "target")
-        on_fit = ("target", float(tr.forward([target])[0]))
-    else:
-        on_fit = kind if not tr.decreasing else ("minimize" if kind == "maximize" else "maximize")
-    best = optimize(result, goal=on_fit, bounds=bounds, constraints=constraints)
-    note = (f"model fitted to the {tr.label}-transformed response; prediction and intervals back-transformed "
-            "(standard error on the transformed scale)")
-    return dataclasses.replace(best, goal=kind, target=target, warnings=tuple(best.warnings) + (note,))
 
 
 @contextlib.contextmanager
@@ -125,11 +101,11 @@ def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
     from ..io import read_table
     from ..optimize.desirability import optimize_desirability, parse_response_goal
+    from ..model import fit
     from ._common import (
         about_response,
         check_distinct_responses,
-        fit_model,
-        model_label,
+        model_spec,
         per_response_values,
         print_notes,
         print_summary_or_json,
@@ -156,10 +132,10 @@ def _multi(args) -> int:
         for i, r in enumerate(args.response):
             opts = response_options(args, i)
             with about_response(r, n > 1):
-                fits[r], extra = fit_model(data, r, opts, factors=choice.space, block=args.block)
-            models[r] = model_label(opts, extra)
+                fits[r] = fit(data, r, factors=choice.space, block=args.block, model=model_spec(opts))
+            models[r] = fits[r].label
             # the choice's notes cover the columns; each fit adds its runs left out
-            fit_notes = getattr(fits[r], "fit", fits[r]).input_notes
+            fit_notes = fits[r].input_notes
             notes += [f"{r}: {n}" for n in fit_notes if n not in choice.notes and getattr(n, "kind", "") != COLUMNS_LEFT_OUT]
         with _constraint_errors(args.constraint):
             best = optimize_desirability(fits, specs, bounds=args.bound, constraints=args.constraint)

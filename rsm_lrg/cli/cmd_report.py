@@ -77,8 +77,7 @@ def run(args: argparse.Namespace) -> int:
     from ._common import (
         about_response,
         check_distinct_responses,
-        check_transform_option,
-        fit_model,
+        model_spec,
         per_response_values,
         response_options,
     )
@@ -105,8 +104,9 @@ def run(args: argparse.Namespace) -> int:
             plotly_js()
         except ImportError as exc:
             raise InputError(str(exc)) from None
-    for i in range(n):
-        check_transform_option(response_options(args, i))
+    specs = [model_spec(response_options(args, i)) for i in range(n)]  # bad model options named first
+    from ..model import fit
+
     data = read_table(args.data)
     with about_file(args.data):
         from ..factors import COLUMNS_LEFT_OUT, choose_factors
@@ -119,11 +119,11 @@ def run(args: argparse.Namespace) -> int:
         fits = {}
         for i, r in enumerate(responses):
             with about_response(r, n > 1):
-                fits[r], _ = fit_model(data, r, response_options(args, i), factors=factors, block=args.block)
-            fit_notes = getattr(fits[r], "fit", fits[r]).input_notes
+                fits[r] = fit(data, r, factors=factors, block=args.block, model=specs[i])
+            fit_notes = fits[r].input_notes
             notes += [(f"{r}: {x}" if n > 1 else x) for x in fit_notes
                       if x not in notes and (n == 1 or getattr(x, "kind", "") != COLUMNS_LEFT_OUT)]
-        if args.static and n == 1 and not hasattr(fits[responses[0]], "transform"):
+        if args.static and n == 1 and fits[responses[0]].transform.identity:
             from ..report import write_report
 
             path = write_report(fits[responses[0]], out, force=args.force, title=args.title,

@@ -40,6 +40,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_block_option(parser, "path for the average block")
     add_model_option(parser, MODEL_ORDERS[:3])
+    from ._common import add_terms_options
+
+    add_terms_options(parser)
     add_json(parser)
     add_force(parser)
 
@@ -48,11 +51,13 @@ def run(args: argparse.Namespace) -> int:
     from ..io import read_table
     from ..model import fit
     from ..model.ridge import radii, ridge
+    from ._common import model_spec
 
     radii(0.0 if args.radius is None else args.radius, args.step)  # bad numbers fail before any work
+    spec = model_spec(args)
     data = read_table(args.data)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=args.model)
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=spec)
         path = ridge(result, goal=args.goal, radius=args.radius, step=args.step)
     print_notes(result.input_notes)  # after the work: a failed command prints one error line only
     print_summary_or_json(args, path)

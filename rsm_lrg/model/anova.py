@@ -22,7 +22,8 @@ import numpy as np
 from .least_squares import least_squares, partial_ss
 from .terms import block_contrasts
 
-__all__ = ["partial_ss", "pure_error", "PureError", "anova_table", "lack_of_fit", "f_test", "ANOVA_COLUMNS"]
+__all__ = ["partial_ss", "pure_error", "PureError", "anova_table", "lack_of_fit", "f_test", "ANOVA_COLUMNS",
+           "TOTAL_UNCORRECTED", "TOTAL_ROWS"]
 
 #: Columns of :attr:`FitResult.anova`.
 ANOVA_COLUMNS = ["source", "sum_sq", "df", "mean_sq", "f", "p"]
@@ -146,8 +147,14 @@ def _row(source, ss, df, ms=np.nan, f=np.nan, p=np.nan):
     return {"source": source, "sum_sq": float(ss), "df": int(df), "mean_sq": float(ms), "f": float(f), "p": float(p)}
 
 
+#: The total row of a model without an intercept (sum of y², n df; R's ``lm`` convention).
+TOTAL_UNCORRECTED = "Uncor Total"
+#: The names the total row has: corrected about the mean, or uncorrected (no intercept).
+TOTAL_ROWS = ("Cor Total", TOTAL_UNCORRECTED)
+
+
 def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, ss_res, df_res,
-                ss_total, df_total, pe: PureError | None, term_df=None):
+                ss_total, df_total, pe: PureError | None, term_df=None, total_label: str = "Cor Total"):
     """Assemble the Design-Expert ANOVA rows (a DataFrame with :data:`ANOVA_COLUMNS`).
 
     F of a term or of the model is its mean square over the residual mean square; F of
@@ -173,5 +180,5 @@ def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, 
         if lof["df"] > 0:
             rows.append(_row("Lack of Fit", lof["ss"], lof["df"], lof["ms"], lof["f"], lof["p"]))
         rows.append(_row("Pure Error", pe.ss, pe.df, pe.ss / pe.df))
-    rows.append(_row("Cor Total", ss_total, df_total))
+    rows.append(_row(total_label, ss_total, df_total))
     return pd.DataFrame(rows, columns=ANOVA_COLUMNS)

@@ -263,29 +263,40 @@ def _block_map(seen: dict, block: str):
     pandas column)."""
     import pandas as pd
 
-    from .fit import _block_codes
+    from .inputs import block_codes
 
     vals, empty = seen[block]
     if empty:
         raise ValueError(f"block column {block!r} has an empty cell; every run needs a block")
     if len(vals) > _MAX_LEVELS:
         raise ValueError(f"block column {block!r} has more than {_MAX_LEVELS} distinct values")
-    codes, keys, shown = _block_codes(pd.DataFrame({block: pd.Series(vals, dtype=object)}), block)
+    codes, keys, shown = block_codes(pd.DataFrame({block: pd.Series(vals, dtype=object)}), block)
     return dict(zip(vals, (int(c) for c in codes))), keys, shown
 
 
 def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: str = "quadratic", *,
-             terms=None, chunk_rows: int = CHUNK_ROWS):
+             terms=None, chunk_rows: int = CHUNK_ROWS, spec=None):
     """Fit a Dask DataFrame without collecting it (see the module docstring); arguments as
-    for :func:`rsm_lrg.fit`."""
+    for :func:`rsm_lrg.fit` (``spec``, a :class:`~rsm_lrg.model.spec.ModelSpec`, replaces
+    ``model`` and ``terms``). A transform or a reduction is not done on a Dask DataFrame
+    (a ValueError says so)."""
     import dask
     import pandas as pd
 
     from ..factors import FactorSpace
     from .anova import PureError
     from .data import check_response_block
-    from .fit import _assemble, _check_magnitudes, _chosen_terms
+    from .inputs import check_magnitudes, chosen_terms
+    from .result import assemble
+    from .spec import ModelSpec
     from .terms import check_model_size, column_names, model_terms
+
+    if spec is None:
+        spec = ModelSpec.build(model, terms=terms)
+    if not spec.transform.identity or spec.reduce is not None:
+        raise ValueError("a Dask DataFrame is fitted as it is: a response transform or a reduction needs the "
+                         "data in memory (fit a pandas DataFrame)")
+    model, terms, intercept = spec.order, spec.terms, spec.intercept
 
     check_response_block(ddf, response, block)
     if not pd.api.types.is_numeric_dtype(ddf.dtypes[response]):
@@ -315,10 +326,14 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
     else:
         space, notes = _space_and_notes(ddf, response, factors, numeric, lo, hi,
                                         {c: v for c, v in seen.items() if c != block})
+    if not intercept:  # coded about zero: the model passes through the origin of the actual units
+        from .inputs import origin_coding
+
+        space = origin_coding(space)
     for f in space.factors:
         if f.kind == "numeric" and not lo[f.name] < hi[f.name]:
             raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")
-    _check_magnitudes(space, np.array([lo[response], hi[response]], dtype=float), response)
+    check_magnitudes(space, np.array([lo[response], hi[response]], dtype=float), response)
     if lo[response] == hi[response]:
         raise ValueError(f"response {response!r} is constant (all {lo[response]:.6g}): nothing to model")
     if n < n_all:
@@ -331,15 +346,17 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
         check_model_size(n, len(space), model, nb - 1, categoric=cat)
         terms = tuple(model_terms(space.letters, model, cat))
     else:
-        terms = _chosen_terms(terms, space.letters, cat)
+        terms = chosen_terms(terms, space.letters, cat, intercept=intercept)
     names = column_names(terms)
     if nb > 1:
+        if not intercept:
+            raise ValueError("blocks need a model with an intercept (block effects sum to zero about it)")
         names = ["Intercept"] + [f"Block[{k}]" for k in bkeys[:-1]] + names[1:]
     p = len(names)
     if n < p:
         raise ValueError(f"{n} runs cannot fit {p} coefficients (the {model} model in {len(space)} factors"
                          + (f", {nb - 1} block effects)" if nb > 1 else ")"))
-    shift = float(total) / n
+    shift = float(total) / n if intercept else 0.0
     rows = int(chunk_rows)
     blk = (block, bmap) if block is not None else None
 
@@ -361,5 +378,5 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
     n_groups, ss_pe, block_df = _pure_error_sums(agg, nb)  # pure error from the setting sums
     pe = PureError(groups=np.zeros(0, dtype=int), n_groups=n_groups, ss=ss_pe, df=int(n - n_groups - block_df),
                    block_df=block_df)
-    return _assemble(response=response, model=model, block=block, space=space, terms=terms, col_names=names,
+    return assemble(spec=spec, response=response, block=block, space=space, terms=terms, col_names=names,
                      ls=ls, pe=pe, bkeys=bkeys, blevels=blevels, data=ddf, coded=None, y=None, input_notes=notes)

@@ -221,7 +221,7 @@ def screening_effects(result, alpha: float = 0.05) -> EffectsResult:
     if result.df_resid > 0:
         notes.append(f"the fit leaves {result.df_resid} residual degrees of freedom: its ANOVA has t- and F-tests "
                      "of its own; Lenth's PSE is meant for unreplicated, saturated fits")
-    var = np.diag(result.cov_unscaled)[result._term_index][1:]  # one column per one-df term
+    var = np.diag(result.cov_unscaled)[result.term_index][1:]  # one column per one-df term
     spread = float(var.max() / var.min() - 1.0) if var.min() > 0 else math.inf
     if spread > 1e-9:
         notes.append(f"the effects' variances differ by up to {100 * spread:.3g} % (Lenth's PSE assumes them equal)")

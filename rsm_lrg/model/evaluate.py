@@ -422,8 +422,12 @@ def _max_variance_ball(E: np.ndarray, Ct: np.ndarray, k: int, radius: float, sam
 
 def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", alpha: float = 0.05,
                     effect_sd: float = 2.0, n_region: int = 4096, seed: int = 0,
-                    potential: str | None = "auto") -> DesignEvaluation:
+                    potential: str | None = "auto", terms=None, intercept: bool = True) -> DesignEvaluation:
     """Evaluate a design for a model before any data (see the module docstring).
+
+    ``terms`` (a list of term names, or ``"A B AB A^2"``) evaluates that model instead of
+    ``model`` (``intercept=False``: without an intercept); the alias map's potential terms
+    are then those of the next order above ``model``.
 
     Parameters
     ----------
@@ -481,12 +485,19 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     n, k = coded.shape
     # counted before any term is built: far more parameters than runs is refused at once
     # (naming each of thousands of aliased terms would take minutes and help nobody)
-    n_par = n_model_terms(k, model, cats)
+    n_par = n_model_terms(k, model, cats) if terms is None else 0
     if n_par > MAX_TERMS or (n < n_par and n_par > MAX_ALIAS_LISTED):
         check_model_size(n, k, model, categoric=cats)  # raises with the count ("N runs cannot fit P terms ...")
         raise ValueError(f"the {model} model in {k} factors has {n_par} terms and {n} runs cannot estimate "
                          "them; choose a smaller model or add runs")
-    terms = model_terms(letters, model, cats)
+    if terms is None:
+        terms = model_terms(letters, model, cats)
+    else:
+        from .inputs import chosen_terms
+        from .spec import ModelSpec
+
+        terms = list(chosen_terms(list(ModelSpec.build(model, terms=terms, intercept=intercept).terms or ()),
+                                  letters, cats, intercept=intercept))
     auto = potential == "auto"
     if auto:
         potential = POTENTIAL.get(model)

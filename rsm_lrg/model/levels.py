@@ -50,10 +50,26 @@ class LevelView:
             out[:, i] = j
         return out
 
+    @property
+    def transform(self):
+        """The whole fit's response transform."""
+        return self.fitted.transform
+
+    def goal_on_model_scale(self, goal):
+        """The whole fit's goal mapping (:meth:`rsm_lrg.model.result.FitResult.goal_on_model_scale`)."""
+        return self.fitted.goal_on_model_scale(goal)
+
     def predict(self, points, interval=None, alpha: float = 0.05, *, coded: bool = False):
+        """Predictions in response units (back-transformed under a transform) at this level."""
         if not coded:
             points = self.space.encode(np.atleast_2d(np.asarray(points, dtype=float)))
         return self.fitted.predict(self.full_coded(points), interval=interval, alpha=alpha, coded=True)
+
+    def predict_model(self, points, interval=None, alpha: float = 0.05, *, coded: bool = False):
+        """Predictions on the model's scale at this level."""
+        if not coded:
+            points = self.space.encode(np.atleast_2d(np.asarray(points, dtype=float)))
+        return self.fitted.predict_model(self.full_coded(points), interval=interval, alpha=alpha, coded=True)
 
 
 class _NoPoint:

@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["reduce_terms", "Reduction", "removable", "CRITERIA", "aicc"]
+__all__ = ["reduce_terms", "reduce_inputs", "Reduction", "removable", "CRITERIA", "aicc"]
 
 #: Accepted values of ``criterion``.
 CRITERIA = ("p", "aicc")
@@ -119,8 +119,9 @@ class Reduction:
                 "kept": list(self.kept), "removed": list(self.removed), "steps": steps}
 
 
-def reduce_terms(data, response: str, factors=None, block: str | None = None, model: str = "quadratic", *,
-                 alpha_out: float = 0.1, criterion: str = "p", terms=None) -> Reduction:
+def reduce_terms(data: Any, response: str, factors: Any = None, block: str | None = None, model: str = "quadratic", *,
+                 alpha_out: float = 0.1, criterion: str = "p", terms: Any = None, intercept: bool = True,
+                 transform: Any = None) -> Reduction:
     """Backward elimination keeping hierarchy (see the module docstring).
 
     Parameters
@@ -131,24 +132,38 @@ def reduce_terms(data, response: str, factors=None, block: str | None = None, mo
         Remove while the largest removable p-value exceeds this (criterion ``"p"``).
     criterion : {"p", "aicc"}
     terms : sequence of str, optional
-        Start from these terms instead of ``model`` (the intercept is always kept).
+        Start from these terms instead of ``model`` (the intercept, when there is one, is
+        always kept).
+    intercept : bool
+        Whether the model has an intercept.
+    transform : str or Transform, optional
+        Reduce the model of the transformed response (as :func:`rsm_lrg.fit` fits it).
 
     Returns
     -------
     Reduction
     """
+    from .inputs import model_inputs
+    from .transform import parse_transform
+
+    inp = model_inputs(data, response, factors, block, transform=parse_transform(transform), origin=not intercept)
+    return reduce_inputs(inp, model=model, terms=terms, intercept=intercept, alpha_out=alpha_out, criterion=criterion)
+
+
+def reduce_inputs(inp: Any, *, model: str = "quadratic", terms: Any = None, intercept: bool = True,
+                  alpha_out: float = 0.1, criterion: str = "p") -> Reduction:
+    """:func:`reduce_terms` on checked inputs (:func:`rsm_lrg.model.inputs.model_inputs`)."""
     import pandas as pd
 
-    from .fit import model_inputs
+    from .inputs import chosen_terms
     from .least_squares import factorise
-    from .terms import check_model_size, model_terms, n_columns, parse_term, term_columns
+    from .terms import check_model_size, model_terms, n_columns, term_columns
 
     crit = str(criterion).strip().lower()
     if crit not in CRITERIA:
         raise ValueError(f"criterion must be 'p' or 'aicc', not {criterion!r}")
     if not (isinstance(alpha_out, (int, float)) and 0.0 < alpha_out < 1.0):
         raise ValueError(f"alpha_out must lie between 0 and 1, not {alpha_out!r}")
-    inp = model_inputs(data, response, factors, block)
     letters, cats = inp.space.letters, inp.space.categoric
     n, nb = inp.n, inp.nb - 1
     check_model_size(n, len(letters), "linear", nb, categoric=cats)
@@ -156,28 +171,29 @@ def reduce_terms(data, response: str, factors=None, block: str | None = None, mo
         check_model_size(n, len(letters), model, nb, categoric=cats)  # counted before any term is built
         current = list(model_terms(letters, model, cats))
     else:
-        current = [parse_term("Intercept", letters)] + [parse_term(t, letters, cats) for t in terms
-                                                       if t != "Intercept"]
+        current = list(chosen_terms(list(terms), letters, cats, intercept=intercept))
     p_start = n_columns(current) + nb
     if n <= p_start:
         raise ValueError(f"{n} runs cannot fit {p_start} coefficients; start from a smaller model")
     # one factorisation of the starting model; every smaller model is a sub-model of its
     # factor (no pass over the runs again)
     start = list(current)
-    full = factorise(inp.chunks(start), p_start, inp.column_names(start))
+    full = factorise(inp.chunks(start), p_start, inp.column_names(start), shift=None if intercept else 0.0)
     full.require_full_rank("model to reduce")
-    col = {id(t): list(g) for t, g in zip(start[1:], term_columns(start[1:], 1 + nb))}
+    lead = 1 if intercept else 0  # the intercept's column (and the block columns after it) always stay
+    col = {id(t): list(g) for t, g in zip(start[lead:], term_columns(start[lead:], lead + nb))}
 
-    def columns(ts) -> list[int]:
-        return sorted([0, *range(1, nb + 1), *(c for t in ts[1:] for c in col[id(t)])])
+    def columns(ts: list) -> list[int]:
+        return sorted([*range(lead + nb), *(c for t in ts if t.order > 0 for c in col[id(t)])])
 
-    def fitted(ts):
+    def fitted(ts: list) -> Any:
         return full.submodel(columns(ts))
 
-    def p_values(ls, ts) -> dict:
+    def p_values(ls: Any, ts: list) -> dict:
         where = {c: i for i, c in enumerate(columns(ts))}
-        pv = _term_p_values(ls, [[where[c] for c in col[id(t)]] for t in ts[1:]])
-        return {id(t): v for t, v in zip(ts[1:], pv)}
+        mt = [t for t in ts if t.order > 0]
+        pv = _term_p_values(ls, [[where[c] for c in col[id(t)]] for t in mt])
+        return {id(t): v for t, v in zip(mt, pv)}
 
     steps = []
     removed = []
@@ -186,6 +202,8 @@ def reduce_terms(data, response: str, factors=None, block: str | None = None, mo
         p = p_values(ls, current)
         ss = ls.ss_res
         cand = removable(current)
+        if not intercept and len(cand) == len([t for t in current if t.order > 0]) == 1:
+            cand = []  # the last term of a model without an intercept stays
         if not cand:
             break
         a_now = aicc(ss, n, ls.p)

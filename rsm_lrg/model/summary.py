@@ -182,7 +182,7 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     import pandas as pd
 
     from .anova import f_test, lack_of_fit, pure_error
-    from .fit import model_inputs
+    from .inputs import model_inputs
     from .least_squares import factorise
     from .statistics import fit_statistics
     from .terms import MAX_TERMS, check_model_size, model_terms, n_columns, n_model_terms

@@ -5,6 +5,8 @@ Computes nothing of its own; it formats what :class:`~rsm_lrg.model.fit.FitResul
 
 from __future__ import annotations
 
+from .anova import TOTAL_ROWS
+
 import math
 from dataclasses import dataclass
 
@@ -33,11 +35,11 @@ def _table(header, rows, align=None) -> str:
 def format_anova(result, alpha: float = 0.05) -> str:
     """The ANOVA (Type III partial sums of squares) like Table 5, with significance notes."""
     rows = []
-    total = result.anova.loc[result.anova["source"] == "Cor Total", "sum_sq"]
+    total = result.anova.loc[result.anova["source"].isin(TOTAL_ROWS), "sum_sq"]
     scale = float(total.iloc[0]) if len(total) else 0.0
     for r in result.anova.itertuples(index=False):
         mark = ""
-        if r.p == r.p and r.source not in ("Residual", "Pure Error", "Cor Total", "Block"):
+        if r.p == r.p and r.source not in ("Residual", "Pure Error", "Block", *TOTAL_ROWS):
             if r.source == "Lack of Fit":
                 mark = "not significant" if r.p >= alpha else "significant"
             elif r.source == "Model":
@@ -100,7 +102,7 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
     at one combination of levels, ``level`` (``{"stage": "rms"}``; the first levels by
     default), as Design-Expert prints one equation per level.
     """
-    from .fit import actual_coefficients, actual_equations
+    from .actual import actual_coefficients, actual_equations
     from .terms import parse_term
 
     if units not in ("coded", "actual"):
@@ -191,8 +193,10 @@ def format_summary(result) -> str:
         else:
             out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6)} .. {format_g(f.high, 6)}")
     out.append("")
-    out.append("ANOVA for the " + {"linear": "linear", "2fi": "2FI", "quadratic": "quadratic", "cubic": "cubic"}[result.model]
-               + " model (partial sum of squares - Type III)")
+    named = {"linear": "linear", "2fi": "2FI", "quadratic": "quadratic", "cubic": "cubic"}.get(result.model)
+    out.append("ANOVA for the " + (f"{named} model" if named else "model of the terms chosen")
+               + " (partial sum of squares - Type III)"
+               + ("" if result.intercept else "; no intercept: the model row and total are uncorrected"))
     out.append(format_anova(result))
     out.append("")
     m = result.anova.set_index("source")

@@ -26,12 +26,15 @@ for decreasing transforms (inverse, negative powers) the interval ends swap.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-__all__ = ["Transform", "parse_transform", "TransformedFit", "fit_transformed"]
+__all__ = ["Transform", "parse_transform", "GOAL_KINDS"]
+
+#: What a goal asks of a response: the three kinds of :meth:`Transform.goal_on_model_scale`.
+GOAL_KINDS = ("minimize", "maximize", "target")
 
 _NAMES = {"none": ("none", 1.0), "log": ("log", 0.0), "ln": ("log", 0.0), "log10": ("log10", None),
           "sqrt": ("sqrt", 0.5), "inverse": ("inverse", -1.0), "inv": ("inverse", -1.0)}
@@ -53,9 +56,56 @@ class Transform:
 
     @property
     def decreasing(self) -> bool:
+        """Whether ``g`` is decreasing (inverse and negative powers): maxima become minima."""
         return self.lam is not None and self.lam < 0
 
-    def check(self, y, column: str = "response") -> None:
+    @property
+    def identity(self) -> bool:
+        """No transform and no constant: the model's scale is the response's."""
+        return self.name == "none" and self.constant == 0.0
+
+    def goal_on_model_scale(self, kind: str, target: float | None = None) -> tuple[str, float | None]:
+        """The goal on the scale the model is fitted on: the one mapping of a goal every
+        consumer (optimize, desirability, the report) uses.
+
+        A decreasing transform swaps ``"minimize"`` and ``"maximize"``; a target ``T`` becomes
+        ``g(T + k)`` (a ValueError when ``T`` is outside the transform's domain).
+
+        >>> Transform("inverse", -1.0).goal_on_model_scale("maximize")
+        ('minimize', None)
+        >>> Transform("log", 0.0).goal_on_model_scale("target", 1.0)
+        ('target', 0.0)
+        """
+        if kind not in GOAL_KINDS:
+            raise ValueError(f"goal must be minimize, maximize or target, not {kind!r}")
+        if self.identity:
+            return kind, target
+        if kind == "target":
+            if target is None:
+                raise ValueError("a target goal needs its value")
+            self.check([target], "target")
+            return "target", float(self.forward([target])[0])
+        if self.decreasing:
+            return ("minimize" if kind == "maximize" else "maximize"), None
+        return kind, None
+
+    def limits_on_model_scale(self, low: float, high: float) -> tuple[float, float]:
+        """Response limits ``low < high`` as limits on the model's scale (ordered)."""
+        if self.identity:
+            return float(low), float(high)
+        a, b = (float(v) for v in self.forward([low, high]))
+        return (a, b) if a <= b else (b, a)
+
+    def back(self, predicted: Any, low: Any = None, high: Any = None) -> tuple[Any, Any, Any]:
+        """Predictions and interval ends back-transformed to response units; the ends are
+        ordered (a decreasing transform swaps them)."""
+        pred = self.inverse(predicted)
+        if low is None or high is None:
+            return pred, None, None
+        a, b = self.inverse(low), self.inverse(high)
+        return pred, np.fmin(a, b), np.fmax(a, b)
+
+    def check(self, y: Any, column: str = "response") -> None:
         """ValueError naming the first row where ``y + k`` is outside the transform's domain
         (positive for log, log10, inverse and negative powers; non-negative for positive powers)."""
         if self.name == "none":
@@ -69,7 +119,7 @@ class Transform:
             raise ValueError(f"the {self.label} transform needs {need} values: column {column!r}, row {i + 1} "
                              f"holds {float(np.asarray(y, float)[i]):g}" + ("" if self.constant else " (add a constant)"))
 
-    def forward(self, y):
+    def forward(self, y: Any) -> np.ndarray:
         v = np.asarray(y, dtype=float) + self.constant
         if self.name == "none":
             return v
@@ -79,7 +129,7 @@ class Transform:
             return np.log(v)
         return np.power(v, self.lam)
 
-    def inverse(self, z):
+    def inverse(self, z: Any) -> np.ndarray:
         z = np.asarray(z, dtype=float)
         if self.name == "none":
             v = z
@@ -93,11 +143,11 @@ class Transform:
                 v = np.where(ok, np.abs(z) ** (1.0 / self.lam), np.nan)
         return v - self.constant
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         return {"name": self.name, "lambda": self.lam, "constant": self.constant}
 
 
-def parse_transform(spec, constant: float = 0.0) -> Transform:
+def parse_transform(spec: Any, constant: float = 0.0) -> Transform:
     """A :class:`Transform` from ``"log"``, ``"sqrt"``, ``"inverse"``, ``"log10"``, ``"none"``
     or ``"power=λ"`` (also a Transform, returned as is)."""
     if isinstance(spec, Transform):
@@ -124,68 +174,3 @@ def parse_transform(spec, constant: float = 0.0) -> Transform:
             return Transform("log", 0.0, float(constant))
         return Transform("power", lam, float(constant))
     raise ValueError(f"transform must be none, log, log10, sqrt, inverse or power=LAMBDA, not {spec!r}")
-
-
-@dataclass(frozen=True)
-class TransformedFit:
-    """A fit on the transformed response with back-transformed predictions (frozen).
-
-    Attributes
-    ----------
-    fit : FitResult
-        The fit of ``g(y + k)`` (its coefficients, ANOVA and statistics are on that scale).
-    transform : Transform
-    response : str
-        The original response column.
-    """
-
-    fit: Any = field(repr=False)
-    transform: Transform = Transform()
-    response: str = ""
-
-    def __getattr__(self, name):  # delegate the FitResult interface (terms, space, anova, ...)
-        if name in ("fit", "transform", "response"):
-            raise AttributeError(name)
-        return getattr(self.fit, name)
-
-    def predict(self, points, interval=None, alpha: float = 0.05, *, coded: bool = False):
-        """Predictions in response units (back-transformed), with the transformed-scale
-        prediction in ``predicted_transformed``; interval ends are back-transformed too."""
-        out = self.fit.predict(points, interval=interval, alpha=alpha, coded=coded)
-        tr = self.transform
-        out["predicted_transformed"] = out["predicted"]
-        out["predicted"] = tr.inverse(out["predicted"].to_numpy())
-        for lo, hi in (("ci_low", "ci_high"), ("pi_low", "pi_high")):
-            if lo in out:
-                a, b = tr.inverse(out[lo].to_numpy()), tr.inverse(out[hi].to_numpy())
-                out[lo], out[hi] = np.fmin(a, b), np.fmax(a, b)
-        return out
-
-    def to_dict(self) -> dict:
-        d = self.fit.to_dict()
-        d["response"] = self.response
-        d["transform"] = self.transform.to_dict()
-        return d
-
-    def summary(self) -> str:
-        return (f"Response {self.response} transformed: {self.transform.label} "
-                f"(coefficients and ANOVA on the transformed scale)\n" + self.fit.summary())
-
-    def __str__(self) -> str:
-        return self.summary()
-
-
-def fit_transformed(data, response: str, transform, *, constant: float = 0.0, **fit_kwargs) -> TransformedFit:
-    """Fit ``g(response + constant)`` with :func:`rsm_lrg.fit` (keyword arguments passed on)."""
-    from ..factors import _numeric
-    from .fit import fit
-
-    tr = parse_transform(transform, constant)
-    if response not in data.columns:
-        raise ValueError(f"response column {response!r} not found (columns: {', '.join(map(str, data.columns))})")
-    y = _numeric(data, response).to_numpy(dtype=float)
-    tr.check(y, response)
-    df = data.copy()
-    df[response] = tr.forward(y)
-    res = fit(df, response, **fit_kwargs)
-    return TransformedFit(fit=res, transform=tr, response=response)

@@ -11,7 +11,7 @@ with σ² the residual mean square on ν df. The run mean is **inside** when it 
 interval. The relative error is ``100 · (ȳ - ŷ) / ŷ`` [%] against the exact prediction,
 and against a ``reference`` value when given (a published, rounded prediction).
 
-**Transformed response** (a :class:`~rsm_lrg.model.transform.TransformedFit`, fitted to
+**Transformed response** (a :class:`~rsm_lrg.model.result.FitResult` fitted to
 ``z = g(y + k)``): as Design-Expert does, the interval is computed on the transformed scale,
 ``ẑ ± t · √(σ_z² (1/n + x'(X'X)⁻¹x))``, and its ends are back-transformed (swapped for a
 decreasing transform); the prediction shown is ``g⁻¹(ẑ)`` (the median on the original scale).
@@ -168,9 +168,9 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
 
     Parameters
     ----------
-    result : FitResult or TransformedFit
-        The model (reduced or transformed as fitted; a transformed fit gives the interval on
-        the transformed scale, back-transformed).
+    result : FitResult
+        The model (reduced or transformed as fitted; a fit of a transformed response gives
+        the interval on the transformed scale, back-transformed).
     at : mapping or list of str
         Settings in actual units, ``{name or letter: value}`` or ``["NAME=VALUE", ...]``.
     observed : float or sequence of float
@@ -195,7 +195,7 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
     settings = parse_settings(space, at)
     x_act = np.array([[settings[n] for n in space.names]], dtype=object if space.has_categoric else float)
     x = np.asarray(space.encode(x_act), dtype=float)
-    tr = getattr(result, "transform", None)
+    tr = result.transform
     pr = result.predict(x, coded=True).iloc[0]
     q_sigma2 = float(pr["se_fit"]) ** 2  # σ² x'(X'X)⁻¹x (on the scale of the fit)
     n = int(obs.size)
@@ -203,7 +203,7 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
     t = float(stdtrit(result.df_resid, 1 - (1 - confidence) / 2))
     mean = float(obs.mean())
     tinfo = {}
-    if tr is not None:  # interval on the transformed scale, ends back-transformed
+    if not tr.identity:  # interval on the transformed scale, ends back-transformed
         tr.check(obs, "observed")
         zhat = float(pr["predicted_transformed"])
         zlo, zhi = zhat - t * se, zhat + t * se

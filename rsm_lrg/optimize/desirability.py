@@ -250,7 +250,7 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     Parameters
     ----------
     fits : mapping
-        ``{response: FitResult or TransformedFit}``; all fits must share the same factors and
+        ``{response: FitResult}``; all fits must share the same factors and
         coding. Each response may have its own model (order, reduced terms, transform); a
         transformed fit is back-transformed before its desirability is taken, and its default
         limits are the observed range on the original scale.
@@ -298,9 +298,7 @@ def _desirability_categoric(fits, goals, bounds, *, seed, n_sobol, n_polish, con
             continue
         views = {}
         for name, f in fits.items():
-            v = LevelView(f, combo)
-            v.y, v.transform = f.y, getattr(f, "transform", None)
-            views[name] = v
+            views[name] = LevelView(f, combo)
         try:
             r = _desirability_numeric(views, goals, numeric, seed=seed, n_sobol=n_sobol, n_polish=n_polish,
                                       constraints=constraints)
@@ -347,9 +345,7 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
         if fits[n].space.to_list() != space.to_list():
             raise ValueError(f"responses {names[0]!r} and {n!r} were fitted on different factors or codings")
     def observed(f):
-        tr = getattr(f, "transform", None)
-        y = np.asarray(f.y, dtype=float)
-        return tr.inverse(y) if tr is not None else y
+        return f.transform.inverse(np.asarray(f.y, dtype=float))  # the response as measured
 
     goals = [g.with_limits(float(np.nanmin(observed(fits[g.response]))), float(np.nanmax(observed(fits[g.response]))))
              for g in goals]
@@ -360,8 +356,8 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
     inverses = []
     for g in goals:
         f = fits[g.response]
-        tr = getattr(f, "transform", None)
-        inverses.append(tr.inverse if tr is not None else None)
+        tr = f.transform
+        inverses.append(None if tr.identity else tr.inverse)
         beta = f.coefficients["coded"].to_numpy(dtype=float)
         if all(t.order <= 2 for t in f.terms):
             from ..model.canonical import quadratic_parts
@@ -410,17 +406,7 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
         goal = g.goal if g.goal in ("maximize", "minimize") else (("target", g.target) if g.goal == "target" else None)
         if goal is None:
             continue
-        tr = getattr(fits[g.response], "transform", None)
-        if tr is not None:  # the fit's own scale: a decreasing transform swaps min and max
-            if goal == "maximize" or goal == "minimize":
-                goal = goal if not tr.decreasing else ("minimize" if goal == "maximize" else "maximize")
-            else:
-                with np.errstate(all="ignore"):
-                    zt = float(tr.forward(np.array([g.target]))[0])
-                if not math.isfinite(zt):
-                    continue
-                goal = ("target", zt)
-        try:
+        try:  # goals are on the response's scale: the optimiser maps them onto the fit's
             o = single_optimize(fits[g.response], goal=goal, bounds=bounds, constraints=constraints)
             starts.append(np.array([o.coded[L] for L in space.letters]))
         except ValueError:

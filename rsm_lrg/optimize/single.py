@@ -31,43 +31,10 @@ from typing import Any
 
 import numpy as np
 
+from ..model.goals import parse_goal
 from ..model.levels import LevelView  # the optimisers' view of a fit at one level combination
 
 __all__ = ["optimize", "OptimumResult", "parse_goal", "parse_bounds"]
-
-_GOALS = {"minimize": "minimize", "minimise": "minimize", "min": "minimize",
-          "maximize": "maximize", "maximise": "maximize", "max": "maximize"}
-
-
-def parse_goal(goal) -> tuple[str, float | None]:
-    """``("minimize"|"maximize"|"target", T or None)`` from ``"minimize"``, ``"maximize"``,
-    ``"target=V"`` or ``("target", V)``.
-
-    >>> parse_goal("target=0.03")
-    ('target', 0.03)
-    """
-    if isinstance(goal, (tuple, list)) and len(goal) == 2 and str(goal[0]).lower() == "target":
-        value = goal[1]
-    elif isinstance(goal, str):
-        g = goal.strip().lower()
-        if g in _GOALS:
-            return _GOALS[g], None
-        if not g.startswith("target"):
-            raise ValueError(f"goal must be minimize, maximize or target=V, not {goal!r}")
-        rest = g[len("target"):].strip()
-        if not rest.startswith("="):
-            raise ValueError(f"goal {goal!r}: a target needs a value, e.g. target=0.03")
-        value = rest[1:].strip()
-    else:
-        raise ValueError(f"goal must be minimize, maximize or target=V, not {goal!r}")
-    try:
-        t = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"goal {goal!r}: the target {value!r} is not a number") from None
-    if not math.isfinite(t):
-        raise ValueError(f"goal {goal!r}: the target must be a finite number")
-    return "target", t
-
 
 def parse_bounds(space, bounds, *, allow_extrapolation: bool = False):
     """Coded lower/upper bounds from ``{name or letter: (low, high)}`` in actual units
@@ -287,8 +254,10 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     -------
     OptimumResult
     """
-    if not hasattr(fitted, "coefficients"):
-        raise TypeError(f"optimize() takes a fitted result, not {type(fitted).__name__}: fit first, "
+    from ..model.result import FitResult
+
+    if not isinstance(fitted, (FitResult, LevelView)):  # a fit, or one at a level combination
+        raise TypeError(f"optimize() takes a fitted result (FitResult), not {type(fitted).__name__}: fit first, "
                         "e.g. rsm_lrg.optimize(rsm_lrg.fit(data, response), goal)")
     if not 0.0 < confidence < 1.0:
         raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
@@ -315,7 +284,8 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
     from ..model.terms import design_gradient, design_matrix
     from .region import feasible_only, is_feasible, local_minima, parse_constraints, region_starts
 
-    kind, target = parse_goal(goal)
+    # the goal as asked (response units) and on the model's scale (a transform maps it)
+    goal_kind, goal_target, kind, target = fitted.goal_on_model_scale(goal)
     space = fitted.space
     lo, hi, notes = parse_bounds(space, bounds, allow_extrapolation=allow_extrapolation)
     cons = parse_constraints(list(constraints or []), space)
@@ -413,16 +383,20 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
 
     alpha = 1.0 - confidence
     pr = fitted.predict(best[None, :], interval="both", alpha=alpha, coded=True).iloc[0]
-    if kind == "target" and abs(float(pr["predicted"]) - target) > 1e-3 * scale:
+    if kind == "target" and abs(yhat(best) - target) > 1e-3 * scale:  # judged on the model's scale
         from ..present import format_g
 
-        notes.append(f"the target {format_g(target, 6)} cannot be reached inside the region: the closest "
+        notes.append(f"the target {format_g(goal_target, 6)} cannot be reached inside the region: the closest "
                      f"predicted value is {format_g(float(pr['predicted']), 6)}")
+    tr = fitted.transform
+    if not tr.identity:
+        notes.append(f"model fitted to the {tr.label}-transformed response; prediction and intervals "
+                     "back-transformed (standard error on the transformed scale)")
     coded = {L: float(v) for L, v in zip(space.letters, best)}
     actual = {f.name: float(f.decode(v)) for f, v in zip(space.factors, best)}
     bnds = {f.name: (float(f.decode(a)), float(f.decode(b))) for f, a, b in zip(space.factors, lo, hi)}
     return OptimumResult(
-        response=fitted.response, goal=kind, target=target, coded=coded, actual=actual,
+        response=fitted.response, goal=goal_kind, target=goal_target, coded=coded, actual=actual,
         predicted=float(pr["predicted"]), confidence=float(confidence),
         ci=(float(pr["ci_low"]), float(pr["ci_high"])), pi=(float(pr["pi_low"]), float(pr["pi_high"])),
         se_fit=float(pr["se_fit"]), bounds=bnds, warnings=tuple(notes), n_starts=len(starts), method=method,

@@ -16,6 +16,8 @@ below 1e-12 of the largest, is shown as 0, as Design-Expert prints it).
 
 from __future__ import annotations
 
+from ..model.anova import TOTAL_ROWS
+
 import itertools
 import math
 from pathlib import Path
@@ -101,7 +103,7 @@ def _run_numbers(result) -> tuple[np.ndarray, str]:
 
 def _anova_rows(result) -> tuple[list[dict], list[str]]:
     a = result.anova
-    total = float(a.loc[a["source"] == "Cor Total", "sum_sq"].iloc[0]) if (a["source"] == "Cor Total").any() else 1.0
+    total = float(a.loc[a["source"].isin(TOTAL_ROWS), "sum_sq"].iloc[0]) if a["source"].isin(TOTAL_ROWS).any() else 1.0
     term_names = set(result.term_names)
     rows = []
     for r in a.itertuples(index=False):
@@ -120,8 +122,8 @@ def _anova_rows(result) -> tuple[list[dict], list[str]]:
             verdict, mark, p_class = sig.label, sig.mark, sig.css
         kind = "model" if r.source == "Model" else ("term" if is_term else "error")
         row_class = {"model": "summary-row", "term": "", "error": "group"}[kind]
-        if r.source in ("Residual", "Block") or r.source == "Cor Total":
-            row_class = "group" + (" summary-row" if r.source == "Cor Total" else "")
+        if r.source in ("Residual", "Block") or r.source in TOTAL_ROWS:
+            row_class = "group" + (" summary-row" if r.source in TOTAL_ROWS else "")
         rows.append({
             "source": _pretty_term(r.source), "sum_sq": ss, "df": r.df, "mean_sq": ms, "f": f,
             "p": r.p, "mark": mark, "p_class": p_class, "verdict": verdict, "row_class": row_class,

@@ -12,7 +12,7 @@ computes with ``interval="both"``::
     se = √(x C x' σ²)                   PI = ŷ ± t √((1 + x C x') σ²)
 
 (back-transformed, interval ends sorted, for a fit of a transformed response, as
-:class:`rsm_lrg.model.transform.TransformedFit` does). The figures are drawn with Plotly
+:meth:`rsm_lrg.model.result.FitResult.predict` does). The figures are drawn with Plotly
 (plotly.js from the ``plotly`` Python package, inlined so the page works offline); the page's
 Content-Security-Policy allows its two scripts by their SHA-256 hash and nothing else: no
 network, no other script, no ``eval``. Every piece of user text (column names, levels, file
@@ -62,17 +62,12 @@ def _finite_or_none(x) -> float | None:
     return x if math.isfinite(x) else None
 
 
-def _base_fit(result):
-    """The FitResult under a TransformedFit (the fit itself otherwise)."""
-    return getattr(result, "fit", result) if hasattr(result, "transform") else result
-
-
 def model_data(result, confidence: float = 0.95) -> dict:
     """The fitted model of one response as plain JSON-safe data, for the page's script.
 
     Parameters
     ----------
-    result : FitResult or TransformedFit
+    result : FitResult
     confidence : float
         Level of the CI and PI (the t quantile embedded is ``t(1 - α/2, df_resid)``).
 
@@ -92,8 +87,8 @@ def model_data(result, confidence: float = 0.95) -> dict:
 
     if not 0.0 < confidence < 1.0:
         raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
-    fit = _base_fit(result)
-    tr = getattr(result, "transform", None) if fit is not result else None
+    fit = result
+    tr = None if result.transform.identity else result.transform
     space = fit.space
     factors = []
     for f in space.factors:
@@ -109,7 +104,7 @@ def model_data(result, confidence: float = 0.95) -> dict:
         terms.append({"name": t.name, "p": [int(p) for p in t.numeric_powers], "cat": cat,
                       "combos": [list(map(int, c)) for c in t.level_combinations()] if cat else []})
     b = fit.coefficients["coded"].to_numpy(dtype=float)
-    idx = fit._term_index
+    idx = fit.term_index
     C = np.asarray(fit.cov_unscaled, dtype=float)[np.ix_(idx, idx)]
     n_cols = sum(max(1, len(t["combos"])) for t in terms)
     if n_cols != len(b) or C.shape != (len(b), len(b)):
@@ -126,8 +121,7 @@ def model_data(result, confidence: float = 0.95) -> dict:
         "df_resid": df,
         "t": _finite_or_none(tq),
         "confidence": float(confidence),
-        "transform": None if tr is None or tr.name == "none" and not tr.constant else
-        {"name": tr.name, "lam": tr.lam, "constant": float(tr.constant)},
+        "transform": None if tr is None else {"name": tr.name, "lam": tr.lam, "constant": float(tr.constant)},
         "coded_decimals": int(CODED_DECIMALS),
         "model": str(fit.model),
     }
@@ -188,26 +182,10 @@ def _sha256(text: str) -> str:
 def _optimum(result, goal):
     """The optimum of one response (a transformed fit optimised on its own scale, as
     ``rsm-lrg optimize`` does), or ``(None, reason)``."""
-    import dataclasses
-
-    from ..optimize import optimize, parse_goal
+    from ..optimize import optimize
 
     try:
-        tr = getattr(result, "transform", None)
-        fit = _base_fit(result)
-        if tr is None or fit is result:
-            return optimize(result, goal=goal), ""
-        kind, target = parse_goal(goal)
-        if kind == "target":
-            tr.check([target], "target")
-            on_fit = ("target", float(tr.forward([target])[0]))
-        else:
-            on_fit = kind if not tr.decreasing else ("minimize" if kind == "maximize" else "maximize")
-        best = optimize(fit, goal=on_fit)
-        pred = result.predict({k: [v] for k, v in best.actual.items()}, interval="both").iloc[0]
-        return dataclasses.replace(best, goal=kind, target=target, predicted=float(pred["predicted"]),
-                                   ci=(float(pred["ci_low"]), float(pred["ci_high"])),
-                                   pi=(float(pred["pi_low"]), float(pred["pi_high"]))), ""
+        return optimize(result, goal=goal), ""
     except (ValueError, NotImplementedError, TypeError) as exc:
         return None, str(exc)
 
@@ -264,9 +242,9 @@ def _as_specs(results, goals, limits, labels) -> list[ResponseSpec]:
             lim = (lo, hi)
         specs.append(ResponseSpec(result=r, goal=per(goals, name, "minimize"), limits=lim,
                                   label=str(per(labels, name, "") or "")))
-    first = _base_fit(specs[0].result).space
+    first = specs[0].result.space
     for s in specs[1:]:
-        sp = _base_fit(s.result).space
+        sp = s.result.space
         if list(sp.names) != list(first.names):
             raise ValueError(f"response {s.result.response!r} has factors {list(sp.names)}, but "
                              f"{specs[0].result.response!r} has {list(first.names)}: one report needs one factor set")
@@ -276,7 +254,7 @@ def _as_specs(results, goals, limits, labels) -> list[ResponseSpec]:
 def _controls(specs) -> list[dict]:
     """One control per factor: a range slider over the union of the responses' factor ranges
     (actual units), or a level picker."""
-    spaces = [_base_fit(s.result).space for s in specs]
+    spaces = [s.result.space for s in specs]
     out = []
     for j, f in enumerate(spaces[0].factors):
         if getattr(f, "kind", "numeric") == "categoric":
@@ -293,10 +271,7 @@ def _controls(specs) -> list[dict]:
 def _observed(result) -> np.ndarray:
     """The finite observed responses, on the response's own scale (back-transformed when
     the fit is on a transformed scale)."""
-    y = np.asarray(_base_fit(result).y, dtype=float)
-    tr = getattr(result, "transform", None)
-    if tr is not None and _base_fit(result) is not result:
-        y = tr.inverse(y)
+    y = result.transform.inverse(np.asarray(result.y, dtype=float))
     return y[np.isfinite(y)]
 
 
@@ -367,12 +342,12 @@ def _response_sections(specs, source_name, static: bool = False, hold: str = "ce
 
     out = []
     for i, s in enumerate(specs, start=1):
-        fit = _base_fit(s.result)
+        fit = s.result
         best, why = (None, "no goal given") if s.goal is None else _optimum(s.result, s.goal)
         ctx = _tables(fit, source_name, None)
         diag, diag_note = _diagnostics(fit)
         opt, opt_missing = _optimum_section(fit, best) if best is not None else (None, why)
-        tr = getattr(s.result, "transform", None) if fit is not s.result else None
+        tr = None if fit.transform.identity else fit.transform
         surfaces, surfaces_note = _surfaces(fit, hold, best) if static else ([], "")
         out.append(ctx | {"surfaces": surfaces, "surfaces_note": surfaces_note,
             "index": i, "response": str(s.result.response), "diagnostics": diag, "diagnostics_note": diag_note,
@@ -408,7 +383,7 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
     data, notes = page_data(specs, confidence=confidence)
     _start(data, start)
     names = [m["response"] for m in data["models"]]
-    first = _base_fit(specs[0].result)
+    first = specs[0].result
     space = first.space
     numeric = [c for c in data["controls"] if c["kind"] == "numeric"]
     summary = [("Responses", ", ".join(names)), ("Data", source_name or "a DataFrame"),
@@ -448,7 +423,7 @@ def interactive_html(results, *, goals=None, limits=None, labels=None, title: st
 
     Parameters
     ----------
-    results : FitResult, TransformedFit, a list of them, or ``{response: fit}``
+    results : FitResult, a list of them, or ``{response: fit}``
         The fitted responses; they must share the factors (each its own model: order,
         reduced terms, transform).
     goals : str, list or mapping, optional

@@ -405,7 +405,7 @@ def categoric_page(chromium, tmp_path_factory):
     df = categoric_data()
     factors = FACTORS + ["stage"]
     fits = {"tcr_c_per_min": rsm_lrg.fit(df, "tcr_c_per_min", factors=factors, model="2fi"),
-            # a transformed response: the page back-transforms as TransformedFit.predict does
+            # a transformed response: the page back-transforms as FitResult.predict does
             "wear_volume_m3_per_h": rsm_lrg.fit_transformed(df, "wear_volume_m3_per_h", "log", factors=factors)}
     path = write_interactive_report(fits, tmp_path_factory.mktemp("cat") / "cat.html", tables=False)
     ctx, page, log, url = open_page(chromium, path)

@@ -1,0 +1,628 @@
+"""The one fitted-model type, :class:`FitResult`, and its assembly from the regression core.
+
+Every fit — an order or a list of terms, with or without an intercept, on a transformed
+response, reduced, blocked, with categoric factors, from pandas or Dask — is one
+:class:`FitResult`. It holds the model specification (:class:`~rsm_lrg.model.spec.ModelSpec`,
+the transform included), the factor space and the regression core
+(:class:`~rsm_lrg.model.least_squares.Regression`); coefficients, ANOVA, statistics and the
+stationary point come from them. The transform lives here: :meth:`FitResult.predict`
+back-transforms predictions and intervals in one place, and
+:meth:`FitResult.goal_on_model_scale` maps a goal onto the model's scale for every optimiser.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from ..factors import FactorSpace, _numeric
+from ..present import clean_anova
+from .actual import actual_coefficients
+from .anova import TOTAL_UNCORRECTED, PureError, anova_table
+from .canonical import StationaryPoint, canonical_analysis
+from .goals import parse_goal
+from .inputs import MAX_FACTOR_MAGNITUDE, block_codes, model_rows
+from .least_squares import Regression
+from .spec import ModelSpec, ReduceSpec
+from .statistics import FitStatistics, fit_statistics
+from .terms import Term, column_names, design_matrix, n_columns, term_columns
+from .transform import Transform
+
+__all__ = ["FitResult", "assemble", "COEF_COLUMNS"]
+
+#: Columns of :attr:`FitResult.coefficients`.
+COEF_COLUMNS = ["coded", "std_error", "t", "p", "ci_low", "ci_high", "vif", "actual"]
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """A fitted response-surface model (frozen).
+
+    Attributes
+    ----------
+    response : str
+        Response column.
+    model : str
+        ``"linear"``, ``"2fi"``, ``"quadratic"`` or ``"cubic"``.
+    block : str or None
+        Block column, if any.
+    space : FactorSpace
+        Factors with their coding (letters A, B, ...).
+    terms : tuple of Term
+        Model terms in order (``terms[0]`` is the intercept).
+    data : pandas.DataFrame
+        The rows used (a copy; rows without a response are in ``omitted_data``).
+    coded : pandas.DataFrame
+        Coded factor settings, columns = letters.
+    y : ndarray
+        Response on the model's scale (``g(y + k)`` under a transform) [response units].
+    design_matrix : ndarray
+        Full model matrix (intercept, block contrasts, terms), n x p; rebuilt from
+        ``coded`` on first access (a cached property: a fit never holds it whole).
+    column_names : tuple of str
+        Names of the ``design_matrix`` columns (blocks are ``"Block[B1]"``, ...).
+    coefficients : pandas.DataFrame
+        Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``
+        (std_error, t, p, CI and VIF refer to the coded coefficient; 95 % CI).
+    anova : pandas.DataFrame
+        Columns ``source, sum_sq, df, mean_sq, f, p``; rows Model, each term (Type III),
+        Block, Residual, Lack of Fit, Pure Error, Cor Total (as Table 5).
+    statistics : FitStatistics
+    stationary_point : StationaryPoint
+    fitted, residuals, hat : ndarray
+        ŷ, e = y - ŷ, leverage h_ii.
+    cov_unscaled : ndarray
+        ``(X'X)^-1`` of ``design_matrix``.
+    sigma2 : float
+        Residual mean square [response units²].
+    df_resid : int
+    block_effects : dict or None
+        ``{"B1": effect, ...}`` (sum to zero) [response units].
+    block_levels : dict or None
+        ``{"B1": original label, ...}``.
+    pure_error : PureError or None
+        Pure error: residual of (blocks +) one mean per distinct factor setting, as R
+        ``rsm``'s ``PE()`` test (``None`` when it has no degrees of freedom).
+    actual_coefficients : dict
+        ``{term: coefficient in actual units}``.
+    ols : statsmodels RegressionResults
+        statsmodels' OLS of ``y`` on ``design_matrix``, built on first access (a cached
+        property; the numbers above come from :attr:`least_squares`, not from it).
+    least_squares : Regression
+        The regression core's factorisation (:mod:`rsm_lrg.model.least_squares`): ask it for
+        sequential or partial sums of squares, sub-models, VIF, PRESS.
+    notes : tuple of str
+        Remarks for the text output: ``input_notes`` first, then the fit's own (e.g. why
+        there is no lack-of-fit test).
+    input_notes : tuple of str
+        Remarks on the input (:func:`rsm_lrg.model.data.prepare`): which columns were taken
+        as factors when they were inferred, every column left out (neither factor, response,
+        block nor bookkeeping), the runs left out for want of a response.
+    omitted_rows : tuple of int
+        1-based data rows left out because their response cell is empty ("not run").
+    omitted_data : pandas.DataFrame or None
+        Those rows as given (index = 0-based position in the input); ``data`` holds the
+        rows used.
+    """
+
+    response: str
+    model: str
+    block: str | None
+    space: FactorSpace
+    terms: tuple
+    data: Any = field(repr=False)
+    coded: Any = field(repr=False)
+    y: np.ndarray = field(repr=False)
+    column_names: tuple = field(repr=False)
+    coefficients: Any = field(repr=False)
+    anova: Any = field(repr=False)
+    statistics: FitStatistics = field(repr=False)
+    stationary_point: StationaryPoint = field(repr=False)
+    fitted: np.ndarray = field(repr=False)
+    residuals: np.ndarray = field(repr=False)
+    hat: np.ndarray = field(repr=False)
+    cov_unscaled: np.ndarray = field(repr=False)
+    sigma2: float = field(repr=False)
+    df_resid: int = field(repr=False)
+    block_effects: dict | None = field(repr=False)
+    block_levels: dict | None = field(repr=False)
+    pure_error: PureError | None = field(repr=False)
+    actual_coefficients: dict = field(repr=False)
+    notes: tuple = field(default=(), repr=False)
+    input_notes: tuple = field(default=(), repr=False)
+    omitted_rows: tuple = field(default=(), repr=False)
+    omitted_data: Any = field(default=None, repr=False)
+    least_squares: Regression | None = field(default=None, repr=False)
+    term_vif: dict = field(default_factory=dict, repr=False)
+    spec: ModelSpec = field(default_factory=ModelSpec, repr=False)
+    y_response: np.ndarray | None = field(default=None, repr=False)
+    reduction: Any = field(default=None, repr=False)
+    actual_std_errors: dict | None = field(default=None, repr=False)
+
+    # -- the specification -------------------------------------------------------------
+    @property
+    def transform(self) -> Transform:
+        """The response transform (the identity when the response is fitted as it is)."""
+        return self.spec.transform
+
+    @property
+    def intercept(self) -> bool:
+        """Whether the model has an intercept."""
+        return bool(self.terms) and self.terms[0].order == 0
+
+    @property
+    def model_terms(self) -> tuple:
+        """The terms other than the intercept (the ANOVA's term rows)."""
+        return tuple(t for t in self.terms if t.order > 0)
+
+    @property
+    def label(self) -> str:
+        """The model in words: ``"quadratic, reduced (removed AB, B^2), log transform"``,
+        ``"terms A B A^2, no intercept"``."""
+        spec, red = self.spec, self.reduction
+        if red is not None:
+            parts = [f"{red.start_model}, reduced (removed {', '.join(red.removed) or 'nothing'})"]
+        else:
+            parts = [spec.order if spec.terms is None else "terms " + " ".join(t.name for t in self.model_terms)]
+        if not self.intercept:
+            parts.append("no intercept")
+        if not self.transform.identity:
+            parts.append(f"{self.transform.label} transform")
+        return ", ".join(parts)
+
+    def goal_on_model_scale(self, goal: Any) -> tuple[str, float | None, str, float | None]:
+        """``(kind, target, kind on the model's scale, target on the model's scale)`` of a goal
+        (``"minimize"``, ``"maximize"``, ``"target=V"``, ``("target", V)``): the one mapping
+        of a goal onto a transformed response's scale (a decreasing transform swaps minimum
+        and maximum, a target T becomes g(T + k))."""
+        kind, target = parse_goal(goal)
+        mk, mt = self.transform.goal_on_model_scale(kind, target)
+        return kind, target, mk, mt
+
+    @cached_property
+    def design_matrix(self) -> np.ndarray:
+        """Full model matrix (intercept, block contrasts, terms), n x p, rebuilt from the coded
+        settings on first access: a fit builds it in chunks and never holds it whole."""
+        if self.coded is None:
+            raise ValueError("a fit of a Dask DataFrame holds no per-run data (no design matrix, no statsmodels results)")
+        bcodes = block_codes(self.data, self.block)[0] if self.block is not None else None
+        nb = len(self.column_names) - n_columns(self.terms) + 1
+        return model_rows(self.coded.to_numpy(dtype=float), self.terms, bcodes, nb)
+
+    @cached_property
+    def ols(self):
+        """statsmodels ``RegressionResults`` of ``y`` on :attr:`design_matrix`, built lazily."""
+        import statsmodels.api as sm
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return sm.OLS(self.y, self.design_matrix).fit()
+
+    # -- views -----------------------------------------------------------------------
+    @property
+    def n(self) -> int:
+        """Number of runs."""
+        return int(self.least_squares.n) if self.least_squares is not None else int(self.y.size)
+
+    @property
+    def run_rows(self) -> list[int]:
+        """1-based data rows of the runs used (``data``, ``y``, ``fitted``... in this order);
+        the rows missing from it are ``omitted_rows`` (no response: "not run")."""
+        left = set(self.omitted_rows)
+        return [i for i in range(1, self.n + len(left) + 1) if i not in left]
+
+    @property
+    def term_names(self) -> list[str]:
+        return [t.name for t in self.terms]
+
+    @property
+    def factors(self) -> list[str]:
+        """Factor column names in letter order."""
+        return self.space.names
+
+    @property
+    def term_index(self) -> np.ndarray:
+        """Positions of the model's columns (intercept and terms) in ``design_matrix``
+        (block contrasts skipped)."""
+        nb = len(self.column_names) - n_columns(self.terms)
+        return np.r_[0, np.arange(1 + nb, len(self.column_names))] if nb else np.arange(len(self.column_names))
+
+    @property
+    def studentized_residuals(self) -> np.ndarray:
+        """Internally studentized residuals e_i / (σ √(1 - h_ii)) [-]."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return self.residuals / np.sqrt(self.sigma2 * (1.0 - self.hat))
+
+    @property
+    def externally_studentized_residuals(self) -> np.ndarray:
+        """Externally studentized (deleted) residuals, Design-Expert's "externally studentized" [-]."""
+        r = self.studentized_residuals
+        dfe = self.df_resid
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return r * np.sqrt((dfe - 1) / (dfe - r ** 2))
+
+    @property
+    def cooks_distance(self) -> np.ndarray:
+        """Cook's distance D_i = r_i² h_ii / (p (1 - h_ii)) [-]."""
+        p = len(self.column_names)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return self.studentized_residuals ** 2 * self.hat / (p * (1.0 - self.hat))
+
+    def canonical(self, threshold: float | None = None, level: Mapping[str, str] | None = None) -> StationaryPoint:
+        """Canonical analysis; ``threshold`` reproduces R ``rsm``'s ``canonical(threshold=)``;
+        ``level`` picks the categoric levels (``{"stage": "rms"}``; first levels by default)."""
+        coefs = dict(zip(self.coefficients.index, self.coefficients["coded"]))
+        return canonical_analysis(coefs, self.terms, self.space, threshold=threshold, level=level)
+
+    # -- prediction ------------------------------------------------------------------
+    def _coded_points(self, points, coded: bool) -> np.ndarray:
+        import pandas as pd
+
+        if isinstance(points, Mapping):
+            vals = {k: np.atleast_1d(np.asarray(v, dtype=object if self.space.has_categoric else float))
+                    for k, v in points.items()}
+            points = pd.DataFrame(vals)
+        if isinstance(points, pd.Series):
+            points = points.to_frame().T
+        if isinstance(points, pd.DataFrame):
+            cols = self.space.letters if coded else self.space.names
+            missing = [c for c in cols if c not in points.columns]
+            if missing:
+                raise ValueError(f"prediction points lack the factor column(s) {', '.join(map(repr, missing))}")
+            if coded:
+                return np.column_stack([_numeric(points, c).to_numpy() for c in cols])
+            return self.space.encode(points[cols]).to_numpy(dtype=float)
+        arr = np.asarray(points, dtype=object if self.space.has_categoric and not coded else float)
+        if arr.ndim == 1:
+            arr = arr[None, :]
+        if arr.shape[-1] != len(self.space):
+            raise ValueError(f"prediction points need {len(self.space)} columns (one per factor), got {arr.shape[-1]}")
+        if not coded:
+            arr = self.space.encode(arr)
+        if not np.isfinite(arr).all():
+            raise ValueError("prediction points must be finite numbers")
+        return arr
+
+    def predict_coded(self, coded: np.ndarray) -> np.ndarray:
+        """ŷ at coded settings (n x k array), average block [response units]."""
+        Xt = design_matrix(coded, self.terms)
+        return Xt @ self.coefficients["coded"].to_numpy()
+
+    def predict(self, points: Any, interval: str | None = None, alpha: float = 0.05, *, coded: bool = False) -> Any:
+        """Predicted response in response units, optionally with a confidence or prediction
+        interval; under a transform the prediction and the interval ends are back-transformed
+        (ends ordered; ``predicted_transformed`` and ``se_fit`` stay on the model's scale).
+        See :meth:`predict_model` for the parameters.
+        """
+        out = self.predict_model(points, interval=interval, alpha=alpha, coded=coded)
+        tr = self.transform
+        if tr.identity:
+            return out
+        out["predicted_transformed"] = out["predicted"]
+        out["predicted"] = tr.inverse(out["predicted"].to_numpy())
+        for lo, hi in (("ci_low", "ci_high"), ("pi_low", "pi_high")):
+            if lo in out:
+                _, a, b = tr.back(out["predicted_transformed"].to_numpy(), out[lo].to_numpy(), out[hi].to_numpy())
+                out[lo], out[hi] = a, b
+        return out
+
+    def predict_model(self, points: Any, interval: str | None = None, alpha: float = 0.05, *,
+                      coded: bool = False) -> Any:
+        """Prediction on the model's scale (the transformed response under a transform),
+        optionally with a confidence or prediction interval.
+
+        Parameters
+        ----------
+        points : DataFrame, mapping or array
+            Settings in actual units: a frame (or ``{name: values}``) with the factor
+            columns, or an (n, k) array in factor order. With ``coded=True`` the frame
+            columns are the letters and values are coded.
+        interval : {None, "confidence", "prediction", "both"}
+            Which interval to add (``ci_low/ci_high``, ``pi_low/pi_high``).
+        alpha : float
+            1 - confidence level (0.05 gives 95 % intervals).
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns ``predicted`` and ``se_fit`` [response units] and the interval bounds;
+            predictions are for the average block.
+        """
+        import pandas as pd
+
+        from . import statistics as special  # the t and F tails without importing SciPy
+
+        if interval not in (None, "confidence", "prediction", "both"):
+            raise ValueError(f"interval must be None, 'confidence', 'prediction' or 'both', not {interval!r}")
+        if not 0.0 < alpha < 1.0:
+            raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
+        index = points.index if isinstance(points, pd.DataFrame) else None
+        with np.errstate(over="ignore"):  # a far point codes to a huge number or inf: refused below
+            x = self._coded_points(points, coded)
+        far = ~(np.abs(x) <= MAX_FACTOR_MAGNITUDE)
+        if far.any():  # a polynomial there overflows (and says nothing): refuse with the factor named
+            i, j = np.argwhere(far)[0]
+            f = self.space.factors[j]
+            raise ValueError(f"prediction point {i + 1}: factor {f.name!r} is more than {MAX_FACTOR_MAGNITUDE:.0e} "
+                             f"half-ranges from its centre ({f.center:.6g}); the model says nothing there")
+        Xt = design_matrix(x, self.terms)
+        beta = self.coefficients["coded"].to_numpy()
+        pred = Xt @ beta
+        idx = self.term_index
+        C = self.cov_unscaled[np.ix_(idx, idx)]
+        q = np.einsum("ij,jk,ik->i", Xt, C, Xt)
+        se = np.sqrt(q * self.sigma2)
+        out = pd.DataFrame({"predicted": pred, "se_fit": se}, index=index)
+        if interval:
+            tq = float(special.stdtrit(self.df_resid, 1 - alpha / 2)) if self.df_resid > 0 else np.nan
+            if interval in ("confidence", "both"):
+                out["ci_low"] = pred - tq * se
+                out["ci_high"] = pred + tq * se
+            if interval in ("prediction", "both"):
+                spi = np.sqrt((1.0 + q) * self.sigma2)
+                out["pi_low"] = pred - tq * spi
+                out["pi_high"] = pred + tq * spi
+        return out
+
+    # -- optimisation ------------------------------------------------------------------
+    def optimize(self, goal="minimize", bounds=None, **kwargs):
+        """Optimum of the fitted response in the factor box; see :func:`rsm_lrg.optimize.optimize`.
+
+        A convenience: the optimize layer (above the model) provides it through
+        :mod:`rsm_lrg.registry`; the model does not import it."""
+        from ..registry import lookup
+
+        return lookup("FitResult.optimize")(self, goal=goal, bounds=bounds, **kwargs)
+
+    # -- further analysis (issue 6) ------------------------------------------------------
+    def diagnostics(self, **kwargs):
+        """Per-run diagnostics and Box–Cox; see :func:`rsm_lrg.model.diagnostics.diagnostics`."""
+        from .diagnostics import diagnostics as _diagnostics
+
+        return _diagnostics(self, **kwargs)
+
+    def ridge(self, goal="maximize", radius=None, step=0.1):
+        """Ridge (second order) or steepest (first order) path; see :func:`rsm_lrg.model.ridge.ridge`."""
+        from .ridge import ridge as _ridge
+
+        return _ridge(self, goal=goal, radius=radius, step=step)
+
+    def reduce(self, alpha_out: float = 0.1, criterion: str = "p") -> FitResult:
+        """The model refitted with the terms kept by hierarchical backward elimination
+        (see :func:`rsm_lrg.model.reduce.reduce_terms`), on the same scale (transform)."""
+        from dataclasses import replace
+
+        from ..registry import lookup
+
+        spec = replace(self.spec, terms=tuple(t.name for t in self.model_terms),
+                       reduce=ReduceSpec(criterion=criterion, alpha_out=alpha_out))
+        return lookup("fit")(self.data, self.response, factors=self.space, block=self.block, model=spec)
+
+    # -- faces -------------------------------------------------------------------------
+    def summary(self) -> str:
+        """Design-Expert style text: ANOVA (Table 5 layout), statistics, coefficients,
+        equations in coded and actual units, canonical analysis (under a transform, a first
+        line says which: coefficients and ANOVA are on the transformed scale)."""
+        from .text import format_summary
+
+        text = format_summary(self)
+        if not self.transform.identity:
+            text = (f"Response {self.response} transformed: {self.transform.label} "
+                    "(coefficients and ANOVA on the transformed scale)\n" + text)
+        return text
+
+    def __str__(self) -> str:
+        return self.summary()
+
+    def to_html(self, **kwargs) -> str:
+        """The self-contained HTML report of this fit (see :func:`rsm_lrg.report.to_html`).
+
+        A convenience: the report layer (above the model) provides it through
+        :mod:`rsm_lrg.registry`; the model does not import it.
+        """
+        from ..registry import lookup
+
+        return lookup("FitResult.to_html")(self, **kwargs)
+
+    def effects(self, alpha: float = 0.05):
+        """Effects of the one-df terms with Lenth's PSE, ME and SME and half-normal scores
+        (:func:`rsm_lrg.model.effects.screening_effects`), for unreplicated screening fits."""
+        from .effects import screening_effects
+
+        return screening_effects(self, alpha=alpha)
+
+    def profiler(self, **kwargs):
+        """The interactive prediction profiler of this fit, shown inline in a notebook (no
+        server): see :func:`rsm_lrg.report.interactive.profiler` (``.save(path)`` writes the
+        page). Provided by the report layer through :mod:`rsm_lrg.registry`."""
+        from ..registry import lookup
+
+        return lookup("FitResult.profiler")(self, **kwargs)
+
+    def _repr_html_(self) -> str:
+        """Notebook face: summary, ANOVA, statistics, coefficients, equations and the
+        stationary point as one small HTML fragment, without figures (a few tens of kB);
+        :meth:`to_html` gives the full report with every figure (provided by the report
+        layer through :mod:`rsm_lrg.registry`)."""
+        from ..registry import lookup
+
+        return lookup("FitResult.notebook_html")(self)
+
+    def to_dict(self) -> dict:
+        """The fit JSON of INTERFACE.md (plain Python; NaN becomes ``null`` in JSON)."""
+        coef = self.coefficients
+        out = {
+            "response": self.response,
+            "n": self.n,
+            "model": self.model,
+            "block": self.block,
+            "factors": self.space.to_list(),
+            "coefficients": {
+                "coded": {k: _f(v) for k, v in coef["coded"].items()},
+                "actual": {k: _f(v) for k, v in self.actual_coefficients.items()},
+            },
+            "std_errors": {"coded": {k: _f(v) for k, v in coef["std_error"].items()}},
+        }
+        if self.actual_std_errors is not None:
+            out["std_errors"]["actual"] = {k: _f(v) for k, v in self.actual_std_errors.items()}
+
+        if self.block is not None:
+            out["block_effects"] = {k: _f(v) for k, v in (self.block_effects or {}).items()}
+        out["anova"] = [
+            {"source": r.source, "sum_sq": _f(r.sum_sq), "df": int(r.df), "mean_sq": _f(r.mean_sq), "f": _f(r.f), "p": _f(r.p)}
+            for r in self.anova.itertuples(index=False)
+        ]
+        out["statistics"] = {k: _f(v) for k, v in self.statistics.to_dict().items()}
+        out["stationary_point"] = self.stationary_point.to_dict()
+        if self.term_vif:
+            out["term_vif"] = {k: _f(v) for k, v in self.term_vif.items()}
+        out["notes"] = list(self.notes)
+        out["omitted_rows"] = list(self.omitted_rows)  # 1-based data rows without a response
+        out["terms"] = [t.name for t in self.model_terms]
+        out["intercept"] = self.intercept
+        if not self.transform.identity:
+            out["transform"] = self.transform.to_dict()
+        if self.reduction is not None:
+            out["reduction"] = self.reduction.to_dict()
+        return out
+
+    def to_frame(self):
+        """Per-run diagnostics: actual and coded settings, response, fitted, residual,
+        leverage, studentized residuals, Cook's distance."""
+        import pandas as pd
+
+        df = pd.DataFrame({f.name: self.data[f.name].to_numpy(dtype=float if f.kind == "numeric" else object)
+                           for f in self.space.factors})
+        for L in self.space.letters:
+            df[f"coded_{L}"] = self.coded[L].to_numpy()
+        if self.block is not None:
+            df[self.block] = self.data[self.block].to_numpy()
+        df[self.response] = self.y
+        df["fitted"] = self.fitted
+        df["residual"] = self.residuals
+        df["leverage"] = self.hat
+        df["studentized"] = self.studentized_residuals
+        df["externally_studentized"] = self.externally_studentized_residuals
+        df["cooks_distance"] = self.cooks_distance
+        return df
+
+
+def _f(v):
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        return None
+    return x if math.isfinite(x) else None
+
+
+def assemble(*, spec: ModelSpec, response: str, block: str | None, space: FactorSpace, terms: Sequence[Term],
+             col_names: Sequence[str], ls: Regression, pe: PureError, bkeys: list | None, blevels: dict | None,
+             data: Any, coded: Any, y: Any, y_response: Any = None, input_notes: Sequence = (),
+             omitted_rows: Sequence[int] = (), omitted_data: Any = None, reduction: Any = None,
+             actual: tuple[dict, dict | None] | None = None) -> FitResult:
+    """The :class:`FitResult` of a factorised fit (both passes done) and its pure error.
+
+    Without an intercept the model row and the total are uncorrected (``sum y^2``, n df),
+    as R's ``lm`` and ``anova`` report them; R² is then ``1 - SS_res / sum y^2``.
+    ``actual`` replaces the actual-unit coefficients of the exact expansion (and adds
+    their standard errors) when the caller solved in actual units.
+    """
+    import pandas as pd
+
+    from . import statistics as special  # the t and F tails without importing SciPy
+
+    terms = tuple(terms)
+    intercept = bool(terms) and terms[0].order == 0
+    nb = len(col_names) - n_columns(terms) + 1
+    n, p = ls.n, ls.p
+    beta, C = ls.params, ls.cov_unscaled
+    df_res, ss_res, sigma2 = ls.df_resid, ls.ss_res, ls.sigma2
+    tidx = np.r_[0, np.arange(nb, p)] if nb > 1 else np.arange(p)
+    mterms = terms[1:] if intercept else terms
+    mcols = tidx[1:] if intercept else tidx  # the model row's columns
+    # blocks enter first (sequential SS), the model row is the rest; terms are Type III
+    ss_block = ls.sequential_ss(np.arange(1, nb)) if nb > 1 else 0.0
+    ss_model = ls.sequential_ss(mcols) if mcols.size else 0.0
+    ss_total = ls.ss_total if intercept else ss_model + ss_res  # uncorrected: sum y^2
+    df_model = int(mcols.size)
+    groups = term_columns(mterms, 1 if intercept else 0)  # each term's columns among tidx (multi-df categoric terms)
+    term_ss = [ls.partial_ss(tidx[g]) for g in groups]
+    notes = []
+    if pe.df == 0:
+        pe_used = None
+        notes.append("No lack-of-fit test: no factor setting is replicated"
+                     + (" (once the block effects are removed)" if nb > 1 else "") + ", so there is no pure error.")
+    else:
+        pe_used = pe
+        if df_res - pe.df == 0:
+            notes.append("No lack-of-fit test: the model uses every degree of freedom beyond pure error.")
+    if df_res == 0:
+        notes.append("The model is saturated (no residual degrees of freedom): no F tests.")
+    elif ss_res <= 1e-20 * ss_total:  # residual RMS below 1e-10 of the response's spread
+        notes.append("The model fits the data exactly (residuals at round-off level): its F-values, p-values "
+                     "and standard errors measure round-off, not noise.")
+
+    # Sums of squares that are round-off against the total (e.g. 2.5e-34 for a term whose
+    # coefficient is zero by symmetry) are stored as 0 with F 0 and p 1, as every face shows them.
+    anova = clean_anova(anova_table(term_names=[t.name for t in mterms], term_ss=term_ss, ss_model=ss_model,
+                                    df_model=df_model, ss_block=ss_block, df_block=nb - 1, ss_res=ss_res, df_res=df_res,
+                                    ss_total=ss_total, df_total=n - 1 if intercept else n, pe=pe_used,
+                                    term_df=[t.df for t in mterms],
+                                    total_label="Cor Total" if intercept else TOTAL_UNCORRECTED))
+
+    # coefficients (coded), errors, VIF, actual
+    b_t = beta[tidx]
+    se = ls.std_errors[tidx]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tval = b_t / se
+    if df_res > 0:
+        pval = 2.0 * special.stdtr(df_res, -np.abs(tval))
+        tq = float(special.stdtrit(df_res, 0.975))
+    else:
+        pval = np.full_like(b_t, np.nan)
+        tq = np.nan
+    # VIF (Design-Expert's: the diagonal of the inverse correlation matrix) needs the
+    # intercept to centre the columns; without one it is not defined (NaN)
+    vif = np.r_[np.nan, ls.vif(tidx[1:])] if intercept else np.full(b_t.size, np.nan)
+    # generalised VIF of each term (one per multi-df categoric term; the VIF for a 1-df term)
+    term_vif = dict(zip([t.name for t in mterms], ls.gvif([tidx[g] for g in groups]).tolist())) \
+        if intercept and any(t.df > 1 for t in terms) else {}
+    cols = column_names(terms)
+    coded_coefs = dict(zip(cols, b_t.tolist()))
+    if actual is not None:
+        actual_coefs, actual_se = actual
+    else:
+        actual_coefs, actual_se = actual_coefficients(coded_coefs, terms, space), None
+    coef = pd.DataFrame(
+        {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se,
+         "ci_high": b_t + tq * se, "vif": vif, "actual": [actual_coefs.get(nm, 0.0) for nm in cols]},
+        index=pd.Index(cols, name="term"),
+    )
+    fitted_range = ls.pass_sums.fitted_max - ls.pass_sums.fitted_min
+    statistics = fit_statistics(n=n, mean=ls.ybar, fitted_range=fitted_range, ss_res=ss_res,
+                                df_res=df_res, ss_total=ss_total, ss_block=ss_block, df_model=df_model,
+                                n_params=p, press=ls.press)
+    sp = canonical_analysis(coded_coefs, terms, space)
+    if nb > 1:
+        eff = beta[1:nb].tolist()
+        eff.append(-float(np.sum(eff)))
+        block_effects = dict(zip(bkeys, eff))
+    else:
+        block_effects = None
+    return FitResult(
+        response=response, model=spec.order if spec.terms is None or reduction is not None else "custom", block=block, space=space, terms=terms, data=data,
+        coded=coded, y=y, column_names=tuple(col_names), coefficients=coef,
+        anova=anova, statistics=statistics, stationary_point=sp, fitted=ls.fitted, residuals=ls.residuals,
+        hat=ls.hat, cov_unscaled=C, sigma2=float(sigma2), df_resid=int(df_res),
+        block_effects=block_effects, block_levels=blevels, pure_error=pe_used,
+        actual_coefficients=actual_coefs, notes=tuple(input_notes) + tuple(notes),
+        input_notes=tuple(input_notes), omitted_rows=tuple(omitted_rows), omitted_data=omitted_data,
+        least_squares=ls, term_vif=term_vif, spec=spec, y_response=y_response, reduction=reduction,
+        actual_std_errors=actual_se,
+    )

@@ -1,0 +1,176 @@
+"""What is fitted: :class:`ModelSpec`, one value object for every kind of fit.
+
+A model is an *order* (``linear``, ``2fi``, ``quadratic``, ``cubic``: the standard
+Design-Expert models) or an explicit *list of terms* in the JSON term notation (``"A"``,
+``"AB"``, ``"A^2"``, ``"A^10"``, ``"A^2B"``, categoric terms such as ``"AE"``), with or
+without an intercept; optionally on a transformed response (``log``, ``log10``, ``sqrt``,
+``inverse``, ``power=L``, with a constant; :mod:`rsm_lrg.model.transform`) and optionally
+reduced by hierarchical backward elimination (:class:`ReduceSpec`,
+:mod:`rsm_lrg.model.reduce`).
+
+>>> s = ModelSpec.build(terms="A B AB A^2", intercept=False, transform="log")
+>>> s.terms, s.intercept, s.transform.name, s.label
+(('A', 'B', 'AB', 'A^2'), False, 'log', 'terms A B AB A^2, no intercept, log transform')
+>>> ModelSpec.build("2fi").label
+'2fi'
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..terms import MODELS
+from .transform import Transform, parse_transform
+
+__all__ = ["ModelSpec", "ReduceSpec", "SpecError"]
+
+
+class SpecError(ValueError):
+    """A bad model specification; ``option`` names what was wrong (``"model"``, ``"terms"``,
+    ``"transform"``, ``"reduce"``) so a command line can name its own option."""
+
+    def __init__(self, option: str, message: str) -> None:
+        super().__init__(message)
+        self.option = option
+
+
+@dataclass(frozen=True)
+class ReduceSpec:
+    """Backward elimination keeping hierarchy: remove by p-value while the largest removable
+    p exceeds ``alpha_out`` (``criterion="p"``), or while AICc falls (``"aicc"``)."""
+
+    criterion: str = "p"
+    alpha_out: float = 0.1
+
+    def __post_init__(self) -> None:
+        if self.criterion not in ("p", "aicc"):
+            raise SpecError("reduce", f"criterion must be 'p' or 'aicc', not {self.criterion!r}")
+        a = self.alpha_out
+        if isinstance(a, bool) or not isinstance(a, (int, float)) or not 0.0 < a < 1.0:
+            raise SpecError("reduce", f"alpha_out must lie between 0 and 1, not {a!r}")
+
+    @classmethod
+    def build(cls, value: Any) -> ReduceSpec | None:
+        """``None``/``False`` (no reduction), ``True`` (the defaults), a ReduceSpec, or a
+        mapping ``{"criterion": ..., "alpha_out": ...}``."""
+        if value is None or value is False:
+            return None
+        if value is True:
+            return cls()
+        if isinstance(value, cls):
+            return value
+        if isinstance(value, dict):
+            unknown = set(value) - {"criterion", "alpha_out"}
+            if unknown:
+                raise SpecError("reduce", f"reduce takes criterion and alpha_out, not {', '.join(sorted(unknown))}")
+            return cls(**value)
+        raise SpecError("reduce", f"reduce must be True, a mapping or a ReduceSpec, not {value!r}")
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"criterion": self.criterion, "alpha_out": self.alpha_out}
+
+
+@dataclass(frozen=True)
+class ModelSpec:
+    """One fitted model's specification (frozen).
+
+    Attributes
+    ----------
+    order : str
+        ``"linear"``, ``"2fi"``, ``"quadratic"`` or ``"cubic"``: the model when ``terms`` is
+        ``None``; with ``terms`` it only names the starting point of a reduction.
+    terms : tuple of str or None
+        The model's terms (without the intercept), in the JSON term notation.
+    intercept : bool
+        Whether the model has an intercept (without one the ANOVA's total and R² are
+        uncorrected, as R's ``lm`` reports them).
+    transform : Transform
+        Response transform (the identity when none).
+    reduce : ReduceSpec or None
+        Backward elimination applied to the model before the final fit.
+    """
+
+    order: str = "quadratic"
+    terms: tuple[str, ...] | None = None
+    intercept: bool = True
+    transform: Transform = field(default_factory=Transform)
+    reduce: ReduceSpec | None = None
+
+    def __post_init__(self) -> None:
+        if self.order not in MODELS:
+            raise SpecError("model", f"unknown model {self.order!r}; expected one of {', '.join(MODELS)}")
+        if not self.intercept and self.terms is None:
+            raise SpecError("terms", "a model without an intercept is given as a list of terms "
+                                     "(--terms \"A B ...\" with --no-intercept)")
+
+    @classmethod
+    def build(cls, model: Any = "quadratic", *, terms: Any = None, intercept: bool = True, transform: Any = None,
+              transform_constant: float = 0.0, reduce: Any = None) -> ModelSpec:
+        """The specification from the keyword arguments of :func:`rsm_lrg.fit` (a ModelSpec
+        given as ``model`` is returned as it is when nothing else is given)."""
+        if isinstance(model, ModelSpec):
+            if terms is not None or transform is not None or reduce is not None or not intercept:
+                raise SpecError("model", "give either a ModelSpec or terms/intercept/transform/reduce, not both")
+            return model
+        if model is None:
+            model = "quadratic"
+        if not isinstance(model, str):
+            raise SpecError("model", f"model must be one of {', '.join(MODELS)} or a ModelSpec, not {model!r}")
+        order = model.strip().lower()
+        parsed_terms = None if terms is None else _term_names(terms)
+        try:
+            tr = parse_transform(transform, transform_constant)
+        except ValueError as exc:
+            raise SpecError("transform", str(exc)) from None
+        if not math.isfinite(tr.constant):
+            raise SpecError("transform", "the transform constant must be a finite number")
+        return cls(order=order, terms=parsed_terms, intercept=bool(intercept), transform=tr,
+                   reduce=ReduceSpec.build(reduce))
+
+    @property
+    def label(self) -> str:
+        """``"quadratic"``, ``"terms A B AB, no intercept, log transform, reduced (p, 0.1)"``."""
+        parts = [self.order if self.terms is None else "terms " + " ".join(self.terms)]
+        if not self.intercept:
+            parts.append("no intercept")
+        if not self.transform.identity:
+            parts.append(f"{self.transform.label} transform")
+        if self.reduce is not None:
+            parts.append(f"reduced ({self.reduce.criterion}, alpha {self.reduce.alpha_out:g})")
+        return ", ".join(parts)
+
+    @property
+    def model_name(self) -> str:
+        """The ``"model"`` of the fit JSON: the order, or ``"custom"`` for a list of terms."""
+        return self.order if self.terms is None else "custom"
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"order": self.order, "terms": None if self.terms is None else list(self.terms),
+                "intercept": self.intercept, "transform": self.transform.to_dict(),
+                "reduce": None if self.reduce is None else self.reduce.to_dict()}
+
+
+def _term_names(terms: Any) -> tuple[str, ...]:
+    """Term names from ``"A B AB"`` / ``"A,B,AB"`` or a sequence of names (Term objects give
+    their names); the intercept is the ``intercept`` flag's business and is dropped here."""
+    if isinstance(terms, str):
+        items: Sequence[Any] = terms.replace(",", " ").split()
+    else:
+        try:
+            items = list(terms)
+        except TypeError:
+            raise SpecError("terms", f"terms must be a list of term names, not {terms!r}") from None
+    out = []
+    for t in items:
+        name = getattr(t, "name", t)
+        if not isinstance(name, str) or not name.strip():
+            raise SpecError("terms", f"a term must be a name such as A, AB or A^2, not {t!r}")
+        name = name.strip()
+        if name != "Intercept" and name not in out:
+            out.append(name)
+    if not out:
+        raise SpecError("terms", "the term list is empty (give terms such as \"A B AB A^2\")")
+    return tuple(out)
