@@ -68,7 +68,8 @@ def run(args: argparse.Namespace) -> int:
     data = read_table(args.data)
     from ._common import model_spec
 
-    terms = (args.term or []) + list(model_spec(args).terms or ()) or None  # --term and --terms together
+    given = model_spec(args, order="2fi").terms if args.terms is not None else ()  # a bad --terms named first
+    terms = (args.term or []) + list(given or ()) or None  # --term and --terms together
     with about_file(args.data):
         model = "2fi" if args.model == "full" else args.model
         if terms is None and args.model == "full":  # the factors as the fit finds them, then all their products

@@ -49,7 +49,7 @@ def test_model_data_is_the_fit(fits):
     f = fits["tcr_c_per_min"]
     m = model_data(f)
     assert m["b"] == f.coefficients["coded"].tolist()
-    np.testing.assert_array_equal(np.array(m["C"]), f.cov_unscaled[np.ix_(f._term_index, f._term_index)])
+    np.testing.assert_array_equal(np.array(m["C"]), f.cov_unscaled[np.ix_(f.term_index, f.term_index)])
     assert m["sigma2"] == f.sigma2 and m["df_resid"] == f.df_resid == 12
     assert m["t"] == float(special.stdtrit(12, 0.975))  # t(0.975, 12) = 2.1788 (tables)
     assert m["t"] == pytest.approx(2.178813, abs=1e-6)
