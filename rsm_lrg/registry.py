@@ -12,7 +12,7 @@ first call. A higher layer (or a user) may also register a function object direc
 
 >>> from rsm_lrg import registry
 >>> registry.names()
-['FitResult.notebook_html', 'FitResult.optimize', 'FitResult.profiler', 'FitResult.to_html']
+['FitResult.notebook_html', 'FitResult.optimize', 'FitResult.profiler', 'FitResult.to_html', 'fit']
 """
 
 from __future__ import annotations

@@ -70,8 +70,8 @@ def _check_at(settings) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..io import read_table
-    from ..optimize.confirm import confirm
     from ..model import fit
+    from ..optimize.confirm import confirm
     from ._common import model_spec, print_notes, print_summary_or_json
 
     _check_at(args.at)

@@ -103,7 +103,6 @@ def _one_blas_thread(path: str) -> None:
 def run(args: argparse.Namespace) -> int:
     _one_blas_thread(str(args.data))
     from ..io import dump_json, read_table
-
     from ..model import fit
 
     model_spec(args)  # a bad --model/--terms/--transform is named before any data is read

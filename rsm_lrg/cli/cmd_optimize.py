@@ -55,8 +55,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..io import read_table
-    from ..optimize import optimize, parse_goal
     from ..model import fit
+    from ..optimize import optimize, parse_goal
     from ._common import (
         model_spec,
         per_response_values,
@@ -100,8 +100,8 @@ def _constraint_errors(constraints):
 def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
     from ..io import read_table
-    from ..optimize.desirability import optimize_desirability, parse_response_goal
     from ..model import fit
+    from ..optimize.desirability import optimize_desirability, parse_response_goal
     from ._common import (
         about_response,
         check_distinct_responses,

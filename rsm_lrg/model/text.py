@@ -5,8 +5,6 @@ Computes nothing of its own; it formats what :class:`~rsm_lrg.model.fit.FitResul
 
 from __future__ import annotations
 
-from .anova import TOTAL_ROWS
-
 import math
 from dataclasses import dataclass
 
@@ -14,6 +12,7 @@ import numpy as np
 
 from ..present import ROUND_OFF, format_g, format_p
 from ..present import clean as _clean
+from .anova import TOTAL_ROWS
 
 __all__ = ["format_summary", "format_anova", "format_equation", "equation_terms", "EquationTerm", "format_g",
            "EQUATION_ACCURACY"]

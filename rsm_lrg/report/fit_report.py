@@ -16,8 +16,6 @@ below 1e-12 of the largest, is shown as 0, as Design-Expert prints it).
 
 from __future__ import annotations
 
-from ..model.anova import TOTAL_ROWS
-
 import itertools
 import math
 from pathlib import Path
@@ -25,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from ..model.anova import TOTAL_ROWS
 from ..present import ROUND_OFF, clean
 from .html import SIGNIFICANCE_NOTE, fmt_f, fmt_num, fmt_p, render_page, significance
 
