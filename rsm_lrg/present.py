@@ -35,7 +35,9 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 from numbers import Number
+from typing import Any
 
 __all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_g", "format_sci", "format_p", "format_f",
            "format_cell", "clean_anova", "anova_rows", "unicode_number", "is_missing"]
@@ -271,3 +273,14 @@ def anova_rows(anova, *, style: str = "unicode") -> list[list[str]]:
                     format_number(r.mean_sq, 4, style=style), format_f(r.f) if style == "unicode" else
                     format_number(r.f, 4, style=style), format_p(r.p, style=style)])
     return out
+
+
+def text_table(header: Sequence[Any], rows: Sequence[Sequence[Any]], align: Sequence[str] | None = None) -> str:
+    """A plain-text table: the header, a rule, the rows; columns padded to their widest cell,
+    the first left-aligned and the rest right-aligned unless ``align`` (``"<"``/``">"``) says."""
+    widths = [max(len(str(h)), *(len(str(r[i])) for r in rows)) for i, h in enumerate(header)]
+    align = align or ["<"] + [">"] * (len(header) - 1)
+    fmt = "  ".join(f"{{:{a}{w}}}" for a, w in zip(align, widths))
+    lines = [fmt.format(*header), "  ".join("-" * w for w in widths)]
+    lines += [fmt.format(*map(str, r)) for r in rows]
+    return "\n".join(lines)

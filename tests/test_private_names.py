@@ -20,26 +20,7 @@ ROOT = Path(__file__).resolve().parents[1]
 #: ``(importer, "module:name")`` of the private imports left for the rewrite of model/fit.py,
 #: model/text.py, model/transform.py and report/fit_report.py (the names are defined or used
 #: there). Remove an entry when its use goes; an entry with no use left fails the test.
-LEAD_FILES_PRIVATE_IMPORTS = frozenset({
-    ("rsm_lrg.model.dask_fit", "rsm_lrg.model.fit:_assemble"),
-    ("rsm_lrg.model.dask_fit", "rsm_lrg.model.fit:_block_codes"),
-    ("rsm_lrg.model.dask_fit", "rsm_lrg.model.fit:_check_magnitudes"),
-    ("rsm_lrg.model.dask_fit", "rsm_lrg.model.fit:_chosen_terms"),
-    ("rsm_lrg.model.diagnostics", "rsm_lrg.model.text:_table"),
-    ("rsm_lrg.model.evaluate", "rsm_lrg.model.text:_table"),
-    ("rsm_lrg.model.ridge", "rsm_lrg.model.text:_table"),
-    ("rsm_lrg.model.summary", "rsm_lrg.model.text:_p"),
-    ("rsm_lrg.model.summary", "rsm_lrg.model.text:_table"),
-    ("rsm_lrg.model.fit", "rsm_lrg.factors:_numeric"),  # now rsm_lrg.io.float_column
-    ("rsm_lrg.model.transform", "rsm_lrg.factors:_numeric"),  # now rsm_lrg.io.float_column
-    ("rsm_lrg.report.interactive", "rsm_lrg.report.fit_report:_data_table"),
-    ("rsm_lrg.report.interactive", "rsm_lrg.report.fit_report:_diagnostics"),
-    ("rsm_lrg.report.interactive", "rsm_lrg.report.fit_report:_optimum_section"),
-    ("rsm_lrg.report.interactive", "rsm_lrg.report.fit_report:_run_numbers"),
-    ("rsm_lrg.report.interactive", "rsm_lrg.report.fit_report:_surfaces"),
-    ("rsm_lrg.report.interactive", "rsm_lrg.report.fit_report:_tables"),
-    ("rsm_lrg.report.reproduction_page", "rsm_lrg.report.fit_report:_surfaces"),
-})
+LEAD_FILES_PRIVATE_IMPORTS: frozenset[tuple[str, str]] = frozenset()
 
 
 def _private(name: str) -> bool:

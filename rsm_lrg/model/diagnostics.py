@@ -267,7 +267,7 @@ class Diagnostics:
                 "box_cox": None if self.box_cox is None else self.box_cox.to_dict(), "note": self.note or None}
 
     def summary(self) -> str:
-        from .text import _table, format_g
+        from ..present import format_g, text_table
 
         head = ["Run", "Order", "Actual", "Predicted", "Residual", "Leverage", "Ext. stud.", "Cook's D", "DFFITS", "Flag"]
         rows = []
@@ -280,7 +280,7 @@ class Diagnostics:
                          format_g(r.leverage, 3), format_g(r.externally_studentized, 3), format_g(r.cooks_distance, 3),
                          format_g(r.dffits, 3), ",".join(flags)])
         lim = self.limits
-        out = ["Diagnostics", _table(head, rows), "",
+        out = ["Diagnostics", text_table(head, rows), "",
                f"Limits: |ext. studentized| > {lim['externally_studentized']:.3f} (Bonferroni, alpha 0.05), "
                f"leverage > {lim['leverage']:.3f} (2p/n), Cook's D > {lim['cooks_distance']:.3f} (F median), "
                f"|DFFITS| > {lim['dffits']:.3f} (2 sqrt(p/n))"]

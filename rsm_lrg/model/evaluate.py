@@ -187,7 +187,7 @@ class DesignEvaluation:
                 f"parameters): aliased {', '.join(shown)}{more}; use a smaller --model or add runs")
 
     def summary(self) -> str:
-        from .text import _table, format_g
+        from ..present import format_g, text_table
 
         out = [f"Design evaluation for a {self.model} model: {self.n} runs, {self.p} parameters"]
         if self.aliased:
@@ -200,7 +200,7 @@ class DesignEvaluation:
         out.append("Degrees of freedom: " + ", ".join(f"{k.replace('_', ' ')} {v}" for k, v in self.df.items()))
         rows = [[t, format_g(r.std_error), format_g(r.vif, 4), "" if not math.isfinite(r.power) else f"{100 * r.power:.1f} %"]
                 for t, r in self.terms.iterrows()]
-        out += ["", _table(["Term", "Std. error [σ]", "VIF", f"Power ({self.effect_sd:g}σ, α {self.alpha:g})"], rows)]
+        out += ["", text_table(["Term", "Std. error [σ]", "VIF", f"Power ({self.effect_sd:g}σ, α {self.alpha:g})"], rows)]
         out += ["", f"Leverage: min {self.leverage.min():.4f}, max {self.leverage.max():.4f}, mean {self.leverage.mean():.4f}",
                 f"Scaled prediction variance n·x'(X'X)⁻¹x: centre {format_g(self.spv_center)}, "
                 f"max at a design point {format_g(self.spv_max_design)}; over the {self.region}: "
@@ -212,7 +212,7 @@ class DesignEvaluation:
                 + f"; G-efficiency p/max SPV = {100 * self.g_efficiency:.1f} %)",
                 "", "Fraction of design space (unscaled variance x'(X'X)⁻¹x)"]
         rows = [[f"{r.fraction:.1f}", format_g(r.variance), format_g(r.spv)] for r in self.fds.itertuples(index=False)]
-        out.append(_table(["Fraction", "Variance [σ²]", "SPV"], rows))
+        out.append(text_table(["Fraction", "Variance [σ²]", "SPV"], rows))
         out += ["", f"Efficiencies: D {100 * self.d_efficiency:.1f} %, A {100 * self.a_efficiency:.1f} %, "
                     f"G {100 * self.g_efficiency:.1f} %; I (average prediction variance over the {self.region}) "
                     f"{format_g(self.i_average)} σ², average SPV {format_g(self.n * self.i_average)}"]
@@ -696,7 +696,7 @@ class DesignComparison:
                 "evaluations": [e.to_dict() for e in self.evaluations]}
 
     def summary(self) -> str:
-        from .text import _table, format_g
+        from ..present import format_g, text_table
 
         e0 = self.evaluations[0]
         out = [f"Design comparison for a {e0.model} model over the {e0.region} ({len(self.names)} designs)"]
@@ -707,14 +707,14 @@ class DesignComparison:
                  pc(r.g_efficiency), format_g(r.i_average, 4), format_g(r.spv_average, 4), format_g(r.spv_max, 4),
                  f"{r.rel_d:.3f}", f"{r.rel_a:.3f}", f"{r.rel_g:.3f}", f"{r.rel_i:.3f}"]
                 for n, r in self.table.iterrows()]
-        out += ["", _table(heads, rows), "",
+        out += ["", text_table(heads, rows), "",
                 "Efficiencies per run (D det(X'X)^(1/p)/n, A p/(n tr((X'X)^-1)), G p/max SPV); I the average "
                 "prediction variance; rel: each divided by the best of the designs compared (I: best n*I / n*I).",
                 "", "Fraction of design space (unscaled variance x'(X'X)⁻¹x [σ²])"]
         fr = self.evaluations[0].fds["fraction"].to_numpy()
         rows = [[f"{x:.1f}"] + [format_g(e.fds["variance"].iat[i], 4) for e in self.evaluations]
                 for i, x in enumerate(fr)]
-        out.append(_table(["Fraction"] + [str(n) for n in self.names], rows))
+        out.append(text_table(["Fraction"] + [str(n) for n in self.names], rows))
         return "\n".join(out) + "\n"
 
     def __str__(self) -> str:

@@ -21,7 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from ..factors import FactorSpace, _numeric
+from ..factors import FactorSpace
+from ..io import float_column
 from ..present import clean_anova
 from .actual import actual_coefficients
 from .anova import TOTAL_UNCORRECTED, PureError, anova_table
@@ -276,7 +277,7 @@ class FitResult:
             if missing:
                 raise ValueError(f"prediction points lack the factor column(s) {', '.join(map(repr, missing))}")
             if coded:
-                return np.column_stack([_numeric(points, c).to_numpy() for c in cols])
+                return np.column_stack([float_column(points, c).to_numpy() for c in cols])
             return self.space.encode(points[cols]).to_numpy(dtype=float)
         arr = np.asarray(points, dtype=object if self.space.has_categoric and not coded else float)
         if arr.ndim == 1:

@@ -166,14 +166,14 @@ class RidgePath:
         return df
 
     def summary(self) -> str:
-        from .text import _table, format_g
+        from ..present import format_g, text_table
 
         what = ("Path of steepest {} from ridge analysis" if self.kind == "ridge" else "Linear path of steepest {}")
         what = what.format("ascent" if self.goal == "maximize" else "descent")
         head = ["radius", *self.letters, "|", *self.names, "|", "predicted"]
         rows = [[f"{r:.3f}", *(f"{v:.3f}" for v in c), "|", *(format_g(v, 5) for v in a), "|", format_g(p, 5)]
                 for r, c, a, p in zip(self.radius, self.coded, self.actual, self.predicted)]
-        return f"{what} for {self.response} (coded radius from the design centre)\n" + _table(head, rows) + "\n"
+        return f"{what} for {self.response} (coded radius from the design centre)\n" + text_table(head, rows) + "\n"
 
     def __str__(self) -> str:
         return self.summary()

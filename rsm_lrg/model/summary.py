@@ -124,23 +124,23 @@ class FitSummary:
 
     def summary(self) -> str:
         """Design-Expert style text: the three tables and the suggestion."""
-        from .text import _p, _table, format_g
+        from ..present import format_g, format_p, text_table
 
         out = [f"Fit summary for {self.response} ({self.n} runs)", "", "Sequential model sum of squares [Type I]"]
-        rows = [[r.source, format_g(r.sum_sq), r.df, format_g(r.mean_sq), format_g(r.f), _p(r.p),
+        rows = [[r.source, format_g(r.sum_sq), r.df, format_g(r.mean_sq), format_g(r.f), format_p(r.p, style="ascii"),
                  "Aliased" if r.aliased else ""] for r in self.sequential.itertuples(index=False)]
-        out.append(_table(["Source", "Sum of Squares", "df", "Mean Square", "F-value", "p-value", ""], rows,
+        out.append(text_table(["Source", "Sum of Squares", "df", "Mean Square", "F-value", "p-value", ""], rows,
                           ["<", ">", ">", ">", ">", ">", "<"]))
         if len(self.lack_of_fit):
             out += ["", "Lack of fit tests"]
-            rows = [[r.source, format_g(r.sum_sq), r.df, format_g(r.mean_sq), format_g(r.f), _p(r.p)]
+            rows = [[r.source, format_g(r.sum_sq), r.df, format_g(r.mean_sq), format_g(r.f), format_p(r.p, style="ascii")]
                     for r in self.lack_of_fit.itertuples(index=False)]
-            out.append(_table(["Source", "Sum of Squares", "df", "Mean Square", "F-value", "p-value"], rows))
+            out.append(text_table(["Source", "Sum of Squares", "df", "Mean Square", "F-value", "p-value"], rows))
         out += ["", "Model summary statistics"]
         rows = [[r.source, format_g(r.std_dev), format_g(r.r2), format_g(r.adj_r2), format_g(r.pred_r2),
                  format_g(r.press), "Aliased" if r.aliased else ("Suggested" if r.source.lower() == self.suggested else "")]
                 for r in self.statistics.itertuples(index=False)]
-        out.append(_table(["Source", "Std. Dev.", "R²", "Adjusted R²", "Predicted R²", "PRESS", ""], rows))
+        out.append(text_table(["Source", "Std. Dev.", "R²", "Adjusted R²", "Predicted R²", "PRESS", ""], rows))
         out += ["", f"Suggested model: {_LABEL.get(self.suggested, self.suggested)}"]
         out += [f"Note: {n}" for n in self.notes]
         return "\n".join(out) + "\n"

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..present import ROUND_OFF, format_g, format_p
+from ..present import ROUND_OFF, format_g, format_p, text_table
 from ..present import clean as _clean
 from .anova import TOTAL_ROWS
 
@@ -20,15 +20,6 @@ __all__ = ["format_summary", "format_anova", "format_equation", "equation_terms"
 
 def _p(p) -> str:
     return format_p(p, style="ascii")
-
-
-def _table(header, rows, align=None) -> str:
-    widths = [max(len(str(h)), *(len(str(r[i])) for r in rows)) for i, h in enumerate(header)]
-    align = align or ["<"] + [">"] * (len(header) - 1)
-    fmt = "  ".join(f"{{:{a}{w}}}" for a, w in zip(align, widths))
-    lines = [fmt.format(*header), "  ".join("-" * w for w in widths)]
-    lines += [fmt.format(*map(str, r)) for r in rows]
-    return "\n".join(lines)
 
 
 def format_anova(result, alpha: float = 0.05) -> str:
@@ -49,7 +40,7 @@ def format_anova(result, alpha: float = 0.05) -> str:
         f = 0.0 if (ss == 0.0 and r.f == r.f) else r.f
         rows.append([r.source, format_g(ss), r.df, format_g(ms), format_g(f), _p(r.p), mark])
     head = ["Source", "Sum of Squares", "df", "Mean Square", "F-value", "p-value", ""]
-    return _table(head, rows, ["<", ">", ">", ">", ">", ">", "<"])
+    return text_table(head, rows, ["<", ">", ">", ">", ">", ">", "<"])
 
 
 #: Accuracy the printed equations promise: evaluated anywhere in the factor box, they
@@ -222,7 +213,7 @@ def format_summary(result) -> str:
         ["PRESS", format_g(s.press), "Adeq Precision", format_g(s.adeq_precision)],
     ]
     out.append("Fit statistics")
-    out.append(_table(["", "", "", ""], stat_rows, ["<", ">", "<", ">"]).split("\n", 2)[2])
+    out.append(text_table(["", "", "", ""], stat_rows, ["<", ">", "<", ">"]).split("\n", 2)[2])
     out.append("")
     out.append("Coefficients in terms of coded factors (95 % CI)")
     rows = []
@@ -230,7 +221,7 @@ def format_summary(result) -> str:
     for name, r in result.coefficients.iterrows():
         rows.append([name, format_g(_clean(r["coded"], cscale)), format_g(r["std_error"]), format_g(r["ci_low"]),
                      format_g(r["ci_high"]), (f"{r['vif']:.2f}" if r["vif"] == r["vif"] else ""), _p(r["p"])])
-    out.append(_table(["Term", "Estimate", "Std Error", "95% CI Low", "95% CI High", "VIF", "p-value"], rows))
+    out.append(text_table(["Term", "Estimate", "Std Error", "95% CI Low", "95% CI High", "VIF", "p-value"], rows))
     multi = {k: v for k, v in (getattr(result, "term_vif", None) or {}).items()
              if next(t for t in result.terms if t.name == k).df > 1}
     if multi:

@@ -87,7 +87,7 @@ def _equation_terms(result, units: str, labels: list[str], sep: str = "") -> lis
     return out or ["0"]
 
 
-def _run_numbers(result) -> tuple[np.ndarray, str]:
+def run_numbers(result) -> tuple[np.ndarray, str]:
     cols = {str(c).lower(): c for c in result.data.columns}
     for name in _RUN_COLUMNS:
         if name in cols:
@@ -220,7 +220,7 @@ def _coefficients(result) -> list[dict]:
     return rows
 
 
-def _data_table(result, runs_label: str) -> dict:
+def data_table(result, runs_label: str) -> dict:
     """Every row as read, in file order: the runs used with their coded settings, and the rows
     left out for want of a response marked "not run" in the response column."""
     d = result.data
@@ -258,11 +258,11 @@ def _data_table(result, runs_label: str) -> dict:
 
 # -- figures --------------------------------------------------------------------------------
 
-def _diagnostics(result) -> tuple[list, str]:
+def diagnostics_section(result) -> tuple[list, str]:
     from . import plots as P
 
     ext = np.asarray(result.externally_studentized_residuals, dtype=float)
-    runs, runs_from = _run_numbers(result)
+    runs, runs_from = run_numbers(result)
     p = result.design_matrix.shape[1]
     n = result.n
     resp = result.response
@@ -309,7 +309,7 @@ def _on_slice(optimum, space, held, i: int, j: int) -> bool:
                for m, f in enumerate(space.factors) if m not in (i, j))
 
 
-def _surfaces(result, hold: str, optimum) -> tuple[list[dict], str]:
+def surface_figures(result, hold: str, optimum) -> tuple[list[dict], str]:
     """A 3-D surface (PNG at twice the shown size) and a contour (SVG) for every factor pair.
 
     The figures are slices of the fitted model with the other factors held at their centre
@@ -426,7 +426,7 @@ def _number_or_level(v):
     return v if isinstance(v, str) else float(v)
 
 
-def _optimum_section(result, optimum) -> tuple[dict | None, str]:
+def optimum_section(result, optimum) -> tuple[dict | None, str]:
     if optimum is None:
         return None, "No optimum was computed."
     rows = [{"letter": f.letter, "name": f.name, "coded": _number_or_level(optimum.coded[f.letter]),
@@ -445,7 +445,7 @@ def _optimum_section(result, optimum) -> tuple[dict | None, str]:
 
 # -- the page -----------------------------------------------------------------------------------
 
-def _tables(result, source_name: str | None, optimum) -> dict:
+def table_sections(result, source_name: str | None, optimum) -> dict:
     """The parts of a report that are text and tables (no figures): shared by the full
     report and the notebook face."""
     space = result.space
@@ -532,17 +532,17 @@ def report_context(result, *, title: str | None = None, source_name: str | None 
     if optimum is None and goal is not None:
         optimum = result.optimize(goal=goal)
     space = result.space
-    _, runs_from = _run_numbers(result)
-    ctx = _tables(result, source_name, optimum)
-    diagnostics, diag_note = _diagnostics(result)
-    surfaces, surf_note = _surfaces(result, hold, optimum)
-    opt, opt_missing = _optimum_section(result, optimum)
+    _, runs_from = run_numbers(result)
+    ctx = table_sections(result, source_name, optimum)
+    diagnostics, diag_note = diagnostics_section(result)
+    surfaces, surf_note = surface_figures(result, hold, optimum)
+    opt, opt_missing = optimum_section(result, optimum)
     return ctx | {
         "title": title or f"Response surface report: {result.response}",
         "subtitle": (f"{result.model.capitalize()} model of {result.response} in {len(space)} factors from "
                      f"{result.n} runs" + (f" ({source_name})" if source_name else "") + "."),
         "toc": [(sid, _SECTION_TITLES[sid]) for sid in SECTION_IDS],
-        "data": _data_table(result, runs_from),
+        "data": data_table(result, runs_from),
         "diagnostics": diagnostics,
         "diagnostics_note": diag_note,
         "surfaces": surfaces,
@@ -560,7 +560,7 @@ def notebook_html(result, *, source_name: str | None = None) -> str:
     """
     from .html import environment
 
-    ctx = _tables(result, source_name, None)
+    ctx = table_sections(result, source_name, None)
     ctx["title"] = f"{result.model.capitalize()} fit of {result.response}: {result.n} runs, {len(result.space)} factors"
     return environment().get_template("notebook.html.j2").render(**ctx)
 

@@ -338,17 +338,17 @@ def page_data(specs, *, confidence: float = 0.95, desirability=True) -> tuple[di
 def _response_sections(specs, source_name, static: bool = False, hold: str = "center") -> list[dict]:
     """Per response: the static tables and diagnostics of today's report; the static 3-D
     surfaces and contours of every pair only with ``static`` (the live page draws them)."""
-    from .fit_report import _diagnostics, _optimum_section, _surfaces, _tables
+    from .fit_report import diagnostics_section, optimum_section, surface_figures, table_sections
 
     out = []
     for i, s in enumerate(specs, start=1):
         fit = s.result
         best, why = (None, "no goal given") if s.goal is None else _optimum(s.result, s.goal)
-        ctx = _tables(fit, source_name, None)
-        diag, diag_note = _diagnostics(fit)
-        opt, opt_missing = _optimum_section(fit, best) if best is not None else (None, why)
+        ctx = table_sections(fit, source_name, None)
+        diag, diag_note = diagnostics_section(fit)
+        opt, opt_missing = optimum_section(fit, best) if best is not None else (None, why)
         tr = None if fit.transform.identity else fit.transform
-        surfaces, surfaces_note = _surfaces(fit, hold, best) if static else ([], "")
+        surfaces, surfaces_note = surface_figures(fit, hold, best) if static else ([], "")
         out.append(ctx | {"surfaces": surfaces, "surfaces_note": surfaces_note,
             "index": i, "response": str(s.result.response), "diagnostics": diag, "diagnostics_note": diag_note,
             "optimum": opt, "optimum_missing": opt_missing,
@@ -377,7 +377,7 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
                         source_name: str | None = None, confidence: float = 0.95, tables: bool = True,
                         start: str = "center", static: bool = False) -> dict:
     """Everything the interactive page shows (plain values), the scripts not included."""
-    from .fit_report import _data_table, _run_numbers
+    from .fit_report import data_table, run_numbers
 
     specs = _as_specs(results, goals, limits, labels)
     data, notes = page_data(specs, confidence=confidence)
@@ -393,7 +393,7 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
         summary.append((f"Model of {m['response']}", f"{m['model']}, {len(m['b'])} coefficients, "
                                                      f"{m['df_resid']} residual df"
                         + (f", {m['transform']['name']} transform" if m["transform"] else "")))
-    _, runs_from = _run_numbers(first)
+    _, runs_from = run_numbers(first)
     return {
         "title": title or ("Interactive response surface report: " + ", ".join(names)),
         "subtitle": (f"{len(names)} response{'s' if len(names) > 1 else ''} over {len(space)} factors from "
@@ -410,7 +410,7 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
         "notes": notes,
         "confidence_pct": f"{100 * confidence:g}",
         "data_json": _json_for_script(data),
-        "data": _data_table(first, runs_from) if tables else None,
+        "data": data_table(first, runs_from) if tables else None,
         "responses": _response_sections(specs, source_name, static, start) if tables else [],
         "static": bool(static),
     }

@@ -90,7 +90,7 @@ def _paired(a, b, what_a: str, what_b: str) -> tuple[np.ndarray, np.ndarray]:
     return a, b
 
 
-def _run_numbers(run_order, y: np.ndarray, what: str) -> np.ndarray:
+def run_numbers(run_order, y: np.ndarray, what: str) -> np.ndarray:
     """The x axis of a plot in run order: ``run_order``, or 1..n when it is None, one per
     value of ``y`` (``what``)."""
     x = np.arange(1, y.size + 1, dtype=float) if run_order is None else _vector(run_order, "run order")
@@ -262,7 +262,7 @@ def residuals_vs_run(residuals, run_order=None, *, limits: float | None = None,
                      label: str = "Residuals", title: str | None = "Residuals vs run order") -> Figure:
     """Residuals in run order (connected), to show drift or time effects."""
     y = _vector(residuals, "residuals")
-    x = _run_numbers(run_order, y, "residuals")
+    x = run_numbers(run_order, y, "residuals")
     o = np.argsort(x, kind="stable")
     fig = _new_figure()
     ax = fig.add_subplot()
@@ -292,7 +292,7 @@ def predicted_vs_actual(actual, predicted, *, response: str = "response",
 
 def _index_bars(values, run_order, threshold, ylabel, title, what) -> Figure:
     y = _vector(values, what)
-    x = _run_numbers(run_order, y, what)
+    x = run_numbers(run_order, y, what)
     fig = _new_figure()
     ax = fig.add_subplot()
     ax.vlines(x, 0.0, y, color=_LINE_COLOR, linewidth=1.2)

@@ -102,7 +102,7 @@ def _cell_css(text: str) -> str:
 
 def _figures(rep, fig9: dict, confirmation: dict, measured) -> dict:
     from . import plots as P
-    from .fit_report import _surfaces
+    from .fit_report import surface_figures
 
     strokes, velocity, acceleration = fig9["strokes"], fig9["velocity"], fig9["acceleration"]
     rise_c, minutes = confirmation["rise_c"], confirmation["minutes"]
@@ -150,7 +150,7 @@ def _figures(rep, fig9: dict, confirmation: dict, measured) -> dict:
         "Temperature rise implied by the fitted κ at the optimum (A = 0.0001 m, B = 0.04 m, C = 0.4 m/s, "
         "D = 20 m/s²) with its 95 % prediction interval, and the paper's confirmation run (its end points: "
         "the paper gives the rise and duration, not the recorded curve).", "svg")
-    surfaces, note = _surfaces(rep.fit, "center", opt)
+    surfaces, note = surface_figures(rep.fit, "center", opt)
     figs["fig10"] = surfaces
     figs["fig10_note"] = note
     return figs
