@@ -43,108 +43,237 @@ COEF_COLUMNS = ["coded", "std_error", "t", "p", "ci_low", "ci_high", "vif", "act
 
 @dataclass(frozen=True)
 class FitResult:
-    """A fitted response-surface model (frozen).
+    """A fitted model (frozen): the specification, the factor space and the regression core;
+    everything else is derived from them on first use (cached), as statsmodels' results derive
+    from ``params`` and ``normalized_cov_params``.
 
     Attributes
     ----------
     response : str
         Response column.
-    model : str
-        ``"linear"``, ``"2fi"``, ``"quadratic"`` or ``"cubic"``.
+    spec : ModelSpec
+        What was fitted: order or terms, intercept, transform, reduction
+        (``model``, ``transform``, ``intercept`` and ``label`` read it).
     block : str or None
         Block column, if any.
     space : FactorSpace
-        Factors with their coding (letters A, B, ...).
+        Factors with their coding (letters A, B, ...; about zero without an intercept).
     terms : tuple of Term
-        Model terms in order (``terms[0]`` is the intercept).
-    data : pandas.DataFrame
-        The rows used (a copy; rows without a response are in ``omitted_data``).
-    coded : pandas.DataFrame
-        Coded factor settings, columns = letters.
-    y : ndarray
-        Response on the model's scale (``g(y + k)`` under a transform) [response units].
-    design_matrix : ndarray
-        Full model matrix (intercept, block contrasts, terms), n x p; rebuilt from
-        ``coded`` on first access (a cached property: a fit never holds it whole).
-    column_names : tuple of str
-        Names of the ``design_matrix`` columns (blocks are ``"Block[B1]"``, ...).
-    coefficients : pandas.DataFrame
-        Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``
-        (std_error, t, p, CI and VIF refer to the coded coefficient; 95 % CI).
-    anova : pandas.DataFrame
-        Columns ``source, sum_sq, df, mean_sq, f, p``; rows Model, each term (Type III),
-        Block, Residual, Lack of Fit, Pure Error, Cor Total (as Table 5).
-    statistics : FitStatistics
-    stationary_point : StationaryPoint
-    fitted, residuals, hat : ndarray
-        ŷ, e = y - ŷ, leverage h_ii.
-    cov_unscaled : ndarray
-        ``(X'X)^-1`` of ``design_matrix``.
-    sigma2 : float
-        Residual mean square [response units²].
-    df_resid : int
-    block_effects : dict or None
-        ``{"B1": effect, ...}`` (sum to zero) [response units].
-    block_levels : dict or None
-        ``{"B1": original label, ...}``.
-    pure_error : PureError or None
-        Pure error: residual of (blocks +) one mean per distinct factor setting, as R
-        ``rsm``'s ``PE()`` test (``None`` when it has no degrees of freedom).
-    actual_coefficients : dict
-        ``{term: coefficient in actual units}``.
-    ols : statsmodels RegressionResults
-        statsmodels' OLS of ``y`` on ``design_matrix``, built on first access (a cached
-        property; the numbers above come from :attr:`least_squares`, not from it).
+        Model terms in order (``terms[0]`` is the intercept when the model has one).
     least_squares : Regression
-        The regression core's factorisation (:mod:`rsm_lrg.model.least_squares`): ask it for
-        sequential or partial sums of squares, sub-models, VIF, PRESS.
-    notes : tuple of str
-        Remarks for the text output: ``input_notes`` first, then the fit's own (e.g. why
-        there is no lack-of-fit test).
+        The regression core's factorisation (:mod:`rsm_lrg.model.least_squares`): sequential
+        or partial sums of squares, sub-models, VIF, PRESS.
+    raw_pure_error : PureError
+        Residual of (blocks +) one mean per distinct setting (``pure_error`` is None when it
+        has no degrees of freedom).
+    column_names : tuple of str
+        Names of the model matrix columns (blocks are ``"Block[B1]"``, ...).
+    data : pandas.DataFrame
+        The rows used (rows without a response are in ``omitted_data``).
+    coded : pandas.DataFrame
+        Coded factor settings, columns = letters (None for a Dask fit).
+    y : ndarray
+        Response on the model's scale (``g(y + k)`` under a transform).
+    y_response : ndarray or None
+        The response as measured.
+    block_keys, block_levels
+        ``("B1", ...)`` and ``{"B1": original label}``.
     input_notes : tuple of str
-        Remarks on the input (:func:`rsm_lrg.model.data.prepare`): which columns were taken
-        as factors when they were inferred, every column left out (neither factor, response,
-        block nor bookkeeping), the runs left out for want of a response.
+        Remarks on the input (columns taken as factors, left out, runs not run).
     omitted_rows : tuple of int
-        1-based data rows left out because their response cell is empty ("not run").
-    omitted_data : pandas.DataFrame or None
-        Those rows as given (index = 0-based position in the input); ``data`` holds the
-        rows used.
+        1-based data rows left out because their response cell is empty.
+    reduction : Reduction or None
+        The backward elimination that chose the terms.
+    actual_solution : object or None
+        The fit solved in actual units (``coefficients``, ``std_errors``), when it was.
+
+    Derived (cached): ``coefficients`` (columns ``coded, std_error, t, p, ci_low, ci_high,
+    vif, actual``), ``anova`` (Table 5 layout), ``statistics``, ``stationary_point``,
+    ``fitted``, ``residuals``, ``hat``, ``cov_unscaled``, ``sigma2``, ``df_resid``,
+    ``pure_error``, ``block_effects``, ``actual_coefficients``, ``actual_std_errors``,
+    ``term_vif``, ``notes``, ``design_matrix``, ``ols`` (statsmodels, built lazily).
     """
 
     response: str
-    model: str
+    spec: ModelSpec
     block: str | None
     space: FactorSpace
     terms: tuple
+    least_squares: Regression = field(repr=False)
+    raw_pure_error: PureError = field(repr=False)
+    column_names: tuple = field(repr=False)
     data: Any = field(repr=False)
     coded: Any = field(repr=False)
-    y: np.ndarray = field(repr=False)
-    column_names: tuple = field(repr=False)
-    coefficients: Any = field(repr=False)
-    anova: Any = field(repr=False)
-    statistics: FitStatistics = field(repr=False)
-    stationary_point: StationaryPoint = field(repr=False)
-    fitted: np.ndarray = field(repr=False)
-    residuals: np.ndarray = field(repr=False)
-    hat: np.ndarray = field(repr=False)
-    cov_unscaled: np.ndarray = field(repr=False)
-    sigma2: float = field(repr=False)
-    df_resid: int = field(repr=False)
-    block_effects: dict | None = field(repr=False)
-    block_levels: dict | None = field(repr=False)
-    pure_error: PureError | None = field(repr=False)
-    actual_coefficients: dict = field(repr=False)
-    notes: tuple = field(default=(), repr=False)
+    y: Any = field(repr=False)
+    y_response: Any = field(default=None, repr=False)
+    block_keys: tuple | None = field(default=None, repr=False)
+    block_levels: dict | None = field(default=None, repr=False)
     input_notes: tuple = field(default=(), repr=False)
     omitted_rows: tuple = field(default=(), repr=False)
     omitted_data: Any = field(default=None, repr=False)
-    least_squares: Regression | None = field(default=None, repr=False)
-    term_vif: dict = field(default_factory=dict, repr=False)
-    spec: ModelSpec = field(default_factory=ModelSpec, repr=False)
-    y_response: np.ndarray | None = field(default=None, repr=False)
     reduction: Any = field(default=None, repr=False)
-    actual_std_errors: dict | None = field(default=None, repr=False)
+    actual_solution: Any = field(default=None, repr=False)
+
+    # -- what the regression core says ------------------------------------------------
+    @property
+    def model(self) -> str:
+        """The model's order (``"linear"`` ... ``"cubic"``), or ``"custom"`` for chosen terms."""
+        return self.spec.order if self.spec.terms is None or self.reduction is not None else "custom"
+
+    @property
+    def n_blocks(self) -> int:
+        """Number of blocks (1 when unblocked)."""
+        return len(self.column_names) - n_columns(self.terms) + 1
+
+    @property
+    def fitted(self) -> np.ndarray:
+        """ŷ on the model's scale."""
+        return self.least_squares.fitted
+
+    @property
+    def residuals(self) -> np.ndarray:
+        """e = y - ŷ on the model's scale."""
+        return self.least_squares.residuals
+
+    @property
+    def hat(self) -> np.ndarray:
+        """Leverage h_ii."""
+        return self.least_squares.hat
+
+    @property
+    def cov_unscaled(self) -> np.ndarray:
+        """``(X'X)^-1`` of the model matrix (intercept, block contrasts, terms)."""
+        return self.least_squares.cov_unscaled
+
+    @property
+    def sigma2(self) -> float:
+        """Residual mean square (NaN without residual degrees of freedom)."""
+        return float(self.least_squares.sigma2)
+
+    @property
+    def df_resid(self) -> int:
+        return int(self.least_squares.df_resid)
+
+    @cached_property
+    def pure_error(self) -> PureError | None:
+        """Pure error (R ``rsm``'s ``PE()``), or None when no setting is replicated."""
+        return None if self.raw_pure_error.df == 0 else self.raw_pure_error
+
+    @cached_property
+    def _sums(self) -> dict[str, Any]:
+        """The sums of squares of the ANOVA from the core (blocks first, sequential; terms Type III)."""
+        ls, nb, tidx = self.least_squares, self.n_blocks, self.term_index
+        mcols = tidx[1:] if self.intercept else tidx
+        ss_block = ls.sequential_ss(np.arange(1, nb)) if nb > 1 else 0.0
+        ss_model = ls.sequential_ss(mcols) if mcols.size else 0.0
+        ss_total = ls.ss_total if self.intercept else ss_model + ls.ss_res  # uncorrected: sum y^2
+        groups = term_columns(self.model_terms, 1 if self.intercept else 0)
+        return {"ss_block": ss_block, "ss_model": ss_model, "ss_total": ss_total, "df_model": int(mcols.size),
+                "groups": groups, "term_ss": [ls.partial_ss(tidx[g]) for g in groups]}
+
+    @cached_property
+    def anova(self) -> Any:
+        """The Design-Expert ANOVA (Table 5 layout): columns ``source, sum_sq, df, mean_sq, f, p``."""
+        s, ls = self._sums, self.least_squares
+        n, nb = ls.n, self.n_blocks
+        # Sums of squares that are round-off against the total (e.g. 2.5e-34 for a term whose
+        # coefficient is zero by symmetry) are stored as 0 with F 0 and p 1, as every face shows them.
+        return clean_anova(anova_table(
+            term_names=[t.name for t in self.model_terms], term_ss=s["term_ss"], ss_model=s["ss_model"],
+            df_model=s["df_model"], ss_block=s["ss_block"], df_block=nb - 1, ss_res=ls.ss_res, df_res=ls.df_resid,
+            ss_total=s["ss_total"], df_total=n - 1 if self.intercept else n, pe=self.pure_error,
+            term_df=[t.df for t in self.model_terms],
+            total_label="Cor Total" if self.intercept else TOTAL_UNCORRECTED))
+
+    @cached_property
+    def notes(self) -> tuple:
+        """Remarks for the text output: ``input_notes`` first, then the fit's own."""
+        ls, nb = self.least_squares, self.n_blocks
+        notes = []
+        if self.raw_pure_error.df == 0:
+            notes.append("No lack-of-fit test: no factor setting is replicated"
+                         + (" (once the block effects are removed)" if nb > 1 else "") + ", so there is no pure error.")
+        elif ls.df_resid - self.raw_pure_error.df == 0:
+            notes.append("No lack-of-fit test: the model uses every degree of freedom beyond pure error.")
+        if ls.df_resid == 0:
+            notes.append("The model is saturated (no residual degrees of freedom): no F tests.")
+        elif ls.ss_res <= 1e-20 * self._sums["ss_total"]:  # residual RMS below 1e-10 of the response's spread
+            notes.append("The model fits the data exactly (residuals at round-off level): its F-values, p-values "
+                         "and standard errors measure round-off, not noise.")
+        return tuple(self.input_notes) + tuple(notes)
+
+    @cached_property
+    def actual_coefficients(self) -> dict:
+        """``{term: coefficient in actual units}`` (an exact change of basis, or the fit solved in
+        actual units when ``actual_solution`` holds it)."""
+        if self.actual_solution is not None:
+            return dict(self.actual_solution.coefficients)
+        coded = dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist()))
+        return actual_coefficients(coded, self.terms, self.space)
+
+    @property
+    def actual_std_errors(self) -> dict | None:
+        """``{term: standard error in actual units}`` when the fit was solved in actual units."""
+        return None if self.actual_solution is None else dict(self.actual_solution.std_errors)
+
+    @cached_property
+    def coefficients(self) -> Any:
+        """Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``."""
+        import pandas as pd
+
+        from . import statistics as special  # the t and F tails without importing SciPy
+
+        ls, tidx = self.least_squares, self.term_index
+        b_t, se, df_res = ls.params[tidx], ls.std_errors[tidx], ls.df_resid
+        with np.errstate(divide="ignore", invalid="ignore"):
+            tval = b_t / se
+        if df_res > 0:
+            pval = 2.0 * special.stdtr(df_res, -np.abs(tval))
+            tq = float(special.stdtrit(df_res, 0.975))
+        else:
+            pval, tq = np.full_like(b_t, np.nan), np.nan
+        # VIF (Design-Expert's: the diagonal of the inverse correlation matrix) needs the
+        # intercept to centre the columns; without one it is not defined (NaN)
+        vif = np.r_[np.nan, ls.vif(tidx[1:])] if self.intercept else np.full(b_t.size, np.nan)
+        cols = column_names(self.terms)
+        actual = self.actual_coefficients
+        return pd.DataFrame(
+            {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se,
+             "ci_high": b_t + tq * se, "vif": vif, "actual": [actual.get(nm, 0.0) for nm in cols]},
+            index=pd.Index(cols, name="term"))
+
+    @cached_property
+    def term_vif(self) -> dict:
+        """Generalised VIF of each term when a categoric term has several columns (else empty)."""
+        if not (self.intercept and any(t.df > 1 for t in self.terms)):
+            return {}
+        tidx = self.term_index
+        gv = self.least_squares.gvif([tidx[g] for g in self._sums["groups"]])
+        return dict(zip([t.name for t in self.model_terms], gv.tolist()))
+
+    @cached_property
+    def statistics(self) -> FitStatistics:
+        """R², adjusted and predicted R², PRESS, adequate precision, std dev, mean, C.V."""
+        ls, s = self.least_squares, self._sums
+        return fit_statistics(n=ls.n, mean=ls.ybar, fitted_range=ls.pass_sums.fitted_max - ls.pass_sums.fitted_min,
+                              ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"], ss_block=s["ss_block"],
+                              df_model=s["df_model"], n_params=ls.p, press=ls.press)
+
+    @cached_property
+    def stationary_point(self) -> StationaryPoint:
+        """The stationary point and canonical analysis (first categoric levels)."""
+        coded = dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist()))
+        return canonical_analysis(coded, self.terms, self.space)
+
+    @cached_property
+    def block_effects(self) -> dict | None:
+        """``{"B1": effect, ...}`` (sum to zero) [response units], or None."""
+        nb = self.n_blocks
+        if nb <= 1 or self.block_keys is None:
+            return None
+        eff = self.least_squares.params[1:nb].tolist()
+        eff.append(-float(np.sum(eff)))
+        return dict(zip(self.block_keys, eff))
 
     # -- the specification -------------------------------------------------------------
     @property
@@ -526,104 +655,17 @@ def assemble(*, spec: ModelSpec, response: str, block: str | None, space: Factor
              col_names: Sequence[str], ls: Regression, pe: PureError, bkeys: list | None, blevels: dict | None,
              data: Any, coded: Any, y: Any, y_response: Any = None, input_notes: Sequence = (),
              omitted_rows: Sequence[int] = (), omitted_data: Any = None, reduction: Any = None,
-             actual: tuple[dict, dict | None] | None = None) -> FitResult:
-    """The :class:`FitResult` of a factorised fit (both passes done) and its pure error.
+             actual: Any = None) -> FitResult:
+    """The :class:`FitResult` of a factorised fit (both passes done) and its pure error; every
+    statistic is derived from them on first use.
 
     Without an intercept the model row and the total are uncorrected (``sum y^2``, n df),
     as R's ``lm`` and ``anova`` report them; R² is then ``1 - SS_res / sum y^2``.
-    ``actual`` replaces the actual-unit coefficients of the exact expansion (and adds
-    their standard errors) when the caller solved in actual units.
+    ``actual`` (an object with ``coefficients`` and ``std_errors`` mappings) gives the
+    actual-unit coefficients of a fit solved in actual units.
     """
-    import pandas as pd
-
-    from . import statistics as special  # the t and F tails without importing SciPy
-
-    terms = tuple(terms)
-    intercept = bool(terms) and terms[0].order == 0
-    nb = len(col_names) - n_columns(terms) + 1
-    n, p = ls.n, ls.p
-    beta, C = ls.params, ls.cov_unscaled
-    df_res, ss_res, sigma2 = ls.df_resid, ls.ss_res, ls.sigma2
-    tidx = np.r_[0, np.arange(nb, p)] if nb > 1 else np.arange(p)
-    mterms = terms[1:] if intercept else terms
-    mcols = tidx[1:] if intercept else tidx  # the model row's columns
-    # blocks enter first (sequential SS), the model row is the rest; terms are Type III
-    ss_block = ls.sequential_ss(np.arange(1, nb)) if nb > 1 else 0.0
-    ss_model = ls.sequential_ss(mcols) if mcols.size else 0.0
-    ss_total = ls.ss_total if intercept else ss_model + ss_res  # uncorrected: sum y^2
-    df_model = int(mcols.size)
-    groups = term_columns(mterms, 1 if intercept else 0)  # each term's columns among tidx (multi-df categoric terms)
-    term_ss = [ls.partial_ss(tidx[g]) for g in groups]
-    notes = []
-    if pe.df == 0:
-        pe_used = None
-        notes.append("No lack-of-fit test: no factor setting is replicated"
-                     + (" (once the block effects are removed)" if nb > 1 else "") + ", so there is no pure error.")
-    else:
-        pe_used = pe
-        if df_res - pe.df == 0:
-            notes.append("No lack-of-fit test: the model uses every degree of freedom beyond pure error.")
-    if df_res == 0:
-        notes.append("The model is saturated (no residual degrees of freedom): no F tests.")
-    elif ss_res <= 1e-20 * ss_total:  # residual RMS below 1e-10 of the response's spread
-        notes.append("The model fits the data exactly (residuals at round-off level): its F-values, p-values "
-                     "and standard errors measure round-off, not noise.")
-
-    # Sums of squares that are round-off against the total (e.g. 2.5e-34 for a term whose
-    # coefficient is zero by symmetry) are stored as 0 with F 0 and p 1, as every face shows them.
-    anova = clean_anova(anova_table(term_names=[t.name for t in mterms], term_ss=term_ss, ss_model=ss_model,
-                                    df_model=df_model, ss_block=ss_block, df_block=nb - 1, ss_res=ss_res, df_res=df_res,
-                                    ss_total=ss_total, df_total=n - 1 if intercept else n, pe=pe_used,
-                                    term_df=[t.df for t in mterms],
-                                    total_label="Cor Total" if intercept else TOTAL_UNCORRECTED))
-
-    # coefficients (coded), errors, VIF, actual
-    b_t = beta[tidx]
-    se = ls.std_errors[tidx]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        tval = b_t / se
-    if df_res > 0:
-        pval = 2.0 * special.stdtr(df_res, -np.abs(tval))
-        tq = float(special.stdtrit(df_res, 0.975))
-    else:
-        pval = np.full_like(b_t, np.nan)
-        tq = np.nan
-    # VIF (Design-Expert's: the diagonal of the inverse correlation matrix) needs the
-    # intercept to centre the columns; without one it is not defined (NaN)
-    vif = np.r_[np.nan, ls.vif(tidx[1:])] if intercept else np.full(b_t.size, np.nan)
-    # generalised VIF of each term (one per multi-df categoric term; the VIF for a 1-df term)
-    term_vif = dict(zip([t.name for t in mterms], ls.gvif([tidx[g] for g in groups]).tolist())) \
-        if intercept and any(t.df > 1 for t in terms) else {}
-    cols = column_names(terms)
-    coded_coefs = dict(zip(cols, b_t.tolist()))
-    if actual is not None:
-        actual_coefs, actual_se = actual
-    else:
-        actual_coefs, actual_se = actual_coefficients(coded_coefs, terms, space), None
-    coef = pd.DataFrame(
-        {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se,
-         "ci_high": b_t + tq * se, "vif": vif, "actual": [actual_coefs.get(nm, 0.0) for nm in cols]},
-        index=pd.Index(cols, name="term"),
-    )
-    fitted_range = ls.pass_sums.fitted_max - ls.pass_sums.fitted_min
-    statistics = fit_statistics(n=n, mean=ls.ybar, fitted_range=fitted_range, ss_res=ss_res,
-                                df_res=df_res, ss_total=ss_total, ss_block=ss_block, df_model=df_model,
-                                n_params=p, press=ls.press)
-    sp = canonical_analysis(coded_coefs, terms, space)
-    if nb > 1:
-        eff = beta[1:nb].tolist()
-        eff.append(-float(np.sum(eff)))
-        block_effects = dict(zip(bkeys, eff))
-    else:
-        block_effects = None
-    return FitResult(
-        response=response, model=spec.order if spec.terms is None or reduction is not None else "custom", block=block, space=space, terms=terms, data=data,
-        coded=coded, y=y, column_names=tuple(col_names), coefficients=coef,
-        anova=anova, statistics=statistics, stationary_point=sp, fitted=ls.fitted, residuals=ls.residuals,
-        hat=ls.hat, cov_unscaled=C, sigma2=float(sigma2), df_resid=int(df_res),
-        block_effects=block_effects, block_levels=blevels, pure_error=pe_used,
-        actual_coefficients=actual_coefs, notes=tuple(input_notes) + tuple(notes),
-        input_notes=tuple(input_notes), omitted_rows=tuple(omitted_rows), omitted_data=omitted_data,
-        least_squares=ls, term_vif=term_vif, spec=spec, y_response=y_response, reduction=reduction,
-        actual_std_errors=actual_se,
-    )
+    return FitResult(response=response, spec=spec, block=block, space=space, terms=tuple(terms), least_squares=ls,
+                     raw_pure_error=pe, column_names=tuple(col_names), data=data, coded=coded, y=y,
+                     y_response=y_response, block_keys=None if bkeys is None else tuple(bkeys), block_levels=blevels,
+                     input_notes=tuple(input_notes), omitted_rows=tuple(omitted_rows), omitted_data=omitted_data,
+                     reduction=reduction, actual_solution=actual)
