@@ -13,6 +13,7 @@ import numpy as np
 from ..present import ROUND_OFF, format_g, format_p, text_table
 from ..present import clean as _clean
 from .anova import TOTAL_ROWS
+from .summary_data import summary_data
 
 __all__ = ["format_summary", "format_anova", "format_equation", "equation_terms", "EquationTerm", "format_g",
            "EQUATION_ACCURACY"]
@@ -183,27 +184,11 @@ def format_summary(result) -> str:
         else:
             out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6)} .. {format_g(f.high, 6)}")
     out.append("")
-    named = {"linear": "linear", "2fi": "2FI", "quadratic": "quadratic", "cubic": "cubic"}.get(result.model)
-    out.append("ANOVA for the " + (f"{named} model" if named else "model of the terms chosen")
-               + " (partial sum of squares - Type III)"
-               + ("" if result.intercept else "; no intercept: the model row and total are uncorrected"))
+    sd = summary_data(result)  # the one summary every face renders
+    out.append(sd.anova_title)
     out.append(format_anova(result))
     out.append("")
-    m = result.anova.set_index("source")
-    notes = []
-    if "Model" in m.index and m.loc["Model", "p"] == m.loc["Model", "p"]:
-        fm, pm = m.loc["Model", "f"], m.loc["Model", "p"]
-        notes.append(f"The Model F-value of {format_g(fm)} implies the model is "
-                     + ("significant." if pm < 0.05 else "not significant relative to the noise."))
-    notes.append("Terms marked * have p < 0.05 and are significant; p > 0.10 indicates a term is not significant.")
-    if "Lack of Fit" in m.index and m.loc["Lack of Fit", "p"] == m.loc["Lack of Fit", "p"]:
-        fl, pl = m.loc["Lack of Fit", "f"], m.loc["Lack of Fit", "p"]
-        notes.append(f"The Lack of Fit F-value of {format_g(fl)} implies the Lack of Fit is "
-                     + ("not significant relative to the pure error." if pl >= 0.05 else "significant."))
-    if result.block:
-        notes.append("Block variation is removed first (sequential SS) and kept out of the model.")
-    notes.extend(result.notes)
-    out.extend(notes)
+    out.extend(sd.anova_notes)
     out.append("")
     s = result.statistics
     stat_rows = [
@@ -214,6 +199,7 @@ def format_summary(result) -> str:
     ]
     out.append("Fit statistics")
     out.append(text_table(["", "", "", ""], stat_rows, ["<", ">", "<", ">"]).split("\n", 2)[2])
+    out.extend(sd.statistics_notes)
     out.append("")
     out.append("Coefficients in terms of coded factors (95 % CI)")
     rows = []

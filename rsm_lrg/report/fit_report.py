@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..model.anova import TOTAL_ROWS
+from ..model.summary_data import summary_data
 from ..present import ROUND_OFF, clean
 from .html import SIGNIFICANCE_NOTE, fmt_f, fmt_num, fmt_p, render_page, significance
 
@@ -147,64 +148,17 @@ def _pretty_term(name: str) -> str:
     return "".join(out)
 
 
-def _chance(p: float) -> str:
-    return "less than a 0.01%" if p < 1e-4 else f"a {100 * p:.2f}%"
-
-
 def _anova_notes(result, rows) -> list[str]:
-    """Design-Expert's sentences under the ANOVA, from the numbers in the table."""
-    notes = []
-    a = {r.source: r for r in result.anova.itertuples(index=False)}
-    m = a.get("Model")
-    if m is not None and np.isfinite(m.p):
-        verdict = "is significant" if m.p < 0.05 else "is not significant relative to the noise"
-        notes.append(f"The Model F-value of {fmt_f(m.f)} implies the model {verdict}. There is "
-                     f"{_chance(m.p)} chance that an F-value this large could occur due to noise.")
-    terms = [r for r in result.anova.itertuples(index=False) if r.source in set(result.term_names[1:])]
-    sig = [_pretty_term(r.source) for r in terms if np.isfinite(r.p) and r.p < 0.05]
-    if terms and any(np.isfinite(r.p) for r in terms):
-        notes.append("P-values less than 0.0500 indicate model terms are significant. In this case "
-                     + (", ".join(sig) + (" are" if len(sig) > 1 else " is") if sig else "no term is")
-                     + " significant. Values greater than 0.1000 indicate the model terms are not significant.")
-    lof = a.get("Lack of Fit")
-    if lof is not None and np.isfinite(lof.p):
-        verdict = "not significant" if lof.p >= 0.05 else "significant"
-        notes.append(f"The Lack of Fit F-value of {fmt_f(lof.f)} implies the Lack of Fit is {verdict} "
-                     f"relative to the pure error. There is {_chance(lof.p)} chance that a Lack of Fit "
-                     "F-value this large could occur due to noise."
-                     + (" Non-significant lack of fit is good: the model fits." if lof.p >= 0.05 else ""))
-    notes.extend(result.notes)
+    """Design-Expert's sentences under the ANOVA (:func:`rsm_lrg.model.summary_data.summary_data`,
+    the same as the text face's), powers shown as superscripts, and the legend of the marks."""
+    notes = [_pretty_term(n) for n in summary_data(result).anova_notes]
     notes.append("Significance classes (** and * marks): " + SIGNIFICANCE_NOTE)
     return notes
 
 
 def _statistics(result) -> tuple[list, list[str]]:
-    s = result.statistics
-    rows = [
-        ("Std. Dev.", s.std_dev, "√(residual mean square) [response units]"),
-        ("Mean", s.mean, "mean response [response units]"),
-        ("C.V. %", s.cv_percent, "100 · Std. Dev. / Mean"),
-        ("R²", s.r2, ""),
-        ("Adjusted R²", s.adj_r2, ""),
-        ("Predicted R²", s.pred_r2, "from PRESS"),
-        ("PRESS", s.press, "prediction error sum of squares"),
-        ("Adeq Precision", s.adeq_precision, "signal-to-noise ratio; above 4 is desirable"),
-    ]
-    notes = []
-    if np.isfinite(s.pred_r2) and np.isfinite(s.adj_r2):
-        d = abs(s.adj_r2 - s.pred_r2)
-        if d < 0.2:
-            notes.append(f"The Predicted R² of {fmt_num(s.pred_r2)} is in reasonable agreement with the "
-                         f"Adjusted R² of {fmt_num(s.adj_r2)}; i.e. the difference is less than 0.2.")
-        else:
-            notes.append(f"The Predicted R² of {fmt_num(s.pred_r2)} is not as close to the Adjusted R² of "
-                         f"{fmt_num(s.adj_r2)} as one might expect (difference ≥ 0.2): this may indicate a "
-                         "large block effect or a possible problem with the model and/or data.")
-    if np.isfinite(s.adeq_precision):
-        ok = "indicates an adequate signal" if s.adeq_precision > 4 else "indicates an inadequate signal"
-        notes.append(f"Adeq Precision measures the signal-to-noise ratio; a ratio greater than 4 is "
-                     f"desirable. The ratio of {fmt_num(s.adeq_precision, 5)} {ok}.")
-    return rows, notes
+    sd = summary_data(result)
+    return list(sd.statistics), list(sd.statistics_notes)
 
 
 def _coefficients(result) -> list[dict]:
