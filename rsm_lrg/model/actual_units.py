@@ -2,20 +2,23 @@
 
 The fit itself runs in coded units ``x = (actual - centre) / half_range``
 (:mod:`rsm_lrg.model.least_squares`); the coefficients of the same polynomial in actual units
-follow from an exact change of basis. Done in double precision that change of basis loses up
-to ``log10 prod (1 + |centre| / half_range)^degree`` digits (Wampler1 8.6 correct digits, R
-``lm`` 9.8; Filip 3.8, R 7.2). :func:`solve_actual` does the whole solve in double-double
-arithmetic (about 32 digits) instead, so that the actual-unit coefficients, their standard
-errors and the residual standard deviation are correct to the last digit the double data
-carry (NIST StRD linear sets: 13–15 digits on every certified number, R ``lm`` 7–15):
+follow from an exact change of basis. Done in double precision, the coded coefficients'
+rounding errors are multiplied by up to ``prod (1 + |centre| / half_range)^degree`` in that
+change of basis (measured on the NIST StRD sets with ``rsm_lrg.fit`` and
+``actual_coefficients``: 7.8 correct digits on Wampler5, 9.4 on Wampler1, 10.0 on Longley
+and Norris). :func:`solve_actual` does the whole solve in double-double arithmetic (about
+32 digits) instead, so that the actual-unit coefficients, their standard errors and the
+residual standard deviation are correct to the last digit the data carry (the eleven NIST
+StRD linear sets: 14.3 to 15 correct digits on every certified number; R 4.2.2 ``lm``: 5.5
+to 15; ``tests/model/test_nist_strd.py``):
 
 1. *The Gram matrix, exactly.* The model matrix of a well-conditioned basis ``Z`` (the same
    terms in ``(x - c) / h`` with ``c``, ``h`` the data's mid-range and half-range) is built
    in double-double (each value ``hi + lo``), and ``[Z y]' [Z y]`` is accumulated over chunks
    of rows with the error-free splitting of Ozaki et al. (2012, *Numer. Algorithms* 59:95):
-   each column is cut into slices of at most ``(53 - log2 m) / 2`` bits, so that every
-   product of two slices summed over the ``m`` rows of a chunk is exact in double precision
-   and a few BLAS matrix products give ``Z'Z`` to about 2^-106 of ``|Z|'|Z|``. The n x p
+   each column is cut into slices of 19 bits, so that the product of two slices summed over
+   the at most 2^15 rows of a block is exact in double precision, and eight BLAS matrix
+   products give ``Z'Z`` to about 2^-100 of ``|Z|'|Z|`` (:func:`_gram`). The n x p
    model matrix is never held (one chunk at a time).
 2. *The normal equations of ``Z``, refined.* ``Z'Z b = Z'y`` is solved by iterative
    refinement (Moler 1967; Higham, *Accuracy and Stability*, 2002, §12.1): the residual
@@ -67,7 +70,6 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from decimal import Decimal
 from fractions import Fraction
 from math import comb
 
@@ -76,7 +78,7 @@ import numpy as np
 from ..terms import Term, effect_codes
 
 __all__ = ["ActualSolution", "solve_actual", "solve_actual_chunks", "is_closed_under_shift", "shiftable_factors",
-           "decimal_correction", "CHUNK_ROWS"]
+           "decimal_correction", "CHUNK_ROWS", "DECIMAL_DIGITS"]
 
 #: Rows of the model matrix built at a time (the exact products split a chunk into blocks of
 #: at most 2^15 rows anyway).
@@ -163,31 +165,27 @@ def _row_slices(A: np.ndarray, bits: int, count: int) -> list[np.ndarray]:
     return out
 
 
-def _exact_product(A: np.ndarray, B: np.ndarray, symmetric: bool = False) -> _DD:
+def _exact_product(A: np.ndarray, B: np.ndarray) -> _DD:
     """``A @ B`` (doubles, inner dimension at most 2^15) as a double-double pair, to about
     2^-106 of ``|A| |B|``: the slices' products are exact in double precision (each entry a
     sum of at most 2^15 integers below 2^38 times one power of two) and are added in
-    double-double. ``symmetric``: ``A`` is ``B.T`` (a Gram matrix; half the products)."""
+    double-double."""
     k = A.shape[1]
     bits = (53 - max(1, math.ceil(math.log2(max(k, 2))))) // 2
     count = -(-108 // bits)
     sa = _row_slices(A, bits, count)
-    sb = [S.T for S in sa] if symmetric else [S.T for S in _row_slices(np.ascontiguousarray(B.T), bits, count)]
+    sb = [S.T for S in _row_slices(np.ascontiguousarray(B.T), bits, count)]
     ch = np.zeros((A.shape[0], B.shape[1]))
     cl = np.zeros_like(ch)
     zero = np.zeros_like(ch)
     for s in range(len(sa)):
         for t in range(len(sb)):
-            if s + t > count - 1 or (symmetric and t < s):
-                continue
-            P = sa[s] @ sb[t]  # exact
-            ch, cl = _dd_add(ch, cl, P, zero)
-            if symmetric and t > s:
-                ch, cl = _dd_add(ch, cl, P.T, zero)  # the (t, s) product
+            if s + t <= count - 1:
+                ch, cl = _dd_add(ch, cl, sa[s] @ sb[t], zero)  # exact
     return ch, cl
 
 
-def _dd_matmul(Ah: np.ndarray, Al: np.ndarray, Bh: np.ndarray, Bl: np.ndarray, symmetric: bool = False) -> _DD:
+def _dd_matmul(Ah: np.ndarray, Al: np.ndarray, Bh: np.ndarray, Bl: np.ndarray) -> _DD:
     """``(Ah + Al) @ (Bh + Bl)`` in double-double: the product of the high parts exact
     (:func:`_exact_product`, in blocks of 2^15 of the inner dimension), the cross terms in
     double precision (they are 2^-53 smaller), ``Al @ Bl`` dropped."""
@@ -196,10 +194,43 @@ def _dd_matmul(Ah: np.ndarray, Al: np.ndarray, Bh: np.ndarray, Bl: np.ndarray, s
     cl = np.zeros_like(ch)
     for s in range(0, max(k, 1), _MAX_INNER):
         e = min(k, s + _MAX_INNER)
-        ph, pl = _exact_product(Ah[:, s:e], Bh[s:e], symmetric)
+        ph, pl = _exact_product(Ah[:, s:e], Bh[s:e])
         ch, cl = _dd_add(ch, cl, ph, pl)
     cross = Ah @ Bl + Al @ Bh
     return _dd_add(ch, cl, cross, np.zeros_like(cross))
+
+
+def _gram(Ah: np.ndarray, Al: np.ndarray) -> _DD:
+    """``A'A`` for ``A = Ah + Al`` (m x q double-double, m at most 2^15) to about 2^-100 of
+    ``|A|'|A|``, in eight matrix products: each column's high part is cut into slices
+    ``S1 + S2 + S3 + T`` of 19 bits below the column's largest power of two (``T`` the rest,
+    below 2^-57 of it); the products above 2^-53 of the whole (``S1'S1``, ``S1'S2``,
+    ``S2'S2``, ``S1'S3`` and their transposes) are exact in double precision (see
+    :func:`_exact_product`), the smaller ones (``S1'T``, ``S2'(S3 + T)``, ``(S3 + T)'(S3 + T)``,
+    ``Ah'Al``) are rounded once, which costs no more than 2^-53 of their size."""
+    bits = 19
+    _, e = np.frexp(np.max(np.abs(Ah), axis=0, initial=0.0))
+
+    def cut(rest: np.ndarray, s: int) -> np.ndarray:
+        g = (e - s * bits)[None, :]
+        return np.ldexp(np.rint(np.ldexp(rest, -g)), g)
+
+    S1 = cut(Ah, 1)
+    R = Ah - S1
+    S2 = cut(R, 2)
+    U = R - S2
+    S3 = cut(U, 3)
+    T = U - S3
+    q = Ah.shape[1]
+    zero = np.zeros((q, q))
+    gh, gl = S1.T @ S1, zero
+    for P in (S1.T @ S2, S1.T @ S3):
+        gh, gl = _dd_add(gh, gl, P, zero)
+        gh, gl = _dd_add(gh, gl, P.T, zero)
+    gh, gl = _dd_add(gh, gl, S2.T @ S2, zero)
+    F = S1.T @ T + S2.T @ U + Ah.T @ Al
+    F = F + F.T + U.T @ U
+    return _dd_add(gh, gl, F, zero)
 
 
 def _dd_sum_rows(h: np.ndarray, lo: np.ndarray) -> _DD:
@@ -214,21 +245,61 @@ def _dd_sum_rows(h: np.ndarray, lo: np.ndarray) -> _DD:
 # ----------------------------------------------------------------------------------------
 # decimal inputs
 # ----------------------------------------------------------------------------------------
+_POW10_RANGE = (-320, 300)
+_POW10: list[np.ndarray] = []
+
+
+def _pow10(q: np.ndarray) -> _DD:
+    """``10^q`` (integers in -320 .. 300) as double-double pairs (the exact rationals rounded
+    twice; the table is made once)."""
+    if not _POW10:
+        lo_q, hi_q = _POW10_RANGE
+        fr = [Fraction(10) ** t for t in range(lo_q, hi_q + 1)]
+        his = [float(f) for f in fr]
+        _POW10.extend([np.array(his), np.array([float(f - Fraction(h)) for f, h in zip(fr, his)])])
+    idx = q - _POW10_RANGE[0]
+    return _POW10[0][idx], _POW10[1][idx]
+
+
+#: Most significant digits of a number taken as a decimal (an integer mantissa below 2^53).
+DECIMAL_DIGITS = 15
+
+
 def decimal_correction(values: np.ndarray) -> np.ndarray:
-    """``d - v`` for each double ``v``, ``d`` the shortest decimal that reads back as ``v``
-    (``repr(v)``): the part of the written number the double lost (below half an ulp of
-    ``v``; 0 for integers below 2^53 and non-finite values).
+    """``d - v`` for each double ``v``: ``d`` the decimal of at most 15 significant digits
+    that reads back as ``v`` (the number as written in a file: ``repr(v)`` when that is at
+    most 15 digits long), 0 when there is none (a computed value such as 0.1 + 0.2, whose
+    double is then taken as it is), for 0, non-finite values and magnitudes beyond 1e+-290. The correction is below
+    half an ulp of ``v``; it is found with the shortest mantissa ``M`` (``d = M 10^q``) whose
+    double-double value lies within half an ulp of ``v``.
 
     >>> float(decimal_correction(np.array([0.1]))[0])  # 0.1 - 0.1000000000000000055511151231257827
     -5.551115123125783e-18
     """
     v = np.asarray(values, dtype=float)
     out = np.zeros(v.shape)
-    need = np.isfinite(v) & ~((v == np.round(v)) & (np.abs(v) < 2.0 ** 53))
-    if need.any():
-        u, inv = np.unique(v[need], return_inverse=True)
-        corr = np.array([float(Decimal(repr(float(t))) - Decimal(float(t))) for t in u])
-        out[need] = corr[inv]
+    flat = v.ravel()
+    res = out.reshape(-1)
+    size = np.abs(flat)
+    todo = np.flatnonzero((size > 1e-290) & (size < 1e290) & ~((flat == np.round(flat)) & (size < 2.0 ** 53)))
+    if not todo.size:
+        return out
+    w = flat[todo]
+    half = 0.5 * np.spacing(np.abs(w))
+    e = np.floor(np.log10(np.abs(w))).astype(int)
+    for digits in range(1, DECIMAL_DIGITS + 1):
+        q = e - digits + 1
+        ph, pl = _pow10(q)
+        m = np.rint(w / ph)  # the mantissa (|m| < 10^16, exact)
+        dh, dl = _two_prod(m, ph)
+        dh, dl = _quick_two_sum(dh, dl + m * pl)
+        ch, _ = _dd_add(dh, dl, -w, np.zeros_like(w))
+        ok = np.abs(ch) <= half  # a tie (10^23) reads back by rounding to even
+        res[todo[ok]] = ch[ok]
+        keep = ~ok
+        todo, w, half, e = todo[keep], w[keep], half[keep], e[keep]
+        if not todo.size:
+            break
     return out
 
 
@@ -703,8 +774,7 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
         Ah = np.column_stack([Zh, yc])
         Al = np.column_stack([Zl, ylc])
         for s in range(0, Ah.shape[0], _MAX_INNER):
-            a, al = Ah[s:s + _MAX_INNER], Al[s:s + _MAX_INNER]
-            th, tl = _dd_matmul(np.ascontiguousarray(a.T), np.ascontiguousarray(al.T), a, al, symmetric=True)
+            th, tl = _gram(Ah[s:s + _MAX_INNER], Al[s:s + _MAX_INNER])
             Gh, Gl = _dd_add(Gh, Gl, th, tl)
         n += xc.shape[0]
     if n < p:
