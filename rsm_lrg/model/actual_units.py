@@ -565,10 +565,11 @@ class ActualSolution:
     converged: bool
 
 
-def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray, P: np.ndarray,
-                  max_iter: int = 40) -> tuple[_DD, int, bool]:
+def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray,
+                  P: Callable[[np.ndarray], np.ndarray], max_iter: int = 40) -> tuple[_DD, int, bool]:
     """Solve ``G x = b`` (double-double ``G``, ``b``) by iterative refinement with the
-    approximate inverse ``P``: ``x <- x + P (b - G x)``, the residual in double-double."""
+    approximate inverse ``P`` (a function of a vector or matrix): ``x <- x + P (b - G x)``,
+    the residual in double-double."""
     p = Gh.shape[0]
     w = np.sqrt(np.abs(np.diag(Gh)))
     xh, xl = np.zeros(p), np.zeros(p)
@@ -577,7 +578,7 @@ def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray
     for it in range(1, max_iter + 1):
         gh, gl = _dd_matmul(Gh, Gl, xh[:, None], xl[:, None])
         rh, _ = _dd_add(bh, bl, -gh[:, 0], -gl[:, 0])
-        d = P @ rh
+        d = P(rh)
         xh, xl = _dd_add(xh, xl, d, np.zeros(p))
         size = float(np.max(w * np.abs(d)))
         whole = float(np.max(w * np.abs(xh)))
@@ -592,10 +593,11 @@ def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray
     return (xh, xl), max_iter, False
 
 
-def _refine_inverse(Gh: np.ndarray, Gl: np.ndarray, P: np.ndarray, max_iter: int = 40) -> tuple[_DD, bool]:
-    """``G^-1`` in double-double by ``C <- C + P (I - G C)`` from ``C = P``."""
+def _refine_inverse(Gh: np.ndarray, Gl: np.ndarray, P: Callable[[np.ndarray], np.ndarray], start: _DD,
+                    max_iter: int = 40) -> tuple[_DD, bool]:
+    """``G^-1`` in double-double by ``C <- C + P (I - G C)`` from ``C = start``."""
     p = Gh.shape[0]
-    ch, cl = P.copy(), np.zeros((p, p))
+    ch, cl = start[0].copy(), start[1].copy()
     eye = np.eye(p)
     zero = np.zeros((p, p))
     prev = math.inf
@@ -603,7 +605,7 @@ def _refine_inverse(Gh: np.ndarray, Gl: np.ndarray, P: np.ndarray, max_iter: int
     for _ in range(max_iter):
         gh, gl = _dd_matmul(Gh, Gl, ch, cl)
         eh, _ = _dd_add(eye, zero, -gh, -gl)
-        d = P @ eh
+        d = P(eh)
         ch, cl = _dd_add(ch, cl, d, zero)
         # relative to the diagonal (sqrt(C_ii C_jj) bounds |C_ij|)
         s = np.sqrt(np.abs(np.diag(ch)))
@@ -616,6 +618,52 @@ def _refine_inverse(Gh: np.ndarray, Gl: np.ndarray, P: np.ndarray, max_iter: int
             return (ch, cl), size <= 2.0 ** -60
         prev = size
     return (ch, cl), False
+
+
+def _dd_sqrt(ah: np.ndarray, al: np.ndarray) -> _DD:
+    x = np.sqrt(ah)
+    p, e = _two_prod(x, x)
+    return _quick_two_sum(x, ((ah - p) - e + al) / (2.0 * x))
+
+
+def _dd_div_dd(ah: np.ndarray, al: np.ndarray, bh: np.ndarray, bl: np.ndarray) -> _DD:
+    q = ah / bh
+    ph, pl = _dd_mul(q, np.zeros_like(q), bh, bl)
+    rh, _ = _dd_add(ah, al, -ph, -pl)
+    return _quick_two_sum(q, rh / bh)
+
+
+def _dd_inverse_spd(Gh: np.ndarray, Gl: np.ndarray, names: Sequence[str]) -> _DD:
+    """``G^-1`` of a symmetric positive definite double-double matrix (p x p) from its
+    Cholesky factor computed in double-double (column by column, the dot products exact by
+    :func:`_dd_matmul`); for a Gram matrix too ill conditioned for a double-precision
+    factor (kappa^2 u >~ 1). Raises ``ValueError`` (naming the column) when a pivot is not
+    positive: the columns are linearly dependent to double-double precision."""
+    p = Gh.shape[0]
+    Lh, Ll = np.zeros((p, p)), np.zeros((p, p))
+    for j in range(p):
+        sh, sl = Gh[j:, j].copy(), Gl[j:, j].copy()
+        if j:
+            th, tl = _dd_matmul(Lh[j:, :j], Ll[j:, :j], Lh[j, :j][:, None], Ll[j, :j][:, None])
+            sh, sl = _dd_add(sh, sl, -th[:, 0], -tl[:, 0])
+        if not sh[0] > 2.0 ** -100 * Gh[j, j]:
+            raise ValueError(f"the model matrix does not have full rank: column {names[j]} is a linear "
+                             "combination of the columns before it")
+        rh, rl = _dd_sqrt(sh[:1], sl[:1])
+        Lh[j, j], Ll[j, j] = rh[0], rl[0]
+        if j + 1 < p:
+            qh, ql = _dd_div_dd(sh[1:], sl[1:], np.full(p - j - 1, rh[0]), np.full(p - j - 1, rl[0]))
+            Lh[j + 1:, j], Ll[j + 1:, j] = qh, ql
+    # X = L^-1 by forward substitution, row by row
+    Xh, Xl = np.zeros((p, p)), np.zeros((p, p))
+    for i in range(p):
+        eh, el = np.zeros(p), np.zeros(p)
+        eh[i] = 1.0
+        if i:
+            th, tl = _dd_matmul(Lh[i:i + 1, :i], Ll[i:i + 1, :i], Xh[:i], Xl[:i])
+            eh, el = _dd_add(eh, el, -th[0], -tl[0])
+        Xh[i], Xl[i] = _dd_div_dd(eh, el, np.full(p, Lh[i, i]), np.full(p, Ll[i, i]))
+    return _dd_matmul(np.ascontiguousarray(Xh.T), np.ascontiguousarray(Xl.T), Xh, Xl)
 
 
 def _split_chunk(x: np.ndarray, rows: int) -> list[slice]:
@@ -673,6 +721,8 @@ def solve_actual(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, 
         x = x[:, None]
     if x.ndim != 2 or x.shape[0] != yv.size:
         raise ValueError(f"x ({x.shape}) and y ({yv.size}) do not match")
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(yv))):
+        raise ValueError("x and y must be finite")
     b = None if blocks is None else np.asarray(blocks).ravel()
     if b is not None and b.size != yv.size:
         raise ValueError(f"{b.size} block codes for {yv.size} rows")
@@ -731,6 +781,8 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
         for xc, *_ in chunks():
             if xc.shape[1] != kf:
                 raise ValueError(f"the terms are in {kf} factors but x has {xc.shape[1]} columns")
+            if not np.all(np.isfinite(xc)):
+                raise ValueError("x and y must be finite")
             if xc.shape[0]:
                 lo = np.minimum(lo, xc.min(axis=0))
                 hi = np.maximum(hi, xc.max(axis=0))
@@ -788,15 +840,30 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
         zero_cols = [lay.names[j] for j in range(p) if not diag[j] > 0]
         raise ValueError(f"the model matrix has a zero column: {', '.join(zero_cols)}")
     d = 1.0 / np.sqrt(diag)
+    Gs = (Zh_ * d[:, None]) * d[None, :]
+    zero_p = np.zeros((p, p))
+    conv = False
     try:
-        L = np.linalg.cholesky((Zh_ * d[:, None]) * d[None, :])
+        Linv = np.linalg.inv(np.linalg.cholesky(Gs))
+        P0 = (Linv.T @ Linv) * d[:, None] * d[None, :]
+        (zh, zl), iters, conv = _refine_solve(Zh_, Zl_, bh, bl, lambda r: P0 @ r)
+        (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, lambda r: P0 @ r, (P0, zero_p))
     except np.linalg.LinAlgError:
-        raise ValueError("the model matrix does not have full rank (its columns are linearly dependent in "
-                         "double precision)") from None
-    Linv = np.linalg.inv(L)
-    P = (Linv.T @ Linv) * d[:, None] * d[None, :]
-    (zh, zl), iters, conv = _refine_solve(Zh_, Zl_, bh, bl, P)
-    (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, P)
+        pass
+    if not (conv and conv_c):
+        # kappa(Z)^2 u >~ 1: the inverse from a Cholesky factor in double-double instead
+        d2 = np.exp2(np.round(np.log2(d)))  # powers of two: the scaling stays exact
+        D = d2[:, None] * d2[None, :]
+        Ph, Pl = _dd_inverse_spd(Zh_ * D, Zl_ * D, lay.names)
+        Ph, Pl = Ph * D, Pl * D
+
+        def apply(r: np.ndarray) -> np.ndarray:
+            r2 = r[:, None] if r.ndim == 1 else r
+            out, _ = _dd_matmul(Ph, Pl, r2, np.zeros_like(r2))
+            return out[:, 0] if r.ndim == 1 else out
+
+        (zh, zl), iters, conv = _refine_solve(Zh_, Zl_, bh, bl, apply)
+        (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, apply, (Ph, Pl))
 
     # pass 2: the residuals in double-double
     rss_parts: list[float] = []

@@ -25,7 +25,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from rsm_lrg.model.actual_units import is_closed_under_shift, shiftable_factors, solve_actual
+from rsm_lrg.model.actual_units import is_closed_under_shift, shiftable_factors, solve_actual, solve_actual_chunks
 from rsm_lrg.terms import Term, parse_term
 
 HERE = Path(__file__).parent
@@ -366,3 +366,47 @@ def test_random_polynomials_match_exact_least_squares(problem):
         err = abs(Fraction(s.coefficients[nm]) - e)
         bound = Fraction(2) ** -52 * abs(e) + Fraction(2) ** -96 * Fraction(kz * kz * amp)
         assert err <= bound, (nm, float(err / abs(e)) if e else float(err), kz, amp)
+
+
+def test_ill_conditioned_basis_uses_the_double_double_factor():
+    # No intercept, factors at 1e5 +- 1e-3: the scaled basis has kappa ~ 6e8 (kappa^2 u > 1,
+    # beyond a double-precision Cholesky factor); the double-double factor still gives the
+    # exact least-squares answer to the double-double floor u^2 kappa^2 (~3e-15; measured 3e-16).
+    rng = np.random.default_rng(3)
+    for _ in range(2):
+        rng.uniform(-1, 1, (12, 2)), rng.normal(0, 0.1, 12)  # the draws of the measurement above
+    x = 1e5 + 1e-3 * rng.uniform(-1, 1, (12, 2))
+    y = 3 * (x[:, 0] - 1e5) / 1e-3 - 2 * (x[:, 1] - 1e5) / 1e-3 + rng.normal(0, 0.1, 12)
+    ts = [parse_term(t, "AB") for t in ("A", "B", "AB")]
+    s = solve_actual(x, y, ts, intercept=False, decimal_inputs=False)
+    rows = [[Fraction(float(a)), Fraction(float(b)), Fraction(float(a)) * Fraction(float(b))] for a, b in x]
+    exact = _exact_normal(rows, [Fraction(float(v)) for v in y])
+    for nm, e in zip(("A", "B", "AB"), exact):
+        assert abs(Fraction(s.coefficients[nm]) - e) <= abs(e) * Fraction(1, 10 ** 14), nm
+
+
+def test_refusals():
+    ts = [parse_term(t, "AB") for t in ("A", "B")]
+    rng = np.random.default_rng(0)
+    x = rng.uniform(-1, 1, (10, 2))
+    with pytest.raises(ValueError, match="linear combination"):
+        solve_actual(np.column_stack([x[:, 0], 2 * x[:, 0]]), rng.normal(size=10), ts)
+    with pytest.raises(ValueError, match="intercept=False"):
+        solve_actual(x, rng.normal(size=10), [parse_term("Intercept", "AB"), *ts], intercept=False)
+    with pytest.raises(ValueError, match="do not match"):
+        solve_actual(x, rng.normal(size=9), ts)
+    with pytest.raises(ValueError, match="cannot fit"):
+        solve_actual(x[:2], rng.normal(size=2), ts)
+    with pytest.raises(ValueError, match="finite"):
+        solve_actual(np.where(x > 0.5, np.nan, x), rng.normal(size=10), ts)
+    with pytest.raises(ValueError, match="need the intercept"):
+        solve_actual(x, rng.normal(size=10), ts, intercept=False, blocks=np.arange(10) % 2, n_blocks=2)
+
+
+def test_chunk_interface_matches_the_array_interface():
+    data, _, terms, _ = load_nist("Wampler4")
+    ts = [parse_term(t, "A") for t in terms]
+    x, y = data[["x"]].to_numpy(), data["y"].to_numpy()
+    a = solve_actual(x, y, ts)
+    b = solve_actual_chunks(lambda: ((x[s:s + 5], y[s:s + 5], None) for s in range(0, len(y), 5)), ts)
+    assert a.coefficients == b.coefficients and a.sigma == pytest.approx(b.sigma, rel=1e-15)
