@@ -787,7 +787,8 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
                 lo = np.minimum(lo, xc.min(axis=0))
                 hi = np.maximum(hi, xc.max(axis=0))
     seen = np.isfinite(lo)
-    mid = np.where(seen, lo + (hi - lo) / 2, 0.0)
+    lo, hi = np.where(seen, lo, 0.0), np.where(seen, hi, 0.0)
+    mid = lo + (hi - lo) / 2
     half = np.where(seen, (hi - lo) / 2, 1.0)
     big = np.where(seen, np.maximum(np.abs(lo), np.abs(hi)), 1.0)
     c = np.array([float(v) for v in centre], dtype=float) if centre is not None else mid
