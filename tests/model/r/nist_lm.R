@@ -2,6 +2,7 @@
 # certified coefficient, standard error and the residual standard deviation: the reference
 # that tests/model/test_nist_strd.py compares rsm_lrg's actual-units solve with.
 #   Rscript tests/model/r/nist_lm.R      (run from the repository root or from this folder)
+# The kept nist_lm_lre.csv was written by R 4.2.2 Patched (2022-11-10 r83330), Debian r-base-core.
 # Reads tests/model/data/nist/*.dat (the NIST ITL StRD files, certified values in their
 # headers), writes nist_lm_lre.csv beside this script.
 #
