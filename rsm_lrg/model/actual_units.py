@@ -61,6 +61,11 @@ and the model as given is the one in actual units. Such a factor is therefore on
 here (``c = 0``), which is exact for any term list; the caller must not centre it either
 (code it as ``x / h``) if the coded coefficients are to describe the same fit. For a closed
 term list the result is the coded fit's polynomial in actual units, to the accuracy above.
+With ``basis="coded"`` the terms are taken as monomials of the coded values instead (the
+coded fit's model, closed or not): the same solve, and the exact expansion then yields the
+monomials the term list lacks as well (:attr:`ActualSolution.extra`, named as
+``actual_coefficients`` in :mod:`rsm_lrg.model.fit` names them), so no term list needs the
+double-precision expansion.
 
 >>> import numpy as np
 >>> from rsm_lrg.terms import parse_term
@@ -82,7 +87,8 @@ from math import comb
 
 import numpy as np
 
-from ..terms import Term, effect_codes
+from ..factors import letters_for
+from ..terms import Term, effect_codes, term_name
 
 __all__ = ["ActualSolution", "solve_actual", "solve_actual_chunks", "is_closed_under_shift", "shiftable_factors",
            "decimal_correction", "CHUNK_ROWS", "DECIMAL_DIGITS"]
@@ -422,19 +428,35 @@ def _layout(terms: Sequence[Term], intercept: bool, n_blocks: int, block_names: 
                    keys=tuple(keys))
 
 
-def _basis_change(lay: _Layout, centre: np.ndarray, scale: np.ndarray) -> _DD:
-    """``M`` (p x p, double-double of the exact rationals) with ``Z = X M``: column ``j`` of
-    ``M`` expands the coded monomial ``prod ((x_f - c_f) / h_f)^e_f`` of column ``j`` into the
-    actual monomials (binomial theorem); block contrasts and categoric codes are unchanged."""
+def _monomial_name(pw: tuple[int, ...], sig: tuple[tuple[int, int], ...], letters: Sequence[str],
+                   levels: dict[int, tuple[str, ...]]) -> str:
+    """Column name of the monomial with numeric exponents ``pw`` times the effect codes
+    ``sig`` (``(factor, level index)``), as :attr:`Term.columns` names it (``"AE[rms]"``)."""
+    powers = list(pw)
+    for f, _ in sig:
+        powers[f] = 1
+    name = term_name(powers, letters)
+    if not sig:
+        return name
+    t = Term(tuple(powers), name, tuple((f, levels[f]) for f, _ in sig), tuple(letters[f] for f, _ in sig))
+    return t.columns[t.level_combinations().index(tuple(lj for _, lj in sig))]
+
+
+def _basis_change(lay: _Layout, centre: np.ndarray, scale: np.ndarray,
+                  letters: Sequence[str]) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+    """``M`` (q x p, double-double of the exact rationals) with ``Z = X M``: column ``j`` of
+    ``M`` expands the coded monomial ``prod ((x_f - c_f) / h_f)^e_f`` of column ``j`` into
+    actual monomials (binomial theorem); block contrasts and categoric codes are unchanged.
+    The rows are the model's columns, then (``q > p`` only for a term list not closed under
+    the shift) the monomials the expansion adds, named as columns are (third value)."""
     index = {key: i for i, key in enumerate(lay.keys)}
-    p = lay.p
-    Mh = np.zeros((p, p))
-    Ml = np.zeros((p, p))
+    extra: list[tuple] = []
+    entries: list[tuple[tuple, int, Fraction]] = []
     cs = [Fraction(float(c)) for c in centre]
     hs = [Fraction(float(h)) for h in scale]
     for j, key in enumerate(lay.keys):
         if key[0] == "b":
-            Mh[j, j] = 1.0
+            entries.append((key, j, Fraction(1)))
             continue
         _, npw, sig = key
         parts: list[tuple[tuple[int, ...], Fraction]] = [((), Fraction(1))]
@@ -446,13 +468,25 @@ def _basis_change(lay: _Layout, centre: np.ndarray, scale: np.ndarray) -> _DD:
                     new.append((pw + (m,), v * comb(e, m) * (-cs[f]) ** (e - m) / hs[f] ** e))
             parts = new
         for pw, v in parts:
-            i = index.get(("t", pw, sig))
-            if i is None:  # the factor was declared shiftable: cannot happen
-                raise AssertionError(f"monomial {pw} of column {lay.names[j]} is not in the model")
-            hi = float(v)
-            Mh[i, j] += hi
-            Ml[i, j] += float(v - Fraction(hi))
-    return Mh, Ml
+            k = ("t", pw, sig)
+            if k not in index and k not in extra:
+                extra.append(k)
+            entries.append((k, j, v))
+    extra.sort(key=lambda k: (sum(k[1]), len(k[2]), [-e for e in k[1]], k[2]))
+    for k in extra:
+        index[k] = len(index)
+    q, p = len(index), lay.p
+    Mh = np.zeros((q, p))
+    Ml = np.zeros((q, p))
+    acc: dict[tuple[int, int], Fraction] = {}
+    for k, j, v in entries:
+        acc[(index[k], j)] = acc.get((index[k], j), Fraction(0)) + v
+    for (i, j), v in acc.items():
+        hi = float(v)
+        Mh[i, j] = hi
+        Ml[i, j] = float(v - Fraction(hi))
+    levels = {f: lv for t in lay.terms for f, lv in t.cat}
+    return Mh, Ml, tuple(_monomial_name(k[1], k[2], letters, levels) for k in extra)
 
 
 def _rows(lay: _Layout, xh: np.ndarray, xl: np.ndarray, blocks: np.ndarray | None, centre: np.ndarray,
@@ -536,10 +570,16 @@ class ActualSolution:
     ----------
     names : tuple of str
         Column names in model order (``"Intercept"``, block contrasts, the terms' columns).
+    extra : tuple of str
+        The actual-unit monomials beyond the model's columns that a model defined in coded
+        units (``basis="coded"``) and not closed under the shift has (``"A"`` for the coded
+        ``A^2`` alone); empty otherwise.
     coefficients : dict
-        ``{name: coefficient}`` in actual units [response units / actual units^degree].
+        ``{name: coefficient}`` in actual units for ``names`` and ``extra`` [response units /
+        actual units^degree].
     std_errors : dict
-        ``{name: standard error}`` in the same units (``sigma * sqrt((X'X)^-1_jj)``).
+        ``{name: standard error}`` in the same units (``sigma * sqrt(cov_jj)``, ``cov`` the
+        covariance of the coefficients, ``M (Z'Z)^-1 M'`` with ``Z = X M``).
     coded_coefficients, coded_std_errors : dict
         The same fit in the basis ``(x - centre) / scale`` [response units].
     centre, scale : tuple of float
@@ -559,6 +599,7 @@ class ActualSolution:
     """
 
     names: tuple[str, ...]
+    extra: tuple[str, ...]
     coefficients: dict[str, float]
     std_errors: dict[str, float]
     coded_coefficients: dict[str, float]
@@ -681,7 +722,8 @@ def _split_chunk(x: np.ndarray, rows: int) -> list[slice]:
 def solve_actual(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, intercept: bool = True,
                  blocks: np.ndarray | None = None, n_blocks: int = 1, chunk_rows: int = CHUNK_ROWS,
                  decimal_inputs: bool = True, centre: Sequence[float] | None = None,
-                 scale: Sequence[float] | None = None, block_names: Sequence[str] | None = None) -> ActualSolution:
+                 scale: Sequence[float] | None = None, block_names: Sequence[str] | None = None,
+                 basis: str = "actual", letters: Sequence[str] | None = None) -> ActualSolution:
     """Least squares of ``y`` on the model's columns evaluated at the actual (uncoded) factor
     values, to the accuracy of the data (see the module docstring).
 
@@ -712,6 +754,14 @@ def solve_actual(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, 
         half-range. A factor that cannot be shifted (:func:`shiftable_factors`) gets centre 0.
     block_names : sequence of str, optional
         Names of the ``n_blocks - 1`` block contrasts (default ``Block[1]`` ...).
+    basis : {"actual", "coded"}
+        What the terms are monomials of. ``"actual"``: the actual values (the model as given
+        in actual units; a factor that cannot be shifted is only scaled). ``"coded"``: the
+        coded values ``(x - centre) / scale`` (the coded fit's model, whatever the term
+        list; its actual-unit polynomial may have monomials beyond the terms, ``extra``).
+        The two are the same model when :func:`is_closed_under_shift` holds.
+    letters : sequence of str, optional
+        Factor letters for the names of ``extra`` monomials (default A, B, ... without I).
 
     Returns
     -------
@@ -745,15 +795,15 @@ def solve_actual(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, 
                    None if yl_all is None else yl_all[s])
 
     return _solve(chunks, terms, intercept=intercept, n_blocks=n_blocks, decimal_inputs=decimal_inputs,
-                  centre=centre, scale=scale, block_names=block_names, k=x.shape[1])
+                  centre=centre, scale=scale, block_names=block_names, k=x.shape[1], basis=basis, letters=letters)
 
 
 def solve_actual_chunks(chunks: Chunks, terms: Sequence[Term], *, intercept: bool = True, n_blocks: int = 1,
                         decimal_inputs: bool = True, centre: Sequence[float] | None = None,
-                        scale: Sequence[float] | None = None,
-                        block_names: Sequence[str] | None = None) -> ActualSolution:
-    """:func:`solve_actual` over chunks of rows: ``chunks()`` yields ``(x, y, block codes or
-    None)`` and is iterated two or three times (range of the factors unless ``centre`` and
+                        scale: Sequence[float] | None = None, block_names: Sequence[str] | None = None,
+                        basis: str = "actual", letters: Sequence[str] | None = None) -> ActualSolution:
+    """:func:`solve_actual` (same options) over chunks of rows: ``chunks()`` yields ``(x, y,
+    block codes or None)`` and is iterated two or three times (range of the factors unless ``centre`` and
     ``scale`` are given, the Gram matrix, the residuals), e.g. over the partitions of a Dask
     DataFrame."""
     def wrapped() -> Iterable[tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None, np.ndarray | None]]:
@@ -764,14 +814,16 @@ def solve_actual_chunks(chunks: Chunks, terms: Sequence[Term], *, intercept: boo
             yield xa, ya, bc, None, None
 
     return _solve(wrapped, terms, intercept=intercept, n_blocks=n_blocks, decimal_inputs=decimal_inputs,
-                  centre=centre, scale=scale, block_names=block_names, k=None)
+                  centre=centre, scale=scale, block_names=block_names, k=None, basis=basis, letters=letters)
 
 
 def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None,
                                                   np.ndarray | None]]],
            terms: Sequence[Term], *, intercept: bool, n_blocks: int, decimal_inputs: bool,
            centre: Sequence[float] | None, scale: Sequence[float] | None, block_names: Sequence[str] | None,
-           k: int | None) -> ActualSolution:
+           k: int | None, basis: str, letters: Sequence[str] | None) -> ActualSolution:
+    if basis not in ("actual", "coded"):
+        raise ValueError(f"basis must be 'actual' or 'coded', not {basis!r}")
     if not terms and not intercept:
         raise ValueError("a model needs at least one term")
     lay = _layout(terms, intercept, int(n_blocks), block_names)
@@ -781,6 +833,8 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     cat = {i for t in lay.terms for i, _ in t.cat}
     numeric = np.array([f not in cat for f in range(kf)], dtype=bool)
     shift = shiftable_factors(terms, intercept=intercept) if terms else (True,) * kf
+    if basis == "coded":
+        shift = (True,) * kf  # the model is defined in the coded values: centre every factor
 
     # the basis: data mid-range and half-range unless given
     lo = np.full(kf, np.inf)
@@ -892,7 +946,7 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     sigma = math.sqrt(rss / df) if df > 0 else math.nan
 
     # back to actual units: b = M z, cov = M C M'
-    Mh, Ml = _basis_change(lay, c, h)
+    Mh, Ml, extra = _basis_change(lay, c, h, letters_for(kf) if letters is None else list(letters))
     ah, _ = _dd_matmul(Mh, Ml, zh[:, None], zl[:, None])
     mch, mcl = _dd_matmul(Mh, Ml, ch, cl)
     vh, vl = _dd_mul(mch, mcl, Mh, Ml)
@@ -902,9 +956,9 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     se_z = sigma * np.sqrt(np.maximum(var_z, 0.0))
     names = lay.names
     return ActualSolution(
-        names=names,
-        coefficients={nm: float(v) for nm, v in zip(names, ah[:, 0])},
-        std_errors={nm: float(v) for nm, v in zip(names, se_a)},
+        names=names, extra=extra,
+        coefficients={nm: float(v) for nm, v in zip(names + extra, ah[:, 0])},
+        std_errors={nm: float(v) for nm, v in zip(names + extra, se_a)},
         coded_coefficients={nm: float(v) for nm, v in zip(names, zh)},
         coded_std_errors={nm: float(v) for nm, v in zip(names, se_z)},
         centre=tuple(float(v) for v in c), scale=tuple(float(v) for v in h),

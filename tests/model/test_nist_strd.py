@@ -461,3 +461,55 @@ def test_table4_quadratic_is_the_exact_least_squares_of_the_decimals():
         assert err <= Fraction(2) ** -53 * abs(e) + Fraction(1, 10 ** 27) * scale / col, t.name
         if e != 0:
             assert s.coefficients[t.name] == pytest.approx(r.actual_coefficients[t.name], rel=1e-12)
+
+
+def test_coded_basis_expands_a_non_closed_model_exactly():
+    # Intercept + A^2 alone in coded units, A = 1000 +- 1: the coded model's actual-unit
+    # polynomial has an A term the list lacks (extra). Exact: the least squares of the coded
+    # model in rational arithmetic, expanded by hand.
+    import rsm_lrg
+
+    rng = np.random.default_rng(2)
+    a = 1000 + rng.uniform(-1, 1, 15)
+    y = 2 + 3 * (a - 1000) ** 2 + rng.normal(0, 0.05, 15)
+    r = rsm_lrg.fit(pd.DataFrame({"a": a, "y": y}), "y", factors=["a"], terms=["A^2"])
+    f = r.space.factors[0]
+    s = solve_actual(a[:, None], y, r.terms, basis="coded", centre=[f.center], scale=[f.half_range],
+                     decimal_inputs=False)
+    assert s.names == ("Intercept", "A^2") and s.extra == ("A",)
+    assert set(s.coefficients) == set(r.actual_coefficients)
+    c, h = Fraction(f.center), Fraction(f.half_range)
+    xc = [(Fraction(float(v)) - c) / h for v in a]
+    b0, b2 = _exact_normal([[Fraction(1), v * v] for v in xc], [Fraction(float(v)) for v in y])
+    exact = {"Intercept": b0 + b2 * c * c / (h * h), "A": -2 * b2 * c / (h * h), "A^2": b2 / (h * h)}
+    for nm, e in exact.items():
+        assert abs(Fraction(s.coefficients[nm]) - e) <= abs(e) * Fraction(2) ** -52, nm
+        assert r.actual_coefficients[nm] == pytest.approx(float(e), rel=1e-11)  # the double route: 7.8e-14
+    assert s.coded_coefficients["A^2"] == pytest.approx(float(b2), rel=1e-15)
+
+
+def test_coded_basis_names_categoric_extras_as_the_fit_does():
+    # A and AE without E, E categoric: shifting A in AE creates the E[p], E[q] columns.
+    import rsm_lrg
+
+    rng = np.random.default_rng(1)
+    a = 1000 + rng.uniform(-1, 1, 24)
+    e = np.array(list("pqr") * 8)
+    y = 3 + 2 * (a - 1000) + (e == "q") * 0.5 + (a - 1000) * (e == "r") * 0.7 + rng.normal(0, 0.05, 24)
+    r = rsm_lrg.fit(pd.DataFrame({"a": a, "e": e, "y": y}), "y", factors=["a", "e"], terms=["A", "AB"])
+    fa, fe = r.space.factors
+    lev = np.array([fe.levels.index(v) for v in e])
+    s = solve_actual(np.column_stack([a, lev]), y, r.terms, basis="coded", centre=[fa.center, 0.0],
+                     scale=[fa.half_range, 1.0], letters=r.space.letters, decimal_inputs=False)
+    assert s.extra == ("B[p]", "B[q]") and set(s.coefficients) == set(r.actual_coefficients)
+    c, h = Fraction(fa.center), Fraction(fa.half_range)
+    rows = []
+    for ai, li in zip(a, lev):
+        xc = (Fraction(float(ai)) - c) / h
+        codes = [Fraction(1 if li == j else (-1 if li == 2 else 0)) for j in (0, 1)]
+        rows.append([Fraction(1), xc, xc * codes[0], xc * codes[1]])
+    b0, b1, bp, bq = _exact_normal(rows, [Fraction(float(v)) for v in y])
+    exact = {"Intercept": b0 - b1 * c / h, "A": b1 / h, "AB[p]": bp / h, "AB[q]": bq / h, "B[p]": -bp * c / h,
+             "B[q]": -bq * c / h}
+    for nm, ex in exact.items():
+        assert abs(Fraction(s.coefficients[nm]) - ex) <= abs(ex) * Fraction(2) ** -52, nm
