@@ -34,6 +34,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
     parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
                         help="significance level for the suggestion (default 0.05)")
+    parser.add_argument("--transform", default=None, metavar="log|log10|sqrt|inverse|power=L",
+                        help="compare the models of a transformed response (as 'fit --transform')")
+    from ._common import number
+
+    parser.add_argument("--transform-constant", type=number(), default=0.0, metavar="K",
+                        help="add K to the response before transforming (default 0)")
     add_json(parser)
     add_force(parser)
 
@@ -42,11 +48,14 @@ def run(args: argparse.Namespace) -> int:
     from ..io import read_table
     from ..model.data import prepare
     from ..model.summary import fit_summary
+    from ._common import model_spec
 
+    spec = model_spec(args)  # a bad --transform is named before any data is read
     data = read_table(args.data)
     with about_file(args.data):
         notes = prepare(data, args.response, args.factor, args.block).notes
-        s = fit_summary(data, args.response, factors=args.factor, block=args.block, alpha=args.alpha)
+        s = fit_summary(data, args.response, factors=args.factor, block=args.block, alpha=args.alpha,
+                        transform=spec.transform)
     print_notes(notes)  # after the work: a failed command prints one error line only
     print_summary_or_json(args, s)
     return 0

@@ -160,7 +160,7 @@ def _clean(v):
 
 
 def fit_summary(data, response: str, factors=None, block: str | None = None, *, alpha: float = 0.05,
-                orders=ORDERS) -> FitSummary:
+                orders=ORDERS, transform=None, transform_constant: float = 0.0) -> FitSummary:
     """Sequential sums of squares, lack of fit and statistics per model order.
 
     Parameters
@@ -194,7 +194,9 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     if bad or not orders:
         raise ValueError(f"orders must be among {', '.join(ORDERS)} (got {', '.join(map(str, orders)) or 'none'})")
     orders = tuple(o for o in ORDERS if o in orders)
-    inp = model_inputs(data, response, factors, block)
+    from .transform import parse_transform
+
+    inp = model_inputs(data, response, factors, block, transform=parse_transform(transform, transform_constant))
     y, n, nb, letters = inp.y, inp.n, inp.nb, inp.space.letters
     cats = inp.space.categoric
     check_model_size(n, len(letters), "linear", nb - 1, categoric=cats)
