@@ -160,7 +160,7 @@ def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: 
     ls.require_full_rank(f"{model} model" if spec.terms is None else "model")
     ls = ls.second_pass(chunks)
     # pure error: residual of y ~ (blocks +) one mean per distinct setting (R rsm's PE())
-    pe = pure_error(inp.x, y - ls.shift, inp.bcodes if nb > 1 else None)
+    pe = pure_error(inp.settings, y - ls.shift, inp.bcodes if nb > 1 else None)
     prep = inp.prep
     return assemble(spec=spec, response=response, block=inp.block, space=space, terms=terms, col_names=col_names,
                     ls=ls, pe=pe, bkeys=inp.bkeys, blevels=inp.blevels, data=prep.data.copy(), coded=inp.coded, y=y,

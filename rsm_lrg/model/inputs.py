@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from ..factors import FactorSpace, quote_value
+from ..io import float_column
 from .data import prepare
 from .least_squares import CHUNK_ROWS
 from .terms import Term, column_names, model_matrix, model_terms, n_columns, parse_term
@@ -111,7 +112,7 @@ class ModelInputs:
     coded : pandas.DataFrame
         Coded settings, columns = letters.
     x : (n, k) ndarray
-        The same as an array.
+        The coded settings as an array, unrounded (the model matrix is built from it).
     y : (n,) ndarray
         Response on the model's scale: ``g(y + k)`` under a transform, else the response
         [response units].
@@ -139,6 +140,13 @@ class ModelInputs:
     blevels: dict | None
     transform: Transform = Transform()
     y_response: np.ndarray | None = None
+    keys: np.ndarray | None = None
+
+    @property
+    def settings(self) -> np.ndarray:
+        """The coded settings rounded to :data:`~rsm_lrg.factors.CODED_DECIMALS` (``x`` is
+        unrounded): what makes two runs the same setting (pure error)."""
+        return self.x if self.keys is None else self.keys
 
     @property
     def n(self) -> int:
@@ -220,9 +228,16 @@ def model_inputs(data: Any, response: str, factors: Any = None, block: str | Non
     if origin:
         space = origin_coding(space)
     coded = space.encode(data)
-    x = coded.to_numpy(dtype=float)
+    keys = coded.to_numpy(dtype=float)  # rounded coding: settings equal to round-off are one setting
+    # the model matrix takes the coding unrounded ((x - low) - (high - x)) / (high - low): the
+    # rounding to CODED_DECIMALS would perturb the data by up to 5e-13 (digits lost on NIST StRD)
+    x = keys.copy()
     for j, f in enumerate(space.factors):
-        if np.unique(x[:, j]).size < 2:
+        if f.kind == "numeric":
+            v = float_column(data, f.name).to_numpy(dtype=float)
+            x[:, j] = ((v - f.low) - (f.high - v)) / (f.high - f.low)
+    for j, f in enumerate(space.factors):
+        if np.unique(keys[:, j]).size < 2:
             raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")
     y_response = y
     if not tr.identity:
@@ -235,5 +250,5 @@ def model_inputs(data: Any, response: str, factors: Any = None, block: str | Non
     else:
         bcodes, bkeys, blevels = None, None, None
     return ModelInputs(prep=prep, space=space, coded=coded, x=x, y=y, block=block, bcodes=bcodes, bkeys=bkeys,
-                       blevels=blevels, transform=tr, y_response=y_response)
+                       blevels=blevels, transform=tr, y_response=y_response, keys=keys)
 

@@ -84,14 +84,12 @@ class FitResult:
         1-based data rows left out because their response cell is empty.
     reduction : Reduction or None
         The backward elimination that chose the terms.
-    actual_solution : object or None
-        The fit solved in actual units (``coefficients``, ``std_errors``), when it was.
 
     Derived (cached): ``coefficients`` (columns ``coded, std_error, t, p, ci_low, ci_high,
     vif, actual``), ``anova`` (Table 5 layout), ``statistics``, ``stationary_point``,
     ``fitted``, ``residuals``, ``hat``, ``cov_unscaled``, ``sigma2``, ``df_resid``,
     ``pure_error``, ``block_effects``, ``actual_coefficients``, ``actual_std_errors``,
-    ``term_vif``, ``notes``, ``design_matrix``, ``ols`` (statsmodels, built lazily).
+    ``term_vif``, ``notes``, ``actual_solution``, ``design_matrix``, ``ols`` (statsmodels, built lazily).
     """
 
     response: str
@@ -112,7 +110,6 @@ class FitResult:
     omitted_rows: tuple = field(default=(), repr=False)
     omitted_data: Any = field(default=None, repr=False)
     reduction: Any = field(default=None, repr=False)
-    actual_solution: Any = field(default=None, repr=False)
 
     # -- what the regression core says ------------------------------------------------
     @property
@@ -203,18 +200,54 @@ class FitResult:
         return tuple(self.input_notes) + tuple(notes)
 
     @cached_property
+    def actual_solution(self) -> Any:
+        """The model solved in actual units to the accuracy of the data
+        (:func:`rsm_lrg.model.actual_units.solve_actual`: exact Gram matrix, refinement in
+        double-double, an exact change of basis), or None for a Dask fit (no per-run data)
+        or when that solve refuses the data (the exact expansion of the coded coefficients
+        is used then)."""
+        from .actual_units import is_closed_under_shift, solve_actual
+
+        if self.coded is None or self.y is None:
+            return None
+        x = np.column_stack([self.coded[f.letter].to_numpy(dtype=float) if f.kind == "categoric"
+                             else float_column(self.data, f.name).to_numpy(dtype=float) for f in self.space.factors])
+        nb = self.n_blocks
+        blocks = block_codes(self.data, self.block)[0] if self.block is not None and nb > 1 else None
+        numeric = [f.kind == "numeric" for f in self.space.factors]
+        try:
+            return solve_actual(
+                x, np.asarray(self.y, dtype=float), self.terms, intercept=self.intercept, blocks=blocks, n_blocks=nb,
+                decimal_inputs=self.transform.identity,  # a transformed response is not the file's decimals
+                centre=[f.center if nu else 0.0 for f, nu in zip(self.space.factors, numeric)],
+                scale=[f.half_range if nu else 1.0 for f, nu in zip(self.space.factors, numeric)],
+                block_names=list(self.column_names[1:nb]),
+                basis="actual" if is_closed_under_shift(self.terms, intercept=self.intercept) else "coded",
+                letters=self.space.letters)
+        except ValueError:
+            return None
+
+    @cached_property
     def actual_coefficients(self) -> dict:
-        """``{term: coefficient in actual units}`` (an exact change of basis, or the fit solved in
-        actual units when ``actual_solution`` holds it)."""
-        if self.actual_solution is not None:
-            return dict(self.actual_solution.coefficients)
+        """``{term: coefficient in actual units}``: the model solved in actual units
+        (:attr:`actual_solution`), else the exact change of basis of the coded coefficients.
+        A model not closed under the change of basis (``A^2`` without ``A``) has monomials
+        beyond its terms in actual units; they are listed too."""
+        sol = self.actual_solution
+        if sol is not None:
+            blocks = set(self.column_names[1:self.n_blocks])
+            return {k: float(v) for k, v in sol.coefficients.items() if k not in blocks}
         coded = dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist()))
         return actual_coefficients(coded, self.terms, self.space)
 
     @property
     def actual_std_errors(self) -> dict | None:
-        """``{term: standard error in actual units}`` when the fit was solved in actual units."""
-        return None if self.actual_solution is None else dict(self.actual_solution.std_errors)
+        """``{term: standard error in actual units}`` (None for a Dask fit)."""
+        sol = self.actual_solution
+        if sol is None:
+            return None
+        blocks = set(self.column_names[1:self.n_blocks])
+        return {k: float(v) for k, v in sol.std_errors.items() if k not in blocks}
 
     @cached_property
     def coefficients(self) -> Any:
@@ -255,8 +288,10 @@ class FitResult:
     def statistics(self) -> FitStatistics:
         """R², adjusted and predicted R², PRESS, adequate precision, std dev, mean, C.V."""
         ls, s = self.least_squares, self._sums
+        sol = self.actual_solution  # its residual sum of squares is exact to the data's digits (NIST StRD)
+        ss_res = float(sol.rss) if sol is not None and math.isfinite(sol.rss) else ls.ss_res
         return fit_statistics(n=ls.n, mean=ls.ybar, fitted_range=ls.pass_sums.fitted_max - ls.pass_sums.fitted_min,
-                              ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"], ss_block=s["ss_block"],
+                              ss_res=ss_res, df_res=ls.df_resid, ss_total=s["ss_total"], ss_block=s["ss_block"],
                               df_model=s["df_model"], n_params=ls.p, press=ls.press)
 
     @cached_property
@@ -654,18 +689,15 @@ def _f(v):
 def assemble(*, spec: ModelSpec, response: str, block: str | None, space: FactorSpace, terms: Sequence[Term],
              col_names: Sequence[str], ls: Regression, pe: PureError, bkeys: list | None, blevels: dict | None,
              data: Any, coded: Any, y: Any, y_response: Any = None, input_notes: Sequence = (),
-             omitted_rows: Sequence[int] = (), omitted_data: Any = None, reduction: Any = None,
-             actual: Any = None) -> FitResult:
+             omitted_rows: Sequence[int] = (), omitted_data: Any = None, reduction: Any = None) -> FitResult:
     """The :class:`FitResult` of a factorised fit (both passes done) and its pure error; every
     statistic is derived from them on first use.
 
     Without an intercept the model row and the total are uncorrected (``sum y^2``, n df),
     as R's ``lm`` and ``anova`` report them; R² is then ``1 - SS_res / sum y^2``.
-    ``actual`` (an object with ``coefficients`` and ``std_errors`` mappings) gives the
-    actual-unit coefficients of a fit solved in actual units.
     """
     return FitResult(response=response, spec=spec, block=block, space=space, terms=tuple(terms), least_squares=ls,
                      raw_pure_error=pe, column_names=tuple(col_names), data=data, coded=coded, y=y,
                      y_response=y_response, block_keys=None if bkeys is None else tuple(bkeys), block_levels=blevels,
                      input_notes=tuple(input_notes), omitted_rows=tuple(omitted_rows), omitted_data=omitted_data,
-                     reduction=reduction, actual_solution=actual)
+                     reduction=reduction)

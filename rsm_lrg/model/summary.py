@@ -223,7 +223,7 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     nested = dict(zip(fitted, ls.nested_press(sub_chunks, [ends[o] for o in fitted])))
 
     # pure error: residual of (blocks +) one mean per distinct setting, as in fit()
-    pe = pure_error(inp.x, y - ls.shift, inp.bcodes if nb > 1 else None)
+    pe = pure_error(inp.settings, y - ls.shift, inp.bcodes if nb > 1 else None)
     ybar = ls.ybar
     ss_mean = float(n * ybar ** 2)
     ss_tot_corr = float(np.sum((y - ybar) ** 2))
