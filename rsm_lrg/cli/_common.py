@@ -281,7 +281,7 @@ def about_file(path):
         raise
     except ValueError as exc:
         msg = str(exc)
-        if getattr(exc, "option", None):  # the error says which option it concerns
+        if getattr(exc, "parameter", None):  # the error says which parameter it concerns
             raise option_error(exc) from None
         if msg.startswith("-"):  # it names the option at fault, not the file
             raise InputError(msg) from None
@@ -305,7 +305,8 @@ def about_response(response: str, several: bool):
         raise
     except ValueError as exc:
         msg = str(exc)
-        if msg.startswith("-") or option_of_message(msg) or quote_user_value(response) in msg:
+        if msg.startswith("-") or getattr(exc, "parameter", None) or option_of_message(msg) \
+                or quote_user_value(response) in msg:
             raise
         raise ValueError(f"response {quote_user_value(response)}: {msg}") from None
 
@@ -507,8 +508,15 @@ def per_response_values(items, n: int, option: str) -> list:
     return [v for _, v in items] + [None] * (n - len(items))
 
 
-#: The command-line option of each part of a model specification (SpecError.option).
-SPEC_OPTIONS = {"model": "--model", "terms": "--terms", "transform": "--transform", "reduce": "--alpha-out"}
+#: The command-line option of each library parameter an error names
+#: (:class:`rsm_lrg.errors.ParameterError`'s ``parameter``, e.g. a model specification's).
+PARAMETER_OPTIONS = {
+    "model": "--model", "terms": "--terms", "transform": "--transform", "reduce": "--alpha-out",
+    "alpha_out": "--alpha-out", "alpha": "--alpha", "confidence": "--confidence", "bound": "--bound",
+    "goal": "--goal", "radius": "--radius", "step": "--step", "setting": "--at", "weight": "--weight",
+    "importance": "--importance", "limits": "--limits", "criterion": "--criterion", "effect_sd": "--effect",
+    "region": "--region", "observed": "--observed",
+}
 
 
 def model_spec(opts: argparse.Namespace, *, order: str | None = None):
@@ -530,9 +538,11 @@ def model_spec(opts: argparse.Namespace, *, order: str | None = None):
 
 
 def option_error(exc: Exception, opts: argparse.Namespace | None = None) -> InputError:
-    """An InputError naming the option of an error that carries one (``exc.option``, e.g. a
-    :class:`~rsm_lrg.model.spec.SpecError`), with the value given when it is short."""
-    flag = SPEC_OPTIONS.get(str(getattr(exc, "option", "")), "--" + str(getattr(exc, "option", "model")))
+    """An InputError naming the option of an error that says which parameter it concerns
+    (:class:`rsm_lrg.errors.ParameterError`, e.g. a model specification's), with the value
+    given when ``opts`` has it."""
+    param = str(getattr(exc, "parameter", ""))
+    flag = PARAMETER_OPTIONS.get(param, "--" + param.replace("_", "-"))
     value = getattr(opts, flag[2:].replace("-", "_"), None) if opts is not None else None
     shown = f" {quote_user_value(value)}" if isinstance(value, str) else ""
     return InputError(f"{flag}{shown}: {exc}")

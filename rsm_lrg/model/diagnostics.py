@@ -49,6 +49,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["diagnostics", "Diagnostics", "box_cox", "box_cox_ss", "BoxCox", "STANDARD_LAMBDAS", "BOX_COX_RULES"]
 
 #: Standard power transforms, λ -> name (Stat-Ease's list).
@@ -175,7 +177,7 @@ def box_cox(result, *, confidence: float = 0.95, lambdas=None, rule: str = "like
     if rule not in BOX_COX_RULES:
         raise ValueError(f"Box-Cox rule must be 'likelihood' or 'design-expert', not {rule!r}")
     if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
+        raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
     y = np.asarray(result.y, dtype=float)
     if np.any(y <= 0):
         i = int(np.flatnonzero(y <= 0)[0])

@@ -34,6 +34,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["EffectsResult", "lenth_pse", "lenth_margins", "half_normal_quantiles", "screening_effects"]
 
 
@@ -56,7 +58,7 @@ def lenth_margins(pse: float, m: int, alpha: float = 0.05) -> tuple[float, float
     from .statistics import stdtrit
 
     if not 0.0 < alpha < 1.0:
-        raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
+        raise ParameterError("alpha", f"alpha must lie between 0 and 1, not {alpha!r}")
     d = m / 3.0
     gamma = (1.0 + (1.0 - alpha) ** (1.0 / m)) / 2.0
     return float(stdtrit(d, 1.0 - alpha / 2.0)) * pse, float(stdtrit(d, gamma)) * pse, d

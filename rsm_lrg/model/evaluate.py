@@ -52,6 +52,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["evaluate_design", "DesignEvaluation", "FDS_FRACTIONS", "compare_designs", "DesignComparison",
            "POTENTIAL"]
 
@@ -477,11 +479,11 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
             raise ValueError("coded settings must be an (n, k) array")
         letters = letters_for(coded.shape[1])
     if region not in ("cube", "sphere"):
-        raise ValueError(f"region must be 'cube' or 'sphere', not {region!r}")
+        raise ParameterError("region", f"region must be 'cube' or 'sphere', not {region!r}")
     if not 0 < alpha < 1:
-        raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
+        raise ParameterError("alpha", f"alpha must lie between 0 and 1, not {alpha!r}")
     if not (effect_sd > 0 and math.isfinite(effect_sd)):
-        raise ValueError(f"effect_sd must be a positive number, not {effect_sd!r}")
+        raise ParameterError("effect_sd", f"effect_sd must be a positive number, not {effect_sd!r}")
     n, k = coded.shape
     # counted before any term is built: far more parameters than runs is refused at once
     # (naming each of thousands of aliased terms would take minutes and help nobody)

@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from ..errors import ParameterError
+
 __all__ = ["parse_goal"]
 
 _GOALS = {"minimize": "minimize", "minimise": "minimize", "min": "minimize",
@@ -29,17 +31,17 @@ def parse_goal(goal: Any) -> tuple[str, float | None]:
         if g in _GOALS:
             return _GOALS[g], None
         if not g.startswith("target"):
-            raise ValueError(f"goal must be minimize, maximize or target=V, not {goal!r}")
+            raise ParameterError("goal", f"goal must be minimize, maximize or target=V, not {goal!r}")
         rest = g[len("target"):].strip()
         if not rest.startswith("="):
-            raise ValueError(f"goal {goal!r}: a target needs a value, e.g. target=0.03")
+            raise ParameterError("goal", f"goal {goal!r}: a target needs a value, e.g. target=0.03")
         value = rest[1:].strip()
     else:
-        raise ValueError(f"goal must be minimize, maximize or target=V, not {goal!r}")
+        raise ParameterError("goal", f"goal must be minimize, maximize or target=V, not {goal!r}")
     try:
         t = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"goal {goal!r}: the target {value!r} is not a number") from None
+        raise ParameterError("goal", f"goal {goal!r}: the target {value!r} is not a number") from None
     if not math.isfinite(t):
-        raise ValueError(f"goal {goal!r}: the target must be a finite number")
+        raise ParameterError("goal", f"goal {goal!r}: the target must be a finite number")
     return "target", t

@@ -38,6 +38,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["reduce_terms", "reduce_inputs", "Reduction", "removable", "CRITERIA", "aicc"]
 
 #: Accepted values of ``criterion``.
@@ -161,9 +163,9 @@ def reduce_inputs(inp: Any, *, model: str = "quadratic", terms: Any = None, inte
 
     crit = str(criterion).strip().lower()
     if crit not in CRITERIA:
-        raise ValueError(f"criterion must be 'p' or 'aicc', not {criterion!r}")
+        raise ParameterError("criterion", f"criterion must be 'p' or 'aicc', not {criterion!r}")
     if not (isinstance(alpha_out, (int, float)) and 0.0 < alpha_out < 1.0):
-        raise ValueError(f"alpha_out must lie between 0 and 1, not {alpha_out!r}")
+        raise ParameterError("alpha_out", f"alpha_out must lie between 0 and 1, not {alpha_out!r}")
     letters, cats = inp.space.letters, inp.space.categoric
     n, nb = inp.n, inp.nb - 1
     check_model_size(n, len(letters), "linear", nb, categoric=cats)

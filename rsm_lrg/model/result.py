@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..factors import FactorSpace
 from ..io import float_column
 from ..present import clean_anova
@@ -506,7 +507,7 @@ class FitResult:
         if interval not in (None, "confidence", "prediction", "both"):
             raise ValueError(f"interval must be None, 'confidence', 'prediction' or 'both', not {interval!r}")
         if not 0.0 < alpha < 1.0:
-            raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
+            raise ParameterError("alpha", f"alpha must lie between 0 and 1, not {alpha!r}")
         index = points.index if isinstance(points, pd.DataFrame) else None
         with np.errstate(over="ignore"):  # a far point codes to a huge number or inf: refused below
             x = self._coded_points(points, coded)

@@ -33,6 +33,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["ridge", "RidgePath", "canonical_path", "ridge_point", "radii"]
 
 
@@ -46,12 +48,12 @@ def radii(radius: float, step: float) -> np.ndarray:
         if not isinstance(v, (int, float)) or isinstance(v, bool) or not math.isfinite(v):
             raise ValueError(f"{name} must be a finite number, not {v!r}")
     if radius < 0:
-        raise ValueError(f"radius must be >= 0 (got {radius:g})")
+        raise ParameterError("radius", f"radius must be >= 0 (got {radius:g})")
     if step <= 0:
-        raise ValueError(f"step must be > 0 (got {step:g})")
+        raise ParameterError("step", f"step must be > 0 (got {step:g})")
     m = int(math.floor(radius / step * (1 + 1e-9) + 1e-12))
     if m > 100_000:
-        raise ValueError(f"radius/step = {radius / step:.0f} points is too many (at most 100000)")
+        raise ParameterError("radius", f"radius/step = {radius / step:.0f} points is too many (at most 100000)")
     return np.round(np.arange(m + 1) * step, 12)
 
 
@@ -185,7 +187,7 @@ def _goal(goal) -> str:
         return "maximize"
     if g in ("minimize", "minimise", "min", "descent"):
         return "minimize"
-    raise ValueError(f"goal must be maximize or minimize, not {goal!r}")
+    raise ParameterError("goal", f"goal must be maximize or minimize, not {goal!r}")
 
 
 def _finish(result, goal, kind, r, X) -> RidgePath:

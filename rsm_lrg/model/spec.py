@@ -22,19 +22,16 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..errors import ParameterError
 from ..terms import MODELS
 from .transform import Transform, parse_transform
 
 __all__ = ["ModelSpec", "ReduceSpec", "SpecError"]
 
 
-class SpecError(ValueError):
-    """A bad model specification; ``option`` names what was wrong (``"model"``, ``"terms"``,
+class SpecError(ParameterError):
+    """A bad model specification; ``parameter`` names what was wrong (``"model"``, ``"terms"``,
     ``"transform"``, ``"reduce"``) so a command line can name its own option."""
-
-    def __init__(self, option: str, message: str) -> None:
-        super().__init__(message)
-        self.option = option
 
 
 @dataclass(frozen=True)

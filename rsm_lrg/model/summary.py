@@ -45,6 +45,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["fit_summary", "FitSummary", "ORDERS"]
 
 #: The nested model orders of the fit summary.
@@ -188,7 +190,7 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     from .terms import MAX_TERMS, check_model_size, model_terms, n_columns, n_model_terms
 
     if not 0.0 < alpha < 1.0:
-        raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
+        raise ParameterError("alpha", f"alpha must lie between 0 and 1, not {alpha!r}")
     orders = tuple(orders)
     bad = [o for o in orders if o not in ORDERS]
     if bad or not orders:

@@ -31,6 +31,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["Transform", "parse_transform", "GOAL_KINDS"]
 
 #: What a goal asks of a response: the three kinds of :meth:`Transform.goal_on_model_scale`.
@@ -77,7 +79,7 @@ class Transform:
         ('target', 0.0)
         """
         if kind not in GOAL_KINDS:
-            raise ValueError(f"goal must be minimize, maximize or target, not {kind!r}")
+            raise ParameterError("goal", f"goal must be minimize, maximize or target, not {kind!r}")
         if self.identity:
             return kind, target
         if kind == "target":

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..factors import finite_float
 
 __all__ = ["confirm", "ConfirmationResult", "parse_settings"]
@@ -48,21 +49,21 @@ def parse_settings(space, at) -> dict:
         pairs = []
         for s in at or []:
             if "=" not in str(s):
-                raise ValueError(f"setting {s!r}: expected NAME=VALUE")
+                raise ParameterError("setting", f"setting {s!r}: expected NAME=VALUE")
             k, v = str(s).split("=", 1)
             pairs.append((k.strip(), v.strip()))
     for key, v in pairs:
         try:
             f = space[key]
         except KeyError:
-            raise ValueError(f"setting for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
+            raise ParameterError("setting", f"setting for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
         val = f.levels[f.index(v)] if f.kind == "categoric" else finite_float(v, f"setting for {f.name!r}")
         if f.name in items:
             raise ValueError(f"factor {f.name!r} is set more than once")
         items[f.name] = val
     missing = [n for n in space.names if n not in items]
     if missing:
-        raise ValueError(f"no setting for factor(s) {', '.join(map(repr, missing))}; give NAME=VALUE for each")
+        raise ParameterError("setting", f"no setting for factor(s) {', '.join(map(repr, missing))}; give NAME=VALUE for each")
     return items
 
 
@@ -183,12 +184,12 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
     from scipy.special import stdtrit  # the t quantile (scipy.stats costs a second to import)
 
     if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
+        raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
     obs = np.atleast_1d(np.asarray(observed, dtype=float)) if not isinstance(observed, str) else None
     if obs is None or obs.size == 0 or obs.ndim != 1:
-        raise ValueError("give at least one observed value")
+        raise ParameterError("observed", "give at least one observed value")
     if not np.all(np.isfinite(obs)):
-        raise ValueError("observed values must be finite numbers")
+        raise ParameterError("observed", "observed values must be finite numbers")
     if result.df_resid <= 0:
         raise ValueError("the model has no residual degrees of freedom: no prediction interval")
     space = result.space

@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..model.goals import parse_goal
 from ..model.levels import LevelView  # the optimisers' view of a fit at one level combination
 
@@ -55,24 +56,24 @@ def parse_bounds(space, bounds, *, allow_extrapolation: bool = False):
         for s in bounds:
             name, a, b = parse_factor_spec(s)
             if a is None:
-                raise ValueError(f"bound {s!r}: expected NAME=LOW:HIGH")
+                raise ParameterError("bound", f"bound {s!r}: expected NAME=LOW:HIGH")
             if name in items:
-                raise ValueError(f"bound for {name!r} is given more than once")
+                raise ParameterError("bound", f"bound for {name!r} is given more than once")
             items[name] = (a, b)
         bounds = items
     for key, pair in bounds.items():
         try:
             f = space[key]
         except KeyError:
-            raise ValueError(f"bound for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
+            raise ParameterError("bound", f"bound for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
         try:
             a, b = (float(v) for v in pair)
         except (TypeError, ValueError):
-            raise ValueError(f"bound for {key!r}: expected (LOW, HIGH), got {pair!r}") from None
+            raise ParameterError("bound", f"bound for {key!r}: expected (LOW, HIGH), got {pair!r}") from None
         if not (math.isfinite(a) and math.isfinite(b)):
-            raise ValueError(f"bound for {f.name!r}: LOW and HIGH must be finite numbers")
+            raise ParameterError("bound", f"bound for {f.name!r}: LOW and HIGH must be finite numbers")
         if not a < b:
-            raise ValueError(f"bound for {f.name!r}: LOW must be below HIGH (got {a:g} >= {b:g})")
+            raise ParameterError("bound", f"bound for {f.name!r}: LOW must be below HIGH (got {a:g} >= {b:g})")
         span = f.high - f.low
         if a < f.low - 1e-9 * span or b > f.high + 1e-9 * span:
             msg = (f"bound for {f.name!r} ({a:g}..{b:g}) reaches outside the design range "
@@ -260,7 +261,7 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
         raise TypeError(f"optimize() takes a fitted result (FitResult), not {type(fitted).__name__}: fit first, "
                         "e.g. rsm_lrg.optimize(rsm_lrg.fit(data, response), goal)")
     if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
+        raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
     exprs = _constraint_texts(constraints)
     if fitted.space.has_categoric:
         return _optimize_categoric(fitted, goal, bounds, confidence=confidence,
@@ -419,9 +420,9 @@ def split_bounds(space, bounds) -> tuple[Any, dict]:
         try:
             f = space[key]
         except KeyError:
-            raise ValueError(f"bound for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
+            raise ParameterError("bound", f"bound for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
         if f.name in seen:
-            raise ValueError(f"bound for {f.name!r} is given more than once")
+            raise ParameterError("bound", f"bound for {f.name!r} is given more than once")
         seen.add(f.name)
         if f.kind == "categoric":
             vals = [val] if isinstance(val, str) or not hasattr(val, "__iter__") else list(val)
@@ -438,7 +439,7 @@ def split_bounds(space, bounds) -> tuple[Any, dict]:
 
 def _split_spec(spec: str) -> tuple[str, str]:
     if not isinstance(spec, str) or "=" not in spec:
-        raise ValueError(f"bound {spec!r}: expected NAME=LOW:HIGH (numeric) or NAME=LEVEL[,LEVEL...] (categoric)")
+        raise ParameterError("bound", f"bound {spec!r}: expected NAME=LOW:HIGH (numeric) or NAME=LEVEL[,LEVEL...] (categoric)")
     name, val = spec.split("=", 1)
     name, val = name.strip(), val.strip()
     if ":" in val:

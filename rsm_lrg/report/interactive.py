@@ -44,6 +44,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["model_data", "interactive_html", "write_interactive_report", "Profiler", "profiler",
            "plotly_js", "PAGE_IDS"]
 
@@ -86,7 +88,7 @@ def model_data(result, confidence: float = 0.95) -> dict:
     from ..factors import CODED_DECIMALS
 
     if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must lie between 0 and 1, not {confidence!r}")
+        raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
     fit = result
     tr = None if result.transform.identity else result.transform
     space = fit.space
@@ -238,7 +240,7 @@ def _as_specs(results, goals, limits, labels) -> list[ResponseSpec]:
         if lim is not None:
             lo, hi = (None if v is None else float(v) for v in lim)
             if lo is not None and hi is not None and not lo <= hi:
-                raise ValueError(f"limits of response {name!r}: low {lo:g} is above high {hi:g}")
+                raise ParameterError("limits", f"limits of response {name!r}: low {lo:g} is above high {hi:g}")
             lim = (lo, hi)
         specs.append(ResponseSpec(result=r, goal=per(goals, name, "minimize"), limits=lim,
                                   label=str(per(labels, name, "") or "")))
