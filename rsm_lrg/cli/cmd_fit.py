@@ -46,7 +46,9 @@ def _write_report(result, path, force: bool) -> None:
     writer = getattr(mod, "write_report", None) if mod is not None else None
     if writer is None:
         raise ValueError(f"{path}: --report is not available yet in this version (no HTML report writer)")
-    writer(result, path, force=force)
+    from ..optimize import optimize
+
+    writer(result, path, force=force, optimum=optimize(result, goal="minimize"))  # found here, presented there
 
 
 def _many_files(path: str):

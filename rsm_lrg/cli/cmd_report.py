@@ -123,17 +123,24 @@ def run(args: argparse.Namespace) -> int:
             fit_notes = fits[r].input_notes
             notes += [(f"{r}: {x}" if n > 1 else x) for x in fit_notes
                       if x not in notes and (n == 1 or getattr(x, "kind", "") != COLUMNS_LEFT_OUT)]
+        # the optima are found here (the optimise layer); the report only presents them
+        from ..optimize.study import report_optima
+
+        optima = report_optima(fits, dict(zip(responses, goals)), dict(zip(responses, limits)))
         if args.static and n == 1 and fits[responses[0]].transform.identity:
             from ..report import write_report
 
+            best = optima.single.get(responses[0])
+            if best is None:  # the one-response report needs its optimum: say why there is none
+                raise ValueError(f"--goal {goals[0]}: {optima.missing.get(responses[0], 'no optimum')}")
             path = write_report(fits[responses[0]], out, force=args.force, title=args.title,
-                                source_name=str(args.data), goal=goals[0], hold=args.hold)
+                                source_name=str(args.data), goal=goals[0], hold=args.hold, optimum=best)
         else:
             from ..report.interactive import write_interactive_report
 
             path = write_interactive_report(fits, out, force=args.force, title=args.title, goals=goals,
                                             limits=limits, source_name=str(args.data), start=args.hold,
-                                            static=args.static)
+                                            static=args.static, optima=optima)
     print_notes(notes)  # the report shows them too
     print(f"wrote {path}")
     return 0

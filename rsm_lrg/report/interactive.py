@@ -181,15 +181,16 @@ def _sha256(text: str) -> str:
 
 # -- optima --------------------------------------------------------------------------------------
 
-def _optimum(result, goal):
-    """The optimum of one response (a transformed fit optimised on its own scale, as
-    ``rsm-lrg optimize`` does), or ``(None, reason)``."""
-    from ..optimize import optimize
+def _optima(specs, optima=None):
+    """The optima to show: those given (computed by the caller in the optimise layer,
+    :func:`rsm_lrg.optimize.study.report_optima`), else found the same way here."""
+    if optima is not None:
+        return optima
+    from ..optimize.study import report_optima
 
-    try:
-        return optimize(result, goal=goal), ""
-    except (ValueError, NotImplementedError, TypeError) as exc:
-        return None, str(exc)
+    return report_optima({str(s.result.response): s.result for s in specs},
+                         {str(s.result.response): s.goal for s in specs},
+                         {str(s.result.response): s.limits for s in specs})
 
 
 def _setting_json(actual: Mapping) -> dict:
@@ -296,10 +297,12 @@ def _default_limits(result, goal, lo_obs: float, hi_obs: float) -> tuple:
     return (lo_obs, hi_obs)
 
 
-def page_data(specs, *, confidence: float = 0.95, desirability=True) -> tuple[dict, list[str]]:
-    """The JSON the page's script reads, and notes for the page (optima that could not be found)."""
+def page_data(specs, *, confidence: float = 0.95, desirability=True, optima=None) -> tuple[dict, list[str]]:
+    """The JSON the page's script reads, and notes for the page (optima that could not be found).
+    ``optima`` (:class:`rsm_lrg.optimize.study.ReportOptima`) are shown as given."""
     notes = []
-    models, optima = [], {}
+    models, shown = [], {}
+    opt = _optima(specs, optima)
     for s in specs:
         m = model_data(s.result, confidence)
         lo_obs, hi_obs = _observed_range(s.result)
@@ -309,43 +312,35 @@ def page_data(specs, *, confidence: float = 0.95, desirability=True) -> tuple[di
         m["goal"] = str(s.goal)
         m["label"] = s.label or m["response"]
         models.append(m)
-        best, why = (None, "no goal given") if s.goal is None else _optimum(s.result, s.goal)
+        best = opt.single.get(m["response"])
         if best is None:
-            notes.append(f"No optimum of {m['response']}: {why}")
+            notes.append(f"No optimum of {m['response']}: {opt.missing.get(m['response'], 'not computed')}")
         else:
-            optima[m["response"]] = {"setting": _setting_json(best.actual), "predicted": float(best.predicted),
-                                     "goal": str(best.goal)}
+            shown[m["response"]] = {"setting": _setting_json(best.actual), "predicted": float(best.predicted),
+                                    "goal": str(best.goal)}
     desir = None
     if desirability and len(specs) > 1 and all(s.goal is not None for s in specs):
-        from ..optimize.desirability import optimize_desirability, parse_response_goal
-
-        try:
-            import dataclasses
-
-            goals = []
-            for s in specs:
-                g = parse_response_goal(str(s.result.response), str(s.goal))
-                lo, hi = s.limits or (None, None)
-                goals.append(dataclasses.replace(g, **({"low": lo} if lo is not None else {}),
-                                                 **({"high": hi} if hi is not None else {})))
-            d = optimize_desirability({str(s.result.response): s.result for s in specs}, goals)
+        d = opt.desirability
+        if d is not None:
             desir = {"setting": _setting_json(d.actual), "desirability": float(d.desirability),
                      "predicted": {k: float(v) for k, v in d.predicted.items()}}
-        except (ValueError, NotImplementedError, TypeError) as exc:
-            notes.append(f"No desirability optimum: {exc}")
-    data = {"models": models, "controls": _controls(specs), "optima": optima, "desirability": desir}
+        elif opt.desirability_missing:
+            notes.append(f"No desirability optimum: {opt.desirability_missing}")
+    data = {"models": models, "controls": _controls(specs), "optima": shown, "desirability": desir}
     return data, notes
 
 
-def _response_sections(specs, source_name, static: bool = False, hold: str = "center") -> list[dict]:
+def _response_sections(specs, source_name, static: bool = False, hold: str = "center", optima=None) -> list[dict]:
     """Per response: the static tables and diagnostics of today's report; the static 3-D
     surfaces and contours of every pair only with ``static`` (the live page draws them)."""
     from .fit_report import diagnostics_section, optimum_section, surface_figures, table_sections
 
+    found = _optima(specs, optima)
     out = []
     for i, s in enumerate(specs, start=1):
         fit = s.result
-        best, why = (None, "no goal given") if s.goal is None else _optimum(s.result, s.goal)
+        best = found.single.get(str(fit.response))
+        why = found.missing.get(str(fit.response), "not computed")
         ctx = table_sections(fit, source_name, None)
         diag, diag_note = diagnostics_section(fit)
         opt, opt_missing = optimum_section(fit, best) if best is not None else (None, why)
@@ -377,12 +372,14 @@ def _start(data: dict, start: str) -> None:
 
 def interactive_context(results, *, goals=None, limits=None, labels=None, title: str | None = None,
                         source_name: str | None = None, confidence: float = 0.95, tables: bool = True,
-                        start: str = "center", static: bool = False) -> dict:
-    """Everything the interactive page shows (plain values), the scripts not included."""
+                        start: str = "center", static: bool = False, optima=None) -> dict:
+    """Everything the interactive page shows (plain values), the scripts not included;
+    ``optima`` as for :func:`interactive_html`."""
     from .fit_report import data_table, run_numbers
 
     specs = _as_specs(results, goals, limits, labels)
-    data, notes = page_data(specs, confidence=confidence)
+    optima = _optima(specs, optima)  # found once for the page and the response sections
+    data, notes = page_data(specs, confidence=confidence, optima=optima)
     _start(data, start)
     names = [m["response"] for m in data["models"]]
     first = specs[0].result
@@ -413,14 +410,14 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
         "confidence_pct": f"{100 * confidence:g}",
         "data_json": _json_for_script(data),
         "data": data_table(first, runs_from) if tables else None,
-        "responses": _response_sections(specs, source_name, static, start) if tables else [],
+        "responses": _response_sections(specs, source_name, static, start, optima) if tables else [],
         "static": bool(static),
     }
 
 
 def interactive_html(results, *, goals=None, limits=None, labels=None, title: str | None = None,
                      source_name: str | None = None, confidence: float = 0.95, tables: bool = True,
-                     start: str = "center", static: bool = False) -> str:
+                     start: str = "center", static: bool = False, optima=None) -> str:
     """The interactive report of one or several fitted responses (a string).
 
     Parameters
@@ -448,6 +445,9 @@ def interactive_html(results, *, goals=None, limits=None, labels=None, title: st
     static : bool
         A page without scripts (no profiler, overlay or live figures) with a static 3-D
         surface and contour of every pair of factors per response, for printing and archives.
+    optima : rsm_lrg.optimize.study.ReportOptima, optional
+        The optima to show, computed by the caller (``rsm-lrg report`` does); when not given
+        they are found by :func:`rsm_lrg.optimize.study.report_optima` from ``goals``.
     """
     from markupsafe import Markup
 
@@ -455,6 +455,7 @@ def interactive_html(results, *, goals=None, limits=None, labels=None, title: st
 
     ctx = interactive_context(results, goals=goals, limits=limits, labels=labels, title=title,
                               source_name=source_name, confidence=confidence, tables=tables, start=start,
+                              optima=optima,
                               static=static)
     from .. import __version__
 
