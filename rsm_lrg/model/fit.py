@@ -125,11 +125,11 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
         if spec.terms is None:  # every term removed: the mean-only model
             raise ValueError("backward elimination removed every term: no factor explains the response "
                              f"(alpha_out {reduction.alpha_out:g})")
-    return fit_inputs(inp, response, spec, chunk_rows=chunk_rows, reduction=reduction, data=data)
+    return fit_inputs(inp, response, spec, chunk_rows=chunk_rows, reduction=reduction)
 
 
 def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: int = CHUNK_ROWS,
-               reduction: Any = None, data: Any = None) -> FitResult:
+               reduction: Any = None) -> FitResult:
     """The fit of checked inputs (:func:`~rsm_lrg.model.inputs.model_inputs`) to ``spec``'s
     terms (its reduction, if any, already applied)."""
     space, y, hint, nb, n = inp.space, inp.y, inp.hint, inp.nb, inp.n
