@@ -408,14 +408,14 @@ class Regression:
         return np.sqrt(np.diag(self.cov_unscaled) * self.sigma2)
 
     # -- sums of squares -----------------------------------------------------------------
-    def sequential_ss(self, cols: Sequence[int] | int) -> float:
+    def sequential_ss(self, cols: Sequence[int] | np.ndarray | int) -> float:
         """Sequential (Type I) sum of squares of the columns ``cols`` given every column
         before them: ``sum z_j^2`` [response units^2]."""
         self._need_full_rank()
         idx = np.atleast_1d(np.asarray(cols, dtype=int))
         return float(np.sum(self.qty[idx] ** 2))
 
-    def partial_ss(self, cols: Sequence[int] | int) -> float:
+    def partial_ss(self, cols: Sequence[int] | np.ndarray | int) -> float:
         """Partial (Type III) sum of squares of the columns ``cols`` jointly (the extra sum of
         squares of dropping them): ``b_S' (C_SS)^-1 b_S`` [response units^2]."""
         return partial_ss(self._bs, self._cov_scaled, cols)  # scaled: the same number, better conditioned
@@ -433,7 +433,7 @@ class Regression:
             raise ValueError("PRESS needs the second pass over the rows")
         return self.pass_sums.press
 
-    def vif(self, cols: Sequence[int]) -> np.ndarray:
+    def vif(self, cols: Sequence[int] | np.ndarray) -> np.ndarray:
         """Variance inflation factors of the columns ``cols`` among themselves (the other
         columns but the intercept, e.g. blocks, left out): the diagonal of the inverse
         correlation matrix of those columns [-]."""
@@ -468,7 +468,7 @@ class Regression:
         return np.array(out)
 
     # -- sub-models ----------------------------------------------------------------------
-    def submodel(self, cols: Sequence[int]) -> Regression:
+    def submodel(self, cols: Sequence[int] | np.ndarray) -> Regression:
         """The least-squares fit of the columns ``cols`` only, from the p x p factor (no pass
         over the rows; no hat diagonal)."""
         cols = [int(c) for c in cols]
@@ -562,7 +562,7 @@ class Regression:
         return np.einsum("ij,ij->j", Rz, Rz)
 
 
-def partial_ss(beta: np.ndarray, cov_unscaled: np.ndarray, idx: Sequence[int] | int) -> float:
+def partial_ss(beta: np.ndarray, cov_unscaled: np.ndarray, idx: Sequence[int] | np.ndarray | int) -> float:
     """Partial (Type III) sum of squares ``b_S' (C_SS)^-1 b_S`` of the columns ``idx``
     [response units^2], from coefficients ``beta`` (p,) and ``cov_unscaled = (X'X)^-1``."""
     cols = np.atleast_1d(np.asarray(idx, dtype=int))
