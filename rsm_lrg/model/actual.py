@@ -50,10 +50,10 @@ def actual_expansion(coded: Mapping[str, float], terms: Sequence[Term], space: F
             sig = tuple((i, j) for (i, _), j in zip(t.cat, combo))
             names[(npw, sig)] = col
             c = float(coded[col])
-            parts = [((), c)]  # expand factor by factor: list of (powers, coefficient)
+            parts: list[tuple[tuple[int, ...], float]] = [((), c)]  # expand factor by factor: list of (powers, coefficient)
             for i in range(k):
                 e = npw[i]
-                new = []
+                new: list[tuple[tuple[int, ...], float]] = []
                 for pw, v in parts:
                     for m in range(e + 1):
                         coef = comb(e, m) * (-centres[i]) ** (e - m) / halves[i] ** e
