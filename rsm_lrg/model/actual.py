@@ -39,9 +39,8 @@ def actual_coefficients(coded: Mapping[str, float], terms: Sequence[Term], space
 def actual_expansion(coded: Mapping[str, float], terms: Sequence[Term], space: FactorSpace) -> tuple[dict, dict]:
     """``({(numeric exponents, categoric (factor, level) pairs): actual coefficient}, {same key: column name})``."""
     k = len(space)
-    num = [f.kind == "numeric" for f in space.factors]
-    centres = [f.center if nu else 0.0 for f, nu in zip(space.factors, num)]
-    halves = [f.half_range if nu else 1.0 for f, nu in zip(space.factors, num)]
+    centres = [f.center if f.kind == "numeric" else 0.0 for f in space.factors]
+    halves = [f.half_range if f.kind == "numeric" else 1.0 for f in space.factors]
     acc: dict[tuple, float] = {}
     names: dict[tuple, str] = {}
     for t in terms:
