@@ -494,14 +494,14 @@ def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = Fa
     tx = _TRANSACTION.get()
     p = check_output(path, force=force, option=tx.label(path) if tx is not None else None)
     parent = p.parent if str(p.parent) else Path(".")
-    mode = "wb" if isinstance(data, bytes) else "w"
+    payload = data if isinstance(data, bytes) else data.encode("utf-8")  # text as written: no newline translation
     tmp = None
     try:
         import tempfile
 
         fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:60]}.", suffix=".tmp", dir=parent)
-        with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8", "newline": ""})) as fh:
-            fh.write(data)
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(payload)
             fh.flush()
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o644)

@@ -37,7 +37,7 @@ import math
 import re
 from collections.abc import Sequence
 from numbers import Number
-from typing import Any
+from typing import Any, SupportsFloat
 
 __all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_g", "format_sci", "format_p", "format_f",
            "format_cell", "clean_anova", "anova_rows", "unicode_number", "is_missing"]
@@ -55,7 +55,7 @@ def is_missing(x) -> bool:
     """Whether ``x`` is shown as a dash: None, or a number that is not finite (NaN, ±inf)."""
     if x is None:
         return True
-    if isinstance(x, Number) and not isinstance(x, bool):
+    if isinstance(x, Number) and isinstance(x, SupportsFloat) and not isinstance(x, bool):
         try:
             return not math.isfinite(float(x))
         except (TypeError, ValueError, OverflowError):
@@ -112,11 +112,11 @@ def format_number(x, digits: int = 4, *, style: str = "unicode", trim: bool = Tr
         return missing
     if isinstance(x, bool):
         return "yes" if x else "no"
-    if not isinstance(x, Number):
+    if not isinstance(x, Number) or not isinstance(x, SupportsFloat):
         return str(x)
-    if not isinstance(x, float) and float(x).is_integer() and abs(float(x)) < 1e15:
-        return str(int(x))
     xf = float(x)
+    if not isinstance(x, float) and xf.is_integer() and abs(xf) < 1e15:
+        return str(int(xf))  # exact: a whole number below 1e15 is exact in a float
     if xf == 0.0:
         return "0" if trim else f"{0.0:.{max(digits - 1, 0)}f}"
     a = abs(xf)

@@ -214,6 +214,8 @@ def _label(name: str, letters: Sequence[str], tags: Sequence[str]) -> str:
     out, pos = "", 0
     for L, tag in zip(letters, tags):
         m = re.compile(re.escape(L) + r"(?![0-9])").search(name, pos)
+        if m is None:
+            raise ValueError(f"categoric letter {L!r} is not in the term {name!r}")
         out += name[pos:m.end()] + tag
         pos = m.end()
     return out + name[pos:]
@@ -394,6 +396,8 @@ def model_matrix(coded: np.ndarray, terms: Sequence[Term], block_codes: np.ndarr
     Xt = design_matrix(coded, terms)
     if n_blocks <= 1:
         return Xt
+    if block_codes is None:
+        raise ValueError(f"{n_blocks} blocks need their block_codes")
     return np.hstack([Xt[:, :1], block_contrasts(block_codes, n_blocks), Xt[:, 1:]])
 
 

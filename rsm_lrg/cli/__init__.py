@@ -78,7 +78,7 @@ class _Parser(argparse.ArgumentParser):
 def _command_module_names() -> list[str]:
     """``cmd_*`` module names in this package's directory (a directory listing: no import,
     and not :mod:`pkgutil`, which imports :mod:`inspect`)."""
-    names = set()
+    names: set[str] = set()
     for here in __path__:
         try:
             entries = os.listdir(here)

@@ -6,6 +6,7 @@ import argparse
 import math
 import os
 from contextlib import contextmanager
+from typing import Any
 
 from ..io import InputError, check_output, quote_user_value, show_path
 
@@ -72,7 +73,7 @@ def output_option(action: argparse.Action) -> argparse.Action:
     """Mark an option as naming an output file (for a dest outside :data:`OUTPUT_DESTS`):
     ``output_option(p.add_argument("--html", metavar="PATH"))``. It is then checked with the
     others before the command runs and written in the same transaction."""
-    action.rsm_output = True
+    action.rsm_output = True  # type: ignore[attr-defined]  # our marker on argparse's Action
     return action
 
 
@@ -220,9 +221,9 @@ def add_model_option(p: argparse.ArgumentParser, orders=MODEL_ORDERS, what: str 
 
 def add_terms_options(parser: argparse.ArgumentParser, *, per_response: bool = False) -> None:
     """``--terms "A B AB A^2"`` (an explicit model; beside ``--model``) and ``--no-intercept``."""
-    kw = {"action": PerResponseOption} if per_response else {}
-    flag = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} if per_response \
-        else {"action": "store_true"}
+    kw: dict[str, Any] = {"action": PerResponseOption} if per_response else {}
+    flag: dict[str, Any] = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} \
+        if per_response else {"action": "store_true"}
     parser.add_argument("--terms", default=None, metavar='"A B AB A^2"',
                         help="fit exactly these terms instead of --model: letters, products (AB), powers of any "
                              "degree (A^3, A^2B), categoric terms as in the ANOVA; space- or comma-separated", **kw)
@@ -346,7 +347,8 @@ def check_option_specs(args: argparse.Namespace) -> None:
     that an error names the option rather than the data file (categoric ``NAME=cat...`` specs
     are left to the library)."""
     for dest, label in (getattr(args, "_path_labels", None) or {}).items():
-        for v in getattr(args, dest, None) if isinstance(getattr(args, dest, None), list) else [getattr(args, dest, None)]:
+        value = getattr(args, dest, None)
+        for v in value if isinstance(value, list) else [value]:
             if isinstance(v, str) and not v.strip():
                 raise InputError(f"{label}: an empty path was given")
     for dest in ("factor", "bound"):
@@ -426,9 +428,9 @@ def add_model_refinements(parser: argparse.ArgumentParser, *, per_response: bool
     ``--transform-constant`` (and ``--model`` when ``model``). With ``per_response`` each one
     given after a ``--response`` (declared with :class:`ResponseGroup`) applies to that
     response only; see :func:`response_options` and :func:`model_spec`."""
-    kw = {"action": PerResponseOption} if per_response else {}
-    flag = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} if per_response \
-        else {"action": "store_true"}
+    kw: dict[str, Any] = {"action": PerResponseOption} if per_response else {}
+    flag: dict[str, Any] = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} \
+        if per_response else {"action": "store_true"}
     if model:
         parser.add_argument("--model", default="quadratic", choices=list(MODEL_ORDERS),
                             help="model order (default quadratic)", **kw)
@@ -450,7 +452,7 @@ def add_goal_options(parser: argparse.ArgumentParser, *, goal_help: str, limits_
     ``desirability`` its ``--weight`` and ``--importance`` (Derringer-Suich, Stat-Ease
     conventions): the options ``optimize`` and ``report`` share. ``goal_help`` and
     ``limits_help`` say what the command does with them."""
-    kw = {"action": ResponseValue, "default": None}
+    kw: dict[str, Any] = {"action": ResponseValue, "default": None}
     parser.add_argument("--goal", metavar=goal_metavar, help=goal_help, **kw)
     if desirability:
         parser.add_argument("--weight", metavar="W[,W2]",

@@ -79,7 +79,7 @@ def run(args: argparse.Namespace) -> int:
                      intercept=not args.no_intercept)
         eff = screening_effects(result, alpha=args.alpha)
     figure = None
-    if args.plot is not None:
+    if fmt is not None:  # --plot given
         from ..report.plots import figure_bytes, half_normal_plot
 
         f = eff.to_frame()

@@ -75,7 +75,7 @@ def _load(path, exclude):
 
 def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, write_output
-    from ..model.evaluate import compare_designs, evaluate_design
+    from ..model.evaluate import DesignComparison, DesignEvaluation, compare_designs, evaluate_design
 
     fmt = plot_format(args.plot)
     potential = None if args.potential == "none" else args.potential
@@ -87,6 +87,7 @@ def run(args: argparse.Namespace) -> int:
         with about_file(path):
             designs.append(_load(path, args.exclude))
     opts = dict(region=args.region, alpha=args.alpha, effect_sd=args.effect, potential=potential)
+    result: DesignEvaluation | DesignComparison
     if len(paths) == 1:
         with about_file(paths[0]):
             ev = evaluate_design(designs[0], args.model, terms=args.terms, intercept=not args.no_intercept, **opts)
@@ -94,8 +95,8 @@ def run(args: argparse.Namespace) -> int:
                 raise ValueError(ev.not_estimable_message())
         result, evs = ev, [ev]
     else:
-        result = compare_designs(designs, args.model, names=paths, **opts)
-        evs = list(result.evaluations)
+        comparison = compare_designs(designs, args.model, names=paths, **opts)
+        result, evs = comparison, list(comparison.evaluations)
     figure = None
     if fmt is not None:
         from ..report.plots import figure_bytes

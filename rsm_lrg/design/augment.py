@@ -199,9 +199,9 @@ def augment(
         if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
             raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
         n_combos = 1
-        for j in range(len(space)):
-            if j not in num:
-                n_combos *= space.factors[j].n_levels
+        for f in space.factors:
+            if f.kind == "categoric":  # the positions not in num
+                n_combos *= f.n_levels
         F = max(1, int(fact.sum()) // n_combos)  # factorial runs per level combination
         a = float(alpha) if isinstance(alpha, (int, float)) else None
         if a is None:

@@ -67,14 +67,14 @@ def ccd_alpha(k: int, alpha: Any = "rotatable", center: tuple[int, int] = (0, 0)
     """
     F = 2 ** k
     if isinstance(alpha, str):
-        a = alpha.strip().lower()
-        if a in ("rotatable", "r"):
+        word = alpha.strip().lower()
+        if word in ("rotatable", "r"):
             return F ** 0.25
-        if a in ("practical", "p"):
+        if word in ("practical", "p"):
             return k ** 0.25
-        if a in ("face", "faced", "f"):
+        if word in ("face", "faced", "f"):
             return 1.0
-        if a in ("orthogonal", "o"):
+        if word in ("orthogonal", "o"):
             nc0, ns0 = center
             if blocked:
                 return math.sqrt(F * (2 * k + ns0) / (2.0 * (F + nc0)))
@@ -82,7 +82,7 @@ def ccd_alpha(k: int, alpha: Any = "rotatable", center: tuple[int, int] = (0, 0)
             Q = (math.sqrt(F + T) - math.sqrt(F)) ** 2
             return (Q * F / 4.0) ** 0.25
         try:
-            alpha = float(a)
+            alpha = float(word)
         except ValueError:
             raise ValueError(
                 f"alpha must be 'rotatable', 'orthogonal', 'face', 'practical' or a positive number "

@@ -70,7 +70,7 @@ from ..factors import FactorSpace
 __all__ = ["Constraint", "Constraints", "FUNCTIONS"]
 
 #: Functions a constraint may call.
-FUNCTIONS: dict[str, Callable] = {
+FUNCTIONS: dict[str, Callable | None] = {
     "sqrt": np.sqrt, "exp": np.exp, "log": np.log, "log10": np.log10, "abs": np.abs,
     "min": None, "max": None,  # n-ary, handled in _compile
 }
@@ -126,7 +126,8 @@ def _compile(node: ast.AST, names: Mapping[str, int], expr: str) -> tuple[Callab
             d = 2 if db else da
         else:  # power: linear only when the base is constant or the exponent is exactly 1
             d = 0 if (da == 0 and db == 0) else 2
-            if db == 0 and da == 1 and isinstance(node.right, ast.Constant) and float(node.right.value) == 1.0:
+            if db == 0 and da == 1 and isinstance(node.right, ast.Constant) \
+                    and isinstance(node.right.value, (int, float)) and float(node.right.value) == 1.0:
                 d = 1
         return (lambda X, fa=fa, fb=fb, op=op: op(fa(X), fb(X))), d, ua | ub
     if isinstance(node, ast.Call):
@@ -153,8 +154,9 @@ def _compile(node: ast.AST, names: Mapping[str, int], expr: str) -> tuple[Callab
             return mm, d, used
         if len(args) != 1:
             raise _Bad(f"{fname}() takes one argument")
-        fn, f0 = FUNCTIONS[fname], args[0][0]
-        return (lambda X, fn=fn, f0=f0: fn(f0(X))), d, used
+        func, f0 = FUNCTIONS[fname], args[0][0]
+        assert func is not None  # only min and max (above) have no function of their own
+        return (lambda X, fn=func, f0=f0: fn(f0(X))), d, used
     what = type(node).__name__
     if isinstance(node, ast.Compare):
         what = "a comparison inside an expression"

@@ -469,7 +469,8 @@ class Design:
         for i in std_sorted:
             pool.setdefault(tuple(self.coded_runs[i]), []).append(i)
         std = np.empty(len(data), dtype=int)
-        blocks = None if self.blocks is None else np.empty(len(data), dtype=int)
+        given = self.blocks
+        blocks = None if given is None else np.empty(len(data), dtype=int)
         for r, row in enumerate(coded):
             key = tuple(np.round(row, 12) + 0.0)
             if not pool.get(key):
@@ -478,8 +479,8 @@ class Design:
                 raise ValueError(f"row {r + 1} ({setting}) is not a run of the {self.kind} design (or is one too many)")
             i = pool[key].pop(0)
             std[r] = self.std_order[i]
-            if blocks is not None:
-                blocks[r] = self.blocks[i]
+            if blocks is not None and given is not None:
+                blocks[r] = given[i]
         if run_order is None:
             ro = np.arange(1, len(data) + 1)
         else:
@@ -534,6 +535,7 @@ class Design:
         std_rank = None
         if "std_order" in cols and pd.api.types.is_numeric_dtype(df["std_order"]):
             std_rank = np.argsort(df["std_order"].to_numpy(), kind="stable")
+        built: list[Factor | CategoricFactor]
         try:
             built = []
             for L, cc, name in zip(letters, coded_cols, names):

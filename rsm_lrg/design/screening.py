@@ -53,6 +53,7 @@ def _prime_power(q: int) -> tuple[int, int] | None:
 def _field(p: int, e: int):
     """Elements (as tuples) of GF(p^e) for e in (1, 2), with subtraction and the quadratic
     character."""
+    elems: list[tuple[int, ...]]
     if e == 1:
         elems = [(a,) for a in range(p)]
 
@@ -377,6 +378,7 @@ def fractional_factorial(factors: Any, resolution: int | None = None, generators
     if generators is not None:
         q, gens, signs = _parse_generators(generators, letters)
     else:
+        assert resolution is not None  # exactly one of resolution and generators (checked above)
         if isinstance(resolution, (bool, np.bool_)) or int(resolution) != resolution or resolution < 3:
             raise ValueError(f"resolution must be a whole number >= 3 (got {resolution!r})")
         q, gens, source = _fraction_by_resolution(k, int(resolution))
@@ -392,7 +394,7 @@ def fractional_factorial(factors: Any, resolution: int | None = None, generators
                          for j, (g, s) in enumerate(zip(gens, signs)))
     coded = np.vstack([X, np.zeros((int(center), k))])
     groups = alias_groups(X, letters)
-    if gens:
+    if gens and res is not None:  # res is None only without generators
         head = f"2^({k}-{k - q}) fraction, resolution {_ROMAN.get(res, res)}, generators {gen_text}"
     else:
         head = f"full 2^{k} factorial" + (f" (no fraction of {k} factors has resolution {resolution} or more)"
@@ -513,11 +515,10 @@ def hadamard_matrix(n: int) -> np.ndarray:
     """
     n = int(n)
     if n in (1, 2):
-        H = np.array([[1]]) if n == 1 else np.array([[1, 1], [1, -1]])
-        return H
+        return np.array([[1]]) if n == 1 else np.array([[1, 1], [1, -1]])
     if n < 4 or n % 4:
         raise ValueError(f"Hadamard matrices have order 1, 2 or a multiple of 4 (got {n})")
-    H = None
+    H: np.ndarray | None = None
     if n in PB_GENERATORS:
         g = np.array([1 if c == "+" else -1 for c in PB_GENERATORS[n]])
         rows = np.array([np.roll(g, i) for i in range(n - 1)])

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import string
 from dataclasses import dataclass
-from typing import Any, ClassVar, Protocol, runtime_checkable
+from typing import Any, ClassVar, Literal, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -121,7 +121,7 @@ class Factor:
     letter: str
 
     #: The factor's kind (``"numeric"``; :class:`CategoricFactor` is ``"categoric"``).
-    kind: ClassVar[str] = "numeric"
+    kind: ClassVar[Literal["numeric"]] = "numeric"
 
     def __post_init__(self) -> None:
         check_factor_name(self.name)
@@ -205,7 +205,7 @@ class CategoricFactor:
     levels: tuple
     letter: str
 
-    kind: ClassVar[str] = "categoric"
+    kind: ClassVar[Literal["categoric"]] = "categoric"
 
     def __post_init__(self) -> None:
         check_factor_name(self.name)

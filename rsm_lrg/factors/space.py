@@ -28,7 +28,7 @@ class FactorSpace:
     minimum and maximum where not given).
     """
 
-    factors: tuple[Factor, ...]
+    factors: tuple[Factor | CategoricFactor, ...]
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "factors", tuple(self.factors))
@@ -107,7 +107,7 @@ class FactorSpace:
     def __iter__(self):
         return iter(self.factors)
 
-    def __getitem__(self, key: int | str) -> Factor:
+    def __getitem__(self, key: int | str) -> Factor | CategoricFactor:
         if isinstance(key, int):
             return self.factors[key]
         for f in self.factors:

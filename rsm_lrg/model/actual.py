@@ -39,9 +39,8 @@ def actual_coefficients(coded: Mapping[str, float], terms: Sequence[Term], space
 def actual_expansion(coded: Mapping[str, float], terms: Sequence[Term], space: FactorSpace) -> tuple[dict, dict]:
     """``({(numeric exponents, categoric (factor, level) pairs): actual coefficient}, {same key: column name})``."""
     k = len(space)
-    num = [f.kind == "numeric" for f in space.factors]
-    centres = [f.center if nu else 0.0 for f, nu in zip(space.factors, num)]
-    halves = [f.half_range if nu else 1.0 for f, nu in zip(space.factors, num)]
+    centres = [f.center if f.kind == "numeric" else 0.0 for f in space.factors]
+    halves = [f.half_range if f.kind == "numeric" else 1.0 for f in space.factors]
     acc: dict[tuple, float] = {}
     names: dict[tuple, str] = {}
     for t in terms:
@@ -50,10 +49,10 @@ def actual_expansion(coded: Mapping[str, float], terms: Sequence[Term], space: F
             sig = tuple((i, j) for (i, _), j in zip(t.cat, combo))
             names[(npw, sig)] = col
             c = float(coded[col])
-            parts = [((), c)]  # expand factor by factor: list of (powers, coefficient)
+            parts: list[tuple[tuple[int, ...], float]] = [((), c)]  # expand factor by factor: list of (powers, coefficient)
             for i in range(k):
                 e = npw[i]
-                new = []
+                new: list[tuple[tuple[int, ...], float]] = []
                 for pw, v in parts:
                     for m in range(e + 1):
                         coef = comb(e, m) * (-centres[i]) ** (e - m) / halves[i] ** e

@@ -176,7 +176,7 @@ def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, 
         rows.append(_row("Block", ss_block, df_block, ss_block / df_block))
     rows.append(_row("Residual", ss_res, df_res, ms_res))
     lof = lack_of_fit(ss_res, df_res, pe)
-    if lof is not None:
+    if lof is not None and pe is not None:  # lack_of_fit gives None without pure error
         if lof["df"] > 0:
             rows.append(_row("Lack of Fit", lof["ss"], lof["df"], lof["ms"], lof["f"], lof["p"]))
         rows.append(_row("Pure Error", pe.ss, pe.df, pe.ss / pe.df))

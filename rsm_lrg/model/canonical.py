@@ -87,8 +87,9 @@ class StationaryPoint:
             out.append(f"Kind: {self.kind}" + ("" if self.inside is None else
                        ", inside the design box" if self.inside else ", outside the design box (extrapolation)"))
             out.append(f"Predicted response there: {fmt(self.predicted, 6, missing='n/a')}")
+            actual = self.actual if self.actual is not None else {}  # given with coded
             rows = [(f"{L} {n}", fmt(c, 6), fmt(a, 6))
-                    for (L, c), (n, a) in zip(self.coded.items(), self.actual.items())]
+                    for (L, c), (n, a) in zip(self.coded.items(), actual.items())]
             w = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(("factor", "coded", "actual"))]
             out.append(f"  {'factor':<{w[0]}}  {'coded':>{w[1]}}  {'actual':>{w[2]}}")
             out += [f"  {a:<{w[0]}}  {b:>{w[1]}}  {c:>{w[2]}}" for a, b, c in rows]

@@ -34,6 +34,7 @@ values.
 from __future__ import annotations
 
 import re
+from typing import Any
 
 import numpy as np
 
@@ -102,7 +103,7 @@ def _stand_in(numeric: list[str], lo, hi, seen: dict):
     import pandas as pd
 
     m = max([2] + [len(v) for v, _ in seen.values()])
-    cols = {}
+    cols: dict[str, Any] = {}
     for c in numeric:
         cols[c] = [float(lo[c]) if i % 2 == 0 else float(hi[c]) for i in range(m)]
     for c, (vals, _) in seen.items():
@@ -318,6 +319,7 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
     n, n_all = int(n), int(n_all)
     if n == 0:
         raise ValueError(f"response column {response!r} is empty on every row: there is nothing to fit")
+    notes: tuple[str, ...]
     if isinstance(factors, FactorSpace):
         space, notes = factors, ()
         missing = [f.name for f in space.factors if f.name not in ddf.columns]
@@ -348,7 +350,7 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
     else:
         terms = chosen_terms(terms, space.letters, cat, intercept=intercept)
     names = column_names(terms)
-    if nb > 1:
+    if bkeys and nb > 1:
         if not intercept:
             raise ValueError("blocks need a model with an intercept (block effects sum to zero about it)")
         names = ["Intercept"] + [f"Block[{k}]" for k in bkeys[:-1]] + names[1:]

@@ -560,6 +560,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         power[0] = np.nan  # no test of the intercept
     term_frame = pd.DataFrame({"std_error": se, "vif": vif, "power": power}, index=pd.Index(names, name="term"))
     hat = ls.hat
+    assert hat is not None  # least_squares on arrays makes the second pass
     Ct = C[np.ix_(tidx, tidx)]
 
     def var(points):

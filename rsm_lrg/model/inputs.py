@@ -35,7 +35,7 @@ def block_codes(data, block: str):
         labels = num.to_numpy(dtype=float)
         levels = np.unique(labels)
         codes = np.searchsorted(levels, labels)
-        shown = [int(v) if float(v).is_integer() else float(v) for v in levels]
+        shown: list[int | float | str] = [int(v) if float(v).is_integer() else float(v) for v in levels]
     else:
         labels = col.astype(str).str.strip().to_numpy()
         levels = np.unique(labels)
@@ -163,7 +163,7 @@ class ModelInputs:
 
     def column_names(self, terms: Sequence[Term]) -> list[str]:
         names = column_names(terms)
-        if self.nb > 1:
+        if self.bkeys and len(self.bkeys) > 1:  # self.nb > 1
             if not terms or terms[0].order != 0:
                 raise ValueError("blocks need a model with an intercept (block effects sum to zero about it)")
             return ["Intercept"] + [f"Block[{k}]" for k in self.bkeys[:-1]] + names[1:]

@@ -63,7 +63,8 @@ def _qr_r(A: np.ndarray) -> np.ndarray:
     q = A.shape[1]
     if A.shape[0] == 0:
         return np.zeros((q, q))
-    R = np.linalg.qr(A, mode="r")
+    # numpy's stub types every mode as QRResult; mode="r" returns the array R itself
+    R: np.ndarray = np.linalg.qr(A, mode="r")  # type: ignore[assignment]
     if R.shape[0] < q:
         R = np.vstack([R, np.zeros((q - R.shape[0], q))])
     return R
@@ -185,6 +186,9 @@ class Accumulator:
             return other
         if self.shift != other.shift:
             raise ValueError("accumulators with different shifts cannot be merged")
+        # both hold rows (n > 0), so add() has set their factors and column sums
+        assert self.raug is not None and self.col_ss is not None and self.col_sum is not None
+        assert other.raug is not None and other.col_ss is not None and other.col_sum is not None
         raug = _qr_r(np.vstack([self.raug, other.raug]))
         return Accumulator(p=self.p, shift=self.shift, n=self.n + other.n, raug=raug,
                            col_ss=self.col_ss + other.col_ss, col_sum=self.col_sum + other.col_sum,
@@ -194,6 +198,8 @@ class Accumulator:
         """The :class:`Regression` of the rows added (first pass only: no hat diagonal yet)."""
         if self.n == 0:
             raise ValueError("no rows to fit")
+        assert self.raug is not None and self.col_ss is not None and self.col_sum is not None  # set by add()
+        assert self.shift is not None
         p = self.p
         names = tuple(names) if names is not None else tuple(f"x{j}" for j in range(p))
         norms = np.sqrt(self.col_ss)
@@ -402,14 +408,14 @@ class Regression:
         return np.sqrt(np.diag(self.cov_unscaled) * self.sigma2)
 
     # -- sums of squares -----------------------------------------------------------------
-    def sequential_ss(self, cols: Sequence[int] | int) -> float:
+    def sequential_ss(self, cols: Sequence[int] | np.ndarray | int) -> float:
         """Sequential (Type I) sum of squares of the columns ``cols`` given every column
         before them: ``sum z_j^2`` [response units^2]."""
         self._need_full_rank()
         idx = np.atleast_1d(np.asarray(cols, dtype=int))
         return float(np.sum(self.qty[idx] ** 2))
 
-    def partial_ss(self, cols: Sequence[int] | int) -> float:
+    def partial_ss(self, cols: Sequence[int] | np.ndarray | int) -> float:
         """Partial (Type III) sum of squares of the columns ``cols`` jointly (the extra sum of
         squares of dropping them): ``b_S' (C_SS)^-1 b_S`` [response units^2]."""
         return partial_ss(self._bs, self._cov_scaled, cols)  # scaled: the same number, better conditioned
@@ -427,7 +433,7 @@ class Regression:
             raise ValueError("PRESS needs the second pass over the rows")
         return self.pass_sums.press
 
-    def vif(self, cols: Sequence[int]) -> np.ndarray:
+    def vif(self, cols: Sequence[int] | np.ndarray) -> np.ndarray:
         """Variance inflation factors of the columns ``cols`` among themselves (the other
         columns but the intercept, e.g. blocks, left out): the diagonal of the inverse
         correlation matrix of those columns [-]."""
@@ -462,7 +468,7 @@ class Regression:
         return np.array(out)
 
     # -- sub-models ----------------------------------------------------------------------
-    def submodel(self, cols: Sequence[int]) -> Regression:
+    def submodel(self, cols: Sequence[int] | np.ndarray) -> Regression:
         """The least-squares fit of the columns ``cols`` only, from the p x p factor (no pass
         over the rows; no hat diagonal)."""
         cols = [int(c) for c in cols]
@@ -530,8 +536,8 @@ class Regression:
         sum of squares and PRESS from one pass over ``chunks`` (full-matrix rows)."""
         self._need_full_rank()
         ends = [int(k) for k in ends]
-        ss = [[] for _ in ends]
-        pr = [[] for _ in ends]
+        ss: list[list[float]] = [[] for _ in ends]
+        pr: list[list[float]] = [[] for _ in ends]
         bad = [False] * len(ends)
         for X, y in chunks():
             W = self.q_factor(X)
@@ -556,15 +562,15 @@ class Regression:
         return np.einsum("ij,ij->j", Rz, Rz)
 
 
-def partial_ss(beta: np.ndarray, cov_unscaled: np.ndarray, idx: Sequence[int] | int) -> float:
+def partial_ss(beta: np.ndarray, cov_unscaled: np.ndarray, idx: Sequence[int] | np.ndarray | int) -> float:
     """Partial (Type III) sum of squares ``b_S' (C_SS)^-1 b_S`` of the columns ``idx``
     [response units^2], from coefficients ``beta`` (p,) and ``cov_unscaled = (X'X)^-1``."""
-    idx = np.atleast_1d(np.asarray(idx, dtype=int))
-    b = beta[idx]
-    if idx.size == 1:
-        c = cov_unscaled[idx[0], idx[0]]
+    cols = np.atleast_1d(np.asarray(idx, dtype=int))
+    b = beta[cols]
+    if cols.size == 1:
+        c = cov_unscaled[cols[0], cols[0]]
         return float(b[0] ** 2 / c)
-    return float(b @ np.linalg.solve(cov_unscaled[np.ix_(idx, idx)], b))
+    return float(b @ np.linalg.solve(cov_unscaled[np.ix_(cols, cols)], b))
 
 
 @dataclass(frozen=True)

@@ -197,7 +197,7 @@ def reduce_inputs(inp: Any, *, model: str = "quadratic", terms: Any = None, inte
         pv = _term_p_values(ls, [[where[c] for c in col[id(t)]] for t in mt])
         return {id(t): v for t, v in zip(mt, pv)}
 
-    steps = []
+    steps: list[dict[str, Any]] = []
     removed = []
     while True:
         ls = fitted(current)

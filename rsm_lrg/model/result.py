@@ -124,18 +124,18 @@ class FitResult:
         return len(self.column_names) - n_columns(self.terms) + 1
 
     @property
-    def fitted(self) -> np.ndarray:
-        """ŷ on the model's scale."""
+    def fitted(self) -> np.ndarray | None:
+        """ŷ on the model's scale (None for a Dask fit, which keeps no per-run arrays)."""
         return self.least_squares.fitted
 
     @property
-    def residuals(self) -> np.ndarray:
-        """e = y - ŷ on the model's scale."""
+    def residuals(self) -> np.ndarray | None:
+        """e = y - ŷ on the model's scale (None for a Dask fit)."""
         return self.least_squares.residuals
 
     @property
-    def hat(self) -> np.ndarray:
-        """Leverage h_ii."""
+    def hat(self) -> np.ndarray | None:
+        """Leverage h_ii (None for a Dask fit)."""
         return self.least_squares.hat
 
     @property
@@ -215,13 +215,12 @@ class FitResult:
                              else float_column(self.data, f.name).to_numpy(dtype=float) for f in self.space.factors])
         nb = self.n_blocks
         blocks = block_codes(self.data, self.block)[0] if self.block is not None and nb > 1 else None
-        numeric = [f.kind == "numeric" for f in self.space.factors]
         try:
             return solve_actual(
                 x, np.asarray(self.y, dtype=float), self.terms, intercept=self.intercept, blocks=blocks, n_blocks=nb,
                 decimal_inputs=self.transform.identity,  # a transformed response is not the file's decimals
-                centre=[f.center if nu else 0.0 for f, nu in zip(self.space.factors, numeric)],
-                scale=[f.half_range if nu else 1.0 for f, nu in zip(self.space.factors, numeric)],
+                centre=[f.center if f.kind == "numeric" else 0.0 for f in self.space.factors],
+                scale=[f.half_range if f.kind == "numeric" else 1.0 for f in self.space.factors],
                 block_names=list(self.column_names[1:nb]),
                 basis="actual" if is_closed_under_shift(self.terms, intercept=self.intercept) else "coded",
                 letters=self.space.letters)
@@ -289,6 +288,8 @@ class FitResult:
     def statistics(self) -> FitStatistics:
         """R², adjusted and predicted R², PRESS, adequate precision, std dev, mean, C.V."""
         ls, s = self.least_squares, self._sums
+        if ls.pass_sums is None:
+            raise ValueError("the fit's statistics need the second pass over the rows")
         sol = self.actual_solution  # its residual sum of squares is exact to the data's digits (NIST StRD)
         ss_res = float(sol.rss) if sol is not None and math.isfinite(sol.rss) else ls.ss_res
         return fit_statistics(n=ls.n, mean=ls.ybar, fitted_range=ls.pass_sums.fitted_max - ls.pass_sums.fitted_min,
@@ -399,11 +400,19 @@ class FitResult:
         nb = len(self.column_names) - n_columns(self.terms)
         return np.r_[0, np.arange(1 + nb, len(self.column_names))] if nb else np.arange(len(self.column_names))
 
+    def _residuals_and_hat(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(residuals, hat)``; a Dask fit keeps no per-run arrays."""
+        e, h = self.residuals, self.hat
+        if e is None or h is None:
+            raise ValueError("a Dask fit keeps no per-run residuals or leverages")
+        return e, h
+
     @property
     def studentized_residuals(self) -> np.ndarray:
         """Internally studentized residuals e_i / (σ √(1 - h_ii)) [-]."""
+        e, h = self._residuals_and_hat()
         with np.errstate(divide="ignore", invalid="ignore"):
-            return self.residuals / np.sqrt(self.sigma2 * (1.0 - self.hat))
+            return e / np.sqrt(self.sigma2 * (1.0 - h))
 
     @property
     def externally_studentized_residuals(self) -> np.ndarray:
@@ -417,8 +426,9 @@ class FitResult:
     def cooks_distance(self) -> np.ndarray:
         """Cook's distance D_i = r_i² h_ii / (p (1 - h_ii)) [-]."""
         p = len(self.column_names)
+        _, h = self._residuals_and_hat()
         with np.errstate(divide="ignore", invalid="ignore"):
-            return self.studentized_residuals ** 2 * self.hat / (p * (1.0 - self.hat))
+            return self.studentized_residuals ** 2 * h / (p * (1.0 - h))
 
     def canonical(self, threshold: float | None = None, level: Mapping[str, str] | None = None) -> StationaryPoint:
         """Canonical analysis; ``threshold`` reproduces R ``rsm``'s ``canonical(threshold=)``;
@@ -623,7 +633,7 @@ class FitResult:
     def to_dict(self) -> dict:
         """The fit JSON of INTERFACE.md (plain Python; NaN becomes ``null`` in JSON)."""
         coef = self.coefficients
-        out = {
+        out: dict[str, Any] = {
             "response": self.response,
             "n": self.n,
             "model": self.model,

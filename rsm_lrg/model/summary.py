@@ -143,7 +143,8 @@ class FitSummary:
                  format_g(r.press), "Aliased" if r.aliased else ("Suggested" if r.source.lower() == self.suggested else "")]
                 for r in self.statistics.itertuples(index=False)]
         out.append(text_table(["Source", "Std. Dev.", "R²", "Adjusted R²", "Predicted R²", "PRESS", ""], rows))
-        out += ["", f"Suggested model: {_LABEL.get(self.suggested, self.suggested)}"]
+        label = None if self.suggested is None else _LABEL.get(self.suggested, self.suggested)
+        out += ["", f"Suggested model: {label}"]
         out += [f"Note: {n}" for n in self.notes]
         return "\n".join(out) + "\n"
 

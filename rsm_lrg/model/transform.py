@@ -127,9 +127,11 @@ class Transform:
             return v
         if self.name == "log10":
             return np.log10(v)
-        if self.lam == 0.0:
+        lam = self.lam
+        assert lam is not None  # only log10 has no power
+        if lam == 0.0:
             return np.log(v)
-        return np.power(v, self.lam)
+        return np.power(v, lam)
 
     def inverse(self, z: Any) -> np.ndarray:
         z = np.asarray(z, dtype=float)
@@ -137,12 +139,13 @@ class Transform:
             v = z
         elif self.name == "log10":
             v = np.power(10.0, z)
-        elif self.lam == 0.0:
+        elif self.lam is None or self.lam == 0.0:  # only log10 (above) has no power
             v = np.exp(z)
         else:  # outside the image of the transform (z < 0, or z <= 0 for negative powers) -> NaN
-            ok = z >= 0 if self.lam > 0 else z > 0
+            lam = self.lam
+            ok = z >= 0 if lam > 0 else z > 0
             with np.errstate(invalid="ignore", divide="ignore"):
-                v = np.where(ok, np.abs(z) ** (1.0 / self.lam), np.nan)
+                v = np.where(ok, np.abs(z) ** (1.0 / lam), np.nan)
         return v - self.constant
 
     def to_dict(self) -> dict[str, Any]:

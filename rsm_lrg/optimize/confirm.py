@@ -150,7 +150,7 @@ class ConfirmationResult:
                  f"  {pc} % PI for the mean of {self.n} run(s): {format_g(self.pi[0], 6)} .. {format_g(self.pi[1], 6)}"
                  f"  -> {'inside' if self.inside else 'OUTSIDE'}",
                  f"  relative error:  {self.relative_error_percent:+.2f} % of the prediction"]
-        if self.transform is not None:
+        if self.transform is not None and self.pi_transformed is not None:
             lines.insert(1, f"  model fitted to the {self.transform}-transformed response; the interval is computed "
                             "on that scale and back-transformed")
             lines.append(f"  transformed scale: predicted {format_g(self.predicted_transformed, 6)}, run mean "

@@ -99,7 +99,7 @@ class ResponseGoal:
     def with_limits(self, low: float, high: float) -> ResponseGoal:
         lo = self.low if self.low is not None else low
         hi = self.high if self.high is not None else high
-        if self.goal == "target":  # keep the target inside the limits
+        if self.goal == "target" and self.target is not None:  # keep the target inside the limits
             lo, hi = min(lo, self.target), max(hi, self.target)
         if not lo < hi:
             raise ValueError(f"response {self.response!r}: the limits {lo:g}..{hi:g} are empty "
@@ -122,7 +122,7 @@ def parse_response_goal(response: str, goal: str = "maximize", *, weight=None, i
             g, target = parse_goal(goal)
         except ValueError as exc:
             raise ValueError(f"response {response!r}: {exc}") from None
-    w = 1.0
+    w: float | tuple[float, ...] = 1.0
     if weight is not None:
         try:
             parts = [float(v) for v in str(weight).split(",")]
@@ -164,6 +164,8 @@ def individual_desirability(y, goal: ResponseGoal) -> np.ndarray:
             d = ((y >= L) & (y <= U)).astype(float)
         else:
             T = goal.target
+            if T is None:
+                raise ValueError(f"response {goal.response!r}: the target is not set")
             lo_part = np.clip((y - L) / (T - L), 0.0, 1.0) ** w1 if T > L else (y >= L).astype(float)
             hi_part = np.clip((U - y) / (U - T), 0.0, 1.0) ** w2 if U > T else (y <= U).astype(float)
             d = np.where(y <= T, lo_part, hi_part)
@@ -173,7 +175,7 @@ def individual_desirability(y, goal: ResponseGoal) -> np.ndarray:
 def overall_desirability(ds: Sequence, goals: Sequence[ResponseGoal]) -> np.ndarray:
     """D = (Π d_i^{r_i})^{1/Σ r_i}; "in range" goals enter the product only [-]."""
     ds = [np.asarray(d, dtype=float) for d in ds]
-    logs = 0.0
+    logs: float | np.ndarray = 0.0
     rsum = 0.0
     zero = np.zeros_like(ds[0], dtype=bool)
     for d, g in zip(ds, goals):

@@ -437,7 +437,7 @@ def split_bounds(space, bounds) -> tuple[Any, dict]:
     return numeric, levels
 
 
-def _split_spec(spec: str) -> tuple[str, str]:
+def _split_spec(spec: str) -> tuple[str, str | list[str]]:
     if not isinstance(spec, str) or "=" not in spec:
         raise ParameterError("bound", f"bound {spec!r}: expected NAME=LOW:HIGH (numeric) or NAME=LEVEL[,LEVEL...] (categoric)")
     name, val = spec.split("=", 1)
@@ -460,10 +460,18 @@ def _optimize_categoric(fitted, goal, bounds, *, confidence, allow_extrapolation
         view = LevelView(fitted, combo)
         r = _optimize_numeric(view, goal, numeric, confidence=confidence, allow_extrapolation=allow_extrapolation,
                               seed=seed, constraints=constraints)
-        score = r.predicted if kind == "minimize" else -r.predicted if kind == "maximize" else abs(r.predicted - target)
+        if kind == "minimize":
+            score = r.predicted
+        elif kind == "maximize":
+            score = -r.predicted
+        else:
+            assert target is not None  # parse_goal gives "target" with its value
+            score = abs(r.predicted - target)
         rows.append({"level": dict(combo), "actual": {**r.actual, **combo}, "predicted": r.predicted})
         if best is None or score < best[0]:
             best = (score, combo, r)
+    if best is None:
+        raise ValueError("no combination of the categoric levels is inside the bounds")
     _, combo, r = best
     order = space.names
     letter = {f.name: f.letter for f in space.factors}

@@ -298,7 +298,7 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
         "heat_friction_power_w": float(heat.friction_heat(p.mu_k, load, p.velocity_m_s, in_calories=False)),
         "ball_volume_m3": vt,
     }
-    th = _thermal(p, q, hs, hf) if thermal else {k: None for k in _THERMAL_KEYS}
+    th: dict[str, float | None] = _thermal(p, q, hs, hf) if thermal else {k: None for k in _THERMAL_KEYS}
     if not thermal:
         details["thermal_skipped"] = True
     return PhysicsResult(load, fmax, q, phi, re, pr, hs, hf, tuple(rows), th, ratio, p, details)

@@ -52,6 +52,7 @@ Leine, R.I., van Campen, D.H., de Kraker, A., van den Steen, L. (1998), Nonlinea
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, fields
 from typing import Any
 
@@ -229,8 +230,8 @@ class CycleMetrics:
     mean_friction_power_w: np.ndarray
     cycle_time_s: np.ndarray
     periodicity_error_m: np.ndarray
-    method: np.ndarray = field(default=None)
-    viscous_work_j: np.ndarray = field(default=None)
+    method: np.ndarray | None = field(default=None)
+    viscous_work_j: np.ndarray | None = field(default=None)
 
     def to_dict(self) -> dict[str, Any]:
         return {f.name: np.asarray(getattr(self, f.name)).tolist() for f in fields(self)}
@@ -731,6 +732,20 @@ def _breakpoints(s, v, a, dw, n_cycles, tj=0.0):
     return np.array(pts), T
 
 
+@dataclass
+class _Event:
+    """A :func:`scipy.integrate.solve_ivp` event: ``fn(t, y)`` crosses zero. solve_ivp reads
+    ``terminal`` (stop the integration there) and ``direction`` (+1 rising, -1 falling, 0
+    both) off the callable."""
+
+    fn: Callable[[float, np.ndarray], float]
+    terminal: bool = True
+    direction: float = 0.0
+
+    def __call__(self, t: float, y: np.ndarray) -> float:
+        return self.fn(t, y)
+
+
 def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, velocity=None,
                    acceleration=None, rigid=False, rtol=1e-10, samples_per_cycle=2000) -> StageHistory:
     """Event-driven reference solution of the RFCMS (or the RMS with ``rigid=True``).
@@ -822,22 +837,20 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
             return [yy[1], (fh - sign * fk - cv * yy[1]) / m, sign * yy[1], cv * yy[1] ** 2]
         return f
 
-    def ev_stop(tt, yy):
+    def stopped(tt, yy):
         return yy[1]
 
-    def ev_break_up(tt, yy):
+    def breaks_up(tt, yy):
         xs, vs = stage(tt)
         return k * (xs - yy[0]) + k3 * (xs - yy[0]) ** 3 + c * vs - fs
 
-    def ev_break_dn(tt, yy):
+    def breaks_down(tt, yy):
         xs, vs = stage(tt)
         return k * (xs - yy[0]) + k3 * (xs - yy[0]) ** 3 + c * vs + fs
 
-    ev_stop.terminal = True
-    ev_break_up.terminal = True
-    ev_break_up.direction = 1
-    ev_break_dn.terminal = True
-    ev_break_dn.direction = -1
+    ev_stop = _Event(stopped)
+    ev_break_up = _Event(breaks_up, direction=1.0)
+    ev_break_dn = _Event(breaks_down, direction=-1.0)
 
     while t < end - 1e-15:
         while seg < len(bps) - 1 and bps[seg + 1] <= t + 1e-15:

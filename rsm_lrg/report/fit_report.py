@@ -50,8 +50,8 @@ _RUN_COLUMNS = ("run_order", "run", "order")
 
 # -- small views ---------------------------------------------------------------------------
 
-def _zero_if_roundoff(x: float, scale: float) -> float:
-    """The round-off rule of :func:`rsm_lrg.present.clean` (shown as 0)."""
+def _zero_if_roundoff(x: float | None, scale: float) -> float | None:
+    """The round-off rule of :func:`rsm_lrg.present.clean` (shown as 0; missing stays None)."""
     v = clean(x, scale)
     return v if v is None else float(v)
 
@@ -75,7 +75,7 @@ def _equation_terms(result, units: str, labels: list[str], sep: str = "") -> lis
     from ..model.text import equation_terms
     from ..present import format_number
 
-    out = []
+    out: list[str] = []
     for t in equation_terms(result, units):
         mantissa = t.text.lower().split("e")[0].replace(".", "").lstrip("-0")
         num = format_number(abs(t.value), max(len(mantissa), 1))  # the digits the rule chose

@@ -365,7 +365,9 @@ def _start(data: dict, start: str) -> None:
         return
     opt = (data["desirability"] or {}).get("setting") or next(
         (o["setting"] for o in data["optima"].values()), None)
-    for c in data["controls"] if opt else []:
+    if not opt:
+        return
+    for c in data["controls"]:
         if c["name"] in opt:
             c["value"] = opt[c["name"]] if c["kind"] == "categoric" else float(opt[c["name"]])
 

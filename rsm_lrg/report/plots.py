@@ -29,6 +29,7 @@ import io
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -62,7 +63,7 @@ DEFAULT_DPI = 192
 #: Figure size of a single panel [inch].
 PANEL_SIZE = (5.0, 3.6)
 
-_POINT_STYLE = dict(color="#b5261e", edgecolor="black", linewidth=0.5, zorder=5)
+_POINT_STYLE: dict[str, Any] = dict(color="#b5261e", edgecolor="black", linewidth=0.5, zorder=5)
 _LINE_COLOR = "#1f4e79"
 
 
@@ -539,11 +540,11 @@ def temperature_history(curves: Mapping[str, tuple[Sequence[float], Sequence[flo
     fig = _new_figure(size)
     ax = fig.add_subplot()
     for label, (t, T) in (curves or {}).items():
-        t, T = _paired(t, T, f"time of {label!r}", f"temperature of {label!r}")
-        ax.plot(t, T, linewidth=1.5, label=_t(label))
+        ta, Ta = _paired(t, T, f"time of {label!r}", f"temperature of {label!r}")
+        ax.plot(ta, Ta, linewidth=1.5, label=_t(label))
     for label, (t, T) in (measured or {}).items():
-        t, T = _paired(t, T, f"time of {label!r}", f"temperature of {label!r}")
-        ax.plot(t, T, linestyle="none", marker="o", markersize=4, label=_t(label))
+        ta, Ta = _paired(t, T, f"time of {label!r}", f"temperature of {label!r}")
+        ax.plot(ta, Ta, linestyle="none", marker="o", markersize=4, label=_t(label))
     for label, v in (hlines or {}).items():
         ax.axhline(float(v), color="#777777", linestyle="--", linewidth=0.8, label=_t(label))
     ax.legend(fontsize=8, frameon=False)
@@ -593,8 +594,8 @@ def grouped_curves(curves: Mapping[str, tuple[Sequence[float], Sequence[float]]]
     fig = _new_figure(size)
     ax = fig.add_subplot()
     for label, (x, y) in curves.items():
-        x, y = _paired(x, y, f"x of {label!r}", f"y of {label!r}")
-        ax.plot(x, y, marker="o" if markers else None, markersize=3, linewidth=1.2, label=_t(label))
+        xa, ya = _paired(x, y, f"x of {label!r}", f"y of {label!r}")
+        ax.plot(xa, ya, marker="o" if markers else None, markersize=3, linewidth=1.2, label=_t(label))
     ax.legend(fontsize=8, frameon=False)
     _finish(ax, title, xlabel, ylabel)
     return fig

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -106,7 +107,7 @@ def _figures(rep, fig9: dict, confirmation: dict, measured) -> dict:
 
     strokes, velocity, acceleration = fig9["strokes"], fig9["velocity"], fig9["acceleration"]
     rise_c, minutes = confirmation["rise_c"], confirmation["minutes"]
-    figs = {}
+    figs: dict[str, Any] = {}
     th = rep.thermal
     if th is not None:
         curves = {"toolkit: 3-D finite volume": (th.times_h, th.history_k_fv),

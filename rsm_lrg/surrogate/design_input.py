@@ -204,13 +204,13 @@ def read_design_arrays(df, params=None) -> DesignArrays:
     param_cols = tuple(c for c in cols if c in names and c not in FACTOR_COLUMNS)
     for c in param_cols:
         columns[c] = _float_column(df, c)
-    for c, (rule, bad) in {
+    for c, (rule, is_bad) in {
         "heat_partition": ("must lie in (0, 1]", lambda x: (x <= 0) | (x > 1)),
         "drive_friction_n": ("must lie in [0, 1e4] N", lambda x: ~((x >= 0) & (x <= 1e4))),
         "drive_viscous_n_s_m": ("must lie in [0, 1e4] N s/m", lambda x: ~((x >= 0) & (x <= 1e4))),
     }.items():
-        if c in columns and bad(columns[c]).any():
-            raise _bad_row(c, df[c].tolist(), bad(columns[c]), rule)
+        if c in columns and is_bad(columns[c]).any():
+            raise _bad_row(c, df[c].tolist(), is_bad(columns[c]), rule)
 
     # ranges: the physics' own rules, then the rig's limits
     for c, name in (("stroke_m", "stroke_m"), ("velocity_m_s", "velocity_m_s"),

@@ -13,7 +13,7 @@ import pytest
 import rsm_lrg
 from rsm_lrg.report import SECTION_IDS, write_report
 
-pytestmark = pytest.mark.browser
+pytestmark = [pytest.mark.browser, pytest.mark.slow]  # each test starts Chromium
 
 XSS_NAMES = ["<script>alert(1)</script>", "<img src=x onerror=alert(2)>", "\"><svg onload=alert(3)>"]
 

@@ -6,6 +6,7 @@ import subprocess
 import sys
 
 import pandas as pd
+import pytest
 
 
 def _run_into_closed_pipe(args, cwd):
@@ -29,6 +30,7 @@ def test_design_into_a_closed_pipe_still_writes_its_file(tmp_path):
     assert len(pd.read_csv(tmp_path / "ds.csv")) == 13  # 2m + 1 runs for m = 6 (five factors, conference order 6)
 
 
+@pytest.mark.slow
 def test_fit_json_into_a_closed_pipe_still_writes_its_report(tmp_path):
     from rsm_lrg.datasets import data_path
 

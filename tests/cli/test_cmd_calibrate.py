@@ -28,6 +28,7 @@ def measured(tmp_path):
     return p, d
 
 
+@pytest.mark.slow
 def test_calibrate_then_simulate_reproduces_the_data(measured, tmp_path, capsys):
     p, d = measured
     d.rename(columns={"kappa": "tcr_c_per_min"}).to_csv(p, index=False)
@@ -57,6 +58,7 @@ def test_json_and_force(measured, tmp_path, capsys):
     assert "does not produce 'kappa'" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("extra,needle", [
     (["--parameter", "offset"], "unknown calibration parameter"),
     (["--parameter", "heat_partition", "--parameter", "viscous_friction_n_s_m", "--parameter", "hinge_length_m",

@@ -25,6 +25,7 @@ def run(*args, cwd=None):
     return subprocess.run([sys.executable, "-m", "rsm_lrg", *args], capture_output=True, text=True, cwd=cwd)
 
 
+@pytest.mark.slow
 def test_box_behnken_subprocess_writes_the_paper_design(tmp_path):
     out = tmp_path / "bbd.csv"
     r = run("design", "box-behnken", *factor_args(PAPER), "--center", "3", "--seed", "7", "-o", str(out))

@@ -65,6 +65,7 @@ GOALS = {"y": ["--goal", "maximize", "--limits", "78.5:80"], "visc": ["--goal", 
          "mn": ["--goal", "range", "--limits", "3200:3400"]}
 
 
+@pytest.mark.slow
 def test_each_response_gets_its_own_model(capsys, tmp_path):
     import rsm_lrg
     from rsm_lrg.optimize.desirability import optimize_desirability, parse_response_goal
@@ -147,6 +148,7 @@ def test_single_response_with_a_decreasing_transform(capsys, tmp_path):
     assert out["pi"][0] < out["predicted"] < out["pi"][1]
 
 
+@pytest.mark.slow
 def test_goal_and_limits_belong_to_the_response_they_follow(capsys, tmp_path):
     # Documented in --help ("what to do with the response before it"): a --goal or --limits
     # right after the second --response is that response's, even when the first has none.

@@ -11,6 +11,7 @@ def run(*args, **kw):
     return subprocess.run([sys.executable, "-m", "rsm_lrg", "physics", *args], capture_output=True, text=True, **kw)
 
 
+@pytest.mark.slow
 def test_table_and_json_to_stdout():
     out = run("--no-thermal", "--json", "-")
     assert out.returncode == 0, out.stderr
@@ -23,6 +24,7 @@ def test_table_and_json_to_stdout():
     assert "normal_load_n" in out.stderr               # the table goes to stderr when JSON is on stdout
 
 
+@pytest.mark.slow
 def test_json_file_force_and_params(tmp_path):
     dest = tmp_path / "p.json"
     out = run("--no-thermal", "--param", "mu_k=0.01", "--json", str(dest))
@@ -53,6 +55,7 @@ def test_bad_parameters_exit_2_with_one_line(args, words):
     assert len(lines) == 1 and lines[0].startswith("error:") and words in lines[0]
 
 
+@pytest.mark.slow
 def test_with_thermal_model():
     out = run("--json", "-")
     assert out.returncode == 0, out.stderr
@@ -65,6 +68,7 @@ def test_list_params():
     assert out.returncode == 0 and "hinge_width_m" in out.stdout and "ASSUMPTION" in out.stdout
 
 
+@pytest.mark.slow
 def test_no_thermal_says_it_was_skipped():
     # it used to say 'rsm_lrg.physics.thermal.thermal_summary is not available'
     out = run("--no-thermal")
@@ -72,6 +76,7 @@ def test_no_thermal_says_it_was_skipped():
     assert "not computed" in out.stdout and "not available" not in out.stdout
 
 
+@pytest.mark.slow
 def test_no_static_friction_has_no_thickness_for_the_paper_ratio():
     # mu_s = 0: f_mu_max = 0, Eq. 2 gives no deflection at any thickness; the inverse gave 0 m
     from rsm_lrg.physics.chain import physics_chain
@@ -85,6 +90,7 @@ def test_no_static_friction_has_no_thickness_for_the_paper_ratio():
     assert d["thickness_for_paper_ratio_m"] == pytest.approx(5.4323e-5, rel=1e-4)
 
 
+@pytest.mark.slow
 def test_physics_refuses_geometry_that_simulate_refuses(capsys):
     # the same checks as simulate's (surrogate.design_input): the carriage stays on the rail
     # (stroke <= 0.4 m rail - 0.0644 m block = 0.3356 m, data/lrg_shs15v.toml), a leaf is

@@ -104,6 +104,7 @@ def test_bad_options(design_csv, tmp_path, capsys):
         assert len(err) == 1 and err[0].startswith("error:"), (args, err)
 
 
+@pytest.mark.slow
 def test_unreachable_scheduler_is_a_clear_error(design_csv, tmp_path, capsys):
     pytest.importorskip("distributed")
     assert main(["simulate", str(design_csv), "--scheduler", "tcp://127.0.0.1:9", "-o",

@@ -242,6 +242,7 @@ _TABLES = st.tuples(
 ).map(lambda t: "\n".join([",".join(t[0]), *t[1]]) + "\n")
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None, suppress_health_check=list(HealthCheck), database=None)
 @given(text=st.one_of(_TABLES, st.binary(max_size=300).map(lambda b: b.decode("latin-1"))),
        cmd=st.sampled_from(["fit", "fit-summary", "evaluate", "optimize", "ridge"]))
@@ -375,6 +376,7 @@ def test_reproduce_output_checks_before_the_long_run(argv_tail, expect, tmp_path
     _run_failing(capsys, argv, tmp_path, inputs=[afile], expect=expect)
 
 
+@pytest.mark.slow
 def test_outputs_written_together_with_force(tmp_path, data_copy, capsys):
     # the good case: both outputs appear; with --force existing outputs (not inputs) are replaced
     j, r = tmp_path / "fit.json", tmp_path / "fit.html"
@@ -567,6 +569,7 @@ def test_no_hang_on_devices_and_stdin(path):
     assert len(lines) == 1 and lines[0].startswith("error:") and len(lines[0]) < MAX_LINE
 
 
+@pytest.mark.slow
 def test_no_hang_on_a_named_pipe(tmp_path):
     fifo = tmp_path / "fifo.csv"
     os.mkfifo(fifo)

@@ -185,6 +185,7 @@ def test_physics_refuses_a_bad_params_file(tmp_path, capsys, text, needles):
     check_refused(capsys, ["physics", "--params-file", str(p), "--no-thermal"], ["params.toml", *needles], [p])
 
 
+@pytest.mark.slow
 def test_physics_handles_the_ends_of_the_ranges(capsys):
     # a stiff hinge needs too many integration steps (19.9 mm leaf, 20 mm long: 213 257 steps
     # per cycle, above the 200 000 limit): the chain falls back to the quasi-static limit

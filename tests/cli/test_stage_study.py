@@ -5,12 +5,15 @@ effect must be significant with the RMS level higher, and the optimum on the RFC
 
 import json
 
+import pytest
+
 from rsm_lrg.cli import main
 
 FACTORS = ["--factor", "thickness_m=0.0001:0.0005", "--factor", "stroke_m=0.04:0.06", "--factor",
            "velocity_m_s=0.4:0.6", "--factor", "acceleration_m_s2=20:40", "--factor", "stage=cat:rfcms,rms"]
 
 
+@pytest.mark.slow
 def test_stage_study(tmp_path, capsys):
     design, runs, fit_json, opt_json = (tmp_path / n for n in ("stage.csv", "runs.csv", "fit.json", "opt.json"))
     assert main(["design", "box-behnken", *FACTORS, "--seed", "7", "-o", str(design)]) == 0

@@ -31,6 +31,7 @@ def _run_fit(args, env_extra=None):
 FIT = ["fit", "data/table4.csv", "--response", "tcr_c_per_min"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("extra", [[], ["--json", "-"]])
 def test_fit_loads_no_scipy_statsmodels_matplotlib(extra):
     # the regression core uses numpy's LAPACK and its own t/F tails (model.statistics);
@@ -40,6 +41,7 @@ def test_fit_loads_no_scipy_statsmodels_matplotlib(extra):
     assert heavy == []
 
 
+@pytest.mark.slow
 def test_small_input_uses_one_blas_thread_unless_the_user_chose():
     # a 27-run file: one OpenBLAS thread (threads cost start-up CPU and gain nothing here)
     assert _run_fit(FIT)[2] == "1"

@@ -133,6 +133,7 @@ def ranges(draw, k):
     return out
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(st.integers(3, 7).flatmap(ranges), st.integers(0, 4), st.integers(0, 2**32 - 1))
 def test_low_high_map_to_pm1_exactly_and_round_trip(rng_map, center, seed):

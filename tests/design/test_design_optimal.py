@@ -74,6 +74,7 @@ def test_no_worse_than_exhaustive_search_on_the_3x3_grid(n):
         assert d == pytest.approx(d_best, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_three_factors_beat_the_face_centred_ccd_and_exhaustive_2fi():
     sp = FactorSpace.from_ranges([("a", 0, 1), ("b", 0, 1), ("c", 0, 1)])
     t = model_terms(sp.letters, "quadratic")
@@ -90,6 +91,7 @@ def test_three_factors_beat_the_face_centred_ccd_and_exhaustive_2fi():
     assert optimal(sp, model="2fi", criterion="D", runs=8, seed=1).options["criterion_value"] >= d_best * (1 - 1e-9)
 
 
+@pytest.mark.slow
 def test_constrained_region_every_point_feasible_and_no_worse_than_grid_search():
     # the motion-profile constraint s >= v^2/a on a guide-like box
     sp = FactorSpace.from_ranges([("v", 0.2, 1.0), ("a", 5.0, 20.0), ("s", 0.02, 0.1)])

@@ -115,6 +115,7 @@ def test_compare_errors():
         evaluate_design(bbd, "quadratic", potential="linear")
 
 
+@pytest.mark.slow
 def test_correlation_lines_name_model_columns_only():
     # 12-run Plackett-Burman, 8 factors: each main effect is correlated +-1/3 with the 2FIs
     # that do not contain it (complex aliasing: Montgomery 2013, section 8.6.1; exact thirds, tol 1e-12);

@@ -123,6 +123,7 @@ def test_evaluate_refuses_far_too_large_models_by_their_count():
     assert "A^3" in evaluate_design(np.vstack([corners, corners]), "cubic").aliased
 
 
+@pytest.mark.slow
 def test_fit_summary_counts_orders_beyond_the_term_limit():
     # 60 factors: the cubic has C(63, 3) = 39711 terms, beyond MAX_TERMS: it is not built,
     # a note says so, and the lower orders are compared as usual

@@ -51,6 +51,7 @@ def _row(rep, text):
     return hits[0]
 
 
+@pytest.mark.slow
 def test_covers_what_the_issue_lists(rep):
     for text in ("heat source intensity Φ", "h, top and side faces", "h, front face", "steady temperature rise",
                  "time to thermal equilibrium", "RFCMS / RMS", "Fig. 9", "R² [-]", "optimum thickness_m",
@@ -64,6 +65,7 @@ def test_covers_what_the_issue_lists(rep):
             "Residual", "Lack of Fit", "Pure Error", "Cor Total"} <= sources
 
 
+@pytest.mark.slow
 def test_nothing_fails_and_every_gap_says_why(rep):
     assert set(r.verdict for r in rep.rows) <= set(VERDICTS)
     assert [r.quantity for r in rep.rows if r.verdict == "FAIL"] == []
@@ -73,6 +75,7 @@ def test_nothing_fails_and_every_gap_says_why(rep):
             assert len(r.note) > 20, r.quantity
 
 
+@pytest.mark.slow
 def test_paper_numbers_that_must_match(rep):
     # DIGEST §2 (checked): Phi 5.597e5 ("5.6 x 10^5"), h 8.82 and 22.45 W/(m^2 K)
     assert _row(rep, "heat source intensity Φ").verdict == "pass"
@@ -89,6 +92,7 @@ def test_paper_numbers_that_must_match(rep):
     assert _row(rep, "optimum acceleration_m_s2").toolkit_value == pytest.approx(20.0, abs=1e-9)
 
 
+@pytest.mark.slow
 def test_text_and_frame(rep):
     text = rep.to_text()
     assert text.splitlines()[0].split() == ["quantity", "paper", "toolkit", "rel.", "diff", "tolerance", "verdict"]
@@ -112,6 +116,7 @@ def test_the_deprecated_report_alias_is_gone():
     assert paper.reproduce.__module__ == "rsm_lrg.paper.reproduction"
 
 
+@pytest.mark.slow
 def test_thermal_row_compares_the_maximum_rise_and_shows_every_case(rep):
     # issue 15, Build 4: like with like -- the FEM's 4.038 K is a maximum (Section 3.1); the
     # plausible rail lengths x boundaries of rsm_lrg.physics.paper_checks each with its sources
@@ -131,6 +136,7 @@ def test_thermal_row_compares_the_maximum_rise_and_shows_every_case(rep):
     assert default.toolkit_value == main.toolkit_value
 
 
+@pytest.mark.slow
 def test_wear_rows_show_each_reading_and_the_deflection_it_needs(rep):
     # issue 15, Build 4: Eq. 13 is linear in the sliding distance, so each reading of
     # Eqs. 13-17 fixes the hinge deflection: 30.8, 30.8, 15.4, 18.5, 7.7 mm at s = 0.075 m
@@ -143,6 +149,7 @@ def test_wear_rows_show_each_reading_and_the_deflection_it_needs(rep):
     assert "7.7-30.8 mm" in main.note
 
 
+@pytest.mark.slow
 def test_surrogate_loo_is_reported_next_to_the_paper_press_r2(rep):
     # issue 15, Build 3: the calibrated surrogate's leave-one-out R2 beside Eq. 19's PRESS R2
     # (0.818: Table 4 refitted, DIGEST §5, to 0.0005)
@@ -156,6 +163,7 @@ def test_surrogate_loo_is_reported_next_to_the_paper_press_r2(rep):
     assert r.verdict == ("pass" if cal.loo_r2 >= 0.8184 else "not yet")
 
 
+@pytest.mark.slow
 def test_fig9_wear_row_shows_both_motion_profiles(rep):
     # issue 15: the wear ordering of the Fig. 9 setting under the default trapezoidal strokes
     # (RFCMS slides 0.005-0.26 % more: frame ringing) and under 10 ms jerk-limited strokes

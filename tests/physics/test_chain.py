@@ -66,6 +66,7 @@ def test_heat_in_watts_switch():
     assert "friction power in W" in r.to_text()
 
 
+@pytest.mark.slow
 def test_overrides_flow_through():
     r = physics_chain(LRGParams(mu_s=0.06), thermal=False)
     assert r.f_mu_max_n == pytest.approx(2 * 5.2094, rel=1e-4)
@@ -73,6 +74,7 @@ def test_overrides_flow_through():
         physics_chain(thermal=False, mu_s=-1)
 
 
+@pytest.mark.slow
 def test_thermal_is_wired_in_when_available():
     pytest.importorskip("rsm_lrg.physics.thermal")
     r = physics_chain()

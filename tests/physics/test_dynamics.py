@@ -39,6 +39,7 @@ def _breakaway_deflection(p, force=None):
                                             p.hinge_count * p.hinge_membrane_stiffness_n_m3))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("membrane", [False, True])
 def test_quasi_static_limit_is_eq14_reading(membrane):
     # Slow motion, mu_k = mu_s (no stick-slip jumps), thin hinge (dd = 4.9 mm linear, 0.39 mm
@@ -61,6 +62,7 @@ def test_quasi_static_limit_is_eq14_reading(membrane):
     assert qs.sliding_distance_m == pytest.approx(2 * (s - 2 * dd), rel=1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("membrane", [False, True])
 def test_quasi_static_with_stiction_stays_in_the_sawtooth_band(membrane):
     # mu_s > mu_k, slow: the frame stick-slips; the rest deflection lies between
@@ -133,6 +135,7 @@ def test_thin_hinge_overshoot_is_a_documented_model_result():
 _FIG9_STROKES = np.array([0.075, 0.06, 0.04])  # paper Section 4.2 (0.5 m/s, 10 m/s^2)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("y", [0.0001, 0.0003, 0.0005])
 def test_elastic_hinge_sliding_is_bounded_by_its_swing(y):
     # Kinematics, exact for any damping: over one stroke the frame's net travel differs from the
@@ -149,6 +152,7 @@ def test_elastic_hinge_sliding_is_bounded_by_its_swing(y):
     assert np.all(m.sliding_distance_m - 2 * _FIG9_STROKES < 4 * m.peak_deflection_m)
 
 
+@pytest.mark.slow
 def test_elastic_hinge_slides_less_than_rms_once_the_frame_does_not_ring():
     # Section 2.3's claim (RFCMS slides less than the RMS) on the elastic hinge with held ends:
     # it holds at every Fig. 9 stroke and Table 3 thickness when the frame is damped enough not
@@ -165,6 +169,7 @@ def test_elastic_hinge_slides_less_than_rms_once_the_frame_does_not_ring():
     assert np.all(ringing.sliding_distance_m[mid] > damped.sliding_distance_m[mid])
 
 
+@pytest.mark.slow
 def test_auto_uses_quasi_static_only_where_it_is_accurate():
     s = np.array([0.1, 0.06, 0.1])
     y = np.array([0.0005, 0.0001, 0.0004])
@@ -269,6 +274,7 @@ def test_viscous_work_of_the_rms_is_exact_and_quasi_static_rows_follow_the_stage
     assert full.viscous_work_j == pytest.approx(m.viscous_work_j[1], rel=0.01)
 
 
+@pytest.mark.slow
 def test_zero_viscous_friction_leaves_the_dynamics_unchanged():
     # c_v = 0 (the paper's Coulomb-only friction): bit-for-bit the model without the term
     base = dynamics.cycle_metrics([0.04, 0.06], 0.5, [20.0, 40.0], hinge_thickness_m=0.0001)

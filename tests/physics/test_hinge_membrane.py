@@ -50,6 +50,7 @@ def _box_rows():
     return np.array(rows)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("viscous", [0.0, 7.0])
 def test_no_leaf_above_yield_anywhere_in_the_table3_box(viscous):
     # Issue 15 "Done when": peak stress (bending 3 E y d / l^2 + membrane E pi^2 d^2/(16 l^2))
@@ -132,6 +133,7 @@ def test_quasi_static_sliding_uses_the_cubic_deflections():
     assert float(qs.sliding_distance_m) == pytest.approx(2 * (p.stroke_m - ds - dk), rel=1e-12)
 
 
+@pytest.mark.slow
 def test_physics_json_reports_the_peak_stress_of_every_hinge():
     from rsm_lrg.physics.chain import physics_chain
 

@@ -33,6 +33,7 @@ def test_parameter_is_documented_and_off_by_default():
 
 
 # ---- the S-curve stroke ---------------------------------------------------------------
+@pytest.mark.slow
 @given(s=st.floats(1e-3, 0.2), v=st.floats(0.05, 2.0), a=st.floats(1.0, 100.0), frac=st.floats(0.05, 2.0))
 @settings(max_examples=40, deadline=None)
 def test_scurve_stroke_kinematics(s, v, a, frac):
@@ -123,6 +124,7 @@ def test_zero_jerk_time_gives_the_numbers_of_the_trapezoid_code():
     assert float(motion.mean_square_speed(0.06, 0.5, 10.0, 0.02)) == pytest.approx(0.13596491228070176, rel=1e-15)
 
 
+@pytest.mark.slow
 def test_trapezoid_rows_are_unchanged_in_a_batch_with_scurve_rows():
     p = LRGParams(viscous_friction_n_s_m=2.5)
     alone = dynamics.cycle_metrics(STROKES, 0.5, 10.0, params=p, method="integrate")
@@ -170,6 +172,7 @@ def test_rms_with_scurve_strokes_is_exact():
     assert h.viscous_work_j == pytest.approx(float(m.viscous_work_j), rel=1e-14) and h.cycle_time_s == pytest.approx(T)
 
 
+@pytest.mark.slow
 def test_jerk_limit_removes_the_ringing_overshoot():
     # Model finding (issue 15 follow-up): at a flexure's damping (zeta 0.02) and c_v 2.5 N s/m
     # the trapezoid's acceleration steps excite the frame's ~47 Hz hinge mode and the RFCMS

@@ -92,6 +92,7 @@ def test_surfaces_are_twice_their_shown_size_and_contours_vector(ctx_center):
         assert s["contour"].uri.startswith("data:image/svg+xml")
 
 
+@pytest.mark.slow
 def test_optimum_star_only_on_slices_that_hold_it(t4, ctx_center):
     """The Table 4 optimum is a corner (A, B, C low, D high: Section 4.3): no centre slice holds it."""
     for s in ctx_center["surfaces"]:

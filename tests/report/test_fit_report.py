@@ -152,6 +152,7 @@ def test_optimum_and_stationary_point(page):
     assert "saddle" in page.text_by_id["stationary-point"]
 
 
+@pytest.mark.slow
 def test_markup_in_names_is_escaped():
     rng = np.random.default_rng(7)
     names = ["<script>alert(1)</script>", "<img src=x onerror=alert(2)>", "x\"&'$y$"]
@@ -171,6 +172,7 @@ def test_markup_in_names_is_escaped():
     assert not [a for _, a in page.attrs if "onerror" in a]
 
 
+@pytest.mark.slow
 def test_hold_at_optimum_and_bad_hold(table4_fit):
     ctx = report_context(table4_fit, hold="optimum")
     assert "held at the optimum" in ctx["surfaces"][0]["surface"].caption
@@ -192,6 +194,7 @@ def test_write_report_is_atomic_and_refuses_to_overwrite(tmp_path, table4_fit, m
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.html"]  # no temporary file left
 
 
+@pytest.mark.slow
 def test_rows_without_a_response_are_shown_as_not_run():
     # rows 4 and 11 of Table 4 with their response removed: in the table, in file order
     d = rsm_lrg.load_table4()

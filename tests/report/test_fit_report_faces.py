@@ -1,8 +1,11 @@
 """FitResult's HTML faces delegate to the report layer."""
 
+import pytest
+
 import rsm_lrg
 
 
+@pytest.mark.slow
 def test_to_html_and_repr_html_are_the_report():
     r = rsm_lrg.fit(rsm_lrg.load_table4(), "tcr_c_per_min")
     page = r.to_html()

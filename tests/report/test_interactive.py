@@ -67,6 +67,7 @@ def test_model_data_is_the_fit(fits):
     np.testing.assert_allclose(y + m["t"] * np.sqrt((1 + q) * m["sigma2"]), ref["pi_high"], rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_model_data_with_a_categoric_factor():
     df = data()
     df["stage"] = np.random.default_rng(2).choice(["rfcms", "rms", "mix"], len(df))
@@ -120,6 +121,7 @@ def test_page_contract_and_size(page, fits):
     assert "221.92" in page and "26.03" in page  # Table 5 F values in the first response's ANOVA
 
 
+@pytest.mark.slow
 def test_static_variant_has_no_script(fits):
     html = interactive_html(fits, static=True)
     import html as _html
@@ -128,6 +130,7 @@ def test_static_variant_has_no_script(fits):
     assert html.count('class="diag"') == 2 * (6 + 12)  # per response: six diagnostics, six surfaces, six contours
 
 
+@pytest.mark.slow
 def test_bad_inputs_are_named(fits):
     df = data()
     other = rsm_lrg.fit(df, "tcr_c_per_min", factors=FACTORS[:3])
@@ -139,6 +142,7 @@ def test_bad_inputs_are_named(fits):
         interactive_html(fits["tcr_c_per_min"], start="middle")
 
 
+@pytest.mark.slow
 def test_cli_two_responses_with_their_own_options(tmp_path, capsys):
     from rsm_lrg.cli import main
 
@@ -165,6 +169,7 @@ def test_cli_two_responses_with_their_own_options(tmp_path, capsys):
     assert rc == 2 and "--limits" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_model_data_of_a_blocked_fit_predicts_the_average_block():
     """With blocks, the page's b and C leave the block columns out (as predict does)."""
     df = data()
@@ -195,6 +200,7 @@ def test_without_plotly_the_cli_says_so_in_one_line(tmp_path, capsys, monkeypatc
     assert not (tmp_path / "r.html").exists()
 
 
+@pytest.mark.slow
 def test_static_pages_with_a_categoric_factor():
     """Surfaces over the numeric pairs only, the stage held at a level (named in the caption)."""
     from rsm_lrg.report import to_html

@@ -38,6 +38,7 @@ def test_output_is_reproducible():
     assert a == b
 
 
+@pytest.mark.slow
 def test_every_plot_returns_a_figure():
     rng = np.random.default_rng(0)
     r = rng.normal(size=20)
@@ -63,6 +64,7 @@ def test_every_plot_returns_a_figure():
         assert P.to_data_uri(f).startswith("data:image/png;base64,")
 
 
+@pytest.mark.slow
 def test_plots_never_touch_pyplot():
     code = (
         "import sys, numpy as np\n"
@@ -90,6 +92,7 @@ def test_normal_plot_uses_blom_positions():
     np.testing.assert_allclose(xy[:, 1], ProbPlot(r, a=3 / 8).theoretical_quantiles, rtol=0, atol=1e-12)
 
 
+@pytest.mark.slow
 @settings(max_examples=15, deadline=None)
 @given(st.lists(st.floats(-1e3, 1e3, allow_nan=False), min_size=1, max_size=40))
 def test_normal_plot_any_residuals(values):

@@ -25,6 +25,7 @@ def synthetic(truth, n=12, seed=0, thickness=(3e-4, 5e-4)):
     return d
 
 
+@pytest.mark.slow
 def test_recovers_known_heat_parameters_exactly():
     # exact solution: data made by the surrogate itself with known parameters, no noise
     truth = {"heat_partition": 0.4, "viscous_friction_n_s_m": 5.0}
@@ -48,6 +49,7 @@ def test_recovers_a_stage_parameter_through_the_profile_grid():
     assert cal.parameter_values()["heat_partition"] == pytest.approx(0.5, rel=1e-2)
 
 
+@pytest.mark.slow
 def test_noise_gives_finite_standard_errors_that_cover_the_truth():
     truth = {"heat_partition": 0.4, "viscous_friction_n_s_m": 5.0}
     d = synthetic(truth, n=20)
@@ -58,6 +60,7 @@ def test_noise_gives_finite_standard_errors_that_cover_the_truth():
         assert abs(p.value - truth[p.name]) < 4 * p.std_error
 
 
+@pytest.mark.slow
 def test_toml_round_trip(tmp_path):
     d = synthetic({"heat_partition": 0.4, "viscous_friction_n_s_m": 5.0}, n=6)
     cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], source="x.csv",

@@ -45,6 +45,7 @@ def test_keeps_input_columns_and_adds_outputs(design, reference):
         assert c in reference and np.isfinite(reference[c]).all()
 
 
+@pytest.mark.slow
 def test_in_process_batches_do_not_change_the_noise(design, reference):
     # the noise of a row depends only on (seed, row index): noisy minus noise-free is the
     # same whatever the batch size
@@ -73,6 +74,7 @@ def test_dask_local_cluster_gives_identical_rows(design, reference):
     pd.testing.assert_frame_equal(got, reference, check_exact=True)
 
 
+@pytest.mark.slow
 def test_seed_controls_the_noise(design, reference):
     again = simulate(design, seed=42, noise_sd=0.03, batch_rows=5)
     pd.testing.assert_frame_equal(again, reference, check_exact=True)
@@ -83,6 +85,7 @@ def test_seed_controls_the_noise(design, reference):
     pd.testing.assert_frame_equal(gen, gen2)
 
 
+@pytest.mark.slow
 def test_zero_noise_is_deterministic_and_ignores_the_seed(design):
     a = simulate(design, seed=1, noise_sd=0)
     b = simulate(design, seed=2, noise_sd=0)
@@ -116,6 +119,7 @@ def test_output_column_in_the_input_is_kept_as_input():
     assert (out["tcr_c_per_min"] < 1).all()
 
 
+@pytest.mark.slow
 def test_a_row_alone_agrees_with_the_row_in_its_batch():
     # deterministic part: the stick-slip integrator gives every row its own step count, so a
     # row alone equals the row among others (thin and thick hinges mixed; 1e-12 relative
@@ -141,6 +145,7 @@ def mixed(n=16):
     return d
 
 
+@pytest.mark.slow
 def test_rows_do_not_depend_on_their_batch_or_neighbours():
     d = mixed()
     whole = simulate(d, noise_sd=0)

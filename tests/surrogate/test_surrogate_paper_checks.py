@@ -85,6 +85,7 @@ def test_earlier_calibration_stays_loadable():
     assert v2.parameter_values()["hinge_membrane"] is False
 
 
+@pytest.mark.slow
 def test_no_leaf_yields_in_the_table3_box_with_the_shipped_calibration():
     # issue 15 "Done when": the 16 corners and the centre of the Table 3 box, virtual runs with
     # the shipped calibration: the peak stress of every leaf (bending + membrane, over the

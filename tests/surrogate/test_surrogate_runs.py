@@ -93,6 +93,7 @@ def test_uncalibrated_centre_run_within_30_percent_of_measured():
     assert out.tcr_c_per_min[0] == pytest.approx(0.03367, rel=0.30)
 
 
+@pytest.mark.slow
 def test_a_design_object_and_a_heat_share_column():
     from rsm_lrg import box_behnken
 

@@ -47,6 +47,7 @@ import math
 import time
 import warnings
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -331,8 +332,8 @@ class FVSystem:
     def __init__(self, model: VoxelModel):
         self.model = model
         self._assemble()
-        self._lu = None
-        self._amg = None
+        self._lu: Any = None  # scipy's SuperLU (untyped), built on the first direct solve
+        self._amg: AMGSolver | None = None
         self.setups = {"lu": 0, "amg": 0}
 
     def _new_lu(self, A):

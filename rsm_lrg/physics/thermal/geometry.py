@@ -29,7 +29,9 @@ clearance is still air (conduction only).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field, fields, replace
+from typing import Any
 
 import numpy as np
 
@@ -280,7 +282,7 @@ class GuideGeometry:
         return 0.5 * (self.block_clearance_m + self.block_height_m)
 
     @staticmethod
-    def fields_from_params(values) -> dict:
+    def fields_from_params(values: Mapping[str, Any]) -> dict:
         """The :class:`GuideGeometry` keyword arguments among physical parameters.
 
         ``values`` is a mapping of :class:`~rsm_lrg.physics.params.LRGParams` names (e.g.

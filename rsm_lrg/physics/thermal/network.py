@@ -197,7 +197,7 @@ class ThermalNetwork:
         self._eig = eig
         self._s = s
         self._load = eig.project(s * b)[0]  # V^T C^-1/2 b
-        self._coef = {}
+        self._coef: dict[int, np.ndarray] = {}
         self._steady = solve_spd(K, b)
 
     # ------------------------------------------------------------------------------

@@ -16,6 +16,7 @@ def net():
     return ThermalNetwork(GuideGeometry(), 8.82, 22.45)  # the paper's h (Eqs. 11-12)
 
 
+@pytest.mark.slow
 @settings(max_examples=15, deadline=None)
 @given(st.floats(60.0, 5000.0), st.floats(60.0, 6000.0))
 def test_equals_the_convolution_of_the_step_response(tau, t_end):

@@ -107,6 +107,7 @@ def test_network_agrees_with_the_fv_model(overrides, bc):
     assert np.abs(hist_net - tr.mean_probe_rise_k).max() < 0.10 * ss
 
 
+@pytest.mark.slow
 def test_network_response_is_exact_in_time_against_its_own_ode():
     # the modal solution equals a fine backward-Euler integration of C dT/dt = -K T + b
     net = ThermalNetwork(GuideGeometry(), HS, HF)

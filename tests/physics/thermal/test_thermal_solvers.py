@@ -118,6 +118,7 @@ def test_steady_hierarchy_is_cached(fv2):
 
 
 # ------------------------------------------------------------------------------ transient
+@pytest.mark.slow
 @pytest.mark.parametrize("grid,scheme", [("fv4", "crank-nicolson"), ("fv2", "backward-euler"),
                                          ("fv2", "crank-nicolson")])
 def test_amg_transient_equals_direct(grid, scheme, request):
