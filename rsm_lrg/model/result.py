@@ -116,7 +116,9 @@ class FitResult:
     @property
     def model(self) -> str:
         """The model's order (``"linear"`` ... ``"cubic"``), or ``"custom"`` for chosen terms."""
-        return self.spec.order if self.spec.terms is None or self.reduction is not None else "custom"
+        if self.reduction is not None:  # the model the elimination started from
+            return self.spec.order if self.reduction.start_model != "custom" else "custom"
+        return self.spec.order if self.spec.terms is None else "custom"
 
     @property
     def n_blocks(self) -> int:
