@@ -250,6 +250,8 @@ def _main(argv: list[str] | None) -> int:
             warnings.simplefilter("default")
             with output_transaction(inputs=input_paths(args), labels={path: label for label, path in outputs}):
                 status = args._run(args)
+        for note in getattr(args, "notes_at_end", None) or ():  # what was read (_common.read_input)
+            print(f"note: {note}", file=sys.stderr)
         # a library warning is one line after a success; after an error only the error line shows
         for msg in dict.fromkeys(" ".join(str(w.message).split()) for w in caught
                                  if not issubclass(w.category, (DeprecationWarning, PendingDeprecationWarning))):

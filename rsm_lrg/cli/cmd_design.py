@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import add_force, whole_number
+from ._common import add_force, add_reader_options, whole_number
 
 NAME = "design"
 HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, augment, "
@@ -65,6 +65,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                                     "with their responses: D/I/A-optimal runs for a bigger model, star and "
                                     "centre points (a two-level factorial becomes a CCD), or the fold-over.")
     ag.add_argument("design", metavar="DESIGN.csv", help="the design (or data) CSV whose runs are kept")
+    add_reader_options(ag)
     ag.add_argument("--method", default="optimal", choices=["optimal", "ccd", "foldover"],
                     help="how to add runs (default optimal)")
     ag.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
@@ -297,12 +298,13 @@ def _augment(args, out) -> int:
     from ..design import Design
     from ..design.augment import augment
     from ..design.core import BLOCK_COLUMN
-    from ..io import InputError, read_table, write_output
+    from ..io import InputError, write_output
+    from ._common import read_input
 
     src = Path(args.design)
     if src.exists() and out.exists() and src.resolve() == out.resolve():
         raise InputError(f"-o/--output: {out} is the input design; an input file is never overwritten")
-    df = read_table(src)
+    df = read_input(args, src)
     try:
         design = Design.from_frame(df)
     except ValueError as exc:

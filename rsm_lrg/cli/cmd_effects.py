@@ -60,12 +60,13 @@ def _full_terms(letters) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import dump_json, read_table, write_output
+    from ..io import dump_json, write_output
     from ..model import fit
     from ..model.effects import screening_effects
+    from ._common import read_input
 
     fmt = plot_format(args.plot)
-    data = read_table(args.data)
+    data = read_input(args)
     from ._common import model_spec
 
     given = model_spec(args, order="2fi").terms if args.terms is not None else ()  # a bad --terms named first

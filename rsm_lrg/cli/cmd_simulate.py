@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, whole_number
+from ._common import about_file, add_force, add_reader_options, whole_number
 
 NAME = "simulate"
 HELP = "virtual runs of the physics surrogate, one row per design row"
@@ -32,6 +32,7 @@ def _nonneg_float(text: str) -> float:
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("design", metavar="DESIGN.csv",
                    help="design: thickness_m, stroke_m, velocity_m_s, acceleration_m_s2 [, stage, parameter columns]")
+    add_reader_options(p)
     p.add_argument("--seed", type=whole_number(0), default=None, metavar="N",
                    help="seed of the reading noise (default: drawn and printed on stderr)")
     p.add_argument("--noise-sd", type=_nonneg_float, default=None, metavar="X",
@@ -131,11 +132,12 @@ def run(args) -> int:
     import sys
     from pathlib import Path
 
-    from ..io import InputError, read_table, write_output
+    from ..io import InputError, write_output
     from ..physics.params import LRGParams, parse_assignments
     from ..surrogate.execute import DEFAULT_NOISE_SD, MAX_NOISE_SD, simulate
     from ..surrogate.noise import resolve_seed
     from ..surrogate.runs import check_duration
+    from ._common import read_input
 
     out_path = Path(args.output)
     if out_path.exists() and not args.force:
@@ -165,7 +167,7 @@ def run(args) -> int:
         except ValueError as exc:
             raise InputError(f"--param: {exc}") from None
     calibration = _calibration(args)
-    design = read_table(args.design)
+    design = read_input(args, args.design)
     for name in (*overrides, *surrogate):  # the design's column would silently win
         if name in design.columns:
             raise InputError(f"--param {name}: {args.design}: the design's column {name!r} sets it row by row; "
