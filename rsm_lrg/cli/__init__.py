@@ -156,6 +156,9 @@ def _error_line(msg: str) -> str:
     :data:`MAX_ERROR_LINE` characters."""
     import re
 
+    # a library hint in Python syntax ("use method='optimal'") in the command line's ("use --method optimal")
+    msg = re.sub(r"\buse ([a-z][a-z_]*)='([^'\s]*)'", lambda m: f"use --{m.group(1).replace('_', '-')} {m.group(2)}",
+                 str(msg))
     words = []
     for w in str(msg).split():  # a 300-digit number or a 10 MB token quoted by a library message
         if len(w) > 60:

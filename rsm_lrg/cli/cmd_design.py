@@ -121,10 +121,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                     help="where the star points sit (default circumscribed)")
     cc.add_argument("--blocks", type=whole_number(1), default=None, metavar="N",
                     help="2: cube and star in separate blocks (default 1)")
-    ff = sub.add_parser("full-factorial", help="full factorial, equally spaced levels (default 3^k)",
-                        description="Full factorial design with equally spaced levels.")
+    ff = sub.add_parser("full-factorial", help="full factorial, equally spaced levels (default 2^k)",
+                        description="Full factorial design with equally spaced levels (two by default, as "
+                                    "Design-Expert and JMP: the classic factorial, augmented to a CCD with "
+                                    "design augment --method ccd).")
     _common(ff, "0", "extra centre runs (default 0)")
-    ff.add_argument("--levels", type=whole_number(2), default=3, metavar="N", help="levels per factor (default 3)")
+    ff.add_argument("--levels", type=whole_number(2), default=2, metavar="N", help="levels per factor (default 2)")
 
 
 #: Most centre runs per block: replicates of one point, far beyond any experiment.
