@@ -107,11 +107,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         if name == "latin-hypercube":
             sp.add_argument("--criterion", default="discrepancy", choices=["discrepancy", "maximin"],
                             help="space-filling criterion (default discrepancy)")
-    bb = sub.add_parser("box-behnken", help="Box-Behnken design, 3 to 7 factors (Box & Behnken 1960)",
-                        description="Box-Behnken design for 3 to 7 factors as published by Box & Behnken (1960).")
+    bb = sub.add_parser("box-behnken", help="Box-Behnken design, 3-7, 9-12 or 16 factors (Box & Behnken 1960)",
+                        description="Box-Behnken design for 3 to 7, 9 to 12 or 16 factors as published by Box "
+                                    "& Behnken (1960).")
     _common(bb, "3", "centre runs (per block when blocked; default 3)")
     bb.add_argument("--blocks", type=whole_number(1), default=None, metavar="N",
-                    help="orthogonal blocks: 3 for 4 factors, 2 for 5 factors (default 1)")
+                    help="orthogonal blocks: 3 for 4 factors, 2 for 5, 5 for 9, 6 for 16 (default 1)")
     cc = sub.add_parser("central-composite", help="central composite design (2^k cube + star + centre)",
                         description="Central composite design with a full 2^k cube.")
     _common(cc, "4,4", "centre runs: N, or CUBE,STAR (default 4,4)")

@@ -71,7 +71,7 @@ def test_force_overwrites_and_without_it_refuses(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("args,needle", [
-    (["box-behnken", "--factor", "a=0:1", "--factor", "b=0:1"], "3 to 7 factors"),
+    (["box-behnken", "--factor", "a=0:1", "--factor", "b=0:1"], "3 to 7, 9 to 12 or 16 factors"),
     (["box-behnken", "--factor", "a=1:0", "--factor", "b=0:1", "--factor", "c=0:1"], "LOW must be below HIGH"),
     (["box-behnken", "--factor", "a=0:1", "--factor", "b=0:1", "--factor", "c=0:1", "--center", "-2"],
      "must not be negative"),
