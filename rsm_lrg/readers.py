@@ -1,4 +1,5 @@
-"""Parsing input tables from bytes: CSV in any common dialect, Excel workbooks, Parquet files.
+"""Table formats: parsing input tables from bytes (CSV in any common dialect, Excel workbooks,
+Parquet files), and the bytes of a workbook to write (:func:`xlsx_bytes`).
 
 :func:`rsm_lrg.io.read_table` reads a file (or standard input) in its bounded, safe way and
 hands the bytes here; this module knows the formats only:
@@ -31,7 +32,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
 __all__ = ["TableError", "ReadAs", "SEPARATORS", "DECIMALS", "FORMATS", "detect_format", "detect_separator",
-           "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name"]
+           "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes"]
 
 #: CSV separators read (given with ``sep=`` / ``--sep`` or detected), in the order tried.
 SEPARATORS = (",", ";", "\t", "|")
@@ -458,3 +459,21 @@ def parse_parquet(raw: bytes, *, max_rows: int | None = None,
     if df.shape[1] < 2:
         raise TableError(f"has a single column {_quote(names[0])}; expected one column per factor and response")
     return df, ReadAs("parquet")
+
+
+def xlsx_bytes(frame: pd.DataFrame, sheet: str = "Design") -> bytes:
+    """An ``.xlsx`` workbook of one sheet holding ``frame`` (header row frozen; empty cells for
+    missing values, numbers at full precision), as bytes to write atomically.
+
+    Read back with :func:`parse_xlsx` it gives the same table.
+    """
+    import pandas as pd
+
+    buf = io.BytesIO()
+    with pd.ExcelWriter(buf, engine="openpyxl") as writer:
+        frame.to_excel(writer, sheet_name=sheet, index=False)
+        ws = writer.sheets[sheet]
+        ws.freeze_panes = "A2"
+        for j, name in enumerate(frame.columns):
+            ws.column_dimensions[_column_letter(j)].width = max(10, min(40, len(str(name)) + 2))
+    return buf.getvalue()

@@ -24,6 +24,7 @@ def _common(p: argparse.ArgumentParser, center_default, center_help: str) -> Non
                    help="seed of the randomised run order (default: drawn and printed)")
     p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
     p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
+    add_output_format(p)
     add_force(p)
 
 
@@ -39,7 +40,44 @@ def _base(p: argparse.ArgumentParser, factors: bool = True, constraint: bool = F
                    help="seed of the search and of the randomised run order (default: drawn and printed)")
     p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
     p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
+    add_output_format(p)
     add_force(p)
+
+
+def add_output_format(p: argparse.ArgumentParser) -> None:
+    """``--format csv|xlsx`` and ``--response COL``: the design as a CSV file or as a workbook
+    to fill in (a sheet with an empty column per response)."""
+    p.add_argument("--format", choices=["csv", "xlsx"], default=None,
+                   help="csv or xlsx (a workbook to fill in); default from the output's extension, else csv")
+    p.add_argument("--response", action="append", default=None, metavar="COL",
+                   help="an empty response column to add (repeatable; default for xlsx: one column 'response')")
+
+
+def write_design_frame(frame, out, args) -> None:
+    """Write a design's table to ``out`` as CSV or an ``.xlsx`` workbook (``--format``, or the
+    extension), with the ``--response`` columns present and empty."""
+    from ..io import InputError, quote_user_value, write_output
+    from ..readers import xlsx_bytes
+
+    suffix = str(out).lower().rsplit(".", 1)[-1] if "." in str(out) else ""
+    fmt = args.format or ("xlsx" if suffix == "xlsx" else "csv")
+    if args.format == "xlsx" and suffix != "xlsx":
+        raise InputError(f"--format xlsx: name the output .xlsx (got {quote_user_value(str(out))})")
+    if fmt == "csv" and suffix == "xlsx":
+        raise InputError(f"--format csv: the output {quote_user_value(str(out))} is named .xlsx")
+    responses = args.response if args.response is not None else (
+        ["response"] if fmt == "xlsx" and "response" not in frame.columns else [])
+    frame = frame.copy()
+    for col in responses:
+        if col in frame.columns:
+            raise InputError(f"--response {quote_user_value(col)}: the design already has a column of that name")
+        if not col.strip():
+            raise InputError("--response: an empty column name")
+        frame[col] = None
+    if fmt == "xlsx":
+        write_output(out, xlsx_bytes(frame, sheet="Design"), force=args.force)
+    else:
+        write_output(out, frame.to_csv(index=False, lineterminator="\n"), force=args.force)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -168,7 +206,7 @@ def run(args) -> int:
         return _augment(args, out)
     if args.kind in _NEW_KINDS:
         design = _new_kind(args)
-        design.to_csv(out, force=args.force)
+        write_design_frame(design.to_frame(), out, args)
         print(design.summary())
         print(f"wrote {out}")
         return 0
@@ -193,7 +231,7 @@ def run(args) -> int:
     else:
         design = full_factorial(space, levels=args.levels, center=_center(args.center, False),
                                 seed=args.seed, randomize=randomize)
-    design.to_csv(out, force=args.force)
+    write_design_frame(design.to_frame(), out, args)
     print(design.summary())
     print(f"wrote {out}")
     return 0
@@ -301,7 +339,7 @@ def _augment(args, out) -> int:
     from ..design import Design
     from ..design.augment import augment
     from ..design.core import BLOCK_COLUMN
-    from ..io import InputError, write_output
+    from ..io import InputError
     from ._common import read_input
 
     src = Path(args.design)
@@ -342,7 +380,7 @@ def _augment(args, out) -> int:
     if missing:
         raise InputError(f"{src}: lacks the column(s) {', '.join(missing)} of a design CSV")
     merged = pd.concat([old, add.astype(object)], ignore_index=True) if len(old) else add
-    write_output(out, merged.to_csv(index=False, lineterminator="\n"), force=args.force)
+    write_design_frame(merged, out, args)
     print(aug.summary())
     print(f"wrote {out}")
     return 0

@@ -125,3 +125,35 @@ def test_design_commands_read_workbooks(files, tmp_path, capsys):
     assert main(["evaluate", str(tmp_path / "bbd.xlsx")]) == 0
     b = capsys.readouterr().out
     assert a.replace(str(design), "X") == b.replace(str(tmp_path / "bbd.xlsx"), "X")
+
+
+def test_design_as_a_workbook_to_fill_in(tmp_path, capsys):
+    import openpyxl
+
+    book = tmp_path / "bbd.xlsx"
+    argv = ["design", "box-behnken", "--factor", "a=0:1", "--factor", "b=0:2", "--factor", "c=1:3", "--seed", "4"]
+    assert main([*argv, "-o", str(tmp_path / "bbd.csv")]) == 0
+    assert main([*argv, "-o", str(book), "--response", "y1", "--response", "y2"]) == 0
+    ws = openpyxl.load_workbook(book).active
+    header = [c.value for c in ws[1]]
+    assert header[-2:] == ["y1", "y2"] and ws.max_row == 16
+    assert all(ws.cell(row=r, column=len(header)).value is None for r in range(2, 17))  # empty to fill in
+    same = pd.read_excel(book).drop(columns=["y1", "y2"])
+    pd.testing.assert_frame_equal(same, pd.read_csv(tmp_path / "bbd.csv"), check_dtype=False, check_exact=True)  # exact
+    # filled in, the workbook is analysed as it is
+    wb = openpyxl.load_workbook(book)
+    ws = wb.active
+    for r in range(2, 17):
+        a, b, c = (ws.cell(row=r, column=header.index(n) + 1).value for n in "abc")
+        ws.cell(row=r, column=len(header) - 1, value=1 + a + 0.5 * b * c + 0.1 * r % 3)
+    wb.save(book)
+    capsys.readouterr()
+    assert main(["fit", str(book), "--response", "y1", "--model", "linear"]) == 0
+    cap = capsys.readouterr()
+    assert "runs: 15" in cap.out and "note: read" in cap.err
+    # the default response column, --format, and a name that does not fit
+    assert main([*argv, "-o", str(tmp_path / "d.xlsx")]) == 0
+    assert openpyxl.load_workbook(tmp_path / "d.xlsx").active.cell(row=1, column=len(header) - 1).value == "response"
+    assert main([*argv, "--format", "xlsx", "-o", str(tmp_path / "d.csv")]) == 2
+    assert "--format xlsx: name the output .xlsx" in capsys.readouterr().err
+    assert not (tmp_path / "d.csv").exists()
