@@ -28,10 +28,11 @@ import math
 import os
 import re
 import sys
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
-__all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "check_output",
+__all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "open_input", "check_output",
            "output_transaction", "read_table", "read_table_as", "read_stdin_bytes", "read_toml", "toml_value",
            "write_output", "dump_json",
            "to_jsonable", "numeric_column", "float_column", "is_empty_cell", "cell_error", "COMMA_NUMBER"]
@@ -123,6 +124,36 @@ def read_input_bytes(path: str | os.PathLike, what: str = "file", *, limit: int 
     if len(raw) > limit:
         raise InputError(f"{_show(p)}: is larger than the limit of {_mib(limit)} for a {what}")
     return raw
+
+
+def open_input(path: str | os.PathLike, what: str = "file"):
+    """An input file opened for reading in binary, for a reader that goes through it piece by
+    piece (:mod:`rsm_lrg.surrogate.stream`: no size limit, memory bounded by the piece): the
+    checks of :func:`read_input_bytes` but the size (a directory, device, pipe or socket is
+    refused at once, so nothing hangs), or :class:`InputError` naming it."""
+    import stat
+
+    p = Path(path)
+    if not str(path).strip():
+        raise InputError(f"an empty path was given for the {what}")
+    try:
+        fd = os.open(p, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
+    except FileNotFoundError:
+        raise InputError(f"{_show(p)}: no such {what}") from None
+    except IsADirectoryError:
+        raise InputError(f"{_show(p)}: is a directory, not a{'n' if what[0] in 'aeiou' else ''} {what}") from None
+    except OSError as exc:
+        raise InputError(f"{_show(p)}: cannot be read ({exc.strerror or type(exc).__name__})") from None
+    except ValueError:
+        raise InputError(f"{_show(p)}: not a valid file name (it contains a NUL character)") from None
+    fh = os.fdopen(fd, "rb")
+    mode = os.fstat(fh.fileno()).st_mode
+    if not stat.S_ISREG(mode):
+        fh.close()
+        if stat.S_ISDIR(mode):
+            raise InputError(f"{_show(p)}: is a directory, not a{'n' if what[0] in 'aeiou' else ''} {what}")
+        raise InputError(f"{_show(p)}: is not a regular file (it is a device, pipe or socket)")
+    return fh
 
 
 def _check_table_shape(p: Path, raw: bytes) -> None:
@@ -528,8 +559,12 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     return p
 
 
-def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = False) -> Path:
+def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO], None], *,
+                 force: bool = False) -> Path:
     """Write ``data`` to ``path`` atomically; refuse to replace a file unless ``force``.
+
+    ``data`` is text, bytes, or a function that writes the bytes to the binary file it is
+    given (a large output written piece by piece, never held whole).
 
     The text goes to a temporary file in the target directory, is flushed and synced,
     then renamed over the target, so a reader never sees half a file. Every check of
@@ -539,14 +574,17 @@ def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = Fa
     tx = _TRANSACTION.get()
     p = check_output(path, force=force, option=tx.label(path) if tx is not None else None)
     parent = p.parent if str(p.parent) else Path(".")
-    mode = "wb" if isinstance(data, bytes) else "w"
+    mode = "w" if isinstance(data, str) else "wb"
     tmp = None
     try:
         import tempfile
 
         fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:60]}.", suffix=".tmp", dir=parent)
         with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8", "newline": ""})) as fh:
-            fh.write(data)
+            if callable(data):
+                data(fh)
+            else:
+                fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o644)

@@ -32,7 +32,8 @@ if TYPE_CHECKING:
     import pandas as pd
 
 __all__ = ["TableError", "ReadAs", "SEPARATORS", "DECIMALS", "FORMATS", "detect_format", "detect_separator",
-           "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes"]
+           "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes",
+           "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_parquet_chunks"]
 
 #: CSV separators read (given with ``sep=`` / ``--sep`` or detected), in the order tried.
 SEPARATORS = (",", ";", "\t", "|")
@@ -477,3 +478,169 @@ def xlsx_bytes(frame: pd.DataFrame, sheet: str = "Design") -> bytes:
         for j, name in enumerate(frame.columns):
             ws.column_dimensions[_column_letter(j)].width = max(10, min(40, len(str(name)) + 2))
     return buf.getvalue()
+
+
+# --- tables too large to hold: piece by piece ---------------------------------------------
+
+#: Bytes read at a time when counting the lines of a CSV file.
+_BLOCK = 1 << 22
+
+
+def count_rows(fh: Any, fmt: str) -> int:
+    """Data rows of an open CSV (lines with text, less the header) or Parquet file (from its
+    metadata), read in blocks: memory stays bounded whatever the file's size. The file is
+    left at its start."""
+    fh.seek(0)
+    if fmt == "parquet":
+        import pyarrow.parquet as pq  # type: ignore[import-untyped]
+
+        try:
+            n = int(pq.ParquetFile(fh).metadata.num_rows)
+        except Exception as exc:
+            raise TableError(f"is not a readable Parquet file ({type(exc).__name__}: {str(exc)[:80]})") from None
+        fh.seek(0)
+        return n
+    lines, last = 0, b"\n"
+    while True:
+        block = fh.read(_BLOCK)
+        if not block:
+            break
+        lines += block.count(b"\n")
+        last = block[-1:]
+    fh.seek(0)
+    return lines + (last != b"\n") - 1
+
+
+def csv_chunks(fh: Any, *, sep: str | None = None, decimal: str = ".",
+               chunk_rows: int = 100_000) -> tuple[ReadAs, Any]:
+    """A CSV file read ``chunk_rows`` rows at a time: ``(ReadAs, iterator of DataFrames)``.
+
+    The separator is detected from the file's first lines (:func:`detect_separator`) unless
+    given; the header is checked as :func:`parse_csv` checks it, and every piece for the
+    other decimal mark. Each piece's index continues the one before (rows numbered from the
+    file's first data row). UTF-8 text only (UTF-16 files are read whole, :func:`parse_csv`).
+    """
+    import pandas as pd
+
+    check_choice(sep, SEPARATORS, "separator")
+    check_choice(decimal, DECIMALS, "decimal mark")
+    fh.seek(0)
+    head = fh.read(1 << 20)
+    fh.seek(0)
+    if head.startswith((b"\xff\xfe", b"\xfe\xff")) or b"\x00" in head:
+        raise TableError("a UTF-16 or binary file cannot be read piece by piece; save it as CSV UTF-8")
+    try:
+        text = head.decode("utf-8-sig", errors="strict" if len(head) < (1 << 20) else "ignore")
+    except UnicodeDecodeError as exc:
+        line = head.count(b"\n", 0, exc.start) + 1
+        raise TableError(f"is not a UTF-8 CSV text file (line {line}); save it as CSV UTF-8") from None
+    if len(head) == (1 << 20):
+        text = text[: text.rfind("\n") + 1] or text  # whole lines only
+    detected = sep is None
+    use = detect_separator(text, decimal) if sep is None else sep
+    header = _header(text, use)
+    if len(header) < 2:
+        raise TableError(f"is not a CSV table (found a single column {_quote(header[0] if header else '')}); "
+                         "expected columns separated by one of , ; tab | (or give --sep)")
+    check_columns(header, pd.DataFrame(index=[0]))
+    import io as _io
+
+    stream = _io.TextIOWrapper(fh, encoding="utf-8-sig", newline="")
+    try:
+        reader = pd.read_csv(stream, sep=use, decimal=decimal, skipinitialspace=True, chunksize=int(chunk_rows))
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, ValueError, UnicodeDecodeError) as exc:
+        raise TableError(f"is not a valid CSV file ({str(exc).strip().splitlines()[0][:120]})") from None
+
+    def pieces():
+        try:
+            for chunk in reader:
+                if not chunk.index.equals(pd.RangeIndex(chunk.index[0], chunk.index[0] + len(chunk))):
+                    raise TableError(f"a line near data row {int(chunk.index[0]) + 1} has more fields than the "
+                                     f"header ({len(header)} columns)")
+                chunk.columns = [str(c) for c in chunk.columns]
+                if use != ",":
+                    _refuse_other_decimal(chunk, decimal)
+                yield chunk
+        except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+            raise TableError(f"is not a valid CSV file ({str(exc).strip().splitlines()[0][:120]})") from None
+        finally:
+            try:
+                stream.detach()  # the caller closes the file
+            except ValueError:  # closed already
+                pass
+
+    return ReadAs("csv", use, decimal, detected), pieces()
+
+
+def parquet_chunks(fh: Any, *, chunk_rows: int = 100_000) -> tuple[ReadAs, Any]:
+    """A Parquet file read ``chunk_rows`` rows at a time (record batches):
+    ``(ReadAs, iterator of DataFrames)``; each piece's index continues the one before."""
+    try:
+        import pyarrow.parquet as pq  # type: ignore[import-untyped]
+    except ImportError as exc:
+        raise TableError(f"reading a Parquet file needs pyarrow (pip install pyarrow: {exc})") from None
+    try:
+        pf = pq.ParquetFile(fh)
+        names = [str(n) for n in pf.schema_arrow.names]
+    except Exception as exc:
+        raise TableError(f"is not a readable Parquet file ({type(exc).__name__}: {str(exc)[:80]})") from None
+    if len(names) < 2:
+        raise TableError(f"has a single column {_quote(names[0]) if names else ''}; expected one column per factor")
+
+    def pieces():
+        start = 0
+        try:
+            for batch in pf.iter_batches(batch_size=int(chunk_rows)):
+                df = batch.to_pandas()
+                df.columns = [str(c) for c in df.columns]
+                df.index = range(start, start + len(df))
+                start += len(df)
+                yield df
+        except TableError:
+            raise
+        except Exception as exc:
+            raise TableError(f"is not a readable Parquet file ({type(exc).__name__}: {str(exc)[:80]})") from None
+
+    import pandas as pd
+
+    check_columns(names, pd.DataFrame(index=[0]))  # the names; rows are counted piece by piece
+    return ReadAs("parquet"), pieces()
+
+
+def write_csv_chunks(fh: Any, frames: Any, *, float_format: str = "%.10g") -> int:
+    """Write DataFrames one after the other as one CSV file (the header once, from the first)
+    to the binary file ``fh``; returns the rows written. The columns of every piece must be
+    those of the first."""
+    rows, columns = 0, None
+    for df in frames:
+        if columns is None:
+            columns = list(df.columns)
+        elif list(df.columns) != columns:
+            raise TableError("the pieces of the table have different columns")
+        fh.write(df.to_csv(index=False, header=rows == 0, float_format=float_format,
+                           lineterminator="\n").encode("utf-8"))
+        rows += len(df)
+    return rows
+
+
+def write_parquet_chunks(fh: Any, frames: Any) -> int:
+    """Write DataFrames one after the other as one Parquet file (one row group each, the
+    schema of the first) to the binary file ``fh``; returns the rows written."""
+    import pyarrow as pa  # type: ignore[import-untyped]
+    import pyarrow.parquet as pq  # type: ignore[import-untyped]
+
+    writer = None
+    rows = 0
+    try:
+        for df in frames:
+            if writer is None:
+                table = pa.Table.from_pandas(df, preserve_index=False)
+                writer = pq.ParquetWriter(fh, table.schema)
+            else:
+                table = pa.Table.from_pandas(df, schema=writer.schema, preserve_index=False)
+            writer.write_table(table)
+            rows += len(df)
+    finally:
+        if writer is not None:
+            writer.close()
+    return rows

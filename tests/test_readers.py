@@ -198,3 +198,53 @@ def test_parse_csv_decimal_comma_exact():
     df, how = parse_csv(b"x;y\n0,1;-2,5e-3\n1,25;3\n", decimal=",")
     assert df["x"].tolist() == [0.1, 1.25] and df["y"].tolist() == [-0.0025, 3.0]
     assert how.describe() == "CSV, separator ';' (detected), decimal ','"
+
+
+# --- piece by piece (simulate's large designs) ---------------------------------------------
+
+def test_count_rows_and_pieces_equal_the_whole(tmp_path, table4):
+    from rsm_lrg.readers import count_rows, csv_chunks, parquet_chunks, write_csv_chunks, write_parquet_chunks
+
+    p = tmp_path / "semi.csv"
+    table4.to_csv(p, sep=";", decimal=",", index=False)
+    q = tmp_path / "t.parquet"
+    table4.to_parquet(q)
+    with open(p, "rb") as fh:
+        assert count_rows(fh, "csv") == 27
+        how, pieces = csv_chunks(fh, decimal=",", chunk_rows=10)
+        parts = list(pieces)
+    assert how == ReadAs("csv", ";", ",", True) and [len(x) for x in parts] == [10, 10, 7]
+    assert parts[2].index[0] == 20  # rows numbered in the whole file
+    _same(pd.concat(parts, ignore_index=True), table4)
+    p.write_bytes(p.read_bytes().rstrip(b"\n"))  # no final newline
+    with open(p, "rb") as fh:
+        assert count_rows(fh, "csv") == 27
+    with open(q, "rb") as fh:
+        assert count_rows(fh, "parquet") == 27
+        _, pieces = parquet_chunks(fh, chunk_rows=8)
+        parts = list(pieces)
+    assert [len(x) for x in parts] == [8, 8, 8, 3]
+    _same(pd.concat(parts, ignore_index=True), table4)
+    # written piece by piece: one CSV (header once) and one Parquet file
+    buf = io.BytesIO()
+    assert write_csv_chunks(buf, parts) == 27
+    assert buf.getvalue().decode() == table4.to_csv(index=False, float_format="%.10g", lineterminator="\n")
+    buf = io.BytesIO()
+    assert write_parquet_chunks(buf, parts) == 27
+    _same(pd.read_parquet(io.BytesIO(buf.getvalue())), table4)
+    with pytest.raises(TableError, match="different columns"):
+        write_csv_chunks(io.BytesIO(), [parts[0], parts[1].rename(columns={"order": "run"})])
+
+
+def test_pieces_refuse_what_the_whole_refuses(tmp_path):
+    from rsm_lrg.readers import csv_chunks
+
+    p = tmp_path / "bad.csv"
+    p.write_text("a;b\n" + "1;2\n" * 30 + "1,5;2\n")
+    with open(p, "rb") as fh:
+        _, pieces = csv_chunks(fh, chunk_rows=10)
+        with pytest.raises(TableError, match=r"column 'a' row 31: '1,5' is written with a decimal comma"):
+            list(pieces)
+    p.write_text("a;a\n1;2\n")
+    with open(p, "rb") as fh, pytest.raises(TableError, match="'a' appears more than once"):
+        csv_chunks(fh)
