@@ -231,10 +231,31 @@ def main(argv: list[str] | None = None) -> int:
             sys.stdout = guard.stream
 
 
+#: Commands that choose their BLAS thread count themselves (``fit`` keeps the threads for a
+#: large input, see ``cmd_fit``).
+OWN_THREADS = ("fit",)
+_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
+
+
+def _one_blas_thread(argv: list[str]) -> None:
+    """Ask for one BLAS thread before NumPy is loaded, for every command but those of
+    :data:`OWN_THREADS`: their matrices are small (a design search's are p x p, p <= 120;
+    R's reference BLAS is single-threaded too), and OpenBLAS's threads cost CPU time at
+    start-up and spin between the many small products of an exchange. Nothing is changed when
+    the user set a thread count or when NumPy is already loaded (``main()`` called in-process).
+    Processes started by a command (``simulate --workers``) inherit it."""
+    if "numpy" in sys.modules or any(v in os.environ for v in _THREAD_VARIABLES):
+        return
+    if _chosen_command(argv) in OWN_THREADS:
+        return
+    os.environ["OPENBLAS_NUM_THREADS"] = "1"
+
+
 def _main(argv: list[str] | None) -> int:
     from ..io import output_transaction
 
     argv = sys.argv[1:] if argv is None else list(argv)
+    _one_blas_thread(argv)
     debug = "--debug" in argv
     args = None
     try:
