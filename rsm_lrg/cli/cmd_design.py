@@ -53,6 +53,18 @@ def add_output_format(p: argparse.ArgumentParser) -> None:
                    help="an empty response column to add (repeatable; default for xlsx: one column 'response')")
 
 
+def write_design(design, out, args) -> None:
+    """Write a new :class:`~rsm_lrg.design.Design` to ``out``: the plain design CSV without
+    pandas (:meth:`~rsm_lrg.design.Design.csv_text`), else as :func:`write_design_frame`."""
+    from ..io import write_output
+
+    suffix = str(out).lower().rsplit(".", 1)[-1] if "." in str(out) else ""
+    if args.format in (None, "csv") and suffix != "xlsx" and not args.response:
+        write_output(out, design.csv_text(), force=args.force)
+    else:
+        write_design_frame(design.to_frame(), out, args)
+
+
 def write_design_frame(frame, out, args) -> None:
     """Write a design's table to ``out`` as CSV or an ``.xlsx`` workbook (``--format``, or the
     extension), with the ``--response`` columns present and empty."""
@@ -206,7 +218,7 @@ def run(args) -> int:
         return _augment(args, out)
     if args.kind in _NEW_KINDS:
         design = _new_kind(args)
-        write_design_frame(design.to_frame(), out, args)
+        write_design(design, out, args)
         print(design.summary())
         print(f"wrote {out}")
         return 0
@@ -231,7 +243,7 @@ def run(args) -> int:
     else:
         design = full_factorial(space, levels=args.levels, center=_center(args.center, False),
                                 seed=args.seed, randomize=randomize)
-    write_design_frame(design.to_frame(), out, args)
+    write_design(design, out, args)
     print(design.summary())
     print(f"wrote {out}")
     return 0
