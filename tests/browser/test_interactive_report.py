@@ -330,6 +330,20 @@ def test_surface_follows_the_profiler(page2):
     assert log["errors"] == []
 
 
+def test_surface_opens_from_above_at_an_angle(page2):
+    # issue 25: the 3-D surface used to open edge-on; its camera now looks down on it
+    page, log, _, _ = page2
+    page.select_option("#surface-x", "thickness_m")
+    page.select_option("#surface-y", "velocity_m_s")
+    page.evaluate("() => window.rsmReport.drawNow()")
+    eye = page.evaluate("() => document.getElementById('surface-plot')._fullLayout.scene.camera.eye")
+    elevation = np.degrees(np.arctan2(eye["z"], np.hypot(eye["x"], eye["y"])))
+    azimuth = np.degrees(np.arctan2(eye["y"], eye["x"])) % 90
+    assert 20 <= elevation <= 50, eye  # from above, not edge-on (0) nor straight down (90)
+    assert 20 <= azimuth <= 70, eye  # both factor axes in view, neither seen end-on
+    assert log["errors"] == []
+
+
 def test_no_network_no_console_error(page2):
     page, log, url, _ = page2
     page.wait_for_timeout(200)

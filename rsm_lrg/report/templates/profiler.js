@@ -391,6 +391,10 @@
                               yaxis: axis(esc(g.fy.letter + ": " + g.fy.name))}, CONFIG);
   }
 
+  // The 3-D surface opens seen from above at an angle (as Design-Expert and JMP open theirs):
+  // 30 degrees of elevation, from the low corner of both factors; a user's rotation is kept.
+  var SURFACE_CAMERA = {eye: {x: -1.5, y: -1.5, z: 1.22}, up: {x: 0, y: 0, z: 1}, center: {x: 0, y: 0, z: -0.1}};
+
   function drawSurface(s) {
     var el3 = document.getElementById("surface-plot"), el2 = document.getElementById("contour-plot");
     if (!el3) return;
@@ -410,7 +414,7 @@
        name: "current setting"}],
       {margin: {l: 0, r: 0, t: 10, b: 0}, showlegend: false, uirevision: "keep",
        scene: {aspectmode: "cube", xaxis: axis(xl), yaxis: axis(yl), zaxis: axis(zl),
-               camera: keepCamera || undefined}}, CONFIG);
+               camera: keepCamera || SURFACE_CAMERA}}, CONFIG);
     Plotly.react(el2, [
       {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true, labelformat: ".4~g"}, colorbar: {title: {text: zl}, exponentformat: "power"}},
       {type: "scatter", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], marker: {size: 10, color: "#a11d1d"},
