@@ -146,14 +146,13 @@ def open_input(path: str | os.PathLike, what: str = "file"):
         raise InputError(f"{_show(p)}: cannot be read ({exc.strerror or type(exc).__name__})") from None
     except ValueError:
         raise InputError(f"{_show(p)}: not a valid file name (it contains a NUL character)") from None
-    fh = os.fdopen(fd, "rb")
-    mode = os.fstat(fh.fileno()).st_mode
+    mode = os.fstat(fd).st_mode
     if not stat.S_ISREG(mode):
-        fh.close()
+        os.close(fd)
         if stat.S_ISDIR(mode):
             raise InputError(f"{_show(p)}: is a directory, not a{'n' if what[0] in 'aeiou' else ''} {what}")
         raise InputError(f"{_show(p)}: is not a regular file (it is a device, pipe or socket)")
-    return fh
+    return os.fdopen(fd, "rb")
 
 
 def _check_table_shape(p: Path, raw: bytes) -> None:
