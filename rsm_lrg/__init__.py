@@ -38,6 +38,7 @@ _LAZY = {
     "load_table3": "rsm_lrg.datasets",
     "load_table5": "rsm_lrg.datasets",
     "load_equation19": "rsm_lrg.datasets",
+    "read_table": "rsm_lrg.io",
 }
 
 

@@ -1,7 +1,9 @@
 """Reading input tables and writing outputs safely.
 
 Every command reads its data through :func:`read_table` (clear errors that name the file,
-the column and the row; the file is only ever opened for reading) and writes through
+the column and the row; the file is only ever opened for reading): CSV in any common dialect,
+an Excel workbook, a single Parquet file or standard input (``-``); the formats are parsed by
+:mod:`rsm_lrg.readers` from the bytes read here. Outputs are written through
 :func:`write_output` (atomic: a temporary file in the same directory, then a rename; an
 existing file is kept unless ``force=True``).
 
@@ -26,11 +28,13 @@ import math
 import os
 import re
 import sys
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
-__all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "check_output",
-           "output_transaction", "read_table", "read_toml", "toml_value", "write_output", "dump_json",
+__all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "open_input", "check_output",
+           "output_transaction", "read_table", "read_table_as", "read_stdin_bytes", "read_toml", "toml_value",
+           "write_output", "dump_json",
            "to_jsonable", "numeric_column", "float_column", "is_empty_cell", "cell_error", "COMMA_NUMBER"]
 
 
@@ -122,12 +126,44 @@ def read_input_bytes(path: str | os.PathLike, what: str = "file", *, limit: int 
     return raw
 
 
+def open_input(path: str | os.PathLike, what: str = "file"):
+    """An input file opened for reading in binary, for a reader that goes through it piece by
+    piece (:mod:`rsm_lrg.surrogate.stream`: no size limit, memory bounded by the piece): the
+    checks of :func:`read_input_bytes` but the size (a directory, device, pipe or socket is
+    refused at once, so nothing hangs), or :class:`InputError` naming it."""
+    import stat
+
+    p = Path(path)
+    if not str(path).strip():
+        raise InputError(f"an empty path was given for the {what}")
+    try:
+        fd = os.open(p, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
+    except FileNotFoundError:
+        raise InputError(f"{_show(p)}: no such {what}") from None
+    except IsADirectoryError:
+        raise InputError(f"{_show(p)}: is a directory, not a{'n' if what[0] in 'aeiou' else ''} {what}") from None
+    except OSError as exc:
+        raise InputError(f"{_show(p)}: cannot be read ({exc.strerror or type(exc).__name__})") from None
+    except ValueError:
+        raise InputError(f"{_show(p)}: not a valid file name (it contains a NUL character)") from None
+    mode = os.fstat(fd).st_mode
+    if not stat.S_ISREG(mode):
+        os.close(fd)
+        if stat.S_ISDIR(mode):
+            raise InputError(f"{_show(p)}: is a directory, not a{'n' if what[0] in 'aeiou' else ''} {what}")
+        raise InputError(f"{_show(p)}: is not a regular file (it is a device, pipe or socket)")
+    return os.fdopen(fd, "rb")
+
+
 def _check_table_shape(p: Path, raw: bytes) -> None:
     """Refuse, before parsing, a table with a line over :data:`MAX_LINE_BYTES`, more than
-    :data:`MAX_COLUMNS` columns or more than :data:`MAX_ROWS` rows."""
+    :data:`MAX_COLUMNS` columns (split by any of the separators read) or more than
+    :data:`MAX_ROWS` rows."""
     import csv
 
     import numpy as np
+
+    from .readers import SEPARATORS
 
     nl = np.flatnonzero(np.frombuffer(raw, dtype=np.uint8) == 10)
     ends = np.concatenate([[-1], nl, [len(raw)]])
@@ -137,12 +173,14 @@ def _check_table_shape(p: Path, raw: bytes) -> None:
         raise InputError(f"{_show(p)}: line {line} is longer than the limit of {_mib(MAX_LINE_BYTES)}")
     rows = int(np.count_nonzero(lengths > 0)) - 1
     if rows > MAX_ROWS:
-        raise InputError(f"{_show(p)}: has {rows} data rows, more than the limit of {MAX_ROWS}")
+        raise InputError(f"{_show(p)}: has {rows} data rows, more than the limit of {MAX_ROWS} {_HELD}")
     first = raw[: int(nl[0]) if nl.size else len(raw)].decode("utf-8-sig", errors="replace")
-    try:
-        ncol = len(next(csv.reader([first]), []))
-    except csv.Error:
-        ncol = first.count(",") + 1
+    ncol = 0
+    for sep in SEPARATORS:
+        try:
+            ncol = max(ncol, len(next(csv.reader([first], delimiter=sep), [])))
+        except csv.Error:
+            ncol = max(ncol, first.count(sep) + 1)
     if ncol > MAX_COLUMNS:
         raise InputError(f"{_show(p)}: the header has {ncol} columns, more than the limit of {MAX_COLUMNS}")
 
@@ -159,59 +197,96 @@ def show_path(p: str | os.PathLike, limit: int = 120) -> str:
 _show = show_path
 
 
-def read_table(path: str | os.PathLike):
-    """Read a CSV file into a DataFrame, or raise :class:`InputError` naming the problem.
+#: Said of the limits on a table held in memory: how to go further.
+_HELD = ("for a table held in memory; for more, fit a folder of Parquet or CSV files (read partition by "
+         "partition with Dask)")
 
-    Checks: the file exists and is a file, is not empty, parses as CSV with a header
-    row and at least one data row, and has no duplicated or blank column names.
+#: The name standard input goes by in messages.
+STDIN_NAME = "<stdin>"
+
+
+def read_stdin_bytes(limit: int = MAX_TABLE_BYTES) -> bytes:
+    """Standard input's bytes (at most ``limit``), or :class:`InputError`: when it is a
+    terminal (nothing piped in: reading would wait for typing) or larger than ``limit``."""
+    stream = getattr(sys.stdin, "buffer", None)
+    if stream is None or sys.stdin.closed:
+        raise InputError("- names standard input, but there is none to read")
+    try:
+        terminal = sys.stdin.isatty()
+    except (ValueError, AttributeError):  # closed, or not a file
+        terminal = False
+    if terminal:
+        raise InputError("- names standard input, but nothing is piped in (cat runs.csv | rsm-lrg ... -)")
+    raw = stream.read(limit + 1)
+    if len(raw) > limit:
+        raise InputError(f"{STDIN_NAME}: is larger than the limit of {_mib(limit)} {_HELD}")
+    return raw
+
+
+def read_table(path, *, sep: str | None = None, decimal: str = ".", sheet: str | None = None):
+    """Read a table into a DataFrame, or raise :class:`InputError` naming the problem.
+
+    Parameters
+    ----------
+    path : str, os.PathLike or pandas.DataFrame
+        A CSV file, an Excel workbook (``.xlsx``), a single Parquet file, or ``"-"`` for
+        standard input (any of the three formats); a DataFrame is returned as it is. The
+        format is told by the file's first bytes (:func:`rsm_lrg.readers.detect_format`).
+    sep : str, optional
+        The CSV separator: ``","``, ``";"``, ``"\\t"`` or ``"|"``; detected when None.
+    decimal : str
+        The CSV decimal mark, ``"."`` (default) or ``","``.
+    sheet : str, optional
+        The workbook sheet; needed when the workbook has several.
+
+    Checks: the file exists and is a file, is not empty, has a header row and at least one
+    data row, no duplicated or blank column names, and is within the limits
+    (:data:`MAX_TABLE_BYTES`, :data:`MAX_ROWS`, :data:`MAX_COLUMNS`). What was read (format,
+    separator, decimal mark, sheet) is returned by :func:`read_table_as`.
     """
+    return read_table_as(path, sep=sep, decimal=decimal, sheet=sheet)[0]
+
+
+def read_table_as(path, *, sep: str | None = None, decimal: str = ".", sheet: str | None = None):
+    """:func:`read_table` that also returns what it read: ``(DataFrame, ReadAs)`` (a
+    :class:`rsm_lrg.readers.ReadAs`; ``None`` for a DataFrame given)."""
     import pandas as pd
 
-    p = Path(path)
-    raw = read_input_bytes(p, "file", limit=MAX_TABLE_BYTES)
+    from . import readers
+
+    if isinstance(path, pd.DataFrame):
+        return path, None
+    stdin = str(path) == "-"
+    p = Path(STDIN_NAME if stdin else path)
+    name = STDIN_NAME if stdin else _show(p)
+    try:
+        readers.check_choice(sep, readers.SEPARATORS, "--sep")
+        readers.check_choice(decimal, readers.DECIMALS, "--decimal")
+    except readers.TableError as exc:
+        raise InputError(str(exc)) from None
+    raw = read_stdin_bytes(MAX_TABLE_BYTES) if stdin else read_input_bytes(p, "file", limit=MAX_TABLE_BYTES)
     if not raw.strip():
-        raise InputError(f"{p}: the file is empty")
-    if b"\x00" in raw:
-        raise InputError(f"{p}: is not a CSV text file (it contains NUL bytes)")
-    _check_table_shape(p, raw)
+        raise InputError(f"{name}: the file is empty" if not stdin else f"{name}: nothing was read (empty input)")
     try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        line = raw.count(b"\n", 0, exc.start) + 1
-        raise InputError(f"{p}: is not a UTF-8 CSV text file (line {line})") from None
-    import io as _io
-
-    try:
-        df = pd.read_csv(_io.StringIO(text), skipinitialspace=True)
-    except (pd.errors.ParserError, pd.errors.EmptyDataError, ValueError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise InputError(f"{p}: is not a valid CSV file ({first})") from None
-    cols = [str(c) for c in df.columns]
-    if any(c.startswith("Unnamed:") or not c.strip() for c in cols):
-        raise InputError(f"{p}: the header row has a blank column name")
-    # duplicates from the header line itself: pandas renames a repeated 'x' to 'x.1', so a
-    # suffix proves nothing ('stroke_m' and 'stroke_m.1' may both be real columns)
-    import csv
-
-    try:
-        header = next(csv.reader(_io.StringIO(text, newline=""), skipinitialspace=True), [])
-    except csv.Error as exc:
-        raise InputError(f"{p}: is not a valid CSV file (header: {exc})") from None
-    seen = set()
-    for c in header:
-        if c in seen:
-            raise InputError(f"{p}: column {quote_user_value(c)} appears more than once in the header")
-        seen.add(c)
-    if not df.index.equals(pd.RangeIndex(len(df))):  # pandas took the first column for an index
-        raise InputError(f"{p}: line 2 has more fields than the header ({len(header)} columns); a number "
-                         "written with a comma (1,234) or a missing column name?")
-    if df.shape[0] == 0:
-        raise InputError(f"{p}: has a header but no data rows")
-    if df.shape[1] < 2:
-        raise InputError(f"{p}: is not a CSV table (found a single column {quote_user_value(cols[0])}); "
-                         "expected comma-separated columns")
-    df.columns = cols
-    return df
+        kind = readers.detect_format(raw, "" if stdin else p.suffix)
+        if kind != "xlsx" and sheet is not None:
+            raise readers.TableError(f"--sheet {quote_user_value(sheet)} is for an Excel workbook; this is {kind.upper()}")
+        if kind != "csv" and (sep is not None or decimal != "."):
+            raise readers.TableError(f"--sep and --decimal are for CSV text; this is {kind.upper()}")
+        if kind == "xlsx":
+            return readers.parse_xlsx(raw, sheet=sheet, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
+        if kind == "parquet":
+            return readers.parse_parquet(raw, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
+        if raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # UTF-16: the limits are checked on the table read
+            df, how = readers.parse_csv(raw, sep=sep, decimal=decimal)
+            if len(df) > MAX_ROWS or df.shape[1] > MAX_COLUMNS:
+                raise readers.TableError(f"has {len(df)} rows and {df.shape[1]} columns, more than the limits of "
+                                         f"{MAX_ROWS} and {MAX_COLUMNS}")
+            return df, how
+        _check_table_shape(p, raw)
+        return readers.parse_csv(raw, sep=sep, decimal=decimal)
+    except readers.TableError as exc:
+        raise InputError(f"{name}: {exc}") from None
 
 
 def read_toml(path: str | os.PathLike, what: str = "file") -> dict:
@@ -483,8 +558,12 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     return p
 
 
-def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = False) -> Path:
+def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO], None], *,
+                 force: bool = False) -> Path:
     """Write ``data`` to ``path`` atomically; refuse to replace a file unless ``force``.
+
+    ``data`` is text, bytes, or a function that writes the bytes to the binary file it is
+    given (a large output written piece by piece, never held whole).
 
     The text goes to a temporary file in the target directory, is flushed and synced,
     then renamed over the target, so a reader never sees half a file. Every check of
@@ -494,14 +573,16 @@ def write_output(path: str | os.PathLike, data: str | bytes, *, force: bool = Fa
     tx = _TRANSACTION.get()
     p = check_output(path, force=force, option=tx.label(path) if tx is not None else None)
     parent = p.parent if str(p.parent) else Path(".")
-    payload = data if isinstance(data, bytes) else data.encode("utf-8")  # text as written: no newline translation
     tmp = None
     try:
         import tempfile
 
         fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:60]}.", suffix=".tmp", dir=parent)
         with os.fdopen(fd, "wb") as fh:
-            fh.write(payload)
+            if callable(data):
+                data(fh)
+            else:  # text as written (UTF-8, no newline translation)
+                fh.write(data.encode("utf-8") if isinstance(data, str) else data)
             fh.flush()
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o644)

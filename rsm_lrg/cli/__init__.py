@@ -156,6 +156,9 @@ def _error_line(msg: str) -> str:
     :data:`MAX_ERROR_LINE` characters."""
     import re
 
+    # a library hint in Python syntax ("use method='optimal'") in the command line's ("use --method optimal")
+    msg = re.sub(r"\buse ([a-z][a-z_]*)='([^'\s]*)'", lambda m: f"use --{m.group(1).replace('_', '-')} {m.group(2)}",
+                 str(msg))
     words = []
     for w in str(msg).split():  # a 300-digit number or a 10 MB token quoted by a library message
         if len(w) > 60:
@@ -228,10 +231,31 @@ def main(argv: list[str] | None = None) -> int:
             sys.stdout = guard.stream
 
 
+#: Commands that choose their BLAS thread count themselves (``fit`` keeps the threads for a
+#: large input, see ``cmd_fit``).
+OWN_THREADS = ("fit",)
+_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
+
+
+def _one_blas_thread(argv: list[str]) -> None:
+    """Ask for one BLAS thread before NumPy is loaded, for every command but those of
+    :data:`OWN_THREADS`: their matrices are small (a design search's are p x p, p <= 120;
+    R's reference BLAS is single-threaded too), and OpenBLAS's threads cost CPU time at
+    start-up and spin between the many small products of an exchange. Nothing is changed when
+    the user set a thread count or when NumPy is already loaded (``main()`` called in-process).
+    Processes started by a command (``simulate --workers``) inherit it."""
+    if "numpy" in sys.modules or any(v in os.environ for v in _THREAD_VARIABLES):
+        return
+    if _chosen_command(argv) in OWN_THREADS:
+        return
+    os.environ["OPENBLAS_NUM_THREADS"] = "1"
+
+
 def _main(argv: list[str] | None) -> int:
     from ..io import output_transaction
 
     argv = sys.argv[1:] if argv is None else list(argv)
+    _one_blas_thread(argv)
     debug = "--debug" in argv
     args = None
     try:
@@ -250,6 +274,8 @@ def _main(argv: list[str] | None) -> int:
             warnings.simplefilter("default")
             with output_transaction(inputs=input_paths(args), labels={path: label for label, path in outputs}):
                 status = args._run(args)
+        for note in getattr(args, "notes_at_end", None) or ():  # what was read (_common.read_input)
+            print(f"note: {note}", file=sys.stderr)
         # a library warning is one line after a success; after an error only the error line shows
         for msg in dict.fromkeys(" ".join(str(w.message).split()) for w in caught
                                  if not issubclass(w.category, (DeprecationWarning, PendingDeprecationWarning))):

@@ -239,8 +239,54 @@ def add_block_option(p: argparse.ArgumentParser, role: str = "effects sum to zer
 
 def add_data_response(parser: argparse.ArgumentParser) -> None:
     """DATA.csv (the runs) and ``--response COL``: what every analysis command reads."""
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
+    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each (CSV, .xlsx, .parquet or - for stdin)")
     parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    add_reader_options(parser)
+
+
+# --- reading the input table (rsm_lrg.io.read_table_as) --------------------------------------
+
+#: ``--sep`` words for separators awkward to type.
+SEP_WORDS = {"tab": "\t", "\\t": "\t", "comma": ",", "semicolon": ";", "pipe": "|"}
+
+
+def _separator(text: str) -> str:
+    sep = SEP_WORDS.get(text.lower(), text)
+    if sep not in (",", ";", "\t", "|"):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a separator read (one of , ; tab |)")
+    return sep
+
+
+def add_reader_options(parser: argparse.ArgumentParser) -> None:
+    """``--sep``, ``--decimal`` and ``--sheet``: how the input table is read
+    (:func:`rsm_lrg.io.read_table`)."""
+    g = parser.add_argument_group("reading the input table")
+    g.add_argument("--sep", type=_separator, default=None, metavar="SEP",
+                   help="CSV separator: , ; tab or | (default: detected, and stated)")
+    g.add_argument("--decimal", choices=[".", ","], default=".", help="CSV decimal mark (default .)")
+    g.add_argument("--sheet", metavar="NAME", default=None,
+                   help="the sheet of an .xlsx workbook (needed when it has several)")
+
+
+def read_input(args: argparse.Namespace, path=None):
+    """The table ``path`` (default ``args.data``) read with the command's ``--sep``,
+    ``--decimal`` and ``--sheet``. Unless it was plain comma-separated CSV, what was read
+    (format, separator and whether detected, decimal mark, sheet) is added to
+    ``args.notes_at_end``: ``rsm-lrg`` prints them as ``note:`` lines on stderr when the command
+    succeeds (after an error only the one ``error:`` line is printed)."""
+    from ..io import STDIN_NAME, read_table_as
+
+    path = args.data if path is None else path
+    df, how = read_table_as(path, sep=getattr(args, "sep", None), decimal=getattr(args, "decimal", "."),
+                            sheet=getattr(args, "sheet", None))
+    if how is not None and (not how.plain or str(path) == "-"):
+        name = STDIN_NAME if str(path) == "-" else str(path)
+        notes = getattr(args, "notes_at_end", None)
+        if notes is None:
+            notes = []
+            args.notes_at_end = notes
+        notes.append(f"read {name}: {how.describe()}")
+    return df
 
 
 def print_summary_or_json(args: argparse.Namespace, result, *, extra: dict | None = None,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, add_json
+from ._common import about_file, add_force, add_json, add_reader_options
 
 NAME = "calibrate"
 HELP = "fit the surrogate's unknown parameters to measured runs"
@@ -26,6 +26,7 @@ DESCRIPTION = (
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("data", metavar="DATA.csv", help="measured runs: the design columns and the response")
+    add_reader_options(p)
     p.add_argument("--response", required=True, metavar="COL", help="the measured column (e.g. tcr_c_per_min)")
     p.add_argument("--model", default="v4", choices=("v4", "v4-coulomb", "v3", "v3-overconstraint", "v2"),
                    help="calibration model: the physics it fixes and its default parameters (default v4: "
@@ -62,9 +63,10 @@ def run(args) -> int:
     import sys
     from pathlib import Path
 
-    from ..io import InputError, dump_json, read_table, write_output
+    from ..io import InputError, dump_json, write_output
     from ..surrogate.calibrate import calibrate, calibration_toml, file_sha256
     from ..surrogate.runs import check_duration
+    from ._common import read_input
 
     if args.output and Path(args.output).exists() and not args.force:
         raise InputError(f"{args.output}: already exists; use --force to overwrite it")
@@ -72,7 +74,7 @@ def run(args) -> int:
         duration = check_duration(args.duration_min, "--duration-min")
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    data = read_table(args.data)
+    data = read_input(args)
     with about_file(args.data):
         cal = calibrate(data, args.response, parameters=args.parameter, duration_min=duration,
                         loo=not args.no_loo, source=_safe_name(Path(args.data).name),

@@ -69,14 +69,13 @@ def _check_at(settings) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import read_table
     from ..model import fit
     from ..optimize.confirm import confirm
-    from ._common import model_spec, print_notes, print_summary_or_json
+    from ._common import model_spec, print_notes, print_summary_or_json, read_input
 
     _check_at(args.at)
     spec = model_spec(args)
-    data = read_table(args.data)
+    data = read_input(args)
     with about_file(args.data):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=spec)
     extra = {"reduction": result.reduction.to_dict()} if result.reduction is not None else {}

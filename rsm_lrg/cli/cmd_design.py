@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import add_force, whole_number
+from ._common import add_force, add_reader_options, whole_number
 
 NAME = "design"
 HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, augment, "
@@ -24,6 +24,7 @@ def _common(p: argparse.ArgumentParser, center_default, center_help: str) -> Non
                    help="seed of the randomised run order (default: drawn and printed)")
     p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
     p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
+    add_output_format(p)
     add_force(p)
 
 
@@ -39,7 +40,56 @@ def _base(p: argparse.ArgumentParser, factors: bool = True, constraint: bool = F
                    help="seed of the search and of the randomised run order (default: drawn and printed)")
     p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
     p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
+    add_output_format(p)
     add_force(p)
+
+
+def add_output_format(p: argparse.ArgumentParser) -> None:
+    """``--format csv|xlsx`` and ``--response COL``: the design as a CSV file or as a workbook
+    to fill in (a sheet with an empty column per response)."""
+    p.add_argument("--format", choices=["csv", "xlsx"], default=None,
+                   help="csv or xlsx (a workbook to fill in); default from the output's extension, else csv")
+    p.add_argument("--response", action="append", default=None, metavar="COL",
+                   help="an empty response column to add (repeatable; default for xlsx: one column 'response')")
+
+
+def write_design(design, out, args) -> None:
+    """Write a new :class:`~rsm_lrg.design.Design` to ``out``: the plain design CSV without
+    pandas (:meth:`~rsm_lrg.design.Design.csv_text`), else as :func:`write_design_frame`."""
+    from ..io import write_output
+
+    suffix = str(out).lower().rsplit(".", 1)[-1] if "." in str(out) else ""
+    if args.format in (None, "csv") and suffix != "xlsx" and not args.response:
+        write_output(out, design.csv_text(), force=args.force)
+    else:
+        write_design_frame(design.to_frame(), out, args)
+
+
+def write_design_frame(frame, out, args) -> None:
+    """Write a design's table to ``out`` as CSV or an ``.xlsx`` workbook (``--format``, or the
+    extension), with the ``--response`` columns present and empty."""
+    from ..io import InputError, quote_user_value, write_output
+    from ..readers import xlsx_bytes
+
+    suffix = str(out).lower().rsplit(".", 1)[-1] if "." in str(out) else ""
+    fmt = args.format or ("xlsx" if suffix == "xlsx" else "csv")
+    if args.format == "xlsx" and suffix != "xlsx":
+        raise InputError(f"--format xlsx: name the output .xlsx (got {quote_user_value(str(out))})")
+    if fmt == "csv" and suffix == "xlsx":
+        raise InputError(f"--format csv: the output {quote_user_value(str(out))} is named .xlsx")
+    responses = args.response if args.response is not None else (
+        ["response"] if fmt == "xlsx" and "response" not in frame.columns else [])
+    frame = frame.copy()
+    for col in responses:
+        if col in frame.columns:
+            raise InputError(f"--response {quote_user_value(col)}: the design already has a column of that name")
+        if not col.strip():
+            raise InputError("--response: an empty column name")
+        frame[col] = None
+    if fmt == "xlsx":
+        write_output(out, xlsx_bytes(frame, sheet="Design"), force=args.force)
+    else:
+        write_output(out, frame.to_csv(index=False, lineterminator="\n"), force=args.force)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -65,6 +115,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                                     "with their responses: D/I/A-optimal runs for a bigger model, star and "
                                     "centre points (a two-level factorial becomes a CCD), or the fold-over.")
     ag.add_argument("design", metavar="DESIGN.csv", help="the design (or data) CSV whose runs are kept")
+    add_reader_options(ag)
     ag.add_argument("--method", default="optimal", choices=["optimal", "ccd", "foldover"],
                     help="how to add runs (default optimal)")
     ag.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
@@ -106,11 +157,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         if name == "latin-hypercube":
             sp.add_argument("--criterion", default="discrepancy", choices=["discrepancy", "maximin"],
                             help="space-filling criterion (default discrepancy)")
-    bb = sub.add_parser("box-behnken", help="Box-Behnken design, 3 to 7 factors (Box & Behnken 1960)",
-                        description="Box-Behnken design for 3 to 7 factors as published by Box & Behnken (1960).")
+    bb = sub.add_parser("box-behnken", help="Box-Behnken design, 3-7, 9-12 or 16 factors (Box & Behnken 1960)",
+                        description="Box-Behnken design for 3 to 7, 9 to 12 or 16 factors as published by Box "
+                                    "& Behnken (1960).")
     _common(bb, "3", "centre runs (per block when blocked; default 3)")
     bb.add_argument("--blocks", type=whole_number(1), default=None, metavar="N",
-                    help="orthogonal blocks: 3 for 4 factors, 2 for 5 factors (default 1)")
+                    help="orthogonal blocks: 3 for 4 factors, 2 for 5, 5 for 9, 6 for 16 (default 1)")
     cc = sub.add_parser("central-composite", help="central composite design (2^k cube + star + centre)",
                         description="Central composite design with a full 2^k cube.")
     _common(cc, "4,4", "centre runs: N, or CUBE,STAR (default 4,4)")
@@ -120,10 +172,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                     help="where the star points sit (default circumscribed)")
     cc.add_argument("--blocks", type=whole_number(1), default=None, metavar="N",
                     help="2: cube and star in separate blocks (default 1)")
-    ff = sub.add_parser("full-factorial", help="full factorial, equally spaced levels (default 3^k)",
-                        description="Full factorial design with equally spaced levels.")
+    ff = sub.add_parser("full-factorial", help="full factorial, equally spaced levels (default 2^k)",
+                        description="Full factorial design with equally spaced levels (two by default, as "
+                                    "Design-Expert and JMP: the classic factorial, augmented to a CCD with "
+                                    "design augment --method ccd).")
     _common(ff, "0", "extra centre runs (default 0)")
-    ff.add_argument("--levels", type=whole_number(2), default=3, metavar="N", help="levels per factor (default 3)")
+    ff.add_argument("--levels", type=whole_number(2), default=2, metavar="N", help="levels per factor (default 2)")
 
 
 #: Most centre runs per block: replicates of one point, far beyond any experiment.
@@ -164,7 +218,7 @@ def run(args) -> int:
         return _augment(args, out)
     if args.kind in _NEW_KINDS:
         design = _new_kind(args)
-        design.to_csv(out, force=args.force)
+        write_design(design, out, args)
         print(design.summary())
         print(f"wrote {out}")
         return 0
@@ -189,7 +243,7 @@ def run(args) -> int:
     else:
         design = full_factorial(space, levels=args.levels, center=_center(args.center, False),
                                 seed=args.seed, randomize=randomize)
-    design.to_csv(out, force=args.force)
+    write_design(design, out, args)
     print(design.summary())
     print(f"wrote {out}")
     return 0
@@ -297,12 +351,13 @@ def _augment(args, out) -> int:
     from ..design import Design
     from ..design.augment import augment
     from ..design.core import BLOCK_COLUMN
-    from ..io import InputError, read_table, write_output
+    from ..io import InputError
+    from ._common import read_input
 
     src = Path(args.design)
     if src.exists() and out.exists() and src.resolve() == out.resolve():
         raise InputError(f"-o/--output: {out} is the input design; an input file is never overwritten")
-    df = read_table(src)
+    df = read_input(args, src)
     try:
         design = Design.from_frame(df)
     except ValueError as exc:
@@ -337,7 +392,7 @@ def _augment(args, out) -> int:
     if missing:
         raise InputError(f"{src}: lacks the column(s) {', '.join(missing)} of a design CSV")
     merged = pd.concat([old, add.astype(object)], ignore_index=True) if len(old) else add
-    write_output(out, merged.to_csv(index=False, lineterminator="\n"), force=args.force)
+    write_design_frame(merged, out, args)
     print(aug.summary())
     print(f"wrote {out}")
     return 0

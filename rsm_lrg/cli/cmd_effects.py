@@ -22,14 +22,18 @@ DESCRIPTION = (
     "Fit the runs in coded units and list the effect of every one-df term (twice its coded "
     "coefficient: the change from -1 to +1) with its half-normal score and Lenth's (1989) "
     "pseudo standard error, margin of error (ME) and simultaneous margin of error (SME), for "
-    "unreplicated designs where the ANOVA has no error to test against. --model full fits "
-    "every interaction of the factors (the saturated model of a 2^k factorial); --term picks "
-    "the terms. --plot writes the half-normal plot (PNG or SVG by the file's extension)."
+    "unreplicated designs where the ANOVA has no error to test against. The default --model "
+    "saturated fits the largest model the runs estimate: the main effects and, lowest order "
+    "first, each interaction orthogonal to them (one term of each alias chain of a fractional "
+    "factorial, the chains listed); --model full fits every interaction of the factors (a full "
+    "2^k factorial); --term picks the terms. --plot writes the half-normal plot (PNG or SVG by "
+    "the file's extension)."
 )
 
-#: The models the command fits: the standard orders up to two-factor interactions, or every
-#: interaction of the factors (products of distinct factors).
-MODELS = ("linear", "2fi", "full")
+#: The models the command fits: the largest the design estimates (main effects and the
+#: interactions orthogonal to them), the standard orders up to two-factor interactions, or
+#: every interaction of the factors (products of distinct factors).
+MODELS = ("saturated", "linear", "2fi", "full")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -38,8 +42,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_data_response(parser)
     add_factor_options(parser)
     add_block_option(parser)
-    parser.add_argument("--model", default="full", choices=list(MODELS),
-                        help="main effects, + two-factor interactions, or every interaction (default full)")
+    parser.add_argument("--model", default="saturated", choices=list(MODELS),
+                        help="saturated: the largest model the runs estimate, alias chains named (default); "
+                             "linear: main effects; 2fi: + two-factor interactions; full: every interaction")
     parser.add_argument("--term", action="append", default=None, metavar="TERM",
                         help="fit only these terms (repeatable, e.g. --term A --term AB); overrides --model")
     from ._common import add_terms_options
@@ -60,24 +65,38 @@ def _full_terms(letters) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import dump_json, read_table, write_output
+    from ..io import dump_json, write_output
     from ..model import fit
-    from ..model.effects import screening_effects
+    from ..model.effects import largest_estimable_model, screening_effects
+    from ._common import read_input
 
     fmt = plot_format(args.plot)
-    data = read_table(args.data)
+    data = read_input(args)
     from ._common import model_spec
 
     given = model_spec(args, order="2fi").terms if args.terms is not None else ()  # a bad --terms named first
     terms = (args.term or []) + list(given or ()) or None  # --term and --terms together
     with about_file(args.data):
-        model = "2fi" if args.model == "full" else args.model
-        if terms is None and args.model == "full":  # the factors as the fit finds them, then all their products
+        model = "2fi" if args.model in ("full", "saturated") else args.model
+        aliases: dict = {}
+        if terms is None and args.model in ("full", "saturated"):  # the factors as the fit finds them
             first = fit(data, args.response, factors=args.factor, block=args.block, model="linear")
-            terms = _full_terms([f.letter for f in first.space.factors])
+            letters = [f.letter for f in first.space.factors]
+            if args.model == "full":
+                terms = _full_terms(letters)
+                n = len(first.y)
+                if n < len(terms) + 1:
+                    raise ValueError(f"{n} runs cannot fit the full model (every interaction of {len(letters)} "
+                                     f"factors: {len(terms)} effects and the intercept); the default --model "
+                                     "saturated fits the effects these runs estimate and names their aliases")
+            else:
+                n_blocks = len(first.block_levels or {}) or 1
+                found = largest_estimable_model(first.coded[letters].to_numpy(dtype=float), letters,
+                                                max_terms=len(first.y) - n_blocks)
+                terms, aliases = list(found.terms), found.aliases
         result = fit(data, args.response, factors=args.factor, block=args.block, model=model, terms=terms,
                      intercept=not args.no_intercept)
-        eff = screening_effects(result, alpha=args.alpha)
+        eff = screening_effects(result, alpha=args.alpha, aliases=aliases)
     figure = None
     if fmt is not None:  # --plot given
         from ..report.plots import figure_bytes, half_normal_plot

@@ -4,7 +4,15 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, add_json, add_model_option, add_plot_option, plot_format
+from ._common import (
+    about_file,
+    add_force,
+    add_json,
+    add_model_option,
+    add_plot_option,
+    add_reader_options,
+    plot_format,
+)
 
 NAME = "evaluate"
 HELP = ("evaluate a design for a model before any data: VIF, leverage, prediction variance, FDS, power, "
@@ -28,6 +36,7 @@ DESCRIPTION = (
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("design", metavar="DESIGN.csv", nargs="+",
                         help="the design; two or more are compared side by side")
+    add_reader_options(parser)
     add_model_option(parser, what="model to evaluate")
     from ._common import add_terms_options
 
@@ -50,13 +59,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_force(parser)
 
 
-def _load(path, exclude):
-    from ..design import read_design
+def _load(path, exclude, args):
     from ..design.core import Design
     from ..factors import FactorSpace
-    from ..io import read_table
+    from ..io import InputError
+    from ._common import read_input
 
-    df = read_table(path)
+    df = read_input(args, path)
     for col in exclude or []:  # nothing is guessed: a column that is not there is an error
         if col not in df.columns:
             from ..io import InputError, quote_user_value
@@ -64,7 +73,12 @@ def _load(path, exclude):
             raise InputError(f"--exclude {quote_user_value(col)}: no such column in {path} "
                              f"(columns: {', '.join(map(str, df.columns))})")
     if any(str(c).lower().startswith("coded_") for c in df.columns):
-        return read_design(path)
+        try:
+            return Design.from_frame(df)
+        except InputError:
+            raise
+        except ValueError as exc:
+            raise InputError(f"{path}: {exc}") from None
     space = FactorSpace.from_data(df, None, exclude=exclude)
     coded = space.encode(df).to_numpy(dtype=float)
     n = len(df)
@@ -85,7 +99,7 @@ def run(args: argparse.Namespace) -> int:
     designs = []
     for path in paths:
         with about_file(path):
-            designs.append(_load(path, args.exclude))
+            designs.append(_load(path, args.exclude, args))
     opts = dict(region=args.region, alpha=args.alpha, effect_sd=args.effect, potential=potential)
     result: DesignEvaluation | DesignComparison
     if len(paths) == 1:

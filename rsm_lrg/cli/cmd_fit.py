@@ -104,8 +104,9 @@ def _one_blas_thread(path: str) -> None:
 
 def run(args: argparse.Namespace) -> int:
     _one_blas_thread(str(args.data))
-    from ..io import dump_json, read_table
+    from ..io import dump_json
     from ..model import fit
+    from ._common import read_input
 
     model_spec(args)  # a bad --model/--terms/--transform is named before any data is read
     many = _many_files(str(args.data))  # a directory or glob: fitted partition by partition (Dask)
@@ -113,7 +114,7 @@ def run(args: argparse.Namespace) -> int:
         unsupported = [o for o in ("reduce", "transform", "diagnostics", "report") if getattr(args, o, None)]
         if unsupported:
             raise ValueError(f"{args.data}: --{unsupported[0]} is not available when fitting several files")
-    data = many if many is not None else read_table(args.data)
+    data = many if many is not None else read_input(args)
     with about_file(args.data):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=model_spec(args))
         extra: dict = {}

@@ -45,13 +45,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import read_table
     from ..model.data import prepare
     from ..model.summary import fit_summary
-    from ._common import model_spec
+    from ._common import model_spec, read_input
 
     spec = model_spec(args)  # a bad --transform is named before any data is read
-    data = read_table(args.data)
+    data = read_input(args)
     with about_file(args.data):
         notes = prepare(data, args.response, args.factor, args.block).notes
         s = fit_summary(data, args.response, factors=args.factor, block=args.block, alpha=args.alpha,

@@ -14,6 +14,7 @@ from ._common import (
     add_goal_options,
     add_json,
     add_model_refinements,
+    add_reader_options,
 )
 
 NAME = "optimize"
@@ -32,6 +33,7 @@ DESCRIPTION = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
+    add_reader_options(parser)
     parser.add_argument("--response", required=True, action=ResponseGroup, metavar="COL",
                         help="the response column; repeat (each followed by its --goal and its own model "
                              "options) for a multi-response desirability optimisation")
@@ -54,7 +56,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import read_table
     from ..model import fit
     from ..optimize import optimize, parse_goal
     from ._common import (
@@ -62,6 +63,7 @@ def run(args: argparse.Namespace) -> int:
         per_response_values,
         print_notes,
         print_summary_or_json,
+        read_input,
         response_options,
     )
 
@@ -72,7 +74,7 @@ def run(args: argparse.Namespace) -> int:
     args.response = responses[0]
     args.goal = per_response_values(args.goal, 1, "--goal")[0] or "minimize"
     parse_goal(args.goal)  # a bad goal fails before any work
-    data = read_table(args.data)
+    data = read_input(args)
     with about_file(args.data):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=specs[0])
         with _constraint_errors(args.constraint):
@@ -99,7 +101,6 @@ def _constraint_errors(constraints):
 
 def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
-    from ..io import read_table
     from ..model import fit
     from ..optimize.desirability import optimize_desirability, parse_response_goal
     from ._common import (
@@ -109,6 +110,7 @@ def _multi(args) -> int:
         per_response_values,
         print_notes,
         print_summary_or_json,
+        read_input,
         response_options,
     )
 
@@ -120,7 +122,7 @@ def _multi(args) -> int:
     limits = per_response_values(args.limits, n, "--limits")
     specs = [parse_response_goal(r, g or "minimize", weight=w, importance=i, limits=lim)
              for r, g, w, i, lim in zip(args.response, goals, weights, imps, limits)]
-    data = read_table(args.data)
+    data = read_input(args)
     with about_file(args.data):
         from ..factors import COLUMNS_LEFT_OUT, choose_factors
 

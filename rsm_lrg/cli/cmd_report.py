@@ -12,6 +12,7 @@ from ._common import (
     add_force,
     add_goal_options,
     add_model_refinements,
+    add_reader_options,
     print_notes,
 )
 
@@ -34,6 +35,7 @@ DESCRIPTION = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
+    add_reader_options(parser)
     parser.add_argument("--response", required=True, action=ResponseGroup, metavar="COL",
                         help="a response column; repeat for several responses in one page, each followed "
                              "by its own model options")
@@ -73,12 +75,13 @@ def _limits(text, response: str):
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from ..io import InputError, read_table
+    from ..io import InputError
     from ._common import (
         about_response,
         check_distinct_responses,
         model_spec,
         per_response_values,
+        read_input,
         response_options,
     )
 
@@ -107,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
     specs = [model_spec(response_options(args, i)) for i in range(n)]  # bad model options named first
     from ..model import fit
 
-    data = read_table(args.data)
+    data = read_input(args)
     with about_file(args.data):
         from ..factors import COLUMNS_LEFT_OUT, choose_factors
 

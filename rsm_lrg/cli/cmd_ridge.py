@@ -48,14 +48,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import read_table
     from ..model import fit
     from ..model.ridge import radii, ridge
-    from ._common import model_spec
+    from ._common import model_spec, read_input
 
     radii(0.0 if args.radius is None else args.radius, args.step)  # bad numbers fail before any work
     spec = model_spec(args)
-    data = read_table(args.data)
+    data = read_input(args)
     with about_file(args.data):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=spec)
         path = ridge(result, goal=args.goal, radius=args.radius, step=args.step)

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import argparse
+from collections.abc import Iterable
+from typing import Any, BinaryIO
 
-from ._common import about_file, add_force, whole_number
+from ._common import about_file, add_force, add_reader_options, whole_number
 
 NAME = "simulate"
 HELP = "virtual runs of the physics surrogate, one row per design row"
@@ -32,6 +34,7 @@ def _nonneg_float(text: str) -> float:
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("design", metavar="DESIGN.csv",
                    help="design: thickness_m, stroke_m, velocity_m_s, acceleration_m_s2 [, stage, parameter columns]")
+    add_reader_options(p)
     p.add_argument("--seed", type=whole_number(0), default=None, metavar="N",
                    help="seed of the reading noise (default: drawn and printed on stderr)")
     p.add_argument("--noise-sd", type=_nonneg_float, default=None, metavar="X",
@@ -58,8 +61,52 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                       help="always show a progress bar on stderr")
     prog.add_argument("--no-progress", dest="progress", action="store_false",
                       help="never show a progress bar (default: for 20,000 rows or more)")
-    p.add_argument("-o", "--output", required=True, metavar="PATH", help="the CSV of runs to write")
+    p.add_argument("--chunk-rows", type=whole_number(1000, 10_000_000), default=STREAM_CHUNK_ROWS, metavar="N",
+                   help="a CSV or Parquet design of more rows is run N rows at a time, read and written piece by "
+                        f"piece, memory bounded by N (default {STREAM_CHUNK_ROWS:,})")
+    p.add_argument("-o", "--output", required=True, metavar="PATH",
+                   help="the runs to write: CSV, or Parquet when PATH ends in .parquet")
     add_force(p)
+
+
+#: Rows of a piece when a large design is run piece by piece (``--chunk-rows``).
+STREAM_CHUNK_ROWS = 100_000
+
+
+def _open_stream(args):
+    """``(ReadAs, first piece, the other pieces)`` when the design is a CSV or Parquet file of
+    more than ``--chunk-rows`` rows (read piece by piece), else None (read whole)."""
+    from itertools import chain
+
+    from .. import readers
+    from ..io import InputError, open_input, show_path
+
+    if str(args.design) == "-" or getattr(args, "sheet", None) is not None:
+        return None
+    fh = open_input(args.design, "design")
+    try:
+        head = fh.read(16)
+        fmt = readers.detect_format(head, "." + str(args.design).rsplit(".", 1)[-1] if "." in str(args.design) else "")
+        if fmt not in ("csv", "parquet") or head.startswith((b"\xff\xfe", b"\xfe\xff")):
+            fh.close()
+            return None
+        if readers.count_rows(fh, fmt) <= args.chunk_rows:
+            fh.close()
+            return None
+        if fmt == "parquet":
+            if args.sep is not None or args.decimal != ".":
+                raise readers.TableError("--sep and --decimal are for CSV text; this is PARQUET")
+            how, pieces = readers.parquet_chunks(fh, chunk_rows=args.chunk_rows)
+        else:
+            how, pieces = readers.csv_chunks(fh, sep=args.sep, decimal=args.decimal, chunk_rows=args.chunk_rows)
+        first = next(pieces)
+    except readers.TableError as exc:
+        fh.close()
+        raise InputError(f"{show_path(args.design)}: {exc}") from None
+    except BaseException:
+        fh.close()
+        raise
+    return how, first, chain([first], pieces), fh
 
 
 def _calibration(args):
@@ -131,11 +178,12 @@ def run(args) -> int:
     import sys
     from pathlib import Path
 
-    from ..io import InputError, read_table, write_output
+    from ..io import InputError, write_output
     from ..physics.params import LRGParams, parse_assignments
     from ..surrogate.execute import DEFAULT_NOISE_SD, MAX_NOISE_SD, simulate
     from ..surrogate.noise import resolve_seed
     from ..surrogate.runs import check_duration
+    from ._common import read_input
 
     out_path = Path(args.output)
     if out_path.exists() and not args.force:
@@ -165,7 +213,12 @@ def run(args) -> int:
         except ValueError as exc:
             raise InputError(f"--param: {exc}") from None
     calibration = _calibration(args)
-    design = read_table(args.design)
+    streamed = _open_stream(args)
+    if streamed is None:
+        design = read_input(args, args.design)
+    else:  # read, run and written piece by piece
+        how, design, pieces, source = streamed
+        args.notes_at_end = [f"read {args.design}: {how.describe()}, {args.chunk_rows:,} rows at a time"]
     for name in (*overrides, *surrogate):  # the design's column would silently win
         if name in design.columns:
             raise InputError(f"--param {name}: {args.design}: the design's column {name!r} sets it row by row; "
@@ -198,26 +251,49 @@ def run(args) -> int:
                 raise InputError(f"--scheduler {quote_user_value(args.scheduler, 80)}: cannot connect "
                                  f"({type(exc).__name__}: {str(exc)[:120]})") from None
             executor = client.get_executor()
+        from .. import readers
+        from ..surrogate.stream import StreamTally, simulate_chunks
+
+        parquet = out_path.suffix.lower() in (".parquet", ".pq")
+        tally = StreamTally()
         with about_file(args.design):
-            runs = simulate(design, seed=seed, noise_sd=noise, duration_min=args.duration_min,
-                            executor=executor, calibration=calibration, params=params,
-                            progress=args.progress)
+            if streamed is None:
+                runs = simulate(design, seed=seed, noise_sd=noise, duration_min=args.duration_min,
+                                executor=executor, calibration=calibration, params=params,
+                                progress=args.progress)
+                frames: Iterable[Any] = [runs]
+            else:
+                frames = simulate_chunks(pieces, seed=seed, noise_sd=noise, duration_min=args.duration_min,
+                                         executor=executor, calibration=calibration, params=params, tally=tally)
+            writer = readers.write_parquet_chunks if parquet else readers.write_csv_chunks
+            try:
+                def fill(fh: BinaryIO) -> None:
+                    writer(fh, frames)
+
+                write_output(out_path, fill, force=args.force)
+            except readers.TableError as exc:
+                raise ValueError(str(exc)) from None
     finally:
+        if streamed is not None:
+            source.close()
         if executor is not None and client is None:
             executor.shutdown()
         if client is not None:
             client.close()
-    write_output(out_path, runs.to_csv(index=False, float_format="%.10g", lineterminator="\n"), force=args.force)
+    if streamed is None:
+        yields = runs["hinge_yields"].to_numpy(dtype=bool) if "hinge_yields" in runs.columns else []
+        tally = StreamTally(len(runs), int(sum(yields)), [i + 1 for i in range(len(runs)) if yields[i]][:10]
+                            if len(yields) else [], [str(c) for c in runs.columns])
     note = f" (noise seed drawn: rerun with --seed {seed} to repeat)" if drawn else ""
-    print(f"simulate: {len(runs)} runs -> {out_path}{note}", file=sys.stderr)
+    print(f"simulate: {tally.rows} runs -> {out_path}{note}", file=sys.stderr)
     names = [str(c) for c in design.columns]
-    kept = [c for c in names if f"{c}_input" in runs.columns and f"{c}_input" not in names]
+    kept = [c for c in names if f"{c}_input" in tally.columns and f"{c}_input" not in names]
     if kept:
         print(f"simulate: the design's column(s) {', '.join(kept)} are kept as "
               f"{', '.join(c + '_input' for c in kept)} (the surrogate writes those names)", file=sys.stderr)
-    if "hinge_yields" in runs.columns and runs["hinge_yields"].any():
-        rows = [str(i + 1) for i in runs.index[runs["hinge_yields"].to_numpy(dtype=bool)][:10]]
-        print(f"simulate: WARNING: the hinge leaves would yield in {int(runs['hinge_yields'].sum())} row(s) "
-              f"(data rows {', '.join(rows)}{' ...' if runs['hinge_yields'].sum() > 10 else ''}): peak stress "
+    if tally.yielding:
+        rows = [str(i) for i in tally.first_yielding]
+        print(f"simulate: WARNING: the hinge leaves would yield in {tally.yielding} row(s) "
+              f"(data rows {', '.join(rows)}{' ...' if tally.yielding > 10 else ''}): peak stress "
               f"above hinge_yield_pa, see the hinge_peak_stress_pa and hinge_yields columns", file=sys.stderr)
     return 0

@@ -324,6 +324,42 @@ class Design:
             cols[f.name] = actual[f.name].to_numpy()
         return pd.DataFrame(cols)
 
+    def csv_text(self) -> str:
+        """The design CSV (:meth:`to_csv`'s text) written without pandas: the same bytes as
+        ``to_frame().to_csv(index=False)`` (numbers as their shortest round-trip text, text
+        quoted where the CSV dialect needs it), so that ``rsm-lrg design`` does not load
+        pandas (about 0.3 s of CPU time at start-up)."""
+        import csv
+        import io
+
+        columns: dict[str, list[str]] = {"std_order": [str(int(v)) for v in self.std_order],
+                                         "run_order": [str(int(v)) for v in self.run_order]}
+        if self.blocks is not None:
+            columns[BLOCK_COLUMN] = [str(v) for v in self.blocks.tolist()]
+
+        def text(values: np.ndarray) -> list[str]:
+            if values.dtype.kind in "iu":
+                return [str(int(v)) for v in values]
+            if values.dtype.kind == "f":
+                return ["" if math.isnan(v) else repr(float(v)) for v in values.tolist()]
+            return ["" if v is None else str(v) for v in values.tolist()]
+
+        for i, f in enumerate(self.factors):
+            c = self.coded_runs[:, i]
+            if f.kind == "categoric":
+                columns[CODED_PREFIX + f.letter] = text(np.asarray(f.decode(c), dtype=object))
+            else:
+                columns[CODED_PREFIX + f.letter] = text(c.astype(int) if np.all(c == np.round(c)) else c)
+        for i, f in enumerate(self.factors):
+            c = self.coded_runs[:, i]
+            values = _clean_actual(f, c) if f.kind == "numeric" else np.asarray(f.decode(c), dtype=object)
+            columns[f.name] = text(np.asarray(values))
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(list(columns))
+        w.writerows(zip(*columns.values()))
+        return buf.getvalue()
+
     def standard_order(self):
         """:meth:`to_frame` sorted by ``std_order``."""
         return self.to_frame().sort_values("std_order", kind="stable").reset_index(drop=True)
@@ -335,8 +371,7 @@ class Design:
         """
         from ..io import write_output
 
-        text = self.to_frame().to_csv(index=False, lineterminator="\n")
-        return write_output(path, text, force=force)
+        return write_output(path, self.csv_text(), force=force)
 
     def to_dict(self) -> dict:
         """Plain, JSON-safe summary: kind, factors, options and the runs (run order)."""

@@ -20,7 +20,7 @@ from ..terms import design_matrix, n_columns
 
 __all__ = ["CRITERIA", "GRID", "MAX_RUNS", "MAX_COLUMNS", "MAX_STARTS", "check_criterion", "check_columns",
            "information", "moment_matrix", "thin_region_error", "criterion_value", "ExchangeProblem",
-           "candidate_pool", "at_every_level"]
+           "candidate_pool", "at_every_level", "halton"]
 
 #: Criteria accepted by :func:`optimal`.
 CRITERIA = ("D", "I", "A")
@@ -164,6 +164,7 @@ class ExchangeProblem:
         self._P = None
         if not space.has_categoric:  # all numeric: model rows as products of powers (fast path)
             self._P = np.array([t.powers for t in terms], dtype=int)
+            self._factor_index = np.arange(self.k)[None, :]
         self.candidates = cands
         self.cand_rows = self.rows(cands)
         self._cache_key = None
@@ -172,9 +173,15 @@ class ExchangeProblem:
             self.values.append(GRID if f.kind == "numeric" else np.arange(f.n_levels, dtype=float))
 
     def rows(self, coded: np.ndarray) -> np.ndarray:
-        """Model rows of coded points (:func:`rsm_lrg.terms.design_matrix`)."""
+        """Model rows of coded points (:func:`rsm_lrg.terms.design_matrix`); all-numeric
+        factors: each monomial as a product of gathered powers (no ``**`` per entry)."""
         if self._P is not None:
-            return np.prod(coded[:, None, :] ** self._P[None, :, :], axis=2)
+            P = self._P
+            powers = np.ones((int(P.max()) + 1,) + coded.shape)
+            for d in range(1, powers.shape[0]):
+                powers[d] = powers[d - 1] * coded
+            # powers[P[t, f], :, f] for every term t and factor f, multiplied over f
+            return np.prod(powers[P, :, self._factor_index], axis=1).T
         return design_matrix(coded, self.terms)
 
     def _prepared(self, M: np.ndarray):
@@ -228,6 +235,63 @@ class ExchangeProblem:
         base = M - np.outer(f, f)
         return _value(base[None, :, :] + G[:, :, None] * G[:, None, :], self.crit, self.W)
 
+    def batch_pairs(self, M: np.ndarray, F: np.ndarray, own: np.ndarray, G: np.ndarray) -> np.ndarray:
+        """Criterion (to minimise) of ``M - f f' + g g'`` for every pair ``(f, g) = (F[own[m]],
+        G[m])``: the exchange of any run for any point, ranked in one vectorised step by the
+        same rank-two updates as :meth:`batch` (``O(p^2)`` per point, the runs' terms once)."""
+        prep = self._prepared(M)
+        if prep is None:
+            Fr = F[own]
+            stack = M[None, :, :] - Fr[:, :, None] * Fr[:, None, :] + G[:, :, None] * G[:, None, :]
+            return _value(stack, self.crit, self.W)
+        A, K, base = prep
+        FA = F @ A
+        gAg = np.einsum("ij,ij->i", G @ A, G)
+        fAg = np.einsum("ij,ij->i", FA[own], G)
+        fAf = np.einsum("ij,ij->i", FA, F)[own]
+        with np.errstate(all="ignore"):
+            if self.crit == "D":
+                r = (1.0 + gAg) * (1.0 - fAf) + fAg ** 2
+                v = -(base + np.log(r))
+                ok = r > 0
+            else:
+                FK = F @ K
+                t11 = np.einsum("ij,ij->i", G @ K, G)
+                t12 = np.einsum("ij,ij->i", FK[own], G)
+                t22 = np.einsum("ij,ij->i", FK, F)[own]
+                s11, s12, s22 = 1.0 + gAg, fAg, fAf - 1.0
+                det = s11 * s22 - s12 ** 2
+                v = base - (s22 * t11 - 2.0 * s12 * t12 + s11 * t22) / det
+                ok = np.abs(det) > 1e-12
+        return np.where(ok & np.isfinite(v), v, np.inf)
+
+    def _moves(self, D: np.ndarray, rows: np.ndarray, coords, phase: int, step: float,
+               coarse: bool) -> tuple[np.ndarray, np.ndarray]:
+        """Every single-coordinate move of the runs ``rows`` of ``D``: ``(points, run index)``,
+        feasible ones only, the current settings left out."""
+        pts, owner = [], []
+        base = D[rows]
+        for j in coords:
+            if phase == 0:
+                vals = self.values[j]
+                if coarse and self.space.factors[j].kind == "numeric":
+                    vals = _COARSE
+                vals = np.broadcast_to(vals, (len(rows), len(vals)))
+            else:
+                vals = np.clip(base[:, j:j + 1] + np.linspace(-step, step, 11)[None, :], -1.0, 1.0)
+            m = vals.shape[1]
+            block = np.repeat(base, m, axis=0)
+            block[:, j] = vals.reshape(-1)
+            keep = block[:, j] != np.repeat(base[:, j], m)
+            pts.append(block[keep])
+            owner.append(np.repeat(rows, m)[keep])
+        P = np.vstack(pts) if pts else np.empty((0, D.shape[1]))
+        own = np.concatenate(owner) if owner else np.empty(0, dtype=int)
+        if self.cons is not None and self.cons and len(P):
+            ok = self.cons.feasible_coded(P)
+            P, own = P[ok], own[ok]
+        return P, own
+
     def ridge(self, n):
         return 1e-9 * max(n, 1) * np.eye(self.p)
 
@@ -267,38 +331,44 @@ class ExchangeProblem:
 
     def exchange(self, D: np.ndarray, fixed: int = 0, polish: bool = True, coarse: bool = False) -> tuple[np.ndarray, float]:
         """Coordinate exchange on rows ``fixed..`` of ``D`` (earlier rows held); ``coarse``:
-        numeric coordinates at -1, 0, +1 only (the levels of the classical designs)."""
+        numeric coordinates at -1, 0, +1 only (the levels of the classical designs).
+
+        Each step ranks every single-coordinate move of every run at once
+        (:meth:`batch_pairs`) and makes the best one that the exact criterion confirms
+        (:meth:`_replace`), until no move gains; phases 1 and 2 (``polish``) then refine the
+        numeric coordinates by steps of 0.05 and 0.01."""
         D, F, M, cur = self._start(D)
         n = len(D)
+        rows = np.arange(fixed, n)
         num = self.space.numeric_index
         for phase in (0, 1, 2) if polish else (0,):
             coords = range(self.k) if phase == 0 else num
             step = 0.05 / (5 ** (phase - 1)) if phase else 0.0
-            for _ in range(100):
-                improved = False
-                for i in range(fixed, n):
-                    for j in coords:
-                        if phase == 0:
-                            vals = self.values[j]
-                            if coarse and self.space.factors[j].kind == "numeric":
-                                vals = _COARSE
-                        else:
-                            vals = np.clip(D[i, j] + np.linspace(-step, step, 11), -1.0, 1.0)
-                        cand = np.repeat(D[i:i + 1], len(vals), axis=0)
-                        cand[:, j] = vals
-                        if self.cons is not None and self.cons:
-                            ok = self.cons.feasible_coded(cand)
-                            if not ok.any():
-                                continue
-                            cand = cand[ok]
-                        G = self.rows(cand)
-                        v = self.batch(M, F[i], G)
-                        b = int(np.argmin(v))
-                        if _gains(v[b], cur) and (got := self._replace(D, F, i, cand[b], G[b], M, cur)):
-                            M, cur = got
-                            improved = True
-                if not improved:
+            # each run's moves and their model rows, remade only for the run that changed
+            moves: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+            for i in rows:
+                Pi = self._moves(D, np.array([i]), coords, phase, step, coarse)[0]
+                moves[int(i)] = (Pi, self.rows(Pi))
+            for _ in range(100 * max(1, len(rows)) * max(1, len(coords))):
+                P = np.vstack([moves[int(i)][0] for i in rows])
+                if not len(P):
                     break
+                G = np.vstack([moves[int(i)][1] for i in rows])
+                own = np.repeat(rows, [len(moves[int(i)][0]) for i in rows])
+                v = self.batch_pairs(M, F, own, G)
+                got, r = None, -1
+                for b in np.argsort(v)[:3]:  # the ranking is rank-one; the exact value decides
+                    if not _gains(v[b], cur):
+                        break
+                    r = int(own[b])
+                    got = self._replace(D, F, r, P[b], G[b], M, cur)
+                    if got:
+                        break
+                if not got:
+                    break
+                M, cur = got
+                Pr = self._moves(D, np.array([r]), coords, phase, step, coarse)[0]
+                moves[r] = (Pr, self.rows(Pr))
         return D, cur
 
     def row_exchange(self, D: np.ndarray, fixed: int = 0, coarse: bool = False) -> tuple[np.ndarray, float]:
@@ -359,11 +429,38 @@ class ExchangeProblem:
         return D
 
 
+def halton(n: int, d: int, seed: int = 0) -> np.ndarray:
+    """``n`` points of the ``d``-dimensional Halton sequence in [0, 1)^d (radical inverses in
+    the first ``d`` primes, from index 1), shifted modulo 1 by a uniform random vector drawn
+    from ``seed`` (Cranley-Patterson rotation): low-discrepancy candidates without SciPy.
+
+    >>> halton(4, 2, seed=None).round(4).tolist()
+    [[0.5, 0.3333], [0.25, 0.6667], [0.75, 0.1111], [0.125, 0.4444]]
+    """
+    primes: list[int] = []
+    c = 2
+    while len(primes) < d:
+        if all(c % q for q in primes):
+            primes.append(c)
+        c += 1
+    out = np.empty((n, d))
+    idx = np.arange(1, n + 1)
+    for j, b in enumerate(primes):
+        x, f, i = np.zeros(n), 1.0 / b, idx.copy()
+        while i.any():
+            x += f * (i % b)
+            i //= b
+            f /= b
+        out[:, j] = x
+    if seed is None:
+        return out
+    return (out + np.random.default_rng(seed).random(d)) % 1.0
+
+
 def candidate_pool(space, constraints, n: int = 512, seed: int = 0) -> np.ndarray:
     """Feasible coded candidate points (grid of 21 levels for one or two numeric factors,
-    the 3^k / 5^k grid and Sobol' points otherwise); categoric columns 0."""
-    from scipy.stats import qmc
-
+    the 3^k / 5^k grid and shifted Halton points otherwise, :func:`halton`); categoric
+    columns 0."""
     k = len(space)
     num = space.numeric_index
     kn = len(num)
@@ -371,7 +468,7 @@ def candidate_pool(space, constraints, n: int = 512, seed: int = 0) -> np.ndarra
     levels = GRID if kn <= 2 else (np.linspace(-1, 1, 5) if kn <= 5 else np.array([-1.0, 0.0, 1.0]))
     if len(levels) ** kn <= 20000:
         parts.append(np.array(np.meshgrid(*[levels] * kn)).reshape(kn, -1).T)
-    parts.append(qmc.Sobol(kn, scramble=True, seed=seed).random(n) * 2.0 - 1.0)
+    parts.append(halton(n, kn, seed) * 2.0 - 1.0)
     P = np.vstack(parts)
     full = np.zeros((len(P), k))
     full[:, num] = P

@@ -20,7 +20,7 @@ MAX_RUNS = 100_000
 
 def full_factorial(
     factors: Any,
-    levels: int = 3,
+    levels: int = 2,
     center: int = 0,
     seed: Any = None,
     randomize: bool = True,
@@ -31,8 +31,8 @@ def full_factorial(
     ----------
     factors : FactorSpace, mapping or list
         As for :func:`~rsm_lrg.design.box_behnken` (1 or more factors).
-    levels : int, default 3
-        Levels per factor (≥ 2); coded -1 ... +1 equally spaced.
+    levels : int, default 2
+        Levels per factor (≥ 2); coded -1 ... +1 equally spaced (two, as Design-Expert and JMP).
     center : int, default 0
         Extra centre runs added after the factorial runs (with an odd number of levels the
         factorial already holds one).

@@ -36,7 +36,128 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["EffectsResult", "lenth_pse", "lenth_margins", "half_normal_quantiles", "screening_effects"]
+__all__ = ["EffectsResult", "EstimableModel", "largest_estimable_model", "lenth_pse", "lenth_margins",
+           "half_normal_quantiles", "screening_effects"]
+
+#: At most this many interaction terms are tried by :func:`largest_estimable_model` (orders are
+#: taken whole, lowest first, while they fit: 2^20 products of 20 factors are not built).
+MAX_CANDIDATE_TERMS = 5000
+
+
+@dataclass(frozen=True)
+class EstimableModel:
+    """The largest model of main effects and interactions a two-level design estimates.
+
+    Attributes
+    ----------
+    terms : tuple of str
+        The terms kept (``"A"``, ``"AB"``, ...): main effects, then each interaction that is
+        orthogonal to every term kept before it (lower orders first).
+    aliases : dict
+        ``{kept term: (aliased term, ...)}``: the terms whose column equals the kept term's
+        (``"CDE"``) or its negative (``"-CDE"``) on these runs, so that the estimate is the
+        sum of their effects (the alias chain ``AB = CDE``); under ``"Intercept"`` the words
+        of the defining relation (``I = ABCDE``).
+    partial : tuple of str
+        Interactions neither orthogonal to the terms kept nor a full alias of one (partially
+        aliased, as in Plackett-Burman designs): left out.
+    """
+
+    terms: tuple
+    aliases: dict = field(default_factory=dict)
+    partial: tuple = ()
+
+    def chains(self) -> list[str]:
+        """The alias chains as text: ``["AB = CDE", "AC = -BDE"]``."""
+        out = []
+        order = [t for t in ("Intercept", *self.terms) if t in self.aliases]
+        order += [t for t in self.aliases if t not in order]
+        for t in order:
+            al = self.aliases[t]
+            parts = [a if a.startswith("-") else f"+{a}" for a in al]
+            out.append(f"{'I' if t == 'Intercept' else t} = {' '.join(parts).lstrip('+')}"
+                       .replace(" +", " + ").replace(" -", " - "))
+        return out
+
+
+def largest_estimable_model(coded, letters, *, max_terms: int | None = None, tol: float = 1e-8) -> EstimableModel:
+    """The saturated model of main effects and interactions that the runs ``coded`` estimate.
+
+    Main effects first, then the products of 2, 3, ... distinct factors in order; a term is
+    kept when its column is orthogonal to the intercept and to every term kept so far (for a
+    regular fraction, one term of each alias chain, the lowest order first, as Design-Expert
+    and JMP name the effects of a 2^(k-p) design); a column equal to a kept one or its
+    negative joins that term's alias chain; any other is left out as partially aliased.
+
+    Parameters
+    ----------
+    coded : array_like, shape (n, k)
+        The runs in coded units (-1, +1; centre points 0).
+    letters : sequence of str
+        The factor letters (``"ABCDE"``).
+    max_terms : int, optional
+        At most this many terms (besides the intercept) are kept, default ``n - 1``; room for
+        block effects is made by asking for fewer.
+    tol : float
+        Relative tolerance of "orthogonal" and "equal" (cosine of the columns' angle).
+
+    Returns
+    -------
+    EstimableModel
+
+    Examples
+    --------
+    The 2^(3-1) fraction with C = AB estimates A, B and C, each aliased with an interaction:
+
+    >>> x = np.array([[-1, -1, 1], [1, -1, -1], [-1, 1, -1], [1, 1, 1]])
+    >>> m = largest_estimable_model(x, "ABC")
+    >>> m.terms, m.chains()
+    (('A', 'B', 'C'), ['I = ABC', 'A = BC', 'B = AC', 'C = AB'])
+    """
+    from itertools import combinations
+
+    x = np.asarray(coded, dtype=float)
+    n, k = x.shape
+    letters = list(letters)
+    limit = n - 1 if max_terms is None else min(int(max_terms), n - 1)
+    kept_cols = [np.ones(n)]
+    kept: list[str] = []
+    aliases: dict[str, list[str]] = {}
+    partial: list[str] = []
+    tried = 0
+    for order in range(1, k + 1):
+        combos = list(combinations(range(k), order))
+        if order > 1 and tried + len(combos) > MAX_CANDIDATE_TERMS:
+            break
+        tried += len(combos)
+        for combo in combos:
+            name = "".join(letters[i] for i in combo)
+            c = np.prod(x[:, list(combo)], axis=1)
+            norm = float(np.linalg.norm(c))
+            if norm == 0.0:
+                partial.append(name)
+                continue
+            K = np.column_stack(kept_cols)
+            cos = (K.T @ c) / (np.linalg.norm(K, axis=0) * norm)
+            full = np.flatnonzero(np.abs(np.abs(cos) - 1.0) <= tol)
+            if full.size:  # a column equal to a kept one (or to the intercept: a word of the defining relation)
+                j = int(full[0])
+                owner = "Intercept" if j == 0 else kept[j - 1]
+                aliases.setdefault(owner, []).append(("-" if cos[j] < 0 else "") + name)
+            elif order == 1 and len(kept) < limit:  # a main effect: kept when independent
+                resid = c - K @ np.linalg.lstsq(K, c, rcond=None)[0]
+                if np.linalg.norm(resid) > tol * norm:
+                    kept.append(name)
+                    kept_cols.append(c)
+                else:
+                    partial.append(name)
+            elif np.all(np.abs(cos) <= tol) and len(kept) < limit:
+                kept.append(name)
+                kept_cols.append(c)
+            else:
+                partial.append(name)
+    return EstimableModel(tuple(kept), {t: tuple(aliases[t]) for t in ["Intercept", *kept] if t in aliases},
+                          tuple(partial))
 
 
 def lenth_pse(effects) -> float:
@@ -107,6 +228,7 @@ class EffectsResult:
     df: float
     alpha: float = 0.05
     notes: tuple = ()
+    aliases: dict = field(default_factory=dict)
 
     @property
     def active(self) -> tuple:
@@ -140,7 +262,7 @@ class EffectsResult:
         return {"response": self.response, "method": "Lenth (1989)", "alpha": self.alpha, "m": len(self.terms),
                 "pse": self.pse, "me": self.me, "sme": self.sme, "df": self.df,
                 "active": list(self.active), "active_sme": list(self.active_simultaneous),
-                "effects": rows, "notes": list(self.notes)}
+                "effects": rows, "aliases": {t: list(a) for t, a in self.aliases.items()}, "notes": list(self.notes)}
 
     def summary(self) -> str:
         from ..present import format_number
@@ -159,6 +281,9 @@ class EffectsResult:
                f"SME {format_number(self.sme, 4)}   (t on {self.df:.3g} df, {conf})",
                "Active beyond ME: " + (", ".join(self.active) or "none"),
                "Active beyond SME: " + (", ".join(self.active_simultaneous) or "none")]
+        if self.aliases:
+            chains = EstimableModel(self.terms, self.aliases).chains()
+            out.append("Alias chains (each effect is the sum of its chain): " + "; ".join(chains))
         out += [f"Note: {n}" for n in self.notes]
         return "\n".join(out) + "\n"
 
@@ -178,7 +303,7 @@ class EffectsResult:
                 "<th>Effect</th><th>Half-normal</th><th>Active</th></tr>" + body + "</table>")
 
 
-def screening_effects(result, alpha: float = 0.05) -> EffectsResult:
+def screening_effects(result, alpha: float = 0.05, aliases: dict | None = None) -> EffectsResult:
     """Effects (``2 b_j``, coded units) of every term of a fit, with Lenth's PSE, ME and SME.
 
     Parameters
@@ -188,6 +313,8 @@ def screening_effects(result, alpha: float = 0.05) -> EffectsResult:
         of freedom (a categoric factor with more than two levels has no single effect).
     alpha : float
         Level of ME and SME (default 0.05).
+    aliases : dict, optional
+        The alias chains of the terms (:attr:`EstimableModel.aliases`), shown with the effects.
 
     Returns
     -------
@@ -227,4 +354,5 @@ def screening_effects(result, alpha: float = 0.05) -> EffectsResult:
     spread = float(var.max() / var.min() - 1.0) if var.min() > 0 else math.inf
     if spread > 1e-9:
         notes.append(f"the effects' variances differ by up to {100 * spread:.3g} % (Lenth's PSE assumes them equal)")
-    return EffectsResult(result.response, tuple(names), labels, e, hn, pse, me, sme, d, alpha, tuple(notes))
+    return EffectsResult(result.response, tuple(names), labels, e, hn, pse, me, sme, d, alpha, tuple(notes),
+                         dict(aliases or {}))

@@ -58,7 +58,7 @@ def _evaluate_batch(arrays, start, seed, noise_sd, duration_min, params, calibra
 
 def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min: float = 50.0,
              executor: Executor | None = None, *, calibration="default", params=None,
-             batch_rows: int | None = None, progress: bool | None = None):
+             batch_rows: int | None = None, progress: bool | None = None, row_start: int = 0):
     """Virtual runs of the rig: one row of responses per design row.
 
     Parameters
@@ -94,6 +94,10 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
         :data:`DEFAULT_BATCH_ROWS`).
     progress : bool, optional
         Progress bar on stderr (tqdm); default: for designs of 20,000 rows or more.
+    row_start : int
+        Index of the design's first row in a larger design run piece by piece
+        (:mod:`rsm_lrg.surrogate.stream`): each row's noise is keyed by ``row_start`` plus its
+        position, so the pieces give the rows of the whole design run at once.
 
     Returns
     -------
@@ -134,6 +138,9 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
                              f"rename one of them")
 
     _executor_workers(executor)
+    if isinstance(row_start, (bool, np.bool_)) or not isinstance(row_start, (int, np.integer)) or row_start < 0:
+        raise ValueError(f"row_start must be a whole number >= 0, got {row_start!r}")
+    row_start = int(row_start)
     if batch_rows is None:
         batch_rows = DEFAULT_BATCH_ROWS
     elif isinstance(batch_rows, (bool, np.bool_)) or not isinstance(batch_rows, (int, np.integer)) or batch_rows < 1:
@@ -147,14 +154,16 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
         if executor is None:
             for s in starts:
                 e = min(n, s + batch_rows)
-                _, out = _evaluate_batch(arrays.take(s, e), s, seed_int, noise_sd, duration_min, params, cal_dict)
+                _, out = _evaluate_batch(arrays.take(s, e), row_start + s, seed_int, noise_sd, duration_min, params,
+                                         cal_dict)
                 pieces[s] = out
                 bar.update(e - s)
         else:
-            futs = {executor.submit(_evaluate_batch, arrays.take(s, min(n, s + batch_rows)), s, seed_int,
+            futs = {executor.submit(_evaluate_batch, arrays.take(s, min(n, s + batch_rows)), row_start + s, seed_int,
                                     noise_sd, duration_min, params, cal_dict): s for s in starts}
             for f in as_completed(futs):
-                s, out = f.result()
+                s = futs[f]
+                out = f.result()[1]
                 pieces[s] = out
                 bar.update(min(n, s + batch_rows) - s)
     finally:

@@ -209,19 +209,23 @@ def test_overlay_agrees_with_python_grid(page2, case):
         page.evaluate(SET, ["acceleration_m_s2", "37", "input"])
     page.evaluate("() => window.rsmReport.drawNow()")
     shown = page.evaluate("""() => { const d = document.getElementById('overlay-plot');
-        return {x: d.data[0].x, y: d.data[0].y, z: d.data[0].z,
+        return {x: d.data[0].x, y: d.data[0].y, z: d.data[0].z, type: d.data[0].type,
+                coloring: d.data[0].contours.coloring, level: [d.data[0].contours.start, d.data[0].contours.end],
                 xname: document.getElementById('overlay-x').value, yname: document.getElementById('overlay-y').value}; }""")
     state = page.evaluate(READ)
     limits = _limits(page)
     x, y, z = np.array(shown["x"]), np.array(shown["y"]), np.array(shown["z"], dtype=float)
+    # the shading is filled to the 0 contour of the smallest margin (smooth, issue 25), not cells
+    assert shown["type"] == "contour" and shown["coloring"] == "fill" and shown["level"] == [0, 0]
+    inside = z >= 0
     # 100 random nodes of the shaded grid, evaluated in Python
     i, j = rng.integers(0, len(x), 100), rng.integers(0, len(y), 100)
     frame = pd.DataFrame({k: np.full(100, v) for k, v in state["setting"].items()})
     frame[shown["xname"]], frame[shown["yname"]] = x[i], y[j]
     want = _inside(fits, limits, frame)
-    assert np.array_equal(z[j, i] == 1, want)
+    assert np.array_equal(inside[j, i], want)
     if case != "default":  # these cases show a boundary inside the box
-        assert 0.05 < z.mean() < 0.95, z.mean()
+        assert 0.05 < inside.mean() < 0.95, inside.mean()
     # and the page's in-limits test at 100 random points of the pair's box
     xs = rng.uniform(x.min(), x.max(), 100)
     ys = rng.uniform(y.min(), y.max(), 100)
@@ -327,6 +331,20 @@ def test_surface_follows_the_profiler(page2):
     frame["thickness_m"], frame["velocity_m_s"] = np.array(surf["x"])[i], np.array(surf["y"])[j]
     want = fits["wear_volume_m3_per_h"].predict(frame)["predicted"].to_numpy()
     np.testing.assert_allclose(np.array(surf["z"])[j, i], want, rtol=RTOL)
+    assert log["errors"] == []
+
+
+def test_surface_opens_from_above_at_an_angle(page2):
+    # issue 25: the 3-D surface used to open edge-on; its camera now looks down on it
+    page, log, _, _ = page2
+    page.select_option("#surface-x", "thickness_m")
+    page.select_option("#surface-y", "velocity_m_s")
+    page.evaluate("() => window.rsmReport.drawNow()")
+    eye = page.evaluate("() => document.getElementById('surface-plot')._fullLayout.scene.camera.eye")
+    elevation = np.degrees(np.arctan2(eye["z"], np.hypot(eye["x"], eye["y"])))
+    azimuth = np.degrees(np.arctan2(eye["y"], eye["x"])) % 90
+    assert 20 <= elevation <= 50, eye  # from above, not edge-on (0) nor straight down (90)
+    assert 20 <= azimuth <= 70, eye  # both factor axes in view, neither seen end-on
     assert log["errors"] == []
 
 

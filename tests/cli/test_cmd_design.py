@@ -72,7 +72,7 @@ def test_force_overwrites_and_without_it_refuses(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("args,needle", [
-    (["box-behnken", "--factor", "a=0:1", "--factor", "b=0:1"], "3 to 7 factors"),
+    (["box-behnken", "--factor", "a=0:1", "--factor", "b=0:1"], "3 to 7, 9 to 12 or 16 factors"),
     (["box-behnken", "--factor", "a=1:0", "--factor", "b=0:1", "--factor", "c=0:1"], "LOW must be below HIGH"),
     (["box-behnken", "--factor", "a=0:1", "--factor", "b=0:1", "--factor", "c=0:1", "--center", "-2"],
      "must not be negative"),
@@ -123,10 +123,31 @@ def test_central_composite_cli(tmp_path, capsys):
 
 def test_full_factorial_cli(tmp_path, capsys):
     p = tmp_path / "ff.csv"
-    assert main(["design", "full-factorial", "--factor", "a=0:2", "--factor", "b=5:7",
+    assert main(["design", "full-factorial", "--factor", "a=0:2", "--factor", "b=5:7", "--levels", "3",
                  "--no-randomize", "-o", str(p)]) == 0
     df = pd.read_csv(p)
     assert len(df) == 9 and sorted(set(df["a"])) == [0.0, 1.0, 2.0]
+
+
+def test_full_factorial_defaults_to_two_levels_and_augments_to_a_ccd(tmp_path, capsys):
+    # the classic route: a 2^3 factorial with centre points, then star points make it a CCD
+    p, ccd = tmp_path / "ff.csv", tmp_path / "ccd.csv"
+    assert main(["design", "full-factorial", "--factor", "a=0:2", "--factor", "b=5:7", "--factor", "c=1:3",
+                 "--center", "2", "--seed", "1", "-o", str(p)]) == 0
+    df = pd.read_csv(p)
+    assert len(df) == 10 and sorted(set(df["a"])) == [0.0, 1.0, 2.0]  # 8 corners, 2 centres
+    assert main(["design", "augment", str(p), "--method", "ccd", "--seed", "2", "-o", str(ccd)]) == 0
+    assert len(pd.read_csv(ccd)) > 10
+
+
+def test_library_hints_are_written_as_options(tmp_path, capsys):
+    p = tmp_path / "ff3.csv"
+    assert main(["design", "full-factorial", "--factor", "a=0:2", "--factor", "b=5:7", "--levels", "3",
+                 "--seed", "1", "-o", str(p)]) == 0
+    capsys.readouterr()
+    assert main(["design", "augment", str(p), "--method", "ccd", "-o", str(tmp_path / "x.csv")]) == 2
+    err = capsys.readouterr().err
+    assert "use --method optimal" in err and "method='optimal'" not in err
 
 
 def test_design_csv_feeds_default_factor_selection(tmp_path, capsys):

@@ -118,9 +118,9 @@ def test_unpublished_blockings_are_refused(k, blocks):
         box_behnken(space(k), blocks=blocks)
 
 
-@pytest.mark.parametrize("k", [0, 1, 2, 8, 9])
+@pytest.mark.parametrize("k", [0, 1, 2, 8, 13, 17])
 def test_wrong_number_of_factors(k):
-    with pytest.raises(ValueError, match="3 to 7 factors"):
+    with pytest.raises(ValueError, match="3 to 7, 9 to 12 or 16 factors"):
         box_behnken(space(k))
 
 
@@ -189,3 +189,104 @@ def test_top_level_lazy_names():
     assert rsm_lrg.box_behnken is box_behnken
     for name in ("Design", "central_composite", "full_factorial", "read_design"):
         assert callable(getattr(rsm_lrg, name))
+
+
+# --- 9 to 12 and 16 factors (issue 25) ------------------------------------------------------
+# Box & Behnken (1960), Table: edge runs and the set size of each design; with the published
+# centre runs (10, 10, 12, 12, 12) they are the published totals 130, 170, 188, 204, 396.
+LARGE = {9: (120, 3, 10, 130), 10: (160, 4, 10, 170), 11: (176, 5, 12, 188), 12: (192, 4, 12, 204),
+         16: (384, 4, 12, 396)}
+
+
+@pytest.mark.parametrize("k", sorted(LARGE))
+def test_large_designs_have_the_published_size_and_balance(k):
+    edge, m, n0, total = LARGE[k]
+    d = box_behnken(space(k), center=n0, randomize=False)
+    assert d.n_runs == total and d.options["edge_runs"] == edge
+    X = d.coded_runs[:edge]
+    assert set(np.count_nonzero(X, axis=1).tolist()) == {m}  # each run varies one set of m factors
+    assert set(np.unique(X).tolist()) == {-1.0, 0.0, 1.0}
+    # no run repeated, but in the 9-factor design: its first parallel class (3 triples, 24 runs)
+    # is run twice, as published
+    assert len(set(map(tuple, X))) == (edge - 24 if k == 9 else edge)
+    # balance: every factor at +1 and at -1 equally often, and equally often across factors
+    plus, minus = (X == 1).sum(axis=0), (X == -1).sum(axis=0)
+    np.testing.assert_array_equal(plus, minus)
+    assert len(set(plus.tolist())) == 1
+    # every factor in the same number r of sets (equal replication of the incomplete blocks)
+    sets = BBD_SETS[k]
+    r = {sum(f in s for s in sets) for f in range(1, k + 1)}
+    assert len(r) == 1
+    # the odd moments vanish: first-order orthogonal, and linear columns orthogonal to the
+    # interaction and quadratic columns (x_i x_j^2, x_i x_j x_l sums 0)
+    for i, j in combinations(range(k), 2):
+        assert np.dot(X[:, i], X[:, j]) == 0
+        assert np.sum(X[:, i] * X[:, j] ** 2) == 0
+    # the full quadratic model is estimable with the centre runs
+    cols = [np.ones(len(d.coded_runs))] + [d.coded_runs[:, i] for i in range(k)]
+    cols += [d.coded_runs[:, i] * d.coded_runs[:, j] for i, j in combinations(range(k), 2)]
+    cols += [d.coded_runs[:, i] ** 2 for i in range(k)]
+    F = np.column_stack(cols)
+    assert np.linalg.matrix_rank(F) == F.shape[1] == 1 + 2 * k + k * (k - 1) // 2
+
+
+def test_large_designs_pair_structure_as_published():
+    # 11 factors: the symmetric (11, 5, 2) BIBD (every pair in exactly two quintuples)
+    pairs11 = [p for s in BBD_SETS[11] for p in combinations(s, 2)]
+    assert all(pairs11.count(p) == 2 for p in combinations(range(1, 12), 2))
+    # 9 factors: the 12 lines of the affine plane of order 3 (every pair once), plus its
+    # first parallel class again (pairs within those triples twice)
+    nine = BBD_SETS[9]
+    plane = nine[:12]
+    assert sorted(p for s in plane for p in combinations(s, 2)) == list(combinations(range(1, 10), 2))
+    assert nine[12:] == nine[:3] and sorted(f for s in nine[:3] for f in s) == list(range(1, 10))
+    # 10, 12, 16 factors: partially balanced (two pair counts), every pair varied together at
+    # least once (so every interaction is estimable)
+    for k in (10, 12, 16):
+        counts = {sum(set(p) <= set(s) for s in BBD_SETS[k]) for p in combinations(range(1, k + 1), 2)}
+        assert len(counts) == 2 and min(counts) >= 1, (k, counts)
+
+
+def test_11_factor_sets_run_the_resolution_v_half_fraction():
+    d = box_behnken(space(11), center=0, randomize=False)
+    X = d.coded_runs[:16]  # the first set (3, 7, 8, 9, 11)
+    cols = X[:, [2, 6, 7, 8, 10]]
+    np.testing.assert_array_equal(np.prod(cols[:, :4], axis=1), cols[:, 4])  # E = ABCD
+    assert len({tuple(r) for r in cols}) == 16
+
+
+@pytest.mark.parametrize("k", [4, 7, 9, 10, 11, 12, 16])
+def test_rotatable_only_for_4_and_7_factors(k):
+    # Box & Behnken (1960): 4 and 7 factors are rotatable; the larger designs are not
+    # ([iiii] = r 2^m / N against [iijj] = lambda 2^m / N: r = 3 lambda only for those two)
+    X = box_behnken(space(k), center=3, randomize=False).coded_runs
+    ratios = {float(np.sum(X[:, i] ** 4) / np.sum(X[:, i] ** 2 * X[:, j] ** 2))
+              for i, j in combinations(range(k), 2) if np.sum(X[:, i] ** 2 * X[:, j] ** 2) > 0}
+    if k in (4, 7):
+        assert ratios == {3.0}
+    else:
+        assert 3.0 not in ratios or len(ratios) > 1
+    if k == 11:  # a BIBD: one ratio r / lambda = 5 / 2 for every pair
+        assert ratios == {2.5}
+
+
+@pytest.mark.parametrize("k,nb", [(9, 5), (16, 6)])
+def test_published_blocking_of_9_and_16_factors_is_orthogonal(k, nb):
+    edge, _, _, _ = LARGE[k]
+    d = box_behnken(space(k), center=2, blocks=nb, seed=3)
+    assert d.n_blocks == nb and d.n_runs == edge + nb * 2
+    assert np.bincount(d.blocks)[1:].tolist() == [edge // nb + 2] * nb
+    assert block_orthogonality(d.coded_runs, d.blocks) < 1e-12
+
+
+def test_cli_writes_a_16_factor_design(tmp_path):
+    import pandas as pd
+
+    from rsm_lrg.cli import main
+
+    out = tmp_path / "bbd16.csv"
+    argv = ["design", "box-behnken", "--center", "12", "--seed", "1", "-o", str(out)]
+    for i in range(16):
+        argv += ["--factor", f"f{i}=0:{i + 1}"]
+    assert main(argv) == 0
+    assert len(pd.read_csv(out)) == 396

@@ -191,3 +191,30 @@ def test_star_points_written_with_the_shortest_decimal_that_codes_back():
     back = pd.read_csv(StringIO(text))
     assert np.array_equal(space.factors[0].encode(back["x"].to_numpy()), d.coded_runs[:, 0])
     assert np.array_equal(space.factors[1].encode(back["y"].to_numpy()), d.coded_runs[:, 1])
+
+
+def test_csv_text_is_the_pandas_csv_byte_for_byte():
+    # `rsm-lrg design` writes the CSV without loading pandas; the bytes are pandas' own
+    from rsm_lrg.design import (
+        box_behnken,
+        central_composite,
+        definitive_screening,
+        full_factorial,
+        latin_hypercube,
+        optimal,
+        plackett_burman,
+    )
+
+    designs = [
+        box_behnken({"thickness_m": (1e-4, 5e-4), "stroke_m": (0.04, 0.06), "v": (0.4, 0.6), "a": (20, 40)}, seed=1),
+        box_behnken(["a=0:1", "b=0:2", "c=1:3", "s=cat:rfcms,rms"], seed=2),
+        box_behnken({"a": (0, 1), "b": (0, 1), "c": (0, 1), "d": (0, 1)}, blocks=3, seed=3),
+        central_composite({"a": (0.1, 0.7), "b": (-3, 5), "c": (1e-9, 3e-9)}, blocks=2, seed=4),
+        full_factorial({"a": (0, 1), "b": (2, 3)}, levels=3, seed=5),
+        optimal(["x=0:1", "y=0:7", "z=cat:p,q,r"], model="quadratic", criterion="D", runs=14, seed=1),
+        plackett_burman({L: (-1.5, 2.5) for L in "abcdefgh"}, seed=1),
+        definitive_screening({L: (0, 10) for L in "abcdef"}, seed=1),
+        latin_hypercube({"a": (0, 1), "b": (1e3, 1e6)}, 20, seed=1),
+    ]
+    for d in designs:
+        assert d.csv_text() == d.to_frame().to_csv(index=False, lineterminator="\n"), d.kind

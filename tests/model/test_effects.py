@@ -119,3 +119,85 @@ def test_multi_df_terms_are_refused():
     res = fit(df, "rate", factors=FACTORS[:2] + ["stage=cat"], model="linear")
     with pytest.raises(ValueError, match="degrees of freedom"):
         screening_effects(res)
+
+
+# --- the largest estimable model (issue 25: effects' default on a fractional factorial) -------
+
+def _word_product(a: str, b: str) -> str:
+    """Product of two effect words modulo squares (A·AB = B): the alias arithmetic of a regular
+    fraction, computed without the runs."""
+    return "".join(sorted(set(a) ^ set(b)))
+
+
+def _fraction(letters: str, generators: dict) -> np.ndarray:
+    base = [L for L in letters if L not in generators]
+    runs = np.array(list(itertools.product([-1.0, 1.0], repeat=len(base))))
+    cols = {L: runs[:, i] for i, L in enumerate(base)}
+    for L, word in generators.items():
+        cols[L] = np.prod([cols[c] for c in word], axis=0)
+    return np.column_stack([cols[L] for L in letters])
+
+
+@pytest.mark.parametrize("letters,generators", [
+    ("ABCDE", {"E": "ABCD"}),                 # 2^(5-1), resolution V (I = ABCDE)
+    ("ABCDEFG", {"D": "AB", "E": "AC", "F": "BC", "G": "ABC"}),  # 2^(7-4), resolution III
+    ("ABCDEF", {"E": "ABC", "F": "BCD"}),     # 2^(6-2), resolution IV
+])
+def test_largest_estimable_model_of_regular_fractions(letters, generators):
+    from rsm_lrg.model.effects import largest_estimable_model
+
+    x = _fraction(letters, generators)
+    m = largest_estimable_model(x, letters)
+    n = len(x)
+    assert len(m.terms) == n - 1  # saturated: every degree of freedom used
+    assert set(letters) <= set(m.terms)  # every main effect kept
+    # the defining relation from the generators (words of the group they generate)
+    words = {""}
+    for L, w in generators.items():
+        words |= {_word_product(v, L + w) for v in words}
+    words.discard("")
+    assert {a.lstrip("-") for a in m.aliases["Intercept"]} == words  # I = the defining relation
+    for t in m.terms:  # each kept term's chain is exactly t times each defining word
+        expected = {_word_product(t, w) for w in words}
+        got = {a.lstrip("-") for a in m.aliases.get(t, ())}
+        assert got == expected, t
+        # kept = the lowest order of its chain
+        assert len(t) <= min(len(a) for a in expected)
+    assert not m.partial  # a regular fraction has no partial aliasing
+    # columns of the kept terms are mutually orthogonal
+    X = np.column_stack([np.prod(x[:, [letters.index(c) for c in t]], axis=1) for t in m.terms])
+    np.testing.assert_allclose(X.T @ X, n * np.eye(len(m.terms)))
+
+
+def test_largest_estimable_model_full_factorial_and_plackett_burman():
+    from rsm_lrg.design.screening import plackett_burman
+    from rsm_lrg.model.effects import largest_estimable_model
+
+    full = np.array(list(itertools.product([-1.0, 1.0], repeat=4)))
+    m = largest_estimable_model(full, "ABCD")
+    assert len(m.terms) == 15 and not m.aliases and not m.partial
+    # a 12-run Plackett-Burman in 8 factors: the two-factor interactions are partially aliased
+    # with the main effects (Plackett & Burman 1946), so only the main effects are kept
+    pb = plackett_burman({L: (0, 1) for L in "abcdefgh"}, randomize=False).coded_runs
+    assert len(pb) == 12
+    m = largest_estimable_model(pb, "ABCDEFGH")
+    assert m.terms == tuple("ABCDEFGH") and "AB" in m.partial and not m.aliases
+    # centre points change nothing; a room limit keeps fewer terms
+    m = largest_estimable_model(np.vstack([full, np.zeros((3, 4))]), "ABCD", max_terms=10)
+    assert len(m.terms) == 10 and m.terms[:4] == ("A", "B", "C", "D")
+
+
+def test_effects_cli_default_is_the_largest_estimable_model(tmp_path, capsys):
+    from rsm_lrg.cli import main
+
+    x = _fraction("ABCDE", {"E": "ABCD"})
+    y = 10 + 3 * x[:, 0] - 2 * x[:, 1] + 1.5 * x[:, 0] * x[:, 1] + 0.1 * np.sin(np.arange(16))
+    df = pd.DataFrame(x, columns=list("pqrst")).assign(y=y)
+    path = tmp_path / "ff.csv"
+    df.to_csv(path, index=False)
+    assert main(["effects", str(path), "--response", "y"]) == 0
+    out = capsys.readouterr().out
+    assert "15 one-df effects" in out and "AB = CDE" in out and "Active beyond SME: A, B, AB" in out
+    assert main(["effects", str(path), "--response", "y", "--model", "full"]) == 2
+    err = capsys.readouterr().err
+    assert "16 runs cannot fit the full model (every interaction of 5 factors: 31 effects" in err

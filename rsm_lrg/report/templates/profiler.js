@@ -344,18 +344,23 @@
     var pair = pairOf("overlay-x", "overlay-y");
     if (!pair || pair[0].name === pair[1].name) return null;
     var fx = pair[0], fy = pair[1], xs = linspace(fx.low, fx.high, GRID), ys = linspace(fy.low, fy.high, GRID);
-    var z = [], zr = MODELS.map(function () { return []; });
+    var z = [], zm = [], zr = MODELS.map(function () { return []; });
     for (var j = 0; j < ys.length; j++) {
-      var row = [], rr = MODELS.map(function () { return []; });
+      var row = [], mrow = [], rr = MODELS.map(function () { return []; });
       for (var i = 0; i < xs.length; i++) {
         var t = Object.assign({}, s); t[fx.name] = xs[i]; t[fy.name] = ys[j];
         row.push(inside(t) ? 1 : 0);
+        /* the smallest margin to a limit (each response in units of its observed range): >= 0
+           inside every limit; its 0 contour is made of the limits' own contours */
+        var mt = margin(t);
+        mrow.push(mt === Infinity ? 1 : (mt === -Infinity || !isFinite(mt) ? -1 : Math.max(-1, Math.min(1, mt))));
         MODELS.forEach(function (m, k) { rr[k].push(predictValue(m, t)); });
       }
       z.push(row);
+      zm.push(mrow);
       rr.forEach(function (r, k) { zr[k].push(r); });
     }
-    return {fx: fx, fy: fy, x: xs, y: ys, z: z, zr: zr};
+    return {fx: fx, fy: fy, x: xs, y: ys, z: z, zm: zm, zr: zr};
   }
   var COLORS = ["#1f4e79", "#a11d1d", "#1d6b2f", "#9a5b00", "#5b2a86", "#00707a"];
   function drawOverlay(s) {
@@ -363,9 +368,13 @@
     if (!el) return;
     var g = overlayGrid(s), out = document.getElementById("overlay-readout");
     if (!g) { out.textContent = "Choose two different factors."; Plotly.purge(el); return; }
-    var traces = [{type: "heatmap", x: g.x, y: g.y, z: g.z, zmin: 0, zmax: 1, showscale: false,
-                   colorscale: [[0, "rgba(255,255,255,0)"], [1, "rgba(240,200,0,0.55)"]], hoverinfo: "skip",
-                   name: "inside every limit"}];
+    /* the region inside every limit, filled up to the 0 contour of the smallest margin: its edge
+       follows the limit lines (interpolated on the same grid), not the grid's cells */
+    var traces = [{type: "contour", x: g.x, y: g.y, z: g.zm, zmin: -1, zmax: 1, showscale: false,
+                   contours: {start: 0, end: 0, size: 1, coloring: "fill", showlines: false},
+                   colorscale: [[0, "rgba(255,255,255,0)"], [0.5, "rgba(255,255,255,0)"], [0.5, "rgba(240,200,0,0.55)"],
+                                [1, "rgba(240,200,0,0.55)"]],
+                   line: {width: 0}, hoverinfo: "skip", name: "inside every limit"}];
     MODELS.forEach(function (m, k) {
       var lim = limitsOf(m);
       [0, 1].forEach(function (e) {
@@ -391,6 +400,10 @@
                               yaxis: axis(esc(g.fy.letter + ": " + g.fy.name))}, CONFIG);
   }
 
+  // The 3-D surface opens seen from above at an angle (as Design-Expert and JMP open theirs):
+  // 30 degrees of elevation, from the low corner of both factors; a user's rotation is kept.
+  var SURFACE_CAMERA = {eye: {x: -1.5, y: -1.5, z: 1.22}, up: {x: 0, y: 0, z: 1}, center: {x: 0, y: 0, z: -0.1}};
+
   function drawSurface(s) {
     var el3 = document.getElementById("surface-plot"), el2 = document.getElementById("contour-plot");
     if (!el3) return;
@@ -410,7 +423,7 @@
        name: "current setting"}],
       {margin: {l: 0, r: 0, t: 10, b: 0}, showlegend: false, uirevision: "keep",
        scene: {aspectmode: "cube", xaxis: axis(xl), yaxis: axis(yl), zaxis: axis(zl),
-               camera: keepCamera || undefined}}, CONFIG);
+               camera: keepCamera || SURFACE_CAMERA}}, CONFIG);
     Plotly.react(el2, [
       {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true, labelformat: ".4~g"}, colorbar: {title: {text: zl}, exponentformat: "power"}},
       {type: "scatter", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], marker: {size: 10, color: "#a11d1d"},

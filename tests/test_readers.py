@@ -1,0 +1,250 @@
+"""rsm_lrg.readers and rsm_lrg.io.read_table: CSV dialects, Excel workbooks, Parquet files,
+standard input; every bad variant is one InputError that names the file (and the row/column)."""
+
+import io
+import sys
+import zipfile
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import rsm_lrg
+from rsm_lrg.datasets import data_path
+from rsm_lrg.io import InputError, read_table, read_table_as
+from rsm_lrg.readers import ReadAs, TableError, detect_separator, parse_csv
+
+TABLE4 = data_path("table4.csv")
+
+
+@pytest.fixture(scope="module")
+def table4():
+    return pd.read_csv(TABLE4)
+
+
+def _same(a: pd.DataFrame, b: pd.DataFrame) -> None:
+    assert list(a.columns) == list(b.columns)
+    assert a.shape == b.shape
+    np.testing.assert_array_equal(a.to_numpy(dtype=float), b.to_numpy(dtype=float))  # exact: same digits
+
+
+@pytest.mark.parametrize("sep,decimal", [(";", ","), (";", "."), ("\t", "."), ("\t", ","), ("|", "."), (",", ".")])
+def test_csv_dialects_read_the_same_numbers(tmp_path, table4, sep, decimal):
+    p = tmp_path / "runs.csv"
+    table4.to_csv(p, sep=sep, decimal=decimal, index=False)
+    df, how = read_table_as(p, decimal=decimal)  # the separator detected
+    _same(df, table4)
+    assert how == ReadAs("csv", sep, decimal, True)
+    df2, how2 = read_table_as(p, sep=sep, decimal=decimal)  # and given
+    _same(df2, table4)
+    assert not how2.sep_detected
+
+
+def test_utf16_and_bom_text(tmp_path, table4):
+    p = tmp_path / "unicode.txt"
+    p.write_bytes(table4.to_csv(sep="\t", index=False).encode("utf-16"))  # Excel's "Unicode text"
+    _same(read_table(p), table4)
+    p.write_bytes(b"\xef\xbb\xbf" + table4.to_csv(sep=";", index=False).encode())
+    _same(read_table(p), table4)
+
+
+def test_xlsx_and_parquet_and_stdin(tmp_path, table4, monkeypatch):
+    x = tmp_path / "runs.xlsx"
+    table4.to_excel(x, index=False, sheet_name="Runs")
+    df, how = read_table_as(x)
+    _same(df, table4)
+    assert how.describe() == "sheet 'Runs' of an Excel workbook"
+    q = tmp_path / "runs.parquet"
+    table4.to_parquet(q)
+    df, how = read_table_as(q)
+    _same(df, table4)
+    assert how.format == "parquet"
+    # standard input, in any of the formats (told by the first bytes)
+    for raw in (x.read_bytes(), q.read_bytes(), table4.to_csv(sep=";", decimal=",", index=False).encode()):
+        monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(raw)))
+        _same(read_table("-", decimal="," if raw[:2] == b"or" else "."), table4)
+
+
+def test_python_api_takes_a_frame_and_the_options(tmp_path, table4):
+    assert read_table(table4) is table4  # a DataFrame is accepted as it is
+    p = tmp_path / "semi.csv"
+    table4.to_csv(p, sep=";", decimal=",", index=False)
+    _same(rsm_lrg.read_table(p, sep=";", decimal=","), table4)
+    ref = rsm_lrg.fit(table4, "tcr_c_per_min")
+    got = rsm_lrg.fit(rsm_lrg.read_table(p, decimal=","), "tcr_c_per_min")
+    assert got.to_dict()["coefficients"] == ref.to_dict()["coefficients"]
+
+
+def test_xlsx_several_sheets_needs_sheet(tmp_path, table4):
+    x = tmp_path / "book.xlsx"
+    with pd.ExcelWriter(x) as w:
+        pd.DataFrame({"note": ["read me"]}).to_excel(w, sheet_name="Notes", index=False)
+        table4.to_excel(w, sheet_name="Runs", index=False)
+    with pytest.raises(InputError, match=r"book\.xlsx: the workbook has 2 sheets \('Notes', 'Runs'\); choose one"):
+        read_table(x)
+    _same(read_table(x, sheet="Runs"), table4)
+    with pytest.raises(InputError, match=r"book\.xlsx: no sheet 'Data' in the workbook \(sheets: 'Notes', 'Runs'\)"):
+        read_table(x, sheet="Data")
+
+
+def test_xlsx_trailing_blank_rows_and_columns_are_not_data(tmp_path, table4):
+    import openpyxl
+
+    x = tmp_path / "lab.xlsx"
+    wb = openpyxl.Workbook()
+    ws = wb.active
+    ws.title = "Runs"
+    ws.append(list(table4.columns))
+    for row in table4.itertuples(index=False):
+        ws.append(list(row))
+    ws.cell(row=60, column=12, value=None)  # an empty cell far out: the used range grows
+    ws.cell(row=40, column=1).value = "   "  # a blank-looking row
+    wb.save(x)
+    _same(read_table(x), table4)
+
+
+def test_xlsx_formula_without_value_is_refused(tmp_path, table4):
+    import openpyxl
+
+    x = tmp_path / "f.xlsx"
+    wb = openpyxl.Workbook()
+    ws = wb.active
+    ws.append(["a", "b", "y"])
+    ws.append([1, 2, 3])
+    ws.append([2, 3, "=A3+B3"])  # openpyxl stores no computed value
+    wb.save(x)
+    with pytest.raises(InputError, match=r"f\.xlsx: sheet 'Sheet' cell C3 holds a formula without a stored value"):
+        read_table(x)
+
+
+@pytest.mark.parametrize("text,decimal,message", [
+    ("a;b\n1,5;2\n", ".", r"column 'a' row 1: '1,5' is written with a decimal comma; read the file with --decimal ,"),
+    ("a;b\n1.5;2\n", ",", r"column 'a' row 1: '1.5' is written with a decimal point; read the file with --decimal \."),
+    ("a;b;c\n1;2;3\n4;5\n", ".", r""),  # a short line reads as empty cells (checked later), not an error here
+    ("a,b,c\n1,5,2,3\n", ".", r"line 2 has more fields than the header \(3 columns\); a number written with a decimal comma"),
+    ("a;b,c\n1;2,3\n", ".", r"the separator is ambiguous \(both ',' and ';' split every line alike\); give --sep"),
+    ("abc\n1\n", ".", r"is not a CSV table \(found a single column 'abc'\)"),
+    ("a;a\n1;2\n", ".", r"column 'a' appears more than once in the header"),
+    ("a;;c\n1;2;3\n", ".", r"the header row has a blank column name"),
+    ("a;b\n", ".", r"has a header but no data rows"),
+])
+def test_bad_csv_variants(tmp_path, text, decimal, message):
+    p = tmp_path / "bad.csv"
+    p.write_text(text)
+    if not message:
+        assert read_table(p).shape == (2, 3)
+        return
+    with pytest.raises(InputError, match="^" + r"[^\n]*bad\.csv: " + message):
+        read_table(p, decimal=decimal)
+
+
+def test_bad_binary_variants(tmp_path, table4):
+    x = tmp_path / "runs.xlsx"
+    table4.to_excel(x, index=False)
+    q = tmp_path / "runs.parquet"
+    table4.to_parquet(q)
+    cases = {
+        "cut.xlsx": (x.read_bytes()[:2000], r"cut\.xlsx: is not a readable Excel workbook"),
+        "text.xlsx": (b"a,b\n1,2\n", r"text\.xlsx: is not an Excel workbook"),
+        "cut.parquet": (q.read_bytes()[: len(q.read_bytes()) // 2], r"cut\.parquet: is not a readable Parquet file"),
+        "text.parquet": (b"a,b\n1,2\n", r"text\.parquet: is not a Parquet file"),
+        "old.xls": (b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1" + b"\0" * 100, r"old\.xls: is an old-style Excel \.xls"),
+        "book.csv": (x.read_bytes(), r"book\.csv: is a zip archive \(an Excel workbook\?\), not a \.csv file"),
+        "latin1.csv": ("a;b\n1;2\n\u00b0C;3\n".encode("latin-1"), r"latin1\.csv: is not a UTF-8 CSV text file \(line 3\)"),
+    }
+    for name, (raw, message) in cases.items():
+        p = tmp_path / name
+        p.write_bytes(raw)
+        with pytest.raises(InputError, match=message):
+            read_table(p)
+    zipped = tmp_path / "other.xlsx"  # a zip archive that is not a workbook
+    with zipfile.ZipFile(zipped, "w") as z:
+        z.writestr("hello.txt", "hi")
+    with pytest.raises(InputError, match=r"other\.xlsx: is not a readable Excel workbook"):
+        read_table(zipped)
+
+
+def test_options_that_do_not_fit_the_format(tmp_path, table4):
+    q = tmp_path / "runs.parquet"
+    table4.to_parquet(q)
+    with pytest.raises(InputError, match=r"runs\.parquet: --sep and --decimal are for CSV text; this is PARQUET"):
+        read_table(q, decimal=",")
+    with pytest.raises(InputError, match=r"--sheet 'x' is for an Excel workbook"):
+        read_table(q, sheet="x")
+    with pytest.raises(InputError, match=r"--sep ':' is not one of"):
+        read_table(q, sep=":")
+    p = tmp_path / "a.csv"
+    p.write_text("a;b\n1;2\n")
+    with pytest.raises(InputError, match=r"the separator and the decimal mark are both ','"):
+        read_table(p, sep=",", decimal=",")
+
+
+def test_empty_stdin_is_an_error(monkeypatch):
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(b"")))
+    with pytest.raises(InputError, match=r"<stdin>: nothing was read"):
+        read_table("-")
+
+
+def test_detect_separator_rules():
+    assert detect_separator("x;y\n1;2\n3;4\n") == ";"
+    assert detect_separator("x|y\n1|2\n") == "|"
+    assert detect_separator("x,y\n1,2\n3,4,5\n") == ","  # the one that splits the header; the parser names line 3
+    assert detect_separator("x\n1\n") == ","
+    with pytest.raises(TableError):
+        detect_separator("a;b,c\n1;2,3\n")
+
+
+def test_parse_csv_decimal_comma_exact():
+    df, how = parse_csv(b"x;y\n0,1;-2,5e-3\n1,25;3\n", decimal=",")
+    assert df["x"].tolist() == [0.1, 1.25] and df["y"].tolist() == [-0.0025, 3.0]
+    assert how.describe() == "CSV, separator ';' (detected), decimal ','"
+
+
+# --- piece by piece (simulate's large designs) ---------------------------------------------
+
+def test_count_rows_and_pieces_equal_the_whole(tmp_path, table4):
+    from rsm_lrg.readers import count_rows, csv_chunks, parquet_chunks, write_csv_chunks, write_parquet_chunks
+
+    p = tmp_path / "semi.csv"
+    table4.to_csv(p, sep=";", decimal=",", index=False)
+    q = tmp_path / "t.parquet"
+    table4.to_parquet(q)
+    with open(p, "rb") as fh:
+        assert count_rows(fh, "csv") == 27
+        how, pieces = csv_chunks(fh, decimal=",", chunk_rows=10)
+        parts = list(pieces)
+    assert how == ReadAs("csv", ";", ",", True) and [len(x) for x in parts] == [10, 10, 7]
+    assert parts[2].index[0] == 20  # rows numbered in the whole file
+    _same(pd.concat(parts, ignore_index=True), table4)
+    p.write_bytes(p.read_bytes().rstrip(b"\n"))  # no final newline
+    with open(p, "rb") as fh:
+        assert count_rows(fh, "csv") == 27
+    with open(q, "rb") as fh:
+        assert count_rows(fh, "parquet") == 27
+        _, pieces = parquet_chunks(fh, chunk_rows=8)
+        parts = list(pieces)
+    assert [len(x) for x in parts] == [8, 8, 8, 3]
+    _same(pd.concat(parts, ignore_index=True), table4)
+    # written piece by piece: one CSV (header once) and one Parquet file
+    buf = io.BytesIO()
+    assert write_csv_chunks(buf, parts) == 27
+    assert buf.getvalue().decode() == table4.to_csv(index=False, float_format="%.10g", lineterminator="\n")
+    buf = io.BytesIO()
+    assert write_parquet_chunks(buf, parts) == 27
+    _same(pd.read_parquet(io.BytesIO(buf.getvalue())), table4)
+    with pytest.raises(TableError, match="different columns"):
+        write_csv_chunks(io.BytesIO(), [parts[0], parts[1].rename(columns={"order": "run"})])
+
+
+def test_pieces_refuse_what_the_whole_refuses(tmp_path):
+    from rsm_lrg.readers import csv_chunks
+
+    p = tmp_path / "bad.csv"
+    p.write_text("a;b\n" + "1;2\n" * 30 + "1,5;2\n")
+    with open(p, "rb") as fh:
+        _, pieces = csv_chunks(fh, chunk_rows=10)
+        with pytest.raises(TableError, match=r"column 'a' row 31: '1,5' is written with a decimal comma"):
+            list(pieces)
+    p.write_text("a;a\n1;2\n")
+    with open(p, "rb") as fh, pytest.raises(TableError, match="'a' appears more than once"):
+        csv_chunks(fh)
