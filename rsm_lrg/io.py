@@ -33,9 +33,9 @@ from pathlib import Path
 from typing import Any, BinaryIO
 
 __all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "open_input", "check_output",
-           "output_transaction", "read_table", "read_table_as", "read_stdin_bytes", "read_toml", "toml_value",
-           "write_output", "dump_json",
-           "to_jsonable", "numeric_column", "float_column", "is_empty_cell", "cell_error", "COMMA_NUMBER"]
+           "output_transaction", "output_stream", "register_input", "read_table", "read_table_as", "read_stdin_bytes",
+           "read_toml", "toml_value", "write_output", "dump_json", "to_jsonable", "numeric_column", "float_column",
+           "is_empty_cell", "cell_error", "COMMA_NUMBER"]
 
 
 class InputError(ValueError):
@@ -99,6 +99,7 @@ def read_input_bytes(path: str | os.PathLike, what: str = "file", *, limit: int 
     p = Path(path)
     if not str(path).strip():
         raise InputError(f"an empty path was given for the {what}")
+    register_input(p)
     try:
         st = os.stat(p)
     except FileNotFoundError:
@@ -136,6 +137,7 @@ def open_input(path: str | os.PathLike, what: str = "file"):
     p = Path(path)
     if not str(path).strip():
         raise InputError(f"an empty path was given for the {what}")
+    register_input(p)
     try:
         fd = os.open(p, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
     except FileNotFoundError:
@@ -390,6 +392,7 @@ class _Transaction:
         self.inputs = [Path(x) for x in inputs]
         self.labels = {os.path.abspath(k): v for k, v in (labels or {}).items()}
         self.staged: list[tuple[str, Path, bool]] = []  # (temporary file, target, force)
+        self.streams: list[tuple[int, bytes, Path]] = []  # (descriptor, data, path named): written last
 
     def label(self, path) -> str | None:
         """The option that named ``path`` (``--json``), when known."""
@@ -399,46 +402,149 @@ class _Transaction:
         for tmp, *_ in self.staged:
             _unlink(tmp)
         self.staged = []
+        self.streams = []
 
     def commit(self) -> None:
-        """Rename every staged file into place; if one rename fails, undo the others."""
+        """Rename every staged file into place, then write the streams (``/dev/stdout``); if
+        one step fails, every file already placed is put back as it was (the file it replaced
+        restored from its backup, a new file removed) and the error is raised."""
         done: list[tuple[Path, str | None]] = []  # (target, backup of the file it replaced)
         try:
             for tmp, target, force in self.staged:
-                backup = None
-                if force and os.path.lexists(target):
-                    backup = f"{tmp}.old"
-                    try:
-                        os.link(target, backup, follow_symlinks=False)
-                    except OSError:
-                        backup = None
+                _still_replaceable(target, self.label(target))
+                backup, moved = _keep_backup(target) if force and os.path.lexists(target) else (None, False)
                 try:
-                    _place(tmp, target, force)
+                    _place(tmp, target, force, self.label(target))
                 except BaseException:
-                    if backup:
-                        _unlink(backup)
+                    if backup and moved:  # the file was moved aside: put it back
+                        _restore(backup, target)
+                    elif backup:  # a link or a copy: the file itself never left
+                        _drop_backup(backup)
                     raise
                 done.append((target, backup))
-        except BaseException:
+            for fd, data, path in self.streams:
+                _write_stream(fd, data, path, self.label(path))
+        except BaseException as exc:
+            lost = []
             for target, backup in reversed(done):
                 if backup:
-                    try:
-                        os.replace(backup, target)
-                    except OSError:
-                        pass
+                    if not _restore(backup, target):
+                        lost.append(f"{_show(target)} (kept as {_show(backup)})")
                 else:
                     _unlink(target)
             self.discard()
+            if lost and isinstance(exc, Exception):
+                raise InputError(f"{exc}; could not put back {', '.join(lost)}") from None
             raise
         for _, backup in done:
             if backup:
-                _unlink(backup)
+                _drop_backup(backup)
         self.staged = []
+        self.streams = []
 
 
-def _place(tmp: str, target: Path, force: bool) -> None:
+_BACKUP_PREFIX = ".rsm-lrg-backup."
+
+
+def _still_replaceable(target: Path, label: str | None) -> None:
+    """At the commit, what now stands at ``target`` may be replaced: nothing, a regular file
+    or a symbolic link; a directory, device, pipe or socket that appeared since the checks
+    (a concurrent writer) is never replaced."""
+    import stat
+
+    try:
+        mode = os.lstat(target).st_mode
+    except OSError:
+        return
+    if not (stat.S_ISREG(mode) or stat.S_ISLNK(mode)):
+        what = f"{label} " if label else ""
+        raise InputError(f"cannot write {what}{_show(target)}: it is no longer a regular file (a directory, "
+                         f"device, pipe or socket appeared there); it is never replaced")
+
+
+def _keep_backup(target: Path) -> tuple[str, bool]:
+    """Keep the file at ``target`` before it is replaced, so that a failed commit can put it
+    back: a hard link beside it (the file stays in place); where a hard link is refused
+    (``protected_hardlinks``, a file system without them), the file renamed into a private
+    directory beside it (same file system: the very file, owner and mode kept); where that
+    is refused too, a copy. Returns the backup's path and whether the file was moved there
+    (it must then be put back if the new file cannot be placed), or raises
+    :class:`InputError` (nothing replaced) when no backup can be made."""
+    import shutil
+    import tempfile
+
+    parent = target.parent if str(target.parent) else Path(".")
+    try:
+        d = tempfile.mkdtemp(prefix=_BACKUP_PREFIX, dir=parent)
+    except OSError as exc:
+        raise InputError(f"cannot write {_show(target)}: no backup of the file it replaces can be kept "
+                         f"({exc.strerror or type(exc).__name__})") from None
+    backup = os.path.join(d, "file")
+    try:
+        os.link(target, backup, follow_symlinks=False)
+        return backup, False
+    except OSError:
+        pass
+    try:
+        os.rename(target, backup)
+        return backup, True
+    except OSError:
+        pass
+    try:
+        if os.path.islink(target):
+            os.symlink(os.readlink(target), backup)
+        else:
+            shutil.copy2(target, backup, follow_symlinks=False)
+        return backup, False
+    except OSError as exc:
+        _drop_backup(backup)
+        raise InputError(f"cannot write {_show(target)}: no backup of the file it replaces can be kept "
+                         f"({exc.strerror or type(exc).__name__})") from None
+
+
+def _restore(backup: str, target: Path) -> bool:
+    """Put ``backup`` (from :func:`_keep_backup`) back at ``target``; True when done."""
+    try:
+        os.replace(backup, target)
+    except OSError:
+        return False
+    _drop_backup(backup)
+    return True
+
+
+def _drop_backup(backup: str) -> None:
+    _unlink(backup)
+    try:
+        os.rmdir(os.path.dirname(backup))
+    except OSError:
+        pass
+
+
+def _write_stream(fd: int, data: bytes, path: Path, label: str | None) -> None:
+    """Write ``data`` through the open descriptor ``fd`` (``/dev/stdout``, ``/dev/fd/3``): a
+    reader that has gone (a closed pipe) is an ordinary condition, as for printed text."""
+    if fd == 1:
+        try:
+            sys.stdout.flush()
+        except (OSError, ValueError):
+            pass
+    view = memoryview(data)
+    try:
+        while view:
+            n = os.write(fd, view)
+            view = view[n:]
+    except BrokenPipeError:
+        return
+    except OSError as exc:
+        what = f"{label} " if label else ""
+        raise InputError(f"cannot write {what}{_show(path)}: {exc.strerror or type(exc).__name__}") from None
+
+
+def _place(tmp: str, target: Path, force: bool, label: str | None = None) -> None:
     """Rename ``tmp`` to ``target``. Without ``force`` a file that appeared at ``target`` since
-    the checks is never replaced: the new file is linked in only where nothing exists yet."""
+    the checks is never replaced: the new file is linked in only where nothing exists yet.
+    ``label`` names the option in messages."""
+    what = f"{label} " if label else ""
     try:
         if force:
             os.replace(tmp, target)
@@ -446,15 +552,15 @@ def _place(tmp: str, target: Path, force: bool) -> None:
         try:
             os.link(tmp, target)
         except FileExistsError:
-            raise InputError(f"cannot write {_show(target)}: it already exists; use --force to overwrite it") from None
+            raise InputError(f"cannot write {what}{_show(target)}: it already exists; use --force to overwrite it") from None
         except OSError:  # a file system without hard links
             if os.path.lexists(target):
-                raise InputError(f"cannot write {_show(target)}: it already exists; use --force to overwrite it") from None
+                raise InputError(f"cannot write {what}{_show(target)}: it already exists; use --force to overwrite it") from None
             os.replace(tmp, target)
         else:
             _unlink(tmp)
     except OSError as exc:
-        raise InputError(f"cannot write {_show(target)}: {exc.strerror or type(exc).__name__}") from None
+        raise InputError(f"cannot write {what}{_show(target)}: {exc.strerror or type(exc).__name__}") from None
 
 
 def _unlink(path) -> None:
@@ -485,6 +591,16 @@ def output_transaction(inputs=(), labels=None):
     tx.commit()
 
 
+def register_input(path: str | os.PathLike) -> None:
+    """Count ``path`` as an input of the running command (inside :func:`output_transaction`):
+    no output may name it, ``--force`` or not. :func:`read_input_bytes` registers every file
+    it reads; a reader that opens files another way (each file a glob or a directory
+    matches) registers them with this."""
+    tx = _TRANSACTION.get()
+    if tx is not None:
+        tx.inputs.append(Path(path))
+
+
 def _same_file(a: Path, b: Path) -> bool:
     try:
         if os.path.samefile(a, b):
@@ -497,15 +613,69 @@ def _same_file(a: Path, b: Path) -> bool:
         return False
 
 
+def output_stream(path: str | os.PathLike) -> int | None:
+    """The open file descriptor that ``path`` names, or None: ``/dev/stdout`` (1),
+    ``/dev/stderr`` (2), ``/dev/fd/N``, ``/proc/self/fd/N`` and any symbolic link leading to
+    one of them. Such an output is written through the descriptor (whatever it is open on: a
+    terminal, a pipe, the file the shell redirected to), never replaced by a file.
+
+    >>> output_stream("/dev/stdout")
+    1
+    >>> output_stream("out.json") is None
+    True
+    """
+    import re
+
+    p = os.path.abspath(os.fspath(path))
+    mine = re.compile(rf"/proc/(self|thread-self|{os.getpid()}|{os.getpid()}/task/\d+)/fd")
+    for _ in range(40):  # the kernel's own limit on a chain of symbolic links
+        head, name = os.path.split(p)
+        try:
+            head = os.path.realpath(head)
+        except (OSError, ValueError):
+            return None
+        if name.isdigit() and mine.fullmatch(head):
+            return int(name)
+        try:
+            if not os.path.islink(p):
+                return None
+            p = os.path.normpath(os.path.join(head, os.readlink(p)))
+        except (OSError, ValueError):
+            return None
+    return None
+
+
+def _stream_name(fd: int) -> str:
+    return {0: "standard input", 1: "standard output", 2: "standard error"}.get(fd, f"descriptor {fd}")
+
+
+def _real_target(p: Path) -> Path:
+    """The file an output path writes: ``p`` itself, or the regular file a symbolic link
+    leads to (written through the link, which stays)."""
+    if os.path.islink(p):
+        try:
+            real = Path(os.path.realpath(p))
+        except (OSError, ValueError):
+            return p
+        if real.is_file():
+            return real
+    return p
+
+
 def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), option: str | None = None,
                  probe: bool = False) -> Path:
     """Check that ``path`` can be written as an output, or raise :class:`InputError`.
 
     ``cannot write OPTION PATH: REASON`` where the reason is one of: the path is empty; it is
-    a directory or not a regular file; it already exists (without ``force``); it is one of
-    ``inputs`` (same file, through links too, whatever ``force``); its directory does not
-    exist, is not a directory or is not writable. Nothing is left behind: with ``probe`` a
-    temporary file is created in the directory and removed, to be sure it can be written.
+    a directory or not a regular file (a device, a named pipe, a socket, or a symbolic link
+    to one: never replaced, ``--force`` or not); it already exists (without ``force``); it is
+    one of ``inputs`` or of the files the command has read (same file, through links too,
+    whatever ``force``); its directory does not exist, is not a directory or is not writable.
+    A path naming an open descriptor (``/dev/stdout``, :func:`output_stream`) is written
+    through it and passes when the descriptor is open. A symbolic link to a regular file is
+    written through (the file it leads to is replaced with ``force``; the link stays).
+    Nothing is left behind: with ``probe`` a temporary file is created in the directory and
+    removed, to be sure it can be written.
     """
     import stat
 
@@ -523,6 +693,13 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     for inp in list(inputs) + (tx.inputs if tx is not None else []):
         if _same_file(p, Path(inp)):
             raise InputError(f"{head}: it is the input file {_show(inp)}; an input is never overwritten")
+    fd = output_stream(p)
+    if fd is not None:
+        try:
+            os.fstat(fd)
+        except OSError:
+            raise InputError(f"{head}: it names {_stream_name(fd)}, which is closed") from None
+        return p
     try:
         st = os.stat(p)
     except (FileNotFoundError, NotADirectoryError):
@@ -532,13 +709,17 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     except OSError as exc:
         raise InputError(f"{head}: {exc.strerror or type(exc).__name__}") from None
     if st is not None:
+        link = " (through a symbolic link)" if os.path.islink(p) else ""
         if stat.S_ISDIR(st.st_mode):
-            raise InputError(f"{head}: it is a directory")
+            raise InputError(f"{head}: it is a directory{link}")
         if not stat.S_ISREG(st.st_mode):
-            raise InputError(f"{head}: it is not a regular file (a device, pipe or socket)")
+            kind = ("a named pipe" if stat.S_ISFIFO(st.st_mode) else "a socket" if stat.S_ISSOCK(st.st_mode)
+                    else "a device")
+            raise InputError(f"{head}: it is not a regular file but {kind}{link}; it is never replaced")
         if not force:
             raise InputError(f"{head}: it already exists; use --force to overwrite it")
-    parent = p.parent if str(p.parent) else Path(".")
+    real = _real_target(p)
+    parent = real.parent if str(real.parent) else Path(".")
     if not parent.exists():
         raise InputError(f"{head}: the directory {_show(parent)} does not exist")
     if not parent.is_dir():
@@ -549,8 +730,8 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
         try:
             import tempfile  # lazily: rsm-lrg --help never writes
 
-            fd, tmp = tempfile.mkstemp(prefix=".rsm-lrg-probe.", suffix=".tmp", dir=parent)
-            os.close(fd)
+            pfd, tmp = tempfile.mkstemp(prefix=".rsm-lrg-probe.", suffix=".tmp", dir=parent)
+            os.close(pfd)
             _unlink(tmp)
         except OSError as exc:
             raise InputError(f"{head}: the directory {_show(parent)} is not writable "
@@ -568,17 +749,35 @@ def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO
     The text goes to a temporary file in the target directory, is flushed and synced,
     then renamed over the target, so a reader never sees half a file. Every check of
     :func:`check_output` applies. Inside :func:`output_transaction` the rename waits for the
-    end of the block (all outputs of a command appear together, or none).
+    end of the block (all outputs of a command appear together, or none). A path naming an
+    open descriptor (``/dev/stdout``) is written through it, after the files.
     """
     tx = _TRANSACTION.get()
-    p = check_output(path, force=force, option=tx.label(path) if tx is not None else None)
-    parent = p.parent if str(p.parent) else Path(".")
+    label = tx.label(path) if tx is not None else None
+    p = check_output(path, force=force, option=label)
+    fd = output_stream(p)
+    if fd is not None:
+        if callable(data):
+            import io as _io
+
+            buf = _io.BytesIO()
+            data(buf)
+            raw = buf.getvalue()
+        else:
+            raw = data if isinstance(data, bytes) else data.encode("utf-8")
+        if tx is not None:
+            tx.streams.append((fd, raw, p))
+        else:
+            _write_stream(fd, raw, p, None)
+        return p
+    target = _real_target(p)
+    parent = target.parent if str(target.parent) else Path(".")
     tmp = None
     try:
         import tempfile
 
-        fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:60]}.", suffix=".tmp", dir=parent)
-        with os.fdopen(fd, "wb") as fh:
+        tfd, tmp = tempfile.mkstemp(prefix=f".{target.name[:60]}.", suffix=".tmp", dir=parent)
+        with os.fdopen(tfd, "wb") as fh:
             if callable(data):
                 data(fh)
             else:  # text as written (UTF-8, no newline translation)
@@ -587,13 +786,13 @@ def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o644)
         if tx is not None:
-            tx.staged.append((tmp, p, force))
+            tx.staged.append((tmp, target, force))
         else:
-            _place(tmp, p, force)
+            _place(tmp, target, force)
     except OSError as exc:
         if tmp is not None:
             _unlink(tmp)
-        what = f"{tx.label(p)} " if tx is not None and tx.label(p) else ""
+        what = f"{label} " if label else ""
         raise InputError(f"cannot write {what}{_show(p)}: {exc.strerror or type(exc).__name__}") from None
     except BaseException:
         if tmp is not None:

@@ -220,8 +220,31 @@ class _PipeGuard:
         return getattr(self.stream, name)
 
 
+def _open_closed_standard_streams() -> None:
+    """A standard stream closed by the caller (``rsm-lrg ... >&-``) is an ordinary condition:
+    its descriptor is pointed at the null device (so that no file the command opens takes
+    descriptor 1 and receives printed text) and what is printed to it is dropped, as after a
+    closed pipe; output files are written as usual."""
+    for fd, name, mode in ((0, "stdin", "r"), (1, "stdout", "w"), (2, "stderr", "w")):
+        try:
+            os.fstat(fd)
+            continue
+        except OSError:
+            pass
+        try:
+            null = os.open(os.devnull, os.O_RDWR)
+        except OSError:
+            continue
+        if null != fd:
+            os.dup2(null, fd)
+            os.close(null)
+        if getattr(sys, name, None) is None:
+            setattr(sys, name, open(fd, mode, encoding="utf-8", closefd=False))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of ``rsm-lrg`` and ``python -m rsm_lrg``; returns the exit status."""
+    _open_closed_standard_streams()
     guard = _PipeGuard(sys.stdout)
     sys.stdout = guard
     try:

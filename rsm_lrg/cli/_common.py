@@ -106,14 +106,33 @@ def mark_outputs(parser: argparse.ArgumentParser) -> None:
                 mark_outputs(sp)
 
 
+def matched_files(path: str) -> list[str]:
+    """The files the DATA argument reads when it names several: the files of a directory, or
+    those a glob pattern matches when no file of that name exists (``run[1].csv`` that exists
+    is that one file). Empty for one file."""
+    import glob
+
+    try:
+        if os.path.isdir(path):
+            return sorted(f for f in glob.glob(os.path.join(glob.escape(path), "*")) if os.path.isfile(f))
+        if not os.path.lexists(path) and any(c in path for c in "*?["):
+            return sorted(f for f in glob.glob(path) if os.path.isfile(f))
+    except (OSError, ValueError):
+        pass
+    return []
+
+
 def input_paths(args: argparse.Namespace) -> list[str]:
     """Every option or argument value (other than an output) that names an existing file: the
-    files a command may read, which it must never write."""
+    files a command may read, which it must never write (with every file that a directory or
+    glob given as DATA matches: :func:`matched_files`)."""
     labels = getattr(args, "_output_labels", {}) or {}
     found = []
     for dest, value in vars(args).items():
         if dest.startswith("_") or dest in labels or dest in OUTPUT_DESTS:
             continue
+        if dest == "data" and isinstance(value, str) and len(value) < 4096:
+            found.extend(matched_files(value))
         for v in value if isinstance(value, (list, tuple)) else [value]:
             if isinstance(v, (str, os.PathLike)) and str(v) and str(v) != "-" and len(str(v)) < 4096:
                 try:

@@ -63,13 +63,13 @@ def run(args) -> int:
     import sys
     from pathlib import Path
 
-    from ..io import InputError, dump_json, write_output
+    from ..io import InputError, check_output, dump_json, write_output
     from ..surrogate.calibrate import calibrate, calibration_toml, file_sha256
     from ..surrogate.runs import check_duration
     from ._common import read_input
 
-    if args.output and Path(args.output).exists() and not args.force:
-        raise InputError(f"{args.output}: already exists; use --force to overwrite it")
+    if args.output:
+        check_output(args.output, force=args.force, option="-o/--output")
     try:
         duration = check_duration(args.duration_min, "--duration-min")
     except ValueError as exc:

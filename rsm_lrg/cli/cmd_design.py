@@ -209,11 +209,10 @@ def run(args) -> int:
     from pathlib import Path
 
     from ..design import as_factor_space, box_behnken, central_composite, full_factorial
-    from ..io import InputError, quote_user_value
+    from ..io import InputError, check_output, quote_user_value
 
     out = Path(args.output)
-    if out.exists() and not args.force:
-        raise InputError(f"{out}: already exists; use --force to overwrite it")
+    check_output(out, force=args.force, option="-o/--output")
     if args.kind == "augment":
         return _augment(args, out)
     if args.kind in _NEW_KINDS:

@@ -61,6 +61,10 @@ def _many_files(path: str):
         return None
     pattern = os.path.join(path, "*") if os.path.isdir(path) else path
     files = sorted(f for f in glob.glob(pattern) if os.path.isfile(f))
+    from ..io import register_input
+
+    for f in files:  # every file read is an input no output may name
+        register_input(f)
     csv = [f for f in files if f.lower().endswith(".csv")]
     pq = [f for f in files if f.lower().endswith((".parquet", ".pq"))]
     if not csv and not pq:

@@ -75,7 +75,7 @@ def _limits(text, response: str):
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from ..io import InputError
+    from ..io import InputError, check_output
     from ._common import (
         about_response,
         check_distinct_responses,
@@ -86,8 +86,7 @@ def run(args: argparse.Namespace) -> int:
     )
 
     out = Path(args.output)
-    if out.exists() and not args.force:  # before the fit and the figures
-        raise InputError(f"{out}: already exists; use --force to overwrite it")
+    check_output(out, force=args.force, option="-o/--output")  # before the fit and the figures
     from ..optimize import parse_goal
 
     responses = list(args.response)

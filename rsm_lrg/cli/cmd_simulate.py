@@ -178,7 +178,7 @@ def run(args) -> int:
     import sys
     from pathlib import Path
 
-    from ..io import InputError, write_output
+    from ..io import InputError, check_output, write_output
     from ..physics.params import LRGParams, parse_assignments
     from ..surrogate.execute import DEFAULT_NOISE_SD, MAX_NOISE_SD, simulate
     from ..surrogate.noise import resolve_seed
@@ -186,8 +186,7 @@ def run(args) -> int:
     from ._common import read_input
 
     out_path = Path(args.output)
-    if out_path.exists() and not args.force:
-        raise InputError(f"{out_path}: already exists; use --force to overwrite it")
+    check_output(out_path, force=args.force, option="-o/--output")
     try:
         check_duration(args.duration_min, "--duration-min")
     except ValueError as exc:

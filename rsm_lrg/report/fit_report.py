@@ -537,10 +537,9 @@ def write_report(result, path, *, force: bool = False, title: str | None = None,
     An existing file is kept unless ``force=True`` (then ``InputError``, a ValueError).
     Returns the path written.
     """
-    from ..io import InputError, write_output
+    from ..io import check_output, write_output
 
     p = Path(path)
-    if p.exists() and not force:  # fail before the figures are drawn
-        raise InputError(f"{p}: already exists; use --force to overwrite it")
+    check_output(p, force=force)  # fail before the figures are drawn
     html = to_html(result, title=title, source_name=source_name, goal=goal, hold=hold, optimum=optimum)
     return write_output(p, html, force=force)

@@ -480,11 +480,10 @@ def interactive_html(results, *, goals=None, limits=None, labels=None, title: st
 def write_interactive_report(results, path, *, force: bool = False, **kwargs) -> Path:
     """Write :func:`interactive_html` to ``path`` atomically (refuses to overwrite unless
     ``force``). Returns the path written."""
-    from ..io import InputError, write_output
+    from ..io import check_output, write_output
 
     p = Path(path)
-    if p.exists() and not force:
-        raise InputError(f"{p}: already exists; use --force to overwrite it")
+    check_output(p, force=force)
     return write_output(p, interactive_html(results, **kwargs), force=force)
 
 
