@@ -33,7 +33,8 @@ if TYPE_CHECKING:
 
 __all__ = ["TableError", "ReadAs", "SEPARATORS", "DECIMALS", "FORMATS", "detect_format", "detect_separator",
            "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes",
-           "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_parquet_chunks"]
+           "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_parquet_chunks", "keep_coded_text",
+           "LEADING_ZERO"]
 
 #: CSV separators read (given with ``sep=`` / ``--sep`` or detected), in the order tried.
 SEPARATORS = (",", ";", "\t", "|")
@@ -155,7 +156,8 @@ def decode_text(raw: bytes) -> str:
         except UnicodeDecodeError:
             raise TableError("is not valid UTF-16 text (it starts with a UTF-16 byte-order mark)") from None
     if b"\x00" in raw:
-        raise TableError("is not a CSV text file (it contains NUL bytes)")
+        line = raw.count(b"\n", 0, raw.index(b"\x00")) + 1
+        raise TableError(f"is not a CSV text file (it contains NUL bytes, line {line})")
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
@@ -261,7 +263,33 @@ def parse_csv(raw: bytes, *, sep: str | None = None, decimal: str = ".") -> tupl
     if use != ",":  # in a comma-separated file a quoted "1,030" may be a thousands separator
         _refuse_other_decimal(df, decimal)
     df.columns = [str(c) for c in df.columns]
+    keep_coded_text(df, text, use, decimal)
     return df, ReadAs("csv", use, decimal, detected)
+
+
+#: A cell that is a whole number written with a leading zero (``01``, ``-007``): a code.
+LEADING_ZERO = r"^\s*[+-]?0\d+\s*$"
+
+
+def keep_coded_text(df: pd.DataFrame, text: str, sep: str, decimal: str) -> None:
+    """Keep, as the text in the file, every column that pandas read as numbers but that holds
+    a whole number written with a leading zero (``01``, ``007``: lot or batch codes), so that a
+    categoric factor's levels are compared as written (``01`` is not ``1``; issue 26). Used as
+    a numeric factor such a column still reads as numbers (``pd.to_numeric``)."""
+    import pandas as pd
+
+    if not re.search(r'(^|[,;|\t\n])[ \t"]*[+-]?0[0-9]', text):  # cheap: no such cell anywhere
+        return
+    numeric = [c for c in df.columns if pd.api.types.is_numeric_dtype(df[c]) and not pd.api.types.is_bool_dtype(df[c])]
+    if not numeric:
+        return
+    as_text = pd.read_csv(io.StringIO(text), sep=sep, skipinitialspace=True, dtype=str, keep_default_na=False,
+                          engine="c")
+    as_text.columns = list(df.columns)
+    for c in numeric:
+        col = as_text[c].str.strip()
+        if col.str.match(LEADING_ZERO).any():
+            df[c] = col.where(col != "", None).astype(object)
 
 
 def _refuse_other_decimal(df: pd.DataFrame, decimal: str) -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from contextlib import contextmanager
 
 from ._common import (
     about_file,
@@ -52,31 +53,17 @@ def _write_report(result, path, force: bool) -> None:
 
 
 def _many_files(path: str):
-    """A Dask DataFrame of the CSV or Parquet files of a directory or glob pattern, or None
-    for one file (read as usual)."""
-    import glob
-    import os
+    """A Dask DataFrame of the CSV or Parquet files of a directory or glob pattern (one
+    partition per file, :mod:`rsm_lrg.cli.file_sets`), the files and the notes on the files
+    skipped (printed after a success), or None for one file
+    (read as usual; a file that exists is one file, glob characters and all)."""
+    from .file_sets import expand_data_path, read_file_set
 
-    if not (os.path.isdir(path) or any(c in path for c in "*?[")):
+    files = expand_data_path(path)
+    if files is None:
         return None
-    pattern = os.path.join(path, "*") if os.path.isdir(path) else path
-    files = sorted(f for f in glob.glob(pattern) if os.path.isfile(f))
-    from ..io import register_input
-
-    for f in files:  # every file read is an input no output may name
-        register_input(f)
-    csv = [f for f in files if f.lower().endswith(".csv")]
-    pq = [f for f in files if f.lower().endswith((".parquet", ".pq"))]
-    if not csv and not pq:
-        what = "directory" if os.path.isdir(path) else "pattern"
-        raise ValueError(f"{path}: a {what} with no CSV or Parquet files to read")
-    if csv and pq:
-        raise ValueError(f"{path}: holds both CSV and Parquet files; give a pattern that picks one kind")
-    try:
-        import dask.dataframe as dd
-    except ImportError as exc:
-        raise ValueError(f"{path}: fitting several files needs dask[dataframe] ({exc})") from None
-    return dd.read_csv(csv, assume_missing=True) if csv else dd.read_parquet(pq)
+    ddf, notes = read_file_set(path, files)
+    return ddf, files, notes
 
 
 #: A single input file up to this size [bytes] is fitted with one BLAS thread (see :func:`_one_blas_thread`).
@@ -106,6 +93,28 @@ def _one_blas_thread(path: str) -> None:
         os.environ["OPENBLAS_NUM_THREADS"] = "1"
 
 
+@contextmanager
+def _about_files(many, args: argparse.Namespace):
+    """On the many-file path, a fit's "a cell is empty" names the file, row and column."""
+    try:
+        yield
+    except ValueError as exc:
+        if many is None or "empty" not in str(exc):
+            raise
+        from ..io import InputError
+        from .file_sets import locate_empty_cell
+
+        if args.factor:
+            names = [str(f).split("=", 1)[0].strip() for f in args.factor]
+        else:
+            names = [str(c) for c in many[0].columns if str(c) != args.response]
+        found = locate_empty_cell(many[1], names + ([args.block] if args.block else []))
+        if found is None:
+            raise
+        where, what = found
+        raise InputError(f"{where}: {exc}" if "row" in str(exc) else f"{where}: {what}: {exc}") from None
+
+
 def run(args: argparse.Namespace) -> int:
     _one_blas_thread(str(args.data))
     from ..io import dump_json
@@ -118,14 +127,16 @@ def run(args: argparse.Namespace) -> int:
         unsupported = [o for o in ("reduce", "transform", "diagnostics", "report") if getattr(args, o, None)]
         if unsupported:
             raise ValueError(f"{args.data}: --{unsupported[0]} is not available when fitting several files")
-    data = many if many is not None else read_input(args)
-    with about_file(args.data):
+    data = many[0] if many is not None else read_input(args)
+    with about_file(args.data), _about_files(many, args):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=model_spec(args))
         extra: dict = {}
         if args.diagnostics:
             diag = result.diagnostics(boxcox_rule=args.boxcox_rule)
             extra["diagnostics"] = diag.to_dict()
     out = dict(result.to_dict(), **extra)
+    if many is not None:
+        print_notes(many[2])  # the files of the directory or pattern that were skipped
     if args.json and args.json != "-":
         dump_json(out, args.json, force=args.force)
     if args.report:

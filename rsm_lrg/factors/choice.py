@@ -10,7 +10,7 @@ from typing import Any
 
 from .columns import COLUMNS_LEFT_OUT, Note, infer_items, is_bookkeeping
 from .space import FactorSpace, inferred_space
-from .values import name_list
+from .values import name_list, quote_value
 
 __all__ = ["FactorChoice", "choose_factors"]
 
@@ -106,6 +106,11 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
     elif how == "numeric":
         notes.append(f"Factors taken to be the numeric columns: {name_list([f'{f.letter} {f.name}' for f in space])} "
                      "(name other factors with --factor).")
+    for f in space.factors if how == "given" else ():
+        if f.kind == "categoric" and f.name in data.columns and pd.api.types.is_numeric_dtype(data[f.name]):
+            notes.append(f"Categoric factor {quote_value(str(f.name))} is read from a column of numbers: its levels "
+                         f"are the numbers, written {name_list(list(f.levels))} (whole numbers without .0, others "
+                         "to 15 digits); codes that differ only in their text (1.0 and 1) are one level.")
     numeric_unused = [c for c in unused if c not in text]
     if numeric_unused:
         notes.append(Note(f"Numeric column{'s' if len(numeric_unused) > 1 else ''} left out (not a factor, response "
