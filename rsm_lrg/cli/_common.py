@@ -107,19 +107,12 @@ def mark_outputs(parser: argparse.ArgumentParser) -> None:
 
 
 def matched_files(path: str) -> list[str]:
-    """The files the DATA argument reads when it names several: the files of a directory, or
-    those a glob pattern matches when no file of that name exists (``run[1].csv`` that exists
-    is that one file). Empty for one file."""
-    import glob
+    """The files the DATA argument reads when it names several (a directory, or a glob pattern
+    when no file of that name exists: :func:`rsm_lrg.cli.file_sets.expand_data_path`). Empty
+    for one file."""
+    from .file_sets import expand_data_path
 
-    try:
-        if os.path.isdir(path):
-            return sorted(f for f in glob.glob(os.path.join(glob.escape(path), "*")) if os.path.isfile(f))
-        if not os.path.lexists(path) and any(c in path for c in "*?["):
-            return sorted(f for f in glob.glob(path) if os.path.isfile(f))
-    except (OSError, ValueError):
-        pass
-    return []
+    return expand_data_path(path) or []
 
 
 def input_paths(args: argparse.Namespace) -> list[str]:

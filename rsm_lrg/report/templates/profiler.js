@@ -4,7 +4,11 @@
  * User text only ever reaches the page through textContent or escaped for Plotly labels. */
 (function () {
   "use strict";
-  var DATA = JSON.parse(document.getElementById("rsm-data").textContent);
+  /* every object of the page data is prototype-free (see dict below): a name such as
+   * __proto__, constructor or toString is an own key like any other */
+  var DATA = JSON.parse(document.getElementById("rsm-data").textContent, function (k, v) {
+    return v !== null && typeof v === "object" && !Array.isArray(v) ? Object.assign(Object.create(null), v) : v;
+  });
   var MODELS = DATA.models;
   var CONTROLS = DATA.controls;
   var NUMERIC = CONTROLS.filter(function (c) { return c.kind === "numeric"; });
@@ -22,6 +26,11 @@
                "5": "\u2075", "6": "\u2076", "7": "\u2077", "8": "\u2078", "9": "\u2079"};
     return String(Number(parts[0])) + " \u00d7 10" + parts[1].split("").map(function (ch) { return sup[ch]; }).join("");
   }
+  /* names (factors, levels, responses) are data, never object keys with a prototype: every
+   * object indexed by a name is prototype-free, so __proto__, constructor or toString are
+   * ordinary names */
+  function dict() { return Object.create(null); }
+  function copy() { var o = dict(); for (var i = 0; i < arguments.length; i++) Object.assign(o, arguments[i]); return o; }
   var AX = {exponentformat: "power", automargin: true};
   function axis(title) { return Object.assign({title: {text: title}}, AX); }
 
@@ -110,13 +119,13 @@
   }
 
   // -- the setting --------------------------------------------------------------------------
-  var ctl = {};   /* name -> control element */
-  var txt = {};   /* name -> number box */
+  var ctl = dict();   /* name -> control element */
+  var txt = dict();   /* name -> number box */
   document.querySelectorAll("[data-factor]").forEach(function (el) { ctl[el.getAttribute("data-factor")] = el; });
   document.querySelectorAll("[data-factor-text]").forEach(function (el) { txt[el.getAttribute("data-factor-text")] = el; });
 
   function setting() {
-    var s = {};
+    var s = dict();
     CONTROLS.forEach(function (c) {
       var el = ctl[c.name];
       s[c.name] = c.kind === "categoric" ? el.value : parseFloat(el.value);
@@ -131,7 +140,7 @@
     return CONTROLS.map(function (c) { return "--at " + shq(c.name + "=" + String(s[c.name])); }).join(" ");
   }
 
-  var rows = {};
+  var rows = dict();
   document.querySelectorAll("[data-prediction]").forEach(function (el) { rows[el.getAttribute("data-response")] = el; });
 
   function showPredictions(s) {
@@ -172,7 +181,7 @@
         var xs, lo = [], hi = [], ys = [];
         var pts = c.kind === "categoric" ? c.levels.slice() : linspace(c.low, c.high, 41);
         pts.forEach(function (v) {
-          var t = Object.assign({}, s); t[c.name] = v;
+          var t = copy(s); t[c.name] = v;
           var p = predict(m, t); ys.push(p.predicted); lo.push(p.ci_low); hi.push(p.ci_high);
         });
         xs = pts.map(function (v) { return c.kind === "categoric" ? esc(v) : v; });
@@ -204,7 +213,7 @@
     Plotly.react(el, traces, layout, CONFIG);
   }
 
-  var LIM = {};  /* response -> [low input, high input], matched by the attribute's value (no selector built from user text) */
+  var LIM = dict();  /* response -> [low input, high input], matched by the attribute's value (no selector built from user text) */
   document.querySelectorAll("[data-limit-low]").forEach(function (el) { (LIM[el.getAttribute("data-limit-low")] = LIM[el.getAttribute("data-limit-low")] || [])[0] = el; });
   document.querySelectorAll("[data-limit-high]").forEach(function (el) { (LIM[el.getAttribute("data-limit-high")] = LIM[el.getAttribute("data-limit-high")] || [])[1] = el; });
   function limitsOf(m) {
@@ -249,7 +258,7 @@
   var PRIMES = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97];
   var MAX_COMBOS = 256;
   function levelCombos(current) {  /* every combination of the categoric levels (the current ones beyond MAX_COMBOS) */
-    var out = [{}], held = false;
+    var out = [dict()], held = false;
     CONTROLS.forEach(function (c) {
       if (c.kind !== "categoric") return;
       if (out.length * c.levels.length > MAX_COMBOS) {
@@ -258,7 +267,7 @@
         return;
       }
       var next = [];
-      out.forEach(function (o) { c.levels.forEach(function (lv) { var t = Object.assign({}, o); t[c.name] = lv; next.push(t); }); });
+      out.forEach(function (o) { c.levels.forEach(function (lv) { var t = copy(o); t[c.name] = lv; next.push(t); }); });
       out = next;
     });
     return {combos: out, held: held};
@@ -287,7 +296,7 @@
       var moved = false;
       dirs.forEach(function (d) {
         [-1, 1].forEach(function (sg) {
-          var t = Object.assign({}, s);
+          var t = copy(s);
           NUMERIC.forEach(function (c, k) {
             t[c.name] = Math.min(c.high, Math.max(c.low, s[c.name] + sg * step * d[k] * (c.high - c.low)));
           });
@@ -308,7 +317,7 @@
     lc.combos.forEach(function (base) {
       var starts = [];
       for (var i = 0; i <= 256; i++) {
-        var s = Object.assign({}, current, base);
+        var s = copy(current, base);
         NUMERIC.forEach(function (c, k) {
           s[c.name] = i === 0 ? (c.low + c.high) / 2 : c.low + (c.high - c.low) * halton(i, PRIMES[k % PRIMES.length]);
         });
@@ -348,7 +357,7 @@
     for (var j = 0; j < ys.length; j++) {
       var row = [], mrow = [], rr = MODELS.map(function () { return []; });
       for (var i = 0; i < xs.length; i++) {
-        var t = Object.assign({}, s); t[fx.name] = xs[i]; t[fy.name] = ys[j];
+        var t = copy(s); t[fx.name] = xs[i]; t[fy.name] = ys[j];
         row.push(inside(t) ? 1 : 0);
         /* the smallest margin to a limit (each response in units of its observed range): >= 0
            inside every limit; its 0 contour is made of the limits' own contours */
@@ -412,7 +421,7 @@
     if (!pair || pair[0].name === pair[1].name) { Plotly.purge(el3); Plotly.purge(el2); return; }
     var fx = pair[0], fy = pair[1], xs = linspace(fx.low, fx.high, 31), ys = linspace(fy.low, fy.high, 31), z = [];
     ys.forEach(function (yv) {
-      z.push(xs.map(function (xv) { var t = Object.assign({}, s); t[fx.name] = xv; t[fy.name] = yv; return predictValue(m, t); }));
+      z.push(xs.map(function (xv) { var t = copy(s); t[fx.name] = xv; t[fy.name] = yv; return predictValue(m, t); }));
     });
     var cur = predict(m, s).predicted;
     var xl = esc(fx.letter + ": " + fx.name), yl = esc(fy.letter + ": " + fy.name), zl = esc(m.response);
@@ -434,7 +443,7 @@
 
   /* a figure is redrawn when it is on screen (or comes on screen) and out of date */
   var FIGS = {"profile-plot": drawProfiles, "overlay-plot": drawOverlay, "surface-plot": drawSurface};
-  var onScreen = {}, stale = {};
+  var onScreen = dict(), stale = dict();
   var pending = false;
   function drawFig(id, s) {
     stale[id] = false;
@@ -501,7 +510,7 @@
     b.addEventListener("click", function () {
       var kind = b.getAttribute("data-jump");
       if (kind === "center") {
-        var set = {};
+        var set = dict();
         CONTROLS.forEach(function (c) { set[c.name] = c.kind === "categoric" ? c.levels[0] : (c.low + c.high) / 2; });
         jumpTo(set);
       } else if (kind === "desirability" && DATA.desirability) jumpTo(DATA.desirability.setting);
