@@ -22,7 +22,12 @@ two the same, the directory writable. The command then runs inside
 A single-valued option given twice is an error (nothing is dropped silently).
 
 A reader that closes standard output early (``| head``) does not stop the command: the rest
-of what it prints is dropped, its output files are written, and it exits 0.
+of what it prints is dropped, its output files are written, and it exits 0; so with a standard
+output closed from the start (``>&-``).
+
+SIGINT, SIGTERM and SIGHUP end a command cleanly (:mod:`rsm_lrg.cli.processes`): its worker
+processes are stopped, its temporary files removed, no output is half-written, and it exits
+``128 + signal`` (130, 143, 129) after one ``error:`` line.
 
 Exit status: 0 success; 2 bad usage or bad input, reported as one ``error:`` line on stderr
 of under 300 characters (``--debug`` adds the traceback), including numbers or sizes beyond
@@ -39,6 +44,7 @@ import sys
 import warnings
 
 from ._common import check_option_specs, input_paths, mark_outputs, planned_outputs
+from .processes import Terminated, handle_signals, stop_children
 
 __all__ = ["main", "build_parser", "UsageError"]
 
@@ -248,7 +254,8 @@ def main(argv: list[str] | None = None) -> int:
     guard = _PipeGuard(sys.stdout)
     sys.stdout = guard
     try:
-        return _main(argv)
+        with handle_signals():  # SIGTERM and SIGHUP unwind the command like an error
+            return _main(argv)
     finally:
         if sys.stdout is guard:
             sys.stdout = guard.stream
@@ -307,8 +314,13 @@ def _main(argv: list[str] | None) -> int:
     except SystemExit as exc:  # --help, --version
         return int(exc.code or 0) if isinstance(exc.code, int) else 0
     except KeyboardInterrupt:
+        stop_children()
         print("error: interrupted", file=sys.stderr)
         return 130
+    except Terminated as exc:  # the outputs were discarded on the way out; no worker is left
+        stop_children()
+        print(f"error: terminated by {exc.name}; no output written", file=sys.stderr)
+        return 128 + exc.signum
     except BrokenPipeError:
         return 0
     except (UsageError, ValueError, TypeError, FileNotFoundError, KeyError) as exc:

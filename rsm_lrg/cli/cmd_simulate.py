@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import argparse
 from collections.abc import Iterable
+from contextlib import contextmanager
 from typing import Any, BinaryIO
 
-from ._common import about_file, add_force, add_reader_options, whole_number
+from ._common import about_file, add_force, add_reader_options, number, whole_number
 
 NAME = "simulate"
 HELP = "virtual runs of the physics surrogate, one row per design row"
@@ -47,6 +48,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                        help="run batches in N local processes (at most 256)")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS",
                        help="run batches on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786)")
+    p.add_argument("--scheduler-timeout", type=number(0, 3600, above=True), default=60.0, metavar="S",
+                   help="seconds the --scheduler has to answer before the run is refused (default 60)")
     cal = p.add_mutually_exclusive_group()
     cal.add_argument("--calibration", default=None, metavar="PATH",
                      help="calibration TOML (default: the shipped data/calibration.toml)")
@@ -174,6 +177,22 @@ def _calibration_with_overrides(calibration, overrides, surrogate):
     return values if values else None
 
 
+@contextmanager
+def _lost_scheduler(address: str | None):
+    """With a ``--scheduler``, a failure of the cluster itself (a CancelledError, lost
+    communications: the scheduler killed mid-run) is one error naming the scheduler."""
+    from .processes import Terminated, scheduler_lost
+
+    try:
+        yield
+    except (ValueError, TypeError, KeyboardInterrupt, SystemExit, Terminated):
+        raise
+    except BaseException as exc:
+        if address is None:
+            raise
+        raise scheduler_lost(address, exc) from None
+
+
 def run(args) -> int:
     import sys
     from pathlib import Path
@@ -231,31 +250,24 @@ def run(args) -> int:
     else:
         drawn = False
 
+    # a local pool whose workers die with this process and are killed at once on an error or a
+    # signal, or a scheduler that must answer within --scheduler-timeout (rsm_lrg.cli.processes)
+    from .processes import close_pool, connect_scheduler, process_pool
+
     executor = client = None
+    ok = False
     try:
         if args.workers and args.workers > 1:
-            from concurrent.futures import ProcessPoolExecutor
-
-            executor = ProcessPoolExecutor(max_workers=args.workers)
+            executor = process_pool(args.workers)
         elif args.scheduler:
-            try:
-                from distributed import Client
-            except ImportError:
-                raise InputError("--scheduler needs dask.distributed: pip install 'rsm-lrg[parallel]'") from None
-            from ..io import quote_user_value
-
-            try:
-                client = Client(args.scheduler, timeout="5s")
-            except Exception as exc:  # a bad address, no scheduler, or garbage from whatever answered
-                raise InputError(f"--scheduler {quote_user_value(args.scheduler, 80)}: cannot connect "
-                                 f"({type(exc).__name__}: {str(exc)[:120]})") from None
+            client = connect_scheduler(args.scheduler, args.scheduler_timeout)
             executor = client.get_executor()
         from .. import readers
         from ..surrogate.stream import StreamTally, simulate_chunks
 
         parquet = out_path.suffix.lower() in (".parquet", ".pq")
         tally = StreamTally()
-        with about_file(args.design):
+        with about_file(args.design), _lost_scheduler(args.scheduler if client is not None else None):
             if streamed is None:
                 runs = simulate(design, seed=seed, noise_sd=noise, duration_min=args.duration_min,
                                 executor=executor, calibration=calibration, params=params,
@@ -272,13 +284,17 @@ def run(args) -> int:
                 write_output(out_path, fill, force=args.force)
             except readers.TableError as exc:
                 raise ValueError(str(exc)) from None
+        ok = True
     finally:
         if streamed is not None:
             source.close()
         if executor is not None and client is None:
-            executor.shutdown()
+            close_pool(executor, ok)
         if client is not None:
-            client.close()
+            import contextlib
+
+            with contextlib.suppress(Exception):
+                client.close(timeout=5)
     if streamed is None:
         yields = runs["hinge_yields"].to_numpy(dtype=bool) if "hinge_yields" in runs.columns else []
         tally = StreamTally(len(runs), int(sum(yields)), [i + 1 for i in range(len(runs)) if yields[i]][:10]

@@ -1,0 +1,193 @@
+"""Signals, worker processes and clusters: every command ends cleanly and leaves nothing running.
+
+- :func:`handle_signals`: inside it, SIGTERM and SIGHUP raise :class:`Terminated` (SIGINT
+  raises KeyboardInterrupt as usual), so the command unwinds like after an error: its pool
+  stopped, its temporary files removed (:func:`rsm_lrg.io.output_transaction`), no output
+  half-written; ``main`` then exits ``128 + signal``.
+- :func:`process_pool`: a ``ProcessPoolExecutor`` whose workers die with their parent
+  (``PR_SET_PDEATHSIG``: even a parent killed with SIGKILL takes them along) and leave
+  SIGINT and SIGTERM to it; :func:`close_pool` waits for them after a success and kills them
+  at once otherwise.
+- :func:`connect_scheduler`: a Dask scheduler that accepts the connection and never answers
+  is an error after ``timeout`` seconds (the client's own timeout does not cover the
+  handshake); :func:`scheduler_lost` turns the failure of a run whose scheduler went away
+  into one line naming it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import sys
+import threading
+from collections.abc import Iterator
+from typing import Any
+
+__all__ = ["Terminated", "handle_signals", "process_pool", "close_pool", "stop_children", "connect_scheduler",
+           "scheduler_lost", "DEFAULT_SCHEDULER_TIMEOUT"]
+
+#: Seconds a Dask scheduler has to answer (``--scheduler-timeout``).
+DEFAULT_SCHEDULER_TIMEOUT = 60.0
+
+_HANDLED = ("SIGTERM", "SIGHUP")
+
+
+class Terminated(BaseException):
+    """The command was asked to stop by a signal (SIGTERM, SIGHUP); ``signum`` is its number.
+
+    A BaseException, like KeyboardInterrupt, so that no ``except Exception`` on the way
+    swallows it."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = int(signum)
+
+    @property
+    def name(self) -> str:
+        try:
+            return signal.Signals(self.signum).name
+        except ValueError:
+            return f"signal {self.signum}"
+
+
+def _raise(signum: int, frame: Any) -> None:
+    raise Terminated(signum)
+
+
+@contextlib.contextmanager
+def handle_signals() -> Iterator[None]:
+    """SIGTERM and SIGHUP raise :class:`Terminated` inside the block (main thread only; the
+    previous handlers are put back after it)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = {}
+    for name in _HANDLED:
+        sig = getattr(signal, name, None)
+        if sig is None:
+            continue
+        try:
+            old[sig] = signal.signal(sig, _raise)
+        except (OSError, ValueError):
+            pass
+    try:
+        yield
+    finally:
+        for sig, handler in old.items():
+            try:
+                signal.signal(sig, handler)
+            except (OSError, ValueError, TypeError):
+                pass
+
+
+def _die_with_parent(parent: int) -> None:
+    """Worker initializer: die when ``parent`` dies (Linux ``PR_SET_PDEATHSIG``), leave SIGINT
+    to the parent (it stops the pool) and take SIGTERM and SIGHUP as the default (die)."""
+    for name in _HANDLED:
+        sig = getattr(signal, name, None)
+        if sig is not None:
+            signal.signal(sig, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, int(signal.SIGKILL), 0, 0, 0)  # PR_SET_PDEATHSIG = 1
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != parent:  # the parent died before prctl took effect
+        os._exit(1)
+
+
+def process_pool(workers: int):
+    """A ``ProcessPoolExecutor`` of ``workers`` processes that die with this one."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    return ProcessPoolExecutor(max_workers=workers, initializer=_die_with_parent, initargs=(os.getpid(),))
+
+
+def stop_children(timeout: float = 5.0) -> None:
+    """Kill every worker process this process started (``multiprocessing``) and reap them."""
+    import multiprocessing
+
+    children = multiprocessing.active_children()
+    for p in children:
+        with contextlib.suppress(Exception):
+            p.kill()
+    for p in children:
+        with contextlib.suppress(Exception):
+            p.join(timeout)
+
+
+def close_pool(executor, ok: bool) -> None:
+    """Shut a pool down: after a success wait for its workers; otherwise (an error, a signal)
+    drop the queued work and kill the workers at once, so that nothing keeps running."""
+    if ok:
+        executor.shutdown(wait=True)
+        return
+    with contextlib.suppress(Exception):
+        executor.shutdown(wait=False, cancel_futures=True)
+    stop_children()
+
+
+def _show(address: str) -> str:
+    from ..io import quote_user_value
+
+    return quote_user_value(address, 80)
+
+
+def connect_scheduler(address: str, timeout: float = DEFAULT_SCHEDULER_TIMEOUT):
+    """A ``distributed.Client`` of the scheduler at ``address``, or :class:`rsm_lrg.io.InputError`
+    naming it: the scheduler must answer (its identity) within ``timeout`` seconds, so one
+    that accepts the connection and stays silent is an error, not a hang."""
+    import asyncio
+
+    from ..io import InputError
+
+    try:
+        from distributed import Client
+        from distributed.core import rpc
+    except ImportError:
+        raise InputError("--scheduler needs dask.distributed: pip install 'rsm-lrg[parallel]'") from None
+    import logging
+
+    # their failures end as one error line of ours: no log records (distributed gives several
+    # of its loggers their own stderr handler)
+    names = [n for n in logging.root.manager.loggerDict if n.split(".")[0] in ("distributed", "tornado", "bokeh")]
+    for name in ["distributed", "tornado", "asyncio", *names]:
+        log = logging.getLogger(name)
+        log.handlers = [logging.NullHandler()]
+        log.propagate = False
+
+    async def probe() -> None:
+        r = rpc(address, timeout=timeout)
+        try:
+            await asyncio.wait_for(r.identity(), timeout)
+        finally:
+            with contextlib.suppress(Exception):
+                await asyncio.wait_for(r.close_rpc(), 5)
+
+    try:
+        asyncio.run(probe())
+    except TimeoutError:
+        raise InputError(f"--scheduler {_show(address)}: no answer within {timeout:g} s "
+                         f"(--scheduler-timeout); is a Dask scheduler listening there?") from None
+    except Exception as exc:  # a bad address, nothing listening, garbage from whatever answered
+        raise InputError(f"--scheduler {_show(address)}: cannot connect "
+                         f"({type(exc).__name__}: {str(exc)[:120]})") from None
+    try:
+        return Client(address, timeout=f"{timeout}s")
+    except Exception as exc:
+        raise InputError(f"--scheduler {_show(address)}: cannot connect "
+                         f"({type(exc).__name__}: {str(exc)[:120]})") from None
+
+
+def scheduler_lost(address: str, exc: BaseException):
+    """The error for a run whose scheduler stopped answering or went away mid-run."""
+    from ..io import InputError
+
+    detail = str(exc).strip().splitlines()[0][:100] if str(exc).strip() else ""
+    return InputError(f"--scheduler {_show(address)}: the scheduler was lost during the run "
+                      f"({type(exc).__name__}{': ' + detail if detail else ''}); no output written")

@@ -1,0 +1,231 @@
+"""Signals, worker pools and clusters (issue 26 item 4): SIGTERM, SIGHUP and SIGINT end a
+command cleanly (workers stopped, temporary files removed, exit 128 + signal, one line); a
+pool's workers die with their parent, even one killed with SIGKILL; a scheduler that accepts
+and never answers is an error after ``--scheduler-timeout``; a scheduler lost mid-run is one
+``error:`` line naming it. Real processes, a real silent TCP listener and a real Dask
+LocalCluster; no mocks.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from rsm_lrg.cli.processes import Terminated
+from rsm_lrg.datasets import data_path
+from rsm_lrg.io import output_transaction, write_output
+
+FACTORS = ["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]
+
+
+def _env() -> dict:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(Path(__file__).resolve().parents[2]) + os.pathsep + env.get("PYTHONPATH", "")
+    return env
+
+
+def _design(tmp_path: Path, copies: int) -> Path:
+    d = pd.read_csv(data_path("table4.csv"))[FACTORS]
+    p = tmp_path / "design.csv"
+    pd.concat([d] * copies, ignore_index=True).to_csv(p, index=False)
+    return p
+
+
+def _children(pid: int) -> list[int]:
+    try:
+        return [int(x) for x in Path(f"/proc/{pid}/task/{pid}/children").read_text().split()]
+    except OSError:
+        return []
+
+
+def _alive(pid: int) -> bool:
+    """Running (not gone, not a zombie waiting to be reaped)."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return False
+    return stat.rsplit(")", 1)[1].split()[0] != "Z"
+
+
+def _start_simulate(tmp_path, *extra):
+    design = _design(tmp_path, 4000)  # 108 000 runs: long enough to be caught while running
+    return subprocess.Popen([sys.executable, "-m", "rsm_lrg", "simulate", str(design), "-o", str(tmp_path / "o.csv"),
+                             "--seed", "1", "--no-progress", *extra], cwd=tmp_path, env=_env(), text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+
+
+def _wait_for_workers(proc, n, timeout=60.0) -> list[int]:
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        kids = _children(proc.pid)
+        if len(kids) >= n:
+            time.sleep(0.5)  # the workers have started computing
+            return _children(proc.pid)
+        if proc.poll() is not None:
+            break
+        time.sleep(0.1)
+    proc.kill()
+    pytest.fail(f"the pool's workers did not start: {proc.communicate()[1][-500:]}")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP, signal.SIGINT], ids=lambda s: s.name)
+def test_a_signal_stops_the_pool_and_leaves_nothing(sig, tmp_path):
+    proc = _start_simulate(tmp_path, "--workers", "2")
+    kids = _wait_for_workers(proc, 2)
+    proc.send_signal(sig)
+    try:
+        _, err = proc.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        pytest.fail("the command did not end within 30 s of the signal")
+    assert proc.returncode == 128 + sig, err
+    lines = err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error:"), err[-800:]
+    deadline = time.monotonic() + 10
+    while any(_alive(k) for k in kids) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not any(_alive(k) for k in kids), f"workers left running: {kids}"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["design.csv"]  # no output, no temporary file
+
+
+@pytest.mark.slow
+def test_workers_die_with_a_parent_killed_by_sigkill(tmp_path):
+    proc = _start_simulate(tmp_path, "--workers", "2")
+    kids = _wait_for_workers(proc, 2)
+    proc.kill()
+    proc.wait(timeout=30)
+    deadline = time.monotonic() + 15
+    while any(_alive(k) for k in kids) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not any(_alive(k) for k in kids), f"workers outlived their parent: {kids}"
+
+
+def test_a_signal_inside_the_transaction_removes_its_temporary_files(tmp_path):
+    # what SIGTERM raises (Terminated, a BaseException) unwinds the transaction like an error
+    with pytest.raises(Terminated):
+        with output_transaction():
+            write_output(tmp_path / "a.csv", "a\n")
+            write_output(tmp_path / "b.csv", "b\n")
+            assert len(list(tmp_path.iterdir())) == 2  # the staged temporary files
+            raise Terminated(signal.SIGTERM)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.slow
+def test_sigterm_at_any_moment_leaves_no_temporary_file(tmp_path):
+    # a fit writing a JSON file and an HTML report, stopped at 12 moments from start-up to the
+    # writing: it ends 0 (done) or 143, and the directory holds both outputs or neither, and
+    # never a temporary file
+    table = data_path("table4.csv")
+    for k in range(12):
+        d = tmp_path / f"run{k}"
+        d.mkdir()
+        proc = subprocess.Popen([sys.executable, "-m", "rsm_lrg", "fit", str(table), "--response", "tcr_c_per_min",
+                                 "--json", "o.json", "--report", "r.html"], cwd=d, env=_env(),
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        time.sleep(0.15 * k)
+        proc.send_signal(signal.SIGTERM)
+        _, err = proc.communicate(timeout=60)
+        names = sorted(p.name for p in d.iterdir())
+        assert proc.returncode in (0, 143, -signal.SIGTERM), (k, proc.returncode, err)
+        assert names in ([], ["o.json", "r.html"]), (k, names)
+        if proc.returncode == 143:
+            assert err.strip().splitlines()[-1].startswith("error: terminated by SIGTERM")
+
+
+class _SilentListener:
+    """A real TCP server that accepts connections and never sends a byte."""
+
+    def __init__(self):
+        self.sock = socket.socket()
+        self.sock.bind(("127.0.0.1", 0))
+        self.sock.listen(8)
+        self.port = self.sock.getsockname()[1]
+        self.conns: list = []
+        self.stop = False
+        self.thread = threading.Thread(target=self._serve, daemon=True)
+        self.thread.start()
+
+    def _serve(self):
+        self.sock.settimeout(0.2)
+        while not self.stop:
+            try:
+                c, _ = self.sock.accept()
+                self.conns.append(c)
+            except OSError:
+                continue
+
+    def close(self):
+        self.stop = True
+        self.thread.join(5)
+        for c in self.conns:
+            c.close()
+        self.sock.close()
+
+
+def test_a_scheduler_that_never_answers_is_an_error_after_the_timeout(tmp_path):
+    pytest.importorskip("distributed")
+    design = _design(tmp_path, 1)
+    srv = _SilentListener()
+    try:
+        t0 = time.monotonic()
+        proc = subprocess.run([sys.executable, "-m", "rsm_lrg", "simulate", str(design), "-o", "o.csv", "--seed", "1",
+                               "--scheduler", f"tcp://127.0.0.1:{srv.port}", "--scheduler-timeout", "2"],
+                              cwd=tmp_path, env=_env(), text=True, capture_output=True, timeout=120)
+        took = time.monotonic() - t0
+    finally:
+        srv.close()
+    assert srv.conns, "the command never connected to the listener"
+    assert proc.returncode == 2, proc.stderr
+    lines = proc.stderr.splitlines()
+    assert len(lines) == 1 and f"127.0.0.1:{srv.port}" in lines[0] and "--scheduler-timeout" in lines[0], proc.stderr
+    assert took < 60  # the timeout, not a hang (start-up included)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["design.csv"]
+
+
+CLUSTER = """
+import sys, time
+from distributed import LocalCluster
+if __name__ == "__main__":
+    c = LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None)
+    print(c.scheduler_address, flush=True)
+    time.sleep(600)
+"""
+
+
+@pytest.mark.slow
+@pytest.mark.cluster
+def test_a_scheduler_lost_mid_run_is_one_error_line(tmp_path):
+    pytest.importorskip("distributed")
+    script = tmp_path / "cluster.py"
+    script.write_text(CLUSTER)
+    cluster = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path, env=_env(), text=True,
+                               stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        address = cluster.stdout.readline().strip()
+        assert address.startswith("tcp://"), address
+        work = tmp_path / "work"
+        work.mkdir()
+        proc = _start_simulate(work, "--scheduler", address)
+        time.sleep(6)  # the run is under way on the cluster's worker
+        assert proc.poll() is None, proc.communicate()[1][-500:]
+        os.killpg(cluster.pid, signal.SIGKILL)  # the scheduler and its worker, gone
+        _, err = proc.communicate(timeout=180)
+    finally:
+        if cluster.poll() is None:
+            os.killpg(cluster.pid, signal.SIGKILL)
+        cluster.wait(10)
+    assert proc.returncode == 2, err[-800:]
+    lines = err.splitlines()
+    assert len(lines) == 1 and address in lines[0] and "lost" in lines[0], err[-800:]
+    assert sorted(p.name for p in work.iterdir()) == ["design.csv"]
