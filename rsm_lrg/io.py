@@ -34,7 +34,8 @@ from typing import Any, BinaryIO
 
 __all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "open_input", "check_output",
            "output_transaction", "output_stream", "register_input", "read_table", "read_table_as", "read_stdin_bytes",
-           "read_toml", "toml_value", "write_output", "dump_json", "to_jsonable", "numeric_column", "float_column",
+           "read_toml", "check_nesting", "toml_value", "write_output", "dump_json", "to_jsonable", "numeric_column",
+           "float_column",
            "is_empty_cell", "cell_error", "COMMA_NUMBER"]
 
 
@@ -291,20 +292,69 @@ def read_table_as(path, *, sep: str | None = None, decimal: str = ".", sheet: st
         raise InputError(f"{name}: {exc}") from None
 
 
+#: Limits on a TOML input (and any JSON one: :func:`check_nesting`), far beyond any parameter or calibration file: nesting
+#: depth (tables and arrays), and the size of a whole number (64-bit).
+MAX_NESTING = 32
+MAX_INTEGER = 2**63 - 1
+
+_FLOAT_WORDS = ("inf", "+inf", "-inf", "nan", "+nan", "-nan")
+
+
+def _finite_float_literal(text: str) -> float:
+    """``parse_float`` for TOML and JSON: a float literal that overflows (``1e400``) is an
+    error, not inf (the words ``inf`` and ``nan`` stay what they say)."""
+    v = float(text)
+    if not math.isfinite(v) and text.strip().lower() not in _FLOAT_WORDS:
+        raise ValueError(f"the number {text[:20]} is beyond the range of a float")
+    return v
+
+
+def check_nesting(obj: Any, p: Path, *, depth: int = MAX_NESTING) -> None:
+    """Refuse a parsed TOML or JSON value nested deeper than ``depth`` (tables, dotted keys,
+    arrays) or holding a whole number beyond 64 bits, naming the file and the key."""
+    stack: list[tuple[Any, int, str]] = [(obj, 0, "")]
+    while stack:
+        v, d, key = stack.pop()
+        where = f" (at {quote_user_value(key, 60)})" if key else ""
+        if isinstance(v, (dict, list)):
+            if d >= depth:
+                raise InputError(f"{_show(p)}: nested more than {depth} levels deep{where}")
+            items = v.items() if isinstance(v, dict) else enumerate(v)
+            for k, x in items:
+                stack.append((x, d + 1, f"{key}.{k}" if key and isinstance(v, dict) else f"{key}[{k}]"
+                              if key else str(k)))
+        elif isinstance(v, int) and not isinstance(v, bool) and abs(v) > MAX_INTEGER:
+            raise InputError(f"{_show(p)}: a whole number{where} is larger than a 64-bit integer "
+                             f"({len(str(abs(v)))} digits)")
+
+
 def read_toml(path: str | os.PathLike, what: str = "file") -> dict:
     """Parse a TOML file, or raise :class:`InputError` naming it (missing, a directory, or not
     valid TOML with the parser's line and column). ``what`` names the kind of file in the
-    "no such ..." message (``"calibration file"``)."""
+    "no such ..." message (``"calibration file"``). Bounded: at most :data:`MAX_NESTING`
+    levels deep, whole numbers within 64 bits and floats finite (``1e400`` is refused; the
+    words ``inf`` and ``nan`` are kept), each refused with the file named."""
     import tomllib
 
     p = Path(path)
     raw = read_input_bytes(p, what, limit=MAX_TEXT_BYTES)
     try:
-        return tomllib.loads(raw.decode("utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"{_show(p)}: not valid TOML ({str(exc)[:150]})") from None
+        text = raw.decode("utf-8")
     except UnicodeDecodeError:
         raise InputError(f"{_show(p)}: not valid TOML (not UTF-8 text)") from None
+    try:
+        out = tomllib.loads(text, parse_float=_finite_float_literal)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{_show(p)}: not valid TOML ({str(exc)[:150]})") from None
+    except RecursionError:
+        raise InputError(f"{_show(p)}: nested too deeply to read (at most {MAX_NESTING} levels)") from None
+    except ValueError as exc:  # a whole number of more than 4300 digits, a float beyond range
+        msg = str(exc)
+        if "digits" in msg or "integer string conversion" in msg:
+            msg = "a whole number has thousands of digits, far more than a 64-bit integer"
+        raise InputError(f"{_show(p)}: cannot be read ({msg[:150]})") from None
+    check_nesting(out, p)
+    return out
 
 
 def toml_value(x: Any) -> str:

@@ -234,9 +234,9 @@ def run(args) -> int:
             except ValueError:
                 pass
             else:
-                if not (math.isfinite(alpha) and alpha > 0):
-                    raise InputError(f"--alpha: expected rotatable, orthogonal, practical, face or a finite "
-                                     f"number > 0, got {quote_user_value(args.alpha)}")
+                if not (math.isfinite(alpha) and 0 < alpha <= MAX_ALPHA):
+                    raise InputError(f"--alpha: expected rotatable, orthogonal, practical, face or a number "
+                                     f"> 0 and at most {MAX_ALPHA:g}, got {quote_user_value(args.alpha)}")
         design = central_composite(space, alpha=alpha, face=args.face, center=_center(args.center, True),
                                    blocks=args.blocks, seed=args.seed, randomize=randomize)
     else:
@@ -247,6 +247,11 @@ def run(args) -> int:
     print(f"wrote {out}")
     return 0
 
+
+#: The largest star distance ``--alpha`` [coded units] a design command takes: a star point a
+#: thousand half-ranges from the centre is no experiment, and beyond it coded and actual
+#: values could overflow (issue 26).
+MAX_ALPHA = 1000.0
 
 #: Kinds handled by :func:`_new_kind` (added with issue 13).
 _NEW_KINDS = ("optimal", "definitive-screening", "fractional-factorial", "plackett-burman", "latin-hypercube",
@@ -343,6 +348,7 @@ def _new_kind(args):
 
 def _augment(args, out) -> int:
     """Read DESIGN.csv, add runs, write the original rows untouched and the new ones after."""
+    import math
     from pathlib import Path
 
     import pandas as pd
@@ -350,7 +356,7 @@ def _augment(args, out) -> int:
     from ..design import Design
     from ..design.augment import augment
     from ..design.core import BLOCK_COLUMN
-    from ..io import InputError
+    from ..io import InputError, quote_user_value
     from ._common import read_input
 
     src = Path(args.design)
@@ -366,6 +372,10 @@ def _augment(args, out) -> int:
         alpha = float(alpha)
     except ValueError:
         pass
+    else:
+        if not (math.isfinite(alpha) and 0 < alpha <= MAX_ALPHA):
+            raise InputError(f"--alpha: expected a rule or a number > 0 and at most {MAX_ALPHA:g}, "
+                             f"got {quote_user_value(args.alpha)}")
     cons = None
     if args.constraint:
         cons = _constraints(args, design.factors)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from contextlib import contextmanager
 
 from ._common import (
     about_file,
@@ -57,6 +58,30 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_force(parser)
 
 
+def _check_terms(terms) -> None:
+    """An empty ``--term`` is named before any data is read."""
+    from ..io import InputError
+
+    for t in terms or []:
+        if not str(t).strip():
+            raise InputError("--term: an empty term was given; give a term such as A, AB or A^2")
+
+
+@contextmanager
+def _about_terms(terms):
+    """A term the fit cannot read is the option's fault: ``--term: cannot read model term ...``."""
+    from ..io import InputError
+
+    try:
+        yield
+    except InputError:
+        raise
+    except ValueError as exc:
+        if terms and "model term" in str(exc):
+            raise InputError(f"--term: {exc}") from None
+        raise
+
+
 def _full_terms(letters) -> list[str]:
     """Every product of distinct factors: ``A, B, ..., AB, ..., ABC...``."""
     from itertools import combinations
@@ -71,12 +96,13 @@ def run(args: argparse.Namespace) -> int:
     from ._common import read_input
 
     fmt = plot_format(args.plot)
+    _check_terms(args.term)
     data = read_input(args)
     from ._common import model_spec
 
     given = model_spec(args, order="2fi").terms if args.terms is not None else ()  # a bad --terms named first
     terms = (args.term or []) + list(given or ()) or None  # --term and --terms together
-    with about_file(args.data):
+    with about_file(args.data), _about_terms(args.term):
         model = "2fi" if args.model in ("full", "saturated") else args.model
         aliases: dict = {}
         if terms is None and args.model in ("full", "saturated"):  # the factors as the fit finds them

@@ -98,7 +98,10 @@ def _compile(node: ast.AST, names: Mapping[str, int], expr: str) -> tuple[Callab
     if isinstance(node, ast.Constant):
         if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
             raise _Bad(f"{node.value!r} is not a number")
-        v = float(node.value)
+        try:
+            v = float(node.value)
+        except OverflowError:  # a whole number of hundreds of digits
+            raise _Bad(f"the number {str(node.value)[:12]}… ({len(str(node.value))} digits) is too large") from None
         if not math.isfinite(v):
             raise _Bad("numbers must be finite")
         return (lambda X, v=v: v), 0, set()

@@ -324,6 +324,22 @@ class Design:
             cols[f.name] = actual[f.name].to_numpy()
         return pd.DataFrame(cols)
 
+    def check_finite(self) -> None:
+        """ValueError naming the factor and the run when a coded or actual value of a numeric
+        factor is not finite or is beyond a 64-bit whole number: no design file holds an
+        overflowed number (issue 26; the CLI refuses the options that would cause one)."""
+        for i, f in enumerate(self.factors):
+            if f.kind != "numeric":
+                continue
+            c = self.coded_runs[:, i].astype(float)
+            with np.errstate(all="ignore"):
+                a = np.asarray(_clean_actual(f, c), dtype=float)
+            bad = ~np.isfinite(c) | ~np.isfinite(a) | (np.abs(c) >= 2.0**63)
+            if bad.any():
+                j = int(np.flatnonzero(bad)[0])
+                raise ValueError(f"the design holds an overflowed number for factor {f.name!r} in run {j + 1} "
+                                 f"(coded {c[j]:g}, actual {a[j]:g}); nothing was written")
+
     def csv_text(self) -> str:
         """The design CSV (:meth:`to_csv`'s text) written without pandas: the same bytes as
         ``to_frame().to_csv(index=False)`` (numbers as their shortest round-trip text, text
@@ -371,6 +387,7 @@ class Design:
         """
         from ..io import write_output
 
+        self.check_finite()
         return write_output(path, self.csv_text(), force=force)
 
     def to_dict(self) -> dict:

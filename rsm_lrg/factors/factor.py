@@ -101,6 +101,21 @@ class FactorLike(Protocol):
     def to_dict(self) -> dict: ...
 
 
+#: The widest factor range [actual units] that coding can handle: LOW, HIGH and HIGH - LOW at
+#: most this large, so that the points a design places far beyond the range stay finite.
+MAX_RANGE_WIDTH = 1e300
+
+
+def check_range_width(name: str, low: float, high: float) -> None:
+    """ValueError when the range ``low .. high`` is too wide to code (``-1e308:1e308``, whose
+    width HIGH - LOW overflows to inf; see :data:`MAX_RANGE_WIDTH`)."""
+    with np.errstate(over="ignore"):
+        width = float(np.float64(high) - np.float64(low))
+    if not (np.isfinite(width) and width <= MAX_RANGE_WIDTH and max(abs(low), abs(high)) <= MAX_RANGE_WIDTH):
+        raise ValueError(f"factor {quote_value(name)}: the range {low:g} .. {high:g} is too wide to compute with "
+                         f"(LOW, HIGH and HIGH - LOW must be at most {MAX_RANGE_WIDTH:g} in size)")
+
+
 @dataclass(frozen=True)
 class Factor:
     """One factor: a name, its low and high level in actual units, its letter.
@@ -131,6 +146,7 @@ class Factor:
             raise ValueError(
                 f"factor {quote_value(self.name)}: LOW must be below HIGH (got {low:g} >= {high:g})"
             )
+        check_range_width(self.name, low, high)
         object.__setattr__(self, "low", low)
         object.__setattr__(self, "high", high)
 

@@ -10,7 +10,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from .factor import CategoricFactor, Factor, level_text
+from .factor import CategoricFactor, Factor, check_range_width, level_text
 from .values import finite_float, quote_value
 
 __all__ = ["parse_factor", "parse_factor_spec", "spec_with_levels", "given_items"]
@@ -71,6 +71,7 @@ def parse_factor_spec(spec: str) -> tuple[str, float | None, float | None]:
     high = finite_float(m.group("high"), f"factor {quote_value(name)}: HIGH")
     if not low < high:
         raise ValueError(f"factor {quote_value(name)}: LOW must be below HIGH (got {low:g} >= {high:g})")
+    check_range_width(name, low, high)
     return name, low, high
 
 

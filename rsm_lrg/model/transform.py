@@ -120,6 +120,17 @@ class Transform:
             need = "non-negative" if positive_power else "positive"
             raise ValueError(f"the {self.label} transform needs {need} values: column {column!r}, row {i + 1} "
                              f"holds {float(np.asarray(y, float)[i]):g}" + ("" if self.constant else " (add a constant)"))
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            z = self.forward(y)
+        lost = np.isfinite(v) & ~np.isfinite(z)
+        if self.lam is not None and self.lam != 0.0:  # a power that underflows a nonzero value to 0
+            lost |= np.isfinite(v) & (v != 0) & (z == 0)
+        if np.any(lost):  # the power is at fault, not the cell: name the option's value
+            i = int(np.flatnonzero(lost)[0])
+            how = "overflows" if not np.isfinite(z[i]) else "underflows"
+            raise ValueError(f"transform {self.label}: the transformed response {how} (column {column!r}, "
+                             f"row {i + 1}: {float(np.asarray(y, float)[i]):g} becomes {float(z[i]):g}); "
+                             "choose a power nearer 0")
 
     def forward(self, y: Any) -> np.ndarray:
         v = np.asarray(y, dtype=float) + self.constant

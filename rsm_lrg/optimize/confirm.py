@@ -38,6 +38,22 @@ from ..factors import finite_float
 __all__ = ["confirm", "ConfirmationResult", "parse_settings"]
 
 
+#: A setting at most this many half-ranges from the centre of its factor's range can be
+#: predicted (coded values and their squares and cubes stay far from overflow).
+MAX_CODED_REACH = 1e6
+
+
+def _check_reach(f, value: float) -> None:
+    """ValueError (``setting for 'x': ...``) when ``value`` lies more than
+    :data:`MAX_CODED_REACH` half-ranges from the centre of factor ``f``'s range."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        reach = abs((np.float64(value) - f.center) / f.half_range)
+    if not (np.isfinite(reach) and reach <= MAX_CODED_REACH):
+        raise ValueError(f"setting for {f.name!r}: {value:g} lies too far outside the factor's range "
+                         f"{f.low:g} .. {f.high:g} to predict at (more than {MAX_CODED_REACH:g} half-ranges "
+                         "from its centre)")
+
+
 def parse_settings(space, at) -> dict:
     """``{factor name: value}`` (actual units) from a mapping keyed by name or letter or
     from ``["NAME=VALUE", ...]``; every factor must be given exactly once (a categoric
@@ -58,6 +74,8 @@ def parse_settings(space, at) -> dict:
         except KeyError:
             raise ParameterError("setting", f"setting for {key!r}: no such factor (factors: {', '.join(space.names)})") from None
         val = f.levels[f.index(v)] if f.kind == "categoric" else finite_float(v, f"setting for {f.name!r}")
+        if f.kind != "categoric":
+            _check_reach(f, val)
         if f.name in items:
             raise ValueError(f"factor {f.name!r} is set more than once")
         items[f.name] = val
