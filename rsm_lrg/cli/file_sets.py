@@ -27,6 +27,11 @@ from typing import Any
 
 __all__ = ["expand_data_path", "read_file_set", "skipped_reason", "locate_empty_cell", "TABLE_SUFFIXES"]
 
+#: The most data [bytes] one Parquet file may hold once decompressed (its row groups'
+#: uncompressed size, and at least 8 bytes a cell): a small file that unpacks to gigabytes
+#: is refused before it is read.
+MAX_PARQUET_UNPACKED = 1024 * 1024 * 1024
+
 #: File kinds read from a directory or a pattern, by suffix.
 TABLE_SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
 
@@ -124,19 +129,32 @@ def _csv_header(f: str) -> list[str]:
 
 
 def _parquet_schema(f: str) -> dict[str, str]:
-    """``{column: "number" | "text" | "other"}`` from a Parquet file's schema."""
-    from ..io import InputError, show_path
+    """``{column: "number" | "text" | "other"}`` from a Parquet file's schema, after checking its
+    metadata against the limits of one table (rows, columns, decompressed size)."""
+    from ..io import MAX_COLUMNS, MAX_ROWS, InputError, show_path
 
     try:
-        import pyarrow as pa
-        import pyarrow.parquet as pq
+        import pyarrow as pa  # type: ignore[import-untyped]
+        import pyarrow.parquet as pq  # type: ignore[import-untyped]
     except ImportError as exc:
         raise InputError(f"{show_path(f)}: reading Parquet files needs pyarrow ({exc})") from None
     try:
+        meta = pq.read_metadata(f)
         schema = pq.read_schema(f)
     except Exception as exc:  # pyarrow raises its own ArrowInvalid, OSError, ...
         first = (str(exc).strip().splitlines() or [type(exc).__name__])[0][:120]
         raise InputError(f"{show_path(f)}: is not a readable Parquet file ({first})") from None
+    # the limits of one table apply to what the file decompresses to, not only to its size
+    if meta.num_rows > MAX_ROWS:
+        raise InputError(f"{show_path(f)}: has {meta.num_rows} rows, more than the limit of {MAX_ROWS}")
+    if meta.num_columns > MAX_COLUMNS:
+        raise InputError(f"{show_path(f)}: has {meta.num_columns} columns, more than the limit of {MAX_COLUMNS}")
+    # in memory at least 8 bytes a cell (a float column; text takes more: its encoded size)
+    unpacked = max(sum(meta.row_group(i).total_byte_size for i in range(meta.num_row_groups)),
+                   8 * meta.num_rows * meta.num_columns)
+    if unpacked > MAX_PARQUET_UNPACKED:
+        raise InputError(f"{show_path(f)}: holds {unpacked / 2**20:g} MiB of data once decompressed, more than "
+                         f"the limit of {MAX_PARQUET_UNPACKED / 2**20:g} MiB for one file")
     out = {}
     for field in schema:
         t = field.type

@@ -141,7 +141,8 @@ def _show(address: str) -> str:
 def connect_scheduler(address: str, timeout: float = DEFAULT_SCHEDULER_TIMEOUT):
     """A ``distributed.Client`` of the scheduler at ``address``, or :class:`rsm_lrg.io.InputError`
     naming it: the scheduler must answer (its identity) within ``timeout`` seconds, so one
-    that accepts the connection and stays silent is an error, not a hang."""
+    that accepts the connection and stays silent is an error, not a hang, and it must have a
+    worker (or gain one) within ``timeout`` seconds."""
     import asyncio
 
     from ..io import InputError
@@ -178,10 +179,18 @@ def connect_scheduler(address: str, timeout: float = DEFAULT_SCHEDULER_TIMEOUT):
         raise InputError(f"--scheduler {_show(address)}: cannot connect "
                          f"({type(exc).__name__}: {str(exc)[:120]})") from None
     try:
-        return Client(address, timeout=f"{timeout}s")
+        client = Client(address, timeout=f"{timeout}s")
     except Exception as exc:
         raise InputError(f"--scheduler {_show(address)}: cannot connect "
                          f"({type(exc).__name__}: {str(exc)[:120]})") from None
+    try:  # a scheduler without a worker would hold the batches for ever
+        client.wait_for_workers(1, timeout=timeout)
+    except Exception as exc:
+        with contextlib.suppress(Exception):
+            client.close(timeout=5)
+        raise InputError(f"--scheduler {_show(address)}: no worker joined within {timeout:g} s "
+                         f"(--scheduler-timeout; {type(exc).__name__})") from None
+    return client
 
 
 def scheduler_lost(address: str, exc: BaseException):

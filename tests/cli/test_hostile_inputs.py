@@ -218,3 +218,24 @@ def test_parquet_schema_mismatch_is_a_clean_error(tmp_path, capsys):
     df.to_parquet(tmp_path / "e.parquet", index=False)
     got, _ = _fit_json(capsys, tmp_path / "[ae].parquet")
     assert got["n"] == 54
+
+
+def test_parquet_limits_apply_to_what_the_file_unpacks_to(tmp_path, capsys, monkeypatch):
+    # a small Parquet file may hold far more rows or bytes than its size says: the limits of
+    # one table are checked on its metadata, before it is read
+    pytest.importorskip("pyarrow")
+    from rsm_lrg.cli import file_sets
+    from rsm_lrg.io import MAX_ROWS
+
+    df = pd.read_csv(TABLE4)
+    df.to_parquet(tmp_path / "a.parquet", index=False)
+    big = pd.DataFrame({c: np.zeros(MAX_ROWS + 1, dtype=np.int8) for c in df.columns})
+    big.to_parquet(tmp_path / "b.parquet", index=False)
+    assert (tmp_path / "b.parquet").stat().st_size < 2**20  # under a megabyte on disk
+    assert main(["fit", str(tmp_path / "[ab].parquet"), "--response", RESPONSE]) == 2
+    _one_error(capsys, "b.parquet", f"{MAX_ROWS + 1} rows")
+    wide = pd.DataFrame({c: np.zeros(200_000) for c in df.columns})  # 9.6 MB of zeros unpacked
+    wide.to_parquet(tmp_path / "c.parquet", index=False)
+    monkeypatch.setattr(file_sets, "MAX_PARQUET_UNPACKED", 4 * 2**20)
+    assert main(["fit", str(tmp_path / "[ac].parquet"), "--response", RESPONSE]) == 2
+    _one_error(capsys, "c.parquet", "decompressed")

@@ -229,3 +229,38 @@ def test_a_scheduler_lost_mid_run_is_one_error_line(tmp_path):
     lines = err.splitlines()
     assert len(lines) == 1 and address in lines[0] and "lost" in lines[0], err[-800:]
     assert sorted(p.name for p in work.iterdir()) == ["design.csv"]
+
+
+NO_WORKERS = """
+import time
+from distributed import LocalCluster
+if __name__ == "__main__":
+    c = LocalCluster(n_workers=0, processes=True, dashboard_address=None)
+    print(c.scheduler_address, flush=True)
+    time.sleep(600)
+"""
+
+
+@pytest.mark.slow
+@pytest.mark.cluster
+def test_a_scheduler_without_workers_is_an_error_after_the_timeout(tmp_path):
+    # a real scheduler that answers but has no worker would hold the batches for ever
+    pytest.importorskip("distributed")
+    script = tmp_path / "scheduler.py"
+    script.write_text(NO_WORKERS)
+    sched = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path, env=_env(), text=True,
+                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        address = sched.stdout.readline().strip()
+        assert address.startswith("tcp://"), address
+        design = _design(tmp_path, 1)
+        proc = subprocess.run([sys.executable, "-m", "rsm_lrg", "simulate", str(design), "-o", "o.csv", "--seed", "1",
+                               "--scheduler", address, "--scheduler-timeout", "3"], cwd=tmp_path, env=_env(),
+                              text=True, capture_output=True, timeout=120)
+    finally:
+        os.killpg(sched.pid, signal.SIGKILL)
+        sched.wait(10)
+    assert proc.returncode == 2, proc.stderr
+    lines = proc.stderr.splitlines()
+    assert len(lines) == 1 and address in lines[0] and "no worker" in lines[0], proc.stderr
+    assert not (tmp_path / "o.csv").exists()
