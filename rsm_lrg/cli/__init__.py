@@ -207,12 +207,23 @@ class _PipeGuard:
         except (OSError, ValueError, AttributeError):  # not a real file (captured in-process)
             pass
 
+    def _failed(self, exc: OSError):
+        """Standard output that cannot take the text (a full disk, ``> /dev/full``): the command
+        fails (its outputs discarded) with one line, and the stream is closed off so that the
+        interpreter's last flush is quiet."""
+        from ..io import InputError
+
+        self._closed()
+        return InputError(f"cannot write standard output: {exc.strerror or type(exc).__name__}")
+
     def write(self, text):
         if not self.broken:
             try:
                 return self.stream.write(text)
             except BrokenPipeError:
                 self._closed()
+            except OSError as exc:
+                raise self._failed(exc) from None
         return len(text)
 
     def flush(self):
@@ -221,6 +232,8 @@ class _PipeGuard:
                 self.stream.flush()
             except BrokenPipeError:
                 self._closed()
+            except OSError as exc:
+                raise self._failed(exc) from None
 
     def __getattr__(self, name):
         return getattr(self.stream, name)
@@ -304,6 +317,7 @@ def _main(argv: list[str] | None) -> int:
             warnings.simplefilter("default")
             with output_transaction(inputs=input_paths(args), labels={path: label for label, path in outputs}):
                 status = args._run(args)
+                sys.stdout.flush()  # text that cannot be written fails the command before its files appear
         for note in getattr(args, "notes_at_end", None) or ():  # what was read (_common.read_input)
             print(f"note: {note}", file=sys.stderr)
         # a library warning is one line after a success; after an error only the error line shows

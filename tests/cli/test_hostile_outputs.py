@@ -257,3 +257,17 @@ def test_closed_standard_output_is_ordinary(tmp_path):
                 preexec_fn=_closed(1, 2))
     assert proc.returncode == 2
     assert sorted(p.name for p in tmp_path.iterdir()) == ["j.json", "r.html"]
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full here")
+@pytest.mark.parametrize("json_to", ["file", "stdout"])
+def test_a_full_standard_output_fails_cleanly(json_to, tmp_path):
+    # `> /dev/full`: the printed result cannot be written; exit 2 with one line and no file
+    # (once an internal error, exit 1)
+    dest = "j.json" if json_to == "file" else "/dev/stdout"
+    with open("/dev/full", "w") as full:
+        proc = _cli(["fit", TABLE4, "--response", RESPONSE, "--json", dest, "--report", "r.html"], tmp_path,
+                    stdout=full, stderr=subprocess.PIPE)
+    assert proc.returncode == 2, proc.stderr
+    _one_error(proc.stderr, "standard output", "No space left")
+    assert list(tmp_path.iterdir()) == []
