@@ -33,9 +33,9 @@ from pathlib import Path
 from typing import Any, BinaryIO
 
 __all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "open_input", "check_output",
-           "output_transaction", "output_stream", "register_input", "read_table", "read_table_as", "read_stdin_bytes",
-           "read_toml", "check_nesting", "toml_value", "write_output", "dump_json", "to_jsonable", "numeric_column",
-           "float_column",
+           "output_transaction", "output_stream", "register_input", "committing", "read_table", "read_table_as",
+           "read_stdin_bytes", "read_toml", "check_nesting", "toml_value", "write_output", "dump_json", "to_jsonable",
+           "numeric_column", "float_column",
            "is_empty_cell", "cell_error", "COMMA_NUMBER"]
 
 
@@ -457,7 +457,15 @@ class _Transaction:
     def commit(self) -> None:
         """Rename every staged file into place, then write the streams (``/dev/stdout``); if
         one step fails, every file already placed is put back as it was (the file it replaced
-        restored from its backup, a new file removed) and the error is raised."""
+        restored from its backup, a new file removed) and the error is raised. While it runs,
+        :func:`committing` is true (a signal handler then lets it finish)."""
+        _COMMITTING[0] = True
+        try:
+            self._commit()
+        finally:
+            _COMMITTING[0] = False
+
+    def _commit(self) -> None:
         done: list[tuple[Path, str | None]] = []  # (target, backup of the file it replaced)
         try:
             for tmp, target, force in self.staged:
@@ -494,6 +502,13 @@ class _Transaction:
 
 
 _BACKUP_PREFIX = ".rsm-lrg-backup."
+_COMMITTING = [False]
+
+
+def committing() -> bool:
+    """True while an :func:`output_transaction` places its files: a signal handler should let
+    the commit (or its roll-back) finish rather than interrupt it half-way."""
+    return _COMMITTING[0]
 
 
 def _still_replaceable(target: Path, label: str | None) -> None:

@@ -44,7 +44,7 @@ import sys
 import warnings
 
 from ._common import check_option_specs, input_paths, mark_outputs, planned_outputs
-from .processes import Terminated, handle_signals, stop_children
+from .processes import Terminated, handle_signals, pending_signal, stop_children
 
 __all__ = ["main", "build_parser", "UsageError"]
 
@@ -318,6 +318,10 @@ def _main(argv: list[str] | None) -> int:
             with output_transaction(inputs=input_paths(args), labels={path: label for label, path in outputs}):
                 status = args._run(args)
                 sys.stdout.flush()  # text that cannot be written fails the command before its files appear
+        late = pending_signal()  # a signal that came while the outputs were placed: they are whole
+        if late is not None:
+            print(f"error: terminated by {Terminated(late).name} after its outputs were written", file=sys.stderr)
+            return 128 + late
         for note in getattr(args, "notes_at_end", None) or ():  # what was read (_common.read_input)
             print(f"note: {note}", file=sys.stderr)
         # a library warning is one line after a success; after an error only the error line shows

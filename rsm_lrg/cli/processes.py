@@ -24,7 +24,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["Terminated", "handle_signals", "process_pool", "close_pool", "stop_children", "connect_scheduler",
+__all__ = ["Terminated", "handle_signals", "pending_signal", "process_pool", "close_pool", "stop_children", "connect_scheduler",
            "scheduler_lost", "DEFAULT_SCHEDULER_TIMEOUT"]
 
 #: Seconds a Dask scheduler has to answer (``--scheduler-timeout``).
@@ -51,19 +51,43 @@ class Terminated(BaseException):
             return f"signal {self.signum}"
 
 
+_PENDING: list[int] = []
+
+
 def _raise(signum: int, frame: Any) -> None:
+    """The handler: raise :class:`Terminated` (KeyboardInterrupt for SIGINT), once. While the
+    outputs are being placed (:func:`rsm_lrg.io.committing`), or once the command is already
+    unwinding, the signal is only recorded (:func:`pending_signal`), so that no commit, roll-back
+    or clean-up is cut half-way."""
+    from ..io import committing
+
+    if committing() or _PENDING:
+        if signum not in _PENDING:
+            _PENDING.append(signum)
+        return
+    _PENDING.append(signum)
+    if signum == signal.SIGINT:
+        raise KeyboardInterrupt
     raise Terminated(signum)
+
+
+def pending_signal() -> int | None:
+    """The signal that arrived while the outputs were being placed (the command then ends
+    with ``128 + signal`` after its outputs were written), or None."""
+    return _PENDING[0] if _PENDING else None
 
 
 @contextlib.contextmanager
 def handle_signals() -> Iterator[None]:
-    """SIGTERM and SIGHUP raise :class:`Terminated` inside the block (main thread only; the
-    previous handlers are put back after it)."""
+    """SIGTERM and SIGHUP raise :class:`Terminated` and SIGINT KeyboardInterrupt inside the
+    block, once (see :func:`_raise`; main thread only; the previous handlers are put back
+    after it)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     old = {}
-    for name in _HANDLED:
+    _PENDING.clear()
+    for name in (*_HANDLED, "SIGINT"):
         sig = getattr(signal, name, None)
         if sig is None:
             continue

@@ -264,3 +264,42 @@ def test_a_scheduler_without_workers_is_an_error_after_the_timeout(tmp_path):
     lines = proc.stderr.splitlines()
     assert len(lines) == 1 and address in lines[0] and "no worker" in lines[0], proc.stderr
     assert not (tmp_path / "o.csv").exists()
+
+
+def test_a_signal_during_the_commit_lets_it_finish(tmp_path):
+    # a real SIGTERM while the outputs are being placed: the commit is not cut half-way (the
+    # file and the stream are both written) and the signal is reported after it
+    from rsm_lrg.cli.processes import handle_signals, pending_signal
+
+    r, w = os.pipe()
+    os.set_blocking(w, False)
+    filled = 0
+    try:
+        while True:  # fill the pipe: the stream output will block in the commit
+            filled += os.write(w, b"x" * 4096)
+    except BlockingIOError:
+        pass
+    os.set_blocking(w, True)
+    drained = []
+
+    def reader():
+        time.sleep(0.3)  # the main thread is blocked writing the stream, inside the commit
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(0.3)
+        while sum(drained) < filled + 7:
+            drained.append(len(os.read(r, 65536)))
+
+    t = threading.Thread(target=reader)
+    t.start()
+    try:
+        with handle_signals():
+            with output_transaction():
+                write_output(tmp_path / "a.csv", "a\n")
+                write_output(f"/dev/fd/{w}", "stream\n")
+            assert pending_signal() == signal.SIGTERM
+    finally:
+        t.join(10)
+        os.close(r)
+        os.close(w)
+    assert (tmp_path / "a.csv").read_text() == "a\n"
+    assert sum(drained) == filled + 7
