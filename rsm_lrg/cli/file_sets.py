@@ -46,11 +46,11 @@ def expand_data_path(path: str) -> list[str] | None:
     """
     try:
         if os.path.isdir(path):
-            return sorted(f for f in glob.glob(os.path.join(glob.escape(path), "*"))
-                          + glob.glob(os.path.join(glob.escape(path), ".*")) if not os.path.isdir(f))
+            return sorted(glob.glob(os.path.join(glob.escape(path), "*"))
+                          + glob.glob(os.path.join(glob.escape(path), ".*")))
         if os.path.lexists(path) or not any(c in path for c in "*?["):
             return None
-        return sorted(f for f in glob.glob(path) if not os.path.isdir(f))
+        return sorted(glob.glob(path))
     except (OSError, ValueError):
         return None
 
@@ -58,12 +58,15 @@ def expand_data_path(path: str) -> list[str] | None:
 def skipped_reason(name: str) -> str | None:
     """Why a file of a directory or pattern is not read: ``"lock"`` (``~$a.csv``, an Office lock
     file; ``.~lock.a.csv#``, LibreOffice's), ``"hidden"`` (``.a.csv``), ``"backup"``
-    (``a.csv~``, ``#a.csv#``), ``"kind"`` (not CSV or Parquet); None when it is read.
+    (``a.csv~``, ``#a.csv#``), ``"kind"`` (not CSV or Parquet), ``"directory"`` (a
+    sub-directory: not searched); None when it is read.
 
     >>> [skipped_reason(n) for n in ("a.csv", "~$a.csv", ".a.csv", "a.csv~", "a.txt", "b.PQ")]
     [None, 'lock', 'hidden', 'backup', 'kind', None]
     """
     base = os.path.basename(name)
+    if os.path.isdir(name):
+        return "directory"
     if base.startswith("~$") or base.startswith(".~lock."):
         return "lock"
     if base.startswith("."):
@@ -231,12 +234,21 @@ def _conform(df, meta, f: str):
     import pandas as pd
 
     from ..io import InputError, quote_user_value, show_path
+    from ..readers import LEADING_ZERO
 
     for c in meta.columns:
         want, have = meta[c].dtype, df[c].dtype
         if want == have:
             continue
         if want.kind == "f":
+            text = df[c].astype(str).str.strip()
+            coded = text.str.match(LEADING_ZERO)
+            if coded.any():  # 01 here, plain numbers in the first file: 01 and 1 would merge
+                i = int(coded.to_numpy().nonzero()[0][0])
+                raise InputError(f"{show_path(f)}: column {quote_user_value(c)}, row {i + 1}: "
+                                 f"{quote_user_value(df[c].iloc[i])} is a code written with a leading zero, but "
+                                 "the first file writes this column as plain numbers; write the codes alike in "
+                                 "every file (01 and 1 are different levels)")
             num = pd.to_numeric(df[c], errors="coerce")
             bad = num.isna() & df[c].notna() & (df[c].astype(str).str.strip() != "")
             if bad.any():
@@ -276,7 +288,7 @@ def read_file_set(path: str, files: list[str]) -> tuple[Any, list[str]]:
             skipped.setdefault(why, []).append(f)
     notes = []
     words = {"lock": "lock file(s)", "hidden": "hidden file(s)", "backup": "backup file(s)",
-             "kind": "file(s) that are not CSV or Parquet"}
+             "kind": "file(s) that are not CSV or Parquet", "directory": "sub-directory(ies) (not searched)"}
     for why, fs in skipped.items():
         notes.append(f"{show_path(path)}: {len(fs)} {words[why]} skipped: {_names(fs)}.")
     what = "directory" if os.path.isdir(path) else "pattern"

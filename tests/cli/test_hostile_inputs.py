@@ -239,3 +239,24 @@ def test_parquet_limits_apply_to_what_the_file_unpacks_to(tmp_path, capsys, monk
     monkeypatch.setattr(file_sets, "MAX_PARQUET_UNPACKED", 4 * 2**20)
     assert main(["fit", str(tmp_path / "[ac].parquet"), "--response", RESPONSE]) == 2
     _one_error(capsys, "c.parquet", "decompressed")
+
+
+def test_codes_written_differently_across_files_are_not_merged(tmp_path, capsys):
+    # the first file writes lot 1, 2; the second 01, 02: merging them as numbers would join
+    # lots that the second file tells apart, so the file is named instead
+    d = tmp_path / "parts"
+    d.mkdir()
+    lots = _lots(tmp_path)
+    df = pd.read_csv(lots, dtype=str)
+    df[df["lot"].isin(["1", "2"])].to_csv(d / "a.csv", index=False)
+    df[df["lot"].isin(["01", "02"])].to_csv(d / "b.csv", index=False)
+    assert main(["fit", str(d), "--response", "y", "--factor", "x", "--factor", "lot=cat", "--model", "linear"]) == 2
+    _one_error(capsys, "b.csv", "leading zero", "'lot'")
+
+
+def test_a_sub_directory_is_skipped_with_a_note(tmp_path, capsys):
+    d = _parts(tmp_path, 2)
+    (d / "more.csv").mkdir()
+    shutil.copy(TABLE4, d / "more.csv" / "p9.csv")
+    got, err = _fit_json(capsys, d)
+    assert got["n"] == 54 and "sub-directory" in err and "more.csv" in err
