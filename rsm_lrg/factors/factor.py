@@ -146,7 +146,6 @@ class Factor:
             raise ValueError(
                 f"factor {quote_value(self.name)}: LOW must be below HIGH (got {low:g} >= {high:g})"
             )
-        check_range_width(self.name, low, high)
         object.__setattr__(self, "low", low)
         object.__setattr__(self, "high", high)
 
