@@ -81,6 +81,12 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write(rep.to_text())
     if not args.no_html:
         progress("writing the HTML page (figures)")
-        path = write_reproduction(rep, args.output, force=args.force)
+        made = not Path(args.output).exists()
+        try:
+            path = write_reproduction(rep, args.output, force=args.force)
+        except BaseException:  # an error or a signal: a directory made for the page goes with it
+            if made and Path(args.output).is_dir() and not any(Path(args.output).iterdir()):
+                Path(args.output).rmdir()
+            raise
         print(f"wrote {path}", file=sys.stderr if args.json == "-" else sys.stdout)
     return 0 if rep.ok else 1
