@@ -63,8 +63,8 @@ import numpy as np
 
 from . import motion
 from .hinge import hinge_stiffness, leaf_deflection
-from .stepper import integrate_rows, leaf_dpsi, leaf_psi
 from .params import LRGParams, check_values, param_names
+from .stepper import integrate_rows, leaf_dpsi, leaf_psi
 
 __all__ = [
     "StageConstants", "stage_constants", "natural_frequency", "quasi_static_valid",
