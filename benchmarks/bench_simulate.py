@@ -16,6 +16,12 @@ Also:
   100,000 vs 1,000);
 - ``--workers N``: the largest size again on a ``ProcessPoolExecutor`` of N processes.
 
+- ``old vs new``: ``--compare`` rows (default 2,000) of the box through ``simulate`` with the
+  earlier fixed-step NumPy integrator (``integrator="fixed_step"``) and with the compiled
+  stepper (the default), side by side in this one process: rows per CPU-second
+  (``time.process_time``, one BLAS thread), and the largest relative difference of the sliding
+  distance (issue 24 asks >= 8,900 rows per CPU-second, the pre-membrane surrogate).
+
 Figures go in the report, not in tests (wall-clock times depend on the machine).
 """
 
@@ -26,6 +32,8 @@ import json
 import os
 import platform
 import time
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # before numpy: one BLAS thread, CPU-seconds comparable
 
 import numpy as np
 import pandas as pd
@@ -48,6 +56,39 @@ def timed(fn, repeat=1):
     return best
 
 
+def compare(n, noise_sd):
+    """Rows per CPU-second of simulate() with the old (fixed-step NumPy) and the new (compiled)
+    integrator on the same n box rows, in this process."""
+    import functools
+
+    from rsm_lrg.physics import dynamics
+
+    d = box(n, seed=11)
+    original = dynamics.cycle_metrics
+    res = {}
+    try:
+        for name, fn in (("old fixed-step", functools.partial(original, integrator="fixed_step")),
+                         ("new compiled", original)):
+            dynamics.cycle_metrics = fn
+            t = time.process_time()
+            r = simulate(d, seed=1, noise_sd=noise_sd, progress=False)
+            cpu = time.process_time() - t
+            res[name] = {"rows": n, "cpu_seconds": cpu, "rows_per_cpu_s": n / cpu,
+                         "sliding": r["sliding_distance_m_per_cycle"].to_numpy()}
+    finally:
+        dynamics.cycle_metrics = original
+    old, new = res["old fixed-step"], res["new compiled"]
+    diff = float(np.max(np.abs(new["sliding"] / old["sliding"] - 1)))
+    print(f"old vs new integrator, {n} rows of the box through simulate (one BLAS thread):")
+    print(f"{'integrator':>16} {'CPU s':>8} {'rows/CPU-s':>11}")
+    for name, r in res.items():
+        print(f"{name:>16} {r['cpu_seconds']:>8.2f} {r['rows_per_cpu_s']:>11.0f}")
+    print(f"speed-up {old['cpu_seconds'] / new['cpu_seconds']:.1f}x; largest relative difference of the sliding "
+          f"distance {diff:.1e} (the old integrator's own error is ~1e-5 to 5e-3)")
+    return {k: {kk: vv for kk, vv in r.items() if kk != "sliding"} for k, r in res.items()} | {
+        "speedup": old["cpu_seconds"] / new["cpu_seconds"], "max_rel_diff_sliding": diff}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rows", type=int, nargs="+", default=[1, 27, 1000, 100_000])
@@ -55,11 +96,14 @@ def main(argv=None):
     ap.add_argument("--workers", type=int, default=0, help="also run the largest size on N processes")
     ap.add_argument("--noise-sd", type=float, default=0.03)
     ap.add_argument("--json", default=None)
+    ap.add_argument("--compare", type=int, default=2000, help="rows for the old-vs-new integrator comparison (0: skip)")
     a = ap.parse_args(argv)
 
-    simulate(box(3), seed=0, noise_sd=a.noise_sd)  # warm-up: imports, thermal network
+    simulate(box(3), seed=0, noise_sd=a.noise_sd)  # warm-up: imports, thermal network, compiled stepper
     out = {"machine": {"cpus": os.cpu_count(), "python": platform.python_version(),
                        "processor": platform.processor() or platform.machine()}, "sizes": []}
+    if a.compare > 0:
+        out["old_vs_new"] = compare(a.compare, a.noise_sd)
     print(f"{'rows':>8} {'seconds':>10} {'runs/s':>12} {'ms/run':>10}")
     for n in a.rows:
         d = box(n, seed=n)

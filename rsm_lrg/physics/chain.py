@@ -45,9 +45,11 @@ class HingeRow:
     """One hinge thickness: stiffness of one hinge K_n [N/m] (Eq. 1) and deflection at
     breakaway Δδ = f_µmax/(n·K_n) [m] (Eq. 2); and, from the stage dynamics at the
     parameters' motion (:func:`.dynamics.cycle_metrics`), the largest deflection of a leaf
-    over the periodic cycle [m], its peak bending stress ``3·E·y·δ/l²`` [Pa], the peak stress
-    with the membrane stress of held ends [Pa] (:func:`.hinge.hinge_peak_stress`), the
-    material's yield strength [Pa] and whether the leaf would yield (``yields``)."""
+    over the periodic cycle [m], its small-deflection bending stress ``3·E·y·δ/l²`` [Pa], the
+    clamp stress of the exact beam-column leaf with held ends [Pa] (bending plus tension,
+    :func:`.hinge.hinge_peak_stress`), the material's yield strength [Pa] and whether the leaf
+    would yield there (``yields``: a physical limit of the design; the model keeps the elastic
+    law beyond it and flags the row)."""
 
     thickness_m: float
     stiffness_n_m: float

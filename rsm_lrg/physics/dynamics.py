@@ -13,7 +13,9 @@ sliding: ``f_µ = µ_k·F_z·sign(ẋ_rf)``; stuck (ẋ_rf = 0): the frame stays
 force ``|F_h| ≤ f_µmax = µ_s·F_z`` (Eq. 2) and breaks away when it exceeds it. This is the
 stick-slip state machine of Karnopp (1985) / Leine et al. (1998) ("switch model"), without a
 velocity band: stop and breakaway are explicit events. F_z = F0 + m_t·g (the paper's load).
-C_n = 2·ζ·sqrt(n·K_n·m_f) with the assumed modal damping ratio ζ. c_v is the viscous
+C_n = 2·ζ·sqrt(n·K_n·m_f) with the assumed modal damping ratio ζ. With leaves whose ends are
+held (``hinge_membrane``, the default) the hinge force n·K_n·(x_ws − x_rf) is replaced by the
+exact beam-column law of :func:`.hinge.leaf_force` (stiffening with the deflection). c_v is the viscous
 (speed-proportional) friction of the lubricated, sealed block (``viscous_friction_n_s_m``,
 0 in the paper's Coulomb-only model); it acts only while the carriage slides and its work
 ``∫c_v·ẋ_rf² dt`` is heat like the Coulomb work.
@@ -26,10 +28,11 @@ Three routes, checked against each other in ``tests/physics/test_dynamics.py``:
 - :func:`simulate_stage` — the reference: event-driven integration (scipy ``solve_ivp``,
   DOP853, split at every kink of the profile, events at breakaway and stop) for one
   parameter set, to its periodic steady state, with the time history.
-- :func:`cycle_metrics` with ``method="integrate"`` — a vectorised fixed-step integrator over
-  rows (exact linear steps between the stick-slip switches, each row its own number of
-  steps per cycle with ``ω_n·Δt ≤ h``, so a row's result does not depend on the rows
-  integrated with it); for 10⁵-row virtual runs.
+- :func:`cycle_metrics` with ``method="integrate"`` — the compiled stepper of :mod:`.stepper`
+  (each row alone, order-8 Runge-Kutta steps between the kinks of the profile, stops and
+  breakaways located inside a step; a row's result does not depend on the rows integrated
+  with it); for 10⁵-row virtual runs. ``integrator="fixed_step"`` keeps the earlier vectorised
+  NumPy integrator (exact linear steps with the hinge's tangent, ``ω·Δt ≤ h``).
 - ``method="quasi_static"`` — the slow-motion limit, analytic: per stroke the stage first
   unbends the hinge from its rest deflection µ_k·F_z/(n·K_n) and bends it to the breakaway
   deflection Δδ = µ_s·F_z/(n·K_n); then the frame follows, so the carriage slides
@@ -59,8 +62,9 @@ from typing import Any
 import numpy as np
 
 from . import motion
-from .hinge import hinge_deflection_nonlinear, hinge_membrane_stiffness, hinge_stiffness
+from .hinge import hinge_stiffness, leaf_deflection
 from .params import LRGParams, check_values, param_names
+from .stepper import integrate_rows, leaf_dpsi, leaf_psi
 
 __all__ = [
     "StageConstants", "stage_constants", "natural_frequency", "quasi_static_valid",
@@ -85,8 +89,9 @@ class StageConstants:
 
     k_n_m : total hinge stiffness n·K_n [N/m]; c_ns_m : C_n [N·s/m]; mass_kg : frame mass
     m_f [kg]; f_static_n : µ_s·F_z [N]; f_kinetic_n : µ_k·F_z [N]; viscous_ns_m : viscous
-    friction c_v of the block [N·s/m]; k3_n_m3 : total membrane stiffness n·k₃ of leaves with
-    held ends [N/m³] (the hinge force is ``n·K_n·z + n·k₃·z³``, :mod:`.hinge`).
+    friction c_v of the block [N·s/m]; leaf_thickness_m : thickness y of leaves with held ends
+    [m], 0 for the small-deflection hinge of Eq. 1 (with held ends the hinge force is the exact
+    beam-column law ``n·K_n·z·φ(z/y)`` of :func:`.hinge.leaf_force`, else ``n·K_n·z``).
 
     F_z includes the over-constraint load of the leaves (``overconstraint_misfit_m``).
     """
@@ -97,7 +102,7 @@ class StageConstants:
     f_static_n: Any
     f_kinetic_n: Any
     viscous_ns_m: Any = 0.0
-    k3_n_m3: Any = 0.0
+    leaf_thickness_m: Any = 0.0
 
 
 def _columns(params: LRGParams | None, columns: dict[str, Any]) -> dict[str, Any]:
@@ -122,13 +127,11 @@ def stage_constants(params: LRGParams | None = None, **columns) -> StageConstant
     v = _columns(params, columns)
     k = v["hinge_count"] * hinge_stiffness(v["hinge_modulus_pa"], v["hinge_width_m"],
                                            v["hinge_thickness_m"], v["hinge_length_m"])
-    k3 = (v["hinge_count"] * hinge_membrane_stiffness(v["hinge_modulus_pa"], v["hinge_width_m"],
-                                                      v["hinge_thickness_m"], v["hinge_length_m"])
-          * float(bool(v["hinge_membrane"])))
+    yl = np.asarray(v["hinge_thickness_m"], dtype=float) * float(bool(v["hinge_membrane"]))
     m = v["frame_mass_fraction"] * np.asarray(v["stage_mass_kg"], dtype=float) + v["carriage_mass_kg"]
     load = carriage_load(v)
     c = 2.0 * np.asarray(v["hinge_damping_ratio"], dtype=float) * np.sqrt(k * m)
-    return StageConstants(k, c, m, v["mu_s"] * load, v["mu_k"] * load, v["viscous_friction_n_s_m"], k3)
+    return StageConstants(k, c, m, v["mu_s"] * load, v["mu_k"] * load, v["viscous_friction_n_s_m"], yl)
 
 
 def overconstraint_load(values) -> Any:
@@ -173,34 +176,35 @@ def quasi_static_valid(const: StageConstants, stroke, velocity, acceleration, *,
     the rest deflection (≤ (µ_s − µ_k)·F_z/(n·K_n)) can change the sliding per stroke by more
     than about ``fraction`` of it.
     """
-    k, k3 = np.asarray(const.k_n_m, dtype=float), np.asarray(const.k3_n_m3, dtype=float)
+    k, yl = np.asarray(const.k_n_m, dtype=float), np.asarray(const.leaf_thickness_m, dtype=float)
     if fraction is None:
         # 1 % for the small-deflection hinge (as calibrated in model v2); 0.2 % for leaves with
         # held ends: the stiffened hinge rings after each stop at a flexure's damping and the
         # frame overshoots by up to 1 % of the sliding on the Table 4 rows, which the
         # quasi-static limit misses (measured against the integrator)
-        fraction = np.where(k3 > 0, 0.002, 0.01)
+        fraction = np.where(yl > 0, 0.002, 0.01)
     dyn = (np.asarray(const.viscous_ns_m, dtype=float) * np.asarray(velocity, dtype=float)
            + np.asarray(const.mass_kg) * np.asarray(acceleration, dtype=float))
     # with a stiffening hinge the deflections of the parts add to more than the deflection of
     # their sum: an upper bound of the lag
-    lag = sum(hinge_deflection_nonlinear(f, k, k3) for f in (const.f_static_n, const.f_kinetic_n, dyn))
+    lag = sum(leaf_deflection(f, k, yl) for f in (const.f_static_n, const.f_kinetic_n, dyn))
     return lag <= fraction * np.asarray(stroke, dtype=float)
 
 
-def quasi_static_sliding_per_stroke(stroke, k_total, f_static, f_kinetic, k3_total=0.0):
+def quasi_static_sliding_per_stroke(stroke, k_total, f_static, f_kinetic, leaf_thickness=0.0):
     """Carriage sliding per stroke in slow steady reciprocation [m].
 
     ``max(s − (f_µmax + µ_k·F_z)/(n·K_n), 0)``: the hinge goes from its rest deflection
     (kinetic friction held by stiction) through zero to the breakaway deflection before the
     frame moves (derivation in the module docstring and in :mod:`.wear`). With membrane
-    stiffening (``k3_total`` = n·k₃ > 0) each deflection solves ``n·K_n·δ + n·k₃·δ³ = f``.
+    leaves whose ends are held (``leaf_thickness`` y > 0) each deflection solves the exact
+    beam-column law ``n·K_n·δ·φ(δ/y) = f`` (:func:`.hinge.leaf_deflection`).
 
     >>> round(float(quasi_static_sliding_per_stroke(0.075, 28485.0, 5.209, 3.473)) * 1e3, 4)  # mm
     74.6952
     """
-    lag = (hinge_deflection_nonlinear(f_static, k_total, k3_total)
-           + hinge_deflection_nonlinear(f_kinetic, k_total, k3_total))
+    lag = (leaf_deflection(f_static, k_total, leaf_thickness)
+           + leaf_deflection(f_kinetic, k_total, leaf_thickness))
     return np.maximum(np.asarray(stroke, dtype=float) - lag, 0.0)
 
 
@@ -262,7 +266,8 @@ def _stage_is_rigid(stage) -> np.ndarray:
 
 def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms",
                   params: LRGParams | None = None, method="auto", n_cycles=3, max_cycles=12,
-                  rtol=1e-5, h=0.3, max_steps_per_cycle=200_000, **columns) -> CycleMetrics:
+                  rtol=1e-5, h=0.3, max_steps_per_cycle=200_000, integrator="compiled", h_rk=0.6,
+                  **columns) -> CycleMetrics:
     """Per-cycle sliding, friction work and peak hinge deflection, vectorised over rows.
 
     Parameters
@@ -279,8 +284,17 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         cycles, until two successive cycles' sliding agree within ``rtol`` (every row); the
         last cycle is reported and ``periodicity_error_m`` says how well it converged.
     h : float
-        Largest ω_n·Δt of the integrator (steps are exact between events; 0.3 agrees with the
-        event-driven reference to ~1e-5 relative, see the tests).
+        Largest ω_n·Δt of the fixed-step NumPy integrator (``integrator="fixed_step"``; exact
+        linear steps between events with the hinge's tangent; 0.3 agrees with the event-driven
+        reference to ~1e-5 relative on the linear hinge, see the tests).
+    integrator : "compiled" or "fixed_step"
+        ``compiled`` (default): :mod:`.stepper`, DOP853's order-8 tableau in equal steps per
+        segment of the profile, compiled per row (numba); ``fixed_step``: the earlier vectorised
+        NumPy integrator, kept as the benchmark's anchor (``benchmarks/bench_simulate.py``).
+    h_rk : float
+        Largest ω·Δt of the compiled stepper (ω at a bound of the hinge's tangent stiffness,
+        :func:`_omega_step`); 0.6 agrees with the event-driven reference to 3e-7 relative
+        in sliding distance (``tests/physics/test_stepper.py``).
     **columns
         Any parameter as a scalar or an array column (``hinge_thickness_m=...``,
         ``dwell_s=...``, ``mu_k=...``), validated like the parameters.
@@ -308,6 +322,8 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         check_values(name, val)
     if method not in ("auto", "integrate", "quasi_static"):
         raise ValueError(f"method must be 'auto', 'integrate' or 'quasi_static', not {method!r}")
+    if integrator not in ("compiled", "fixed_step"):
+        raise ValueError(f"integrator must be 'compiled' or 'fixed_step', not {integrator!r}")
     if int(n_cycles) < 2:
         raise ValueError("n_cycles must be at least 2")
     dwell = columns.pop("dwell_s", p.dwell_s)
@@ -331,7 +347,7 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
                                  stage_rigid, np.asarray(jerk, float))
     shape = arrays[0].shape
     n = int(np.prod(shape)) if shape else 1
-    s, v, a, dw, k, c, m, fs, fk, cv, k3 = (np.ravel(x).astype(float) for x in arrays[:11])
+    s, v, a, dw, k, c, m, fs, fk, cv, yl = (np.ravel(x).astype(float) for x in arrays[:11])
     rigid = np.ravel(arrays[11]).copy()
     tj = np.ravel(arrays[12]).astype(float)
 
@@ -345,25 +361,29 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
 
     slide[rigid] = 2.0 * s[rigid]
     how[rigid] = "rms"
-    cst = StageConstants(k, c, m, fs, fk, cv, k3)
+    cst = StageConstants(k, c, m, fs, fk, cv, yl)
     if method == "quasi_static":
         qs = ~rigid
     elif method == "auto":
         qs = ~rigid & quasi_static_valid(cst, s, v, a)
     else:
         qs = np.zeros(n, dtype=bool)
-    slide[qs] = 2.0 * quasi_static_sliding_per_stroke(s[qs], k[qs], fs[qs], fk[qs], k3[qs])
-    peak[qs] = hinge_deflection_nonlinear(np.maximum(fs[qs], fk[qs] + m[qs] * a[qs]), k[qs], k3[qs])
+    slide[qs] = 2.0 * quasi_static_sliding_per_stroke(s[qs], k[qs], fs[qs], fk[qs], yl[qs])
+    peak[qs] = leaf_deflection(np.maximum(fs[qs], fk[qs] + m[qs] * a[qs]), k[qs], yl[qs])
     how[qs] = "quasi_static"
     visc[rigid] = stage_visc[rigid]
     visc[qs] = stage_visc[qs] * slide[qs] / (2.0 * s[qs])
     todo = np.flatnonzero(~rigid & ~qs)
     if todo.size:
-        key = np.column_stack([x[todo] for x in (s, v, a, dw, k, c, m, fs, fk, cv, k3, tj)])
+        key = np.column_stack([x[todo] for x in (s, v, a, dw, k, c, m, fs, fk, cv, yl, tj)])
         uniq, inv = np.unique(key, axis=0, return_inverse=True)
         inv = np.ravel(inv)
-        d, pk, e, vw = _integrate_grouped(uniq, int(n_cycles), float(h), int(max_steps_per_cycle),
-                                          int(max_cycles), float(rtol))
+        if integrator == "compiled":
+            d, pk, e, vw = _integrate_compiled(uniq, int(n_cycles), float(h_rk), int(max_steps_per_cycle),
+                                               int(max_cycles), float(rtol))
+        else:
+            d, pk, e, vw = _integrate_grouped(uniq, int(n_cycles), float(h), int(max_steps_per_cycle),
+                                              int(max_cycles), float(rtol))
         slide[todo], peak[todo], err[todo], visc[todo] = d[inv], pk[inv], e[inv], vw[inv]
     work = fk * slide
 
@@ -373,10 +393,26 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
     return CycleMetrics(r(slide), r(work), r(peak), r((work + visc) / T), r(T), r(err), r(how), r(visc))
 
 
+def _integrate_compiled(rows, n_cycles, h, max_steps, max_cycles, rtol):
+    """Integrate distinct rows with the compiled stepper (:func:`.stepper.integrate_rows`)."""
+    s, v, a, dw, k, c, m, fs, fk, cv, yl, tj = rows.T
+    w = _omega_step(s, v, a, k, m, fs, cv, yl)
+    T = motion.cycle_time(s, v, a, dw, tj)
+    need = w * T / h
+    if np.any(need > max_steps):
+        i = int(np.argmax(need))
+        raise ValueError(
+            f"the stage dynamics need {int(np.ceil(need[i]))} steps per cycle (limit {max_steps}) at stroke "
+            f"{s[i]:.3g} m, velocity {v[i]:.3g} m/s, acceleration {a[i]:.3g} m/s^2: a {T[i]:.3g} s cycle is too "
+            f"long for the hinge period ({2 * np.pi / w[i]:.3g} s) outside the quasi-static limit")
+    return integrate_rows(s, v, a, dw, tj, k, c, m, fs, fk, cv, yl, w, h=h, n_cycles=n_cycles,
+                          max_cycles=max_cycles, rtol=rtol)
+
+
 def _integrate_grouped(rows, n_cycles, h, max_steps, max_cycles, rtol):
     """Integrate rows in groups of similar stiffness (steps per cycle within a factor 2)."""
-    s, v, a, dw, k, c, m, fs, fk, cv, k3, tj = rows.T
-    need = _omega_step(s, v, a, k, m, fs, cv, k3) * motion.cycle_time(s, v, a, dw, tj) / h
+    s, v, a, dw, k, c, m, fs, fk, cv, yl, tj = rows.T
+    need = _omega_step(s, v, a, k, m, fs, cv, yl) * motion.cycle_time(s, v, a, dw, tj) / h
     grp = np.floor(np.log2(np.maximum(need, 1.0))).astype(int)
     out = [np.empty(len(rows)) for _ in range(4)]
     for g in np.unique(grp):
@@ -427,27 +463,45 @@ def _stage_xv_j(t, s, v, vp, a, ta, ts, tj, dw, T):
     return (np.where(on, np.where(back, s - xj, xj), x), np.where(on, np.where(back, -vj, vj), vv))
 
 
-def _omega_step(s, v, a, k, m, fs, cv, k3):
+def _hinge_force(z, k, yl):
+    """Hinge force [N] at the deflection z [m]: ``n·K_n·z`` where ``yl`` is 0 (Eq. 1), else the
+    exact beam-column law of leaves with held ends ``n·K_n·y·ψ(z/y)`` (tabulated,
+    :func:`.stepper.leaf_psi`)."""
+    z = np.asarray(z, dtype=float)
+    yl = np.asarray(yl, dtype=float)
+    held = yl > 0
+    ys = np.where(held, yl, 1.0)
+    return np.where(held, k * ys * leaf_psi(z / ys), k * z)
+
+
+def _hinge_tangent(z, k, yl):
+    """Tangent stiffness dF/dz [N/m] of :func:`_hinge_force`."""
+    yl = np.asarray(yl, dtype=float)
+    held = yl > 0
+    ys = np.where(held, yl, 1.0)
+    return np.where(held, k * leaf_dpsi(np.asarray(z, dtype=float) / ys), k)
+
+
+def _omega_step(s, v, a, k, m, fs, cv, yl):
     """Angular frequency [rad/s] that sets a row's time step: ``sqrt(n·K_n/m_f)`` for a linear
-    hinge; with membrane stiffening the tangent ``sqrt((n·K_n + 3·n·k₃·δ_e²)/m_f)`` at the
-    deflection δ_e that three times the largest quasi-static hinge force (breakaway, inertia
-    and viscous friction, ``3·(f_µmax + m_f·a + c_v·v)``) would give: a bound of the
-    overshoot after a stop."""
-    k3 = np.asarray(k3, dtype=float)
-    if not np.any(k3 > 0):
+    hinge; for leaves with held ends the tangent ``sqrt(k_t(δ_e)/m_f)`` at the deflection δ_e
+    that three times the largest quasi-static hinge force (breakaway, inertia and viscous
+    friction, ``3·(f_µmax + m_f·a + c_v·v)``) would give: a bound of the overshoot after a stop."""
+    yl = np.asarray(yl, dtype=float)
+    if not np.any(yl > 0):
         return np.sqrt(k / m)
-    de = hinge_deflection_nonlinear(3.0 * (fs + m * a + cv * v), k, k3)
-    return np.sqrt((k + 3.0 * k3 * de ** 2) / m)
+    de = leaf_deflection(3.0 * (fs + m * a + cv * v), k, yl)
+    return np.sqrt(_hinge_tangent(de, k, yl) / m)
 
 
-def _tangent(z, k, k3, c, cv, m):
-    """Tangent linearisation of the hinge force ``n·K_n·z + n·k₃·z³`` at z: ω and ζ of the
-    tangent stiffness ``n·K_n + 3·n·k₃·z²`` and the force offset per mass
-    ``(F(z) − k_t·z)/m = −2·n·k₃·z³/m`` (moved to the right-hand side: ``+2·k₃·z³/m``)."""
-    kt = k + 3.0 * k3 * z * z
+def _tangent(z, k, yl, c, cv, m):
+    """Tangent linearisation of the hinge force F(z) at z: ω and ζ of the tangent stiffness
+    k_t = F′(z) and the force offset per mass ``−(F(z) − k_t·z)/m`` as the right-hand side's
+    constant (``ext``)."""
+    kt = _hinge_tangent(z, k, yl)
     w = np.sqrt(kt / m)
     zeta = (c + cv) / (2.0 * np.sqrt(kt * m))
-    return w, zeta, 2.0 * k3 * z ** 3 / m
+    return w, zeta, (kt * z - _hinge_force(z, k, yl)) / m
 
 
 def _slide(z, wrel, sigma, accel, w, zeta, fk_m, p11, p12, p21, p22, cv_m=0.0, vstage=0.0, tau=0.0, ext=0.0,
@@ -481,7 +535,7 @@ def _slide(z, wrel, sigma, accel, w, zeta, fk_m, p11, p12, p21, p22, cv_m=0.0, v
     return A + B * tau + p11 * zr + p12 * wr, B + p21 * zr + p22 * wr
 
 
-def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps, max_cycles=12, rtol=1e-5,
+def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, yl, n_cycles, h, max_steps, max_cycles=12, rtol=1e-5,
                     tj=None):
     """Stick-slip integration of many rows at once with exact linear steps.
 
@@ -518,10 +572,10 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
     w = np.sqrt(k / m)
     zeta = (c + cv) / (2.0 * np.sqrt(k * m))  # hinge damping and viscous friction, while sliding
     cv_m = cv / m
-    membrane = bool(np.any(k3 > 0))
+    membrane = bool(np.any(yl > 0))
     # each row its own number of steps per cycle (so that its result does not depend on the
     # rows integrated with it); the loop runs to the largest, finished rows wait
-    Ni = np.maximum(np.ceil(_omega_step(s, v, a, k, m, fs, cv, k3) * T / h), 200.0)
+    Ni = np.maximum(np.ceil(_omega_step(s, v, a, k, m, fs, cv, yl) * T / h), 200.0)
     N = int(np.max(Ni))
     if N > max_steps:
         i = int(np.argmax(Ni))
@@ -567,7 +621,7 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
             sl = ~stuck
             z0 = x0 - xf
             if membrane:  # tangent of the stiffening hinge at the start of the step
-                wt, zt, ext = _tangent(z0, k, k3, c, cv, m)
+                wt, zt, ext = _tangent(z0, k, yl, c, cv, m)
                 P = _propagator(wt, zt, dt)
             else:
                 wt, zt, ext, P = w, zeta, 0.0, (p11, p12, p21, p22)
@@ -584,7 +638,7 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
                 xf[i] += 0.5 * u[i] * frac * dt[i]
             u = np.where(go, un, 0.0)
             # rows stuck at the start of the step: break away inside it?
-            f1 = k * (x1 - xf) + k3 * (x1 - xf) ** 3 + c * v1
+            f1 = _hinge_force(x1 - xf, k, yl) + c * v1
             brk = stuck & (np.abs(f1) > fs)
             stuck = (stuck & ~brk) | stop
             if brk.any():
@@ -594,13 +648,14 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
                 # (k_t = n·K_n + 3·n·k₃·z0², the tangent; exact for the linear hinge)
                 ai, v0i = acc[i], v0[i]
                 zi = x0[i] - xf[i]
-                ki = k[i] + 3.0 * k3[i] * zi * zi
+                ki = _hinge_tangent(zi, k[i], yl[i])
+                fz = _hinge_force(zi, k[i], yl[i])
                 tau = _first_root(0.5 * ki * ai, ki * v0i + c[i] * ai,
-                                  k[i] * zi + k3[i] * zi ** 3 + c[i] * v0i - sig * fs[i], dt[i])
+                                  fz + c[i] * v0i - sig * fs[i], dt[i])
                 ji = None
                 if jerky:  # S-curve rows: the stage moves on a cubic, refine the root on it
                     ji, al = jrk[i], alpha[i]
-                    f0 = k[i] * zi + k3[i] * zi ** 3 + c[i] * v0i - sig * fs[i]
+                    f0 = fz + c[i] * v0i - sig * fs[i]
                     tn = tau
                     for _ in range(4):
                         g = f0 + ki * (v0i * tn + 0.5 * al * tn ** 2 + ji * tn ** 3 / 6.0) + c[i] * (
@@ -615,7 +670,7 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
                 if ji is not None:
                     xs_t = xs_t + ji * tau ** 3 / 6.0
                 if membrane:
-                    wb, zb, eb = _tangent(xs_t - xf[i], k[i], k3[i], c[i], cv[i], m[i])
+                    wb, zb, eb = _tangent(xs_t - xf[i], k[i], yl[i], c[i], cv[i], m[i])
                 else:
                     wb, zb, eb = w[i], zeta[i], 0.0
                 Q = _propagator(wb, zb, dt[i] - tau)
@@ -658,9 +713,9 @@ def _integrate_rows(s, v, a, dw, k, c, m, fs, fk, cv, k3, n_cycles, h, max_steps
             break
         keep = ~done
         (rows, s, v, a, dw, k, c, m, fs, T, vp, ta, ts, w, zeta, dt, p11, p12, p21, p22, fk_m, xf, u,
-         stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni, k3, tj) = (x[keep] for x in (
+         stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni, yl, tj) = (x[keep] for x in (
             rows, s, v, a, dw, k, c, m, fs, T, vp, ta, ts, w, zeta, dt, p11, p12, p21, p22, fk_m, xf, u,
-            stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni, k3, tj))
+            stuck, dist, prev, peak, x0, v0, cv, cv_m, vwork, vprev, Ni, yl, tj))
         N = int(np.max(Ni))
     # a row that has not settled (period-2 stick-slip, say) reports the mean of its last two cycles
     return out_d, out_p, out_e, out_v
@@ -765,7 +820,10 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
         check_values(name, val)
     dw = p.dwell_s
     cst = stage_constants(p)
-    k, c, m, fs, fk, cv, k3 = (float(getattr(cst, f.name)) for f in fields(cst))
+    k, c, m, fs, fk, cv, yl = (float(getattr(cst, f.name)) for f in fields(cst))
+
+    def hf(z):
+        return k * z if yl <= 0 else k * yl * float(leaf_psi(z / yl))
     tj = float(p.jerk_time_s)
     bps, T = _breakpoints(s, v, a, dw, n_cycles, tj)
 
@@ -833,7 +891,7 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
         def f(tt, yy):
             xs, vs = stage(tt)
             z = xs - yy[0]
-            fh = k * z + k3 * z ** 3 + c * (vs - yy[1])
+            fh = hf(z) + c * (vs - yy[1])
             return [yy[1], (fh - sign * fk - cv * yy[1]) / m, sign * yy[1], cv * yy[1] ** 2]
         return f
 
@@ -842,11 +900,11 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
 
     def breaks_up(tt, yy):
         xs, vs = stage(tt)
-        return k * (xs - yy[0]) + k3 * (xs - yy[0]) ** 3 + c * vs - fs
+        return hf(xs - yy[0]) + c * vs - fs
 
     def breaks_down(tt, yy):
         xs, vs = stage(tt)
-        return k * (xs - yy[0]) + k3 * (xs - yy[0]) ** 3 + c * vs + fs
+        return hf(xs - yy[0]) + c * vs + fs
 
     ev_stop = _Event(stopped)
     ev_break_up = _Event(breaks_up, direction=1.0)
@@ -858,7 +916,7 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
         t_next = bps[seg + 1] if seg < len(bps) - 1 else end
         if mode == 0:
             xs, vs = stage(t)
-            fh = k * (xs - y[0]) + k3 * (xs - y[0]) ** 3 + c * vs
+            fh = hf(xs - y[0]) + c * vs
             if abs(fh) > fs * (1 + 1e-12):
                 mode = 1 if fh > 0 else -1
                 n_events += 1
@@ -889,7 +947,7 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
             n_events += 1
             if mode == 0:
                 xs, vs = stage(t_new)
-                fh = k * (xs - y[0]) + k3 * (xs - y[0]) ** 3 + c * vs
+                fh = hf(xs - y[0]) + c * vs
                 mode = 1 if fh > 0 else -1
             else:
                 y[1] = 0.0

@@ -10,13 +10,17 @@ a cantilever leaf would be four times softer (``3·E·I/l³``).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 __all__ = [
     "normal_load", "max_static_friction", "hinge_stiffness", "hinge_deflection",
     "hinge_thickness_for_deflection", "hinge_bending_stress", "STANDARD_GRAVITY",
     "MEMBRANE_COEFFICIENT", "hinge_membrane_stiffness", "hinge_force", "hinge_deflection_nonlinear",
-    "hinge_membrane_stress", "hinge_peak_stress",
+    "hinge_membrane_stress", "hinge_peak_stress", "leaf_tension_parameter", "leaf_stiffening",
+    "leaf_force", "leaf_deflection", "leaf_clamp_stress", "leaf_axial_force", "LEAF_TABLE_MAX_RATIO",
+    "leaf_force_table",
 ]
 
 #: Standard gravity [m/s²] (CGPM 1901).
@@ -108,8 +112,11 @@ def hinge_stiffness(modulus, width, thickness, length):
     Su, Zhang & Yang (2023), Eq. 1 (their ref. [23]); fixed-guided beam, Roark's Formulas
     for Stress and Strain, 8th ed., Table 8.1 case 1e.
     """
-    return (np.asarray(modulus, dtype=float) * np.asarray(width, dtype=float)
-            * np.asarray(thickness, dtype=float) ** 3 / np.asarray(length, dtype=float) ** 3)
+    # cubes by multiplication: NumPy's vectorised pow may round an element differently by its
+    # position in the array, which would make a row's result depend on its batch
+    y = np.asarray(thickness, dtype=float)
+    ell = np.asarray(length, dtype=float)
+    return np.asarray(modulus, dtype=float) * np.asarray(width, dtype=float) * (y * y * y) / (ell * ell * ell)
 
 
 def hinge_deflection(force, n_hinges, stiffness):
@@ -207,7 +214,8 @@ def hinge_membrane_stiffness(modulus, width, thickness, length):
     of parallelogram flexures by axial force).
     """
     return (MEMBRANE_COEFFICIENT * np.asarray(modulus, dtype=float) * np.asarray(width, dtype=float)
-            * np.asarray(thickness, dtype=float) / np.asarray(length, dtype=float) ** 3)
+            * np.asarray(thickness, dtype=float) / (np.asarray(length, dtype=float) * np.asarray(length, dtype=float)
+                                                    * np.asarray(length, dtype=float)))
 
 
 def hinge_force(deflection, stiffness, membrane_stiffness=0.0):
@@ -269,13 +277,173 @@ def hinge_membrane_stress(modulus, length, deflection):
 
 
 def hinge_peak_stress(modulus, thickness, length, deflection, membrane=True):
-    """Largest normal stress in a leaf [Pa]: bending ``3·E·y·δ/l²`` (at the clamps) plus, with
-    held ends, the membrane stress of :func:`hinge_membrane_stress`.
+    """Largest normal stress in a leaf [Pa], at its clamps.
 
-    >>> round(float(hinge_peak_stress(211e9, 0.0003, 0.020, 1e-3)) / 1e6, 1)   # MPa
-    800.1
+    With held ends (``membrane=True``) the exact beam-column stress of
+    :func:`leaf_clamp_stress`; without, the small-deflection bending stress ``3·E·y·δ/l²``
+    (:func:`hinge_bending_stress`). (Before model v5 this added the Ritz membrane stress to the
+    small-deflection bending stress: at δ = 10·y that is half the exact clamp stress, because the
+    tension concentrates the curvature at the clamps.)
+
+    >>> round(float(hinge_peak_stress(211e9, 0.0001, 0.020, 1e-3)) / 1e6)   # MPa
+    990
     """
-    s = hinge_bending_stress(modulus, thickness, length, deflection)
     if membrane:
-        s = s + hinge_membrane_stress(modulus, length, deflection)
-    return s
+        return leaf_clamp_stress(modulus, thickness, length, deflection)
+    return hinge_bending_stress(modulus, thickness, length, deflection)
+
+
+# ------------------------------------------------------------------------------------------
+# exact large deflection of a fixed-guided leaf with held ends: the beam-column solution
+# ------------------------------------------------------------------------------------------
+# A leaf of length l, clamped at x = 0 and at x = l (slope 0 at both ends), one end displaced
+# laterally by δ, the distance between the clamps held (the axial tension N comes from the
+# stretch). With k² = N·l²/(E·I) and u = k/2, E·I·w⁗ − N·w″ = 0 gives, about the midpoint
+# ξ = x/l − 1/2,
+#     w = δ/2 + B·ξ + C·sinh(k·ξ),   B = −C·k·cosh u,   C = δ / (2·(sinh u − u·cosh u)),
+# the lateral force (shear plus the tension's lateral component, constant along the leaf)
+#     F = (E·I·δ/l³)·4u³/(u − tanh u) = K_n·δ·φ(u),   φ(u) = u³ / (3·(u − tanh u))   (φ(0) = 1),
+# the clamp moment M = (2·E·I·δ/l²)·u²·tanh u/(u − tanh u), and the stretch ½∫w′² dx, which
+# with N = E·w·y·stretch/l closes the problem:
+#     (δ/y)² = G(u) = 2·(u − tanh u)² / (3·(1 + ½·sech²u − 3·tanh u/(2u))).
+# Everything depends on δ/y alone: the force law of every leaf is K_n·δ·φ(u(δ/y)).
+# For small u the cancelling differences are replaced by their Taylor series (to u¹², error
+# below 1e-13 for u < 0.2)
+# (the series and the element-wise kernels are in :mod:`.leafcore`).
+
+
+def _leaf_parts(u: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """S(u) = 3·(u − tanh u)/u³ = 1/φ(u), D(u)/u⁴ with D = 1 + ½·sech²u − 3·tanh u/(2u), and
+    tanh(u)/u, for u ≥ 0 (arrays; element by element in compiled code, :mod:`.leafcore`, so a
+    value does not depend on its position in an array)."""
+    from .leafcore import leaf_parts
+
+    return leaf_parts(u)
+
+
+def _ratio_of_u(u: Any) -> tuple[np.ndarray, np.ndarray]:
+    """δ/y = sqrt(G(u)) and the stiffening φ(u) of the beam-column leaf."""
+    S, Dq, _ = _leaf_parts(u)
+    u = np.asarray(u, dtype=float)
+    return u * S * np.sqrt(2.0 / (27.0 * Dq)), 1.0 / S
+
+
+def leaf_tension_parameter(ratio: Any) -> Any:
+    """Tension parameter u = (l/2)·sqrt(N/(E·I)) [-] of a fixed-guided leaf with held ends
+    displaced by δ = ``ratio``·y (ratio = δ/y, dimensionless): the root of ``G(u) = (δ/y)²``
+    (G increases from 0; ``u ≈ 1.342·δ/y`` for small δ/y, ``u ≈ 1 + 1.225·δ/y`` for large).
+
+    >>> round(float(leaf_tension_parameter(10.0)), 3)
+    12.488
+    """
+    from .leafcore import tension_parameter
+
+    out = tension_parameter(ratio)
+    return out if out.ndim else out[()]
+
+
+def leaf_stiffening(ratio: Any) -> Any:
+    """Secant stiffening φ = F/(K_n·δ) [-] of a fixed-guided leaf with held ends at
+    δ/y = ``ratio`` (1 at small deflection; ``1 + 0.72·(δ/y)²`` for small δ/y, where the Ritz
+    cosine shape of :func:`hinge_membrane_stiffness` gives ``1 + 0.761·(δ/y)²``).
+
+    >>> round(float(leaf_stiffening(10.0)), 2)
+    56.51
+    """
+    out = _ratio_of_u(leaf_tension_parameter(ratio))[1]
+    return out if out.ndim else out[()]
+
+
+def leaf_force(deflection: Any, stiffness: Any, thickness: Any) -> Any:
+    """Lateral force of fixed-guided leaves with held ends ``F = K·δ·φ(δ/y)`` [N] (exact
+    beam-column solution, :func:`leaf_stiffening`); ``stiffness`` K [N/m] is K_n of Eq. 1 (one
+    leaf) or n·K_n, δ [m], y the leaf thickness [m].
+
+    >>> round(float(leaf_force(1e-3, 263.75, 1e-4)), 3)      # one 0.1 mm leaf at 1 mm
+    14.905
+    """
+    d = np.asarray(deflection, dtype=float)
+    y = np.asarray(thickness, dtype=float)
+    out = np.asarray(stiffness, dtype=float) * d * leaf_stiffening(d / y)
+    return out if np.ndim(out) else out[()]
+
+
+def leaf_deflection(force: Any, stiffness: Any, thickness: Any) -> Any:
+    """Deflection δ [m] of leaves with held ends under the lateral force ``force`` [N] (the
+    inverse of :func:`leaf_force`; sign of the force). Where ``thickness`` is 0 or not finite:
+    the small-deflection hinge, ``F/K`` (Eq. 2).
+
+    >>> round(float(leaf_deflection(14.905, 263.75, 1e-4)) * 1e3, 4)
+    1.0
+    """
+    f, k, y = np.broadcast_arrays(np.asarray(force, dtype=float), np.asarray(stiffness, dtype=float),
+                                  np.asarray(thickness, dtype=float))
+    ok = np.isfinite(y) & (y > 0)
+    ys = np.where(ok, y, 1.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = np.where(ok, np.abs(f) / (k * ys), 0.0)  # (δ/y)·φ, increasing in u
+
+    from .leafcore import parameter_for_load
+
+    u = parameter_for_load(q)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.where(ok, np.sign(f) * ys * _ratio_of_u(u)[0], f / k)
+    return out if out.ndim else out[()]
+
+
+def leaf_axial_force(modulus: Any, width: Any, thickness: Any, length: Any, deflection: Any) -> Any:
+    """Axial tension N [N] of a fixed-guided leaf with held ends at deflection δ [m]:
+    ``N = 4·E·I·u²/l²`` (I = w·y³/12, u of :func:`leaf_tension_parameter`)."""
+    y = np.asarray(thickness, dtype=float)
+    u = leaf_tension_parameter(np.asarray(deflection, dtype=float) / y)
+    ell = np.asarray(length, dtype=float)
+    return 4.0 * np.asarray(modulus, dtype=float) * np.asarray(width, dtype=float) * (y * y * y) / 12.0 * u * u / ell ** 2
+
+
+def leaf_clamp_stress(modulus: Any, thickness: Any, length: Any, deflection: Any) -> Any:
+    """Largest normal stress of a fixed-guided leaf with held ends [Pa]: at the clamps, the
+    bending stress of the beam-column moment plus the uniform tension,
+
+        σ = (E·y·δ/l²)·3·(tanh u/u)/S(u) + E·y²·u²/(3·l²),   S(u) = 3·(u − tanh u)/u³,
+
+    (E [Pa], y, l, δ [m]; u of :func:`leaf_tension_parameter` at δ/y). For small δ/y the
+    bending stress of Eq. 1's leaf, ``3·E·y·δ/l²``. Checked against a finite-difference solution
+    of ``E·I·w⁗ − N·w″ = 0`` with N from the stretch (``tests/physics/test_leaf_beam_column.py``).
+
+    >>> round(float(leaf_clamp_stress(211e9, 0.0001, 0.020, 1e-3)) / 1e6)   # MPa, δ = 10·y
+    990
+    >>> round(float(leaf_clamp_stress(211e9, 3e-4, 0.02, 1e-7) / hinge_bending_stress(211e9, 3e-4, 0.02, 1e-7)), 6)
+    1.0
+    """
+    E = np.asarray(modulus, dtype=float)
+    y = np.asarray(thickness, dtype=float)
+    ell = np.asarray(length, dtype=float)
+    d = np.abs(np.asarray(deflection, dtype=float))
+    u = leaf_tension_parameter(d / y)
+    S, _, tu = _leaf_parts(u)
+    out = E * y * d / ell ** 2 * 3.0 * tu / S + E * y * y * u * u / (3.0 * ell ** 2)
+    return out if np.ndim(out) else out[()]
+
+
+#: Largest δ/y of the tabulated force law (:func:`leaf_force_table`), far beyond any leaf that
+#: does not yield.
+LEAF_TABLE_MAX_RATIO = 200.0
+
+
+def leaf_force_table(step: float = 0.01) -> tuple[np.ndarray, float]:
+    """The force law ψ(r) = r·φ(r) of a leaf with held ends (F = K·y·ψ(δ/y)) tabulated for the
+    stage integrator: coefficients of a C² cubic spline, shape (n, 4), on r_i = i·``step`` up to
+    :data:`LEAF_TABLE_MAX_RATIO`: on [r_i, r_i + step] ``ψ = c0 + c1·t + c2·t² + c3·t³``,
+    t = r − r_i. ψ is odd in r (the spline is built on the mirrored points, so its end condition
+    at 0 is the symmetric one); its error against :func:`leaf_stiffening` is below 1e-9 relative
+    (``tests/physics/test_leaf_beam_column.py``)."""
+    from scipy.interpolate import CubicSpline
+
+    r = np.arange(0.0, LEAF_TABLE_MAX_RATIO + 0.5 * step, step)
+    r[1:] = r[1:]
+    psi = r * np.atleast_1d(leaf_stiffening(r))
+    x = np.concatenate([-r[:0:-1], r])
+    yv = np.concatenate([-psi[:0:-1], psi])
+    cs = CubicSpline(x, yv)
+    c = cs.c[:, len(r) - 1:]
+    return np.ascontiguousarray(c[::-1].T), float(step)

@@ -119,7 +119,7 @@ def mean_square_speed(stroke, velocity, acceleration, dwell=0.0, jerk_time=0.0):
     0.013333
     """
     vp = peak_velocity(stroke, velocity, acceleration)
-    per_stroke = vp * _f(stroke) - vp ** 3 / (3.0 * _f(acceleration))
+    per_stroke = vp * _f(stroke) - vp * vp * vp / (3.0 * _f(acceleration))
     tj = _f(jerk_time)
     if np.any(tj > 0):
         per_stroke = np.where(tj > 0, _scurve_square_integral(stroke, velocity, acceleration, tj), per_stroke)
@@ -179,9 +179,9 @@ def _trap(tau, s, vp, a, ta, ts):
     v = np.where(outside, 0.0, v)
     acc = np.where(outside, 0.0, acc)
     r = ts - tt
-    F = np.where(tt < ta, a * tt ** 3 / 6.0,
-                 np.where(tt < tc, a * ta ** 3 / 6.0 + 0.5 * a * ta ** 2 * (tt - ta) + 0.5 * vp * (tt - ta) ** 2,
-                          0.5 * s * ts - s * r + a * r ** 3 / 6.0))
+    F = np.where(tt < ta, a * tt * tt * tt / 6.0,
+                 np.where(tt < tc, a * ta * ta * ta / 6.0 + 0.5 * a * ta ** 2 * (tt - ta) + 0.5 * vp * (tt - ta) ** 2,
+                          0.5 * s * ts - s * r + a * r * r * r / 6.0))
     F = F + s * np.maximum(tau - ts, 0.0)
     return x, v, acc, F
 

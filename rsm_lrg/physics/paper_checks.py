@@ -165,7 +165,7 @@ class WearReading:
         length [m]; ``deflection_over_length``: Δδ/l (Eq. 1 holds for a few tenths at most)
     bending_stress_pa : 3·E·y·Δδ/l² of that leaf [Pa] (Eq. 1's small-deflection stress)
     held_ends_length_m : length a 0.1 mm leaf with held ends (membrane stiffening) would need to
-        reach Δδ under f_µmax [m], and ``held_ends_stress_pa`` its bending + membrane stress [Pa]
+        reach Δδ under f_µmax (exact beam-column law) [m], and ``held_ends_stress_pa`` its clamp stress [Pa]
     """
 
     name: str
@@ -221,9 +221,9 @@ def wear_readings(params: LRGParams | None = None, ratio: float = PAPER_WEAR_RAT
     for name, formula, dd in cases:
         y = float(hinge.hinge_thickness_for_deflection(dd, fmax, n, E, w, length))
         sb = float(hinge.hinge_bending_stress(E, y, length, dd))
-        # held ends: n·(E w y³/l³·δ + (π⁴/128)·E w y/l³·δ³) = f_µmax  →  l³ = n·E·w·(y³δ + c·y·δ³)/f_µmax
+        # held ends (exact beam-column law): n·(E w y³/l³)·δ·φ(δ/y) = f_µmax  →  l³ = n·E·w·y³·δ·φ/f_µmax
         yl = thin_leaf_m
-        lh = float(np.cbrt(n * E * w * (yl ** 3 * dd + hinge.MEMBRANE_COEFFICIENT * yl * dd ** 3) / fmax))
+        lh = float(np.cbrt(n * E * w * yl ** 3 * dd * float(hinge.leaf_stiffening(dd / yl)) / fmax))
         sh = float(hinge.hinge_peak_stress(E, yl, lh, dd))
         out.append(WearReading(name, formula, float(dd), y, float(dd / length), sb, lh, sh, float(p.hinge_yield_pa)))
     return tuple(out)

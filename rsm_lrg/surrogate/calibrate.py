@@ -161,10 +161,14 @@ class ParameterEstimate:
     unit: str = ""
     meaning: str = ""
     at_bound: bool = False
+    ci_low: float = math.nan
+    ci_high: float = math.nan
+    ci_method: str = ""
 
     def to_dict(self) -> dict:
         return {"name": self.name, "value": self.value, "std_error": self.std_error, "lower": self.lower,
-                "upper": self.upper, "unit": self.unit, "meaning": self.meaning, "at_bound": self.at_bound}
+                "upper": self.upper, "unit": self.unit, "meaning": self.meaning, "at_bound": self.at_bound,
+                "ci_low": self.ci_low, "ci_high": self.ci_high, "ci_method": self.ci_method}
 
 
 @dataclass(frozen=True)
@@ -239,6 +243,8 @@ class Calibration:
             flag = "  (at a bound)" if p.at_bound else ""
             lines.append(f"  {p.name:<24} {p.value:12.6g} ± {p.std_error:<10.3g} {p.unit:<6} "
                          f"bounds [{p.lower:g}, {p.upper:g}]{flag}")
+            if p.ci_method:
+                lines.append(f"  {'':<24} 95 % {p.ci_method} interval [{p.ci_low:.4g}, {p.ci_high:.4g}]")
         lines.append(f"  R2 {self.r2:.4f}   RMSE {self.rmse:.4g}")
         if self.loo_r2 is not None:
             lines.append(f"  leave-one-out R2 {self.loo_r2:.4f}   RMSE {self.loo_rmse:.4g}   (the paper's quadratic, "
@@ -331,8 +337,9 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     duration_min : float
         Test duration of the runs [min] (the paper: about 50).
     loo : bool
-        Also run leave-one-out cross-validation (one refit per run, from the full-data
-        optimum).
+        Also run leave-one-out cross-validation: every fold recalibrated from scratch on the
+        other runs by exactly the procedure below (grid, refinement, final fit), and the run
+        left out predicted with that fold's parameters.
     grid_points : int, optional
         Points per axis of the profile grid over the stage parameters (see the code comment);
         default 13 for one stage parameter, 7 per axis for two.
@@ -416,7 +423,9 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
         grid = list(itertools.product(*axes))
     from .progress import progress_bar
 
-    bar = progress_bar(len(grid) + 1 + (n if loo else 0), bool(progress), desc="calibration fits", unit="fit")
+    per_fit = len(grid) + 2
+    bar = progress_bar(per_fit * (1 + (n if loo else 0)) + (2 if len(stage_idx) == 1 else 0), bool(progress),
+                        desc="calibration fits", unit="fit")
     try:
         cal = _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar,
                                arrays, p, duration_min, response, source, data_sha256, evaluate_rows)
@@ -425,33 +434,91 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
         bar.close()
 
 
+def _fit_from_scratch(idx, specs, grid, stage_idx, x0, lo, hi, fit, predict, obs, bar):
+    """One calibration on the runs ``idx`` (None: all): the profile grid over the stage
+    parameters, for one stage parameter a bounded Brent refinement of its profile between the
+    neighbours of the best grid point (so no grid node is returned as an estimate), then all
+    parameters together by least squares from there. Returns the least-squares result."""
+    from scipy.optimize import minimize_scalar
+
+    o = obs if idx is None else obs[idx]
+    free = np.ones(len(specs), dtype=bool)
+    free[stage_idx] = False
+    best_cost, best_start, best_k = np.inf, x0, 0
+    for kk, point in enumerate(grid):
+        st0 = x0.copy()
+        st0[stage_idx] = point
+        if free.any():
+            r = fit(idx, st0, free)
+            cost, st0 = r.cost, r.x
+        else:
+            cost = 0.5 * float(np.sum((predict(st0, idx) - o) ** 2))
+        if cost < best_cost:
+            best_cost, best_start, best_k = cost, st0, kk
+        bar.update(1)
+    start = best_start
+    if len(stage_idx) == 1 and grid:
+        i = stage_idx[0]
+        nodes = [g[0] for g in grid]
+        a_, b_ = nodes[max(best_k - 1, 0)], nodes[min(best_k + 1, len(nodes) - 1)]
+        cache = {}
+
+        def profile(t):
+            st = best_start.copy()
+            st[i] = t
+            if free.any():
+                r = fit(idx, st, free)
+                cache[t] = r.x
+                return r.cost
+            cache[t] = st
+            return 0.5 * float(np.sum((predict(st, idx) - o) ** 2))
+
+        res = minimize_scalar(profile, bounds=(a_, b_), method="bounded",
+                              options={"xatol": 1e-5 * (hi[i] - lo[i])})
+        if res.fun < best_cost:
+            start = cache[res.x]
+    bar.update(1)
+    best = fit(idx, start)
+    if not best.cost <= 0.5 * float(np.sum((predict(start, idx) - o) ** 2)):
+        best.x, best.cost = start, 0.5 * float(np.sum((predict(start, idx) - o) ** 2))
+    bar.update(1)
+    return best
+
+
+def _profile_interval(i, specs, theta, cost_min, lo, hi, fit, predict, obs, n, bar, level=0.95):
+    """Profile-likelihood interval of parameter ``i``: where the least-squares cost with
+    parameter i fixed and the others refitted stays below ``cost_min·(1 + F(level; 1, n−p)/(n−p))``
+    (Bates & Watts 1988, Section 6.1). Ends found by Brent's root search; a bound where the
+    profile stays below the threshold up to it."""
+    from scipy.optimize import brentq
+    from scipy.stats import f as fdist
+
+    p_ = len(specs)
+    thr = cost_min * (1.0 + float(fdist.ppf(level, 1, n - p_)) / (n - p_))
+    free = np.ones(p_, dtype=bool)
+    free[i] = False
+
+    def g(t):
+        st = np.array(theta, dtype=float)
+        st[i] = t
+        c = fit(None, st, free).cost if free.any() else 0.5 * float(np.sum((predict(st) - obs) ** 2))
+        return c - thr
+
+    ends = []
+    for edge in (lo[i], hi[i]):
+        if g(edge) <= 0:
+            ends.append(float(edge))
+        else:
+            ends.append(float(brentq(g, theta[i], edge, xtol=1e-4 * (hi[i] - lo[i]))))
+        bar.update(1)
+    return min(ends), max(ends)
+
+
 def _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar, arrays, p,
                      duration_min, response, source, data_sha256, evaluate_rows):
-    """The profile grid, the full fit and leave-one-out of :func:`calibrate`, one bar step
-    each."""
-    starts = [x0]
-    if grid:
-        free = np.ones(len(specs), dtype=bool)
-        free[stage_idx] = False
-        best_cost, best_start = np.inf, x0
-        for point in grid:
-            st0 = x0.copy()
-            st0[stage_idx] = point
-            if free.any():
-                r = fit(None, st0, free)
-                cost, st0 = r.cost, r.x
-            else:
-                cost = 0.5 * float(np.sum((predict(st0) - obs) ** 2))
-            if cost < best_cost:
-                best_cost, best_start = cost, st0
-            bar.update(1)
-        starts = [best_start]
-    best = None
-    for start in starts:
-        r = fit(None, start)
-        if best is None or r.cost < best.cost:
-            best = r
-    bar.update(1)
+    """The calibration (:func:`_fit_from_scratch`), the profile interval of a single stage
+    parameter and leave-one-out with every fold recalibrated from scratch."""
+    best = _fit_from_scratch(None, specs, grid, stage_idx, x0, lo, hi, fit, predict, obs, bar)
     theta = best.x
     pred = predict(theta)
     resid = obs - pred
@@ -464,8 +531,13 @@ def _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, ob
     except np.linalg.LinAlgError:
         se = np.full(len(specs), np.nan)
     at_bound = (np.isclose(theta, lo, rtol=0, atol=1e-6 * scale) | np.isclose(theta, hi, rtol=0, atol=1e-6 * scale))
-    ests = tuple(ParameterEstimate(s.name, float(t), float(e), s.lower, s.upper, s.unit, s.meaning, bool(b))
-                 for s, t, e, b in zip(specs, theta, se, at_bound))
+    ci = {}
+    if len(stage_idx) == 1:
+        i = stage_idx[0]
+        ci[i] = _profile_interval(i, specs, theta, 0.5 * float(resid @ resid), lo, hi, fit, predict, obs, n, bar)
+    ests = tuple(ParameterEstimate(s.name, float(t), float(e), s.lower, s.upper, s.unit, s.meaning, bool(b),
+                                   *(ci[k] + ("profile likelihood",) if k in ci else ()))
+                 for k, (s, t, e, b) in enumerate(zip(specs, theta, se, at_bound)))
     raw = evaluate_rows(arrays, params=p, calibration={}, duration_min=duration_min)[response]
     loo_pred = ()
     loo_r2 = loo_rmse = None
@@ -473,9 +545,8 @@ def _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, ob
         lp = np.empty(n)
         for i in range(n):
             keep = np.delete(np.arange(n), i)
-            r = fit(keep, theta)
+            r = _fit_from_scratch(keep, specs, grid, stage_idx, x0, lo, hi, fit, predict, obs, bar)
             lp[i] = predict(r.x, np.array([i]))[0]
-            bar.update(1)
         loo_pred = tuple(float(x) for x in lp)
         loo_r2 = _r2(obs, lp)
         loo_rmse = float(np.sqrt(np.mean((obs - lp) ** 2)))
@@ -484,6 +555,8 @@ def _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, ob
         rmse=float(np.sqrt(np.mean(resid ** 2))), loo_r2=loo_r2, loo_rmse=loo_rmse,
         data=str(source), data_sha256=data_sha256, observed=tuple(map(float, obs)),
         predicted=tuple(map(float, pred)), loo_predicted=loo_pred, uncalibrated_r2=_r2(obs, raw),
+        method=("grid + bounded Brent profile refinement + scipy.optimize.least_squares (trf, bounded), "
+                "noise-free virtual runs; leave-one-out folds recalibrated from scratch"),
     )
 
 
@@ -538,6 +611,9 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
         lines.append(f"[parameters.{p.name}]")
         for k in ("value", "std_error", "lower", "upper", "unit", "meaning", "at_bound"):
             lines.append(f"{k} = {toml_value(getattr(p, k))}")
+        if p.ci_method:
+            for k in ("ci_low", "ci_high", "ci_method"):
+                lines.append(f"{k} = {toml_value(getattr(p, k))}")
         lines.append("")
     lines.append("[runs]")
     lines.append(f"observed = {toml_value(list(cal.observed))}")
@@ -551,7 +627,7 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
 _HEAD_KEYS = {"model": str, "response": str, "n": int, "r2": float, "rmse": float, "loo_r2": float, "loo_rmse": float,
               "uncalibrated_r2": float, "data": str, "data_sha256": str, "method": str, "command": str}
 _PARAM_KEYS = {"value": float, "std_error": float, "lower": float, "upper": float, "unit": str,
-               "meaning": str, "at_bound": bool}
+               "meaning": str, "at_bound": bool, "ci_low": float, "ci_high": float, "ci_method": str}
 _RUN_KEYS = ("observed", "predicted", "loo_predicted")
 
 
@@ -690,7 +766,8 @@ def _calibration_from_toml(raw: dict, lrg_names, surrogate_names, outputs) -> Ca
         if se < 0:
             raise ValueError(f"{where} std_error must be >= 0 (or nan), not {se:g}")
         ests.append(ParameterEstimate(name, v, se, flo, fhi, f.get("unit", ""), f.get("meaning", ""),
-                                      f.get("at_bound", False)))
+                                      f.get("at_bound", False), f.get("ci_low", math.nan), f.get("ci_high", math.nan),
+                                      f.get("ci_method", "")))
     runs = raw.get("runs", {})
     if not isinstance(runs, dict):
         raise ValueError("'runs' must be a table [runs]")

@@ -39,10 +39,11 @@ MAX_NOISE_SD = 10.0
 #: row never depends on its batch (:mod:`.noise`), and the stick-slip integrator gives each
 #: row its own step count (a row run alone equals the row among others; tested), so the
 #: rows are the same on one process, N processes or a cluster; fixed cuts keep them
-#: bit-identical even where vectorised floating point could differ in the last bit. The cost
-#: of a batch is mostly the integrator's time steps, shared by all its rows, so batches are
-#: large: 10,000 rows cost about 2.5x what 1,000 rows cost (benchmarks/bench_simulate.py).
-DEFAULT_BATCH_ROWS = 16384
+#: bit-identical even where vectorised floating point could differ in the last bit. The
+#: compiled stepper integrates each row alone (no time loop shared by a batch), so a batch of
+#: 1,024 rows costs about 1,024 rows' work and ``--workers N`` keeps N workers busy from a few
+#: thousand rows on (benchmarks/bench_simulate.py).
+DEFAULT_BATCH_ROWS = 1024
 
 #: Designs with at least this many rows show a progress bar by default.
 PROGRESS_MIN_ROWS = 20000
@@ -90,7 +91,7 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
         from its default here that the calibration also sets raises ``ValueError`` (the
         calibrated value would replace it); a design column of the same name wins over both.
     batch_rows : int, optional
-        Rows per batch (default 16384; the same for every executor, see
+        Rows per batch (default 1024; the same for every executor, see
         :data:`DEFAULT_BATCH_ROWS`).
     progress : bool, optional
         Progress bar on stderr (tqdm); default: for designs of 20,000 rows or more.

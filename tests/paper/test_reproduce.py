@@ -166,7 +166,7 @@ def test_surrogate_loo_is_reported_next_to_the_paper_press_r2(rep):
 @pytest.mark.slow
 def test_fig9_wear_row_shows_both_motion_profiles(rep):
     # issue 15: the wear ordering of the Fig. 9 setting under the default trapezoidal strokes
-    # (RFCMS slides 0.005-0.26 % more: frame ringing) and under 10 ms jerk-limited strokes
+    # (RFCMS slides 0.04-0.2 % more: frame ringing) and under 10 ms jerk-limited strokes
     # (RFCMS below RMS at every stroke), from the surrogate (tests/surrogate for the numbers)
     r = _row(rep, "Fig. 9 setting: wear of RFCMS / RMS")
     trap, scurve = r.toolkit.split("; S-curve 10 ms ")

@@ -6,7 +6,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rsm_lrg.physics import dynamics
+from rsm_lrg.physics import dynamics, hinge
 from rsm_lrg.physics.params import LRGParams
 
 
@@ -31,12 +31,13 @@ def test_integrator_matches_reference_thin_hinge():
 
 
 def _breakaway_deflection(p, force=None):
-    """Δδ where the n hinges carry ``force`` (default f_µmax): Eq. 2, or its cubic with held ends."""
-    from rsm_lrg.physics.hinge import hinge_deflection_nonlinear
+    """Δδ where the n hinges carry ``force`` (default f_µmax): Eq. 2, or the beam-column law of
+    leaves with held ends."""
+    from rsm_lrg.physics.hinge import leaf_deflection
 
     f = p.f_mu_max_n if force is None else force
-    return float(hinge_deflection_nonlinear(f, p.hinge_count * p.hinge_stiffness_n_m,
-                                            p.hinge_count * p.hinge_membrane_stiffness_n_m3))
+    return float(leaf_deflection(f, p.hinge_count * p.hinge_stiffness_n_m,
+                                 p.hinge_thickness_m if p.hinge_membrane else 0.0))
 
 
 @pytest.mark.slow
@@ -87,7 +88,8 @@ def _last_cycle_works(p, n_cycles=5):
     t, u = h.t[last], h.v_frame[last]
     _, vs, _ = motion.reciprocating_profile(t, p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, p.dwell_s)
     z = h.x_stage[last] - h.x_frame[last]
-    fh = float(c.k_n_m) * z + float(c.k3_n_m3) * z ** 3 + float(c.c_ns_m) * (vs - u)
+    yl = float(c.leaf_thickness_m)
+    fh = (hinge.leaf_force(z, float(c.k_n_m), yl) if yl > 0 else float(c.k_n_m) * z) + float(c.c_ns_m) * (vs - u)
     return h, np.trapezoid(fh * u, t), np.trapezoid(float(c.viscous_ns_m) * u ** 2, t)
 
 

@@ -1,6 +1,6 @@
-"""Elastic hinge with held ends (issue 15, Build 1): membrane stiffening of the leaves, the
-peak stress against the yield strength over the Table 3 box, agreement of the vectorised
-integrator with the event-driven reference, energy balance."""
+"""Elastic hinge with held ends (issue 15, Build 1; exact beam-column law since issue 24): the
+Ritz membrane formulas, the clamp stress against the yield strength over the Table 3 box,
+agreement of the compiled integrator with the event-driven reference, energy balance."""
 
 import itertools
 
@@ -50,20 +50,22 @@ def _box_rows():
     return np.array(rows)
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("viscous", [0.0, 7.0])
-def test_no_leaf_above_yield_anywhere_in_the_table3_box(viscous):
-    # Issue 15 "Done when": peak stress (bending 3 E y d / l^2 + membrane E pi^2 d^2/(16 l^2))
-    # of every leaf over the periodic cycle, at the 16 corners and the centre of the Table 3
-    # box, below the yield strength of 65Mn (785 MPa, GB/T 1222-2016), with a flexure's damping
-    # (zeta 0.02) and without / with the block's viscous friction (7 N s/m, the order of the
-    # calibrated value).
+@pytest.mark.parametrize("viscous", [0.0, 2.5])
+def test_where_a_leaf_yields_in_the_table3_box(viscous):
+    # Issue 24: the exact clamp stress of the beam-column leaf (not the earlier bending + Ritz
+    # membrane sum) at the peak deflection over the periodic cycle, at the 16 corners and the
+    # centre of the Table 3 box, against 65Mn's 785 MPa (GB/T 1222-2016). The thick leaves never
+    # come near yield; the 0.1 mm leaf at the fast corners does: `yields` says so, it is a
+    # physical limit of the design (the model keeps the elastic law there and flags the row).
     r = _box_rows()
     p = LRGParams(viscous_friction_n_s_m=viscous)
     m = dynamics.cycle_metrics(r[:, 1], r[:, 2], r[:, 3], params=p, method="integrate", hinge_thickness_m=r[:, 0])
     stress = hinge.hinge_peak_stress(p.hinge_modulus_pa, r[:, 0], p.hinge_length_m, m.peak_deflection_m)
-    assert np.all(stress < p.hinge_yield_pa)
-    assert np.max(stress) < 0.7 * p.hinge_yield_pa      # measured: 485 MPa at most (0.1 mm, low corner)
+    exact = hinge.leaf_clamp_stress(p.hinge_modulus_pa, r[:, 0], p.hinge_length_m, m.peak_deflection_m)
+    assert np.array_equal(stress, exact)
+    thick = r[:, 0] >= 3e-4
+    assert np.all(stress[thick] < 0.5 * p.hinge_yield_pa)
+    assert np.any(stress[~thick] > p.hinge_yield_pa)     # the thin leaf at its fast corners
 
 
 def test_small_deflection_hinge_would_yield():
@@ -78,18 +80,17 @@ def test_small_deflection_hinge_would_yield():
 @pytest.mark.parametrize("y,motion", [(3e-4, (0.04, 0.4, 20.0)), (5e-4, (0.06, 0.6, 40.0)),
                                       (1e-4, (0.04, 0.4, 20.0)), (3e-4, (0.06, 0.6, 40.0))])
 def test_membrane_integrator_matches_event_driven_reference(y, motion):
-    # Reference: DOP853 (rtol 1e-9) with exact breakaway/stop events and the cubic hinge force
-    # (simulate_stage). Tolerance 5e-4 relative on the sliding per cycle (the integrator takes
-    # the hinge's tangent at the start of each step), 5 % on the peak deflection (both sampled:
-    # the integrator at its step ends, which can miss up to ~3 % of a peak where the leaf
-    # stiffens beyond the deflection its step was sized for; far inside the yield margin of
-    # 1.6 of the box test).
+    # Reference: DOP853 (rtol 1e-10) with exact breakaway/stop events and the same force law
+    # (simulate_stage), the same number of cycles from rest. Tolerance 1e-6 relative on the
+    # sliding (mean of the last two cycles, as cycle_metrics reports it), 2 % on the peak
+    # deflection (the reference samples 2000 points per cycle, the stepper interpolates its steps).
     s, v, a = motion
     p = LRGParams(hinge_thickness_m=y, stroke_m=s, velocity_m_s=v, acceleration_m_s2=a)
-    ref = dynamics.simulate_stage(p, n_cycles=8, rtol=1e-9)
-    got = dynamics.cycle_metrics(params=p, method="integrate")
-    assert float(got.sliding_distance_m) == pytest.approx(ref.sliding_distance_m, rel=5e-4)
-    assert float(got.peak_deflection_m) == pytest.approx(ref.peak_deflection_m, rel=0.05)
+    ref = dynamics.simulate_stage(p, n_cycles=6, rtol=1e-10)
+    got = dynamics.cycle_metrics(params=p, method="integrate", n_cycles=6, max_cycles=6)
+    r = ref.sliding_per_cycle_m
+    assert float(got.sliding_distance_m) == pytest.approx(0.5 * (r[-1] + r[-2]), rel=1e-6)
+    assert float(got.peak_deflection_m) == pytest.approx(ref.peak_deflection_m, rel=0.02)
 
 
 @pytest.mark.slow
@@ -118,17 +119,17 @@ def test_energy_balance_with_held_ends():
     t, u = h.t[last], h.v_frame[last]
     _, vs, _ = motion.reciprocating_profile(t, p.stroke_m, p.velocity_m_s, p.acceleration_m_s2, p.dwell_s)
     z = h.x_stage[last] - h.x_frame[last]
-    fh = float(c.k_n_m) * z + float(c.k3_n_m3) * z ** 3 + float(c.c_ns_m) * (vs - u)
+    fh = hinge.leaf_force(z, float(c.k_n_m), float(c.leaf_thickness_m)) + float(c.c_ns_m) * (vs - u)
     hinge_work = np.trapezoid(fh * u, t)
     assert hinge_work == pytest.approx(h.friction_work_j + h.viscous_work_j, rel=0.01)
 
 
-def test_quasi_static_sliding_uses_the_cubic_deflections():
-    # exact: per stroke s - d(f_s) - d(f_k), d the inverse of K d + k3 d^3
+def test_quasi_static_sliding_uses_the_beam_column_deflections():
+    # exact: per stroke s - d(f_s) - d(f_k), d the inverse of the leaves' force law
     p = LRGParams(hinge_thickness_m=1e-4)
     c = dynamics.stage_constants(p)
-    ds = hinge.hinge_deflection_nonlinear(c.f_static_n, c.k_n_m, c.k3_n_m3)
-    dk = hinge.hinge_deflection_nonlinear(c.f_kinetic_n, c.k_n_m, c.k3_n_m3)
+    ds = hinge.leaf_deflection(c.f_static_n, c.k_n_m, c.leaf_thickness_m)
+    dk = hinge.leaf_deflection(c.f_kinetic_n, c.k_n_m, c.leaf_thickness_m)
     qs = dynamics.cycle_metrics(params=p, method="quasi_static")
     assert float(qs.sliding_distance_m) == pytest.approx(2 * (p.stroke_m - ds - dk), rel=1e-12)
 
@@ -139,8 +140,10 @@ def test_physics_json_reports_the_peak_stress_of_every_hinge():
 
     d = physics_chain(thermal=False).to_dict()
     for row in d["hinge"]:
-        assert 0 < row["peak_bending_stress_pa"] <= row["peak_stress_pa"] < row["yield_strength_pa"]
-        assert row["yields"] is False
+        assert 0 < row["peak_bending_stress_pa"] <= row["peak_stress_pa"]
+        exact = float(hinge.leaf_clamp_stress(211e9, row["thickness_m"], 0.02, row["peak_deflection_m"]))
+        assert row["peak_stress_pa"] == pytest.approx(exact, rel=1e-12)
+        assert row["yields"] is (row["peak_stress_pa"] > row["yield_strength_pa"])
     # a leaf that would yield is flagged (small-deflection model, thin leaf, fast motion)
     r = physics_chain(thermal=False, hinge_membrane=False, velocity_m_s=0.6, acceleration_m_s2=40.0, stroke_m=0.06)
     assert r.hinge[0].yields and "would yield" in r.to_text()

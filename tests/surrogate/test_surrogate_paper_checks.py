@@ -48,12 +48,29 @@ def test_stored_figures_are_what_the_surrogate_gives_now(cal, table4_runs):
 
 
 def test_calibrated_fit_to_table4_reached_figures(cal):
-    # Figures reached by honest physics with three calibrated parameters (Table 4, 27 runs,
-    # noise-free; model v4, issue 15): R2 0.877, leave-one-out R2 0.860 (each run left out, the
-    # three parameters refitted). Pinned here so they cannot silently get worse.
+    # Figures reached with three calibrated parameters (Table 4, 27 runs, noise-free; model v4
+    # with the exact beam-column leaves, issue 24): R2 0.882, leave-one-out R2 0.853 with every
+    # fold recalibrated from scratch. Pinned here so they cannot silently get worse.
     assert cal.model == "v4"
-    assert cal.r2 >= 0.87
+    assert cal.r2 >= 0.88
     assert cal.loo_r2 >= 0.85
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("fold", [6])
+def test_a_loo_fold_is_a_calibration_from_scratch(cal, fold):
+    # issue 24 "Done when": calibrate on the other 26 runs, then simulate with that calibration,
+    # predicts the run left out as the shipped file's loo_predicted says (1e-3 relative). Fold 6
+    # is the run the earlier, leaking LOO moved most (0.0477 -> 0.0471).
+    from rsm_lrg.surrogate.calibrate import calibrate
+
+    t4 = load_table4()
+    rest = t4.drop(index=fold).reset_index(drop=True)
+    c26 = calibrate(rest[["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2", "tcr_c_per_min"]],
+                    loo=False)
+    got = simulate(t4.iloc[[fold]][["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]], noise_sd=0,
+                   calibration=c26)
+    assert float(got.tcr_c_per_min.iloc[0]) == pytest.approx(cal.loo_predicted[fold], rel=1e-3)
 
 
 def test_calibrated_fit_to_table4_issue_target_loo(cal):
@@ -76,6 +93,12 @@ def test_calibrated_parameters_are_inside_their_bounds_with_standard_errors(cal)
     for p in cal.parameters:
         assert not p.at_bound and p.lower < p.value < p.upper
         assert math.isfinite(p.std_error) and 0 < p.std_error < abs(p.value)
+    # issue 24: the stage parameter is not a node of the calibrator's grid (0, 2.5, 5, ... N s/m)
+    # and carries a profile-likelihood interval around it (the Jacobian's s.e. is not its error)
+    cv = next(p for p in cal.parameters if p.name == "viscous_friction_n_s_m")
+    nodes = np.linspace(cv.lower, cv.upper, 13)
+    assert np.min(np.abs(nodes - cv.value)) > 1e-3 * (cv.upper - cv.lower)
+    assert cv.ci_method == "profile likelihood" and cv.ci_low < cv.value < cv.ci_high
 
 
 def test_earlier_calibration_stays_loadable():
@@ -85,19 +108,21 @@ def test_earlier_calibration_stays_loadable():
     assert v2.parameter_values()["hinge_membrane"] is False
 
 
-@pytest.mark.slow
-def test_no_leaf_yields_in_the_table3_box_with_the_shipped_calibration():
-    # issue 15 "Done when": the 16 corners and the centre of the Table 3 box, virtual runs with
-    # the shipped calibration: the peak stress of every leaf (bending + membrane, over the
-    # periodic cycle) below the yield strength of 65Mn (785 MPa, GB/T 1222-2016)
+def test_where_leaves_yield_in_the_table3_box_with_the_shipped_calibration():
+    # issue 24: the 16 corners and the centre of the Table 3 box with the shipped calibration:
+    # `hinge_yields` is true exactly where the exact clamp stress passes 65Mn's 785 MPa
+    # (GB/T 1222-2016); the 0.3 and 0.5 mm leaves stay far below it, the 0.1 mm leaf passes it
+    # at its fast corners (a limit of the design; the rows are kept and flagged)
     import itertools
 
     levels = [(1e-4, 5e-4), (0.04, 0.06), (0.4, 0.6), (20.0, 40.0)]
     rows = list(itertools.product(*levels)) + [(3e-4, 0.05, 0.5, 30.0)]
     d = pd.DataFrame(rows, columns=["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"])
     out = simulate(d, noise_sd=0)
-    assert not out.hinge_yields.any()
-    assert (out.hinge_peak_stress_pa < 785e6).all()
+    assert (out.hinge_yields == (out.hinge_peak_stress_pa > 785e6)).all()
+    thick = out.thickness_m >= 3e-4
+    assert not out.hinge_yields[thick].any() and out.hinge_yields[~thick].any()
+    assert (out.hinge_peak_stress_pa[thick] < 0.5 * 785e6).all()
 
 
 def test_uncalibrated_centre_run(cal):
@@ -123,8 +148,8 @@ def test_fig9_rms_hotter_than_rfcms():
 
 @pytest.mark.xfail(strict=True, reason="issue 15, model finding: with the default trapezoidal profile (jerk_time_s = "
                    "0: a step of the acceleration at each ramp), the elastic hinge at a flexure's damping (zeta "
-                   "0.02) and the calibrated block friction (c_v 2.5 N s/m) the steps excite the frame's ~47 Hz "
-                   "hinge mode, the frame overshoots each stroke end and its carriage slides 0.005-0.26 % MORE "
+                   "0.02) and the calibrated block friction the steps excite the frame's "
+                   "hinge mode, the frame overshoots each stroke end and its carriage slides 0.04-0.2 % MORE "
                    "than the RMS's, so it wears that much more. A jerk-limited S-curve with jerk_time_s >= 10 ms "
                    "(about half the hinge period) restores the ordering (test_fig9_with_jerk_limited_strokes); the "
                    "paper does not give its profile. The paper's FEM (Section 3.2) has the RFCMS wearing 41 % "

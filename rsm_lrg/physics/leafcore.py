@@ -1,0 +1,113 @@
+"""Element-wise kernels of the beam-column leaf (:mod:`.hinge`), compiled with numba.
+
+Every element is computed alone with the C library's scalar ``tanh``/``cosh``, so a value does
+not depend on where it sits in an array: NumPy's vectorised transcendental functions may round
+the elements of a SIMD block and those of its tail differently (one ulp), which would make a
+row's result depend on its batch. The formulas are those of :mod:`.hinge` (comment before
+``_S_SERIES``): ``S(u) = 3·(u − tanh u)/u³``, ``D(u)/u⁴`` with
+``D = 1 + ½·sech²u − 3·tanh u/(2u)`` and ``tanh(u)/u``, by their Taylor series below u = 0.2.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+__all__ = ["leaf_parts", "tension_parameter", "parameter_for_load"]
+
+_S = (1.0, -2.0 / 5, 17.0 / 105, -62.0 / 945, 1382.0 / 51975, -21844.0 / 2027025, 929569.0 / 212837625)
+_D = (2.0 / 15, -34.0 / 315, 62.0 / 945, -5528.0 / 155925, 21844.0 / 1216215, -1859138.0 / 212837625,
+      6404582.0 / 1550674125)
+_T = (1.0, -1.0 / 3, 2.0 / 15, -17.0 / 315, 62.0 / 2835, -1382.0 / 155925)
+
+
+@lru_cache(maxsize=1)
+def _kernels() -> Any:
+    import math
+
+    import numba
+
+    S = np.array(_S)
+    D = np.array(_D)
+    T = np.array(_T)
+    jit = numba.njit(cache=True, error_model="numpy")
+
+    @jit
+    def poly(c: np.ndarray, x: float) -> float:
+        out = c[c.shape[0] - 1]
+        for i in range(c.shape[0] - 2, -1, -1):
+            out = out * x + c[i]
+        return out
+
+    @jit
+    def parts(u: float) -> tuple[float, float, float]:
+        if u < 0.2:
+            u2 = u * u
+            return poly(S, u2), poly(D, u2), poly(T, u2)
+        th = math.tanh(u)
+        ch = math.cosh(min(u, 350.0))
+        return 3.0 * (u - th) / u ** 3, (1.0 + 0.5 / (ch * ch) - 1.5 * th / u) / u ** 4, th / u
+
+    @jit
+    def ratio(u: float) -> float:
+        s, dq, _ = parts(u)
+        return u * s * math.sqrt(2.0 / (27.0 * dq))
+
+    @jit
+    def psi(u: float) -> float:
+        s, dq, _ = parts(u)
+        return u * math.sqrt(2.0 / (27.0 * dq))  # ratio·φ = ratio/S
+
+    @jit
+    def solve(target: np.ndarray, which: int) -> np.ndarray:
+        out = np.empty(target.shape[0])
+        for k in range(target.shape[0]):
+            t = target[k]
+            lo = 0.0
+            hi = 1.5 * t + 1e-300
+            for _ in range(200):
+                f = ratio(hi) if which == 0 else psi(hi)
+                if not f < t:
+                    break
+                hi = 2.0 * hi + 1.0
+            for _ in range(90):
+                mid = 0.5 * (lo + hi)
+                f = ratio(mid) if which == 0 else psi(mid)
+                if f < t:
+                    lo = mid
+                else:
+                    hi = mid
+            out[k] = 0.5 * (lo + hi)
+        return out
+
+    @jit
+    def parts_arr(u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        a = np.empty(u.shape[0])
+        b = np.empty(u.shape[0])
+        c = np.empty(u.shape[0])
+        for k in range(u.shape[0]):
+            a[k], b[k], c[k] = parts(u[k])
+        return a, b, c
+
+    return solve, parts_arr
+
+
+def leaf_parts(u: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """S(u), D(u)/u⁴ and tanh(u)/u for u ≥ 0 (arrays of u's shape)."""
+    a = np.asarray(u, dtype=float)
+    s, d, t = _kernels()[1](np.ascontiguousarray(a.ravel()))
+    return s.reshape(a.shape), d.reshape(a.shape), t.reshape(a.shape)
+
+
+def tension_parameter(ratio: Any) -> np.ndarray:
+    """u ≥ 0 with δ/y = ``ratio`` (bisection to machine precision, element by element)."""
+    a = np.abs(np.asarray(ratio, dtype=float))
+    return _kernels()[0](np.ascontiguousarray(a.ravel()), 0).reshape(a.shape)
+
+
+def parameter_for_load(q: Any) -> np.ndarray:
+    """u ≥ 0 with (δ/y)·φ = ``q`` = F/(K·y) (bisection, element by element)."""
+    a = np.abs(np.asarray(q, dtype=float))
+    return _kernels()[0](np.ascontiguousarray(a.ravel()), 1).reshape(a.shape)
