@@ -252,7 +252,7 @@ def run(args) -> int:
 
     # a local pool whose workers die with this process and are killed at once on an error or a
     # signal, or a scheduler that must answer within --scheduler-timeout (rsm_lrg.cli.processes)
-    from .processes import close_pool, connect_scheduler, process_pool
+    from .processes import close_pool, connect_scheduler, process_pool, watch_workers
 
     executor = client = None
     ok = False
@@ -267,7 +267,11 @@ def run(args) -> int:
 
         parquet = out_path.suffix.lower() in (".parquet", ".pq")
         tally = StreamTally()
-        with about_file(args.design), _lost_scheduler(args.scheduler if client is not None else None):
+        import contextlib
+
+        watch = (watch_workers(client, args.scheduler, args.scheduler_timeout) if client is not None
+                 else contextlib.nullcontext())
+        with about_file(args.design), _lost_scheduler(args.scheduler if client is not None else None), watch:
             if streamed is None:
                 runs = simulate(design, seed=seed, noise_sd=noise, duration_min=args.duration_min,
                                 executor=executor, calibration=calibration, params=params,

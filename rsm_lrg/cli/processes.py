@@ -21,6 +21,7 @@ import os
 import signal
 import sys
 import threading
+import time
 from collections.abc import Iterator
 from typing import Any
 
@@ -215,6 +216,56 @@ def connect_scheduler(address: str, timeout: float = DEFAULT_SCHEDULER_TIMEOUT):
         raise InputError(f"--scheduler {_show(address)}: no worker joined within {timeout:g} s "
                          f"(--scheduler-timeout; {type(exc).__name__})") from None
     return client
+
+
+@contextlib.contextmanager
+def watch_workers(client: Any, address: str, timeout: float, poll: float = 0.5) -> Iterator[None]:
+    """Inside the block, a scheduler left without a worker for ``timeout`` seconds (every
+    worker died mid-run while the scheduler stays up: it would hold the batches for ever) ends
+    the command with one error naming the scheduler. A thread polls the scheduler's workers
+    every ``poll`` seconds and, when they have been gone that long, signals the main thread
+    (SIGUSR1), whose handler raises the error where the command waits. Main thread only; a
+    scheduler that stops answering is left to the run's own error (:func:`scheduler_lost`)."""
+    from ..io import InputError
+
+    if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "SIGUSR1"):
+        yield
+        return
+    stop = threading.Event()
+    fired = threading.Event()
+
+    def lost(signum: int, frame: Any) -> None:
+        if fired.is_set() and not stop.is_set():
+            stop.set()
+            raise InputError(f"--scheduler {_show(address)}: no worker left for {timeout:g} s "
+                             "(--scheduler-timeout): every worker was lost during the run; no output written")
+
+    def watch() -> None:
+        since: float | None = None
+        while not stop.wait(poll):
+            try:
+                n = len(client.nthreads())
+            except Exception:  # the scheduler itself is gone: the run fails and says so
+                return
+            if n:
+                since = None
+                continue
+            now = time.monotonic()
+            since = now if since is None else since
+            if now - since >= timeout:
+                fired.set()
+                os.kill(os.getpid(), signal.SIGUSR1)
+                return
+
+    old = signal.signal(signal.SIGUSR1, lost)
+    thread = threading.Thread(target=watch, name="rsm-lrg-worker-watch", daemon=True)
+    thread.start()
+    try:
+        yield
+    finally:
+        stop.set()
+        thread.join(timeout=5)
+        signal.signal(signal.SIGUSR1, old)
 
 
 def scheduler_lost(address: str, exc: BaseException):
