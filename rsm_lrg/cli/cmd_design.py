@@ -8,7 +8,8 @@ from ._common import add_force, add_reader_options, whole_number
 
 NAME = "design"
 HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, augment, "
-        "definitive-screening, fractional-factorial, plackett-burman, latin-hypercube, sobol)")
+        "definitive-screening, fractional-factorial, plackett-burman, latin-hypercube, sobol, "
+        "simplex-lattice, simplex-centroid, extreme-vertices)")
 DESCRIPTION = (
     "Generate an experimental design and write it as CSV: std_order, run_order, block (when "
     "blocked), the coded columns coded_A, coded_B, ... and the actual columns named after the "
@@ -178,6 +179,47 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                                     "design augment --method ccd).")
     _common(ff, "0", "extra centre runs (default 0)")
     ff.add_argument("--levels", type=whole_number(2), default=2, metavar="N", help="levels per factor (default 2)")
+    _mixture_parsers(sub)
+
+
+def _mixture_parsers(sub) -> None:
+    """``simplex-lattice``, ``simplex-centroid`` and ``extreme-vertices`` (issue 22)."""
+    note = (" The CSV holds one column per component with the real proportion (every run sums to "
+            "--total) and the L-pseudo components as the coded columns coded_A, coded_B, ...")
+    sl = sub.add_parser("simplex-lattice", help="{q, m} simplex-lattice mixture design",
+                        description="Simplex-lattice mixture design: every blend whose proportions are "
+                                    "0, 1/m, ..., 1 of the total." + note)
+    sl.add_argument("--degree", type=whole_number(1, 100), required=True, metavar="M",
+                    help="lattice degree m (proportions in steps of total/m)")
+    sc = sub.add_parser("simplex-centroid", help="simplex-centroid mixture design (2^q - 1 blends)",
+                        description="Simplex-centroid mixture design: the centroids of every face of the "
+                                    "simplex (pure blends, 50:50 blends, ..., the overall centroid)." + note)
+    ev = sub.add_parser("extreme-vertices", help="extreme vertices of a constrained mixture region",
+                        description="Extreme-vertices mixture design (McLean & Anderson 1966): the vertices of "
+                                    "the region cut from the simplex by the component bounds and linear "
+                                    "constraints, optionally with edge, constraint-plane and overall "
+                                    "centroids." + note)
+    for p in (sl, sc):
+        p.add_argument("--component", action="append", required=True, metavar="NAME",
+                       help="a mixture component (repeat for each, in order; at least 2)")
+        p.add_argument("--center", action="store_true", help="add one run at the overall centroid")
+        p.add_argument("--axial", action="store_true",
+                       help="add the q axial check blends ((q+1)/2q, 1/2q, ..., 1/2q of the total)")
+    ev.add_argument("--component", action="append", required=True, metavar="NAME=LOW:HIGH",
+                    help="a component and its bounds in real proportions (bare NAME: 0 to the total); "
+                         "repeat for each, in order")
+    ev.add_argument("--constraint", action="append", default=[], metavar="EXPR",
+                    help="a linear inequality in the proportions, e.g. 'A + B <= 0.7' (repeatable)")
+    ev.add_argument("--centroids", action="store_true",
+                    help="add edge centroids, constraint-plane centroids and the overall centroid")
+    for p in (sl, sc, ev):
+        p.add_argument("--total", default="1", metavar="T", help="the total the proportions sum to (default 1)")
+        p.add_argument("--seed", type=whole_number(0), default=None, metavar="N",
+                       help="seed of the randomised run order (default: drawn and printed)")
+        p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
+        p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
+        add_output_format(p)
+        add_force(p)
 
 
 #: Most centre runs per block: replicates of one point, far beyond any experiment.
@@ -215,6 +257,12 @@ def run(args) -> int:
     check_output(out, force=args.force, option="-o/--output")
     if args.kind == "augment":
         return _augment(args, out)
+    if args.kind in _MIXTURE_KINDS:
+        design = _mixture(args)
+        write_design(design, out, args)
+        print(design.summary())
+        print(f"wrote {out}")
+        return 0
     if args.kind in _NEW_KINDS:
         design = _new_kind(args)
         write_design(design, out, args)
@@ -256,6 +304,74 @@ MAX_ALPHA = 1000.0
 #: Kinds handled by :func:`_new_kind` (added with issue 13).
 _NEW_KINDS = ("optimal", "definitive-screening", "fractional-factorial", "plackett-burman", "latin-hypercube",
               "sobol")
+
+
+#: Mixture kinds handled by :func:`_mixture` (issue 22).
+_MIXTURE_KINDS = ("simplex-lattice", "simplex-centroid", "extreme-vertices")
+
+
+def _component_bounds(specs: list[str], total: float) -> dict[str, tuple[float, float]]:
+    """``--component NAME=LOW:HIGH`` (or bare ``NAME``: 0 to the total) as ``{name: (low, high)}``."""
+    import math
+
+    from ..io import InputError, quote_user_value
+
+    out: dict[str, tuple[float, float]] = {}
+    for spec in specs:
+        name, eq, rng = spec.partition("=")
+        name = name.strip()
+        if not name:
+            raise InputError(f"--component: an empty name in {quote_user_value(spec)}")
+        if name in out:
+            raise InputError(f"--component: {quote_user_value(name)} is given twice")
+        if not eq:
+            out[name] = (0.0, total)
+            continue
+        lo, colon, hi = rng.partition(":")
+        try:
+            low, high = float(lo), float(hi)
+        except ValueError:
+            low = high = math.nan
+        if not colon or not (math.isfinite(low) and math.isfinite(high)):
+            raise InputError(f"--component: expected NAME=LOW:HIGH with finite numbers, got {quote_user_value(spec)}")
+        out[name] = (low, high)
+    return out
+
+
+def _mixture(args):
+    """Build a mixture design from the parsed arguments; bad input is an InputError."""
+    import math
+
+    from ..design.mixture import extreme_vertices, simplex_centroid, simplex_lattice
+    from ..io import InputError, quote_user_value
+
+    try:
+        total = float(args.total)
+    except ValueError:
+        total = math.nan
+    if not (math.isfinite(total) and 0 < total <= 1e15):
+        raise InputError(f"--total: expected a finite number > 0, got {quote_user_value(args.total)}")
+    randomize = not args.no_randomize
+    try:
+        if args.kind == "extreme-vertices":
+            bounds = _component_bounds(args.component, total)
+            return extreme_vertices(bounds, constraints=args.constraint or None, centroids=args.centroids,
+                                    total=total, seed=args.seed, randomize=randomize)
+        names = [c.strip() for c in args.component]
+        if args.kind == "simplex-lattice":
+            return simplex_lattice(names, args.degree, center=args.center, axial=args.axial, total=total,
+                                   seed=args.seed, randomize=randomize)
+        return simplex_centroid(names, center=args.center, axial=args.axial, total=total, seed=args.seed,
+                                randomize=randomize)
+    except InputError:
+        raise
+    except (TypeError, ValueError) as exc:
+        msg = str(exc)
+        opt = ("--constraint" if msg.startswith("constraint") else "--degree" if msg.startswith("degree")
+               else "--total" if msg.startswith("total") else "--component")
+        for word in ("constraint: ", "component: ", "runs: "):
+            msg = msg[len(word):] if msg.startswith(word) else msg
+        raise InputError(f"{opt}: {msg}") from None
 
 
 def _space(args):

@@ -1,7 +1,8 @@
 """Experimental designs on a factor space: Box–Behnken, central composite, full factorial
 (each crossed with categoric factors), optimal designs (D/I/A, constraints), augmentation,
 screening designs (definitive screening, fractional factorial, Plackett–Burman) and
-space-filling designs (Latin hypercube, Sobol').
+space-filling designs (Latin hypercube, Sobol') and mixture designs (simplex lattice,
+simplex centroid, extreme vertices).
 
 Every generator returns a :class:`Design` (standard order kept, run order randomised from a
 seed) whose :meth:`Design.to_frame` / :meth:`Design.to_csv` give the design CSV layout that
@@ -15,6 +16,7 @@ from .composite import ccd_alpha, central_composite
 from .constraints import Constraints
 from .core import Design, as_factor_space, read_design
 from .factorial import full_factorial
+from .mixture import MixtureDesign, extreme_vertices, simplex_centroid, simplex_lattice
 from .optimal import criterion_value, optimal
 from .paper import paper_design
 from .screening import (
@@ -48,4 +50,8 @@ __all__ = [
     "alias_matrix",
     "latin_hypercube",
     "sobol",
+    "MixtureDesign",
+    "simplex_lattice",
+    "simplex_centroid",
+    "extreme_vertices",
 ]
