@@ -350,7 +350,7 @@ def _mixture(args):
     except ValueError:
         total = math.nan
     if not (math.isfinite(total) and 0 < total <= 1e15):
-        raise InputError(f"--total: expected a finite number > 0, got {quote_user_value(args.total)}")
+        raise InputError(f"--total: expected a finite number > 0 and at most 1e15, got {quote_user_value(args.total)}")
     randomize = not args.no_randomize
     try:
         if args.kind == "extreme-vertices":

@@ -128,6 +128,14 @@ def test_flare_vertices_published_and_r():
     assert np.allclose(d.coded_runs, (d.proportions - L) / 0.37, atol=1e-12, rtol=0)
 
 
+def test_flare_in_percent_is_exact():
+    """The same region in percent (total 100): every vertex is a whole number, exactly."""
+    pct = {k: (round(100 * a), round(100 * b)) for k, (a, b) in FLARE.items()}
+    d = extreme_vertices(pct, total=100, randomize=False)
+    assert _rows(d.proportions) == sorted(tuple(float(Fraction(v) * 100) for v in r) for r in PUBLISHED)
+    assert all(math.fsum(r) == 100.0 for r in d.proportions)
+
+
 def test_flare_centroids_equal_r_mixexp():
     """Vertices + 12 edge centroids + 6 constraint-plane centroids + overall centroid, as Xvert
     with ndm = 2 (for q = 4 the constraint planes are the 2-dimensional faces)."""
