@@ -472,7 +472,7 @@ def _dedupe(points: np.ndarray, tol: float) -> np.ndarray:
     """Indices of the first of each group of points within ``tol`` (max norm) of each other."""
     keep: list[int] = []
     for i, p in enumerate(points):
-        if not any(np.max(np.abs(points[j] - p)) <= tol for j in keep):
+        if not keep or np.min(np.max(np.abs(points[keep] - p), axis=1)) > tol:
             keep.append(i)
     return np.array(keep, dtype=int)
 
@@ -519,16 +519,16 @@ def _vertices(G: np.ndarray, h: np.ndarray, t: float, L: np.ndarray, U: np.ndarr
     V = np.array(found)
     # snap the proportions at a bound onto it exactly; a single free proportion takes the rest
     tol = FEAS_RTOL * max(t, float(np.max(U)))
-    for v in V:
-        at = np.zeros(q, dtype=bool)
-        for i in range(q):
-            for bound in (L[i], U[i]):
-                if abs(v[i] - bound) <= tol:
-                    v[i] = bound
-                    at[i] = True
-        if np.sum(~at) == 1:
-            j = int(np.flatnonzero(~at)[0])
-            v[j] = float(Fraction(t) - sum(Fraction(float(x)) for x in v[~np.eye(q, dtype=bool)[j]]))
+    at_low = np.abs(V - L[None, :]) <= tol
+    at_high = (np.abs(V - U[None, :]) <= tol) & ~at_low
+    V = np.where(at_low, L[None, :], np.where(at_high, U[None, :], V))
+    free = ~(at_low | at_high)
+    V, first = np.unique(V, axis=0, return_index=True)
+    free = free[first]
+    for v, f in zip(V, free):
+        if f.sum() == 1:
+            j = int(np.flatnonzero(f)[0])
+            v[j] = float(Fraction(t) - sum(Fraction(float(x)) for x in np.delete(v, j)))
     V = V[_dedupe(V, SUM_RTOL * t)]
     order = np.lexsort(V.T[::-1])
     return V[order]
