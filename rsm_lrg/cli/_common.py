@@ -224,6 +224,27 @@ def add_factor_options(p: argparse.ArgumentParser) -> None:
 
 #: The model orders a command can fit (rsm_lrg.model.terms).
 MODEL_ORDERS = ("linear", "2fi", "quadratic", "cubic")
+#: The Scheffé mixture models (with ``--component``; rsm_lrg.model.mixture).
+MIXTURE_MODEL_NAMES = ("mixture-linear", "mixture-quadratic", "special-cubic", "mixture-cubic")
+#: Every model a fitting command's ``--model`` takes.
+FIT_MODELS = MODEL_ORDERS + MIXTURE_MODEL_NAMES
+
+
+def add_component_option(p: argparse.ArgumentParser) -> None:
+    """``--component NAME[=LOW:HIGH]`` (repeatable): mixture components, fitted by a Scheffé
+    ``--model`` on L-pseudo components (rsm_lrg.model.mixture)."""
+    p.add_argument(
+        "--component", action="append", metavar="NAME[=LOW:HIGH]", default=None,
+        help="a mixture component column (repeatable; with --model mixture-linear|mixture-quadratic|special-cubic): "
+             "LOW is its lower bound and the L-pseudo origin (default: its observed minimum); every row must sum "
+             "to the same total within 1e-6 relative",
+    )
+
+
+def refuse_components(opts: argparse.Namespace, command: str) -> None:
+    """Exit 2 naming ``--component`` where a command does not handle mixtures yet."""
+    if getattr(opts, "component", None):
+        raise InputError(f"--component: {command} of a mixture model is not available yet (fit it with 'fit')")
 
 
 def add_model_option(p: argparse.ArgumentParser, orders=MODEL_ORDERS, what: str = "model order") -> None:
@@ -327,8 +348,9 @@ def add_model_inputs(parser: argparse.ArgumentParser) -> None:
     """DATA.csv, --response, --factor, --block and --model: the inputs of a fitted model."""
     add_data_response(parser)
     add_factor_options(parser)
+    add_component_option(parser)
     add_block_option(parser)
-    add_model_option(parser)
+    add_model_option(parser, FIT_MODELS)
 
 
 @contextmanager
@@ -490,7 +512,7 @@ def add_model_refinements(parser: argparse.ArgumentParser, *, per_response: bool
     flag: dict[str, Any] = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} \
         if per_response else {"action": "store_true"}
     if model:
-        parser.add_argument("--model", default="quadratic", choices=list(MODEL_ORDERS),
+        parser.add_argument("--model", default="quadratic", choices=list(FIT_MODELS),
                             help="model order (default quadratic)", **kw)
     add_terms_options(parser, per_response=per_response)
     parser.add_argument("--reduce", help="backward elimination keeping hierarchy", **flag)
@@ -588,6 +610,13 @@ def model_spec(opts: argparse.Namespace, *, order: str | None = None):
 
     reduce = ({"criterion": getattr(opts, "criterion", "p"), "alpha_out": getattr(opts, "alpha_out", 0.1)}
               if getattr(opts, "reduce", False) else None)
+    mixture = str(order or getattr(opts, "model", None) or "quadratic") in MIXTURE_MODEL_NAMES
+    if getattr(opts, "component", None) and not mixture:
+        raise InputError("--model: mixture components (--component) need a Scheffé model: "
+                         + "|".join(MIXTURE_MODEL_NAMES))
+    if mixture and not getattr(opts, "component", None):
+        raise InputError(f"--model {getattr(opts, 'model', order)}: a mixture model needs its components "
+                         "(--component NAME, once per component)")
     try:
         return ModelSpec.build(order or getattr(opts, "model", None) or "quadratic", terms=getattr(opts, "terms", None),
                                intercept=not getattr(opts, "no_intercept", False),

@@ -5,8 +5,10 @@ from __future__ import annotations
 import argparse
 
 from ._common import (
+    FIT_MODELS,
     about_file,
     add_block_option,
+    add_component_option,
     add_data_response,
     add_factor_options,
     add_force,
@@ -41,8 +43,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--confidence", type=probability, default=0.95, metavar="C",
                         help="interval level (default 0.95)")
     add_factor_options(parser)
+    add_component_option(parser)
     add_block_option(parser, "prediction for the average block")
-    add_model_option(parser)
+    add_model_option(parser, FIT_MODELS)
     add_model_refinements(parser)
     add_json(parser)
     add_force(parser)
@@ -71,8 +74,9 @@ def _check_at(settings) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ..optimize.confirm import confirm
-    from ._common import model_spec, print_notes, print_summary_or_json, read_input
+    from ._common import model_spec, print_notes, print_summary_or_json, read_input, refuse_components
 
+    refuse_components(args, "confirm")
     _check_at(args.at)
     spec = model_spec(args)
     data = read_input(args)

@@ -129,7 +129,8 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(f"{args.data}: --{unsupported[0]} is not available when fitting several files")
     data = many[0] if many is not None else read_input(args)
     with about_file(args.data), _about_files(many, args):
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=model_spec(args))
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=model_spec(args),
+                     components=args.component)
         extra: dict = {}
         if args.diagnostics:
             diag = result.diagnostics(boxcox_rule=args.boxcox_rule)

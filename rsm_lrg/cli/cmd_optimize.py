@@ -9,6 +9,7 @@ from ._common import (
     ResponseGroup,
     about_file,
     add_block_option,
+    add_component_option,
     add_factor_options,
     add_force,
     add_goal_options,
@@ -42,6 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                                "last --response: in --response order)",
                      limits_help="desirability limits per response (multi-response; default: observed min:max)")
     add_factor_options(parser)
+    add_component_option(parser)
     parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
                         help="tighter limits for a factor in actual units, or NAME=LEVEL[,LEVEL...] to hold a "
                              "categoric factor at its level(s) (repeatable)")
@@ -56,6 +58,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ._common import refuse_components
+
+    refuse_components(args, 'optimize')
     from ..model import fit
     from ..optimize import optimize, parse_goal
     from ._common import (

@@ -8,6 +8,7 @@ from ._common import (
     ResponseGroup,
     about_file,
     add_block_option,
+    add_component_option,
     add_factor_options,
     add_force,
     add_goal_options,
@@ -40,6 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="a response column; repeat for several responses in one page, each followed "
                              "by its own model options")
     add_factor_options(parser)
+    add_component_option(parser)
     add_block_option(parser)
     add_model_refinements(parser, per_response=True, model=True)
     add_goal_options(parser,
@@ -73,6 +75,9 @@ def _limits(text, response: str):
 
 
 def run(args: argparse.Namespace) -> int:
+    from ._common import refuse_components
+
+    refuse_components(args, 'report')
     from pathlib import Path
 
     from ..io import InputError, check_output

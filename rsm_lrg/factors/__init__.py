@@ -46,6 +46,7 @@ from .columns import (
     infer_items,
     is_bookkeeping,
 )
+from .component import MixtureComponent
 from .factor import (
     CODED_DECIMALS,
     RESERVED_FACTOR_NAMES,
@@ -62,7 +63,7 @@ from .values import LIST_LIMIT, QUOTE_LIMIT, finite_float, name_list, quote_valu
 
 __all__ = ["Factor", "CategoricFactor", "FactorSpace", "FactorChoice", "choose_factors", "letters_for",
            "parse_factor_spec", "parse_factor", "level_text", "check_factor_name", "quote_value", "CODED_DECIMALS",
-           "FactorLike"]
+           "FactorLike", "MixtureComponent"]
 
 # The names this module had before it became a package, kept for old imports: the public
 # ones above and below, and the old private spellings of the helpers now public in their

@@ -40,7 +40,7 @@ __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual
 
 def fit(data: Any, response: str, factors: Any = None, block: str | None = None, model: Any = "quadratic", *,
         terms: Any = None, intercept: bool = True, transform: Any = None, transform_constant: float = 0.0,
-        reduce: Any = None, chunk_rows: int = CHUNK_ROWS) -> FitResult:
+        reduce: Any = None, chunk_rows: int = CHUNK_ROWS, components: Any = None) -> FitResult:
     """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
 
     Parameters
@@ -87,6 +87,12 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
     chunk_rows : int
         Rows of the model matrix built and factorised at a time (the full n x p matrix is
         never held; :mod:`rsm_lrg.model.least_squares`).
+    components : sequence of str, optional
+        Mixture components (names or ``"NAME=LOW:HIGH"``), with ``model`` a Scheffé model
+        (``"mixture-linear"``, ``"mixture-quadratic"``, ``"special-cubic"``) or Scheffé
+        ``terms``: fitted without an intercept on L-pseudo-components, the ANOVA and R²
+        about the mean (:mod:`rsm_lrg.model.mixture`). Every row must sum to the same
+        total within 1e-6 relative.
 
     Returns
     -------
@@ -107,11 +113,15 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
     spec = ModelSpec.build(model, terms=terms, intercept=intercept, transform=transform,
                            transform_constant=transform_constant, reduce=reduce)
     if is_dask(data):  # fitted partition by partition, never collected
+        if components is not None or spec.mixture:
+            raise SpecError("model", "a mixture model is fitted from one in-memory table, not several files")
         from .dask_fit import fit_dask
 
         return fit_dask(data, response, factors=factors, block=block, spec=spec, chunk_rows=chunk_rows)
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
+    if components is not None or spec.mixture:
+        return _fit_mixture(data, response, components, factors, block, spec, chunk_rows)
     inp = model_inputs(data, response, factors, block, transform=spec.transform, origin=not spec.intercept)
     reduction = None
     if spec.reduce is not None:
@@ -128,13 +138,37 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
     return fit_inputs(inp, response, spec, chunk_rows=chunk_rows, reduction=reduction)
 
 
+def _fit_mixture(data: Any, response: str, components: Any, factors: Any, block: str | None, spec: ModelSpec,
+                 chunk_rows: int) -> FitResult:
+    """A Scheffé mixture fit (:mod:`rsm_lrg.model.mixture`)."""
+    from .mixture import MIXTURE_ORDERS, mixture_space
+
+    if not spec.mixture:
+        raise SpecError("model", f"mixture components need a Scheffé model ({', '.join(MIXTURE_ORDERS)}), "
+                                 f"not {spec.order!r}")
+    if not components:
+        raise SpecError("model", f"the {spec.order} model needs the mixture components (components=[...], "
+                                 "--component NAME)")
+    if factors:
+        raise SpecError("model", "mixture-process models (components with process factors) are not available yet")
+    if block is not None:
+        raise SpecError("model", "blocks in a mixture model are not available yet")
+    if spec.reduce is not None:
+        raise SpecError("reduce", "backward elimination of a mixture model is not available yet")
+    space = mixture_space(data, components, response)
+    inp = model_inputs(data, response, space, None, transform=spec.transform)
+    return fit_inputs(inp, response, spec, chunk_rows=chunk_rows)
+
+
 def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: int = CHUNK_ROWS,
                reduction: Any = None) -> FitResult:
     """The fit of checked inputs (:func:`~rsm_lrg.model.inputs.model_inputs`) to ``spec``'s
     terms (its reduction, if any, already applied)."""
     space, y, hint, nb, n = inp.space, inp.y, inp.hint, inp.nb, inp.n
     model = spec.order
-    if spec.terms is None:  # count the terms before building any (a cubic in 16 factors has 969)
+    if spec.mixture:
+        terms = _mixture_terms(spec, space, n, inp.settings, hint)
+    elif spec.terms is None:  # count the terms before building any (a cubic in 16 factors has 969)
         try:
             check_model_size(n, len(space), model, nb - 1, categoric=space.categoric)
         except ValueError as exc:
@@ -166,6 +200,27 @@ def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: 
                     ls=ls, pe=pe, bkeys=inp.bkeys, blevels=inp.blevels, data=prep.data.copy(), coded=inp.coded, y=y,
                     y_response=inp.y_response, input_notes=prep.notes, omitted_rows=prep.omitted_rows,
                     omitted_data=prep.omitted_data, reduction=reduction)
+
+
+def _mixture_terms(spec: ModelSpec, space: Any, n: int, settings: Any, hint: str) -> tuple:
+    """The Scheffé terms of a mixture spec, checked: products of distinct components, every
+    linear blending term, no more terms than distinct blends."""
+    import numpy as np
+
+    from .mixture import check_mixture_terms, scheffe_names
+
+    names = scheffe_names(space.letters, spec.order) if spec.terms is None else spec.terms
+    try:
+        terms = chosen_terms(names, space.letters, None, intercept=False)
+        check_mixture_terms(terms, len(space))
+    except ValueError as exc:
+        raise SpecError("terms", str(exc)) from None
+    blends = int(np.unique(np.asarray(settings, dtype=float), axis=0).shape[0])
+    if blends < len(terms):
+        what = f"the {spec.order} model" if spec.terms is None else "the model"
+        raise ValueError(f"{blends} distinct blends cannot fit {len(terms)} terms ({what} in {len(space)} "
+                         f"components){hint}")
+    return terms
 
 
 def fit_transformed(data: Any, response: str, transform: Any, *, constant: float = 0.0, **fit_kwargs: Any) -> FitResult:

@@ -163,6 +163,10 @@ class FitResult:
     def _sums(self) -> dict[str, Any]:
         """The sums of squares of the ANOVA from the core (blocks first, sequential; terms Type III)."""
         ls, nb, tidx = self.least_squares, self.n_blocks, self.term_index
+        if self.mixture:  # Scheffé: about the mean, linear blending first (rsm_lrg.model.mixture)
+            from .mixture import mixture_sums
+
+            return mixture_sums(ls, self.terms)
         mcols = tidx[1:] if self.intercept else tidx
         ss_block = ls.sequential_ss(np.arange(1, nb)) if nb > 1 else 0.0
         ss_model = ls.sequential_ss(mcols) if mcols.size else 0.0
@@ -176,6 +180,11 @@ class FitResult:
         """The Design-Expert ANOVA (Table 5 layout): columns ``source, sum_sq, df, mean_sq, f, p``."""
         s, ls = self._sums, self.least_squares
         n, nb = ls.n, self.n_blocks
+        if self.mixture:  # Design-Expert's mixture ANOVA: Linear Mixture, non-linear terms, Cor Total
+            return clean_anova(anova_table(
+                term_names=s["names"], term_ss=s["term_ss"], ss_model=s["ss_model"], df_model=s["df_model"],
+                ss_block=0.0, df_block=0, ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"],
+                df_total=n - 1, pe=self.pure_error, term_df=s["term_df"], total_label="Cor Total"))
         # Sums of squares that are round-off against the total (e.g. 2.5e-34 for a term whose
         # coefficient is zero by symmetry) are stored as 0 with F 0 and p 1, as every face shows them.
         return clean_anova(anova_table(
@@ -211,7 +220,7 @@ class FitResult:
         is used then)."""
         from .actual_units import is_closed_under_shift, solve_actual
 
-        if self.coded is None or self.y is None:
+        if self.coded is None or self.y is None or self.mixture:  # mixture: actual_coefficients expands exactly
             return None
         x = np.column_stack([self.coded[f.letter].to_numpy(dtype=float) if f.kind == "categoric"
                              else float_column(self.data, f.name).to_numpy(dtype=float) for f in self.space.factors])
@@ -240,6 +249,10 @@ class FitResult:
             blocks = set(self.column_names[1:self.n_blocks])
             return {k: float(v) for k, v in sol.coefficients.items() if k not in blocks}
         coded = dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist()))
+        if self.mixture:  # the Scheffé polynomial in real proportions (exact change of basis)
+            from .mixture import pseudo_to_actual
+
+            return pseudo_to_actual(coded, self.terms, self.space)
         return actual_coefficients(coded, self.terms, self.space)
 
     @property
@@ -300,7 +313,11 @@ class FitResult:
 
     @cached_property
     def stationary_point(self) -> StationaryPoint:
-        """The stationary point and canonical analysis (first categoric levels)."""
+        """The stationary point and canonical analysis (first categoric levels); none for a
+        mixture model, whose components are not free."""
+        if self.mixture:
+            return StationaryPoint(None, None, None, note="no canonical analysis: the mixture components are not free "
+                                   "(they sum to the total)", letters=self.space.letters)
         coded = dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist()))
         return canonical_analysis(coded, self.terms, self.space)
 
@@ -321,6 +338,12 @@ class FitResult:
         return self.spec.transform
 
     @property
+    def mixture(self) -> bool:
+        """Whether this is a Scheffé mixture model (components coded as L-pseudo-components; no
+        intercept column, the mean held implicitly; ANOVA and R² about the mean)."""
+        return self.spec.mixture
+
+    @property
     def intercept(self) -> bool:
         """Whether the model has an intercept."""
         return bool(self.terms) and self.terms[0].order == 0
@@ -339,7 +362,7 @@ class FitResult:
             parts = [f"{red.start_model}, reduced (removed {', '.join(red.removed) or 'nothing'})"]
         else:
             parts = [spec.order if spec.terms is None else "terms " + " ".join(t.name for t in self.model_terms)]
-        if not self.intercept:
+        if not self.intercept and not self.mixture:
             parts.append("no intercept")
         if not self.transform.identity:
             parts.append(f"{self.transform.label} transform")

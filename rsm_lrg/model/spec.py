@@ -24,6 +24,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..terms import MODELS
+from .mixture import MIXTURE_MODELS, MIXTURE_ORDERS
 from .transform import Transform, parse_transform
 
 __all__ = ["ModelSpec", "ReduceSpec", "SpecError"]
@@ -77,8 +78,11 @@ class ModelSpec:
     Attributes
     ----------
     order : str
-        ``"linear"``, ``"2fi"``, ``"quadratic"`` or ``"cubic"``: the model when ``terms`` is
-        ``None``; with ``terms`` it only names the starting point of a reduction.
+        ``"linear"``, ``"2fi"``, ``"quadratic"`` or ``"cubic"``, or a Scheffé mixture model
+        (``"mixture-linear"``, ``"mixture-quadratic"``, ``"special-cubic"``;
+        :mod:`rsm_lrg.model.mixture`): the model when ``terms`` is ``None``; with ``terms``
+        it only names the starting point of a reduction (for a mixture order, that the
+        terms are Scheffé terms in the components).
     terms : tuple of str or None
         The model's terms (without the intercept), in the JSON term notation.
     intercept : bool
@@ -97,8 +101,16 @@ class ModelSpec:
     reduce: ReduceSpec | None = None
 
     def __post_init__(self) -> None:
-        if self.order not in MODELS:
-            raise SpecError("model", f"unknown model {self.order!r}; expected one of {', '.join(MODELS)}")
+        if self.order == "mixture-cubic":
+            raise SpecError("model", "mixture-cubic (the full cubic's terms AB(A-B)) is not available yet; fit "
+                                     "special-cubic, or list Scheffé terms with --terms")
+        if self.order not in MODELS and self.order not in MIXTURE_ORDERS:
+            raise SpecError("model", f"unknown model {self.order!r}; expected one of "
+                                     f"{', '.join(MODELS + MIXTURE_MODELS)}")
+        if self.mixture:
+            if self.intercept:  # the Scheffé models hold the mean implicitly (sum of components = 1)
+                object.__setattr__(self, "intercept", False)
+            return
         if not self.intercept and self.terms is None:
             raise SpecError("terms", "a model without an intercept is given as a list of terms "
                                      "(--terms \"A B ...\" with --no-intercept)")
@@ -115,7 +127,8 @@ class ModelSpec:
         if model is None:
             model = "quadratic"
         if not isinstance(model, str):
-            raise SpecError("model", f"model must be one of {', '.join(MODELS)} or a ModelSpec, not {model!r}")
+            raise SpecError("model", f"model must be one of {', '.join(MODELS + MIXTURE_MODELS)} or a ModelSpec, "
+                                     f"not {model!r}")
         order = model.strip().lower()
         parsed_terms = None if terms is None else _term_names(terms)
         try:
@@ -128,10 +141,15 @@ class ModelSpec:
                    reduce=ReduceSpec.build(reduce))
 
     @property
+    def mixture(self) -> bool:
+        """Whether this is a Scheffé mixture model (no intercept; ANOVA about the mean)."""
+        return self.order in MIXTURE_ORDERS
+
+    @property
     def label(self) -> str:
         """``"quadratic"``, ``"terms A B AB, no intercept, log transform, reduced (p, 0.1)"``."""
         parts = [self.order if self.terms is None else "terms " + " ".join(self.terms)]
-        if not self.intercept:
+        if not self.intercept and not self.mixture:
             parts.append("no intercept")
         if not self.transform.identity:
             parts.append(f"{self.transform.label} transform")

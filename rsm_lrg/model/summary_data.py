@@ -75,10 +75,14 @@ def _finite(x: Any) -> bool:
 
 def summary_data(result: Any) -> SummaryData:
     """The :class:`SummaryData` of a fit (see the module docstring)."""
-    named = {"linear": "linear", "2fi": "2FI", "quadratic": "quadratic", "cubic": "cubic"}.get(result.model)
+    named = {"linear": "linear", "2fi": "2FI", "quadratic": "quadratic", "cubic": "cubic",
+             "mixture-linear": "Scheffé linear mixture", "mixture-quadratic": "Scheffé quadratic mixture",
+             "special-cubic": "Scheffé special cubic mixture"}.get(result.model)
+    mixture = bool(getattr(result, "mixture", False))
     title = ("ANOVA for the " + (f"{named} model" if named else "model of the terms chosen")
-             + " (partial sum of squares - Type III)"
-             + ("" if result.intercept else "; no intercept: the model row and total are uncorrected"))
+             + (" (Linear Mixture sequential, other terms partial sum of squares - Type III; about the mean)"
+                if mixture else " (partial sum of squares - Type III)")
+             + ("" if result.intercept or mixture else "; no intercept: the model row and total are uncorrected"))
     anova = result.anova
     rows = {r.source: r for r in anova.itertuples(index=False)}
     notes: list[str] = []
@@ -111,7 +115,7 @@ def summary_data(result: Any) -> SummaryData:
         ("Std. Dev.", s.std_dev, "√(residual mean square) [response units]"),
         ("Mean", s.mean, "mean response [response units]"),
         ("C.V. %", s.cv_percent, "100 · Std. Dev. / Mean"),
-        ("R²", s.r2, "" if result.intercept else "uncorrected (no intercept)"),
+        ("R²", s.r2, "" if result.intercept or getattr(result, "mixture", False) else "uncorrected (no intercept)"),
         ("Adjusted R²", s.adj_r2, ""),
         ("Predicted R²", s.pred_r2, "from PRESS"),
         ("PRESS", s.press, "prediction error sum of squares"),

@@ -106,7 +106,11 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
     if units == "coded":
         values, mags = coded, [1.0] * len(letters)
     else:
-        if result.space.has_categoric:
+        if getattr(result, "mixture", False):  # the Scheffé polynomial in real proportions
+            from .mixture import pseudo_to_actual
+
+            values = pseudo_to_actual(coded, result.terms, result.space)
+        elif result.space.has_categoric:
             chosen = dict(level or {})
             values = next(eq for setting, eq in actual_equations(result, coded)
                           if all(setting[k] == v for k, v in chosen.items()))
@@ -177,9 +181,18 @@ def format_summary(result) -> str:
     sp = result.space
     out.append(f"Response: {result.response}   runs: {result.n}   model: {result.model}"
                + (f"   blocks: {result.block} ({len(result.block_effects)})" if result.block else ""))
-    out.append("Factors (coded -1 .. +1):")
+    mixture = bool(getattr(result, "mixture", False))
+    if mixture:
+        f0 = sp.factors[0]
+        out.append(f"Mixture components (total {format_g(getattr(f0, 'total', 1.0), 6)}; coded as L-pseudo components "
+                   f"(x - L) / {format_g(getattr(f0, 'pseudo_range', 1.0), 6)}):")
+    else:
+        out.append("Factors (coded -1 .. +1):")
     for f in sp.factors:
-        if f.kind == "categoric":
+        if mixture:
+            out.append(f"  {f.letter}: {f.name}  L = {format_g(getattr(f, 'lower', 0.0), 6)}, "
+                       f"upper {format_g(getattr(f, 'upper', 1.0), 6)}")
+        elif f.kind == "categoric":
             out.append(f"  {f.letter}: {f.name}  categoric, levels {', '.join(f.levels)} (effect coded)")
         else:
             out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6)} .. {format_g(f.high, 6)}")
@@ -217,15 +230,17 @@ def format_summary(result) -> str:
         out.append("Block effects (sum to zero): " + ", ".join(
             f"{k} ({result.block_levels[k]}) {format_g(v)}" for k, v in result.block_effects.items()))
     out.append("")
-    out.append("Final equation in terms of coded factors")
+    out.append("Final equation in terms of L-pseudo components" if mixture else "Final equation in terms of coded factors")
     out.append(format_equation(result, "coded"))
     out.append("")
-    out.append("Final equation in terms of actual factors")
+    out.append("Final equation in terms of real proportions" if mixture else "Final equation in terms of actual factors")
     out.append(format_equation(result, "actual"))
     out.append("")
     sp_ = result.stationary_point
     out.append("Canonical analysis")
-    if sp_.eigenvalues is None:
+    if mixture:
+        out.append("  not applicable to a mixture model (the components are not free: they sum to the total)")
+    elif sp_.eigenvalues is None:
         out.append(f"  {sp_.note}")
     else:
         if sp_.coded is None:

@@ -1,0 +1,181 @@
+"""Scheffé mixture models (no intercept) on L-pseudo-components.
+
+The components ``x_1 .. x_q`` of a blend sum to a total ``T``. They are coded as
+L-pseudo-components ``x'_i = (x_i - L_i) / (T - sum L)`` (:class:`~rsm_lrg.factors.MixtureComponent`;
+``L_i`` the component's lower bound, or its observed minimum) and fitted by the Scheffé
+canonical polynomials (Cornell, *Experiments with Mixtures*, 3rd ed., Eqs. 2.7-2.10),
+
+    linear          E[y] = sum b_i x'_i
+    quadratic       ... + sum_{i<j} b_ij x'_i x'_j
+    special cubic   ... + sum_{i<j<k} b_ijk x'_i x'_j x'_k
+
+which have no intercept: the mean is in them implicitly (``sum x'_i = 1``), so the ANOVA
+and R² are about the mean (Design-Expert's mixture ANOVA): ``Model`` on p - 1 df,
+``Linear Mixture`` on q - 1 df (the linear model's sum of squares about the mean, taken
+first), one row per non-linear term (its partial sum of squares), ``Residual``, ``Lack of
+Fit``, ``Pure Error``, ``Cor Total``.
+
+The full cubic's terms ``x_i x_j (x_i - x_j)`` are not products of distinct components and
+are not offered (``mixture-cubic`` is refused with a message).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from itertools import combinations
+from typing import Any
+
+import numpy as np
+
+from ..factors import FactorSpace, MixtureComponent, letters_for, parse_factor_spec, quote_value
+from ..io import float_column
+from .terms import Term
+
+__all__ = ["MIXTURE_MODELS", "MIXTURE_ORDERS", "SUM_RTOL", "scheffe_names", "mixture_space", "check_mixture_terms",
+           "pseudo_to_actual", "mixture_sums"]
+
+#: The Scheffé models by name, with the highest number of distinct components in a term.
+MIXTURE_ORDERS = {"mixture-linear": 1, "mixture-quadratic": 2, "special-cubic": 3}
+#: Every mixture model name a command accepts (``mixture-cubic`` is refused with a message).
+MIXTURE_MODELS = (*MIXTURE_ORDERS, "mixture-cubic")
+#: A row's components must sum to the total within this relative tolerance.
+SUM_RTOL = 1e-6
+
+
+def scheffe_names(letters: Sequence[str], order: str) -> list[str]:
+    """The term names of a Scheffé model: ``["A", "B", "C", "AB", "AC", "BC", "ABC"]`` for
+    the special cubic in three components.
+
+    >>> scheffe_names("ABC", "mixture-quadratic")
+    ['A', 'B', 'C', 'AB', 'AC', 'BC']
+    """
+    deg = MIXTURE_ORDERS[order]
+    return ["".join(c) for d in range(1, deg + 1) for c in combinations(list(letters), d)]
+
+
+def mixture_space(data: Any, components: Sequence[Any], response: str | None = None) -> FactorSpace:
+    """The components as :class:`~rsm_lrg.factors.MixtureComponent` (letters A, B, ...),
+    coded as L-pseudo-components.
+
+    ``components`` are names or ``"NAME=LOW:HIGH"`` strings: ``LOW`` is the L-pseudo origin
+    and the bounds are checked; a bare name takes its observed minimum as ``LOW`` (and no
+    upper bound). The total ``T`` is read from the data: the median row sum of the rows
+    with a response; every such row must sum to ``T`` within ``SUM_RTOL`` (1e-6) relative.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two components, a repeated one, a missing or non-numeric column, a
+        negative proportion, a row whose components do not sum to the total or that is
+        outside a component's bounds (naming the row, 1-based as in the file), lower bounds
+        that sum to the total or beyond.
+    """
+    import pandas as pd
+
+    if isinstance(components, str):
+        components = [components]
+    items = [c if isinstance(c, tuple) else parse_factor_spec(str(c)) for c in components]
+    names = [str(it[0]) for it in items]
+    if len(names) < 2:
+        raise ValueError("a mixture needs at least two components (--component once per name)")
+    for nm in names:
+        if names.count(nm) > 1:
+            raise ValueError(f"component {quote_value(nm)} is given twice")
+        if nm not in data.columns:
+            raise ValueError(f"component column {quote_value(nm)} is not in the data")
+    if not isinstance(data, pd.DataFrame):
+        raise TypeError("data must be a pandas DataFrame")
+    rows = np.arange(len(data))
+    if response is not None and response in data.columns:
+        keep = ~pd.isna(data[response]).to_numpy()
+        data, rows = data[keep], rows[keep]
+    x = np.column_stack([float_column(data, nm).to_numpy(dtype=float) for nm in names])
+    neg = np.argwhere(x < 0)
+    if neg.size:
+        i, j = neg[0]
+        raise ValueError(f"row {rows[i] + 1}: component {quote_value(names[j])} is negative ({x[i, j]:g})")
+    sums = x.sum(axis=1)
+    total = float(np.median(sums))
+    if not total > 0:
+        raise ValueError("the components sum to zero: not a mixture")
+    off = np.flatnonzero(np.abs(sums - total) > SUM_RTOL * total)
+    if off.size:
+        i = int(off[0])
+        raise ValueError(f"row {rows[i] + 1}: the components sum to {sums[i]:.12g}, not the total {total:.12g} of "
+                         f"the other rows (tolerance {SUM_RTOL:g} relative)")
+    tol = SUM_RTOL * total
+    lowers = [float(x[:, j].min()) if lo is None else float(lo) for j, (_, lo, _) in enumerate(items)]
+    uppers = [total if hi is None else float(hi) for (_, _, hi) in items]
+    pseudo_range = total - math.fsum(lowers)
+    if not pseudo_range > tol:
+        raise ValueError(f"the components' lower bounds sum to {math.fsum(lowers):g}, leaving no room below the "
+                         f"total {total:g}")
+    for j, nm in enumerate(names):
+        bad = np.flatnonzero((x[:, j] < lowers[j] - tol) | (x[:, j] > uppers[j] + tol))
+        if bad.size:
+            i = int(bad[0])
+            raise ValueError(f"row {rows[i] + 1}: component {quote_value(nm)} is {x[i, j]:.12g}, outside its bounds "
+                             f"{lowers[j]:g}..{uppers[j]:g}")
+    letters = letters_for(len(names))
+    return FactorSpace(tuple(MixtureComponent.build(nm, L, lo, hi, total, pseudo_range)
+                             for nm, L, lo, hi in zip(names, letters, lowers, uppers)))
+
+
+def check_mixture_terms(terms: Sequence[Term], q: int) -> None:
+    """A Scheffé term list: every term a product of distinct components (no powers), and
+    every linear blending term present (they stand for the intercept)."""
+    for t in terms:
+        if any(p > 1 for p in t.powers) or t.order == 0:
+            raise ValueError(f"term {t.name} is not a Scheffé mixture term (products of distinct components "
+                             "such as A, AB, ABC)")
+    linear = {t.powers.index(1) for t in terms if t.order == 1}
+    missing = [letters_for(q)[j] for j in range(q) if j not in linear]
+    if missing:
+        raise ValueError(f"a mixture model keeps every linear blending term (missing {', '.join(missing)})")
+
+
+def pseudo_to_actual(coded: dict[str, float], terms: Sequence[Term], space: FactorSpace) -> dict[str, float]:
+    """The Scheffé polynomial in real proportions from its L-pseudo coefficients.
+
+    Each term ``b prod_{i in S} (x_i - L_i) / R`` is expanded exactly over the subsets of
+    ``S`` (it stays a product of distinct components); a constant ``c`` is folded into the
+    linear terms as ``c sum x_i / T`` (every blend sums to ``T``). Keys are term names in
+    the real proportions (``A``, ``AB``, ...); monomials beyond the model's terms (a
+    reduced model without ``AB`` whose ``ABC`` brings one) are listed too.
+    """
+    comps = [f for f in space.factors if isinstance(f, MixtureComponent)]
+    letters = space.letters
+    q = len(comps)
+    R, T = comps[0].pseudo_range, comps[0].total
+    parts: dict[tuple[int, ...], list[float]] = {}
+    for t in terms:
+        S = [i for i, p in enumerate(t.powers) if p]
+        b = float(coded[t.name]) / R ** len(S)
+        for d in range(len(S) + 1):
+            for U in combinations(S, d):
+                c = b
+                for i in S:
+                    if i not in U:
+                        c *= -comps[i].lower
+                parts.setdefault(U, []).append(c)
+    const = math.fsum(parts.pop((), []))
+    for i in range(q):
+        parts.setdefault((i,), []).append(const / T)
+    order = sorted(parts, key=lambda U: (len(U), U))
+    return {"".join(letters[i] for i in U): math.fsum(parts[U]) for U in order}
+
+
+def mixture_sums(ls: Any, terms: Sequence[Term]) -> dict[str, Any]:
+    """The mixture ANOVA's sums of squares from the regression core of a Scheffé fit (no
+    intercept column; linear terms first): ``Linear Mixture`` = the linear model's SS about
+    the mean (q - 1 df), the partial SS of each non-linear term, the model about the mean."""
+    q = sum(1 for t in terms if t.order == 1)
+    ss_total = float(ls.ss_total)
+    ss_lin = max(ss_total - float(ls.submodel(np.arange(q)).ss_res), 0.0)
+    nonlin = [j for j, t in enumerate(terms) if t.order > 1]
+    names = ["Linear Mixture"] + [terms[j].name for j in nonlin]
+    term_ss = [ss_lin] + [float(ls.partial_ss(j)) for j in nonlin]
+    return {"ss_block": 0.0, "ss_model": max(ss_total - float(ls.ss_res), 0.0), "ss_total": ss_total,
+            "df_model": len(terms) - 1, "names": names, "term_ss": term_ss, "term_df": [q - 1] + [1] * len(nonlin),
+            "groups": [np.arange(q)] + [np.array([j]) for j in nonlin]}
