@@ -317,7 +317,7 @@ class FitResult:
         mixture model, whose components are not free."""
         if self.mixture:
             return StationaryPoint(None, None, None, note="no canonical analysis: the mixture components are not free "
-                                   "(they sum to the total)", letters=self.space.letters)
+                                   "(they sum to the total)", letters=tuple(self.space.letters))
         coded = dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist()))
         return canonical_analysis(coded, self.terms, self.space)
 

@@ -1,0 +1,59 @@
+"""``fit --component ... --model mixture-quadratic|special-cubic``: the Scheffé fit from the
+command line (numbers checked against R in tests/model/test_mixture_fit.py)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from rsm_lrg.cli import main
+
+DATA = Path(__file__).parents[1] / "model" / "r" / "mixture_etch_l.csv"
+COMPS = ["--component", "x1=0.1:1", "--component", "x2=0.2:1", "--component", "x3=0.05:1"]
+
+
+def test_fit_mixture_json(tmp_path, capsys):
+    out = tmp_path / "fit.json"
+    assert main(["fit", str(DATA), "--response", "erate", *COMPS, "--model", "special-cubic", "--json", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "Linear Mixture" in text and "Final equation in terms of real proportions" in text
+    d = json.loads(out.read_text())
+    assert d["model"] == "special-cubic" and d["intercept"] is False
+    assert list(d["coefficients"]["coded"]) == ["A", "B", "C", "AB", "AC", "BC", "ABC"]
+    assert set(d["coefficients"]["actual"]) == {"A", "B", "C", "AB", "AC", "BC", "ABC"}
+    assert [r["source"] for r in d["anova"]] == ["Model", "Linear Mixture", "AB", "AC", "BC", "ABC", "Residual",
+                                                 "Lack of Fit", "Pure Error", "Cor Total"]
+    expected = pd.read_csv(DATA.parent / "mixture_expected.csv")
+    want = expected[(expected.set == "etch_l") & (expected.model == "special-cubic") & (expected.quantity == "coef")]
+    for row in want.itertuples():
+        assert d["coefficients"]["coded"][row.term] == pytest.approx(float(row.value), rel=1e-9)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--model", "quadratic"], "error: --model: mixture components (--component) need a Scheffé model"),
+    (["--model", "mixture-cubic"], "error: --model 'mixture-cubic': mixture-cubic"),
+])
+def test_fit_mixture_bad_model(args, message, capsys):
+    assert main(["fit", str(DATA), "--response", "erate", *COMPS, *args]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(message) and err.count("\n") == 1
+
+
+def test_fit_mixture_bad_row(tmp_path, capsys):
+    d = pd.read_csv(DATA)
+    d.loc[6, "x2"] += 0.01
+    bad = tmp_path / "bad.csv"
+    d.to_csv(bad, index=False)
+    out = tmp_path / "fit.json"
+    assert main(["fit", str(bad), "--response", "erate", *COMPS, "--model", "mixture-linear", "--json", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "row 7: the components sum to 1.01" in err and err.count("\n") == 1
+    assert not out.exists()
+
+
+def test_components_refused_where_not_handled(capsys):
+    assert main(["optimize", str(DATA), "--response", "erate", *COMPS, "--model", "mixture-linear"]) == 2
+    assert "--component: optimize of a mixture model is not available yet" in capsys.readouterr().err
