@@ -149,13 +149,11 @@ def _fit_mixture(data: Any, response: str, components: Any, factors: Any, block:
     if not components:
         raise SpecError("model", f"the {spec.order} model needs the mixture components (components=[...], "
                                  "--component NAME)")
-    if factors:
-        raise SpecError("model", "mixture-process models (components with process factors) are not available yet")
     if block is not None:
         raise SpecError("model", "blocks in a mixture model are not available yet")
     if spec.reduce is not None:
         raise SpecError("reduce", "backward elimination of a mixture model is not available yet")
-    space = mixture_space(data, components, response)
+    space = mixture_space(data, components, response, process=factors)
     inp = model_inputs(data, response, space, None, transform=spec.transform)
     return fit_inputs(inp, response, spec, chunk_rows=chunk_rows)
 
@@ -207,19 +205,24 @@ def _mixture_terms(spec: ModelSpec, space: Any, n: int, settings: Any, hint: str
     linear blending term, no more terms than distinct blends."""
     import numpy as np
 
+    from ..factors import MixtureComponent
     from .mixture import check_mixture_terms, scheffe_names
 
-    names = scheffe_names(space.letters, spec.order) if spec.terms is None else spec.terms
+    q = sum(isinstance(f, MixtureComponent) for f in space.factors)
+    letters = space.letters
+    names = scheffe_names(letters[:q], spec.order, letters[q:]) if spec.terms is None else spec.terms
     try:
-        terms = chosen_terms(names, space.letters, None, intercept=False)
-        check_mixture_terms(terms, len(space))
+        terms = chosen_terms(names, letters, None, intercept=False)
+        check_mixture_terms(terms, q)
     except ValueError as exc:
         raise SpecError("terms", str(exc)) from None
     blends = int(np.unique(np.asarray(settings, dtype=float), axis=0).shape[0])
     if blends < len(terms):
         what = f"the {spec.order} model" if spec.terms is None else "the model"
-        raise ValueError(f"{blends} distinct blends cannot fit {len(terms)} terms ({what} in {len(space)} "
-                         f"components){hint}")
+        kind = "blends" if q == len(space) else "settings"
+        raise ValueError(f"{blends} distinct {kind} cannot fit {len(terms)} terms ({what} in {q} "
+                         f"components{'' if q == len(space) else ' and ' + str(len(space) - q) + ' process factors'})"
+                         f"{hint}")
     return terms
 
 

@@ -40,28 +40,36 @@ MIXTURE_ORDERS = {"mixture-linear": 1, "mixture-quadratic": 2, "special-cubic": 
 #: Every mixture model name a command accepts (``mixture-cubic`` is refused with a message).
 MIXTURE_MODELS = (*MIXTURE_ORDERS, "mixture-cubic")
 #: A row's components must sum to the total within this relative tolerance.
-SUM_RTOL = 1e-6
+SUM_RTOL = 1e-4
 
 
-def scheffe_names(letters: Sequence[str], order: str) -> list[str]:
+def scheffe_names(letters: Sequence[str], order: str, process: Sequence[str] = ()) -> list[str]:
     """The term names of a Scheffé model: ``["A", "B", "C", "AB", "AC", "BC", "ABC"]`` for
-    the special cubic in three components.
+    the special cubic in three components; with process factors (letters ``process``) each
+    mixture term crossed with each process main effect (Cornell, Ch. 7, the combined
+    model: ``AD``, ``ABD``, ...).
 
     >>> scheffe_names("ABC", "mixture-quadratic")
     ['A', 'B', 'C', 'AB', 'AC', 'BC']
+    >>> scheffe_names("AB", "mixture-linear", "C")
+    ['A', 'B', 'AC', 'BC']
     """
     deg = MIXTURE_ORDERS[order]
-    return ["".join(c) for d in range(1, deg + 1) for c in combinations(list(letters), d)]
+    mix = ["".join(c) for d in range(1, deg + 1) for c in combinations(list(letters), d)]
+    return mix + [m + p for p in process for m in mix]
 
 
-def mixture_space(data: Any, components: Sequence[Any], response: str | None = None) -> FactorSpace:
+def mixture_space(data: Any, components: Sequence[Any], response: str | None = None,
+                  process: Any = None) -> FactorSpace:
     """The components as :class:`~rsm_lrg.factors.MixtureComponent` (letters A, B, ...),
-    coded as L-pseudo-components.
+    coded as L-pseudo-components, then the process factors ``process`` (names or
+    ``"NAME=LOW:HIGH"``, coded -1 .. +1 as every factor; letters after the components).
 
     ``components`` are names or ``"NAME=LOW:HIGH"`` strings: ``LOW`` is the L-pseudo origin
     and the bounds are checked; a bare name takes its observed minimum as ``LOW`` (and no
     upper bound). The total ``T`` is read from the data: the median row sum of the rows
-    with a response; every such row must sum to ``T`` within ``SUM_RTOL`` (1e-6) relative.
+    with a response; every such row must sum to ``T`` within ``SUM_RTOL`` (1e-4) relative
+    (published tables print 1/3 as 0.33333).
 
     Raises
     ------
@@ -117,51 +125,73 @@ def mixture_space(data: Any, components: Sequence[Any], response: str | None = N
             i = int(bad[0])
             raise ValueError(f"row {rows[i] + 1}: component {quote_value(nm)} is {x[i, j]:.12g}, outside its bounds "
                              f"{lowers[j]:g}..{uppers[j]:g}")
-    letters = letters_for(len(names))
-    return FactorSpace(tuple(MixtureComponent.build(nm, L, lo, hi, total, pseudo_range)
-                             for nm, L, lo, hi in zip(names, letters, lowers, uppers)))
+    from dataclasses import replace
+
+    proc = [] if not process else list(FactorSpace.from_data(data, process).factors)
+    for f in proc:
+        if f.name in names:
+            raise ValueError(f"{quote_value(f.name)} is given both as a component and as a process factor")
+        if f.kind != "numeric":
+            raise ValueError(f"process factor {quote_value(f.name)} is categoric; mixture-process models take "
+                             "numeric process factors")
+    letters = letters_for(len(names) + len(proc))
+    comps = [MixtureComponent.build(nm, L, lo, hi, total, pseudo_range)
+             for nm, L, lo, hi in zip(names, letters, lowers, uppers)]
+    return FactorSpace(tuple(comps) + tuple(replace(f, letter=L) for f, L in zip(proc, letters[len(names):])))
 
 
 def check_mixture_terms(terms: Sequence[Term], q: int) -> None:
-    """A Scheffé term list: every term a product of distinct components (no powers), and
-    every linear blending term present (they stand for the intercept)."""
+    """A Scheffé term list: every term a product of distinct factors (no powers) with at least
+    one of the ``q`` components (a process term alone is the sum of its crossings), and every
+    linear blending term present (they stand for the intercept)."""
     for t in terms:
         if any(p > 1 for p in t.powers) or t.order == 0:
             raise ValueError(f"term {t.name} is not a Scheffé mixture term (products of distinct components "
-                             "such as A, AB, ABC)")
-    linear = {t.powers.index(1) for t in terms if t.order == 1}
+                             "such as A, AB, ABC, crossed with process factors: AD, ABD)")
+        if not any(t.powers[:q]):
+            raise ValueError(f"term {t.name} has no mixture component (a process term enters crossed with the "
+                             "blending terms: AD, BD, ...)")
+    linear = {t.powers.index(1) for t in terms if t.order == 1 and any(t.powers[:q])}
     missing = [letters_for(q)[j] for j in range(q) if j not in linear]
     if missing:
         raise ValueError(f"a mixture model keeps every linear blending term (missing {', '.join(missing)})")
 
 
 def pseudo_to_actual(coded: dict[str, float], terms: Sequence[Term], space: FactorSpace) -> dict[str, float]:
-    """The Scheffé polynomial in real proportions from its L-pseudo coefficients.
+    """The Scheffé polynomial in real proportions (and process factors in actual units) from
+    its coded coefficients.
 
-    Each term ``b prod_{i in S} (x_i - L_i) / R`` is expanded exactly over the subsets of
-    ``S`` (it stays a product of distinct components); a constant ``c`` is folded into the
-    linear terms as ``c sum x_i / T`` (every blend sums to ``T``). Keys are term names in
-    the real proportions (``A``, ``AB``, ...); monomials beyond the model's terms (a
-    reduced model without ``AB`` whose ``ABC`` brings one) are listed too.
+    Every factor's coding is affine in its own coordinate, ``x' = (x - o) / s`` (a component:
+    ``o = L``, ``s = T - sum L``; a process factor: its centre and half-range), and each term
+    is a product of distinct factors, so ``b prod_{i in S} (x_i - o_i) / s_i`` expands
+    exactly over the subsets of ``S``. A monomial without a component (a constant, or a
+    process factor alone) is folded into the components as ``m sum x_i / T`` (every blend
+    sums to ``T``). Keys are term names (``A``, ``AB``, ``AD``, ...); monomials beyond the
+    model's terms (a model without ``AB`` whose ``ABC`` brings one) are listed too.
     """
-    comps = [f for f in space.factors if isinstance(f, MixtureComponent)]
+    factors = list(space.factors)
+    comps = [i for i, f in enumerate(factors) if isinstance(f, MixtureComponent)]
+    first = factors[comps[0]]
+    assert isinstance(first, MixtureComponent)
+    T = first.total
+    origin = [f.lower if isinstance(f, MixtureComponent) else f.center for f in factors]
+    scale = [f.pseudo_range if isinstance(f, MixtureComponent) else f.half_range for f in factors]
     letters = space.letters
-    q = len(comps)
-    R, T = comps[0].pseudo_range, comps[0].total
     parts: dict[tuple[int, ...], list[float]] = {}
     for t in terms:
         S = [i for i, p in enumerate(t.powers) if p]
-        b = float(coded[t.name]) / R ** len(S)
+        b = float(coded[t.name]) / math.prod(scale[i] for i in S)
         for d in range(len(S) + 1):
             for U in combinations(S, d):
                 c = b
                 for i in S:
                     if i not in U:
-                        c *= -comps[i].lower
+                        c *= -origin[i]
                 parts.setdefault(U, []).append(c)
-    const = math.fsum(parts.pop((), []))
-    for i in range(q):
-        parts.setdefault((i,), []).append(const / T)
+    for U in [U for U in parts if not any(i in comps for i in U)]:  # fold: m = m sum x_i / T
+        m = math.fsum(parts.pop(U))
+        for i in comps:
+            parts.setdefault(tuple(sorted((i, *U))), []).append(m / T)
     order = sorted(parts, key=lambda U: (len(U), U))
     return {"".join(letters[i] for i in U): math.fsum(parts[U]) for U in order}
 
@@ -170,7 +200,7 @@ def mixture_sums(ls: Any, terms: Sequence[Term]) -> dict[str, Any]:
     """The mixture ANOVA's sums of squares from the regression core of a Scheffé fit (no
     intercept column; linear terms first): ``Linear Mixture`` = the linear model's SS about
     the mean (q - 1 df), the partial SS of each non-linear term, the model about the mean."""
-    q = sum(1 for t in terms if t.order == 1)
+    q = sum(1 for t in terms if t.order == 1)  # the linear blending terms (process terms are crossed)
     ss_total = float(ls.ss_total)
     ss_lin = max(ss_total - float(ls.submodel(np.arange(q)).ss_res), 0.0)
     nonlin = [j for j, t in enumerate(terms) if t.order > 1]

@@ -189,7 +189,10 @@ def format_summary(result) -> str:
     else:
         out.append("Factors (coded -1 .. +1):")
     for f in sp.factors:
-        if mixture:
+        if mixture and not hasattr(f, "pseudo_range"):
+            out.append(f"  {f.letter}: {f.name}  process factor, coded -1 .. +1 from {format_g(f.low, 6)} .. "
+                       f"{format_g(f.high, 6)}")
+        elif mixture:
             out.append(f"  {f.letter}: {f.name}  L = {format_g(getattr(f, 'lower', 0.0), 6)}, "
                        f"upper {format_g(getattr(f, 'upper', 1.0), 6)}")
         elif f.kind == "categoric":

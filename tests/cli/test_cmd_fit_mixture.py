@@ -57,3 +57,15 @@ def test_fit_mixture_bad_row(tmp_path, capsys):
 def test_components_refused_where_not_handled(capsys):
     assert main(["optimize", str(DATA), "--response", "erate", *COMPS, "--model", "mixture-linear"]) == 2
     assert "--component: optimize of a mixture model is not available yet" in capsys.readouterr().err
+
+
+def test_fit_mixture_process_keys(tmp_path, capsys):
+    data = DATA.parent / "mixture_fishp.csv"
+    out = tmp_path / "fit.json"
+    assert main(["fit", str(data), "--response", "y", "--component", "x1", "--component", "x2", "--component", "x3",
+                 "--factor", "z1", "--factor", "z2", "--model", "mixture-linear", "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    assert list(d["coefficients"]["coded"]) == ["A", "B", "C", "AD", "AE", "BD", "BE", "CD", "CE"]
+    assert [f["letter"] for f in d["factors"]] == ["A", "B", "C", "D", "E"]
+    assert [f.get("component", False) for f in d["factors"]] == [True, True, True, False, False]
+    assert "process factor" in capsys.readouterr().out

@@ -166,3 +166,52 @@ def test_refusals():
         rsm_lrg.fit(few, "erate", components=comps, model="special-cubic")
     with pytest.raises(ValueError, match="lower bounds sum to 1"):
         rsm_lrg.fit(d, "erate", components=["x1=0.5:1", "x2=0.5:1", "x3=0:1"], model="mixture-linear")
+
+
+def test_mixture_process_agrees_with_r():
+    """Cornell's fish patties (mixexp ``fishp``): Scheffé quadratic x linear process, 24 terms."""
+    exp = _expected()
+    exp = exp[exp["set"] == "fishp"]
+    d = pd.read_csv(HERE / "mixture_fishp.csv")
+    r = rsm_lrg.fit(d, "y", components=["x1", "x2", "x3"], factors=["z1", "z2", "z3"], model="mixture-quadratic")
+    assert len(r.terms) == 24 and {"AD", "ABD", "BCF"} <= set(r.coefficients.index)
+    anova = r.anova.set_index("source")
+    total = float(anova.loc["Cor Total", "sum_sq"])
+    for row in exp.itertuples(index=False):
+        q, term, v = row.quantity, row.term, float(row.value)
+        if q == "coef":
+            got = r.coefficients.loc[term, "coded"]
+        elif q == "se":
+            got = r.coefficients.loc[term, "std_error"]
+        elif q == "anova":
+            got = anova.loc[term, "sum_sq"]
+        else:
+            got = getattr(r.statistics, term)
+        _close(float(got), v, 1e-12 * total if q == "anova" else 0.0)
+    assert int(anova.loc["Linear Mixture", "df"]) == 2 and "Pure Error" not in anova.index  # no replicates
+    # the actual polynomial (z in actual units; here coded = actual) predicts as the model
+    rng = np.random.default_rng(3)
+    x = rng.dirichlet(np.ones(3), size=40)
+    z = rng.uniform(-1, 1, size=(40, 3))
+    pts = pd.DataFrame(np.hstack([x, z]), columns=["x1", "x2", "x3", "z1", "z2", "z3"])
+    cols = {L: pts.iloc[:, i].to_numpy() for i, L in enumerate("ABCDEF")}
+    by_poly = sum(c * np.prod([cols[ch] for ch in k], axis=0) for k, c in r.actual_coefficients.items())
+    np.testing.assert_allclose(by_poly, r.predict(pts)["predicted"].to_numpy(), rtol=1e-10)
+
+
+def test_mixture_process_actual_with_a_shifted_process_factor():
+    """A process factor in actual units (z = 20 + 5 z_coded): the expansion folds its constant into the blend."""
+    d = pd.read_csv(HERE / "mixture_fishp.csv").assign(t=lambda f: 20.0 + 5.0 * f["z1"])
+    r = rsm_lrg.fit(d, "y", components=["x1", "x2", "x3"], factors=["t", "z2"], model="mixture-linear")
+    rng = np.random.default_rng(5)
+    x = rng.dirichlet(np.ones(3), size=30)
+    t = rng.uniform(15, 25, size=30)
+    z2 = rng.uniform(-1, 1, size=30)
+    pts = pd.DataFrame({"x1": x[:, 0], "x2": x[:, 1], "x3": x[:, 2], "t": t, "z2": z2})
+    cols = {"A": x[:, 0], "B": x[:, 1], "C": x[:, 2], "D": t, "E": z2}
+    act = r.actual_coefficients
+    assert set(act) == {"A", "B", "C", "AD", "BD", "CD", "AE", "BE", "CE"}
+    by_poly = sum(c * np.prod([cols[ch] for ch in k], axis=0) for k, c in act.items())
+    np.testing.assert_allclose(by_poly, r.predict(pts)["predicted"].to_numpy(), rtol=1e-10)
+    with pytest.raises(SpecError, match="term D has no mixture component"):
+        rsm_lrg.fit(d, "y", components=["x1", "x2", "x3"], factors=["t"], model="mixture-linear", terms="A B C D")

@@ -71,3 +71,37 @@ run <- function(set, d, real) {
 run("etch", etch, 0)
 run("etch_l", lpd, 1)
 write.csv(do.call(rbind, rows), "mixture_expected.csv", row.names = FALSE, quote = FALSE)
+
+# Mixture-process: Cornell's fish-patty experiment (Experiments with Mixtures, 3rd ed., 2002,
+# pp. 361-365; mixexp's `fishp`, in mixture_fishp.csv as shipped: blends printed to 5 decimals),
+# the Scheffé quadratic in x1..x3 crossed with the linear process model in z1..z3 (24 terms).
+fp <- read.csv("mixture_fishp.csv")
+M <- with(fp, cbind(A = x1, B = x2, C = x3, AB = x1 * x2, AC = x1 * x3, BC = x2 * x3))
+X <- cbind(M, M * fp$z1, M * fp$z2, M * fp$z3)
+colnames(X) <- c(colnames(M), paste0(colnames(M), "D"), paste0(colnames(M), "E"), paste0(colnames(M), "F"))
+y <- fp$y
+f <- lm(y ~ -1 + X)
+s <- summary(f)$coefficients
+rows <- list()
+nm <- sub("^X", "", rownames(s))
+for (i in seq_along(nm)) {
+  add("fishp", "mixture-quadratic", "coef", nm[i], s[i, 1])
+  add("fishp", "mixture-quadratic", "se", nm[i], s[i, 2])
+}
+sst <- sum((y - mean(y))^2); ssr <- sum(resid(f)^2); n <- length(y); p <- ncol(X)
+add("fishp", "mixture-quadratic", "anova", "Residual", ssr)
+add("fishp", "mixture-quadratic", "anova", "Model", sst - ssr)
+add("fishp", "mixture-quadratic", "anova", "Cor Total", sst)
+add("fishp", "mixture-quadratic", "anova", "Linear Mixture", sst - sum(resid(lm(y ~ -1 + M[, 1:3]))^2))
+for (j in 4:p) {
+  g <- lm(y ~ -1 + X[, -j])
+  add("fishp", "mixture-quadratic", "anova", colnames(X)[j], sum(resid(g)^2) - ssr)
+}
+h <- hatvalues(f)
+press <- sum((resid(f) / (1 - h))^2)
+add("fishp", "mixture-quadratic", "stat", "r2", 1 - ssr / sst)
+add("fishp", "mixture-quadratic", "stat", "adj_r2", 1 - (ssr / (n - p)) / (sst / (n - 1)))
+add("fishp", "mixture-quadratic", "stat", "pred_r2", 1 - press / sst)
+# actual: x and z are the actual units here (z coded -1/+1 in the file, so the coding is identity)
+write.csv(rbind(read.csv("mixture_expected.csv", colClasses = "character"), do.call(rbind, rows)),
+          "mixture_expected.csv", row.names = FALSE, quote = FALSE)
