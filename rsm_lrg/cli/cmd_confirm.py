@@ -74,19 +74,21 @@ def _check_at(settings) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ..optimize.confirm import confirm
-    from ._common import model_spec, print_notes, print_summary_or_json, read_input, refuse_components
+    from ._common import model_spec, print_notes, print_summary_or_json, read_input
 
-    refuse_components(args, "confirm")
     _check_at(args.at)
     spec = model_spec(args)
     data = read_input(args)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=spec)
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=spec,
+                     components=args.component)
     extra = {"reduction": result.reduction.to_dict()} if result.reduction is not None else {}
     try:  # the settings are an option: an error names --at, not the data file
         from ..optimize.confirm import parse_settings
 
         settings = parse_settings(result.space, args.at)
+        if result.mixture:  # a blend must sum to the total: named as --at's fault
+            result.predict({k: [v] for k, v in settings.items()})
     except ValueError as exc:
         from ..io import InputError
 

@@ -58,6 +58,11 @@ class MixtureComponent(Factor):
         return cls(name=name, low=lower - pseudo_range, high=lower + pseudo_range, letter=letter,
                    lower=float(lower), upper=float(upper), total=float(total), pseudo_range=float(pseudo_range))
 
+    @property
+    def lower_sum(self) -> float:
+        """The sum of every component's lower bound, ``T - R``."""
+        return self.total - self.pseudo_range
+
     def to_dict(self) -> dict:
         """As a numeric factor (``low``/``high`` are the levels coded ±1) with ``"component":
         true`` and the real ``lower``, ``upper`` and ``total``."""

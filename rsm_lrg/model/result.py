@@ -490,6 +490,22 @@ class FitResult:
             raise ValueError("prediction points must be finite numbers")
         return arr
 
+    def _check_blends(self, x: np.ndarray) -> None:
+        """ValueError naming the first point whose components do not sum to the total (the
+        L-pseudo components sum to one; tolerance :data:`~rsm_lrg.model.mixture.SUM_RTOL`)."""
+        from ..factors import MixtureComponent
+        from .mixture import SUM_RTOL
+
+        comps = [j for j, f in enumerate(self.space.factors) if isinstance(f, MixtureComponent)]
+        f0 = self.space.factors[comps[0]]
+        assert isinstance(f0, MixtureComponent)
+        sums = x[:, comps].sum(axis=1)
+        bad = np.flatnonzero(~(np.abs(sums - 1.0) <= SUM_RTOL * f0.total / f0.pseudo_range))
+        if bad.size:
+            i = int(bad[0])
+            raise ValueError(f"prediction point {i + 1}: the components sum to {f0.lower_sum + sums[i] * f0.pseudo_range:.12g}, "
+                             f"not the total {f0.total:.12g}")
+
     def predict_coded(self, coded: np.ndarray) -> np.ndarray:
         """ŷ at coded settings (n x k array), average block [response units]."""
         Xt = design_matrix(coded, self.terms)
@@ -552,6 +568,8 @@ class FitResult:
             f = self.space.factors[j]
             raise ValueError(f"prediction point {i + 1}: factor {f.name!r} is more than {MAX_FACTOR_MAGNITUDE:.0e} "
                              f"half-ranges from its centre ({f.center:.6g}); the model says nothing there")
+        if self.mixture:  # a Scheffé model speaks of blends: the components must sum to the total
+            self._check_blends(x)
         Xt = design_matrix(x, self.terms)
         beta = self.coefficients["coded"].to_numpy()
         pred = Xt @ beta

@@ -69,3 +69,20 @@ def test_fit_mixture_process_keys(tmp_path, capsys):
     assert [f["letter"] for f in d["factors"]] == ["A", "B", "C", "D", "E"]
     assert [f.get("component", False) for f in d["factors"]] == [True, True, True, False, False]
     assert "process factor" in capsys.readouterr().out
+
+
+def test_confirm_at_a_blend(capsys):
+    expected = pd.read_csv(DATA.parent / "mixture_expected.csv")
+    want = expected[(expected.set == "etch_l") & (expected.model == "special-cubic") & (expected.quantity == "predict")]
+    want = dict(zip(want.term, want.value.astype(float)))
+    args = ["confirm", str(DATA), "--response", "erate", *COMPS, "--model", "special-cubic",
+            "--at", "x1=0.3", "x2=0.3", "x3=0.4", "--observed", "700", "--json", "-"]
+    assert main(args) == 0
+    c = json.loads(capsys.readouterr().out)  # R's predict(..., interval = "prediction") at the blend
+    assert c["predicted"] == pytest.approx(want["fit"], rel=1e-9)
+    assert c["pi"] == pytest.approx([want["pi_low"], want["pi_high"]], rel=1e-9)
+    bad = ["confirm", str(DATA), "--response", "erate", *COMPS, "--model", "special-cubic",
+           "--at", "x1=0.3", "x2=0.4", "x3=0.4", "--observed", "700"]
+    assert main(bad) == 2
+    assert "error: --at: prediction point 1: the components sum to 1.1" in capsys.readouterr().err
+

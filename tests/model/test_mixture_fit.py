@@ -53,6 +53,8 @@ def test_agrees_with_r_lm(set_name, model):
     anova = r.anova.set_index("source")
     total = float(anova.loc["Cor Total", "sum_sq"])
     bscale = float(coef["coded"].abs().max())
+    pred = r.predict(pd.DataFrame({"x1": [0.3], "x2": [0.3], "x3": [0.4]}), interval="prediction").iloc[0]
+    pred_cols = {"fit": "predicted", "pi_low": "pi_low", "pi_high": "pi_high"}
     checked = 0
     for row in exp.itertuples(index=False):
         q, term, v = row.quantity, row.term, float(row.value)
@@ -69,6 +71,10 @@ def test_agrees_with_r_lm(set_name, model):
             _close(float(anova.loc[term, "sum_sq"]), v, 1e-12 * total)
         elif q == "stat":
             _close(float(getattr(r.statistics, term)), v, 0.0)
+        elif q == "predict":
+            _close(float(pred[pred_cols[term]]), v, 0.0)
+        else:
+            raise AssertionError(q)
         checked += 1
     assert checked >= 12
     # the ANOVA's shape: Model, Linear Mixture (q - 1 df), non-linear terms, Residual, ..., Cor Total

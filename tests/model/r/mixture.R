@@ -66,6 +66,12 @@ run <- function(set, d, real) {
     cr <- coef(fr)
     nm <- chartr("123", "ABC", gsub("x", "", gsub(":", "", names(cr))))
     for (i in seq_along(nm)) add(set, m, "actual", nm[i], cr[i])
+    # prediction and 95 % interval at the blend (0.3, 0.3, 0.4), as `confirm` reports it
+    nd <- data.frame(x1 = 0.3, x2 = 0.3, x3 = 0.4)
+    pr <- predict(fr, nd, interval = "prediction")
+    add(set, m, "predict", "fit", pr[1, "fit"])
+    add(set, m, "predict", "pi_low", pr[1, "lwr"])
+    add(set, m, "predict", "pi_high", pr[1, "upr"])
   }
 }
 run("etch", etch, 0)
