@@ -151,11 +151,23 @@ def _fit_mixture(data: Any, response: str, components: Any, factors: Any, block:
                                  "--component NAME)")
     if block is not None:
         raise SpecError("model", "blocks in a mixture model are not available yet")
-    if spec.reduce is not None:
-        raise SpecError("reduce", "backward elimination of a mixture model is not available yet")
     space = mixture_space(data, components, response, process=factors)
     inp = model_inputs(data, response, space, None, transform=spec.transform)
-    return fit_inputs(inp, response, spec, chunk_rows=chunk_rows)
+    reduction = None
+    if spec.reduce is not None:  # the linear blending terms always stay
+        from dataclasses import replace
+
+        from .reduce import reduce_inputs
+
+        try:
+            reduction = reduce_inputs(inp, model=spec.order, terms=spec.terms, intercept=False,
+                                      alpha_out=spec.reduce.alpha_out, criterion=spec.reduce.criterion, mixture=True)
+        except ValueError as exc:
+            if "term" in str(exc) and "mixture" in str(exc):
+                raise SpecError("terms", str(exc)) from None
+            raise
+        spec = replace(spec, terms=reduction.kept)
+    return fit_inputs(inp, response, spec, chunk_rows=chunk_rows, reduction=reduction)
 
 
 def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: int = CHUNK_ROWS,

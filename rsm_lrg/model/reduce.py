@@ -153,8 +153,13 @@ def reduce_terms(data: Any, response: str, factors: Any = None, block: str | Non
 
 
 def reduce_inputs(inp: Any, *, model: str = "quadratic", terms: Any = None, intercept: bool = True,
-                  alpha_out: float = 0.1, criterion: str = "p") -> Reduction:
-    """:func:`reduce_terms` on checked inputs (:func:`rsm_lrg.model.inputs.model_inputs`)."""
+                  alpha_out: float = 0.1, criterion: str = "p", mixture: bool = False) -> Reduction:
+    """:func:`reduce_terms` on checked inputs (:func:`rsm_lrg.model.inputs.model_inputs`).
+
+    ``mixture=True``: a Scheffé model (``model`` a mixture order, no intercept column;
+    :mod:`rsm_lrg.model.mixture`) whose linear blending terms always stay (they hold the
+    mean); the other terms leave as for any model, hierarchy kept (``AB`` stays while
+    ``ABC`` or ``ABD`` stays)."""
     import pandas as pd
 
     from .inputs import chosen_terms
@@ -169,7 +174,16 @@ def reduce_inputs(inp: Any, *, model: str = "quadratic", terms: Any = None, inte
     letters, cats = inp.space.letters, inp.space.categoric
     n, nb = inp.n, inp.nb - 1
     check_model_size(n, len(letters), "linear", nb, categoric=cats)
-    if terms is None:
+    if mixture:
+        from ..factors import MixtureComponent
+        from .mixture import check_mixture_terms, scheffe_names
+
+        q = sum(isinstance(f, MixtureComponent) for f in inp.space.factors)
+        names = scheffe_names(letters[:q], model, letters[q:]) if terms is None else list(terms)
+        current = list(chosen_terms(names, letters, None, intercept=False))
+        check_mixture_terms(current, q)
+        intercept = False
+    elif terms is None:
         check_model_size(n, len(letters), model, nb, categoric=cats)  # counted before any term is built
         current = list(model_terms(letters, model, cats))
     else:
@@ -204,6 +218,8 @@ def reduce_inputs(inp: Any, *, model: str = "quadratic", terms: Any = None, inte
         p = p_values(ls, current)
         ss = ls.ss_res
         cand = removable(current)
+        if mixture:  # the linear blending terms always stay
+            cand = [t for t in cand if t.order > 1]
         if not intercept and len(cand) == len([t for t in current if t.order > 0]) == 1:
             cand = []  # the last term of a model without an intercept stays
         if not cand:

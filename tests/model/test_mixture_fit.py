@@ -221,3 +221,24 @@ def test_mixture_process_actual_with_a_shifted_process_factor():
     np.testing.assert_allclose(by_poly, r.predict(pts)["predicted"].to_numpy(), rtol=1e-10)
     with pytest.raises(SpecError, match="term D has no mixture component"):
         rsm_lrg.fit(d, "y", components=["x1", "x2", "x3"], factors=["t"], model="mixture-linear", terms="A B C D")
+
+
+def test_backward_elimination_keeps_the_blending_terms():
+    """fishp, quadratic x linear process, reduced at alpha 0.1: the linear blending terms stay,
+    each step removed a term whose p exceeded 0.1, and every term that could still leave
+    (hierarchy kept) has p <= 0.1 in the final ANOVA; the final fit equals the fit of the
+    kept terms."""
+    from rsm_lrg.model.reduce import removable
+
+    d = pd.read_csv(HERE / "mixture_fishp.csv")
+    kw = {"components": ["x1", "x2", "x3"], "factors": ["z1", "z2", "z3"], "model": "mixture-quadratic"}
+    r = rsm_lrg.fit(d, "y", reduce=True, **kw)
+    assert r.reduction.removed and {"A", "B", "C"} <= set(r.coefficients.index)
+    assert (r.reduction.steps["p"] > 0.1).all()
+    anova = r.anova.set_index("source")
+    for t in removable(r.terms):
+        if t.order > 1:
+            assert anova.loc[t.name, "p"] <= 0.1
+    again = rsm_lrg.fit(d, "y", terms=list(r.coefficients.index), **kw)
+    np.testing.assert_allclose(again.coefficients["coded"], r.coefficients["coded"], rtol=1e-12)
+    assert r.model == "mixture-quadratic" and "reduced" in r.label
