@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from ..factors import FactorSpace, MixtureComponent, letters_for, parse_factor_spec, quote_value
+from ..factors import Factor, FactorSpace, MixtureComponent, letters_for, parse_factor_spec, quote_value
 from ..io import float_column
 from .terms import Term
 
@@ -174,8 +174,17 @@ def pseudo_to_actual(coded: dict[str, float], terms: Sequence[Term], space: Fact
     first = factors[comps[0]]
     assert isinstance(first, MixtureComponent)
     T = first.total
-    origin = [f.lower if isinstance(f, MixtureComponent) else f.center for f in factors]
-    scale = [f.pseudo_range if isinstance(f, MixtureComponent) else f.half_range for f in factors]
+    origin: list[float] = []
+    scale: list[float] = []
+    for f in factors:
+        if isinstance(f, MixtureComponent):
+            origin.append(f.lower)
+            scale.append(f.pseudo_range)
+        elif isinstance(f, Factor):  # a numeric process factor (categoric ones are refused)
+            origin.append(f.center)
+            scale.append(f.half_range)
+        else:
+            raise ValueError(f"process factor {f.name!r} is categoric; a mixture model takes numeric ones")
     letters = space.letters
     parts: dict[tuple[int, ...], list[float]] = {}
     for t in terms:
