@@ -150,7 +150,7 @@ def _fit_mixture(data: Any, response: str, components: Any, factors: Any, block:
         raise SpecError("model", f"the {spec.order} model needs the mixture components (components=[...], "
                                  "--component NAME)")
     if block is not None:
-        raise SpecError("model", "blocks in a mixture model are not available yet")
+        raise SpecError("block", "blocks in a mixture model are not available yet")
     space = mixture_space(data, components, response, process=factors)
     inp = model_inputs(data, response, space, None, transform=spec.transform)
     reduction = None

@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from ..factors import Factor, FactorSpace, MixtureComponent, letters_for, parse_factor_spec, quote_value
-from ..io import float_column
+from ..io import cell_error
 from .terms import Term
 
 __all__ = ["MIXTURE_MODELS", "MIXTURE_ORDERS", "SUM_RTOL", "scheffe_names", "mixture_space", "check_mixture_terms",
@@ -83,8 +83,15 @@ def mixture_space(data: Any, components: Sequence[Any], response: str | None = N
 
     if isinstance(components, str):
         components = [components]
-    items = [c if isinstance(c, tuple) else parse_factor_spec(str(c)) for c in components]
+    items = []
+    for c in components:
+        try:
+            items.append(c if isinstance(c, tuple) else parse_factor_spec(str(c)))
+        except ValueError as exc:  # the spec parser speaks of factors
+            raise ValueError(str(exc).replace("factor ", "component ", 1)) from None
     names = [str(it[0]) for it in items]
+    if response is not None and response in names:
+        raise ValueError(f"component {quote_value(response)} is the response")
     if len(names) < 2:
         raise ValueError("a mixture needs at least two components (--component once per name)")
     for nm in names:
@@ -98,7 +105,14 @@ def mixture_space(data: Any, components: Sequence[Any], response: str | None = N
     if response is not None and response in data.columns:
         keep = ~pd.isna(data[response]).to_numpy()
         data, rows = data[keep], rows[keep]
-    x = np.column_stack([float_column(data, nm).to_numpy(dtype=float) for nm in names])
+    cols = []
+    for nm in names:  # as float_column, naming the row of the file (rows without a response skipped)
+        num = pd.to_numeric(data[nm], errors="coerce").to_numpy(dtype=float, na_value=np.nan)
+        bad = np.flatnonzero(~np.isfinite(num))
+        if bad.size:
+            raise cell_error(nm, int(rows[bad[0]]) + 1, data[nm].iloc[int(bad[0])])
+        cols.append(num)
+    x = np.column_stack(cols)
     neg = np.argwhere(x < 0)
     if neg.size:
         i, j = neg[0]

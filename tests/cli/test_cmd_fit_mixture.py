@@ -86,3 +86,23 @@ def test_confirm_at_a_blend(capsys):
     assert main(bad) == 2
     assert "error: --at: prediction point 1: the components sum to 1.1" in capsys.readouterr().err
 
+
+
+@pytest.mark.parametrize("edit, comps, message", [
+    ({1: ("erate", ""), 3: ("x2", "abc")}, ["x1", "x2", "x3"], "column 'x2', row 4: holds 'abc'"),
+    ({}, ["x1", "x2", "erate"], "component 'erate' is the response"),
+    ({}, ["x1=0.5:0.2", "x2", "x3"], "component 'x1': LOW must be below HIGH"),
+    ({}, ["x1", "x1", "x3"], "component 'x1' is given twice"),
+])
+def test_fit_mixture_bad_input_named(tmp_path, capsys, edit, comps, message):
+    d = pd.read_csv(DATA).astype(object)
+    for i, (col, v) in edit.items():
+        d.loc[i, col] = v
+    path = tmp_path / "d.csv"
+    d.to_csv(path, index=False)
+    args = ["fit", str(path), "--response", "erate", "--model", "mixture-linear"]
+    for c in comps:
+        args += ["--component", c]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.startswith("error: ") and err.count("\n") == 1
