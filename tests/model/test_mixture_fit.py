@@ -242,3 +242,36 @@ def test_backward_elimination_keeps_the_blending_terms():
     again = rsm_lrg.fit(d, "y", terms=list(r.coefficients.index), **kw)
     np.testing.assert_allclose(again.coefficients["coded"], r.coefficients["coded"], rtol=1e-12)
     assert r.model == "mixture-quadratic" and "reduced" in r.label
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_pseudo_origin_does_not_change_the_model(model):
+    """A full Scheffé model spans the same functions on the simplex whatever the L-pseudo
+    origin: these are the same for L = 0 and for random admissible lower bounds: predictions, the rows of the ANOVA that
+    speak of the whole model (Model, Linear Mixture, Residual, Lack of Fit, Pure Error, Cor
+    Total) and the real-proportion coefficients. (The pseudo coefficients and the partial SS
+    of single non-linear terms depend on the coding, as in Design-Expert.)"""
+    d = pd.read_csv(HERE / "mixture_etch_l.csv")
+    base = rsm_lrg.fit(d, "erate", components=["x1=0:1", "x2=0:1", "x3=0:1"], model=model)
+    rng = np.random.default_rng(11)
+    mins = d[["x1", "x2", "x3"]].min().to_numpy()
+    for _ in range(5):
+        L = [float(v) for v in mins * rng.uniform(0, 1, size=3)]
+        comps = [f"x{i + 1}={L[i]!r}:1" for i in range(3)]
+        r = rsm_lrg.fit(d, "erate", components=comps, model=model)
+        whole = ["Model", "Linear Mixture", "Residual", "Lack of Fit", "Pure Error", "Cor Total"]
+        got, want = (x.anova.set_index("source").loc[whole, "sum_sq"] for x in (r, base))
+        np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-12 * 5e5)
+        np.testing.assert_allclose(r.fitted, base.fitted, rtol=1e-11)
+        a, b = r.actual_coefficients, base.actual_coefficients
+        assert set(a) == set(b)
+        scale = max(abs(v) for v in b.values())
+        for k in b:
+            assert abs(a[k] - b[k]) <= 1e-9 * scale, (k, a[k], b[k])
+
+
+def test_dask_input_refused():
+    dd = pytest.importorskip("dask.dataframe")
+    d = dd.from_pandas(pd.read_csv(HERE / "mixture_etch.csv"), npartitions=2)
+    with pytest.raises(SpecError, match="one in-memory table"):
+        rsm_lrg.fit(d, "erate", components=["x1", "x2", "x3"], model="mixture-linear")
