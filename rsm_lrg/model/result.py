@@ -258,6 +258,12 @@ class FitResult:
     @property
     def actual_std_errors(self) -> dict | None:
         """``{term: standard error in actual units}`` (None for a Dask fit)."""
+        if self.mixture:  # the change of basis is linear in the coefficients: cov = M C M' sigma²
+            from .mixture import actual_covariance
+
+            names, cov = actual_covariance(self.terms, self.space, self.cov_unscaled[np.ix_(self.term_index,
+                                                                                           self.term_index)])
+            return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None) * self.sigma2).tolist()))
         sol = self.actual_solution
         if sol is None:
             return None

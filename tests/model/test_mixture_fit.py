@@ -64,6 +64,8 @@ def test_agrees_with_r_lm(set_name, model):
             _close(float(coef.loc[term, "std_error"]), v, 0.0)
         elif q == "actual":
             _close(r.actual_coefficients[term], v, 1e-12 * bscale)
+        elif q == "actual_se":
+            _close(r.actual_std_errors[term], v, 0.0)
         elif q == "anova":
             if term == "Lack of Fit" and term not in anova.index:
                 assert abs(v) <= 1e-9 * total

@@ -66,6 +66,8 @@ run <- function(set, d, real) {
     cr <- coef(fr)
     nm <- chartr("123", "ABC", gsub("x", "", gsub(":", "", names(cr))))
     for (i in seq_along(nm)) add(set, m, "actual", nm[i], cr[i])
+    sr <- summary(fr)$coefficients[, 2]
+    for (i in seq_along(nm)) add(set, m, "actual_se", nm[i], sr[i])
     # prediction and 95 % interval at the blend (0.3, 0.3, 0.4), as `confirm` reports it
     nd <- data.frame(x1 = 0.3, x2 = 0.3, x3 = 0.4)
     pr <- predict(fr, nd, interval = "prediction")
