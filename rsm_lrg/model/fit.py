@@ -141,17 +141,23 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
 def _fit_mixture(data: Any, response: str, components: Any, factors: Any, block: str | None, spec: ModelSpec,
                  chunk_rows: int) -> FitResult:
     """A Scheffé mixture fit (:mod:`rsm_lrg.model.mixture`)."""
+    from ..factors import FactorSpace, MixtureComponent
     from .mixture import MIXTURE_ORDERS, mixture_space
 
     if not spec.mixture:
         raise SpecError("model", f"mixture components need a Scheffé model ({', '.join(MIXTURE_ORDERS)}), "
                                  f"not {spec.order!r}")
-    if not components:
+    given = factors if isinstance(factors, FactorSpace) and not components else None
+    if given is not None and any(isinstance(f, MixtureComponent) for f in given.factors):
+        components, factors = None, None  # a fitted mixture model's own space (FitResult.reduce)
+    elif not components:
         raise SpecError("model", f"the {spec.order} model needs the mixture components (components=[...], "
                                  "--component NAME)")
+    else:
+        given = None
     if block is not None:
         raise SpecError("block", "blocks in a mixture model are not available yet")
-    space = mixture_space(data, components, response, process=factors)
+    space = given if given is not None else mixture_space(data, components, response, process=factors)
     inp = model_inputs(data, response, space, None, transform=spec.transform)
     reduction = None
     if spec.reduce is not None:  # the linear blending terms always stay

@@ -277,3 +277,13 @@ def test_dask_input_refused():
     d = dd.from_pandas(pd.read_csv(HERE / "mixture_etch.csv"), npartitions=2)
     with pytest.raises(SpecError, match="one in-memory table"):
         rsm_lrg.fit(d, "erate", components=["x1", "x2", "x3"], model="mixture-linear")
+
+
+def test_result_reduce_refits_on_its_own_components():
+    d = pd.read_csv(HERE / "mixture_fishp.csv")
+    kw = {"components": ["x1", "x2", "x3"], "factors": ["z1", "z2", "z3"], "model": "mixture-quadratic"}
+    full = rsm_lrg.fit(d, "y", **kw)
+    r = full.reduce(alpha_out=0.1)
+    direct = rsm_lrg.fit(d, "y", reduce=True, **kw)
+    assert list(r.coefficients.index) == list(direct.coefficients.index)
+    np.testing.assert_allclose(r.coefficients["coded"], direct.coefficients["coded"], rtol=1e-12)
