@@ -47,7 +47,7 @@ import numpy as np
 from ..errors import ParameterError
 
 __all__ = ["model_data", "interactive_html", "write_interactive_report", "Profiler", "profiler",
-           "plotly_js", "PAGE_IDS"]
+           "plotly_js", "notebook_reset", "PAGE_IDS"]
 
 #: ``id`` of the page-wide sections of an interactive report, in page order (each response
 #: then has a section ``response-<i>`` with its own tables and diagnostics).
@@ -451,30 +451,81 @@ def interactive_html(results, *, goals=None, limits=None, labels=None, title: st
         The optima to show, computed by the caller (``rsm-lrg report`` does); when not given
         they are found by :func:`rsm_lrg.optimize.study.report_optima` from ``goals``.
     """
-    from markupsafe import Markup
-
-    from .html import render_page
-
     ctx = interactive_context(results, goals=goals, limits=limits, labels=labels, title=title,
                               source_name=source_name, confidence=confidence, tables=tables, start=start,
                               optima=optima,
                               static=static)
-    from .. import __version__
+    return _render(ctx)
 
-    if static:
+
+_CSP_REST = "worker-src 'none'; connect-src 'none'; base-uri 'none'; form-action 'none'; object-src 'none'"
+
+
+def _render(ctx: dict) -> str:
+    """The whole page of :func:`interactive_context`'s ``ctx``: plotly.js and the page's
+    script inlined, allowed by their hashes."""
+    from markupsafe import Markup
+
+    from .. import __version__
+    from .html import render_page
+
+    if ctx["static"]:
         csp = ("default-src 'none'; img-src data:; style-src 'unsafe-inline'; script-src 'none'; "
                "base-uri 'none'; form-action 'none'")
-        return render_page("interactive.html.j2", **ctx, csp=csp, lib_js="", app_js="",
+        return render_page("interactive.html.j2", **ctx, csp=csp, lib_js="", app_js="", assets_json="",
+                           inline_css=True,
                            footer=f"Made by rsm-lrg {__version__}. Self-contained: no scripts, no network requests.")
     lib, app = plotly_js(), _app_js()
     csp = ("default-src 'none'; img-src data: blob:; style-src 'unsafe-inline'; "
-           f"script-src {_sha256(lib)} {_sha256(app)}; worker-src 'none'; connect-src 'none'; "
-           "base-uri 'none'; form-action 'none'; object-src 'none'")
-
-    ctx["data_json"] = Markup(ctx["data_json"])  # already inert (see _json_for_script)
+           f"script-src {_sha256(lib)} {_sha256(app)}; {_CSP_REST}")
+    ctx = dict(ctx, data_json=Markup(ctx["data_json"]))  # already inert (see _json_for_script)
     return render_page("interactive.html.j2", **ctx, csp=csp, lib_js=Markup(lib), app_js=Markup(app),
+                       assets_json="", inline_css=True,
                        footer=f"Made by rsm-lrg {__version__}. Self-contained: plotly.js is inlined; "
                               "the page makes no network requests.")
+
+
+def _template_text(name: str) -> str:
+    from importlib import resources
+
+    text = resources.files("rsm_lrg.report").joinpath("templates", name).read_text(encoding="utf-8")
+    if "</script" in text.lower() or "<!--" in text:  # would end (or confuse) an inline script block
+        raise ValueError(f"templates/{name}: contains '</script' or '<!--', cannot be inlined")
+    return text
+
+
+def _page_css() -> str:
+    return _template_text("report.css") + "\n" + _template_text("interactive.css")
+
+
+def _render_notebook(ctx: dict) -> tuple[str, tuple[tuple[str, str, str], ...]]:
+    """The page of ``ctx`` for a notebook frame, without its heavy parts, and those parts.
+
+    Returns ``(page, assets)``: ``assets`` are ``(kind, sha256 hex, text)`` for the page's
+    style, plotly.js and the page's script, in the order the frame inserts them; the page
+    carries a small loader that asks the notebook page (its parent) for them by hash, and a
+    Content-Security-Policy that lets a script run only when its text has the expected
+    SHA-256 (plotly.js, the page's script, the loader).
+    """
+    from markupsafe import Markup
+
+    from .. import __version__
+    from .html import render_page
+
+    lib, app, css = plotly_js(), _app_js(), _page_css()
+    assets = (("css", hashlib.sha256(css.encode("utf-8")).hexdigest(), css),
+              ("js", hashlib.sha256(lib.encode("utf-8")).hexdigest(), lib),
+              ("js", hashlib.sha256(app.encode("utf-8")).hexdigest(), app))
+    loader = _template_text("notebook_loader.js")
+    csp = ("default-src 'none'; img-src data: blob:; style-src 'unsafe-inline'; "
+           f"script-src {_sha256(lib)} {_sha256(app)} {_sha256(loader)}; {_CSP_REST}")
+    ctx = dict(ctx, data_json=Markup(ctx["data_json"]))
+    page = render_page("interactive.html.j2", **ctx, csp=csp, inline_css=False, lib_js=Markup(loader), app_js="",
+                       assets_json=Markup(_json_for_script([[k, h] for k, h, _ in assets])),
+                       footer=f"Made by rsm-lrg {__version__}. plotly.js and the page's script come from "
+                              "the notebook page, checked by their SHA-256; .save(path) writes a "
+                              "self-contained page.")
+    return page, assets
 
 
 def write_interactive_report(results, path, *, force: bool = False, **kwargs) -> Path:
@@ -489,11 +540,38 @@ def write_interactive_report(results, path, *, force: bool = False, **kwargs) ->
 
 # -- notebook --------------------------------------------------------------------------------------
 
+#: SHA-256 (hex) of the shared assets this kernel session has already carried into the
+#: notebook page (see :meth:`Profiler._repr_html_`).
+_SENT: set[str] = set()
+
+
+def notebook_reset() -> None:
+    """Make the next displayed :class:`Profiler` carry plotly.js (and the page's script and
+    style) into the notebook again: after the output that carried them was cleared, or in a
+    notebook reopened without them."""
+    _SENT.clear()
+
+
+def _srcdoc(page: str) -> str:
+    """``page`` as the value of a single-quoted ``srcdoc`` attribute (``&`` and ``'`` escaped:
+    the only characters that end or change a single-quoted attribute value)."""
+    return page.replace("&", "&amp;").replace("'", "&#39;")
+
+
 @dataclass(frozen=True)
 class Profiler:
-    """The interactive page of one or several fits, for a notebook: ``_repr_html_`` shows it
-    in an ``<iframe srcdoc>`` (its scripts run inside the frame under the page's own
-    Content-Security-Policy, no server, no network); :meth:`save` writes it to a file.
+    """The interactive page of one or several fits, for a notebook.
+
+    ``_repr_html_`` shows the page in a sandboxed ``<iframe srcdoc>`` (its scripts run inside
+    the frame under the page's own Content-Security-Policy; no server, no network). plotly.js
+    (4.8 MB) and the page's script and style travel into the notebook once per kernel
+    session: the first profiler displayed carries them as inert text blocks
+    (``<script type="text/plain" data-rsm-lrg-asset="SHA-256">``) with a small script that
+    hands them to any profiler frame asking for them by hash (``postMessage``); every
+    profiler's frame (a few kB of page: its controls and model numbers) asks and inserts
+    them, and its policy runs a script only when its SHA-256 is the expected one. A saved
+    notebook keeps the blocks in the first profiler's output. :func:`notebook_reset` makes
+    the next display carry them again. :meth:`save` writes the whole self-contained page.
 
     Attributes
     ----------
@@ -501,17 +579,30 @@ class Profiler:
         The whole page (:func:`interactive_html`).
     height : int
         Height of the notebook frame [px].
+    notebook : str
+        The page for the notebook frame, without the shared assets (empty: the frame shows
+        ``html``).
+    assets : tuple of (kind, sha256 hex, text)
+        The shared assets ``notebook`` asks for.
     """
 
     html: str = field(repr=False)
     height: int = 900
+    notebook: str = field(default="", repr=False)
+    assets: tuple = field(default=(), repr=False)
 
     def _repr_html_(self) -> str:
-        import html as _html
-
-        return (f'<iframe srcdoc="{_html.escape(self.html, quote=True)}" style="width: 100%; '
-                f'height: {int(self.height)}px; border: 1px solid #ccc" '
-                'sandbox="allow-scripts allow-downloads"></iframe>')
+        frame = (f"<iframe srcdoc='{_srcdoc(self.notebook or self.html)}' style='width: 100%; "
+                 f"height: {int(self.height)}px; border: 1px solid #ccc' "
+                 "sandbox='allow-scripts allow-downloads'></iframe>")
+        if not self.notebook:
+            return frame
+        blocks = []
+        for kind, sha, text in self.assets:
+            if sha not in _SENT:
+                blocks.append(f'<script type="text/plain" data-rsm-lrg-asset="{sha}">{text}</script>')
+        _SENT.update(sha for _, sha, _ in self.assets)
+        return "".join(blocks) + f"<script>{_template_text('notebook_host.js')}</script>" + frame
 
     def save(self, path, *, force: bool = False) -> Path:
         """Write the page to ``path`` (atomically; an existing file only with ``force``)."""
@@ -526,4 +617,8 @@ def profiler(results, *, height: int = 900, tables: bool = False, **kwargs) -> P
 
     This is ``FitResult.profiler()``.
     """
-    return Profiler(html=interactive_html(results, tables=tables, **kwargs), height=height)
+    ctx = interactive_context(results, tables=tables, **kwargs)
+    if ctx["static"]:
+        return Profiler(html=_render(ctx), height=height)
+    notebook, assets = _render_notebook(ctx)
+    return Profiler(html=_render(ctx), height=height, notebook=notebook, assets=assets)

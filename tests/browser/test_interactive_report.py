@@ -494,10 +494,13 @@ def _not_ours(errors, html):
 def test_notebook_profiler_runs_in_its_frame(chromium, tmp_path):
     """``FitResult.profiler()._repr_html_()`` as a notebook shows it: an iframe whose page
     computes the same numbers (no server, no network)."""
+    from rsm_lrg.report.interactive import notebook_reset
+
     fit = rsm_lrg.fit(rsm_lrg.load_table4(), "tcr_c_per_min")
     prof = fit.profiler()
     host = tmp_path / "notebook.html"
-    host.write_text("<!DOCTYPE html><html><body><h1>cell output</h1>" + prof._repr_html_() + "</body></html>",
+    notebook_reset()  # the first display of this "kernel session": it carries plotly.js
+    host.write_text(NOTEBOOK_HEAD + "<h1>cell output</h1>" + prof._repr_html_() + "</body></html>",
                     encoding="utf-8")
     ctx = chromium.new_context(viewport={"width": 1280, "height": 900}, offline=True)
     try:
@@ -511,12 +514,80 @@ def test_notebook_profiler_runs_in_its_frame(chromium, tmp_path):
         frame.wait_for_function("() => document.querySelector('[data-prediction]').dataset.value !== ''")
         frame.evaluate(SET, ["velocity_m_s", "0.55", "input"])
         compare({"tcr_c_per_min": fit}, frame.evaluate(READ))
-        assert _not_ours(errors, prof.html) == []
+        assert _not_ours(errors, prof.html + prof.notebook) == []
         assert [u for u in requests if u not in (host.as_uri(), "about:srcdoc")] == []
     finally:
         ctx.close()
     saved = prof.save(tmp_path / "p.html")
     assert saved.read_text(encoding="utf-8") == prof.html
+
+
+#: A notebook page as Jupyter serves it: UTF-8, no Content-Security-Policy of its own.
+NOTEBOOK_HEAD = '<!DOCTYPE html><html><head><meta charset="utf-8"><title>notebook</title></head><body>'
+
+DRAWN = """() => window.rsmReport !== undefined && typeof window.Plotly === 'object'
+  && document.querySelectorAll('#profile-plot .main-svg').length > 0
+  && document.querySelector('#profile-plot .scatterlayer .trace') !== null"""
+
+
+def test_two_notebook_profilers_share_one_plotly(chromium, tmp_path):
+    """Two profiler cells of one kernel session in one notebook page: the first carries
+    plotly.js (4.8 MB), the second is a few kB; both frames draw their profile traces and
+    compute the model's numbers, the second after a control moves in each."""
+    from rsm_lrg.report.interactive import notebook_reset, plotly_js
+
+    df = table4_with_wear()
+    fits = [rsm_lrg.fit(df, "tcr_c_per_min", factors=FACTORS),
+            rsm_lrg.fit(df, "wear_volume_m3_per_h", factors=FACTORS).reduce()]
+    profs = [f.profiler() for f in fits]
+    notebook_reset()
+    cells = [p._repr_html_() for p in profs]
+    assert plotly_js() in cells[0] and len(cells[1]) < 20_000
+    host = tmp_path / "notebook.html"
+    host.write_text(NOTEBOOK_HEAD + "".join(f"<div class='cell'><pre>In [{i}]:</pre>{c}</div>"
+                                            for i, c in enumerate(cells, 1)) + "</body></html>", encoding="utf-8")
+    ctx = chromium.new_context(viewport={"width": 1280, "height": 900}, offline=True)
+    try:
+        page = ctx.new_page()
+        errors, requests = [], []
+        page.on("pageerror", lambda e: errors.append(str(e)))
+        page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+        page.on("request", lambda r: requests.append(r.url))
+        page.goto(host.as_uri(), wait_until="load")
+        frames = [f for f in page.frames if f != page.main_frame]
+        assert len(frames) == 2
+        for frame, fit, value in zip(frames, fits, ("0.55", "0.35")):
+            frame.wait_for_function(DRAWN, timeout=30_000)
+            frame.evaluate(SET, ["velocity_m_s", value, "input"])
+            compare({fit.response: fit}, frame.evaluate(READ))
+            assert frame.evaluate("() => document.getElementById('assets-missing')") is None
+            # the style came too: the profiler's grid is laid out, not stacked as unstyled blocks
+            assert frame.evaluate("() => getComputedStyle(document.querySelector('.profiler-grid')).display") == "grid"
+        assert _not_ours(errors, "".join(p.html + p.notebook for p in profs)) == []
+        assert [u for u in requests if u not in (host.as_uri(), "about:srcdoc")] == []
+    finally:
+        ctx.close()
+
+
+def test_notebook_frame_without_its_assets_says_so(chromium, tmp_path):
+    """A profiler cell whose assets never arrive (the output that carried them was cleared):
+    the frame says what to do instead of staying blank."""
+    from rsm_lrg.report.interactive import notebook_reset
+
+    prof = rsm_lrg.fit(rsm_lrg.load_table4(), "tcr_c_per_min").profiler()
+    notebook_reset()
+    prof._repr_html_()  # carried by an output that is then cleared
+    host = tmp_path / "notebook.html"
+    host.write_text(NOTEBOOK_HEAD + prof._repr_html_() + "</body></html>", encoding="utf-8")
+    ctx = chromium.new_context(offline=True)
+    try:
+        page = ctx.new_page()
+        page.goto(host.as_uri(), wait_until="load")
+        frame = [f for f in page.frames if f != page.main_frame][0]
+        frame.wait_for_selector("#assets-missing", timeout=30_000)
+        assert "notebook_reset()" in frame.inner_text("#assets-missing")
+    finally:
+        ctx.close()
 
 
 def readme_screenshot(out: str) -> None:

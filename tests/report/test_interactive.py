@@ -213,3 +213,64 @@ def test_static_pages_with_a_categoric_factor():
     page = to_html(f, hold="optimum")
     level = f.optimize("minimize").actual["stage"]
     assert f"E (stage) = {level}" in page and page.count("<figure") == 18
+
+
+def _top_level(fragment: str) -> list[tuple[str, dict, str]]:
+    """The top-level elements of a notebook output: (tag, attributes, text), parsed as a
+    browser parses them (html.parser decodes the attributes)."""
+    from html.parser import HTMLParser
+
+    out: list = []
+
+    class P(HTMLParser):
+        depth = 0
+
+        def handle_starttag(self, tag, attrs):
+            if self.depth == 0:
+                out.append([tag, dict(attrs), ""])
+            self.depth += tag not in ("br", "img", "input", "meta")
+
+        def handle_endtag(self, tag):
+            self.depth -= 1
+
+        def handle_data(self, d):
+            if out and self.depth == 1:
+                out[-1][2] += d
+
+    P(convert_charrefs=True).feed(fragment)
+    return [tuple(e) for e in out]
+
+
+def test_notebook_profiler_carries_plotly_once_per_session():
+    """The first profiler displayed in a kernel session carries plotly.js, the page's script
+    and its style into the notebook once (inert text blocks named by their SHA-256); every
+    later one is a few kB: a frame whose page asks for them. A hostile response name stays
+    inside the frame's page, escaped."""
+    from rsm_lrg.report.interactive import notebook_reset, plotly_js
+
+    df = rsm_lrg.load_table4().rename(columns={"tcr_c_per_min": "κ'</script><b onclick=x>"})
+    fit = rsm_lrg.fit(df, "κ'</script><b onclick=x>", factors=FACTORS)
+    notebook_reset()
+    first, second = fit.profiler(), fit.reduce().profiler()
+    one, two = first._repr_html_(), second._repr_html_()
+    lib = plotly_js()
+    assert one.count(lib) == 1 and lib not in two and lib in first.html  # .save() stays whole
+    assert len(two) < 20_000 and len(first.html) > 4_000_000  # 15.1 kB against 4.87 MB (Table 4, full quadratic)
+    els1, els2 = _top_level(one), _top_level(two)
+    assert [e[0] for e in els1] == ["script"] * 4 + ["iframe"]  # 3 assets, the host script, the frame
+    assert [e[0] for e in els2] == ["script", "iframe"]
+    blocks = {e[1]["data-rsm-lrg-asset"]: e[2] for e in els1[:3]}
+    assert all(e[1]["type"] == "text/plain" for e in els1[:3])
+    assert {hashlib.sha256(t.encode()).hexdigest() for t in blocks.values()} == set(blocks)
+    for prof, els in ((first, els1), (second, els2)):
+        frame = els[-1][1]
+        assert frame["srcdoc"] == prof.notebook and frame["sandbox"] == "allow-scripts allow-downloads"
+        asked = json.loads(re.search(r'id="rsm-assets">(.*?)</script>', prof.notebook).group(1))
+        assert [h for _, h in asked] == list(blocks)  # the frame asks for exactly what the first carried
+        csp = re.search(r'Content-Security-Policy" content="([^"]+)"', prof.notebook).group(1)
+        assert "&#39;unsafe-inline&#39;; script-src &#39;sha256-" in csp  # hashes only (style may be inline)
+        assert "<b onclick" not in prof.notebook and "&lt;b onclick=x&gt;" in prof.notebook
+    for _, attrs, text in els1[:3] + els2[:-1]:
+        assert "<b onclick" not in text  # no user text outside the frame
+    notebook_reset()
+    assert lib in second._repr_html_()  # carried again after a reset
