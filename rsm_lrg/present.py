@@ -12,10 +12,8 @@ The rules
   ``"unicode"`` style (HTML, notebook, repr) and ``6.972e-05`` in the ``"ascii"`` style.
   Trailing zeros are dropped unless ``trim=False`` (tables that align digits).
 - **Text face** (:func:`format_g`: the CLI's tables and ``summary()`` text, monospaced):
-  ``digits`` significant figures with trailing zeros kept so that columns align; plain
-  decimals for ``1e-3 <= |x| < 1e5``, otherwise ASCII e-notation ``1.613e-04`` (as the
-  paper's Table 5 prints 1.61 × 10⁻⁴ in scientific form); ``trim=True`` for equation
-  coefficients.
+  the same rule in the ASCII style, with trailing zeros kept so that columns align
+  (``0.0001613``, ``6.972e-05``); ``trim=True`` for single values and equation coefficients.
 - **p value** (:func:`format_p`): four decimals, ``<0.0001`` below that (Design-Expert);
   ``style="ascii"`` writes ``< 0.0001`` for the text face.
 - **Round-off** (:func:`clean`): a value whose size is at most :data:`ROUND_OFF` times its
@@ -130,37 +128,28 @@ def format_number(x, digits: int = 4, *, style: str = "unicode", trim: bool = Tr
 
 
 def format_g(x, digits: int = 4, *, trim: bool = False) -> str:
-    """A number for the text face (CLI tables, ``summary()``): ``digits`` significant
-    figures; plain decimals for ``1e-3 <= |x| < 1e5`` with trailing zeros kept (columns
-    align), otherwise ``1.613e-04``; ``""`` for None, NaN and infinities. ``trim=True`` drops
-    trailing zeros (equation coefficients, ``0.0075`` rather than ``0.007500``).
+    """A number for the text face (CLI tables, ``summary()``): :func:`format_number` in the
+    ASCII style (``digits`` significant figures; plain decimals for ``1e-4 <= |x| < 1e5``,
+    otherwise ``1.613e-05``), with trailing zeros kept so that columns align; ``"0"`` for
+    zero, ``""`` for None, NaN and infinities, text (a categoric level) as it is.
+    ``trim=True`` drops trailing zeros (single values and equation coefficients: ``0.0075``
+    rather than ``0.007500``).
 
     >>> format_g(0.0880), format_g(1.6133e-4), format_g(26.0312), format_g(0.0), format_g(None)
-    ('0.08800', '1.613e-04', '26.03', '0', '')
+    ('0.08800', '0.0001613', '26.03', '0', '')
     >>> format_g(0.99999, 4), format_g(0.0075, 6, trim=True), format_g(4.1667e-05, 5, trim=True)
     ('1.000', '0.0075', '4.1667e-05')
+    >>> format_g(9.0466e-4), format_g(1e-4, 6), format_g(1e-4, 6, trim=True), format_g(123456.0)
+    ('0.0009047', '0.000100000', '0.0001', '1.235e+05')
     """
     if isinstance(x, str):  # a categoric level, shown as it is
         return x
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+    if x is None or is_missing(x):
         return ""
     x = float(x)
     if x == 0:
         return "0"
-    a = abs(x)
-    if 1e-3 <= a < 1e5:
-        decimals = max(digits - 1 - int(math.floor(math.log10(a))), 0)
-        s = f"{x:.{decimals}f}"
-        if decimals and abs(float(s)) >= 10.0 ** (digits - decimals):  # 0.99999 rounded up to 1.0000
-            s = f"{x:.{decimals - 1}f}"
-    else:
-        s = f"{x:.{digits - 1}e}"
-    if not trim:
-        return s
-    mant, _, exp = s.partition("e")
-    if "." in mant:
-        mant = mant.rstrip("0").rstrip(".")
-    return mant + ("e" + exp if exp else "")
+    return format_number(x, digits, style="ascii", trim=trim)
 
 
 def _sci(a: float, digits: int, style: str, trim: bool) -> str:

@@ -27,6 +27,7 @@ from ..factors import CategoricFactor, Factor, FactorSpace, letters_for, level_t
 from ..factors.columns import BOOKKEEPING, design_factors
 from ..factors.spec import given_items
 from ..io import float_column, is_empty_cell
+from ..present import format_g
 
 __all__ = [
     "Design",
@@ -417,12 +418,12 @@ class Design:
             f"{self.n_blocks} block{'s' if self.n_blocks != 1 else ''}",
         ]
         if self.kind == "central-composite" and "alpha" in self.options:
-            lines.append(f"alpha {self.options['alpha']:.6g} ({self.options.get('alpha_rule')}), "
+            lines.append(f"alpha {format_g(self.options['alpha'], 6, trim=True)} ({self.options.get('alpha_rule')}), "
                          f"face {self.options.get('face')}")
         o = self.options
         if self.kind == "optimal":
             lines.append(f"{o.get('criterion')}-optimal for the {o.get('model')} model ({o.get('model_terms')} terms): "
-                         f"criterion {o.get('criterion_value', float('nan')):.6g}; {o.get('model_points')} model points, "
+                         f"criterion {format_g(o.get('criterion_value'), 6, trim=True) or 'n/a'}; {o.get('model_points')} model points, "
                          f"{o.get('replicates')} replicates, {o.get('lof_points')} lack-of-fit points")
         if o.get("constraints"):
             lines.append("constraints: " + "; ".join(o["constraints"]))
@@ -441,7 +442,7 @@ class Design:
             if f.kind == "categoric":
                 lines.append(f"  {f.letter} {f.name}: categoric, levels {', '.join(f.levels)}")
             else:
-                lines.append(f"  {f.letter} {f.name}: {f.low:g} .. {f.high:g}")
+                lines.append(f"  {f.letter} {f.name}: {format_g(f.low, 6, trim=True)} .. {format_g(f.high, 6, trim=True)}")
         return "\n".join(lines)
 
     def __repr__(self) -> str:

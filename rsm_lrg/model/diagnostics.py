@@ -288,9 +288,9 @@ class Diagnostics:
                f"|DFFITS| > {lim['dffits']:.3f} (2 sqrt(p/n))"]
         if self.box_cox is not None:
             b = self.box_cox
-            ci = ", ".join("beyond ±3" if not math.isfinite(v) else f"{v:.3f}" for v in b.ci)
-            out.append(f"Box-Cox: lambda = {b.lambda_best:.3f}, {int(round(100 * b.confidence))} % CI [{ci}], "
-                       f"max/min = {b.ratio:.3g}; recommended transform: {b.recommended}")
+            ci = ", ".join("beyond ±3" if not math.isfinite(v) else format_g(v, 3, trim=True) for v in b.ci)
+            out.append(f"Box-Cox: lambda = {format_g(b.lambda_best, 3, trim=True)}, {int(round(100 * b.confidence))} % CI [{ci}], "
+                       f"max/min = {format_g(b.ratio, 3, trim=True)}; recommended transform: {b.recommended}")
             out.append(f"  ({b.rule_text})")
         if self.note:
             out.append(f"Note: {self.note}")

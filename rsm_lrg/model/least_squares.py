@@ -44,6 +44,8 @@ from functools import cached_property
 
 import numpy as np
 
+from ..present import format_g
+
 __all__ = ["Regression", "Accumulator", "PassSums", "least_squares", "factorise", "partial_ss", "ALIAS_TOL", "CHUNK_ROWS"]
 
 #: A column is aliased when its distance from the span of the estimable columns before it
@@ -343,7 +345,7 @@ class Regression:
             for c, i in zip(coef, before):
                 if abs(c) <= 1e-9:
                     continue
-                mag = f"{abs(c):.6g}"
+                mag = format_g(abs(c), 6, trim=True)
                 term = self.names[i] if mag == "1" else f"{mag}·{self.names[i]}"
                 rhs += (("-" if c < 0 else "") + term) if not rhs else ((" - " if c < 0 else " + ") + term)
             out.append(f"{self.names[j]} = {rhs or '0'}")

@@ -198,7 +198,7 @@ def format_summary(result) -> str:
         elif f.kind == "categoric":
             out.append(f"  {f.letter}: {f.name}  categoric, levels {', '.join(f.levels)} (effect coded)")
         else:
-            out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6)} .. {format_g(f.high, 6)}")
+            out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6, trim=True)} .. {format_g(f.high, 6, trim=True)}")
     out.append("")
     sd = summary_data(result)  # the one summary every face renders
     out.append(sd.anova_title)
@@ -249,12 +249,12 @@ def format_summary(result) -> str:
         if sp_.coded is None:
             out.append(f"  {sp_.note}")
         else:
-            out.append("  Stationary point (coded):  " + ", ".join(f"{k} = {format_g(v, 6)}" for k, v in sp_.coded.items()))
-            out.append("  Stationary point (actual): " + ", ".join(f"{k} = {format_g(v, 6)}" for k, v in sp_.actual.items()))
-            out.append(f"  Predicted response there:  {format_g(sp_.predicted, 6)}"
+            out.append("  Stationary point (coded):  " + ", ".join(f"{k} = {format_g(v, 6, trim=True)}" for k, v in sp_.coded.items()))
+            out.append("  Stationary point (actual): " + ", ".join(f"{k} = {format_g(v, 6, trim=True)}" for k, v in sp_.actual.items()))
+            out.append(f"  Predicted response there:  {format_g(sp_.predicted, 6, trim=True)}"
                        + ("" if sp_.inside else "  (outside the coded cube: extrapolation)"))
             out.append(f"  Kind: {sp_.kind}")
             if sp_.note:
                 out.append(f"  Note: {sp_.note}")
-        out.append("  Eigenvalues: " + ", ".join(format_g(v, 6) for v in sp_.eigenvalues))
+        out.append("  Eigenvalues: " + ", ".join(format_g(v, 6, trim=True) for v in sp_.eigenvalues))
     return "\n".join(out) + "\n"

@@ -162,22 +162,22 @@ class ConfirmationResult:
         from ..present import format_g
 
         pc = int(round(100 * self.confidence))
-        lines = [f"Confirmation of {self.response} at " + ", ".join(f"{k} = {format_g(v, 6)}" for k, v in self.actual.items()),
-                 f"  predicted:       {format_g(self.predicted, 6)}",
-                 f"  observed mean:   {format_g(self.mean, 6)}  (n = {self.n})",
-                 f"  {pc} % PI for the mean of {self.n} run(s): {format_g(self.pi[0], 6)} .. {format_g(self.pi[1], 6)}"
+        lines = [f"Confirmation of {self.response} at " + ", ".join(f"{k} = {format_g(v, 6, trim=True)}" for k, v in self.actual.items()),
+                 f"  predicted:       {format_g(self.predicted, 6, trim=True)}",
+                 f"  observed mean:   {format_g(self.mean, 6, trim=True)}  (n = {self.n})",
+                 f"  {pc} % PI for the mean of {self.n} run(s): {format_g(self.pi[0], 6, trim=True)} .. {format_g(self.pi[1], 6, trim=True)}"
                  f"  -> {'inside' if self.inside else 'OUTSIDE'}",
                  f"  relative error:  {self.relative_error_percent:+.2f} % of the prediction"]
         if self.transform is not None and self.pi_transformed is not None:
             lines.insert(1, f"  model fitted to the {self.transform}-transformed response; the interval is computed "
                             "on that scale and back-transformed")
-            lines.append(f"  transformed scale: predicted {format_g(self.predicted_transformed, 6)}, run mean "
-                         f"{format_g(self.mean_transformed, 6)}, PI {format_g(self.pi_transformed[0], 6)} .. "
-                         f"{format_g(self.pi_transformed[1], 6)}"
-                         + ("" if self.n == 1 else f" (back-transformed run mean {format_g(self.mean_back_transformed, 6)})"))
+            lines.append(f"  transformed scale: predicted {format_g(self.predicted_transformed, 6, trim=True)}, run mean "
+                         f"{format_g(self.mean_transformed, 6, trim=True)}, PI {format_g(self.pi_transformed[0], 6, trim=True)} .. "
+                         f"{format_g(self.pi_transformed[1], 6, trim=True)}"
+                         + ("" if self.n == 1 else f" (back-transformed run mean {format_g(self.mean_back_transformed, 6, trim=True)})"))
         if self.reference is not None:
             lines.append(f"  relative error:  {self.relative_error_vs_reference_percent:+.2f} % of the reference "
-                         f"{format_g(self.reference, 6)}")
+                         f"{format_g(self.reference, 6, trim=True)}")
         lines += [f"  warning: {w}" for w in self.warnings]
         return "\n".join(lines) + "\n"
 

@@ -234,11 +234,11 @@ class DesirabilityResult:
         lines = [f"Desirability optimum (D = {self.desirability:.4f})"]
         for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):
             lines.append(f"  {L}: {name} = {a}   (categoric)" if isinstance(a, str)
-                         else f"  {L}: {name} = {format_g(a, 6)}   (coded {c:+.4f})")
+                         else f"  {L}: {name} = {format_g(a, 6, trim=True)}   (coded {c:+.4f})")
         for g in self.goals:
-            what = g.goal if g.goal != "target" else f"target {format_g(g.target, 6)}"
-            lines.append(f"  {g.response}: predicted {format_g(self.predicted[g.response], 6)}, d = "
-                         f"{self.individual[g.response]:.4f}  ({what}, limits {format_g(g.low, 6)}..{format_g(g.high, 6)}, "
+            what = g.goal if g.goal != "target" else f"target {format_g(g.target, 6, trim=True)}"
+            lines.append(f"  {g.response}: predicted {format_g(self.predicted[g.response], 6, trim=True)}, d = "
+                         f"{self.individual[g.response]:.4f}  ({what}, limits {format_g(g.low, 6, trim=True)}..{format_g(g.high, 6, trim=True)}, "
                          f"weight {g.weight[0]:g}, importance {g.importance:g})")
         lines += [f"  warning: {w}" for w in self.warnings]
         return "\n".join(lines) + "\n"

@@ -170,24 +170,24 @@ class OptimumResult:
         """A few lines of text."""
         from ..present import format_g
 
-        g = self.goal if self.target is None else f"target {format_g(self.target, 6)}"
+        g = self.goal if self.target is None else f"target {format_g(self.target, 6, trim=True)}"
         lines = [f"Optimum of {self.response} ({g})"]
         for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):
             if isinstance(a, str):
                 lines.append(f"  {L}: {name} = {a}   (categoric)")
             else:
-                lines.append(f"  {L}: {name} = {format_g(a, 6)}   (coded {c:+.4f})")
+                lines.append(f"  {L}: {name} = {format_g(a, 6, trim=True)}   (coded {c:+.4f})")
         pc = int(round(self.confidence * 100))
-        lines.append(f"  predicted: {format_g(self.predicted, 6)}")
-        lines.append(f"  {pc} % CI:  {format_g(self.ci[0], 6)} .. {format_g(self.ci[1], 6)}")
-        lines.append(f"  {pc} % PI:  {format_g(self.pi[0], 6)} .. {format_g(self.pi[1], 6)}")
+        lines.append(f"  predicted: {format_g(self.predicted, 6, trim=True)}")
+        lines.append(f"  {pc} % CI:  {format_g(self.ci[0], 6, trim=True)} .. {format_g(self.ci[1], 6, trim=True)}")
+        lines.append(f"  {pc} % PI:  {format_g(self.pi[0], 6, trim=True)} .. {format_g(self.pi[1], 6, trim=True)}")
         lines.extend(f"  warning: {w}" for w in self.warnings)
         if len(self.by_level) > 1:
             lines.append("  best setting per level combination:")
             for r in self.by_level:
                 lv = ", ".join(f"{k} = {v}" for k, v in r["level"].items())
-                at = ", ".join(f"{k} = {format_g(v, 6)}" for k, v in r["actual"].items() if k not in r["level"])
-                lines.append(f"    {lv}: {format_g(r['predicted'], 6)} at {at}")
+                at = ", ".join(f"{k} = {format_g(v, 6, trim=True)}" for k, v in r["actual"].items() if k not in r["level"])
+                lines.append(f"    {lv}: {format_g(r['predicted'], 6, trim=True)} at {at}")
         return "\n".join(lines) + "\n"
 
 
@@ -387,8 +387,8 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
     if kind == "target" and abs(yhat(best) - target) > 1e-3 * scale:  # judged on the model's scale
         from ..present import format_g
 
-        notes.append(f"the target {format_g(goal_target, 6)} cannot be reached inside the region: the closest "
-                     f"predicted value is {format_g(float(pr['predicted']), 6)}")
+        notes.append(f"the target {format_g(goal_target, 6, trim=True)} cannot be reached inside the region: the closest "
+                     f"predicted value is {format_g(float(pr['predicted']), 6, trim=True)}")
     tr = fitted.transform
     if not tr.identity:
         notes.append(f"model fitted to the {tr.label}-transformed response; prediction and intervals "

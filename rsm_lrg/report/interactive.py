@@ -598,7 +598,7 @@ class Profiler:
         if not self.notebook:
             return frame
         blocks = []
-        for kind, sha, text in self.assets:
+        for _kind, sha, text in self.assets:
             if sha not in _SENT:
                 blocks.append(f'<script type="text/plain" data-rsm-lrg-asset="{sha}">{text}</script>')
         _SENT.update(sha for _, sha, _ in self.assets)

@@ -24,6 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..present import format_g
+
 __all__ = [
     "CALIBRATION_FILE", "DEFAULT_PARAMETERS", "ParameterSpec", "ParameterEstimate",
     "Calibration", "calibrate", "load_calibration", "resolve_calibration", "calibration_toml",
@@ -241,13 +243,14 @@ class Calibration:
                  + (f", model {self.model}" if self.model else "")]
         for p in self.parameters:
             flag = "  (at a bound)" if p.at_bound else ""
-            lines.append(f"  {p.name:<24} {p.value:12.6g} ± {p.std_error:<10.3g} {p.unit:<6} "
-                         f"bounds [{p.lower:g}, {p.upper:g}]{flag}")
+            lines.append(f"  {p.name:<24} {format_g(p.value, 6, trim=True):>12} ± {format_g(p.std_error, 3, trim=True):<10} "
+                         f"{p.unit:<6} bounds [{format_g(p.lower, 6, trim=True)}, {format_g(p.upper, 6, trim=True)}]{flag}")
             if p.ci_method:
-                lines.append(f"  {'':<24} 95 % {p.ci_method} interval [{p.ci_low:.4g}, {p.ci_high:.4g}]")
-        lines.append(f"  R2 {self.r2:.4f}   RMSE {self.rmse:.4g}")
+                lines.append(f"  {'':<24} 95 % {p.ci_method} interval [{format_g(p.ci_low, 4, trim=True)}, "
+                             f"{format_g(p.ci_high, 4, trim=True)}]")
+        lines.append(f"  R2 {self.r2:.4f}   RMSE {format_g(self.rmse, 4, trim=True)}")
         if self.loo_r2 is not None:
-            lines.append(f"  leave-one-out R2 {self.loo_r2:.4f}   RMSE {self.loo_rmse:.4g}   (the paper's quadratic, "
+            lines.append(f"  leave-one-out R2 {self.loo_r2:.4f}   RMSE {format_g(self.loo_rmse, 4, trim=True)}   (the paper's quadratic, "
                          f"Eq. 19: PRESS R2 {PAPER_PRESS_R2:.3f})")
         if self.uncalibrated_r2 is not None:
             lines.append(f"  raw physics (uncalibrated) R2 {self.uncalibrated_r2:.4f}")

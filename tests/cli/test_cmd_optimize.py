@@ -29,7 +29,7 @@ def test_optimize_text_and_bounds(capsys):
     assert main(["optimize", TABLE4, "--response", "tcr_c_per_min", "--goal", "maximize",
                  "--bound", "velocity_m_s=0.45:0.55"]) == 0
     out = capsys.readouterr().out
-    assert "velocity_m_s = 0.550000" in out and "95 % PI" in out
+    assert "velocity_m_s = 0.55   (coded" in out and "95 % PI" in out
 
 
 @pytest.mark.parametrize("extra, needle", [
