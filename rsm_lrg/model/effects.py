@@ -293,12 +293,15 @@ class EffectsResult:
     def _repr_html_(self) -> str:
         from html import escape
 
+        from ..present import format_number
+
         f = self.to_frame()
         body = "".join(
-            f"<tr><td>{escape(r.term)}</td><td>{escape(r.label)}</td><td>{r.effect:.6g}</td>"
-            f"<td>{r.half_normal:.3f}</td><td>{'SME' if r.active_sme else ('ME' if r.active else '')}</td></tr>"
+            f"<tr><td>{escape(r.term)}</td><td>{escape(r.label)}</td><td>{format_number(r.effect, 6)}</td>"
+            f"<td>{format_number(r.half_normal, 3)}</td><td>{'SME' if r.active_sme else ('ME' if r.active else '')}</td></tr>"
             for r in f.itertuples())
-        cap = escape(f"Effects of {self.response}: PSE {self.pse:.4g}, ME {self.me:.4g}, SME {self.sme:.4g}")
+        cap = escape(f"Effects of {self.response}: PSE {format_number(self.pse)}, ME {format_number(self.me)}, "
+                     f"SME {format_number(self.sme)}")
         return ("<table class='rsm-lrg-effects'><caption>" + cap + "</caption><tr><th>Term</th><th>Factors</th>"
                 "<th>Effect</th><th>Half-normal</th><th>Active</th></tr>" + body + "</table>")
 

@@ -89,6 +89,16 @@ def fmt_cell(x) -> str:
     return _present.format_cell(x)
 
 
+def fmt_input(x, sig: int = 4) -> str:
+    """A number for the value of an ``<input type="number">``: :func:`rsm_lrg.present.format_number`
+    in the ASCII style (``4.099e-11``, a number the input accepts); ``""`` when missing.
+
+    >>> fmt_input(4.099382513e-11), fmt_input(0.0336667), fmt_input(None), fmt_input(0.5, 6)
+    ('4.099e-11', '0.03367', '', '0.5')
+    """
+    return _present.format_number(x, sig, style="ascii", missing="")
+
+
 def fmt_dof(x) -> str:
     if _missing(x):
         return ""
@@ -155,6 +165,7 @@ def environment():
     env.filters["pval"] = fmt_p
     env.filters["cell"] = fmt_cell
     env.filters["dof"] = fmt_dof
+    env.filters["num_input"] = fmt_input
     return env
 
 

@@ -34,6 +34,8 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..present import format_number
+
 __all__ = [
     "Rendered",
     "render",
@@ -300,7 +302,7 @@ def _index_bars(values, run_order, threshold, ylabel, title, what) -> Figure:
     ax.scatter(x, y, s=18, **_POINT_STYLE)
     if threshold is not None and math.isfinite(threshold):
         ax.axhline(threshold, color="#b5261e", linewidth=0.8, linestyle="--",
-                   label=f"reference {threshold:.3g}")
+                   label=f"reference {format_number(threshold, 3)}")
         ax.legend(loc="upper right", fontsize=8, frameon=False)
     ax.set_ylim(bottom=0.0)
     _finish(ax, title, "Run number", ylabel)

@@ -16,6 +16,8 @@ from typing import Any
 
 import numpy as np
 
+from ..present import format_number
+
 __all__ = ["reproduction_text", "reproduction_page", "write_page", "banner", "display_number"]
 
 
@@ -117,7 +119,7 @@ def _figures(rep, fig9: dict, confirmation: dict, measured) -> dict:
                                   xlabel="Time [h]", ylabel="Temperature rise at the carriage [K]"),
             "fig5", "Fig. 5: temperature rise of the guide",
             f"Thermocouple rise (mean of two) after start-up at {th.ambient_c:g} °C ambient, heat "
-            f"{th.heat_w:.4g} W. Dashed: the paper's FEM steady rise.", "svg")
+            f"{format_number(th.heat_w)} W. Dashed: the paper's FEM steady rise.", "svg")
     if rep.fig9 is not None:
         f = rep.fig9
         series = {st.upper(): [float(f.loc[(f["stroke_m"] == s) & (f["stage"] == st), "tcr_c_per_min"].iloc[0])
@@ -139,7 +141,7 @@ def _figures(rep, fig9: dict, confirmation: dict, measured) -> dict:
     # Fig. 11: the confirmation run against the model's prediction at the optimum
     opt = rep.optimum
     t = np.linspace(0.0, minutes, 51)
-    curves = {f"model: κ̂ = {opt.predicted:.4f} °C/min at the optimum": (t, opt.predicted * t)}
+    curves = {f"model: κ̂ = {format_number(opt.predicted)} °C/min at the optimum": (t, opt.predicted * t)}
     for lab, (lo, hi) in (("95 % PI", opt.pi),):
         curves[f"model {lab} (low)"] = (t, lo * t)
         curves[f"model {lab} (high)"] = (t, hi * t)

@@ -645,3 +645,51 @@ def test_deepest_setting_searches_every_level(categoric_page):
     got, mine, best, inside = _deepest_against_random(page, fits, categoric_data(), seed=12)
     assert mine >= best - 1e-12 and mine > 0 and inside, (mine, best)
     assert log["errors"] == []
+
+
+def _format_cases() -> list[list]:
+    """[x, digits, style, trim]: exact binary ties (1.0625 → 1.062 at 4 figures, half to even),
+    the plain/scientific borders on both sides, carries (9.9995 → 10.00), the extremes of a
+    double, and 400 values spread over 600 decades with random digits, styles and trims."""
+    ties = [0.125, 0.375, 2.5, 3.5, 1.0625, 1.0675, 0.0625, 1.03125, 2.25e-3, 1.5, 0.5]
+    borders = [1e-4, 9.9995e-5, 9.99949e-5, 0.000099995, 99999.5, 99994.9, 99995.0, 1e5, 0.99995, 9.9995,
+               9.9999, 0.0, -0.0, 1.0, 27.0, 4.099382513e-11, 1 / 3, -2 / 3, 5e-324, 2.2250738585072014e-308,
+               1.7976931348623157e308, 123456789.0, 0.0336667, 6.972e-05, 12345.0, 12350.0]
+    cases = [[x, d, st, tr] for x in ties + borders + [-v for v in ties] for d in (1, 2, 3, 4, 6)
+             for st in ("unicode", "ascii") for tr in (True, False)]
+    rng = np.random.default_rng(11)
+    for _ in range(400):
+        x = float(rng.uniform(1, 10) * 10.0 ** int(rng.integers(-300, 300))) * float(rng.choice([-1, 1]))
+        cases.append([x, int(rng.integers(1, 9)), str(rng.choice(["unicode", "ascii"])), bool(rng.integers(0, 2))])
+    return cases
+
+
+def test_page_number_format_is_present_format_number(page2):
+    """The page's one JavaScript formatter writes every number exactly as
+    :func:`rsm_lrg.present.format_number` does (floats; Python shows a whole ``int`` whole,
+    JavaScript has no integers), and the limit boxes show their limits in it while the
+    overlay still uses the unrounded limits until a box is edited."""
+    from rsm_lrg.present import format_number
+
+    page, _log, _url, fits = page2
+    cases = _format_cases()
+    got = page.evaluate("cs => cs.map(([x, d, st, tr]) => window.rsmReport.formatNumber(x, d, st, tr))", cases)
+    want = [format_number(float(x), d, style=st, trim=tr) for x, d, st, tr in cases]
+    bad = [(c, g, w) for c, g, w in zip(cases, got, want) if g != w]
+    assert bad == [], bad[:10]
+    assert len(cases) > 800
+    page.evaluate("() => document.querySelectorAll('[data-limit-low], [data-limit-high]').forEach(e => { e.value = e.defaultValue; })")
+    boxes = page.evaluate("""() => Array.from(document.querySelectorAll('[data-limit-low], [data-limit-high]'))
+        .map(e => [e.value, e.dataset.exact])""")
+    shown = [(v, float(x)) for v, x in boxes if x != ""]
+    assert shown and all(v == format_number(x, 4, style="ascii") for v, x in shown)
+    assert any(float(v) != x for v, x in shown)  # a limit rounded for display (the wear's 4.099e-11 ...)
+    # ... while the overlay computes with the unrounded limits the page was written with
+    limits = page.evaluate("() => window.rsmReport.limits()")
+    embedded = page.evaluate("() => JSON.parse(document.getElementById('rsm-data').textContent).models.map(m => m.limits)")
+    assert len(limits) == len(embedded) == len(fits)
+    for got, want in zip(limits, embedded):
+        assert [None if v != v else v for v in got] == want  # NaN: no limit
+    page.fill('[data-limit-high="wear_volume_m3_per_h"]', "4.5e-11")  # an edited box: what it shows
+    assert page.evaluate("() => window.rsmReport.limits()")[1][1] == 4.5e-11
+    page.evaluate("() => document.querySelectorAll('[data-limit-low], [data-limit-high]').forEach(e => { e.value = e.defaultValue; })")

@@ -16,15 +16,44 @@
   function esc(s) {  /* Plotly reads <b>, <a href>, ... in labels: make user text plain */
     return String(s).replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;");
   }
-  function fmt(x, sig) {
-    if (x === null || x === undefined || !isFinite(x)) return "\u2014";
-    if (x === 0) return "0";
-    var a = Math.abs(x);
-    if (a >= 1e-4 && a < 1e5) return String(Number(x.toPrecision(sig || 4)));
-    var parts = x.toExponential((sig || 4) - 1).split("e");
-    var sup = {"-": "\u207b", "+": "", "0": "\u2070", "1": "\u00b9", "2": "\u00b2", "3": "\u00b3", "4": "\u2074",
-               "5": "\u2075", "6": "\u2076", "7": "\u2077", "8": "\u2078", "9": "\u2079"};
-    return String(Number(parts[0])) + " \u00d7 10" + parts[1].split("").map(function (ch) { return sup[ch]; }).join("");
+  /* The page's one number format: rsm_lrg.present.format_number, digit for digit. `sig`
+   * significant figures of the exact value, ties to even (as Python rounds); plain decimals
+   * when the rounded value is in [1e-4, 1e5), otherwise 6.972 × 10⁻⁵ ("ascii": 6.972e-05);
+   * trailing zeros dropped unless trim === false; "—" for a missing or non-finite value. */
+  var SUP = {"-": "\u207b", "0": "\u2070", "1": "\u00b9", "2": "\u00b2", "3": "\u00b3", "4": "\u2074",
+             "5": "\u2075", "6": "\u2076", "7": "\u2077", "8": "\u2078", "9": "\u2079"};
+  function roundSig(a, sig) {  /* a > 0: [sig digits, decimal exponent] of a rounded to sig figures */
+    var ex = a.toExponential(100).split("e");  /* 101 digits: every double's tie is exact within them */
+    var d = ex[0].replace(".", ""), e = parseInt(ex[1], 10);
+    var head = d.slice(0, sig), next = d.charAt(sig), rest = d.slice(sig + 1);
+    var up = next > "5" || (next === "5" && (/[1-9]/.test(rest) || parseInt(head.charAt(sig - 1), 10) % 2 === 1));
+    if (up) {
+      var ds = head.split(""), i = ds.length - 1;
+      while (i >= 0 && ds[i] === "9") { ds[i] = "0"; i--; }
+      if (i >= 0) ds[i] = String(parseInt(ds[i], 10) + 1);
+      else { ds.unshift("1"); ds.pop(); e += 1; }
+      head = ds.join("");
+    }
+    return [head, e];
+  }
+  function trimZeros(s) { return s.indexOf(".") < 0 ? s : s.replace(/0+$/, "").replace(/\.$/, ""); }
+  function fmt(x, sig, style, trim) {
+    sig = Math.max(sig || 4, 1);
+    if (x === null || x === undefined || typeof x !== "number" || !isFinite(x)) return "\u2014";
+    if (x === 0) return trim === false ? (0).toFixed(sig - 1) : "0";
+    var r = roundSig(Math.abs(x), sig), h = r[0], e = r[1], sign = x < 0 ? "-" : "", s;
+    if (e >= -4 && e <= 4) {
+      if (e >= 0) {
+        var whole = h.length > e + 1 ? h.slice(0, e + 1) : h + "0".repeat(e + 1 - h.length);
+        var frac = h.slice(e + 1);
+        s = frac ? whole + "." + frac : whole;
+      } else s = "0." + "0".repeat(-e - 1) + h;
+      return sign + (trim === false ? s : trimZeros(s));
+    }
+    var mant = h.length > 1 ? h.charAt(0) + "." + h.slice(1) : h;
+    if (trim !== false) mant = trimZeros(mant);
+    if (style === "ascii") return sign + mant + "e" + (e < 0 ? "-" : "+") + (Math.abs(e) < 10 ? "0" : "") + Math.abs(e);
+    return sign + mant + " \u00d7 10" + String(e).split("").map(function (ch) { return SUP[ch]; }).join("");
   }
   /* names (factors, levels, responses) are data, never object keys with a prototype: every
    * object indexed by a name is prototype-free, so __proto__, constructor or toString are
@@ -216,12 +245,17 @@
   var LIM = dict();  /* response -> [low input, high input], matched by the attribute's value (no selector built from user text) */
   document.querySelectorAll("[data-limit-low]").forEach(function (el) { (LIM[el.getAttribute("data-limit-low")] = LIM[el.getAttribute("data-limit-low")] || [])[0] = el; });
   document.querySelectorAll("[data-limit-high]").forEach(function (el) { (LIM[el.getAttribute("data-limit-high")] = LIM[el.getAttribute("data-limit-high")] || [])[1] = el; });
+  /* a limit box shows its number in the page's format (4 figures); until it is edited, the
+     limit is the unrounded value it was written with (data-exact) */
+  function limitValue(el) {
+    if (!el || el.value === "") return NaN;
+    var exact = el.getAttribute("data-exact");
+    return exact && el.value === el.defaultValue ? parseFloat(exact) : parseFloat(el.value);
+  }
   function limitsOf(m) {
     var pair = LIM[m.response] || [];
     var lo = pair[0], hi = pair[1];
-    var a = lo && lo.value !== "" ? parseFloat(lo.value) : NaN;
-    var b = hi && hi.value !== "" ? parseFloat(hi.value) : NaN;
-    return [a, b];
+    return [limitValue(lo), limitValue(hi)];
   }
   function inside(s) {
     for (var i = 0; i < MODELS.length; i++) {
@@ -401,7 +435,7 @@
     traces.push({type: "scatter", mode: "markers", x: [s[g.fx.name]], y: [s[g.fy.name]],
                  marker: {symbol: "circle-open", size: 12, color: "#1b1f24", line: {width: 2}}, name: "current setting"});
     var n = 0; g.z.forEach(function (r) { r.forEach(function (v) { n += v; }); });
-    out.textContent = "Inside every limit: " + (100 * n / (GRID * GRID)).toFixed(1) + " % of the " + GRID + " \u00d7 " +
+    out.textContent = "Inside every limit: " + fmt(100 * n / (GRID * GRID), 3) + " % of the " + GRID + " \u00d7 " +
       GRID + " grid. The current setting is " + (inside(s) ? "inside." : "outside.");
     Plotly.react(el, traces, {margin: {l: 70, r: 20, t: 20, b: 60}, showlegend: true,
                               legend: {orientation: "h", y: -0.18},
@@ -482,7 +516,7 @@
   window.addEventListener("beforeprint", drawAll);
   function update() {
     var s = setting();
-    CONTROLS.forEach(function (c) { if (txt[c.name] && document.activeElement !== txt[c.name]) txt[c.name].value = String(s[c.name]); });
+    CONTROLS.forEach(function (c) { if (txt[c.name] && document.activeElement !== txt[c.name]) txt[c.name].value = c.kind === "numeric" ? fmt(s[c.name], 6, "ascii") : String(s[c.name]); });
     showPredictions(s);
     schedule();
   }
@@ -541,7 +575,9 @@
     overlayGrid: function () { return overlayGrid(setting()); },
     margin: function (s) { return margin(Object.assign(setting(), s)); },
     goDeepest: goDeepest,
-    drawNow: drawAll
+    drawNow: drawAll,
+    formatNumber: fmt,
+    limits: function () { return MODELS.map(limitsOf); }
   };
   update();
   if (hasPlotly) drawAll();
