@@ -51,7 +51,7 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["diagnostics", "Diagnostics", "box_cox", "box_cox_ss", "BoxCox", "STANDARD_LAMBDAS", "BOX_COX_RULES"]
+__all__ = ["diagnostics", "Diagnostics", "box_cox", "box_cox_ss", "box_cox_response", "BoxCox", "STANDARD_LAMBDAS", "BOX_COX_RULES"]
 
 #: Standard power transforms, λ -> name (Stat-Ease's list).
 STANDARD_LAMBDAS = {1.0: "none", 0.5: "sqrt", 0.0: "log", -0.5: "inverse sqrt", -1.0: "inverse"}
@@ -152,6 +152,29 @@ def box_cox_ss(X, y, lambdas, *, fit=None) -> np.ndarray:
 BOX_COX_RULES = ("likelihood", "design-expert")
 
 
+def _current_lambda(tr) -> float:
+    """λ of the transform a model was fitted on (1: none; 0: log, log10 included)."""
+    if tr.name == "none":
+        return 1.0
+    return 0.0 if tr.lam is None else float(tr.lam)
+
+
+def box_cox_response(result) -> np.ndarray:
+    """The response the Box–Cox profile is taken of: as measured, plus the transform's
+    constant k (Design-Expert's Box-Cox of ``y + k``), whatever transform the model was
+    fitted on (the profile then shows where that transform's λ lies); the model's own
+    response for a fit without a transform.
+
+    >>> import rsm_lrg
+    >>> fit = rsm_lrg.fit(rsm_lrg.load_table4(), "tcr_c_per_min", transform="log")
+    >>> bool((fit.y < 0).all()), bool((box_cox_response(fit) > 0).all())
+    (True, True)
+    """
+    if result.transform.identity or getattr(result, "y_response", None) is None:
+        return np.asarray(result.y, dtype=float)
+    return np.asarray(result.y_response, dtype=float) + result.transform.constant
+
+
 def box_cox(result, *, confidence: float = 0.95, lambdas=None, rule: str = "likelihood") -> BoxCox:
     """Box–Cox profile of the fitted model (see the module docstring for both rules).
 
@@ -178,10 +201,11 @@ def box_cox(result, *, confidence: float = 0.95, lambdas=None, rule: str = "like
         raise ValueError(f"Box-Cox rule must be 'likelihood' or 'design-expert', not {rule!r}")
     if not 0.0 < confidence < 1.0:
         raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
-    y = np.asarray(result.y, dtype=float)
+    y = box_cox_response(result)
     if np.any(y <= 0):
         i = int(np.flatnonzero(y <= 0)[0])
-        raise ValueError(f"Box-Cox needs a positive response: column {result.response!r}, row {i + 1} holds {y[i]:g}")
+        raise ValueError(f"Box-Cox needs a positive response: column {result.response!r}, row {i + 1} holds {y[i]:g}"
+                         + (f" (after adding the constant {result.transform.constant:g})" if result.transform.constant else ""))
     X = result.design_matrix
     nu = result.df_resid
     if nu <= 0:
@@ -225,7 +249,7 @@ def box_cox(result, *, confidence: float = 0.95, lambdas=None, rule: str = "like
         rec_l = lam
         rec = f"power={lam:.4g}"
     return BoxCox(lambdas=grid, ss=ss, lambda_best=lam, ci=(low, high), confidence=float(confidence),
-                  current=1.0, recommended=rec, recommended_lambda=float(rec_l), ratio=float(y.max() / y.min()),
+                  current=_current_lambda(result.transform), recommended=rec, recommended_lambda=float(rec_l), ratio=float(y.max() / y.min()),
                   rule=rule)
 
 
@@ -329,7 +353,7 @@ def diagnostics(result, *, alpha: float = 0.05, boxcox_rule: str = "likelihood")
     table["flagged"] = table[["flag_outlier", "flag_leverage", "flag_cooks", "flag_dffits"]].any(axis=1)
     note = ""
     bc = None
-    if np.all(result.y > 0) and nu > 0:
+    if np.all(box_cox_response(result) > 0) and nu > 0:
         bc = box_cox(result, rule=boxcox_rule)
     else:
         note = ("no Box-Cox plot: the response has values <= 0" if nu > 0

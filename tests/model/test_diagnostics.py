@@ -159,3 +159,22 @@ def test_box_cox_poisons_design_expert_rule_against_an_independent_profile():
     assert r.diagnostics(boxcox_rule="design-expert").box_cox.rule == "design-expert"
     with pytest.raises(ValueError, match="rule"):
         box_cox(r, rule="minitab")
+
+
+def test_box_cox_of_a_transformed_fit_is_of_the_measured_response():
+    """A fit of log κ (every κ positive, every log κ negative) has its Box–Cox profile: the
+    profile of the response as measured with the same model matrix, the same λ̂ and interval as
+    the untransformed fit's (issue 25: it said "the response has values <= 0"); with a
+    constant k the profile is of y + k."""
+    df = rsm_lrg.load_table4()
+    plain = rsm_lrg.fit(df, "tcr_c_per_min")
+    logged = rsm_lrg.fit(df, "tcr_c_per_min", transform="log")
+    assert (logged.y < 0).all()
+    d = diagnostics(logged)
+    assert d.box_cox is not None and d.note == ""
+    a, b = box_cox(plain), d.box_cox
+    assert b.lambda_best == a.lambda_best and np.isfinite(a.lambda_best)
+    np.testing.assert_allclose(np.asarray(b.ci, float), np.asarray(a.ci, float), rtol=1e-12)  # NaN/inf alike
+    shifted = rsm_lrg.fit(df.assign(y=df["tcr_c_per_min"] - 0.01).drop(columns="tcr_c_per_min"), "y", transform="log", transform_constant=0.01)
+    assert box_cox(shifted).lambda_best == pytest.approx(a.lambda_best, rel=1e-6)  # (y - 0.01) + 0.01 rounds
+    assert (a.current, b.current) == (1.0, 0.0)  # the λ each model was fitted on
