@@ -32,14 +32,21 @@ def run(args) -> int:
 
     from ..io import dump_json
     from ..physics.chain import physics_chain
+    from ..present import format_g
     from ..physics.params import PARAM_INFO, PHYSICAL_RANGES, LRGParams, load_params, parse_assignments
 
     if args.list_params:
         for name, value in LRGParams().to_dict().items():
             info = PARAM_INFO[name]
-            mark = "  [ASSUMPTION]" if "assumption" in info else ""
-            rng = f" in [{PHYSICAL_RANGES[name][0]:g}, {PHYSICAL_RANGES[name][1]:g}]" if name in PHYSICAL_RANGES else ""
-            print(f"{name} = {value!r} [{info['unit']}]{rng}  {info['source']}{mark}")
+            shown = format_g(value, 15, trim=True) if isinstance(value, float) else str(value)
+            rng = (f" in [{format_g(PHYSICAL_RANGES[name][0], 6, trim=True)}, "
+                   f"{format_g(PHYSICAL_RANGES[name][1], 6, trim=True)}]") if name in PHYSICAL_RANGES else ""
+            source = str(info["source"]).strip()
+            if "assumption" in info:  # the rationale once, marked, whatever the source field says
+                why = str(info["assumption"]).strip()
+                source = (f"ASSUMPTION: {why}" if source.upper() == "ASSUMPTION"
+                          else f"{source}  [ASSUMPTION: {why}]")
+            print(f"{name} = {shown} [{info['unit']}]{rng}  {source}")
         return 0
     overrides = parse_assignments(args.param)
     params = load_params(args.params_file, **overrides)
