@@ -32,8 +32,8 @@ def run(args) -> int:
 
     from ..io import dump_json
     from ..physics.chain import physics_chain
-    from ..present import format_g
     from ..physics.params import PARAM_INFO, PHYSICAL_RANGES, LRGParams, load_params, parse_assignments
+    from ..present import format_g
 
     if args.list_params:
         for name, value in LRGParams().to_dict().items():

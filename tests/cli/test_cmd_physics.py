@@ -66,6 +66,10 @@ def test_with_thermal_model():
 def test_list_params():
     out = run("--list-params")
     assert out.returncode == 0 and "hinge_width_m" in out.stdout and "ASSUMPTION" in out.stdout
+    # an assumed parameter says so once, with its rationale (it printed "ASSUMPTION  [ASSUMPTION]")
+    line = next(ln for ln in out.stdout.splitlines() if ln.startswith("hinge_width_m = "))
+    assert line.count("ASSUMPTION") == 1 and "ASSUMPTION: Not given in the paper" in line
+    assert "hinge_modulus_pa = 2.11e+11 [Pa] in [1e+06, 1.2e+12]" in out.stdout  # one number format
 
 
 @pytest.mark.slow
