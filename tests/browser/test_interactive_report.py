@@ -693,3 +693,29 @@ def test_page_number_format_is_present_format_number(page2):
     page.fill('[data-limit-high="wear_volume_m3_per_h"]', "4.5e-11")  # an edited box: what it shows
     assert page.evaluate("() => window.rsmReport.limits()")[1][1] == 4.5e-11
     page.evaluate("() => document.querySelectorAll('[data-limit-low], [data-limit-high]').forEach(e => { e.value = e.defaultValue; })")
+
+
+def test_hover_labels_use_the_page_number_format(page2):
+    """Plotly's hover labels of the profile traces, the 3-D surface and the contour carry the
+    page's number format (the wear rate as ``4.1 × 10⁻¹¹``), not Plotly's own."""
+    import re
+
+    from rsm_lrg.present import format_number
+
+    page, _log, _url, fits = page2
+    page.evaluate("() => window.rsmReport.drawNow()")
+    texts = page.evaluate("""() => ['profile-plot', 'surface-plot', 'contour-plot'].map(id =>
+        (document.getElementById(id).data || []).filter(t => t.text).map(t => t.text.flat()).flat())""")
+    assert all(len(t) > 0 for t in texts)
+    num = r"-?\d+(?:\.\d+)?(?: × 10[⁻]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)?"
+    for t in sum(texts, []):
+        assert "e-" not in t and "e+" not in t
+        for part in re.split(r"<br>|\(current setting\)|CI | … ", t):
+            part = part.strip()
+            if " = " in part:
+                assert re.fullmatch(num, part.rsplit(" = ", 1)[1]), t
+    wear = [t for t in texts[0] if "wear_volume_m3_per_h = " in t]
+    assert wear and all("× 10⁻" in t for t in wear)
+    v = float(fits["wear_volume_m3_per_h"].predict(pd.DataFrame([page.evaluate("() => window.rsmReport.setting()")]))
+              ["predicted"].iloc[0])
+    assert any(f"wear_volume_m3_per_h = {format_number(v)} (current setting)" in t for t in texts[0])

@@ -214,9 +214,16 @@
           var p = predict(m, t); ys.push(p.predicted); lo.push(p.ci_low); hi.push(p.ci_high);
         });
         xs = pts.map(function (v) { return c.kind === "categoric" ? esc(v) : v; });
-        var cur = predict(m, s);
+        var cur = predict(m, s), xn = esc(c.name), yn = esc(m.response);
+        /* hover labels in the page's number format (not Plotly's own) */
+        var tip = pts.map(function (v, i) {
+          return xn + " = " + (c.kind === "categoric" ? esc(v) : fmt(v)) + "<br>" + yn + " = " + fmt(ys[i]) +
+                 "<br>CI " + fmt(lo[i]) + " \u2026 " + fmt(hi[i]);
+        });
+        var HOVER = "%{text}<extra></extra>";
         if (c.kind === "categoric") {
           traces.push({x: xs, y: ys, type: "scatter", mode: "markers", xaxis: xa, yaxis: ya, marker: {size: 9, color: "#1f4e79"},
+                       text: tip, hovertemplate: HOVER,
                        error_y: {type: "data", symmetric: false,
                                  array: hi.map(function (h, i) { return h - ys[i]; }),
                                  arrayminus: lo.map(function (l, i) { return ys[i] - l; })}});
@@ -226,10 +233,12 @@
           traces.push({x: xs, y: hi, type: "scatter", mode: "lines", line: {width: 0}, fill: "tonexty",
                        fillcolor: "rgba(31,78,121,0.18)", xaxis: xa, yaxis: ya, hoverinfo: "skip"});
           traces.push({x: xs, y: ys, type: "scatter", mode: "lines", line: {color: "#1f4e79", width: 2},
-                       xaxis: xa, yaxis: ya});
+                       xaxis: xa, yaxis: ya, text: tip, hovertemplate: HOVER});
         }
         traces.push({x: [c.kind === "categoric" ? esc(s[c.name]) : s[c.name]], y: [cur.predicted], type: "scatter",
-                     mode: "markers", marker: {color: "#a11d1d", size: 8}, xaxis: xa, yaxis: ya});
+                     mode: "markers", marker: {color: "#a11d1d", size: 8}, xaxis: xa, yaxis: ya, hovertemplate: HOVER,
+                     text: [xn + " = " + (c.kind === "categoric" ? esc(s[c.name]) : fmt(s[c.name])) + "<br>" + yn + " = " +
+                            fmt(cur.predicted) + " (current setting)"]});
         if (c.kind === "numeric") {
           layout.shapes.push({type: "line", xref: xa, yref: ya + " domain", x0: s[c.name], x1: s[c.name],
                               y0: 0, y1: 1, line: {color: "#a11d1d", width: 1, dash: "dot"}});
@@ -460,17 +469,24 @@
     var cur = predict(m, s).predicted;
     var xl = esc(fx.letter + ": " + fx.name), yl = esc(fy.letter + ": " + fy.name), zl = esc(m.response);
     var keepCamera = el3.layout && el3.layout.scene && el3.layout.scene.camera;
+    var tip = z.map(function (row, j) {
+      return row.map(function (v, i) { return xl + " = " + fmt(xs[i]) + "<br>" + yl + " = " + fmt(ys[j]) + "<br>" + zl + " = " + fmt(v); });
+    });
+    var here = [xl + " = " + fmt(s[fx.name]) + "<br>" + yl + " = " + fmt(s[fy.name]) + "<br>" + zl + " = " + fmt(cur) +
+                " (current setting)"];
     Plotly.react(el3, [
-      {type: "surface", x: xs, y: ys, z: z, colorscale: "Viridis", showscale: false, name: zl},
+      {type: "surface", x: xs, y: ys, z: z, colorscale: "Viridis", showscale: false, name: zl,
+       text: tip, hovertemplate: "%{text}<extra></extra>"},
       {type: "scatter3d", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], z: [cur], marker: {size: 5, color: "#a11d1d"},
-       name: "current setting"}],
+       name: "current setting", text: here, hovertemplate: "%{text}<extra></extra>"}],
       {margin: {l: 0, r: 0, t: 10, b: 0}, showlegend: false, uirevision: "keep",
        scene: {aspectmode: "cube", xaxis: axis(xl), yaxis: axis(yl), zaxis: axis(zl),
                camera: keepCamera || SURFACE_CAMERA}}, CONFIG);
     Plotly.react(el2, [
-      {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true, labelformat: ".4~g"}, colorbar: {title: {text: zl}, exponentformat: "power"}},
+      {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true, labelformat: ".4~g"},
+       colorbar: {title: {text: zl}, exponentformat: "power"}, text: tip, hovertemplate: "%{text}<extra></extra>"},
       {type: "scatter", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], marker: {size: 10, color: "#a11d1d"},
-       name: "current setting"}],
+       name: "current setting", text: here, hovertemplate: "%{text}<extra></extra>"}],
       {margin: {l: 70, r: 20, t: 20, b: 60}, showlegend: false, uirevision: "keep",
        xaxis: axis(xl), yaxis: axis(yl)}, CONFIG);
   }
