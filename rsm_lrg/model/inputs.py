@@ -19,7 +19,7 @@ from .terms import Term, column_names, model_matrix, model_terms, n_columns, par
 from .transform import Transform
 
 __all__ = ["ModelInputs", "model_inputs", "block_codes", "chosen_terms", "check_magnitudes", "model_rows",
-           "is_dask", "origin_coding", "MAX_MAGNITUDE", "MAX_FACTOR_MAGNITUDE"]
+           "is_dask", "origin_coding", "unrounded_coding", "MAX_MAGNITUDE", "MAX_FACTOR_MAGNITUDE"]
 
 
 def block_codes(data, block: str):
@@ -183,6 +183,19 @@ class ModelInputs:
         return lambda: ((self.rows(terms, s, s + rows), self.y[s:s + rows]) for s in range(0, n, rows))
 
 
+def unrounded_coding(space: FactorSpace, data: Any, coded: np.ndarray) -> np.ndarray:
+    """The coded settings the model matrix is built from: the numeric factors' coding
+    ``((x - low) - (high - x)) / (high - low)`` unrounded (the rounding of ``coded`` to
+    CODED_DECIMALS would perturb the data by up to 5e-13 and cost digits, e.g. on NIST StRD);
+    the other columns of ``coded`` (level indices, pseudo components) as they are."""
+    x = np.array(coded, dtype=float, copy=True)
+    for j, f in enumerate(space.factors):
+        if f.kind == "numeric":
+            v = float_column(data, f.name).to_numpy(dtype=float)
+            x[:, j] = ((v - f.low) - (f.high - v)) / (f.high - f.low)
+    return x
+
+
 def origin_coding(space: FactorSpace) -> FactorSpace:
     """The factor space with every numeric factor coded about zero: low ``-M``, high ``M``
     (``M = max(|low|, |high|)``), so coded ``x / M``; categoric factors as they are."""
@@ -229,13 +242,7 @@ def model_inputs(data: Any, response: str, factors: Any = None, block: str | Non
         space = origin_coding(space)
     coded = space.encode(data)
     keys = coded.to_numpy(dtype=float)  # rounded coding: settings equal to round-off are one setting
-    # the model matrix takes the coding unrounded ((x - low) - (high - x)) / (high - low): the
-    # rounding to CODED_DECIMALS would perturb the data by up to 5e-13 (digits lost on NIST StRD)
-    x = keys.copy()
-    for j, f in enumerate(space.factors):
-        if f.kind == "numeric":
-            v = float_column(data, f.name).to_numpy(dtype=float)
-            x[:, j] = ((v - f.low) - (f.high - v)) / (f.high - f.low)
+    x = unrounded_coding(space, data, keys)
     for j, f in enumerate(space.factors):
         if np.unique(keys[:, j]).size < 2:
             raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")

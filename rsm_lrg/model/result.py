@@ -29,7 +29,7 @@ from .actual import actual_coefficients
 from .anova import TOTAL_UNCORRECTED, PureError, anova_table
 from .canonical import StationaryPoint, canonical_analysis
 from .goals import parse_goal
-from .inputs import MAX_FACTOR_MAGNITUDE, block_codes, model_rows
+from .inputs import MAX_FACTOR_MAGNITUDE, block_codes, model_rows, unrounded_coding
 from .least_squares import Regression
 from .spec import ModelSpec, ReduceSpec
 from .statistics import FitStatistics, fit_statistics
@@ -391,7 +391,8 @@ class FitResult:
             raise ValueError("a fit of a Dask DataFrame holds no per-run data (no design matrix, no statsmodels results)")
         bcodes = block_codes(self.data, self.block)[0] if self.block is not None else None
         nb = len(self.column_names) - n_columns(self.terms) + 1
-        return model_rows(self.coded.to_numpy(dtype=float), self.terms, bcodes, nb)
+        x = unrounded_coding(self.space, self.data, self.coded.to_numpy(dtype=float))  # as the fit built it
+        return model_rows(x, self.terms, bcodes, nb)
 
     @cached_property
     def ols(self):

@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from _exact import exact_lstsq, max_rel_error
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 import rsm_lrg
@@ -94,6 +94,7 @@ def test_ols_is_lazy_and_agrees():
 
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@example(n=14, offset_exp=0, seed=42044, block=False)  # failed while design_matrix took the rounded coding
 @given(
     n=st.integers(9, 14),
     offset_exp=st.integers(0, 12),
