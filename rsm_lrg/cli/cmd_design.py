@@ -17,16 +17,22 @@ DESCRIPTION = (
 )
 
 
-def _common(p: argparse.ArgumentParser, center_default, center_help: str) -> None:
-    p.add_argument("--factor", action="append", required=True, metavar="NAME=LOW:HIGH",
-                   help="a factor and the levels coded -1 and +1 (repeat for each factor, in order)")
-    p.add_argument("--center", default=center_default, metavar="N", help=center_help)
+def _order_and_output(p: argparse.ArgumentParser, seed_help: str = "seed of the randomised run order") -> None:
+    """What every design kind takes after its own options: ``--seed``, ``--no-randomize``,
+    ``-o/--output``, ``--format``/``--response`` and ``--force``."""
     p.add_argument("--seed", type=whole_number(0), default=None, metavar="N",
-                   help="seed of the randomised run order (default: drawn and printed)")
+                   help=f"{seed_help} (default: drawn and printed)")
     p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
     p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
     add_output_format(p)
     add_force(p)
+
+
+def _common(p: argparse.ArgumentParser, center_default, center_help: str) -> None:
+    p.add_argument("--factor", action="append", required=True, metavar="NAME=LOW:HIGH",
+                   help="a factor and the levels coded -1 and +1 (repeat for each factor, in order)")
+    p.add_argument("--center", default=center_default, metavar="N", help=center_help)
+    _order_and_output(p)
 
 
 def _base(p: argparse.ArgumentParser, factors: bool = True, constraint: bool = False) -> None:
@@ -37,12 +43,7 @@ def _base(p: argparse.ArgumentParser, factors: bool = True, constraint: bool = F
         p.add_argument("--constraint", action="append", default=[], metavar="EXPR",
                        help="an inequality in actual units, e.g. '0.5*A + B <= 1.2' or "
                             "'velocity_m_s**2/acceleration_m_s2 <= stroke_m' (repeatable)")
-    p.add_argument("--seed", type=whole_number(0), default=None, metavar="N",
-                   help="seed of the search and of the randomised run order (default: drawn and printed)")
-    p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
-    p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
-    add_output_format(p)
-    add_force(p)
+    _order_and_output(p, seed_help="seed of the search and of the randomised run order")
 
 
 def add_output_format(p: argparse.ArgumentParser) -> None:
@@ -214,12 +215,7 @@ def _mixture_parsers(sub) -> None:
                     help="add edge centroids, constraint-plane centroids and the overall centroid")
     for p in (sl, sc, ev):
         p.add_argument("--total", default="1", metavar="T", help="the total the proportions sum to (default 1)")
-        p.add_argument("--seed", type=whole_number(0), default=None, metavar="N",
-                       help="seed of the randomised run order (default: drawn and printed)")
-        p.add_argument("--no-randomize", action="store_true", help="run order = standard order")
-        p.add_argument("-o", "--output", required=True, metavar="PATH", help="the design CSV to write")
-        add_output_format(p)
-        add_force(p)
+        _order_and_output(p)
 
 
 #: Most centre runs per block: replicates of one point, far beyond any experiment.

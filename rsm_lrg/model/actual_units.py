@@ -874,6 +874,18 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     Gh = np.zeros((p + 1, p + 1))
     Gl = np.zeros((p + 1, p + 1))
     n = 0
+
+    def model_rows(xc: np.ndarray, yc: np.ndarray, bc: np.ndarray | None, xlc: np.ndarray | None,
+                   ylc: np.ndarray | None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """A chunk's model rows in double-double and the low part of its responses (the
+        decimal corrections of the values as written, or zero), for both passes."""
+        if decimal_inputs and xlc is None:
+            xlc, ylc = decimal_correction(xc), decimal_correction(yc)
+        xlc = np.zeros_like(xc) if xlc is None else xlc
+        ylc = np.zeros_like(yc) if ylc is None else ylc
+        Zh, Zl = _rows(lay, xc, xlc, bc, c, h, numeric)
+        return Zh, Zl, ylc
+
     for xc, yc, bc, xlc, ylc in chunks():
         if xc.shape[1] != kf or yc.size != xc.shape[0]:
             raise ValueError(f"a chunk of {xc.shape} factor values and {yc.size} responses does not fit")
@@ -881,11 +893,7 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
             raise ValueError("x and y must be finite")
         if not xc.shape[0]:
             continue
-        if decimal_inputs and xlc is None:
-            xlc, ylc = decimal_correction(xc), decimal_correction(yc)
-        xlc = np.zeros_like(xc) if xlc is None else xlc
-        ylc = np.zeros_like(yc) if ylc is None else ylc
-        Zh, Zl = _rows(lay, xc, xlc, bc, c, h, numeric)
+        Zh, Zl, ylc = model_rows(xc, yc, bc, xlc, ylc)
         Ah = np.column_stack([Zh, yc])
         Al = np.column_stack([Zl, ylc])
         for s in range(0, Ah.shape[0], _MAX_INNER):
@@ -933,11 +941,7 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     for xc, yc, bc, xlc, ylc in chunks():
         if not xc.shape[0]:
             continue
-        if decimal_inputs and xlc is None:
-            xlc, ylc = decimal_correction(xc), decimal_correction(yc)
-        xlc = np.zeros_like(xc) if xlc is None else xlc
-        ylc = np.zeros_like(yc) if ylc is None else ylc
-        Zh, Zl = _rows(lay, xc, xlc, bc, c, h, numeric)
+        Zh, Zl, ylc = model_rows(xc, yc, bc, xlc, ylc)
         fh, fl = _dd_matmul(Zh, Zl, zh[:, None], zl[:, None])
         rh, rl = _dd_add(yc, ylc, -fh[:, 0], -fl[:, 0])
         rss_parts.append(float(np.sum(rh * rh)) + 2.0 * float(np.sum(rh * rl)))
