@@ -60,9 +60,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _load(path, exclude, args):
-    from ..design.core import Design
+    from ..design.core import Design, design_of_frame
     from ..factors import FactorSpace
-    from ..io import InputError
     from ._common import read_input
 
     df = read_input(args, path)
@@ -73,12 +72,7 @@ def _load(path, exclude, args):
             raise InputError(f"--exclude {quote_user_value(col)}: no such column in {path} "
                              f"(columns: {', '.join(map(str, df.columns))})")
     if any(str(c).lower().startswith("coded_") for c in df.columns):
-        try:
-            return Design.from_frame(df)
-        except InputError:
-            raise
-        except ValueError as exc:
-            raise InputError(f"{path}: {exc}") from None
+        return design_of_frame(df, path)
     space = FactorSpace.from_data(df, None, exclude=exclude)
     coded = space.encode(df).to_numpy(dtype=float)
     n = len(df)

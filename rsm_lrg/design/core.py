@@ -34,6 +34,8 @@ __all__ = [
     "read_design",
     "as_factor_space",
     "resolve_seed",
+    "seeded_options",
+    "design_of_frame",
     "randomized_run_order",
     "CODED_PREFIX",
     "BLOCK_COLUMN",
@@ -136,6 +138,16 @@ def resolve_seed(seed: Any) -> tuple[np.random.Generator, int | None]:
     if seed < 0:
         raise ValueError(f"seed must not be negative (got {seed})")
     return np.random.default_rng(int(seed)), int(seed)
+
+
+def seeded_options(options: Any, seed: Any, randomize: bool) -> tuple[np.random.Generator | None, dict]:
+    """The generator of a randomised run order (None with ``randomize=False``) and a copy of
+    a design's ``options`` recording ``seed`` (the one drawn when None) and ``randomize``."""
+    opts = dict(options or {})
+    rng, used = resolve_seed(seed) if randomize else (None, None)
+    opts["seed"] = used
+    opts["randomize"] = bool(randomize)
+    return rng, opts
 
 
 def randomized_run_order(blocks: np.ndarray | None, n: int, rng: np.random.Generator | None) -> np.ndarray:
@@ -477,14 +489,7 @@ class Design:
         """
         coded_std = np.asarray(coded_std, dtype=float)
         n = coded_std.shape[0]
-        opts = dict(options or {})
-        if randomize:
-            rng, used = resolve_seed(seed)
-            opts["seed"] = used
-        else:
-            rng = None
-            opts["seed"] = None
-        opts["randomize"] = bool(randomize)
+        rng, opts = seeded_options(options, seed, randomize)
         bstd = None if blocks_std is None else np.asarray(blocks_std, dtype=int)
         perm = randomized_run_order(bstd, n, rng)
         run_order = np.empty(n, dtype=int)
@@ -708,9 +713,16 @@ def read_design(path) -> Design:
 
     Errors name the file (:class:`rsm_lrg.io.InputError`).
     """
-    from ..io import InputError, read_table
+    from ..io import read_table
 
-    df = read_table(path)
+    return design_of_frame(read_table(path), path)
+
+
+def design_of_frame(df: Any, path: Any) -> Design:
+    """:meth:`Design.from_frame` of a table read from ``path``, its errors naming the file
+    (:class:`rsm_lrg.io.InputError`)."""
+    from ..io import InputError
+
     try:
         return Design.from_frame(df)
     except InputError:

@@ -53,7 +53,7 @@ import numpy as np
 
 from ..factors import Factor, FactorSpace, letters_for
 from ..factors.factor import check_factor_name
-from .core import CODED_PREFIX, Design, randomized_run_order, resolve_seed
+from .core import CODED_PREFIX, Design, randomized_run_order, seeded_options
 
 __all__ = [
     "MixtureDesign",
@@ -253,14 +253,7 @@ def _finish(kind: str, names: list[str], props_std: np.ndarray, types_std: list[
     space = FactorSpace(tuple(Factor(nm, float(lo) - r, float(lo) + r, L)
                               for nm, lo, L in zip(names, lows, letters)))
     coded = (props_std - lows[None, :]) / r
-    opts = dict(options)
-    if randomize:
-        rng, used = resolve_seed(seed)
-        opts["seed"] = used
-    else:
-        rng = None
-        opts["seed"] = None
-    opts["randomize"] = bool(randomize)
+    rng, opts = seeded_options(options, seed, randomize)
     opts["total"] = total
     opts["pseudo_lows"] = {nm: float(lo) for nm, lo in zip(names, lows)}
     perm = randomized_run_order(None, n, rng)
