@@ -209,31 +209,8 @@ class ExchangeProblem:
         back to exact factorisations."""
         if f is None:
             f = np.zeros(M.shape[0])
-        prep = self._prepared(M)
-        if prep is not None:
-            A, K, base = prep
-            AG = G @ A
-            gAg = np.einsum("ij,ij->i", AG, G)
-            fA = A @ f
-            fAf = float(fA @ f)
-            fAg = G @ fA
-            with np.errstate(all="ignore"):
-                if self.crit == "D":
-                    r = (1.0 + gAg) * (1.0 - fAf) + fAg ** 2
-                    v = -(base + np.log(r))
-                    ok = r > 0
-                else:
-                    KG = G @ K
-                    t11 = np.einsum("ij,ij->i", KG, G)
-                    t12 = KG @ f
-                    t22 = float(f @ K @ f)
-                    s11, s12, s22 = 1.0 + gAg, fAg, fAf - 1.0
-                    det = s11 * s22 - s12 ** 2
-                    v = base - (s22 * t11 - 2.0 * s12 * t12 + s11 * t22) / det
-                    ok = np.abs(det) > 1e-12
-            return np.where(ok & np.isfinite(v), v, np.inf)
-        base = M - np.outer(f, f)
-        return _value(base[None, :, :] + G[:, :, None] * G[:, None, :], self.crit, self.W)
+        # one run f against every candidate: the pairs of batch_pairs with a single run
+        return self.batch_pairs(M, f[None, :], np.zeros(len(G), dtype=int), G)
 
     def batch_pairs(self, M: np.ndarray, F: np.ndarray, own: np.ndarray, G: np.ndarray) -> np.ndarray:
         """Criterion (to minimise) of ``M - f f' + g g'`` for every pair ``(f, g) = (F[own[m]],
