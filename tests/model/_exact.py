@@ -10,23 +10,35 @@ from fractions import Fraction
 import numpy as np
 
 
+def gauss_jordan(M: list[list[Fraction]]) -> list[list[Fraction]]:
+    """Reduce the augmented rows ``[A | B]`` (A square, full rank) to ``[I | A^-1 B]`` in
+    place, in exact arithmetic; returns ``M``."""
+    p = len(M)
+    for c in range(p):
+        piv = next(r for r in range(c, p) if M[r][c] != 0)
+        M[c], M[piv] = M[piv], M[c]
+        inv = 1 / M[c][c]
+        M[c] = [v * inv for v in M[c]]
+        for r in range(p):
+            if r != c and M[r][c] != 0:
+                f = M[r][c]
+                M[r] = [a - f * b for a, b in zip(M[r], M[c])]
+    return M
+
+
+def exact_normal(X: list[list[Fraction]], y: list[Fraction]) -> list[Fraction]:
+    """Exact least-squares coefficients of rational rows ``X`` and responses ``y`` (the normal
+    equations solved by :func:`gauss_jordan`)."""
+    n, p = len(X), len(X[0])
+    M = [[sum((X[i][a] * X[i][b] for i in range(n)), Fraction(0)) for b in range(p)]
+         + [sum((X[i][a] * y[i] for i in range(n)), Fraction(0))] for a in range(p)]
+    return [row[p] for row in gauss_jordan(M)]
+
+
 def exact_lstsq(X, y) -> list[Fraction]:
     """Exact least-squares coefficients of the float data ``X`` (n x p, full rank) and ``y``."""
-    Xf = [[Fraction(float(v)) for v in row] for row in np.asarray(X, dtype=float)]
-    yf = [Fraction(float(v)) for v in np.asarray(y, dtype=float)]
-    n, p = len(Xf), len(Xf[0])
-    A = [[sum(Xf[i][a] * Xf[i][b] for i in range(n)) for b in range(p)] + [sum(Xf[i][a] * yf[i] for i in range(n))]
-         for a in range(p)]
-    for c in range(p):
-        piv = next(r for r in range(c, p) if A[r][c] != 0)
-        A[c], A[piv] = A[piv], A[c]
-        inv = 1 / A[c][c]
-        A[c] = [v * inv for v in A[c]]
-        for r in range(p):
-            if r != c and A[r][c] != 0:
-                f = A[r][c]
-                A[r] = [a - f * b for a, b in zip(A[r], A[c])]
-    return [A[i][p] for i in range(p)]
+    return exact_normal([[Fraction(float(v)) for v in row] for row in np.asarray(X, dtype=float)],
+                        [Fraction(float(v)) for v in np.asarray(y, dtype=float)])
 
 
 def max_rel_error(approx, exact) -> float:

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from _exact import exact_lstsq, exact_normal, gauss_jordan
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -182,7 +183,7 @@ def test_doubles_as_given_are_solved_exactly():
     y = data["y"].to_numpy()
     s = solve_actual(x, y, ts, intercept=True, decimal_inputs=False)
     X = np.column_stack([np.ones(len(y)), x])
-    exact = _exact_lstsq(X, y)
+    exact = exact_lstsq(X, y)
     got = [s.coefficients[k] for k in ["Intercept", *terms]]
     for g, e in zip(got, exact):
         assert abs(Fraction(g) - e) <= 2 * abs(e) * Fraction(2) ** -53
@@ -248,46 +249,11 @@ def test_blocks_and_categoric_factor_match_exact_least_squares():
 # ----------------------------------------------------------------------------------------
 # exact references
 # ----------------------------------------------------------------------------------------
-def _solve_exact(A: list[list[Fraction]], b: list[Fraction]) -> list[Fraction]:
-    p = len(b)
-    M = [row[:] + [bi] for row, bi in zip(A, b)]
-    for c in range(p):
-        piv = next(r for r in range(c, p) if M[r][c] != 0)
-        M[c], M[piv] = M[piv], M[c]
-        inv = 1 / M[c][c]
-        M[c] = [v * inv for v in M[c]]
-        for r in range(p):
-            if r != c and M[r][c] != 0:
-                f = M[r][c]
-                M[r] = [u - f * v for u, v in zip(M[r], M[c])]
-    return [M[i][p] for i in range(p)]
-
-
-def _exact_normal(X: list[list[Fraction]], y: list[Fraction]) -> list[Fraction]:
-    n, p = len(X), len(X[0])
-    G = [[sum((X[i][a] * X[i][b] for i in range(n)), Fraction(0)) for b in range(p)] for a in range(p)]
-    g = [sum((X[i][a] * y[i] for i in range(n)), Fraction(0)) for a in range(p)]
-    return _solve_exact(G, g)
-
-
 def _exact_inverse_diagonal(G: list[list[Fraction]]) -> list[Fraction]:
     """Diagonal of ``G^-1`` (Gauss-Jordan on ``[G | I]``, exact)."""
     p = len(G)
-    M = [row[:] + [Fraction(int(i == j)) for j in range(p)] for i, row in enumerate(G)]
-    for c in range(p):
-        piv = next(r for r in range(c, p) if M[r][c] != 0)
-        M[c], M[piv] = M[piv], M[c]
-        inv = 1 / M[c][c]
-        M[c] = [v * inv for v in M[c]]
-        for r in range(p):
-            if r != c and M[r][c] != 0:
-                f = M[r][c]
-                M[r] = [u - f * v for u, v in zip(M[r], M[c])]
+    M = gauss_jordan([row[:] + [Fraction(int(i == j)) for j in range(p)] for i, row in enumerate(G)])
     return [M[i][p + i] for i in range(p)]
-
-
-def _exact_lstsq(X: np.ndarray, y: np.ndarray) -> list[Fraction]:
-    return _exact_normal([[Fraction(float(v)) for v in row] for row in X], [Fraction(float(v)) for v in y])
 
 
 def _exact_lstsq_products(a, lev, blk, y) -> list[Fraction]:
@@ -297,7 +263,7 @@ def _exact_lstsq_products(a, lev, blk, y) -> list[Fraction]:
         e = [Fraction(1 if li == j else (-1 if li == 2 else 0)) for j in (0, 1)]
         b = [Fraction(1 if bi == j else (-1 if bi == 2 else 0)) for j in (0, 1)]
         rows.append([Fraction(1), *b, A, *e, A * e[0], A * e[1], A * A])
-    return _exact_normal(rows, [Fraction(float(v)) for v in y])
+    return exact_normal(rows, [Fraction(float(v)) for v in y])
 
 
 # ----------------------------------------------------------------------------------------
@@ -361,7 +327,7 @@ def test_random_polynomials_match_exact_least_squares(problem):
     X = [[Fraction(1)] + [math.prod((Fraction(float(v)) ** e for v, e in zip(row, pw)), start=Fraction(1))
                           for pw in powers] for row in x]
     try:
-        exact = _exact_normal(X, [Fraction(float(v)) for v in y])
+        exact = exact_normal(X, [Fraction(float(v)) for v in y])
     except StopIteration:  # a singular draw (too few distinct points)
         return
     s = solve_actual(x, y, ts, intercept=True, decimal_inputs=False)
@@ -407,7 +373,7 @@ def test_ill_conditioned_basis_uses_the_double_double_factor():
     ts = [parse_term(t, "AB") for t in ("A", "B", "AB")]
     s = solve_actual(x, y, ts, intercept=False, decimal_inputs=False)
     rows = [[Fraction(float(a)), Fraction(float(b)), Fraction(float(a)) * Fraction(float(b))] for a, b in x]
-    exact = _exact_normal(rows, [Fraction(float(v)) for v in y])
+    exact = exact_normal(rows, [Fraction(float(v)) for v in y])
     for nm, e in zip(("A", "B", "AB"), exact):
         assert abs(Fraction(s.coefficients[nm]) - e) <= abs(e) * Fraction(1, 10 ** 14), nm
 
@@ -453,7 +419,7 @@ def test_table4_quadratic_is_the_exact_least_squares_of_the_decimals():
     s = solve_actual(x, r.y, r.terms, intercept=True)
     dec = [[Fraction(Decimal(repr(float(v)))) for v in row] for row in x]
     rows = [[math.prod((v ** e for v, e in zip(row, t.powers)), start=Fraction(1)) for t in r.terms] for row in dec]
-    exact = _exact_normal(rows, [Fraction(Decimal(repr(float(v)))) for v in r.y])
+    exact = exact_normal(rows, [Fraction(Decimal(repr(float(v)))) for v in r.y])
     scale = max(abs(e) * Fraction(float(np.linalg.norm([float(rw[j]) for rw in rows]))) for j, e in enumerate(exact))
     for j, (t, e) in enumerate(zip(r.terms, exact)):
         col = Fraction(float(np.linalg.norm([float(rw[j]) for rw in rows])))
@@ -480,7 +446,7 @@ def test_coded_basis_expands_a_non_closed_model_exactly():
     assert set(s.coefficients) == set(r.actual_coefficients)
     c, h = Fraction(f.center), Fraction(f.half_range)
     xc = [(Fraction(float(v)) - c) / h for v in a]
-    b0, b2 = _exact_normal([[Fraction(1), v * v] for v in xc], [Fraction(float(v)) for v in y])
+    b0, b2 = exact_normal([[Fraction(1), v * v] for v in xc], [Fraction(float(v)) for v in y])
     exact = {"Intercept": b0 + b2 * c * c / (h * h), "A": -2 * b2 * c / (h * h), "A^2": b2 / (h * h)}
     for nm, e in exact.items():
         assert abs(Fraction(s.coefficients[nm]) - e) <= abs(e) * Fraction(2) ** -52, nm
@@ -508,7 +474,7 @@ def test_coded_basis_names_categoric_extras_as_the_fit_does():
         xc = (Fraction(float(ai)) - c) / h
         codes = [Fraction(1 if li == j else (-1 if li == 2 else 0)) for j in (0, 1)]
         rows.append([Fraction(1), xc, xc * codes[0], xc * codes[1]])
-    b0, b1, bp, bq = _exact_normal(rows, [Fraction(float(v)) for v in y])
+    b0, b1, bp, bq = exact_normal(rows, [Fraction(float(v)) for v in y])
     exact = {"Intercept": b0 - b1 * c / h, "A": b1 / h, "AB[p]": bp / h, "AB[q]": bq / h, "B[p]": -bp * c / h,
              "B[q]": -bq * c / h}
     for nm, ex in exact.items():
