@@ -9,9 +9,9 @@ reduced by hierarchical backward elimination (:class:`ReduceSpec`,
 :mod:`rsm_lrg.model.reduce`).
 
 >>> s = ModelSpec.build(terms="A B AB A^2", intercept=False, transform="log")
->>> s.terms, s.intercept, s.transform.name, s.label
-(('A', 'B', 'AB', 'A^2'), False, 'log', 'terms A B AB A^2, no intercept, log transform')
->>> ModelSpec.build("2fi").label
+>>> s.terms, s.intercept, s.transform.name
+(('A', 'B', 'AB', 'A^2'), False, 'log')
+>>> ModelSpec.build("2fi").order
 '2fi'
 """
 
@@ -144,23 +144,6 @@ class ModelSpec:
     def mixture(self) -> bool:
         """Whether this is a Scheffé mixture model (no intercept; ANOVA about the mean)."""
         return self.order in MIXTURE_ORDERS
-
-    @property
-    def label(self) -> str:
-        """``"quadratic"``, ``"terms A B AB, no intercept, log transform, reduced (p, 0.1)"``."""
-        parts = [self.order if self.terms is None else "terms " + " ".join(self.terms)]
-        if not self.intercept and not self.mixture:
-            parts.append("no intercept")
-        if not self.transform.identity:
-            parts.append(f"{self.transform.label} transform")
-        if self.reduce is not None:
-            parts.append(f"reduced ({self.reduce.criterion}, alpha {self.reduce.alpha_out:g})")
-        return ", ".join(parts)
-
-    @property
-    def model_name(self) -> str:
-        """The ``"model"`` of the fit JSON: the order, or ``"custom"`` for a list of terms."""
-        return self.order if self.terms is None else "custom"
 
     def to_dict(self) -> dict[str, Any]:
         return {"order": self.order, "terms": None if self.terms is None else list(self.terms),

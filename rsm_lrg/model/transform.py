@@ -91,13 +91,6 @@ class Transform:
             return ("minimize" if kind == "maximize" else "maximize"), None
         return kind, None
 
-    def limits_on_model_scale(self, low: float, high: float) -> tuple[float, float]:
-        """Response limits ``low < high`` as limits on the model's scale (ordered)."""
-        if self.identity:
-            return float(low), float(high)
-        a, b = (float(v) for v in self.forward([low, high]))
-        return (a, b) if a <= b else (b, a)
-
     def back(self, predicted: Any, low: Any = None, high: Any = None) -> tuple[Any, Any, Any]:
         """Predictions and interval ends back-transformed to response units; the ends are
         ordered (a decreasing transform swaps them)."""
