@@ -155,6 +155,12 @@ def close_pool(executor, ok: bool) -> None:
     with contextlib.suppress(Exception):
         executor.shutdown(wait=False, cancel_futures=True)
     stop_children()
+    # let the pool's manager thread see its dead workers and end (it closes its wake-up pipe):
+    # at interpreter exit Python 3.11 would otherwise write to that pipe while the thread closes
+    # it, and print a traceback (EBADF) after our one error line. Bounded: never a hang.
+    joiner = threading.Thread(target=lambda: executor.shutdown(wait=True), daemon=True)
+    joiner.start()
+    joiner.join(10.0)
 
 
 def _show(address: str) -> str:
