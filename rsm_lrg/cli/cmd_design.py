@@ -7,7 +7,7 @@ import argparse
 from ._common import add_force, add_reader_options, whole_number
 
 NAME = "design"
-HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, augment, "
+HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, split-plot, augment, "
         "definitive-screening, fractional-factorial, plackett-burman, latin-hypercube, sobol, "
         "simplex-lattice, simplex-centroid, extreme-vertices)")
 DESCRIPTION = (
@@ -112,6 +112,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                     help="replicated model points (default 5 without --runs, else 0)")
     op.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
                     help="random starts of the exchange (default by model size)")
+    _split_plot_parser(sub)
     ag = sub.add_parser("augment", help="add runs to a design CSV (optimal, star + centre points, fold-over)",
                         description="Add runs to the runs of DESIGN.csv, which are kept untouched and first, "
                                     "with their responses: D/I/A-optimal runs for a bigger model, star and "
@@ -181,6 +182,62 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     _common(ff, "0", "extra centre runs (default 0)")
     ff.add_argument("--levels", type=whole_number(2), default=2, metavar="N", help="levels per factor (default 2)")
     _mixture_parsers(sub)
+
+
+def _split_plot_parser(sub) -> None:
+    """``split-plot`` (issue 23): hard-to-change factors held constant within whole plots."""
+    from ._common import number
+
+    sp = sub.add_parser("split-plot", help="optimal split-plot design (hard-to-change factors in whole plots)",
+                        description="Optimal split-plot design (Goos & Vandebroek 2003, 2004): the hard-to-change "
+                                    "factors take one setting per whole plot, the others one per run; coordinate "
+                                    "exchange on the GLS information X'V^-1 X with V = I + eta J per whole plot "
+                                    "(eta = sigma^2 whole plot / sigma^2). The CSV adds a whole_plot column; the "
+                                    "whole plots run in random order and the runs in random order within each.")
+    _base(sp, constraint=True)
+    sp.add_argument("--hard-to-change", action="append", required=True, metavar="NAME",
+                    help="a factor (name) held constant within each whole plot (repeatable)")
+    sp.add_argument("--whole-plots", type=whole_number(1), required=True, metavar="W",
+                    help="number of whole plots (at least the whole-plot model terms + 1)")
+    sp.add_argument("--runs", type=whole_number(1), required=True, metavar="N",
+                    help="total runs; N/W per whole plot (when W does not divide N, the first N mod W whole "
+                         "plots hold one run more, and the summary says so)")
+    sp.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
+                    help="the model the design supports (default quadratic)")
+    sp.add_argument("--criterion", default="D", type=str.upper, choices=["D", "I"],
+                    help="optimality criterion on the GLS information (default D)")
+    sp.add_argument("--variance-ratio", type=number(0, 1e6), default=1.0, metavar="ETA",
+                    help="eta = sigma^2 whole plot / sigma^2, 0 to 1e6 (default 1)")
+    sp.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
+                    help="random starts of the exchange (default 20 for up to 21 model terms, else 6)")
+
+
+def _split_plot(args):
+    """Build the split-plot design from the parsed arguments; bad input is an InputError
+    naming the option."""
+    from ..design.split_plot import split_plot
+    from ..io import InputError
+
+    space = _space(args)
+    cons = _constraints(args, space)
+    try:
+        return split_plot(space, args.hard_to_change, args.whole_plots, args.runs, model=args.model,
+                          criterion=args.criterion, variance_ratio=args.variance_ratio, constraints=cons,
+                          seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
+    except ValueError as exc:
+        msg = str(exc)
+        opts = {"hard_to_change: ": "--hard-to-change", "whole_plots: ": "--whole-plots", "runs: ": "--runs",
+                "variance_ratio: ": "--variance-ratio", "starts: ": "--starts"}
+        opt = next((o for w, o in opts.items() if msg.startswith(w)), None)
+        if opt is not None:
+            msg = msg.split(": ", 1)[1]
+        elif msg.startswith("constraint"):
+            opt = "--constraint"
+        elif "is searched for here" in msg:
+            opt = "--model"
+        else:
+            opt = "--factor"
+        raise InputError(f"{opt}: {msg}") from None
 
 
 def _mixture_parsers(sub) -> None:
@@ -259,8 +316,8 @@ def run(args) -> int:
         print(design.summary())
         print(f"wrote {out}")
         return 0
-    if args.kind in _NEW_KINDS:
-        design = _new_kind(args)
+    if args.kind in _NEW_KINDS or args.kind == "split-plot":
+        design = _split_plot(args) if args.kind == "split-plot" else _new_kind(args)
         write_design(design, out, args)
         print(design.summary())
         print(f"wrote {out}")

@@ -2,7 +2,8 @@
 (each crossed with categoric factors), optimal designs (D/I/A, constraints), augmentation,
 screening designs (definitive screening, fractional factorial, Plackett–Burman) and
 space-filling designs (Latin hypercube, Sobol') and mixture designs (simplex lattice,
-simplex centroid, extreme vertices).
+simplex centroid, extreme vertices) and optimal split-plot designs (hard-to-change factors in
+whole plots, GLS criteria).
 
 Every generator returns a :class:`Design` (standard order kept, run order randomised from a
 seed) whose :meth:`Design.to_frame` / :meth:`Design.to_csv` give the design CSV layout that
@@ -27,6 +28,7 @@ from .screening import (
     plackett_burman,
 )
 from .spacefill import latin_hypercube, sobol
+from .split_plot import gls_criteria, gls_information, split_plot
 
 __all__ = [
     "Design",
@@ -54,4 +56,7 @@ __all__ = [
     "simplex_lattice",
     "simplex_centroid",
     "extreme_vertices",
+    "split_plot",
+    "gls_information",
+    "gls_criteria",
 ]

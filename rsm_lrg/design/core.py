@@ -7,7 +7,11 @@ from a seed so that the same seed gives the same order. Rows are held in run ord
 
 The CSV layout (what ``rsm-lrg design`` writes and what later commands read)::
 
-    std_order, run_order, [block,] coded_A, coded_B, ..., <factor name>, <factor name>, ...
+    std_order, run_order, [block,] [whole_plot,] coded_A, coded_B, ..., <factor name>, ...
+
+A split-plot design (:func:`rsm_lrg.design.split_plot`) adds the ``whole_plot`` column: the
+whole plot (1..W, numbered in run order) of each run; its hard-to-change factors are constant
+within each whole plot.
 
 The coded columns carry the prefix ``coded_`` so that ``fit`` skips them when it picks the
 factor columns by default (see :meth:`rsm_lrg.factors.FactorSpace.from_data`).
@@ -36,9 +40,11 @@ __all__ = [
     "resolve_seed",
     "seeded_options",
     "design_of_frame",
+    "whole_plot_codes",
     "randomized_run_order",
     "CODED_PREFIX",
     "BLOCK_COLUMN",
+    "WHOLE_PLOT_COLUMN",
     "cross_categoric",
     "numeric_part",
     "check_center",
@@ -48,6 +54,8 @@ __all__ = [
 CODED_PREFIX = "coded_"
 #: Name of the block column in a design CSV.
 BLOCK_COLUMN = "block"
+#: Name of the whole-plot column of a split-plot design CSV.
+WHOLE_PLOT_COLUMN = "whole_plot"
 
 # Relative tolerance when reading the coding back from coded + actual columns.
 _READ_RTOL = 1e-9
@@ -230,6 +238,8 @@ class Design:
         Block (1..b) of each row, or ``None`` for an unblocked design.
     options : dict
         The generator's options (centre points, alpha, seed, ...), JSON-safe.
+    whole_plots : numpy.ndarray of int or None
+        Whole plot (1..W) of each row of a split-plot design, or ``None``.
     """
 
     factors: FactorSpace
@@ -239,6 +249,7 @@ class Design:
     run_order: np.ndarray
     blocks: np.ndarray | None = None
     options: dict = field(default_factory=dict)
+    whole_plots: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         coded = np.array(self.coded_runs, dtype=float)
@@ -260,16 +271,23 @@ class Design:
             blocks = np.asarray(self.blocks, dtype=int)
             if blocks.shape != (n,) or blocks.min() < 1:
                 raise ValueError("blocks must give a block number >= 1 for every run")
+        plots = None
+        if self.whole_plots is not None:
+            plots = np.asarray(self.whole_plots, dtype=int)
+            if plots.shape != (n,) or plots.min() < 1:
+                raise ValueError("whole_plots must give a whole plot number >= 1 for every run")
         order = np.argsort(run, kind="stable")
         coded = np.round(coded[order], 12) + 0.0
         std, run = std[order], run[order]
         blocks = None if blocks is None else blocks[order]
-        for a in (coded, std, run) + (() if blocks is None else (blocks,)):
+        plots = None if plots is None else plots[order]
+        for a in (coded, std, run) + tuple(x for x in (blocks, plots) if x is not None):
             a.setflags(write=False)
         object.__setattr__(self, "coded_runs", coded)
         object.__setattr__(self, "std_order", std)
         object.__setattr__(self, "run_order", run)
         object.__setattr__(self, "blocks", blocks)
+        object.__setattr__(self, "whole_plots", plots)
         object.__setattr__(self, "options", dict(self.options))
 
     # -- sizes ----------------------------------------------------------------------------
@@ -318,14 +336,17 @@ class Design:
     def to_frame(self):
         """The design CSV layout as a DataFrame (rows in run order).
 
-        Columns: ``std_order``, ``run_order``, ``block`` (only when blocked), ``coded_A``,
-        ``coded_B``, ... and then the actual columns named after the factors.
+        Columns: ``std_order``, ``run_order``, ``block`` (only when blocked), ``whole_plot``
+        (only for a split-plot design), ``coded_A``, ``coded_B``, ... and then the actual
+        columns named after the factors.
         """
         import pandas as pd
 
         cols: dict[str, Any] = {"std_order": self.std_order.copy(), "run_order": self.run_order.copy()}
         if self.blocks is not None:
             cols[BLOCK_COLUMN] = self.blocks.copy()
+        if self.whole_plots is not None:
+            cols[WHOLE_PLOT_COLUMN] = self.whole_plots.copy()
         for i, f in enumerate(self.factors):
             c = self.coded_runs[:, i]
             if f.kind == "categoric":  # Design-Expert shows the level as the coded value
@@ -365,6 +386,8 @@ class Design:
                                          "run_order": [str(int(v)) for v in self.run_order]}
         if self.blocks is not None:
             columns[BLOCK_COLUMN] = [str(v) for v in self.blocks.tolist()]
+        if self.whole_plots is not None:
+            columns[WHOLE_PLOT_COLUMN] = [str(v) for v in self.whole_plots.tolist()]
 
         def text(values: np.ndarray) -> list[str]:
             if values.dtype.kind in "iu":
@@ -437,6 +460,17 @@ class Design:
             lines.append(f"{o.get('criterion')}-optimal for the {o.get('model')} model ({o.get('model_terms')} terms): "
                          f"criterion {format_g(o.get('criterion_value'), 6, trim=True) or 'n/a'}; {o.get('model_points')} model points, "
                          f"{o.get('replicates')} replicates, {o.get('lof_points')} lack-of-fit points")
+        if self.kind == "split-plot":
+            lines.append(f"{o.get('criterion')}-optimal split-plot design for the {o.get('model')} model "
+                         f"({o.get('model_terms')} terms) under variance ratio eta = "
+                         f"{format_g(o.get('variance_ratio'), 6, trim=True)}: GLS criterion "
+                         f"{format_g(o.get('criterion_value'), 6, trim=True) or 'n/a'}; hard to change: "
+                         + ", ".join(o.get("hard_to_change", [])))
+        if self.whole_plots is not None:
+            sizes = np.unique(self.whole_plots, return_counts=True)[1]
+            each = (f"{int(sizes[0])} runs each" if sizes.min() == sizes.max()
+                    else f"{int(sizes.min())} to {int(sizes.max())} runs")
+            lines.append(f"{len(sizes)} whole plots ({each})")
         if o.get("constraints"):
             lines.append("constraints: " + "; ".join(o["constraints"]))
         if self.kind == "augmented":
@@ -447,7 +481,9 @@ class Design:
         if not rnd:
             lines.append("run order: standard order (not randomised)")
         elif seed is not None:
-            lines.append(f"run order: randomised{' within blocks' if self.blocks is not None else ''}, seed {seed}")
+            where = (" between and within whole plots (whole plots kept together)" if self.whole_plots is not None
+                     else " within blocks" if self.blocks is not None else "")
+            lines.append(f"run order: randomised{where}, seed {seed}")
         else:
             lines.append("run order: randomised from a numpy Generator")
         for f in self.factors:
@@ -551,7 +587,7 @@ class Design:
         return Design(self.factors, self.kind, coded, std, ro, blocks, opts)
 
     @classmethod
-    def from_frame(cls, df, *, kind: str = "custom") -> Design:
+    def from_frame(cls, df, *, kind: str = "custom", whole_plot: str | None = None) -> Design:
         """Read a design back from its CSV layout (see :meth:`to_frame`).
 
         The factors are the columns that follow the coded columns, one per coded column
@@ -562,7 +598,10 @@ class Design:
         column that is a rising linear map of it, as :func:`rsm_lrg.factors.choose_factors`
         pairs them for a fit. Columns after the actual ones (responses added by
         ``simulate``, say) are ignored here.
-        ``std_order``/``run_order`` default to the row order when absent.
+        ``std_order``/``run_order`` default to the row order when absent. The whole plots
+        of a split-plot design come from the column ``whole_plot`` (or the column named by
+        ``whole_plot``): whole numbers >= 1 are kept, other labels numbered 1, 2, ... in order
+        of first appearance.
         """
         cols = [str(c) for c in df.columns]
         coded_cols = [c for c in cols if c.lower().startswith(CODED_PREFIX)]
@@ -576,7 +615,10 @@ class Design:
         if cols[first:last + 1] != coded_cols:
             raise ValueError("the coded columns (coded_A, coded_B, ...) must stand next to each other")
         k = len(coded_cols)
-        after = [c for c in cols[last + 1:] if c.lower() not in BOOKKEEPING and c != BLOCK_COLUMN]
+        wp_col = whole_plot if whole_plot is not None else (WHOLE_PLOT_COLUMN if WHOLE_PLOT_COLUMN in cols else None)
+        if wp_col is not None and wp_col not in cols:
+            raise ValueError(f"whole-plot column {wp_col!r} not found (columns: {', '.join(cols)})")
+        after = [c for c in cols[last + 1:] if c.lower() not in BOOKKEEPING and c not in (BLOCK_COLUMN, wp_col)]
         if len(after) < k:
             raise ValueError(
                 f"found {k} coded columns but only {len(after)} factor columns after them; "
@@ -639,8 +681,27 @@ class Design:
             b = df[BLOCK_COLUMN]
             codes = {v: i + 1 for i, v in enumerate(sorted(set(b.tolist()), key=lambda v: (str(type(v)), v)))}
             blocks = np.array([codes[v] for v in b.tolist()], dtype=int)
+        plots = None if wp_col is None else whole_plot_codes(df[wp_col].tolist(), wp_col)
         return cls(space, kind, coded, _order("std_order"), _order("run_order"), blocks,
-                   {"source": "file"})
+                   {"source": "file"}, plots)
+
+
+def whole_plot_codes(values: list, column: str) -> np.ndarray:
+    """Whole-plot numbers of a column's cells: whole numbers >= 1 as they are, any other
+    labels numbered 1, 2, ... in order of first appearance; an empty cell is a ValueError
+    naming the column and the row."""
+    for i, v in enumerate(values):
+        if is_empty_cell(v):
+            raise ValueError(f"whole-plot column {column!r}, row {i + 1}: is empty")
+    try:
+        nums = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        nums = None
+    if nums is not None and np.all(np.isfinite(nums)) and np.all(nums == np.round(nums)) and nums.min() >= 1 \
+            and nums.max() < 2.0 ** 62:
+        return nums.astype(np.int64)
+    codes: dict = {}
+    return np.array([codes.setdefault(level_text(v), len(codes) + 1) for v in values], dtype=np.int64)
 
 
 def _is_text_column(col) -> bool:
@@ -718,13 +779,14 @@ def read_design(path) -> Design:
     return design_of_frame(read_table(path), path)
 
 
-def design_of_frame(df: Any, path: Any) -> Design:
+def design_of_frame(df: Any, path: Any, whole_plot: str | None = None) -> Design:
     """:meth:`Design.from_frame` of a table read from ``path``, its errors naming the file
-    (:class:`rsm_lrg.io.InputError`)."""
+    (:class:`rsm_lrg.io.InputError`); ``whole_plot`` names the whole-plot column of a
+    split-plot design (default ``whole_plot`` when there is one)."""
     from ..io import InputError
 
     try:
-        return Design.from_frame(df)
+        return Design.from_frame(df, whole_plot=whole_plot)
     except InputError:
         raise
     except ValueError as exc:

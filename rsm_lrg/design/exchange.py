@@ -19,7 +19,8 @@ import numpy as np
 from ..terms import design_matrix, n_columns
 
 __all__ = ["CRITERIA", "GRID", "MAX_RUNS", "MAX_COLUMNS", "MAX_STARTS", "check_criterion", "check_columns",
-           "information", "moment_matrix", "thin_region_error", "criterion_value", "ExchangeProblem",
+           "information", "moment_matrix", "thin_region_error", "criterion_value", "reported_value",
+           "information_criterion", "is_gain", "ExchangeProblem",
            "candidate_pool", "at_every_level", "halton"]
 
 #: Criteria accepted by :func:`optimal`.
@@ -109,7 +110,7 @@ def thin_region_error(constraints) -> ValueError:
                       "empty or too thin to design in, e.g. a single point or a line)")
 
 
-def _value(M: np.ndarray, crit: str, W: np.ndarray | None) -> Any:
+def information_criterion(M: np.ndarray, crit: str, W: np.ndarray | None) -> Any:
     """Criterion to minimise (``-log det`` for D), batched over leading axes; inf if singular."""
     if crit == "D":
         sign, logdet = np.linalg.slogdet(M)
@@ -129,21 +130,28 @@ def criterion_value(coded: np.ndarray, terms, criterion: str = "D", W: np.ndarra
     """The criterion of coded runs as reported: D ``det(X'X)^(1/p) / n``; A
     ``trace((X'X)^-1)``; I ``trace((X'X)^-1 W)`` (``W`` from :func:`moment_matrix`). A
     singular design gives 0 (D) or inf (A, I)."""
-    crit = check_criterion(criterion)
     coded = np.asarray(coded, dtype=float)
-    M = information(coded, terms)
+    return reported_value(information(coded, terms), coded.shape[0], criterion, W)
+
+
+def reported_value(M: np.ndarray, n: int, criterion: str = "D", W: np.ndarray | None = None) -> float:
+    """The criterion as reported, from an information matrix ``M`` (p x p) of ``n`` runs:
+    D ``det(M)^(1/p) / n``; A ``trace(M^-1)``; I ``trace(M^-1 W)``. A singular ``M`` gives
+    0 (D) or inf (A, I). With ``M = X'X`` this is :func:`criterion_value`; the split-plot
+    designs pass the GLS information ``X' V^-1 X`` (:mod:`rsm_lrg.design.split_plot`)."""
+    crit = check_criterion(criterion)
     p = M.shape[0]
     if crit == "D":
         sign, logdet = np.linalg.slogdet(M)
         if sign <= 0 or np.linalg.cond(M) > 1e12:
             return 0.0
-        return float(math.exp(logdet / p) / coded.shape[0])
+        return float(math.exp(logdet / p) / n)
     if np.linalg.cond(M) > 1e12:
         return math.inf
-    return float(_value(M, crit, W))
+    return float(information_criterion(M, crit, W))
 
 
-def _gains(v: float, cur: float) -> bool:
+def is_gain(v: float, cur: float) -> bool:
     """Whether criterion value ``v`` (to minimise) is a real gain on ``cur`` (more than a
     relative 1e-10, so that rounding never cycles an exchange)."""
     return v < cur - 1e-10 * max(1.0, abs(cur))
@@ -220,7 +228,7 @@ class ExchangeProblem:
         if prep is None:
             Fr = F[own]
             stack = M[None, :, :] - Fr[:, :, None] * Fr[:, None, :] + G[:, :, None] * G[:, None, :]
-            return _value(stack, self.crit, self.W)
+            return information_criterion(stack, self.crit, self.W)
         A, K, base = prep
         FA = F @ A
         gAg = np.einsum("ij,ij->i", G @ A, G)
@@ -274,7 +282,7 @@ class ExchangeProblem:
 
     def score(self, D):
         M = information(D, self.terms) + self.ridge(len(D))
-        return float(_value(M, self.crit, self.W))
+        return float(information_criterion(M, self.crit, self.W))
 
     def _start(self, D: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """A copy of ``D`` to exchange on, its model rows ``F``, information ``M`` (with the
@@ -282,7 +290,7 @@ class ExchangeProblem:
         D = D.copy()
         F = design_matrix(D, self.terms)
         M = F.T @ F + self.ridge(len(D))
-        return D, F, M, float(_value(M, self.crit, self.W))
+        return D, F, M, float(information_criterion(M, self.crit, self.W))
 
     def _on_grid(self, points: np.ndarray, *rows: np.ndarray) -> tuple[np.ndarray, ...]:
         """``points`` (and the matching ``rows``) with every numeric coordinate at -1, 0 or
@@ -300,8 +308,8 @@ class ExchangeProblem:
         rank-one updates of :meth:`batch` only rank the candidates). On a gain ``D`` and
         ``F`` are updated in place and the new ``(M, criterion)`` returned; else None."""
         M2 = M - np.outer(F[i], F[i]) + np.outer(g, g)
-        v2 = float(_value(M2, self.crit, self.W))
-        if not _gains(v2, cur):
+        v2 = float(information_criterion(M2, self.crit, self.W))
+        if not is_gain(v2, cur):
             return None
         D[i], F[i] = x, g
         return M2, v2
@@ -335,7 +343,7 @@ class ExchangeProblem:
                 v = self.batch_pairs(M, F, own, G)
                 got, r = None, -1
                 for b in np.argsort(v)[:3]:  # the ranking is rank-one; the exact value decides
-                    if not _gains(v[b], cur):
+                    if not is_gain(v[b], cur):
                         break
                     r = int(own[b])
                     got = self._replace(D, F, r, P[b], G[b], M, cur)
@@ -361,7 +369,7 @@ class ExchangeProblem:
                 for lo in range(0, len(G), 2048):
                     v = self.batch(M, F[i], G[lo:lo + 2048])
                     j = int(np.argmin(v))
-                    if _gains(v[j], best_v):
+                    if is_gain(v[j], best_v):
                         best_v, best_j = float(v[j]), lo + j
                 if best_j >= 0 and (got := self._replace(D, F, i, cands[best_j], G[best_j], M, cur)):
                     M, cur = got
@@ -375,7 +383,7 @@ class ExchangeProblem:
         D, v = self.exchange(D, fixed, polish=polish, coarse=coarse)
         for _ in range(10):
             D2, v2 = self.row_exchange(D, fixed, coarse=coarse)
-            if not _gains(v2, v):
+            if not is_gain(v2, v):
                 break
             D, v = self.exchange(D2, fixed, polish=polish, coarse=coarse)
         return D, v

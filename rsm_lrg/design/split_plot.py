@@ -1,0 +1,430 @@
+"""Optimal split-plot designs: hard-to-change factors held constant within whole plots, chosen
+by coordinate exchange on the generalised-least-squares information matrix.
+
+Goos, P. & Vandebroek, M. (2003). D-optimal split-plot designs with given numbers and sizes
+of whole plots. *Technometrics* 45(3), 235-245.
+Goos, P. & Vandebroek, M. (2004). Outperforming completely randomized designs. *Journal of
+Quality Technology* 36(1), 12-26.
+
+The runs fall into ``W`` whole plots; the hard-to-change (whole-plot) factors take one setting
+per whole plot, the easy-to-change (sub-plot) factors one per run. With a random whole-plot
+effect of variance ``σ²_wp`` and a run error of variance ``σ²``, the responses of whole plot
+``b`` (``m_b`` runs) have covariance ``σ² V_b`` with ``V_b = I + η J`` (``J`` all ones,
+``η = σ²_wp / σ²`` the variance ratio), so the GLS estimator has covariance ``σ² M⁻¹`` with
+the information matrix
+
+``M = X' V⁻¹ X = Σ_b (X_b' X_b - c_b s_b s_b')``,  ``c_b = η / (1 + m_b η)``,  ``s_b = X_b' 1``
+
+(``V_b⁻¹ = I - c_b J``: Goos & Vandebroek 2003, Eq. 4). At ``η = 0`` it is ``X'X``, the
+completely randomised design's. The criteria are those of :mod:`rsm_lrg.design.optimal` with
+``M`` in place of ``X'X``: D maximises ``det M`` (reported ``det(M)^(1/p) / n``), I minimises
+the average prediction variance ``trace(M⁻¹ W)`` [σ²] over the region, A ``trace(M⁻¹)``.
+
+Coordinate exchange (Goos & Vandebroek 2003, Sec. 4): from a random start, each whole-plot
+factor of each whole plot is set, for the whole plot at once, to the best of its levels (21
+over [-1, 1] for a numeric factor, every level of a categoric one, the -1/0/+1 grid in the
+coarse starts), and each sub-plot factor of each run likewise, until a whole pass changes
+nothing; every move keeps each run inside the constraints. The best of the starts (all drawn
+from ``seed``) is refined on the full grid and polished by steps of 0.05 and 0.01 (a polishing
+step is taken only for a relative gain of at least :data:`POLISH_GAIN`).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..terms import Term, design_matrix, model_terms, n_columns
+from .core import Design, as_factor_space, resolve_seed, seeded_options
+from .exchange import (
+    GRID,
+    MAX_RUNS,
+    MAX_STARTS,
+    ExchangeProblem,
+    candidate_pool,
+    check_columns,
+    check_criterion,
+    information_criterion,
+    is_gain,
+    moment_matrix,
+    reported_value,
+)
+
+__all__ = ["split_plot", "gls_information", "gls_criteria", "whole_plot_terms", "plot_sizes", "plot_weights",
+           "check_variance_ratio"]
+
+_COARSE = np.array([-1.0, 0.0, 1.0])
+
+#: Relative gain a polishing step (0.05, 0.01) must make to move a setting off the grid.
+POLISH_GAIN = 1e-4
+
+
+def check_variance_ratio(eta: Any) -> float:
+    """``eta`` as a finite number >= 0 [-], or a ValueError starting ``variance_ratio:``."""
+    try:
+        v = float(eta)
+    except (TypeError, ValueError):
+        raise ValueError(f"variance_ratio: expected a finite number >= 0, got {eta!r}") from None
+    if isinstance(eta, (bool, np.bool_)) or not (math.isfinite(v) and v >= 0.0):
+        raise ValueError(f"variance_ratio: expected a finite number >= 0 (sigma^2 whole plot / sigma^2), got {eta!r}")
+    return v
+
+
+def plot_sizes(runs: int, whole_plots: int) -> list[int]:
+    """Runs per whole plot: ``runs // whole_plots`` each, the first ``runs % whole_plots``
+    whole plots one more."""
+    m, r = divmod(int(runs), int(whole_plots))
+    return [m + 1] * r + [m] * (int(whole_plots) - r)
+
+
+def gls_information(X: np.ndarray, plots: np.ndarray, eta: float) -> np.ndarray:
+    """The GLS information ``X' V⁻¹ X`` (p x p, in units of 1/σ²) of the model matrix ``X``
+    (n x p) whose rows fall in the whole plots ``plots`` (n labels), ``V`` block diagonal
+    with ``I + η J`` per whole plot (Goos & Vandebroek 2003, Eq. 4).
+
+    >>> X = np.array([[1.0, -1.0], [1.0, 1.0], [1.0, -1.0], [1.0, 1.0]])
+    >>> gls_information(X, np.array([1, 1, 2, 2]), 1.0).round(6).tolist()
+    [[1.333333, 0.0], [0.0, 4.0]]
+    """
+    X = np.asarray(X, dtype=float)
+    _, codes, counts = np.unique(np.asarray(plots), return_inverse=True, return_counts=True)
+    S = np.zeros((len(counts), X.shape[1]))
+    np.add.at(S, codes.reshape(-1), X)
+    return X.T @ X - (S.T * plot_weights(counts, eta)) @ S
+
+
+def plot_weights(sizes: Any, eta: float) -> np.ndarray:
+    """``c_b = η / (1 + m_b η)`` for whole plots of ``m_b`` runs, written ``1 / (m_b + 1/η)``
+    so that a large ``η`` does not overflow (0 at ``η = 0``)."""
+    m = np.asarray(sizes, dtype=float)
+    return np.zeros_like(m) if eta == 0 else 1.0 / (m + 1.0 / eta)
+
+
+def whole_plot_terms(terms: list[Term], hard: list[int]) -> list[Term]:
+    """The terms (intercept left out) whose factors are all hard to change (positions
+    ``hard``): the effects estimated between whole plots."""
+    h = set(hard)
+    return [t for t in terms if t.order > 0 and all(i in h for i, e in enumerate(t.powers) if e)]
+
+
+def gls_criteria(design: Design, terms: list[Term] | None = None, model: str = "quadratic",
+                 variance_ratio: float = 1.0, whole_plots: Any = None) -> dict:
+    """The GLS criteria of a split-plot design under the variance ratio ``η``.
+
+    Parameters
+    ----------
+    design : Design
+        Its ``whole_plots`` (or ``whole_plots`` given here: one label per run, in the
+        design's row order) define ``V``.
+    terms : list of Term or None
+        The model's terms; None: :func:`rsm_lrg.terms.model_terms` of ``model``.
+    variance_ratio : float
+        ``η = σ²_wp / σ²`` [-], finite and >= 0.
+
+    Returns
+    -------
+    dict
+        ``variance_ratio``, ``whole_plots`` (number), ``plot_sizes`` (min, max), ``n``, ``p``,
+        ``d_efficiency`` ``det(M)^(1/p) / n``, ``a_efficiency`` ``p / (n trace(M⁻¹))``,
+        ``i_average`` ``trace(M⁻¹ W)`` [σ²] over the coded cube (categoric levels equally
+        weighted) and ``estimable`` (``M`` of full rank); the criteria are 0 / inf / NaN when
+        not estimable.
+    """
+    eta = check_variance_ratio(variance_ratio)
+    plots = design.whole_plots if whole_plots is None else np.asarray(whole_plots)
+    if plots is None:
+        raise ValueError("the design has no whole plots")
+    if len(plots) != design.n_runs:
+        raise ValueError(f"{len(plots)} whole-plot labels for {design.n_runs} runs")
+    space = design.factors
+    if terms is None:
+        terms = model_terms(space.letters, model, space.categoric or None)
+    X = design_matrix(np.asarray(design.coded_runs, dtype=float), terms)
+    n, p = X.shape
+    M = gls_information(X, plots, eta)
+    counts = np.unique(np.asarray(plots), return_counts=True)[1]
+    d = reported_value(M, n, "D")
+    ok = d > 0
+    W = moment_matrix(space, terms)
+    return {"variance_ratio": eta, "whole_plots": int(len(counts)),
+            "plot_sizes": [int(counts.min()), int(counts.max())], "n": int(n), "p": int(p),
+            "estimable": bool(ok), "d_efficiency": d,
+            "a_efficiency": float(p / (n * reported_value(M, n, "A"))) if ok else math.nan,
+            "i_average": reported_value(M, n, "I", W) if ok else math.inf}
+
+
+class _Search:
+    """Coordinate exchange over split-plot designs (whole plots contiguous: rows
+    ``bounds[b]:bounds[b + 1]``), model rows and candidate levels from an
+    :class:`~rsm_lrg.design.exchange.ExchangeProblem`."""
+
+    def __init__(self, prob: ExchangeProblem, sizes: list[int], hard: list[int], eta: float):
+        self.prob = prob
+        self.sizes = np.asarray(sizes, dtype=int)
+        self.bounds = np.r_[0, np.cumsum(self.sizes)]
+        self.plot = np.repeat(np.arange(len(sizes)), self.sizes)
+        self.c = plot_weights(self.sizes, eta)
+        self.hard = list(hard)
+        self.easy = [j for j in range(prob.k) if j not in set(hard)]
+        self.n = int(self.sizes.sum())
+
+    def value(self, M: np.ndarray) -> Any:
+        return information_criterion(M, self.prob.crit, self.prob.W)
+
+    def plot_info(self, Xb: np.ndarray, c: float) -> np.ndarray:
+        """``Xb' Xb - c s s'`` of one whole plot's rows (..., m, p), batched."""
+        s = Xb.sum(axis=-2)
+        return np.einsum("...mp,...mq->...pq", Xb, Xb) - c * s[..., :, None] * s[..., None, :]
+
+    def start(self, rng: np.random.Generator, coarse: bool) -> np.ndarray:
+        """A random feasible start: each whole plot's hard-to-change settings from one pool
+        point, each run's easy ones from another (the whole plot's own point where the
+        combination breaks a constraint)."""
+        prob = self.prob
+        P0 = prob.random_start(len(self.sizes), rng, grid=coarse)[self.plot]
+        D = prob.random_start(self.n, rng, grid=coarse)
+        D[:, self.hard] = P0[:, self.hard]
+        if prob.cons is not None and prob.cons:
+            bad = ~prob.cons.feasible_coded(D)
+            D[bad] = P0[bad]
+        return D
+
+    def _levels(self, j: int, now: float, phase: int, coarse: bool) -> np.ndarray:
+        f = self.prob.space.factors[j]
+        if f.kind != "numeric":
+            vals = np.arange(f.n_levels, dtype=float) if phase == 0 else np.empty(0)
+        elif phase == 0:
+            vals = _COARSE if coarse else GRID
+        else:
+            step = 0.05 / (5 ** (phase - 1))
+            vals = np.unique(np.clip(now + np.linspace(-step, step, 11), -1.0, 1.0))
+        return vals[vals != now]
+
+    def improve(self, D: np.ndarray, coarse: bool = False, polish: bool = False) -> tuple[np.ndarray, float]:
+        """Coordinate exchange on ``D`` (n x k coded, whole plots contiguous) until a pass
+        changes nothing; ``polish``: then steps of 0.05 and 0.01 on the numeric factors."""
+        prob = self.prob
+        D = D.copy()
+        F = prob.rows(D)
+        ridge = prob.ridge(self.n)
+        Mb = np.stack([self.plot_info(F[a:b], c) for a, b, c in zip(self.bounds[:-1], self.bounds[1:], self.c)])
+        M = Mb.sum(axis=0) + ridge
+        cur = float(self.value(M))
+        cons = prob.cons if prob.cons is not None and prob.cons else None
+        for phase in (0, 1, 2) if polish else (0,):
+            # a polished level must gain a relative 1e-4 (no settings moved off the grid for noise)
+            gain = is_gain if phase == 0 else (lambda v, c: v < c - POLISH_GAIN * max(1.0, abs(c)))
+            for _ in range(100):
+                changed = False
+                for b in range(len(self.sizes)):  # a whole-plot factor changes for the whole plot
+                    a, e = int(self.bounds[b]), int(self.bounds[b + 1])
+                    for j in self.hard:
+                        vals = self._levels(j, D[a, j], phase, coarse)
+                        if not len(vals):
+                            continue
+                        cand = np.repeat(D[a:e][None, :, :], len(vals), axis=0)
+                        cand[:, :, j] = vals[:, None]
+                        flat = cand.reshape(-1, prob.k)
+                        ok = np.ones(len(vals), dtype=bool)
+                        if cons is not None:
+                            ok = cons.feasible_coded(flat).reshape(len(vals), e - a).all(axis=1)
+                        if not ok.any():
+                            continue
+                        Xc = prob.rows(flat).reshape(len(vals), e - a, -1)
+                        Mnew = self.plot_info(Xc, self.c[b])
+                        v = np.where(ok, self.value(M - Mb[b] + Mnew), np.inf)
+                        i = int(np.argmin(v))
+                        if gain(float(v[i]), cur):
+                            D[a:e, j] = vals[i]
+                            F[a:e] = Xc[i]
+                            Mb[b] = Mnew[i]
+                            M = Mb.sum(axis=0) + ridge
+                            cur = float(self.value(M))
+                            changed = True
+                for r in range(self.n):  # a sub-plot factor changes for one run
+                    b = int(self.plot[r])
+                    a, e = int(self.bounds[b]), int(self.bounds[b + 1])
+                    for j in self.easy:
+                        vals = self._levels(j, D[r, j], phase, coarse)
+                        if not len(vals):
+                            continue
+                        pts = np.repeat(D[r][None, :], len(vals), axis=0)
+                        pts[:, j] = vals
+                        ok = np.ones(len(vals), dtype=bool) if cons is None else cons.feasible_coded(pts)
+                        if not ok.any():
+                            continue
+                        G = prob.rows(pts)
+                        Xc = np.repeat(F[a:e][None, :, :], len(vals), axis=0)
+                        Xc[:, r - a, :] = G
+                        Mnew = self.plot_info(Xc, self.c[b])
+                        v = np.where(ok, self.value(M - Mb[b] + Mnew), np.inf)
+                        i = int(np.argmin(v))
+                        if gain(float(v[i]), cur):
+                            D[r, j] = vals[i]
+                            F[r] = G[i]
+                            Mb[b] = Mnew[i]
+                            M = Mb.sum(axis=0) + ridge
+                            cur = float(self.value(M))
+                            changed = True
+                if not changed:
+                    break
+        return D, cur
+
+
+def split_plot(
+    factors: Any,
+    hard_to_change: Any,
+    whole_plots: int,
+    runs: int,
+    model: str = "quadratic",
+    criterion: str = "D",
+    variance_ratio: float = 1.0,
+    constraints: Any = None,
+    seed: Any = None,
+    starts: int | None = None,
+    randomize: bool = True,
+) -> Design:
+    """An optimal split-plot design by coordinate exchange on the GLS information matrix
+    (Goos & Vandebroek 2003, 2004; module docstring).
+
+    Parameters
+    ----------
+    factors : FactorSpace, mapping or list
+        Numeric (``"NAME=LOW:HIGH"``) and categoric (``"NAME=cat:L1,L2"``) factors.
+    hard_to_change : str or list of str
+        The factors (names) held constant within each whole plot (at least one).
+    whole_plots : int
+        Number of whole plots ``W``; at least the whole-plot model columns plus one.
+    runs : int
+        Total runs ``N`` (at least the model's columns and ``W``); ``N / W`` runs per whole
+        plot, and when ``W`` does not divide ``N`` the first ``N mod W`` whole plots hold one
+        run more (said in ``options["note"]``).
+    model : {"linear", "2fi", "quadratic", "cubic"}
+        The model the design must support (:func:`rsm_lrg.terms.model_terms`).
+    criterion : {"D", "I", "A"}, default "D"
+        On the GLS information ``X' V⁻¹ X``.
+    variance_ratio : float, default 1
+        ``η = σ²_wp / σ²`` [-], finite and >= 0 (0: the runs independent).
+    constraints : str, list of str or Constraints
+        Inequalities in actual units every run satisfies.
+    seed : int, numpy.random.Generator or None
+        Seeds the random starts and the run order (``None``: drawn and recorded).
+    starts : int or None
+        Random starts on the -1/0/+1 grid; half as many more start in the continuous region
+        (default 20 for up to 21 model columns, else 6).
+    randomize : bool
+        ``True``: the whole plots in random order and the runs in random order within each
+        (whole plots stay together); ``False``: run order = standard order.
+
+    Returns
+    -------
+    Design
+        ``kind="split-plot"`` with ``whole_plots`` (1..W in run order); ``options`` holds the
+        criterion and its GLS value (:func:`rsm_lrg.design.exchange.reported_value` of
+        :func:`gls_information`), the model, the variance ratio, the hard-to-change factors,
+        the whole-plot sizes, the constraints and the seed.
+
+    Examples
+    --------
+    >>> d = split_plot(["T=100:200", "x=0:1"], ["T"], whole_plots=4, runs=12, model="2fi", seed=1)
+    >>> d.n_runs, sorted(set(d.whole_plots.tolist()))
+    (12, [1, 2, 3, 4])
+    """
+    from .constraints import Constraints
+
+    space = as_factor_space(factors)
+    crit = check_criterion(criterion)
+    eta = check_variance_ratio(variance_ratio)
+    names = space.names
+    hard_names = [hard_to_change] if isinstance(hard_to_change, str) else list(hard_to_change or [])
+    if not hard_names:
+        raise ValueError("hard_to_change: name at least one hard-to-change factor")
+    hard: list[int] = []
+    for h in hard_names:
+        if h not in names:
+            raise ValueError(f"hard_to_change: {h!r} is not among the factors ({', '.join(names)})")
+        if names.index(h) in hard:
+            raise ValueError(f"hard_to_change: {h!r} is given twice")
+        hard.append(names.index(h))
+    for name, given in (("whole_plots", whole_plots), ("runs", runs), ("starts", starts)):
+        if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 1):
+            raise ValueError(f"{name}: must be a whole number >= 1 (got {given!r})")
+    W_plots, n = int(whole_plots), int(runs)
+    terms = model_terms(space.letters, model, space.categoric or None)
+    p = n_columns(terms)
+    check_columns(p, model, len(space))
+    wp_cols = n_columns(whole_plot_terms(terms, hard))
+    hard_text = ", ".join(names[i] for i in sorted(hard))
+    if W_plots < wp_cols + 1:
+        raise ValueError(f"whole_plots: {W_plots} whole plots cannot estimate the intercept and the {wp_cols} "
+                         f"whole-plot column(s) of the {model} model in {hard_text}; need at least {wp_cols + 1}")
+    if n > MAX_RUNS:
+        raise ValueError(f"runs: at most {MAX_RUNS} runs (got {n})")
+    if n < p:
+        raise ValueError(f"runs: {n} runs cannot estimate the {p} coefficients of the {model} model in "
+                         f"{len(space)} factors")
+    if n < W_plots:
+        raise ValueError(f"runs: {n} runs cannot fill {W_plots} whole plots (at least one run each)")
+    if constraints is not None and not isinstance(constraints, Constraints):
+        constraints = Constraints.parse(constraints, space)
+    sizes = plot_sizes(n, W_plots)
+    rng, used_seed = resolve_seed(seed)
+    Wm = moment_matrix(space, terms, constraints) if crit == "I" else None
+    pool = candidate_pool(space, constraints, seed=int(rng.integers(2 ** 31)))
+    search = _Search(ExchangeProblem(space, terms, crit, Wm, constraints, pool), sizes, hard, eta)
+    if starts is None:
+        starts = 20 if p <= 21 else 6
+    starts = min(max(1, int(starts)), MAX_STARTS)
+    best: np.ndarray | None = None
+    best_v = math.inf
+    for how in ["coarse"] * starts + ["continuous"] * max(1, starts // 2):
+        D, v = search.improve(search.start(rng, how == "coarse"), coarse=how == "coarse")
+        if best is None or v < best_v:
+            best, best_v = D, v
+    assert best is not None
+    best, best_v = search.improve(best, polish=True)
+    X = design_matrix(best, terms)
+    M = gls_information(X, search.plot, eta)
+    value = reported_value(M, n, crit, Wm)
+    if reported_value(M, n, "D") == 0.0:
+        raise ValueError(f"runs: no split-plot design of {n} runs in {W_plots} whole plots was found that estimates "
+                         f"the {model} model; add runs or whole plots")
+    options: dict[str, Any] = {
+        "criterion": crit,
+        "criterion_value": value,
+        "information": "GLS",
+        "model": model,
+        "model_terms": p,
+        "variance_ratio": eta,
+        "hard_to_change": [names[i] for i in hard],
+        "whole_plots": W_plots,
+        "whole_plot_sizes": sizes,
+        "starts": starts,
+        "constraints": [] if constraints is None else constraints.expressions,
+        "algorithm": "coordinate exchange on X'V^-1 X (Goos & Vandebroek 2003)",
+    }
+    if len(set(sizes)) > 1:
+        options["note"] = (f"{n} runs do not divide into {W_plots} whole plots: {sizes.count(max(sizes))} whole plots "
+                           f"of {max(sizes)} runs and {sizes.count(min(sizes))} of {min(sizes)}")
+    return _ordered(space, best, search, options, rng if used_seed is None else used_seed, randomize)
+
+
+def _ordered(space, D: np.ndarray, search: _Search, options: dict, seed: Any, randomize: bool) -> Design:
+    """The design with the whole plots (standard order as searched) in random order and the
+    runs in random order within each (``randomize``), whole plots numbered in run order."""
+    order_rng, opts = seeded_options(options, seed, randomize)
+    n_plots = len(search.sizes)
+    plot_seq = np.arange(n_plots) if order_rng is None else order_rng.permutation(n_plots)
+    perm: list[int] = []
+    for b in plot_seq:
+        members = np.arange(search.bounds[b], search.bounds[b + 1])
+        perm.extend((members if order_rng is None else members[order_rng.permutation(len(members))]).tolist())
+    n = len(D)
+    run_order = np.empty(n, dtype=int)
+    run_order[np.asarray(perm)] = np.arange(1, n + 1)
+    number = np.empty(n_plots, dtype=int)
+    number[plot_seq] = np.arange(1, n_plots + 1)
+    return Design(factors=space, kind="split-plot", coded_runs=D, std_order=np.arange(1, n + 1),
+                  run_order=run_order, options=opts, whole_plots=number[search.plot])
