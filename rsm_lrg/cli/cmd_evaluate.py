@@ -29,7 +29,10 @@ DESCRIPTION = (
     "side: a table of the criteria (with efficiencies relative to the best design) and the FDS "
     "curves, drawn on one plot with --plot PATH.png|svg. A model the design cannot estimate is refused (exit 2) "
     "with the aliased terms named. A data CSV without coded columns is read as well: its "
-    "numeric columns (minus --exclude) are the factors, coded from their observed range."
+    "numeric columns (minus --exclude) are the factors, coded from their observed range. A split-plot "
+    "design (a whole_plot column, or --whole-plot COL) is also evaluated under generalised least "
+    "squares: D- and A-efficiency and the average prediction variance I from X'V^-1 X with "
+    "V = I + eta J per whole plot (--variance-ratio eta, default 1)."
 )
 
 
@@ -54,6 +57,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--potential", default="auto", choices=["auto", "none", "2fi", "quadratic", "cubic"],
                         help="model whose extra terms are the potential terms of the alias map (default auto: "
                              "the next bigger model; none: no alias map)")
+    parser.add_argument("--whole-plot", default=None, metavar="COL",
+                        help="the whole-plot column of a split-plot design (default: the column whole_plot "
+                             "when there is one): adds the GLS criteria")
+    parser.add_argument("--variance-ratio", type=number(0, 1e6), default=None, metavar="ETA",
+                        help="eta = sigma^2 whole plot / sigma^2 of the GLS criteria, 0 to 1e6 (default 1)")
     add_plot_option(parser, "the fraction-of-design-space curve(s) on one plot")
     add_json(parser)
     add_force(parser)
@@ -71,18 +79,67 @@ def _load(path, exclude, args):
 
             raise InputError(f"--exclude {quote_user_value(col)}: no such column in {path} "
                              f"(columns: {', '.join(map(str, df.columns))})")
+    wp = getattr(args, "whole_plot", None)
+    if wp is not None and wp not in df.columns:
+        from ..io import InputError, quote_user_value
+
+        raise InputError(f"--whole-plot {quote_user_value(wp)}: no such column in {path} "
+                         f"(columns: {', '.join(map(str, df.columns))})")
     if any(str(c).lower().startswith("coded_") for c in df.columns):
-        return design_of_frame(df, path)
-    space = FactorSpace.from_data(df, None, exclude=exclude)
+        return design_of_frame(df, path, whole_plot=wp)
+    from ..design.core import WHOLE_PLOT_COLUMN, whole_plot_codes
+
+    if wp is None and WHOLE_PLOT_COLUMN in df.columns:
+        wp = WHOLE_PLOT_COLUMN
+    space = FactorSpace.from_data(df, None, exclude=list(exclude or []) + ([wp] if wp is not None else []))
     coded = space.encode(df).to_numpy(dtype=float)
     n = len(df)
     import numpy as np
 
-    return Design(space, "custom", coded, np.arange(1, n + 1), np.arange(1, n + 1))
+    plots = None if wp is None else whole_plot_codes(df[wp].tolist(), wp)
+    return Design(space, "custom", coded, np.arange(1, n + 1), np.arange(1, n + 1), whole_plots=plots)
+
+
+def _gls(design, args) -> dict | None:
+    """The GLS criteria of a split-plot design (:func:`rsm_lrg.design.split_plot.gls_criteria`)
+    for the evaluated model, or None for a design without whole plots."""
+    if design.whole_plots is None:
+        return None
+    from ..design.split_plot import gls_criteria
+
+    if design.blocks is not None:
+        raise ValueError("a design with both blocks and whole plots is not evaluated under GLS here; "
+                         "drop the block column or the whole-plot column")
+    space = design.factors
+    terms = None
+    if args.terms is not None:
+        from ..model.inputs import chosen_terms
+        from ..model.spec import ModelSpec
+
+        intercept = not args.no_intercept
+        terms = list(chosen_terms(list(ModelSpec.build(args.model, terms=args.terms, intercept=intercept).terms or ()),
+                                  space.letters, space.categoric, intercept=intercept))
+    eta = 1.0 if args.variance_ratio is None else args.variance_ratio
+    return gls_criteria(design, terms=terms, model=args.model, variance_ratio=eta)
+
+
+def gls_lines(g: dict) -> list[str]:
+    """The GLS criteria of a split-plot design for people (:func:`_gls`)."""
+    from ..present import format_g
+
+    lo, hi = g["plot_sizes"]
+    size = f"{lo} runs each" if lo == hi else f"{lo} to {hi} runs"
+    eta = format_g(g["variance_ratio"], 6, trim=True)
+    return ["", f"Split-plot design: {g['whole_plots']} whole plots ({size}). The figures above treat the runs as "
+                "independent (OLS, X'X);",
+            f"under generalised least squares with V = I + η J per whole plot, η = σ²_wp/σ² = {eta} (--variance-ratio):",
+            f"  D-efficiency det(X'V⁻¹X)^(1/p)/n {100 * g['d_efficiency']:.1f} %, A-efficiency "
+            f"{100 * g['a_efficiency']:.1f} %, I (average prediction variance over the cube) "
+            f"{format_g(g['i_average'])} σ²"]
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import dump_json, write_output
+    from ..io import InputError, dump_json, write_output
     from ..model.evaluate import DesignComparison, DesignEvaluation, compare_designs, evaluate_design
 
     fmt = plot_format(args.plot)
@@ -91,9 +148,14 @@ def run(args: argparse.Namespace) -> int:
     if len(set(paths)) != len(paths):
         raise ValueError("each DESIGN.csv may be given once")
     designs = []
+    gls = []
     for path in paths:
         with about_file(path):
             designs.append(_load(path, args.exclude, args))
+            gls.append(_gls(designs[-1], args))
+    if args.variance_ratio is not None and all(g is None for g in gls):
+        raise InputError("--variance-ratio: the design has no whole plots (no whole_plot column; name the "
+                         "whole-plot column with --whole-plot COL)")
     opts = dict(region=args.region, alpha=args.alpha, effect_sd=args.effect, potential=potential)
     result: DesignEvaluation | DesignComparison
     if len(paths) == 1:
@@ -111,13 +173,22 @@ def run(args: argparse.Namespace) -> int:
 
         figure = figure_bytes(_fds_figure(evs, paths), fmt)
         write_output(args.plot, figure, force=args.force)
+    payload = result.to_dict()
+    if any(g is not None for g in gls):  # the whole-plot structure: GLS criteria beside the OLS ones
+        payload["split_plot"] = gls[0] if len(paths) == 1 else dict(zip(paths, gls))
     if args.json and args.json != "-":
-        dump_json(result.to_dict(), args.json, force=args.force)
+        dump_json(payload, args.json, force=args.force)
     if args.json == "-":
-        dump_json(result.to_dict(), "-")
+        dump_json(payload, "-")
     else:
         print(f"Design: {paths[0]}" if len(paths) == 1 else "Designs: " + ", ".join(paths))
         print(result.summary(), end="")
+        for path, g in zip(paths, gls):
+            if g is not None:
+                lines = gls_lines(g)
+                if len(paths) > 1:
+                    lines[1] = f"{path}: " + lines[1]
+                print("\n".join(lines))
     return 0
 
 
