@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from ._common import add_force, add_reader_options, whole_number
 
@@ -184,7 +185,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     _mixture_parsers(sub)
 
 
-def _split_plot_parser(sub) -> None:
+def _split_plot_parser(sub: Any) -> None:
     """``split-plot`` (issue 23): hard-to-change factors held constant within whole plots."""
     from ._common import number
 
@@ -212,7 +213,7 @@ def _split_plot_parser(sub) -> None:
                     help="random starts of the exchange (default 20 for up to 21 model terms, else 6)")
 
 
-def _split_plot(args):
+def _split_plot(args: argparse.Namespace) -> Any:
     """Build the split-plot design from the parsed arguments; bad input is an InputError
     naming the option."""
     from ..design.split_plot import split_plot
@@ -536,6 +537,9 @@ def _augment(args, out) -> int:
         design = Design.from_frame(df)
     except ValueError as exc:
         raise InputError(f"{src}: {exc}") from None
+    if design.whole_plots is not None:  # added runs would need whole plots: nothing is guessed
+        raise InputError(f"{src}: a split-plot design (column whole_plot) is not augmented here: the added runs "
+                         "would need whole plots; make a new design with design split-plot")
     alpha = args.alpha
     try:
         alpha = float(alpha)

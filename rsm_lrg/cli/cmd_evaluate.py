@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from ._common import (
     about_file,
@@ -100,7 +101,7 @@ def _load(path, exclude, args):
     return Design(space, "custom", coded, np.arange(1, n + 1), np.arange(1, n + 1), whole_plots=plots)
 
 
-def _gls(design, args) -> dict | None:
+def _gls(design: Any, args: argparse.Namespace) -> dict | None:
     """The GLS criteria of a split-plot design (:func:`rsm_lrg.design.split_plot.gls_criteria`)
     for the evaluated model, or None for a design without whole plots."""
     if design.whole_plots is None:

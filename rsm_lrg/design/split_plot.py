@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from ..factors import FactorSpace
 from ..terms import Term, design_matrix, model_terms, n_columns
 from .core import Design, as_factor_space, resolve_seed, seeded_options
 from .exchange import (
@@ -411,7 +412,8 @@ def split_plot(
     return _ordered(space, best, search, options, rng if used_seed is None else used_seed, randomize)
 
 
-def _ordered(space, D: np.ndarray, search: _Search, options: dict, seed: Any, randomize: bool) -> Design:
+def _ordered(space: FactorSpace, D: np.ndarray, search: _Search, options: dict, seed: Any,
+             randomize: bool) -> Design:
     """The design with the whole plots (standard order as searched) in random order and the
     runs in random order within each (``randomize``), whole plots numbered in run order."""
     order_rng, opts = seeded_options(options, seed, randomize)

@@ -98,3 +98,13 @@ def test_split_plot_needs_hard_to_change(tmp_path, capsys):
     rc = main(["design", "split-plot", *FACTORS, "--whole-plots", "8", "--runs", "32", "-o", str(out)])
     assert "--hard-to-change" in _error_line(capsys, rc)
     assert not out.exists()
+
+
+def test_augment_refuses_a_split_plot_design(tmp_path, capsys):
+    src, out = tmp_path / "sp.csv", tmp_path / "aug.csv"
+    assert main(["design", "split-plot", *FACTORS, *HARD, "--whole-plots", "8", "--runs", "32", "--model", "linear",
+                 "--seed", "1", "--starts", "1", "-o", str(src)]) == 0
+    capsys.readouterr()
+    line = _error_line(capsys, main(["design", "augment", str(src), "--runs", "4", "--seed", "1", "-o", str(out)]))
+    assert "split-plot" in line and str(src) in line
+    assert not out.exists()
