@@ -202,3 +202,31 @@ def test_design_rejects_bad_whole_plot_labels():
     with pytest.raises(ValueError, match="whole_plots"):
         Design(split_plot(FOUR, ["T"], 16, 32, model="linear", seed=1, starts=1).factors, "custom",
                np.zeros((2, 4)), [1, 2], [1, 2], whole_plots=[0, 1])
+
+
+def _grid_optimum(eta: float, W: int = 3, m: int = 3) -> float:
+    """The best GLS D of every split-plot design on the -1/0/+1 grid with one whole-plot factor
+    A, one sub-plot factor B, W whole plots of m runs and the quadratic model: exhaustive up to
+    the criterion's symmetries (the order of the whole plots, of the runs within one)."""
+    import itertools
+
+    plots = np.repeat(np.arange(W), m)
+    Vi = np.linalg.inv(_V(plots, eta))
+    lv = (-1.0, 0.0, 1.0)
+    within = list(itertools.combinations_with_replacement(lv, m))  # one whole plot's B settings
+    B = np.array([np.concatenate(c) for c in itertools.product(within, repeat=W)])
+    best = -np.inf
+    for wp in itertools.combinations_with_replacement(lv, W):
+        A = np.broadcast_to(np.repeat(wp, m), B.shape)
+        X = np.stack([np.ones_like(B), A, B, A * B, A * A, B * B], axis=2)
+        sign, logdet = np.linalg.slogdet(np.einsum("nip,ij,njq->npq", X, Vi, X))
+        best = max(best, float(np.max(np.where(sign > 0, logdet, -np.inf))))
+    return math.exp(best / 6) / (W * m)
+
+
+@pytest.mark.parametrize("eta", [0.0, 1.0, 5.0])
+def test_reaches_the_exhaustive_grid_optimum(eta):
+    """Against exhaustive search: 1 whole-plot and 1 sub-plot factor, 3 whole plots of 3 runs,
+    quadratic model (6 coefficients): the search reaches the best grid design's GLS D."""
+    d = split_plot(["A=-1:1", "B=-1:1"], ["A"], whole_plots=3, runs=9, variance_ratio=eta, seed=1)
+    assert d.options["criterion_value"] >= _grid_optimum(eta) * (1 - 1e-12)
