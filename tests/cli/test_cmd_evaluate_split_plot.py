@@ -125,3 +125,20 @@ def test_errors(design, tmp_path, capsys):
     df.to_csv(holed, index=False)
     line = _error_line(capsys, main(["evaluate", str(holed)]))
     assert "whole_plot" in line and "row 6" in line
+
+
+def test_comparison_reports_each_designs_gls(design, tmp_path, capsys):
+    other = tmp_path / "other.csv"
+    assert main(["design", "split-plot", *FACTORS, "--hard-to-change", "T", "--whole-plots", "8", "--runs", "32",
+                 "--seed", "3", "--starts", "1", "-o", str(other)]) == 0
+    out = _json(capsys, ["evaluate", str(design), str(other), "--potential", "none"])
+    g = out["split_plot"]
+    assert set(g) == {str(design), str(other)}
+    for path in (design, other):
+        df = pd.read_csv(path)
+        coded = df[["coded_A", "coded_B", "coded_C", "coded_D"]].to_numpy(float)
+        assert g[str(path)]["d_efficiency"] == pytest.approx(_dense(coded, df["whole_plot"].to_numpy(), 1.0)["d"],
+                                                             rel=1e-9)
+    assert main(["evaluate", str(design), str(other), "--potential", "none"]) == 0
+    text = capsys.readouterr().out
+    assert f"{design}: Split-plot design" in text and f"{other}: Split-plot design" in text
