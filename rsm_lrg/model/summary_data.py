@@ -77,7 +77,7 @@ def summary_data(result: Any) -> SummaryData:
     """The :class:`SummaryData` of a fit (see the module docstring)."""
     named = {"linear": "linear", "2fi": "2FI", "quadratic": "quadratic", "cubic": "cubic",
              "mixture-linear": "Scheffé linear mixture", "mixture-quadratic": "Scheffé quadratic mixture",
-             "special-cubic": "Scheffé special cubic mixture"}.get(result.model)
+             "special-cubic": "Scheffé special cubic mixture", "mixture-cubic": "Scheffé full cubic mixture"}.get(result.model)
     mixture = bool(getattr(result, "mixture", False))
     if mixture and named and any(not hasattr(f, "pseudo_range") for f in result.space.factors):
         named += " crossed with the linear process model"
