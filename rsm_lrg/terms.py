@@ -36,17 +36,40 @@ import numpy as np
 
 __all__ = ["Term", "MODELS", "model_terms", "n_model_terms", "check_model_size", "design_matrix",
            "block_contrasts", "model_matrix", "column_names", "term_columns", "n_columns",
-           "design_gradient", "term_name", "parse_term", "effect_codes"]
+           "design_gradient", "term_name", "parse_term", "effect_codes", "MIXTURE_ORDERS", "scheffe_names"]
 
 #: Model names accepted by :func:`model_terms`.
 MODELS = ("linear", "2fi", "quadratic", "cubic")
 
+#: The Scheffé mixture models by name (Cornell, *Experiments with Mixtures*, 3rd ed., Eqs. 2.7-2.11),
+#: with the highest number of distinct components in a term.
+MIXTURE_ORDERS = {"mixture-linear": 1, "mixture-quadratic": 2, "special-cubic": 3, "mixture-cubic": 3}
 #: Largest number of model terms (columns of the model matrix) built at all; a model beyond
 #: this is refused from its term count alone, before any term is built.
 MAX_TERMS = 5000
 
 #: ``{factor index: level names}`` of the categoric factors (empty: all numeric).
 Categoric = Mapping[int, Sequence[str]]
+
+
+def scheffe_names(letters: Sequence[str], order: str, process: Sequence[str] = ()) -> list[str]:
+    """The term names of a Scheffé model: ``["A", "B", "C", "AB", "AC", "BC", "ABC"]`` for
+    the special cubic in three components; with process factors (letters ``process``) each
+    mixture term crossed with each process main effect (Cornell, Ch. 7, the combined
+    model: ``AD``, ``ABD``, ...).
+
+    >>> scheffe_names("ABC", "mixture-quadratic")
+    ['A', 'B', 'C', 'AB', 'AC', 'BC']
+    >>> scheffe_names("AB", "mixture-linear", "C")
+    ['A', 'B', 'AC', 'BC']
+    >>> scheffe_names("ABC", "mixture-cubic")
+    ['A', 'B', 'C', 'AB', 'AC', 'BC', 'ABC', 'AB(A-B)', 'AC(A-C)', 'BC(B-C)']
+    """
+    deg = MIXTURE_ORDERS[order]
+    mix = ["".join(c) for d in range(1, deg + 1) for c in itertools.combinations(list(letters), d)]
+    if order == "mixture-cubic":
+        mix += [f"{a}{b}({a}-{b})" for a, b in itertools.combinations(list(letters), 2)]
+    return mix + [m + p for p in process for m in mix]
 
 
 def _standard_powers(k: int, model: str, cats: frozenset = frozenset()) -> list[tuple[int, ...]]:

@@ -21,44 +21,21 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from itertools import combinations
 from typing import Any
 
 import numpy as np
 
 from ..factors import Factor, FactorSpace, MixtureComponent, letters_for, parse_factor_spec, quote_value
 from ..io import cell_error
-from .terms import Term, term_name
+from .terms import MIXTURE_ORDERS, Term, scheffe_names, term_name
 
 __all__ = ["MIXTURE_MODELS", "MIXTURE_ORDERS", "SUM_RTOL", "scheffe_names", "mixture_space", "check_mixture_terms",
            "pseudo_to_actual", "actual_covariance", "mixture_sums"]
 
-#: The Scheffé models by name, with the highest number of distinct components in a term.
-MIXTURE_ORDERS = {"mixture-linear": 1, "mixture-quadratic": 2, "special-cubic": 3, "mixture-cubic": 3}
 #: Every mixture model name a command accepts.
 MIXTURE_MODELS = tuple(MIXTURE_ORDERS)
 #: A row's components must sum to the total within this relative tolerance.
 SUM_RTOL = 1e-4
-
-
-def scheffe_names(letters: Sequence[str], order: str, process: Sequence[str] = ()) -> list[str]:
-    """The term names of a Scheffé model: ``["A", "B", "C", "AB", "AC", "BC", "ABC"]`` for
-    the special cubic in three components; with process factors (letters ``process``) each
-    mixture term crossed with each process main effect (Cornell, Ch. 7, the combined
-    model: ``AD``, ``ABD``, ...).
-
-    >>> scheffe_names("ABC", "mixture-quadratic")
-    ['A', 'B', 'C', 'AB', 'AC', 'BC']
-    >>> scheffe_names("AB", "mixture-linear", "C")
-    ['A', 'B', 'AC', 'BC']
-    >>> scheffe_names("ABC", "mixture-cubic")
-    ['A', 'B', 'C', 'AB', 'AC', 'BC', 'ABC', 'AB(A-B)', 'AC(A-C)', 'BC(B-C)']
-    """
-    deg = MIXTURE_ORDERS[order]
-    mix = ["".join(c) for d in range(1, deg + 1) for c in combinations(list(letters), d)]
-    if order == "mixture-cubic":
-        mix += [f"{a}{b}({a}-{b})" for a, b in combinations(list(letters), 2)]
-    return mix + [m + p for p in process for m in mix]
 
 
 def mixture_space(data: Any, components: Sequence[Any], response: str | None = None,
