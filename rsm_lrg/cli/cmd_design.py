@@ -370,7 +370,7 @@ def _mixture(args):
             from ..design.mixture_optimal import mixture_optimal
 
             return mixture_optimal(_component_bounds(args.component, total), model=args.model or "mixture-quadratic",
-                                   criterion=args.criterion, runs=args.runs, lof_points_=args.lof_points,
+                                   criterion=args.criterion, runs=args.runs, lof_points=args.lof_points,
                                    replicates=args.replicates, constraints=args.constraint or None, total=total,
                                    process=process, seed=args.seed, starts=args.starts,
                                    randomize=not args.no_randomize)

@@ -862,6 +862,6 @@ def cross_process(design: MixtureDesign, factors: Any, *, seed: Any = None, rand
     opts["notes"] = list(opts.get("notes", [])) + [
         f"crossed mixture-process design: each of the {len(P)} blends at each of the {len(pts)} points of the "
         f"2^{k} factorial in {', '.join(space.names)} (coded -1, +1)"]
-    opts["process"] = {f.name: (float(f.low), float(f.high)) for f in space.factors}
+    opts["process"] = {f.name: (float(f.low), float(f.high)) for f in space.factors if isinstance(f, Factor)}
     return finish_mixture(design.kind, names, np.repeat(P, len(pts), axis=0), types, design.total, lows, seed=seed,
                    randomize=randomize, options=opts, process=space, process_coded=np.tile(pts, (len(P), 1)))

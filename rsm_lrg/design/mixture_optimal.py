@@ -28,8 +28,8 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import replace
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -39,7 +39,7 @@ from ..terms import MIXTURE_ORDERS, Term, design_matrix, parse_term, scheffe_nam
 from .core import resolve_seed
 from .exchange import MAX_RUNS, MAX_STARTS, ExchangeProblem, check_criterion, criterion_value
 from .mixture import CandidateSet, MixtureDesign, candidate_blends, finish_mixture, process_space
-from .optimal import lof_points
+from .optimal import farthest_candidates
 
 __all__ = ["mixture_optimal"]
 
@@ -75,7 +75,7 @@ def _moments(terms: Sequence[Term], cs: CandidateSet, r: float, k: int, seed: in
 
 def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[str, float, float]],
                     model: str = "mixture-quadratic", criterion: str = "D", runs: int | None = None,
-                    lof_points_: int | None = None, replicates: int | None = None, constraints: Any = None,
+                    lof_points: int | None = None, replicates: int | None = None, constraints: Any = None,
                     total: float = 1.0, process: Any = None, seed: Any = None, starts: int | None = None,
                     randomize: bool = True) -> MixtureDesign:
     """An exact D-, I- or A-optimal mixture (or mixture-process) design by candidate exchange.
@@ -92,7 +92,7 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
         As :func:`~rsm_lrg.design.optimal.optimal` (default D).
     runs : int or None
         Total runs; ``None``: the model's terms + 5 lack-of-fit points + 5 replicates.
-    lof_points_, replicates : int or None
+    lof_points, replicates : int or None
         Lack-of-fit points and replicates (default 5 each without ``runs``, else 0).
     constraints : str, list of str or None
         Linear inequalities in the component names and real proportions.
@@ -125,16 +125,16 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
     letters = letters_for(q + k)
     terms = [parse_term(nm, letters) for nm in scheffe_names(letters[:q], model, letters[q:])]
     p = len(terms)
-    for name, given in (("runs", runs), ("lof_points", lof_points_), ("replicates", replicates), ("starts", starts)):
+    for name, given in (("runs", runs), ("lof_points", lof_points), ("replicates", replicates), ("starts", starts)):
         if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 0):
             raise ValueError(f"{name} must be a whole number >= 0 (got {given!r})")
     if runs is None:
-        n_lof = 5 if lof_points_ is None else int(lof_points_)
+        n_lof = 5 if lof_points is None else int(lof_points)
         n_rep = 5 if replicates is None else int(replicates)
         runs = p + n_lof + n_rep
     else:
         runs = int(runs)
-        n_lof = 0 if lof_points_ is None else int(lof_points_)
+        n_lof = 0 if lof_points is None else int(lof_points)
         n_rep = 0 if replicates is None else int(replicates)
     n_model = runs - n_lof - n_rep
     what = f"the {model} model in {q} components" + (f" and {k} process factor{'s' * (k > 1)}" if k else "")
@@ -173,7 +173,7 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
         scores = [prob.score(np.vstack([D, u])) for u in uniq]
         D = np.vstack([D, uniq[int(np.argmin(scores))]])
     if n_lof:
-        D = np.vstack([D, lof_points(D, pool, space, n_lof)])
+        D = np.vstack([D, farthest_candidates(D, pool, space, n_lof)])
     # every run is a candidate: its exact proportions
     where = {row.tobytes(): i for i, row in enumerate(pool)}
     rows = [where[np.asarray(x, dtype=float).tobytes()] for x in D]
@@ -187,7 +187,7 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
                "algorithm": "candidate exchange (Fedorov 1972) over the extreme-vertices candidate set",
                "notes": [f"{crit}-optimal for {what} ({p} terms); L-pseudo coding"]}
     if proc is not None:
-        options["process"] = {f.name: (float(f.low), float(f.high)) for f in proc.factors}
+        options["process"] = {f.name: (float(f.low), float(f.high)) for f in proc.factors if isinstance(f, Factor)}
     return finish_mixture("optimal", names, props, types, t, lows, seed=rng if used_seed is None else used_seed,
                           randomize=randomize, options=options, process=proc,
                           process_coded=D[:, q:] if k else None)

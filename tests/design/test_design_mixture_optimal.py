@@ -16,7 +16,6 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rsm_lrg.design.exchange import criterion_value
 from rsm_lrg.design.mixture import candidate_blends, cross_process, extreme_vertices, simplex_lattice
 from rsm_lrg.design.mixture_optimal import mixture_optimal
 from rsm_lrg.terms import design_matrix, parse_term, scheffe_names
@@ -67,7 +66,7 @@ def test_d_optimal_at_least_as_good_as_algdesign(case):
 @pytest.mark.parametrize("criterion", ["D", "I"])
 def test_replicates_lack_of_fit_and_bounds(criterion):
     bounds, cons, _ = CASES["quad3"]
-    d = mixture_optimal(bounds, criterion=criterion, runs=14, lof_points_=3, replicates=2, constraints=cons, seed=3,
+    d = mixture_optimal(bounds, criterion=criterion, runs=14, lof_points=3, replicates=2, constraints=cons, seed=3,
                         randomize=False)
     assert d.n_runs == 14 and d.options["model_points"] == 9
     _check_region(d, bounds, cons)
@@ -82,7 +81,7 @@ def test_replicates_lack_of_fit_and_bounds(criterion):
     if criterion == "I":
         assert 0 < d.options["criterion_value"] < np.inf
     # the same seed, the same design
-    again = mixture_optimal(bounds, criterion=criterion, runs=14, lof_points_=3, replicates=2, constraints=cons,
+    again = mixture_optimal(bounds, criterion=criterion, runs=14, lof_points=3, replicates=2, constraints=cons,
                             seed=3, randomize=False)
     np.testing.assert_array_equal(again.proportions, d.proportions)
 
