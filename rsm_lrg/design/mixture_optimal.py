@@ -37,7 +37,7 @@ import numpy as np
 from ..factors import Factor, FactorSpace, letters_for
 from ..terms import MIXTURE_ORDERS, Term, design_matrix, parse_term, scheffe_names
 from .core import resolve_seed
-from .exchange import MAX_RUNS, MAX_STARTS, ExchangeProblem, check_criterion, criterion_value
+from .exchange import MAX_RUNS, MAX_STARTS, ExchangeProblem, check_columns, check_criterion, criterion_value
 from .mixture import CandidateSet, MixtureDesign, candidate_blends, finish_mixture, process_space
 from .optimal import farthest_candidates
 
@@ -45,6 +45,8 @@ __all__ = ["mixture_optimal"]
 
 #: Points of the I criterion's moment matrix.
 N_MOMENT = 2 ** 14
+#: Most candidate points searched.
+MAX_CANDIDATES = 20000
 
 
 def _moments(terms: Sequence[Term], cs: CandidateSet, r: float, k: int, seed: int = 12345) -> np.ndarray:
@@ -101,7 +103,8 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
     process : list of str or None
         Numeric process factors ``"NAME=LOW:HIGH"`` (letters after the components).
     seed, starts, randomize
-        Seed of the random starts and the run order; random starts (default 20); run order.
+        Seed of the random starts and the run order; random starts besides the greedy one
+        (default 20 up to 10 model terms, 10 up to 30, 5 beyond); run order.
 
     Returns
     -------
@@ -125,6 +128,10 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
     letters = letters_for(q + k)
     terms = [parse_term(nm, letters) for nm in scheffe_names(letters[:q], model, letters[q:])]
     p = len(terms)
+    try:
+        check_columns(p, model, q + k)
+    except ValueError as exc:
+        raise ValueError(f"model: {exc}") from None
     for name, given in (("runs", runs), ("lof_points", lof_points), ("replicates", replicates), ("starts", starts)):
         if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 0):
             raise ValueError(f"{name} must be a whole number >= 0 (got {given!r})")
@@ -149,6 +156,9 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
     levels = np.array(list(itertools.product([-1.0, 0.0, 1.0], repeat=k))) if k else np.zeros((1, 0))
     pool = np.hstack([np.repeat(zc, len(levels), axis=0), np.tile(levels, (len(zc), 1))])
     blend_of = np.repeat(np.arange(len(zc)), len(levels))
+    if len(pool) > MAX_CANDIDATES:
+        raise ValueError(f"component: the region gives {len(pool)} candidate points; at most {MAX_CANDIDATES} are "
+                         "searched (fewer components or process factors)")
     Fc = design_matrix(pool, terms)
     if np.linalg.matrix_rank(Fc) < p:
         raise ValueError(f"model: the candidate blends of this region cannot support {what} "
@@ -158,7 +168,9 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
     W = _moments(terms, cs, r, k) if crit == "I" else None
     prob = ExchangeProblem(space, terms, crit, W, None, pool)
     rng, used_seed = resolve_seed(seed)
-    starts = 20 if starts is None else min(max(1, int(starts)), MAX_STARTS)
+    if starts is None:
+        starts = 20 if p <= 10 else (10 if p <= 30 else 5)
+    starts = min(max(1, int(starts)), MAX_STARTS)
     best, best_v = None, np.inf
     for s in range(starts + 1):
         idx = _greedy(prob, Fc, n_model) if s == 0 else rng.integers(0, len(pool), size=n_model)
