@@ -162,3 +162,19 @@ def test_refusals():
     few = d.iloc[:9]
     with pytest.raises(ValueError, match="9 distinct blends cannot fit 10 terms"):
         rsm_lrg.fit(few, "y", components=comps, model="mixture-cubic")
+
+
+def test_backward_elimination_keeps_ab_while_its_cubic_term_stays():
+    """AB(A-B) holds AB: AB may leave only after it (hierarchy), and the linear terms stay."""
+    from rsm_lrg.model.reduce import removable
+
+    terms = [parse_term(n, "ABC") for n in ["A", "B", "C", "AB", "AC", "AB(A-B)"]]
+    assert [t.name for t in removable(terms)] == ["AC", "AB(A-B)"]
+    r = _fit("pest", "mixture-cubic", reduce=True)
+    order = list(r.reduction.steps["term"])
+    for pair, cubic in (("AB", "AB(A-B)"), ("AC", "AC(A-C)"), ("BC", "BC(B-C)")):
+        if pair in order:
+            assert cubic in order and order.index(cubic) < order.index(pair)
+        else:
+            assert pair in r.coefficients.index
+    assert {"A", "B", "C"} <= set(r.coefficients.index)
