@@ -36,17 +36,40 @@ import numpy as np
 
 __all__ = ["Term", "MODELS", "model_terms", "n_model_terms", "check_model_size", "design_matrix",
            "block_contrasts", "model_matrix", "column_names", "term_columns", "n_columns",
-           "design_gradient", "term_name", "parse_term", "effect_codes"]
+           "design_gradient", "term_name", "parse_term", "effect_codes", "MIXTURE_ORDERS", "scheffe_names"]
 
 #: Model names accepted by :func:`model_terms`.
 MODELS = ("linear", "2fi", "quadratic", "cubic")
 
+#: The Scheffé mixture models by name (Cornell, *Experiments with Mixtures*, 3rd ed., Eqs. 2.7-2.11),
+#: with the highest number of distinct components in a term.
+MIXTURE_ORDERS = {"mixture-linear": 1, "mixture-quadratic": 2, "special-cubic": 3, "mixture-cubic": 3}
 #: Largest number of model terms (columns of the model matrix) built at all; a model beyond
 #: this is refused from its term count alone, before any term is built.
 MAX_TERMS = 5000
 
 #: ``{factor index: level names}`` of the categoric factors (empty: all numeric).
 Categoric = Mapping[int, Sequence[str]]
+
+
+def scheffe_names(letters: Sequence[str], order: str, process: Sequence[str] = ()) -> list[str]:
+    """The term names of a Scheffé model: ``["A", "B", "C", "AB", "AC", "BC", "ABC"]`` for
+    the special cubic in three components; with process factors (letters ``process``) each
+    mixture term crossed with each process main effect (Cornell, Ch. 7, the combined
+    model: ``AD``, ``ABD``, ...).
+
+    >>> scheffe_names("ABC", "mixture-quadratic")
+    ['A', 'B', 'C', 'AB', 'AC', 'BC']
+    >>> scheffe_names("AB", "mixture-linear", "C")
+    ['A', 'B', 'AC', 'BC']
+    >>> scheffe_names("ABC", "mixture-cubic")
+    ['A', 'B', 'C', 'AB', 'AC', 'BC', 'ABC', 'AB(A-B)', 'AC(A-C)', 'BC(B-C)']
+    """
+    deg = MIXTURE_ORDERS[order]
+    mix = ["".join(c) for d in range(1, deg + 1) for c in itertools.combinations(list(letters), d)]
+    if order == "mixture-cubic":
+        mix += [f"{a}{b}({a}-{b})" for a, b in itertools.combinations(list(letters), 2)]
+    return mix + [m + p for p in process for m in mix]
 
 
 def _standard_powers(k: int, model: str, cats: frozenset = frozenset()) -> list[tuple[int, ...]]:
@@ -120,12 +143,21 @@ def check_model_size(n_runs: int, k: int, model: str, extra: int = 0, *, what: s
     return p
 
 
-def term_name(powers: Sequence[int], letters: Sequence[str]) -> str:
-    """Design-Expert name of the monomial with exponents ``powers``.
+def term_name(powers: Sequence[int], letters: Sequence[str], diff: Sequence[int] = ()) -> str:
+    """Design-Expert name of the monomial with exponents ``powers`` (times ``x_i - x_j``
+    when ``diff = (i, j)``: a Scheffé full-cubic term, named ``"AB(A-B)"``, the other
+    factors of the monomial after it: ``"AB(A-B)D"``).
 
     >>> term_name((1, 0, 1), "ABC"), term_name((0, 2, 0), "ABC"), term_name((0, 0, 0), "ABC")
     ('AC', 'B^2', 'Intercept')
+    >>> term_name((1, 1, 0, 1), "ABCD", (0, 1))
+    'AB(A-B)D'
     """
+    if diff:
+        i, j = diff
+        rest = [p - (m in (i, j)) for m, p in enumerate(powers)]
+        tail = term_name(rest, letters) if any(rest) else ""
+        return f"{letters[i]}{letters[j]}({letters[i]}-{letters[j]}){tail}"
     parts = []
     for p, L in zip(powers, letters):
         if p == 1:
@@ -137,7 +169,8 @@ def term_name(powers: Sequence[int], letters: Sequence[str]) -> str:
 
 @dataclass(frozen=True)
 class Term:
-    """One model term: a monomial ``prod(x_i ** powers[i])`` in coded units.
+    """One model term: a monomial ``prod(x_i ** powers[i])`` in coded units (times
+    ``x_i - x_j`` when ``diff = (i, j)``).
 
     Attributes
     ----------
@@ -150,17 +183,47 @@ class Term:
         numeric term (one model column).
     letters : tuple of str
         The letters of the categoric factors in ``cat`` (for the column names).
+    diff : tuple of int
+        ``()`` for a monomial; ``(i, j)`` (``i < j``, both in the monomial with exponent 1)
+        for the Scheffé full-cubic term ``x_i x_j (x_i - x_j)`` times the rest of the
+        monomial (Cornell, *Experiments with Mixtures*, 3rd ed., Eq. 2.11: the
+        ``delta_ij`` terms), named ``"AB(A-B)"``. Such a term is two monomials
+        (:attr:`monomials`); code that reads ``powers`` as the whole term must look at
+        ``diff`` too.
     """
 
     powers: tuple[int, ...]
     name: str
     cat: tuple = ()
     cat_letters: tuple = ()
+    diff: tuple[int, ...] = ()
 
     @property
     def order(self) -> int:
-        """Total degree (0 intercept, 1 main effect, 2 interaction or square, ...)."""
-        return int(sum(self.powers))
+        """Total degree (0 intercept, 1 main effect, 2 interaction or square, 3 for
+        ``AB(A-B)``, ...)."""
+        return int(sum(self.powers)) + (1 if self.diff else 0)
+
+    @property
+    def key(self) -> tuple:
+        """``(powers, diff)``: what tells two terms apart (``AB`` and ``AB(A-B)`` share
+        their powers)."""
+        return (self.powers, self.diff)
+
+    @property
+    def monomials(self) -> list[tuple[float, tuple[int, ...]]]:
+        """The term as a sum of monomials ``[(coefficient, powers), ...]``: ``[(1, powers)]``,
+        or for ``diff = (i, j)`` the powers with one more ``x_i`` (+1) and one more ``x_j`` (-1).
+
+        >>> parse_term("AB(A-B)", "ABC").monomials
+        [(1.0, (2, 1, 0)), (-1.0, (1, 2, 0))]
+        """
+        if not self.diff:
+            return [(1.0, self.powers)]
+        out = []
+        for sign, m in ((1.0, self.diff[0]), (-1.0, self.diff[1])):
+            out.append((sign, tuple(p + (f == m) for f, p in enumerate(self.powers))))
+        return out
 
     @property
     def kind(self) -> str:
@@ -272,6 +335,8 @@ def parse_term(name: str, letters: Sequence[str], categoric: Categoric | None = 
 
     letters = list(letters)
     cats = _check_categoric(letters, categoric)
+    if "(" in name or ")" in name:
+        return _parse_diff_term(name, letters, cats)
     powers = [0] * len(letters)
     if name != "Intercept":
         pat = "|".join(sorted(map(re.escape, letters), key=len, reverse=True))
@@ -287,6 +352,28 @@ def parse_term(name: str, letters: Sequence[str], categoric: Categoric | None = 
         if bad:
             raise ValueError(f"model term {name!r}: {bad[0]} is a categoric factor and has no powers")
     return _term(powers, letters, cats)
+
+
+def _parse_diff_term(name: str, letters: list[str], cats: dict) -> Term:
+    """A Scheffé full-cubic term ``"AB(A-B)"`` (optionally crossed: ``"AB(A-B)D"``)."""
+    import re
+
+    pat = "|".join(sorted(map(re.escape, letters), key=len, reverse=True))
+    m = re.fullmatch(rf"({pat})({pat})\(({pat})-({pat})\)((?:{pat})*)", name)
+    if m is None:
+        raise ValueError(f"cannot read model term {name!r} (factors {', '.join(letters)}; a full-cubic term is "
+                         "written AB(A-B))")
+    i, j = letters.index(m.group(1)), letters.index(m.group(2))
+    if (m.group(3), m.group(4)) != (m.group(1), m.group(2)) or not i < j:
+        raise ValueError(f"model term {name!r}: a full-cubic term is XY(X-Y) with X before Y "
+                         f"(e.g. {letters[min(i, j)]}{letters[max(i, j)]}({letters[min(i, j)]}-{letters[max(i, j)]}))")
+    rest = parse_term(m.group(5), letters).powers if m.group(5) else (0,) * len(letters)
+    if rest[i] or rest[j]:
+        raise ValueError(f"model term {name!r}: {letters[i]} and {letters[j]} appear once, before the bracket")
+    powers = tuple(p + (f in (i, j)) for f, p in enumerate(rest))
+    if any(powers[f] for f in cats):
+        raise ValueError(f"model term {name!r}: a full-cubic term takes numeric factors only")
+    return Term(powers, term_name(powers, letters, (i, j)), (), (), (i, j))
 
 
 def column_names(terms: Sequence[Term]) -> list[str]:
@@ -370,6 +457,8 @@ def design_matrix(coded: np.ndarray, terms: Sequence[Term]) -> np.ndarray:
             np.multiply(parts[0], parts[1], out=out)
             for q in parts[2:]:
                 out *= q
+        if t.diff:
+            out *= cols[t.diff[0]] - cols[t.diff[1]]
         if t.cat:
             base = out.copy()
             for combo in t.level_combinations():
@@ -419,6 +508,12 @@ def design_gradient(point: np.ndarray, terms: Sequence[Term]) -> np.ndarray:
                 if m != i and q:
                     v *= x[m] ** q
             g[i] = v
+        if t.diff:  # product rule: d[m (x_a - x_b)] = dm (x_a - x_b) + m (e_a - e_b)
+            a, b = t.diff
+            mono = float(np.prod([x[m] ** q for m, q in enumerate(npw) if q]))
+            g = g * (x[a] - x[b])
+            g[a] += mono
+            g[b] -= mono
         if t.cat:
             codes = [effect_codes(np.array([int(round(x[i]))]), len(lv))[0] for i, lv in t.cat]
             for combo in t.level_combinations():

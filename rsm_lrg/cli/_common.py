@@ -235,9 +235,9 @@ def add_component_option(p: argparse.ArgumentParser) -> None:
     ``--model`` on L-pseudo components (rsm_lrg.model.mixture)."""
     p.add_argument(
         "--component", action="append", metavar="NAME[=LOW:HIGH]", default=None,
-        help="a mixture component column (repeatable; with --model mixture-linear|mixture-quadratic|special-cubic): "
-             "LOW is its lower bound and the L-pseudo origin (default: its observed minimum); every row must sum "
-             "to the same total within 1e-6 relative",
+        help="a mixture component column (repeatable; with --model "
+             "mixture-linear|mixture-quadratic|special-cubic|mixture-cubic): LOW is its lower bound and the L-pseudo "
+             "origin (default: its observed minimum); every row must sum to the same total within 1e-4 relative",
     )
 
 

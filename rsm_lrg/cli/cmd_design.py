@@ -36,10 +36,12 @@ def _common(p: argparse.ArgumentParser, center_default, center_help: str) -> Non
     _order_and_output(p)
 
 
-def _base(p: argparse.ArgumentParser, factors: bool = True, constraint: bool = False) -> None:
+def _base(p: argparse.ArgumentParser, factors: bool = True, constraint: bool = False, required: bool = True) -> None:
     if factors:
-        p.add_argument("--factor", action="append", required=True, metavar="SPEC",
-                       help="NAME=LOW:HIGH (numeric) or NAME=cat:L1,L2,... (categoric); repeat for each factor")
+        p.add_argument("--factor", action="append", required=required, metavar="SPEC",
+                       help="NAME=LOW:HIGH (numeric) or NAME=cat:L1,L2,... (categoric); repeat for each factor"
+                            + ("" if required else "; with --component: the process factors of a mixture-process "
+                                                   "design"))
     if constraint:
         p.add_argument("--constraint", action="append", default=[], metavar="EXPR",
                        help="an inequality in actual units, e.g. '0.5*A + B <= 1.2' or "
@@ -99,16 +101,27 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     sub = parser.add_subparsers(dest="kind", metavar="KIND", required=True)
     op = sub.add_parser("optimal", help="D-, I- or A-optimal design by coordinate exchange",
                         description="Exact optimal design by coordinate exchange (Meyer & Nachtsheim 1995) for "
-                                    "numeric and categoric factors, on a box or a constrained region.")
-    _base(op, constraint=True)
+                                    "numeric and categoric factors, on a box or a constrained region; with "
+                                    "--component, a mixture (or mixture-process) design by candidate exchange "
+                                    "over the extreme vertices, edge and plane centroids, edge thirds, overall "
+                                    "centroid and axial blends of the constrained simplex.")
+    _base(op, constraint=True, required=False)
+    op.add_argument("--component", action="append", default=None, metavar="NAME[=LOW:HIGH]",
+                    help="a mixture component and its bounds in real proportions (bare NAME: 0 to the total); "
+                         "repeat for each, in order; --constraint then takes linear inequalities in them")
+    op.add_argument("--total", default="1", metavar="T", help="with --component: the total the proportions sum to "
+                                                              "(default 1)")
     op.add_argument("--criterion", default="I", type=str.upper, choices=["D", "I", "A"],
                     help="optimality criterion (default I, as Design-Expert)")
-    op.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
-                    help="the model the design supports (default quadratic)")
+    op.add_argument("--model", default=None,
+                    choices=["linear", "2fi", "quadratic", "cubic", "mixture-linear", "mixture-quadratic",
+                             "special-cubic", "mixture-cubic"],
+                    help="the model the design supports (default quadratic; with --component mixture-quadratic, "
+                         "crossed with each process main effect when --factor is given)")
     op.add_argument("--runs", type=whole_number(1), default=None, metavar="N",
                     help="total runs (default: model terms + 5 lack-of-fit points + 5 replicates)")
-    op.add_argument("--lof-points", type=whole_number(0), default=None, metavar="L",
-                    help="lack-of-fit points spread by distance (default 5 without --runs, else 0)")
+    op.add_argument("--lof-points", "--lack-of-fit", dest="lof_points", type=whole_number(0), default=None,
+                    metavar="L", help="lack-of-fit points spread by distance (default 5 without --runs, else 0)")
     op.add_argument("--replicates", type=whole_number(0), default=None, metavar="R",
                     help="replicated model points (default 5 without --runs, else 0)")
     op.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
@@ -273,6 +286,9 @@ def _mixture_parsers(sub) -> None:
                     help="add edge centroids, constraint-plane centroids and the overall centroid")
     for p in (sl, sc, ev):
         p.add_argument("--total", default="1", metavar="T", help="the total the proportions sum to (default 1)")
+        p.add_argument("--factor", action="append", default=None, metavar="NAME=LOW:HIGH",
+                       help="a process factor (repeatable): the crossed mixture-process design, every blend at "
+                            "every point of the two-level full factorial in the process factors")
         _order_and_output(p)
 
 
@@ -311,7 +327,7 @@ def run(args) -> int:
     check_output(out, force=args.force, option="-o/--output")
     if args.kind == "augment":
         return _augment(args, out)
-    if args.kind in _MIXTURE_KINDS:
+    if args.kind in _MIXTURE_KINDS or (args.kind == "optimal" and args.component):
         design = _mixture(args)
         write_design(design, out, args)
         print(design.summary())
@@ -396,7 +412,7 @@ def _mixture(args):
     """Build a mixture design from the parsed arguments; bad input is an InputError."""
     import math
 
-    from ..design.mixture import extreme_vertices, simplex_centroid, simplex_lattice
+    from ..design.mixture import cross_process, extreme_vertices, simplex_centroid, simplex_lattice
     from ..io import InputError, quote_user_value
 
     try:
@@ -405,25 +421,39 @@ def _mixture(args):
         total = math.nan
     if not (math.isfinite(total) and 0 < total <= 1e15):
         raise InputError(f"--total: expected a finite number > 0 and at most 1e15, got {quote_user_value(args.total)}")
-    randomize = not args.no_randomize
+    process = getattr(args, "factor", None)
+    randomize = not args.no_randomize and not process  # a crossed design is randomised once crossed
     try:
+        if args.kind == "optimal":
+            from ..design.mixture_optimal import mixture_optimal
+
+            return mixture_optimal(_component_bounds(args.component, total), model=args.model or "mixture-quadratic",
+                                   criterion=args.criterion, runs=args.runs, lof_points=args.lof_points,
+                                   replicates=args.replicates, constraints=args.constraint or None, total=total,
+                                   process=process, seed=args.seed, starts=args.starts,
+                                   randomize=not args.no_randomize)
         if args.kind == "extreme-vertices":
             bounds = _component_bounds(args.component, total)
-            return extreme_vertices(bounds, constraints=args.constraint or None, centroids=args.centroids,
-                                    total=total, seed=args.seed, randomize=randomize)
-        names = [c.strip() for c in args.component]
-        if args.kind == "simplex-lattice":
-            return simplex_lattice(names, args.degree, center=args.center, axial=args.axial, total=total,
-                                   seed=args.seed, randomize=randomize)
-        return simplex_centroid(names, center=args.center, axial=args.axial, total=total, seed=args.seed,
-                                randomize=randomize)
+            design = extreme_vertices(bounds, constraints=args.constraint or None, centroids=args.centroids,
+                                      total=total, seed=args.seed, randomize=randomize)
+        elif args.kind == "simplex-lattice":
+            design = simplex_lattice([c.strip() for c in args.component], args.degree, center=args.center,
+                                     axial=args.axial, total=total, seed=args.seed, randomize=randomize)
+        else:
+            design = simplex_centroid([c.strip() for c in args.component], center=args.center, axial=args.axial,
+                                      total=total, seed=args.seed, randomize=randomize)
+        if process:
+            design = cross_process(design, process, seed=args.seed, randomize=not args.no_randomize)
+        return design
     except InputError:
         raise
     except (TypeError, ValueError) as exc:
         msg = str(exc)
         opt = ("--constraint" if msg.startswith("constraint") else "--degree" if msg.startswith("degree")
-               else "--total" if msg.startswith("total") else "--component")
-        for word in ("constraint: ", "component: ", "runs: "):
+               else "--total" if msg.startswith("total") else "--factor" if msg.startswith("factor")
+               else "--model" if msg.startswith("model") else "--runs" if msg.startswith("runs")
+               else "--component")
+        for word in ("constraint: ", "component: ", "runs: ", "model: "):
             msg = msg[len(word):] if msg.startswith(word) else msg
         raise InputError(f"{opt}: {msg}") from None
 
@@ -451,6 +481,14 @@ def _constraints(args, space):
 def _new_kind(args):
     from ..io import InputError
 
+    if args.kind == "optimal":
+        if not args.factor:
+            raise InputError("--factor: the optimal design needs its factors (--factor NAME=LOW:HIGH, repeatable) "
+                             "or mixture components (--component)")
+        if args.model is None:
+            args.model = "quadratic"
+        if args.model not in ("linear", "2fi", "quadratic", "cubic"):
+            raise InputError(f"--model: {args.model} is a mixture model; give the components with --component")
     space = _space(args)
     randomize = not args.no_randomize
     if args.kind == "optimal":

@@ -17,7 +17,8 @@ from .composite import ccd_alpha, central_composite
 from .constraints import Constraints
 from .core import Design, as_factor_space, read_design
 from .factorial import full_factorial
-from .mixture import MixtureDesign, extreme_vertices, simplex_centroid, simplex_lattice
+from .mixture import MixtureDesign, cross_process, extreme_vertices, simplex_centroid, simplex_lattice
+from .mixture_optimal import mixture_optimal
 from .optimal import criterion_value, optimal
 from .paper import paper_design
 from .screening import (
@@ -59,4 +60,6 @@ __all__ = [
     "split_plot",
     "gls_information",
     "gls_criteria",
+    "mixture_optimal",
+    "cross_process",
 ]

@@ -70,6 +70,9 @@ def moment_matrix(space, terms, constraints=None, n_sample: int = 2 ** 14, seed:
     """
     import itertools
 
+    if any(t.diff for t in terms):
+        raise ValueError("moment_matrix: the full-cubic terms AB(A-B) are not monomials (a mixture design's "
+                         "moments are taken over its simplex)")
     k = len(space)
     num = space.numeric_index
     cats = [(i, f.n_levels) for i, f in enumerate(space.factors) if f.kind == "categoric"]
@@ -170,7 +173,7 @@ class ExchangeProblem:
         self.pool = pool
         cands = at_every_level(pool, space)
         self._P = None
-        if not space.has_categoric:  # all numeric: model rows as products of powers (fast path)
+        if not space.has_categoric and not any(t.diff for t in terms):  # monomials: products of powers (fast path)
             self._P = np.array([t.powers for t in terms], dtype=int)
             self._factor_index = np.arange(self.k)[None, :]
         self.candidates = cands

@@ -45,7 +45,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from typing import Any
 
@@ -53,7 +53,7 @@ import numpy as np
 
 from ..factors import Factor, FactorSpace, letters_for
 from ..factors.factor import check_factor_name
-from .core import CODED_PREFIX, Design, randomized_run_order, seeded_options
+from .core import CODED_PREFIX, Design, as_factor_space, randomized_run_order, seeded_options
 
 __all__ = [
     "MixtureDesign",
@@ -61,6 +61,10 @@ __all__ = [
     "simplex_centroid",
     "extreme_vertices",
     "lattice_size",
+    "candidate_blends",
+    "CandidateSet",
+    "cross_process",
+    "process_space",
     "MAX_RUNS",
     "MAX_COMPONENTS",
     "MAX_PLANE_CHOICES",
@@ -92,9 +96,12 @@ class MixtureDesign(Design):
         The total the proportions sum to [units of the total; 1 for fractions].
     point_types : tuple of str
         Per run (run order): ``"vertex"``, ``"edge"``, ``"plane"``, ``"centroid"``,
-        ``"axial"``, ``"lattice"`` or ``"blend"`` (a simplex-centroid face centroid).
+        ``"axial"``, ``"lattice"``, ``"third"`` (a point at a third of an edge) or
+        ``"blend"`` (a simplex-centroid face centroid).
 
-    The coded runs are the L-pseudo components (see the module docstring).
+    The coded runs are the L-pseudo components (see the module docstring). A mixture-process
+    design has process factors after the components (``factors[q:]``, numeric, coded -1 to
+    +1 as every factor); ``proportions`` then has the ``q`` component columns only.
     """
 
     proportions: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
@@ -105,9 +112,9 @@ class MixtureDesign(Design):
         run = np.asarray(self.run_order, dtype=int)
         order = np.argsort(run, kind="stable")
         props = np.array(self.proportions, dtype=float)
-        n, q = np.asarray(self.coded_runs).shape
-        if props.shape != (n, q):
-            raise ValueError(f"proportions must be an ({n}, {q}) array, got shape {props.shape}")
+        n, k = np.asarray(self.coded_runs).shape
+        if props.ndim != 2 or props.shape[0] != n or not 2 <= props.shape[1] <= k:
+            raise ValueError(f"proportions must be an ({n}, q) array with 2 <= q <= {k}, got shape {props.shape}")
         types = tuple(self.point_types) if self.point_types else ("blend",) * n
         if len(types) != n:
             raise ValueError(f"point_types must give one type per run ({n})")
@@ -124,15 +131,28 @@ class MixtureDesign(Design):
         return sum(t == "centroid" for t in self.point_types)
 
     @property
+    def n_components(self) -> int:
+        """Number of mixture components (the factors after them are process factors)."""
+        return int(self.proportions.shape[1])
+
+    @property
     def actual(self):
-        """The real proportions as a DataFrame keyed by component name, in run order."""
+        """The real proportions (and the process factors' actual settings) as a DataFrame
+        keyed by name, in run order."""
         import pandas as pd
 
-        return pd.DataFrame({f.name: self.proportions[:, i].copy() for i, f in enumerate(self.factors)})
+        q = self.n_components
+        out = pd.DataFrame({f.name: self.proportions[:, i].copy() for i, f in enumerate(self.factors) if i < q})
+        if q < self.n_factors:
+            process = super().actual
+            for f in list(self.factors)[q:]:
+                out[f.name] = process[f.name].to_numpy()
+        return out
 
     def csv_text(self) -> str:
-        """The design CSV: ``std_order, run_order, coded_A, ...`` (L-pseudo components) and
-        one column per component with the real proportion (shortest round-trip text)."""
+        """The design CSV: ``std_order, run_order, coded_A, ...`` (L-pseudo components, then
+        the process factors coded) and one column per component with the real proportion
+        (shortest round-trip text), then the process factors' actual settings."""
         import csv
         import io
 
@@ -142,8 +162,9 @@ class MixtureDesign(Design):
             c = self.coded_runs[:, i]
             columns[CODED_PREFIX + f.letter] = ([str(int(v)) for v in c] if np.all(c == np.round(c))
                                                 else [repr(float(v)) for v in c])
-        for i, f in enumerate(self.factors):
-            columns[f.name] = [repr(float(v)) for v in self.proportions[:, i]]
+        actual = self.actual
+        for f in self.factors:
+            columns[f.name] = [repr(float(v)) for v in actual[f.name]]
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(list(columns))
@@ -158,12 +179,15 @@ class MixtureDesign(Design):
     def summary(self) -> str:
         """A few lines for people: kind, components, runs by type, seed, notes."""
         o = self.options
-        q = self.n_factors
+        q = self.n_components
         counts: dict[str, int] = {}
         for i in np.argsort(self.std_order, kind="stable"):
             counts[self.point_types[i]] = counts.get(self.point_types[i], 0) + 1
         kinds = ", ".join(f"{v} {k}" for k, v in counts.items())
-        lines = [f"{self.kind} design: {q} components, {self.n_runs} runs ({kinds}), total {self.total:g}"]
+        process = list(self.factors)[q:]
+        lines = [f"{self.kind} design: {q} components"
+                 + (f" and {len(process)} process factor{'s' * (len(process) > 1)}" if process else "")
+                 + f", {self.n_runs} runs ({kinds}), total {self.total:g}"]
         if o.get("constraints"):
             lines.append("constraints: " + "; ".join(o["constraints"]))
         for note in o.get("notes", []):
@@ -176,15 +200,18 @@ class MixtureDesign(Design):
             lines.append("run order: randomised from a numpy Generator")
         bounds = o.get("bounds", {})
         lows = o.get("pseudo_lows", {})
-        for f in self.factors:
+        for f in list(self.factors)[:q]:
             lo, hi = bounds.get(f.name, (0.0, self.total))
             lines.append(f"  {f.letter} {f.name}: {lo:.12g} .. {hi:.12g} (L-pseudo lower bound {lows.get(f.name, 0.0):.12g})")
-        lines.append("coded columns: L-pseudo components (x - L) / (total - sum L)")
+        for f in process:
+            lines.append(f"  {f.letter} {f.name}: process factor, {f.low:.12g} .. {f.high:.12g} (coded -1 .. +1)")
+        lines.append("coded columns: L-pseudo components (x - L) / (total - sum L)"
+                     + (", process factors coded -1 .. +1" if process else ""))
         return "\n".join(lines)
 
     def __repr__(self) -> str:
-        return (f"MixtureDesign(kind={self.kind!r}, components={self.factors.names!r}, n_runs={self.n_runs}, "
-                f"total={self.total:g})")
+        return (f"MixtureDesign(kind={self.kind!r}, components={self.factors.names[:self.n_components]!r}, "
+                f"n_runs={self.n_runs}, total={self.total:g})")
 
 
 # -- helpers -------------------------------------------------------------------------------
@@ -242,17 +269,24 @@ def _compositions(q: int, m: int) -> list[tuple[int, ...]]:
     return sorted(out, key=lambda c: (sum(1 for v in c if v), tuple(-v for v in c)))
 
 
-def _finish(kind: str, names: list[str], props_std: np.ndarray, types_std: list[str], total: float,
-            lows: np.ndarray, *, seed: Any, randomize: bool, options: dict) -> MixtureDesign:
-    """Assign standard and run order and build the design (pseudo coding from ``lows``)."""
+def finish_mixture(kind: str, names: list[str], props_std: np.ndarray, types_std: list[str], total: float,
+            lows: np.ndarray, *, seed: Any, randomize: bool, options: dict, process: Any = None,
+            process_coded: np.ndarray | None = None) -> MixtureDesign:
+    """Assign standard and run order and build the design (pseudo coding from ``lows``);
+    ``process`` (factors) and ``process_coded`` (their coded settings per run, standard order)
+    for a mixture-process design. ``props_std``: the real proportions, standard order."""
     n, q = props_std.shape
     if n > MAX_RUNS:
         raise ValueError(f"runs: the design would have {n} runs; at most {MAX_RUNS} are written")
     r = total - math.fsum(lows.tolist())
-    letters = letters_for(q)
+    proc = list(process.factors) if process is not None else []
+    letters = letters_for(q + len(proc))
     space = FactorSpace(tuple(Factor(nm, float(lo) - r, float(lo) + r, L)
-                              for nm, lo, L in zip(names, lows, letters)))
+                              for nm, lo, L in zip(names, lows, letters))
+                        + tuple(replace(f, letter=L) for f, L in zip(proc, letters[q:])))
     coded = (props_std - lows[None, :]) / r
+    if proc:
+        coded = np.hstack([coded, np.asarray(process_coded, dtype=float).reshape(n, len(proc))])
     rng, opts = seeded_options(options, seed, randomize)
     opts["total"] = total
     opts["pseudo_lows"] = {nm: float(lo) for nm, lo in zip(names, lows)}
@@ -330,7 +364,7 @@ def simplex_lattice(components: Sequence[str], degree: int, center: bool = False
              for c in comps]
     extra, extra_types = _extra_blends(q, t, bool(center), bool(axial))
     props = np.array(rows + extra, dtype=float)
-    return _finish("simplex-lattice", names, props, types + extra_types, t, np.zeros(q), seed=seed,
+    return finish_mixture("simplex-lattice", names, props, types + extra_types, t, np.zeros(q), seed=seed,
                    randomize=randomize,
                    options={"degree": m, "center": bool(center), "axial": bool(axial),
                             "bounds": {nm: (0.0, t) for nm in names}})
@@ -374,7 +408,7 @@ def simplex_centroid(components: Sequence[str], center: bool = False, axial: boo
             types.append("vertex" if size == 1 else "centroid" if size == q else "blend")
     extra, extra_types = _extra_blends(q, t, bool(center), bool(axial))
     props = np.array(rows + extra, dtype=float)
-    return _finish("simplex-centroid", names, props, types + extra_types, t, np.zeros(q), seed=seed,
+    return finish_mixture("simplex-centroid", names, props, types + extra_types, t, np.zeros(q), seed=seed,
                    randomize=randomize,
                    options={"center": bool(center), "axial": bool(axial),
                             "bounds": {nm: (0.0, t) for nm in names}})
@@ -533,6 +567,162 @@ def _active(V: np.ndarray, G: np.ndarray, h: np.ndarray, L: np.ndarray, U: np.nd
     return np.abs(V @ G.T - h[None, :]) <= FEAS_RTOL * scale[None, :]
 
 
+@dataclass(frozen=True)
+class _Region:
+    """The constrained mixture region ``{L <= x <= U, sum x = T, A x <= b}``: its vertices
+    and the constraint rows ``G x <= h`` (bounds first) that are active at each."""
+
+    names: list[str]
+    lower: np.ndarray
+    upper: np.ndarray
+    total: float
+    texts: list[str]
+    G: np.ndarray
+    h: np.ndarray
+    vertices: np.ndarray
+    active: np.ndarray
+
+    def edges(self) -> list[tuple[int, int]]:
+        """The pairs of vertices joined by an edge (``q - 2`` common active planes of rank
+        ``q - 2`` besides the sum)."""
+        q = len(self.names)
+        ones = np.ones((1, q))
+        out = []
+        for i, j in itertools.combinations(range(len(self.vertices)), 2):
+            common = self.active[i] & self.active[j]
+            if common.sum() >= q - 2 and np.linalg.matrix_rank(np.vstack([ones, self.G[common]])) == q - 1:
+                out.append((i, j))
+        return out
+
+    def planes(self) -> list[np.ndarray]:
+        """Per constraint plane that bounds a facet (dimension ``q - 2``): which vertices lie on it."""
+        q = len(self.names)
+        out = []
+        for j in range(self.G.shape[0]):
+            on = self.active[:, j]
+            if on.sum() >= q - 1 and _affine_rank(self.vertices[on], 1e-9 * self.total) == q - 2:
+                out.append(on)
+        return out
+
+
+def _region(bounds: Any, constraints: Any, t: float) -> _Region:
+    """Check the bounds and constraints and enumerate the vertices (see :func:`extreme_vertices`)."""
+    names, L, U = _bounds(bounds, t)
+    q = len(names)
+    A, b, texts = _linear_constraints(constraints, names, L, U)
+    eye = np.eye(q)
+    G = np.vstack([-eye, eye, A])
+    h = np.concatenate([-L, U, b])
+    labels = [f"{n} >= {lo:.12g}" for n, lo in zip(names, L)] + [f"{n} <= {hi:.12g}" for n, hi in zip(names, U)]
+    labels += texts
+    V = _vertices(G, h, t, L, U)
+    if not len(V):
+        which = f" and the constraints {'; '.join(texts)}" if texts else ""
+        raise ValueError(f"constraint: the region of the bounds{which} is empty: no blend summing to {t:g} "
+                         "satisfies them all")
+    act = _active(V, G, h, L, U)
+    rank = _affine_rank(V, 1e-9 * t)
+    if rank < q - 1:
+        tight = [labels[j] for j in range(len(labels)) if act[:, j].all()]
+        raise ValueError(f"constraint: the region has no interior (dimension {rank}, a mixture of {q} "
+                         f"components needs {q - 1}): every blend in it has {'; '.join(tight) or 'a fixed proportion'}")
+    return _Region(names, L, U, t, texts, G, h, V, act)
+
+
+@dataclass(frozen=True)
+class CandidateSet:
+    """The candidate blends of a constrained mixture region (:func:`candidate_blends`).
+
+    Attributes
+    ----------
+    names : list of str
+        The components.
+    points : numpy.ndarray, shape (m, q)
+        The candidate proportions [units of the total], each row summing to ``total``.
+    types : list of str
+        ``"vertex"``, ``"edge"``, ``"third"``, ``"plane"``, ``"centroid"`` or ``"axial"``.
+    lows : numpy.ndarray, shape (q,)
+        The L-pseudo lower bounds (the given ones, or the implied ones where the region
+        reaches no lower), as :func:`extreme_vertices` codes.
+    lower, upper : numpy.ndarray, shape (q,)
+        The given bounds.
+    G, h : numpy.ndarray
+        The region as ``G x <= h`` (bounds, then the linear constraints) with ``sum x = T``.
+    texts : list of str
+        The linear constraints as given.
+    total : float
+    """
+
+    names: list[str]
+    points: np.ndarray
+    types: list[str]
+    lows: np.ndarray
+    lower: np.ndarray
+    upper: np.ndarray
+    G: np.ndarray
+    h: np.ndarray
+    texts: list[str]
+    total: float
+
+    def inside(self, x: np.ndarray) -> np.ndarray:
+        """Whether each row of real proportions ``x`` meets every bound and constraint (within
+        ``1e-12`` of each constraint's size) and sums to the total (within ``1e-12 T``)."""
+        x = np.atleast_2d(np.asarray(x, dtype=float))
+        scale = np.abs(self.G) @ np.maximum(np.abs(self.lower), np.abs(self.upper)) + np.abs(self.h)
+        ok = np.all(x @ self.G.T - self.h[None, :] <= 1e-12 * scale[None, :], axis=1)
+        return ok & (np.abs(x.sum(axis=1) - self.total) <= SUM_RTOL * self.total)
+
+
+def candidate_blends(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[str, float, float]],
+                     constraints: Any = None, total: float = 1.0) -> CandidateSet:
+    """The candidate blends of an optimal mixture design on a constrained region (as
+    Design-Expert's candidate set): the vertices, the edge centroids and the points at a
+    third and two thirds of each edge (which a full cubic needs), the constraint-plane
+    centroids, the overall centroid and the axial check blends (half way from each vertex
+    to the overall centroid; Cornell 2002, sec. 2.16). Each is an exact average of vertices
+    rounded once; duplicates within ``1e-12 T`` are merged.
+
+    Returns
+    -------
+    CandidateSet
+
+    >>> c = candidate_blends({"a": (0, 1), "b": (0, 1), "c": (0, 1)})
+    >>> len(c.points), c.types.count("third"), float(c.points.sum(axis=1).max()), bool(c.inside(c.points).all())
+    (16, 6, 1.0, True)
+    """
+    t = _total(total)
+    reg = _region(bounds, constraints, t)
+    V = reg.vertices
+    centre = _mean(V)
+    rows: list[np.ndarray] = [V]
+    types = ["vertex"] * len(V)
+
+    def weighted(pairs: list[tuple[np.ndarray, int]], den: int) -> np.ndarray:
+        """``sum w_i P_i / den`` per coordinate, exactly, rounded once."""
+        return np.array([float(sum((Fraction(float(p[c])) * w for p, w in pairs), Fraction(0)) / den)
+                         for c in range(len(reg.names))])
+
+    for i, j in reg.edges():
+        rows.append(weighted([(V[i], 1), (V[j], 1)], 2)[None, :])
+        types.append("edge")
+        rows.append(np.array([weighted([(V[i], 2), (V[j], 1)], 3), weighted([(V[i], 1), (V[j], 2)], 3)]))
+        types += ["third", "third"]
+    for on in reg.planes():
+        rows.append(_mean(V[on])[None, :])
+        types.append("plane")
+    rows.append(centre[None, :])
+    types.append("centroid")
+    for v in V:
+        rows.append(weighted([(v, 1), (centre, 1)], 2)[None, :])
+        types.append("axial")
+    allp = np.vstack(rows)
+    keep = _dedupe(allp, SUM_RTOL * t)
+    lows = V.min(axis=0)
+    lows = np.where(lows - reg.lower <= SUM_RTOL * t, reg.lower, lows)
+    return CandidateSet(reg.names, allp[keep], [types[i] for i in keep], lows, reg.lower, reg.upper, reg.G, reg.h,
+                        reg.texts, t)
+
+
 def extreme_vertices(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[str, float, float]],
                      constraints: Any = None, centroids: bool = False, total: float = 1.0, *,
                      seed: Any = None, randomize: bool = True) -> MixtureDesign:
@@ -583,40 +773,13 @@ def extreme_vertices(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[
     8
     """
     t = _total(total)
-    names, L, U = _bounds(bounds, t)
-    q = len(names)
-    A, b, texts = _linear_constraints(constraints, names, L, U)
-    eye = np.eye(q)
-    G = np.vstack([-eye, eye, A])
-    h = np.concatenate([-L, U, b])
-    labels = [f"{n} >= {lo:.12g}" for n, lo in zip(names, L)] + [f"{n} <= {hi:.12g}" for n, hi in zip(names, U)]
-    labels += texts
-    V = _vertices(G, h, t, L, U)
-    if not len(V):
-        which = f" and the constraints {'; '.join(texts)}" if texts else ""
-        raise ValueError(f"constraint: the region of the bounds{which} is empty: no blend summing to {t:g} "
-                         "satisfies them all")
-    rank = _affine_rank(V, 1e-9 * t)
-    if rank < q - 1:
-        act = _active(V, G, h, L, U)
-        tight = [labels[j] for j in range(len(labels)) if act[:, j].all()]
-        raise ValueError(f"constraint: the region has no interior (dimension {rank}, a mixture of {q} "
-                         f"components needs {q - 1}): every blend in it has {'; '.join(tight) or 'a fixed proportion'}")
+    reg = _region(bounds, constraints, t)
+    names, V = reg.names, reg.vertices
     points = [V]
     types = ["vertex"] * len(V)
     if centroids:
-        act = _active(V, G, h, L, U)
-        ones = np.ones((1, q))
-        edges = []
-        for i, j in itertools.combinations(range(len(V)), 2):
-            common = act[i] & act[j]
-            if common.sum() >= q - 2 and np.linalg.matrix_rank(np.vstack([ones, G[common]])) == q - 1:
-                edges.append(_mean(V[[i, j]]))
-        planes = []
-        for j in range(G.shape[0]):
-            on = act[:, j]
-            if on.sum() >= q - 1 and _affine_rank(V[on], 1e-9 * t) == q - 2:
-                planes.append(_mean(V[on]))
+        edges = [_mean(V[[i, j]]) for i, j in reg.edges()]
+        planes = [_mean(V[on]) for on in reg.planes()]
         extra = [(edges, "edge"), (planes, "plane"), ([_mean(V)], "centroid")]
         for pts, kind in extra:
             if pts:
@@ -628,6 +791,7 @@ def extreme_vertices(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[
         types = [types[i] for i in keep]
     else:
         props = V
+    L, U, texts = reg.lower, reg.upper, reg.texts
     lows = V.min(axis=0)
     highs = V.max(axis=0)
     notes = []
@@ -637,9 +801,67 @@ def extreme_vertices(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[
     if tightened:
         notes.append("implied bounds (the region reaches no further): " + "; ".join(tightened))
     lows = np.where(lows - L <= SUM_RTOL * t, L, lows)
-    return _finish("extreme-vertices", names, props, types, t, lows, seed=seed, randomize=randomize,
+    return finish_mixture("extreme-vertices", names, props, types, t, lows, seed=seed, randomize=randomize,
                    options={"centroids": bool(centroids), "constraints": texts, "notes": notes,
                             "n_vertices": int(len(V)),
                             "bounds": {n: (float(lo), float(hi)) for n, lo, hi in zip(names, L, U)},
                             "implied_bounds": {n: (float(lo), float(hi))
                                                for n, lo, hi in zip(names, V.min(axis=0), highs)}})
+
+
+# -- mixture-process designs ---------------------------------------------------------------
+def process_space(factors: Any, components: Sequence[str]) -> FactorSpace:
+    """The process factors of a mixture-process design (``"NAME=LOW:HIGH"`` specs, numeric),
+    checked against the component names."""
+    space = as_factor_space(factors)
+    for f in space.factors:
+        if f.kind != "numeric":
+            raise ValueError(f"factor {f.name!r} is categoric; a mixture-process design takes numeric process "
+                             "factors")
+        if f.name in components:
+            raise ValueError(f"factor {f.name!r} is also a component")
+    return space
+
+
+def cross_process(design: MixtureDesign, factors: Any, *, seed: Any = None, randomize: bool = True) -> MixtureDesign:
+    """The crossed mixture-process design (Cornell 2002, ch. 7): every blend of ``design``
+    at every point of the two-level full factorial in the process ``factors`` (coded -1, +1;
+    standard order, the first factor changing fastest), ``n_blends * 2^k`` runs.
+
+    Parameters
+    ----------
+    design : MixtureDesign
+        A mixture design without process factors (its blends in standard order).
+    factors : sequence of str, mapping or FactorSpace
+        Numeric process factors, ``"NAME=LOW:HIGH"`` (letters after the components).
+    seed, randomize
+        Run order of the crossed design, as for every design.
+
+    >>> d = cross_process(simplex_centroid(["a", "b", "c"], randomize=False), ["t=20:40"], randomize=False)
+    >>> d.n_runs, d.actual.iloc[:2].to_dict("list")
+    (14, {'a': [1.0, 1.0], 'b': [0.0, 0.0], 'c': [0.0, 0.0], 't': [20.0, 40.0]})
+    """
+    if not isinstance(design, MixtureDesign):
+        raise TypeError("design must be a MixtureDesign")
+    q = design.n_components
+    if q < design.n_factors:
+        raise ValueError("factor: the design already has process factors")
+    names = list(design.factors.names)
+    space = process_space(factors, names)
+    k = len(space)
+    if len(design.std_order) * 2 ** k > MAX_RUNS:
+        raise ValueError(f"runs: {len(design.std_order)} blends at 2^{k} process points are "
+                         f"{len(design.std_order) * 2 ** k} runs; at most {MAX_RUNS} are written")
+    pts = np.array(list(itertools.product([-1.0, 1.0], repeat=k)))[:, ::-1]
+    order = np.argsort(design.std_order, kind="stable")
+    P = design.proportions[order]
+    types = [design.point_types[i] for i in order for _ in range(len(pts))]
+    lows_map = design.options.get("pseudo_lows", {})
+    lows = np.array([float(lows_map.get(nm, 0.0)) for nm in names])
+    opts = {key: v for key, v in design.options.items() if key not in ("seed", "randomize")}
+    opts["notes"] = list(opts.get("notes", [])) + [
+        f"crossed mixture-process design: each of the {len(P)} blends at each of the {len(pts)} points of the "
+        f"2^{k} factorial in {', '.join(space.names)} (coded -1, +1)"]
+    opts["process"] = {f.name: (float(f.low), float(f.high)) for f in space.factors if isinstance(f, Factor)}
+    return finish_mixture(design.kind, names, np.repeat(P, len(pts), axis=0), types, design.total, lows, seed=seed,
+                   randomize=randomize, options=opts, process=space, process_coded=np.tile(pts, (len(P), 1)))

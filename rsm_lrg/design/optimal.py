@@ -57,10 +57,10 @@ from .exchange import (
     moment_matrix,
 )
 
-__all__ = ["optimal", "criterion_value", "moment_matrix", "CRITERIA", "information"]
+__all__ = ["optimal", "criterion_value", "moment_matrix", "CRITERIA", "information", "farthest_candidates"]
 
 
-def _lof_points(D: np.ndarray, pool: np.ndarray, space, count: int) -> np.ndarray:
+def farthest_candidates(D: np.ndarray, pool: np.ndarray, space, count: int) -> np.ndarray:
     """``count`` candidates each farthest (coded distance; a categoric mismatch counts 2)
     from every run so far: Design-Expert's lack-of-fit points, spread by distance."""
     num = space.numeric_index
@@ -189,7 +189,7 @@ def optimal(
         scores = [prob.score(np.vstack([D, u])) for u in uniq]
         D = np.vstack([D, uniq[int(np.argmin(scores))]])
     if L:
-        D = np.vstack([D, _lof_points(D, pool, space, L)])
+        D = np.vstack([D, farthest_candidates(D, pool, space, L)])
     value = criterion_value(D, terms, crit, W)
     options = {
         "criterion": crit,

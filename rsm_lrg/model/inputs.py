@@ -61,9 +61,13 @@ def chosen_terms(names: Sequence[str | Term] | str, letters: Sequence[str], cate
     chosen: dict[tuple, Term] = {}
     for nm in (["Intercept"] if intercept else []) + list(names):
         t = parse_term(str(nm).strip(), letters, categoric) if not isinstance(nm, Term) else nm
-        chosen[t.powers] = t
+        chosen[t.key] = t
     order = {t.powers: i for i, t in enumerate(model_terms(letters, "cubic", categoric))}
-    return tuple(sorted(chosen.values(), key=lambda t: (order.get(t.powers, len(order)), t.order, t.powers)))
+
+    def rank(t: Term) -> tuple:  # a full-cubic AB(A-B) where A^2B stands
+        return (order.get(t.monomials[0][1], len(order)), t.order, t.powers, t.diff)
+
+    return tuple(sorted(chosen.values(), key=rank))
 
 
 #: Largest magnitude of a response value (and smallest spread) that a fit accepts: sums of

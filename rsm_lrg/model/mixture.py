@@ -8,55 +8,34 @@ canonical polynomials (Cornell, *Experiments with Mixtures*, 3rd ed., Eqs. 2.7-2
     linear          E[y] = sum b_i x'_i
     quadratic       ... + sum_{i<j} b_ij x'_i x'_j
     special cubic   ... + sum_{i<j<k} b_ijk x'_i x'_j x'_k
+    full cubic      quadratic + sum_{i<j} d_ij x'_i x'_j (x'_i - x'_j) + sum_{i<j<k} b_ijk x'_i x'_j x'_k
 
-which have no intercept: the mean is in them implicitly (``sum x'_i = 1``), so the ANOVA
+(Eq. 2.11 for the full cubic, whose ``d_ij`` terms are keyed ``AB(A-B)``), which have no intercept: the mean is in them implicitly (``sum x'_i = 1``), so the ANOVA
 and R² are about the mean (Design-Expert's mixture ANOVA): ``Model`` on p - 1 df,
 ``Linear Mixture`` on q - 1 df (the linear model's sum of squares about the mean, taken
 first), one row per non-linear term (its partial sum of squares), ``Residual``, ``Lack of
 Fit``, ``Pure Error``, ``Cor Total``.
-
-The full cubic's terms ``x_i x_j (x_i - x_j)`` are not products of distinct components and
-are not offered (``mixture-cubic`` is refused with a message).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from itertools import combinations
 from typing import Any
 
 import numpy as np
 
 from ..factors import Factor, FactorSpace, MixtureComponent, letters_for, parse_factor_spec, quote_value
 from ..io import cell_error
-from .terms import Term
+from .terms import MIXTURE_ORDERS, Term, scheffe_names, term_name
 
 __all__ = ["MIXTURE_MODELS", "MIXTURE_ORDERS", "SUM_RTOL", "scheffe_names", "mixture_space", "check_mixture_terms",
            "pseudo_to_actual", "actual_covariance", "mixture_sums"]
 
-#: The Scheffé models by name, with the highest number of distinct components in a term.
-MIXTURE_ORDERS = {"mixture-linear": 1, "mixture-quadratic": 2, "special-cubic": 3}
-#: Every mixture model name a command accepts (``mixture-cubic`` is refused with a message).
-MIXTURE_MODELS = (*MIXTURE_ORDERS, "mixture-cubic")
+#: Every mixture model name a command accepts.
+MIXTURE_MODELS = tuple(MIXTURE_ORDERS)
 #: A row's components must sum to the total within this relative tolerance.
 SUM_RTOL = 1e-4
-
-
-def scheffe_names(letters: Sequence[str], order: str, process: Sequence[str] = ()) -> list[str]:
-    """The term names of a Scheffé model: ``["A", "B", "C", "AB", "AC", "BC", "ABC"]`` for
-    the special cubic in three components; with process factors (letters ``process``) each
-    mixture term crossed with each process main effect (Cornell, Ch. 7, the combined
-    model: ``AD``, ``ABD``, ...).
-
-    >>> scheffe_names("ABC", "mixture-quadratic")
-    ['A', 'B', 'C', 'AB', 'AC', 'BC']
-    >>> scheffe_names("AB", "mixture-linear", "C")
-    ['A', 'B', 'AC', 'BC']
-    """
-    deg = MIXTURE_ORDERS[order]
-    mix = ["".join(c) for d in range(1, deg + 1) for c in combinations(list(letters), d)]
-    return mix + [m + p for p in process for m in mix]
 
 
 def mixture_space(data: Any, components: Sequence[Any], response: str | None = None,
@@ -156,12 +135,16 @@ def mixture_space(data: Any, components: Sequence[Any], response: str | None = N
 
 def check_mixture_terms(terms: Sequence[Term], q: int) -> None:
     """A Scheffé term list: every term a product of distinct factors (no powers) with at least
-    one of the ``q`` components (a process term alone is the sum of its crossings), and every
-    linear blending term present (they stand for the intercept)."""
+    one of the ``q`` components (a process term alone is the sum of its crossings), or a
+    full-cubic term ``AB(A-B)`` of two components (crossed: ``AB(A-B)D``), and every linear
+    blending term present (they stand for the intercept)."""
     for t in terms:
         if any(p > 1 for p in t.powers) or t.order == 0:
             raise ValueError(f"term {t.name} is not a Scheffé mixture term (products of distinct components "
-                             "such as A, AB, ABC, crossed with process factors: AD, ABD)")
+                             "such as A, AB, ABC, full-cubic AB(A-B), crossed with process factors: AD, ABD)")
+        if t.diff and (max(t.diff) >= q or sum(t.powers[:q]) != 2):
+            raise ValueError(f"term {t.name} is not a Scheffé mixture term (a full-cubic term is XY(X-Y) of two "
+                             "components, crossed only with process factors)")
         if not any(t.powers[:q]):
             raise ValueError(f"term {t.name} has no mixture component (a process term enters crossed with the "
                              "blending terms: AD, BD, ...)")
@@ -176,18 +159,22 @@ def pseudo_to_actual(coded: dict[str, float], terms: Sequence[Term], space: Fact
     its coded coefficients.
 
     Every factor's coding is affine in its own coordinate, ``x' = (x - o) / s`` (a component:
-    ``o = L``, ``s = T - sum L``; a process factor: its centre and half-range), and each term
-    is a product of distinct factors, so ``b prod_{i in S} (x_i - o_i) / s_i`` expands
-    exactly over the subsets of ``S``. A monomial without a component (a constant, or a
-    process factor alone) is folded into the components as ``m sum x_i / T`` (every blend
-    sums to ``T``). Keys are term names (``A``, ``AB``, ``AD``, ...); monomials beyond the
-    model's terms (a model without ``AB`` whose ``ABC`` brings one) are listed too.
+    ``o = L``, ``s = T - sum L``; a process factor: its centre and half-range), so each term
+    (a product of distinct factors, times ``x'_i - x'_j`` for a full-cubic ``AB(A-B)``)
+    expands exactly into monomials of the real coordinates. Their mixture parts are then
+    written in the Scheffé basis on the simplex ``sum x = T``: a part without a component is
+    ``m sum x_i / T``; a square ``x_i^2 = x_i (T - sum_{k != i} x_k)``; and
+    ``x_i^2 x_j = (x_i x_j (x_i + x_j) + x_i x_j (x_i - x_j)) / 2`` with
+    ``x_i + x_j = T - sum_{k != i, j} x_k``. Keys are term names (``A``, ``AB``, ``AB(A-B)``,
+    ``AD``, ...); monomials beyond the model's terms (a model without ``AB`` whose ``ABC``
+    brings one) are listed too.
     """
     factors = list(space.factors)
     comps = [i for i, f in enumerate(factors) if isinstance(f, MixtureComponent)]
     first = factors[comps[0]]
     assert isinstance(first, MixtureComponent)
     T = first.total
+    k = len(factors)
     origin: list[float] = []
     scale: list[float] = []
     for f in factors:
@@ -199,24 +186,96 @@ def pseudo_to_actual(coded: dict[str, float], terms: Sequence[Term], space: Fact
             scale.append(f.half_range)
         else:
             raise ValueError(f"process factor {f.name!r} is categoric; a mixture model takes numeric ones")
-    letters = space.letters
-    parts: dict[tuple[int, ...], list[float]] = {}
+    unit = [tuple(int(m == i) for m in range(k)) for i in range(k)]
+    zero = (0,) * k
+
+    def times(poly: dict[tuple[int, ...], float], lin: dict[tuple[int, ...], float]) -> dict[tuple[int, ...], float]:
+        out: dict[tuple[int, ...], float] = {}
+        for p1, c1 in poly.items():
+            for p2, c2 in lin.items():
+                key = tuple(a + b for a, b in zip(p1, p2))
+                out[key] = out.get(key, 0.0) + c1 * c2
+        return out
+
+    def coded_factor(i: int) -> dict[tuple[int, ...], float]:  # x'_i = x_i / s_i - o_i / s_i
+        return {unit[i]: 1.0 / scale[i], zero: -origin[i] / scale[i]}
+
+    parts: dict[tuple[tuple[int, ...], tuple[int, ...]], list[float]] = {}
     for t in terms:
-        S = [i for i, p in enumerate(t.powers) if p]
-        b = float(coded[t.name]) / math.prod(scale[i] for i in S)
-        for d in range(len(S) + 1):
-            for U in combinations(S, d):
-                c = b
-                for i in S:
-                    if i not in U:
-                        c *= -origin[i]
-                parts.setdefault(U, []).append(c)
-    for U in [U for U in parts if not any(i in comps for i in U)]:  # fold: m = m sum x_i / T
-        m = math.fsum(parts.pop(U))
-        for i in comps:
-            parts.setdefault(tuple(sorted((i, *U))), []).append(m / T)
-    order = sorted(parts, key=lambda U: (len(U), U))
-    return {"".join(letters[i] for i in U): math.fsum(parts[U]) for U in order}
+        poly: dict[tuple[int, ...], float] = {zero: float(coded[t.name])}
+        for i, p in enumerate(t.powers):
+            for _ in range(p):
+                poly = times(poly, coded_factor(i))
+        if t.diff:
+            a, b = t.diff
+            poly = times(poly, {unit[a]: 1.0 / scale[a], unit[b]: -1.0 / scale[b],
+                                zero: -origin[a] / scale[a] + origin[b] / scale[b]})
+        for powers, c in poly.items():
+            for (sub, diff), w in _scheffe_basis(tuple(powers[i] for i in comps), T).items():
+                full = [0] * k
+                for i, p in enumerate(powers):
+                    if i not in comps:
+                        full[i] = p
+                for j in sub:
+                    full[comps[j]] = 1
+                d = tuple(comps[j] for j in diff)
+                parts.setdefault((tuple(full), d), []).append(c * w)
+    letters = space.letters
+
+    def rank(key: tuple[tuple[int, ...], tuple[int, ...]]) -> tuple:
+        powers, d = key
+        return (sum(powers) + bool(d), bool(d), [i for i, p in enumerate(powers) if p], d)
+
+    return {term_name(p, letters, d): math.fsum(parts[(p, d)]) for p, d in sorted(parts, key=rank)}
+
+
+def _scheffe_basis(m: tuple[int, ...], T: float) -> dict[tuple[tuple[int, ...], tuple[int, ...]], float]:
+    """The monomial ``prod x_i^m_i`` of the components (mixture degree <= 3) in the Scheffé
+    basis on ``sum x = T``: ``{(distinct components, diff pair): weight}``, ``diff = ()`` for
+    the product of the distinct components, ``(i, j)`` for ``x_i x_j (x_i - x_j)``."""
+    q = len(m)
+    deg = sum(m)
+    if deg > 3:
+        raise ValueError("a Scheffé polynomial of degree above 3 has no full-cubic form")
+    out: dict[tuple[tuple[int, ...], tuple[int, ...]], float] = {}
+
+    def add(d: dict[tuple[tuple[int, ...], tuple[int, ...]], float], w: float) -> None:
+        for key, v in d.items():
+            out[key] = out.get(key, 0.0) + w * v
+
+    def mono(*idx: int) -> tuple[int, ...]:
+        v = [0] * q
+        for i in idx:
+            v[i] += 1
+        return tuple(v)
+
+    if deg == 0:  # 1 = sum x_i / T
+        for i in range(q):
+            add({((i,), ()): 1.0}, 1.0 / T)
+        return out
+    if max(m) <= 1:
+        return {(tuple(i for i in range(q) if m[i]), ()): 1.0}
+    i = next(j for j in range(q) if m[j] >= 2)
+    others = [j for j in range(q) if m[j] and j != i]
+    if deg == 3 and m[i] == 2 and len(others) == 1:  # x_i^2 x_j = (x_i x_j (x_i + x_j) + x_i x_j (x_i - x_j)) / 2
+        j = others[0]
+        pair = (min(i, j), max(i, j))
+        add({(pair, pair): 1.0}, 0.5 if i < j else -0.5)
+        add(_scheffe_basis(mono(i, j), T), 0.5 * T)  # x_i + x_j = T - sum of the others
+        for r in range(q):
+            if r not in (i, j):
+                add(_scheffe_basis(mono(i, j, r), T), -0.5)
+        return out
+    # x_i^p rest = x_i^(p-1) rest (T - sum_{r != i} x_r)
+    lower = list(m)
+    lower[i] -= 1
+    add(_scheffe_basis(tuple(lower), T), T)
+    for r in range(q):
+        if r != i:
+            v = list(lower)
+            v[r] += 1
+            add(_scheffe_basis(tuple(v), T), -1.0)
+    return out
 
 
 def actual_covariance(terms: Sequence[Term], space: FactorSpace, cov: np.ndarray) -> tuple[list[str], np.ndarray]:

@@ -57,8 +57,8 @@ def removable(terms: Sequence) -> list:
     for s in terms:
         if s.order == 0:
             continue
-        inside = any(t is not s and t.powers != s.powers and all(a <= b for a, b in zip(s.powers, t.powers))
-                     for t in terms)
+        inside = any(t is not s and t.key != s.key and all(a <= b for a, b in zip(s.powers, t.powers))
+                     and (not s.diff or s.diff == t.diff) for t in terms)
         if not inside:
             out.append(s)
     return out

@@ -79,8 +79,8 @@ class ModelSpec:
     ----------
     order : str
         ``"linear"``, ``"2fi"``, ``"quadratic"`` or ``"cubic"``, or a Scheffé mixture model
-        (``"mixture-linear"``, ``"mixture-quadratic"``, ``"special-cubic"``;
-        :mod:`rsm_lrg.model.mixture`): the model when ``terms`` is ``None``; with ``terms``
+        (``"mixture-linear"``, ``"mixture-quadratic"``, ``"special-cubic"``,
+        ``"mixture-cubic"``; :mod:`rsm_lrg.model.mixture`): the model when ``terms`` is ``None``; with ``terms``
         it only names the starting point of a reduction (for a mixture order, that the
         terms are Scheffé terms in the components).
     terms : tuple of str or None
@@ -101,9 +101,6 @@ class ModelSpec:
     reduce: ReduceSpec | None = None
 
     def __post_init__(self) -> None:
-        if self.order == "mixture-cubic":
-            raise SpecError("model", "mixture-cubic (the full cubic's terms AB(A-B)) is not available yet; fit "
-                                     "special-cubic, or list Scheffé terms with --terms")
         if self.order not in MODELS and self.order not in MIXTURE_ORDERS:
             raise SpecError("model", f"unknown model {self.order!r}; expected one of "
                                      f"{', '.join(MODELS + MIXTURE_MODELS)}")

@@ -77,10 +77,11 @@ def summary_data(result: Any) -> SummaryData:
     """The :class:`SummaryData` of a fit (see the module docstring)."""
     named = {"linear": "linear", "2fi": "2FI", "quadratic": "quadratic", "cubic": "cubic",
              "mixture-linear": "Scheffé linear mixture", "mixture-quadratic": "Scheffé quadratic mixture",
-             "special-cubic": "Scheffé special cubic mixture"}.get(result.model)
+             "special-cubic": "Scheffé special cubic mixture",
+             "mixture-cubic": "Scheffé full cubic mixture"}.get(result.model)
     mixture = bool(getattr(result, "mixture", False))
     if mixture and named and any(not hasattr(f, "pseudo_range") for f in result.space.factors):
-        named += " crossed with the linear process model"
+        named += " crossed with the linear process"
     title = ("ANOVA for the " + (f"{named} model" if named else "model of the terms chosen")
              + (" (Linear Mixture sequential, other terms partial sum of squares - Type III; about the mean)"
                 if mixture else " (partial sum of squares - Type III)")

@@ -3,6 +3,7 @@ model, so that optimal designs build the same matrix as the fit); re-exported he
 
 from ..terms import (  # noqa: F401
     MAX_TERMS,
+    MIXTURE_ORDERS,
     MODELS,
     Term,
     __all__,  # noqa: F401
@@ -17,6 +18,7 @@ from ..terms import (  # noqa: F401
     n_columns,
     n_model_terms,
     parse_term,
+    scheffe_names,
     term_columns,
     term_name,
 )

@@ -65,12 +65,16 @@ class EquationTerm:
     text : str
         ``|value|`` with as many significant digits as :data:`EQUATION_ACCURACY` needs
         (6 to 17), trailing zeros dropped.
+    diff : tuple of int
+        ``(i, j)`` for a Scheffé full-cubic term ``AB(A-B)``: the monomial of ``powers``
+        times ``x_i - x_j`` (:attr:`rsm_lrg.terms.Term.diff`); ``()`` otherwise.
     """
 
     name: str
     powers: tuple
     value: float
     text: str
+    diff: tuple = ()
 
 
 def equation_terms(result, units: str = "coded", level=None) -> list[EquationTerm]:
@@ -102,7 +106,7 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
     big = max((abs(v) for v in coded.values() if math.isfinite(v)), default=0.0)
     coded = {k: (0.0 if abs(v) <= ROUND_OFF * big else v) for k, v in coded.items()}
     letters = result.space.letters
-    col_powers = {c: t.powers for t in result.terms for c in t.columns}
+    col_terms = {c: t for t in result.terms for c in t.columns}
     if units == "coded":
         values, mags = coded, [1.0] * len(letters)
     else:
@@ -132,10 +136,12 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
         scale = max(abs(sums.fitted_min), abs(sums.fitted_max))
     out = []
     for name, v in values.items():
-        powers = col_powers[name] if name in col_powers else parse_term(name, letters).powers
+        term = col_terms[name] if name in col_terms else parse_term(name, letters)
+        powers, diff = term.powers, term.diff
         if v == 0.0 and name != "Intercept":
             continue
-        size = abs(v) * math.prod(m ** e for m, e in zip(mags, powers))
+        # a full-cubic AB(A-B) is as large as A^2B (each of its two monomials)
+        size = abs(v) * math.prod(m ** e for m, e in zip(mags, term.monomials[0][1]))
         if v == 0.0 or not math.isfinite(v):
             digits = 6
         elif scale > 0 and math.isfinite(size):
@@ -143,7 +149,8 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
             digits = min(max(math.ceil(math.log10(need)), 6), 17) if need > 0 else 6
         else:
             digits = 17
-        out.append(EquationTerm(name=name, powers=tuple(powers), value=float(v), text=format_g(abs(v), digits, trim=True)))
+        out.append(EquationTerm(name=name, powers=tuple(powers), value=float(v), text=format_g(abs(v), digits, trim=True),
+                                diff=tuple(diff)))
     return out
 
 
@@ -169,6 +176,9 @@ def _equation_lines(result, units: str, level) -> str:
             label = f" * {t.name}"
         else:
             parts = [f.name if e == 1 else f"{f.name}^{e}" for e, f in zip(t.powers, result.space.factors) if e]
+            if t.diff:  # x1 * x2 * (x1 - x2)
+                a, b = (result.space.factors[i].name for i in t.diff)
+                parts.append(f"({a} - {b})")
             label = " * " + " * ".join(parts)
         sign = "-" if t.value < 0 else "+"
         lines.append(f"  {sign} {t.text}{label}")

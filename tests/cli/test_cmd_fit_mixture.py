@@ -32,9 +32,30 @@ def test_fit_mixture_json(tmp_path, capsys):
         assert d["coefficients"]["coded"][row.term] == pytest.approx(float(row.value), rel=1e-9)
 
 
+def test_fit_mixture_cubic_json(tmp_path, capsys):
+    """The full cubic from the command line: keys AB(A-B) in the JSON (values checked against
+    R in tests/model/test_mixture_cubic.py) and the real-proportion term printed as a product."""
+    pest = DATA.parent / "mixture_pest.csv"
+    out = tmp_path / "fit.json"
+    args = ["fit", str(pest), "--response", "y", "--component", "x1", "--component", "x2", "--component", "x3"]
+    assert main([*args, "--model", "mixture-cubic", "--json", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "Scheffé full cubic mixture" in text and "* x1 * x2 * (x1 - x2)" in text
+    d = json.loads(out.read_text())
+    keys = ["A", "B", "C", "AB", "AC", "BC", "ABC", "AB(A-B)", "AC(A-C)", "BC(B-C)"]
+    assert list(d["coefficients"]["coded"]) == keys and set(d["coefficients"]["actual"]) == set(keys)
+    expected = pd.read_csv(DATA.parent / "mixture_cubic_expected.csv")
+    want = expected[(expected.set == "pest") & (expected.model == "mixture-cubic") & (expected.quantity == "coef")]
+    for row in want.itertuples():
+        assert d["coefficients"]["coded"][row.term] == pytest.approx(float(row.value), rel=1e-9)
+    out2 = tmp_path / "fit2.json"
+    assert main([*args, "--model", "mixture-cubic", "--terms", "A B C AB AB(A-B)", "--json", str(out2)]) == 0
+    assert list(json.loads(out2.read_text())["coefficients"]["coded"]) == ["A", "B", "C", "AB", "AB(A-B)"]
+
+
 @pytest.mark.parametrize("args, message", [
     (["--model", "quadratic"], "error: --model: mixture components (--component) need a Scheffé model"),
-    (["--model", "mixture-cubic"], "error: --model 'mixture-cubic': mixture-cubic"),
+    (["--model", "mixture-cubic", "--terms", "A B C AB BA(B-A)"], "error: --terms: model term 'BA(B-A)'"),
 ])
 def test_fit_mixture_bad_model(args, message, capsys):
     assert main(["fit", str(DATA), "--response", "erate", *COMPS, *args]) == 2
