@@ -29,10 +29,12 @@ Three routes, checked against each other in ``tests/physics/test_dynamics.py``:
   DOP853, split at every kink of the profile, events at breakaway and stop) for one
   parameter set, to its periodic steady state, with the time history.
 - :func:`cycle_metrics` with ``method="integrate"`` — the compiled stepper of :mod:`.stepper`
-  (each row alone, order-8 Runge-Kutta steps between the kinks of the profile, stops and
-  breakaways located inside a step; a row's result does not depend on the rows integrated
-  with it); for 10⁵-row virtual runs. ``integrator="fixed_step"`` keeps the earlier vectorised
-  NumPy integrator (exact linear steps with the hinge's tangent, ``ω·Δt ≤ h``).
+  (each row alone, order-8 Runge-Kutta steps of error-controlled length between the kinks of
+  the profile, stops and breakaways located inside a step; a row's result does not depend on
+  the rows integrated with it); for 10⁵-row virtual runs. ``integrator="compiled"`` keeps the
+  same steps in equal lengths (the reference of the benchmark and of the equality test),
+  ``integrator="fixed_step"`` the earlier vectorised NumPy integrator (exact linear steps with
+  the hinge's tangent, ``ω·Δt ≤ h``).
 - ``method="quasi_static"`` — the slow-motion limit, analytic: per stroke the stage first
   unbends the hinge from its rest deflection µ_k·F_z/(n·K_n) and bends it to the breakaway
   deflection Δδ = µ_s·F_z/(n·K_n); then the frame follows, so the carriage slides
@@ -266,7 +268,8 @@ def _stage_is_rigid(stage) -> np.ndarray:
 
 def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms",
                   params: LRGParams | None = None, method="auto", n_cycles=3, max_cycles=12,
-                  rtol=1e-5, h=0.3, max_steps_per_cycle=200_000, integrator="compiled", h_rk=0.6,
+                  rtol=1e-5, h=0.3, max_steps_per_cycle=200_000, integrator="adaptive", h_rk=0.6,
+                  tol_rk=1e-6,
                   **columns) -> CycleMetrics:
     """Per-cycle sliding, friction work and peak hinge deflection, vectorised over rows.
 
@@ -287,14 +290,21 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         Largest ω_n·Δt of the fixed-step NumPy integrator (``integrator="fixed_step"``; exact
         linear steps between events with the hinge's tangent; 0.3 agrees with the event-driven
         reference to ~1e-5 relative on the linear hinge, see the tests).
-    integrator : "compiled" or "fixed_step"
-        ``compiled`` (default): :mod:`.stepper`, DOP853's order-8 tableau in equal steps per
-        segment of the profile, compiled per row (numba); ``fixed_step``: the earlier vectorised
-        NumPy integrator, kept as the benchmark's anchor (``benchmarks/bench_simulate.py``).
+    integrator : "adaptive", "compiled" or "fixed_step"
+        ``adaptive`` (default): :mod:`.stepper`, DOP853's order-8 pair in steps whose length its
+        error estimate controls, dense output for stops and the peak, compiled per row (numba);
+        ``compiled``: the same tableau in equal steps ω·Δt = ``h_rk`` per segment of the profile,
+        the reference (``benchmarks/bench_simulate.py`` and ``tests/physics/test_stepper.py``
+        compare the two); ``fixed_step``: the earlier vectorised NumPy integrator.
     h_rk : float
-        Largest ω·Δt of the compiled stepper (ω at a bound of the hinge's tangent stiffness,
-        :func:`_omega_step`); 0.6 agrees with the event-driven reference to 3e-7 relative
-        in sliding distance (``tests/physics/test_stepper.py``).
+        ω·Δt of the equal steps of ``integrator="compiled"`` (ω at a bound of the hinge's tangent
+        stiffness, :func:`_omega_step`; 0.6 agrees with the event-driven reference to 3e-7
+        relative in sliding distance), and of the breakaway checks of a stuck frame in
+        ``"adaptive"``.
+    tol_rk : float
+        Local error per step of ``integrator="adaptive"``, relative to the breakaway deflection
+        and its speed (1e-6: sliding and viscous work within 1e-6 of the reference wherever the
+        cycles settle, ``tests/physics/test_stepper.py``).
     **columns
         Any parameter as a scalar or an array column (``hinge_thickness_m=...``,
         ``dwell_s=...``, ``mu_k=...``), validated like the parameters.
@@ -322,8 +332,8 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         check_values(name, val)
     if method not in ("auto", "integrate", "quasi_static"):
         raise ValueError(f"method must be 'auto', 'integrate' or 'quasi_static', not {method!r}")
-    if integrator not in ("compiled", "fixed_step"):
-        raise ValueError(f"integrator must be 'compiled' or 'fixed_step', not {integrator!r}")
+    if integrator not in ("adaptive", "compiled", "fixed_step"):
+        raise ValueError(f"integrator must be 'adaptive', 'compiled' or 'fixed_step', not {integrator!r}")
     if int(n_cycles) < 2:
         raise ValueError("n_cycles must be at least 2")
     dwell = columns.pop("dwell_s", p.dwell_s)
@@ -378,9 +388,10 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         key = np.column_stack([x[todo] for x in (s, v, a, dw, k, c, m, fs, fk, cv, yl, tj)])
         uniq, inv = np.unique(key, axis=0, return_inverse=True)
         inv = np.ravel(inv)
-        if integrator == "compiled":
+        if integrator in ("adaptive", "compiled"):
             d, pk, e, vw = _integrate_compiled(uniq, int(n_cycles), float(h_rk), int(max_steps_per_cycle),
-                                               int(max_cycles), float(rtol))
+                                               int(max_cycles), float(rtol),
+                                               "adaptive" if integrator == "adaptive" else "fixed", float(tol_rk))
         else:
             d, pk, e, vw = _integrate_grouped(uniq, int(n_cycles), float(h), int(max_steps_per_cycle),
                                               int(max_cycles), float(rtol))
@@ -393,7 +404,7 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
     return CycleMetrics(r(slide), r(work), r(peak), r((work + visc) / T), r(T), r(err), r(how), r(visc))
 
 
-def _integrate_compiled(rows, n_cycles, h, max_steps, max_cycles, rtol):
+def _integrate_compiled(rows, n_cycles, h, max_steps, max_cycles, rtol, method="adaptive", tol=1e-6):
     """Integrate distinct rows with the compiled stepper (:func:`.stepper.integrate_rows`)."""
     s, v, a, dw, k, c, m, fs, fk, cv, yl, tj = rows.T
     w = _omega_step(s, v, a, k, m, fs, cv, yl)
@@ -406,7 +417,7 @@ def _integrate_compiled(rows, n_cycles, h, max_steps, max_cycles, rtol):
             f"{s[i]:.3g} m, velocity {v[i]:.3g} m/s, acceleration {a[i]:.3g} m/s^2: a {T[i]:.3g} s cycle is too "
             f"long for the hinge period ({2 * np.pi / w[i]:.3g} s) outside the quasi-static limit")
     return integrate_rows(s, v, a, dw, tj, k, c, m, fs, fk, cv, yl, w, h=h, n_cycles=n_cycles,
-                          max_cycles=max_cycles, rtol=rtol)
+                          max_cycles=max_cycles, rtol=rtol, method=method, tol=tol)
 
 
 def _integrate_grouped(rows, n_cycles, h, max_steps, max_cycles, rtol):

@@ -40,10 +40,12 @@ MAX_NOISE_SD = 10.0
 #: row its own step count (a row run alone equals the row among others; tested), so the
 #: rows are the same on one process, N processes or a cluster; fixed cuts keep them
 #: bit-identical even where vectorised floating point could differ in the last bit. The
-#: compiled stepper integrates each row alone (no time loop shared by a batch), so a batch of
-#: 1,024 rows costs about 1,024 rows' work and ``--workers N`` keeps N workers busy from a few
-#: thousand rows on (benchmarks/bench_simulate.py).
-DEFAULT_BATCH_ROWS = 1024
+#: compiled stepper integrates each row alone (no time loop shared by a batch), so a batch costs
+#: its rows' work plus about 4 % (the thermal network and the per-batch NumPy set-up, measured at
+#: 512 rows; 10 % at 256), and 512-row batches let ``--workers N`` keep N workers busy from
+#: N × 512 rows on: every worker of 2-4 for designs of a few thousand rows
+#: (benchmarks/bench_simulate.py).
+DEFAULT_BATCH_ROWS = 512
 
 #: Designs with at least this many rows show a progress bar by default.
 PROGRESS_MIN_ROWS = 20000
@@ -91,7 +93,7 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
         from its default here that the calibration also sets raises ``ValueError`` (the
         calibrated value would replace it); a design column of the same name wins over both.
     batch_rows : int, optional
-        Rows per batch (default 1024; the same for every executor, see
+        Rows per batch (default 512; the same for every executor, see
         :data:`DEFAULT_BATCH_ROWS`).
     progress : bool, optional
         Progress bar on stderr (tqdm); default: for designs of 20,000 rows or more.
