@@ -10,6 +10,7 @@ row's result depend on its batch. The formulas are those of :mod:`.hinge` (comme
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 from typing import Any
 
@@ -21,115 +22,124 @@ _S = (1.0, -2.0 / 5, 17.0 / 105, -62.0 / 945, 1382.0 / 51975, -21844.0 / 2027025
 _D = (2.0 / 15, -34.0 / 315, 62.0 / 945, -5528.0 / 155925, 21844.0 / 1216215, -1859138.0 / 212837625,
       6404582.0 / 1550674125)
 _T = (1.0, -1.0 / 3, 2.0 / 15, -17.0 / 315, 62.0 / 2835, -1382.0 / 155925)
+_S_ARR = np.array(_S)
+_D_ARR = np.array(_D)
+_T_ARR = np.array(_T)
+
+# The kernels are module-level functions, compiled by :func:`_kernels` on first use (numba is
+# imported only then). They call each other through the module's globals, not through a
+# closure: numba keys its on-disk cache of a closure by its pickled cells, and a compiled
+# function pickles with a per-process id, so closures calling closures were compiled anew in
+# every process (4 s here) instead of loaded from the cache.
+
+
+def _lc_poly(c: np.ndarray, x: float) -> float:
+    out = c[c.shape[0] - 1]
+    for i in range(c.shape[0] - 2, -1, -1):
+        out = out * x + c[i]
+    return out
+
+
+def _lc_parts(u: float) -> tuple[float, float, float]:
+    if u < 0.2:
+        u2 = u * u
+        return _lc_poly(_S_ARR, u2), _lc_poly(_D_ARR, u2), _lc_poly(_T_ARR, u2)
+    th = math.tanh(u)
+    ch = math.cosh(min(u, 350.0))
+    return 3.0 * (u - th) / u ** 3, (1.0 + 0.5 / (ch * ch) - 1.5 * th / u) / u ** 4, th / u
+
+
+def _lc_ratio(u: float) -> float:
+    s, dq, _ = _lc_parts(u)
+    return u * s * math.sqrt(2.0 / (27.0 * dq))
+
+
+def _lc_psi(u: float) -> float:
+    s, dq, _ = _lc_parts(u)
+    return u * math.sqrt(2.0 / (27.0 * dq))  # ratio·φ = ratio/S
+
+
+def _lc_solve(target: np.ndarray, which: int) -> np.ndarray:
+    out = np.empty(target.shape[0])
+    for k in range(target.shape[0]):
+        t = target[k]
+        lo = 0.0
+        hi = 1.5 * t + 1e-300
+        for _ in range(200):
+            f = _lc_ratio(hi) if which == 0 else _lc_psi(hi)
+            if not f < t:
+                break
+            hi = 2.0 * hi + 1.0
+        if not t > 0.0:
+            for _ in range(90):
+                mid = 0.5 * (lo + hi)
+                f = _lc_ratio(mid) if which == 0 else _lc_psi(mid)
+                if f < t:
+                    lo = mid
+                else:
+                    hi = mid
+            out[k] = 0.5 * (lo + hi)
+            continue
+        # Illinois regula falsi in the bracket (both functions increase from 0): superlinear,
+        # to the last bits in about ten evaluations where bisection took 90
+        flo = -t
+        fhi = (_lc_ratio(hi) if which == 0 else _lc_psi(hi)) - t
+        side = 0
+        res = 0.5 * (lo + hi)
+        for _ in range(200):
+            if fhi == 0.0:
+                res = hi
+                break
+            mid = (lo * fhi - hi * flo) / (fhi - flo)
+            if not (mid > lo and mid < hi):
+                mid = 0.5 * (lo + hi)
+                if not (mid > lo and mid < hi):
+                    res = mid
+                    break
+            fm = (_lc_ratio(mid) if which == 0 else _lc_psi(mid)) - t
+            if fm == 0.0:
+                res = mid
+                break
+            if fm < 0.0:
+                lo = mid
+                flo = fm
+                if side == -1:
+                    fhi *= 0.5
+                side = -1
+            else:
+                hi = mid
+                fhi = fm
+                if side == 1:
+                    flo *= 0.5
+                side = 1
+            res = 0.5 * (lo + hi)
+            if hi - lo <= 4e-16 * hi:
+                break
+        out[k] = res
+    return out
+
+
+def _lc_parts_arr(u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    a = np.empty(u.shape[0])
+    b = np.empty(u.shape[0])
+    c = np.empty(u.shape[0])
+    for k in range(u.shape[0]):
+        a[k], b[k], c[k] = _lc_parts(u[k])
+    return a, b, c
+
+
+_KERNEL_NAMES = ("_lc_poly", "_lc_parts", "_lc_ratio", "_lc_psi", "_lc_solve", "_lc_parts_arr")
 
 
 @lru_cache(maxsize=1)
 def _kernels() -> Any:
-    import math
-
     import numba
 
-    S = np.array(_S)
-    D = np.array(_D)
-    T = np.array(_T)
     jit = numba.njit(cache=True, error_model="numpy")
-
-    @jit
-    def poly(c: np.ndarray, x: float) -> float:
-        out = c[c.shape[0] - 1]
-        for i in range(c.shape[0] - 2, -1, -1):
-            out = out * x + c[i]
-        return out
-
-    @jit
-    def parts(u: float) -> tuple[float, float, float]:
-        if u < 0.2:
-            u2 = u * u
-            return poly(S, u2), poly(D, u2), poly(T, u2)
-        th = math.tanh(u)
-        ch = math.cosh(min(u, 350.0))
-        return 3.0 * (u - th) / u ** 3, (1.0 + 0.5 / (ch * ch) - 1.5 * th / u) / u ** 4, th / u
-
-    @jit
-    def ratio(u: float) -> float:
-        s, dq, _ = parts(u)
-        return u * s * math.sqrt(2.0 / (27.0 * dq))
-
-    @jit
-    def psi(u: float) -> float:
-        s, dq, _ = parts(u)
-        return u * math.sqrt(2.0 / (27.0 * dq))  # ratio·φ = ratio/S
-
-    @jit
-    def solve(target: np.ndarray, which: int) -> np.ndarray:
-        out = np.empty(target.shape[0])
-        for k in range(target.shape[0]):
-            t = target[k]
-            lo = 0.0
-            hi = 1.5 * t + 1e-300
-            for _ in range(200):
-                f = ratio(hi) if which == 0 else psi(hi)
-                if not f < t:
-                    break
-                hi = 2.0 * hi + 1.0
-            if not t > 0.0:
-                for _ in range(90):
-                    mid = 0.5 * (lo + hi)
-                    f = ratio(mid) if which == 0 else psi(mid)
-                    if f < t:
-                        lo = mid
-                    else:
-                        hi = mid
-                out[k] = 0.5 * (lo + hi)
-                continue
-            # Illinois regula falsi in the bracket (both functions increase from 0): superlinear,
-            # to the last bits in about ten evaluations where bisection took 90
-            flo = -t
-            fhi = (ratio(hi) if which == 0 else psi(hi)) - t
-            side = 0
-            res = 0.5 * (lo + hi)
-            for _ in range(200):
-                if fhi == 0.0:
-                    res = hi
-                    break
-                mid = (lo * fhi - hi * flo) / (fhi - flo)
-                if not (mid > lo and mid < hi):
-                    mid = 0.5 * (lo + hi)
-                    if not (mid > lo and mid < hi):
-                        res = mid
-                        break
-                fm = (ratio(mid) if which == 0 else psi(mid)) - t
-                if fm == 0.0:
-                    res = mid
-                    break
-                if fm < 0.0:
-                    lo = mid
-                    flo = fm
-                    if side == -1:
-                        fhi *= 0.5
-                    side = -1
-                else:
-                    hi = mid
-                    fhi = fm
-                    if side == 1:
-                        flo *= 0.5
-                    side = 1
-                res = 0.5 * (lo + hi)
-                if hi - lo <= 4e-16 * hi:
-                    break
-            out[k] = res
-        return out
-
-    @jit
-    def parts_arr(u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        a = np.empty(u.shape[0])
-        b = np.empty(u.shape[0])
-        c = np.empty(u.shape[0])
-        for k in range(u.shape[0]):
-            a[k], b[k], c[k] = parts(u[k])
-        return a, b, c
-
-    return solve, parts_arr
+    g = globals()
+    for name in _KERNEL_NAMES:  # callees first: a caller is typed against its callees' dispatchers
+        g[name] = jit(g[name])
+    return g["_lc_solve"], g["_lc_parts_arr"]
 
 
 def leaf_parts(u: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

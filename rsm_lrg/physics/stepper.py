@@ -355,402 +355,427 @@ def _kernel() -> Any:
     return run
 
 
-@lru_cache(maxsize=1)
-def _adaptive_kernel() -> Any:
-    """Compile (once per process; cached on disk) and return the step-size-controlled kernel."""
-    import numba
-    from scipy.integrate._ivp import dop853_coefficients as dc
+# The step-size-controlled kernel: module-level functions compiled by :func:`_adaptive_kernel`
+# on first use (numba imported only then), calling each other through the module's globals:
+# numba keys its on-disk cache of a closure by its pickled cells, and a compiled function
+# pickles with a per-process id, so a closure calling other compiled closures (as the
+# equal-step kernel of :func:`_kernel` does) is compiled anew in every process instead of
+# loaded from the cache. The tableau (DOP853's 12 stages, the FSAL stage and the 3 stages of its
+# dense output, Hairer et al. II.10, from :class:`scipy.integrate.DOP853`) is filled in before
+# the first compilation.
+_AK_A = np.zeros((16, 16))
+_AK_B = np.zeros(12)
+_AK_C = np.zeros(16)
+_AK_E3 = np.zeros(13)
+_AK_E5 = np.zeros(13)
+_AK_D = np.zeros((4, 16))
 
-    A = np.ascontiguousarray(dc.A, dtype=float)  # 16 × 16: the 12 stages, the FSAL stage, 3 dense stages
-    B = np.ascontiguousarray(dc.B, dtype=float)
-    C = np.ascontiguousarray(dc.C, dtype=float)
-    E3 = np.ascontiguousarray(dc.E3, dtype=float)
-    E5 = np.ascontiguousarray(dc.E5, dtype=float)
-    D = np.ascontiguousarray(dc.D, dtype=float)  # 4 × 16
-    jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
 
-    @jit
-    def hinge_f(z: float, k: float, y: float, tab: np.ndarray, inv_step: float, step: float, rmax: float) -> float:
-        # y ≤ 0: the linear hinge (k·z); else k·y·ψ(z/y), k here being n·K_n·y and y its inverse 1/y
-        if y <= 0.0:
-            return k * z
-        r = abs(z) * y
-        if r >= rmax:
-            return np.nan
-        i = int(r * inv_step)
-        t = r - i * step
-        psi = tab[i, 0] + t * (tab[i, 1] + t * (tab[i, 2] + t * tab[i, 3]))
-        return k * psi if z >= 0.0 else -k * psi
+def _ak_hinge_f(z: float, k: float, y: float, tab: np.ndarray, inv_step: float, step: float, rmax: float) -> float:
+    # y ≤ 0: the linear hinge (k·z); else k·y·ψ(z/y), k here being n·K_n·y and y its inverse 1/y
+    if y <= 0.0:
+        return k * z
+    r = abs(z) * y
+    if r >= rmax:
+        return np.nan
+    i = int(r * inv_step)
+    t = r - i * step
+    psi = tab[i, 0] + t * (tab[i, 1] + t * (tab[i, 2] + t * tab[i, 3]))
+    return k * psi if z >= 0.0 else -k * psi
 
-    @jit
-    def herm(z0: float, d0: float, z1: float, d1: float, dt: float) -> tuple[float, float]:
-        # largest |p| of the cubic Hermite interpolant over a step and where (0..1)
-        best = abs(z0)
-        arg = 0.0
-        if abs(z1) > best:
-            best = abs(z1)
-            arg = 1.0
-        qa = 6.0 * z0 + 3.0 * dt * d0 - 6.0 * z1 + 3.0 * dt * d1
-        qb = -6.0 * z0 - 4.0 * dt * d0 + 6.0 * z1 - 2.0 * dt * d1
-        qc = dt * d0
-        r0 = -1.0
-        r1 = -1.0
-        if abs(qa) > 1e-300:
-            disc = qb * qb - 4.0 * qa * qc
-            if disc >= 0.0:
-                sq = math.sqrt(disc)
-                r0 = (-qb - sq) / (2.0 * qa)
-                r1 = (-qb + sq) / (2.0 * qa)
-        elif abs(qb) > 1e-300:
-            r0 = -qc / qb
-        for q in range(2):
-            r = r0 if q == 0 else r1
-            if 0.0 < r < 1.0:
-                h00 = (1.0 + 2.0 * r) * (1.0 - r) ** 2
-                h10 = r * (1.0 - r) ** 2
-                h01 = r * r * (3.0 - 2.0 * r)
-                h11 = r * r * (r - 1.0)
-                p = h00 * z0 + h10 * dt * d0 + h01 * z1 + h11 * dt * d1
-                if abs(p) > best:
-                    best = abs(p)
-                    arg = r
-        return best, arg
 
-    @jit
-    def rhs(ti: float, x: float, u: float, sig: float, sx: float, sv: float, sa: float, sj: float, k: float,
-            y: float, c: float, m: float, fk: float, cv: float, tab: np.ndarray, inv_step: float, step: float,
-            rmax: float, K: np.ndarray, i: int) -> None:
-        xs = sx + ti * (sv + ti * (0.5 * sa + ti * sj / 6.0))
-        vs = sv + ti * (sa + 0.5 * sj * ti)
-        fh = hinge_f(xs - x, k, y, tab, inv_step, step, rmax)
-        K[i, 0] = u
-        K[i, 1] = (fh + c * (vs - u) - sig * fk - cv * u) * m
-        K[i, 2] = cv * u * u
+def _ak_herm(z0: float, d0: float, z1: float, d1: float, dt: float) -> tuple[float, float]:
+    # largest |p| of the cubic Hermite interpolant over a step and where (0..1)
+    best = abs(z0)
+    arg = 0.0
+    if abs(z1) > best:
+        best = abs(z1)
+        arg = 1.0
+    qa = 6.0 * z0 + 3.0 * dt * d0 - 6.0 * z1 + 3.0 * dt * d1
+    qb = -6.0 * z0 - 4.0 * dt * d0 + 6.0 * z1 - 2.0 * dt * d1
+    qc = dt * d0
+    r0 = -1.0
+    r1 = -1.0
+    if abs(qa) > 1e-300:
+        disc = qb * qb - 4.0 * qa * qc
+        if disc >= 0.0:
+            sq = math.sqrt(disc)
+            r0 = (-qb - sq) / (2.0 * qa)
+            r1 = (-qb + sq) / (2.0 * qa)
+    elif abs(qb) > 1e-300:
+        r0 = -qc / qb
+    for q in range(2):
+        r = r0 if q == 0 else r1
+        if 0.0 < r < 1.0:
+            h00 = (1.0 + 2.0 * r) * (1.0 - r) ** 2
+            h10 = r * (1.0 - r) ** 2
+            h01 = r * r * (3.0 - 2.0 * r)
+            h11 = r * r * (r - 1.0)
+            p = h00 * z0 + h10 * dt * d0 + h01 * z1 + h11 * dt * d1
+            if abs(p) > best:
+                best = abs(p)
+                arg = r
+    return best, arg
 
-    @jit
-    def stages(t: float, X: np.ndarray, tau: float, sig: float, sx: float, sv: float, sa: float, sj: float,
-               k: float, y: float, c: float, m: float, fk: float, cv: float, tab: np.ndarray, inv_step: float,
-               step: float, rmax: float, K: np.ndarray, lo: int, hi: int) -> None:
-        # stages lo..hi-1 of the extended tableau from the state X at t (K[0] given)
-        for i in range(lo, hi):
-            x = X[0]
-            u = X[1]
-            for j in range(i):
-                aij = A[i, j]
-                if aij != 0.0:
-                    x += tau * aij * K[j, 0]
-                    u += tau * aij * K[j, 1]
-            rhs(t + C[i] * tau, x, u, sig, sx, sv, sa, sj, k, y, c, m, fk, cv, tab, inv_step, step, rmax, K, i)
 
-    @jit
-    def dense(X: np.ndarray, Y: np.ndarray, tau: float, K: np.ndarray, F: np.ndarray) -> None:
-        # DOP853's dense output (Hairer et al., II.10; scipy's Dop853DenseOutput), K[13:16] computed
-        for q in range(3):
-            dy = Y[q] - X[q]
-            F[0, q] = dy
-            F[1, q] = tau * K[0, q] - dy
-            F[2, q] = 2.0 * dy - tau * (K[12, q] + K[0, q])
-            for r in range(4):
-                acc = 0.0
-                for j in range(16):
-                    acc += D[r, j] * K[j, q]
-                F[3 + r, q] = tau * acc
+def _ak_rhs(ti: float, x: float, u: float, sig: float, sx: float, sv: float, sa: float, sj: float, k: float,
+        y: float, c: float, m: float, fk: float, cv: float, tab: np.ndarray, inv_step: float, step: float,
+        rmax: float, K: np.ndarray, i: int) -> None:
+    xs = sx + ti * (sv + ti * (0.5 * sa + ti * sj / 6.0))
+    vs = sv + ti * (sa + 0.5 * sj * ti)
+    fh = _ak_hinge_f(xs - x, k, y, tab, inv_step, step, rmax)
+    K[i, 0] = u
+    K[i, 1] = (fh + c * (vs - u) - sig * fk - cv * u) * m
+    K[i, 2] = cv * u * u
 
-    @jit
-    def dense_at(X: np.ndarray, F: np.ndarray, th: float, q: int) -> float:
-        yv = 0.0
-        for i in range(7):
-            yv += F[6 - i, q]
-            if i % 2 == 0:
-                yv *= th
-            else:
-                yv *= 1.0 - th
-        return yv + X[q]
 
-    @jit
-    def run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.ndarray, fs: np.ndarray,
-            fk: np.ndarray, cv: np.ndarray, y: np.ndarray, w: np.ndarray, seg_t0: np.ndarray, seg_l: np.ndarray,
-            seg_x: np.ndarray, seg_v: np.ndarray, seg_a: np.ndarray, seg_j: np.ndarray, tab: np.ndarray,
-            step: float, rmax: float, h_grid: float, h_first: float, h_max: float, tol: float, n_cycles: int,
-            max_cycles: int, rtol: float, out: np.ndarray) -> None:
-        n = s.shape[0]
-        nseg = seg_t0.shape[1]
-        inv_step = 1.0 / step
-        K = np.zeros((16, 3))
-        F = np.zeros((7, 3))
-        X = np.zeros(3)
-        Y = np.zeros(3)
-        for row in range(n):
-            cc, fsr, fkr, cvr, wr = c[row], fs[row], fk[row], cv[row], w[row]
-            # hinge_f and rhs take n·K_n·y and 1/y (n·K_n and 0 for the linear hinge), and 1/m_f
-            yr = 1.0 / y[row] if y[row] > 0.0 else 0.0
-            kk = k[row] * y[row] if y[row] > 0.0 else k[row]
-            mm = 1.0 / m[row]
-            # error scales: the breakaway deflection at the bound's tangent (a lower bound) and its speed
-            zsc = fsr * mm / (wr * wr)
-            sc0 = tol * zsc
-            sc1 = tol * zsc * wr
-            tau_max = h_max / wr
-            tau_ctrl = h_first / wr
-            X[0] = 0.0
-            X[1] = 0.0
-            X[2] = 0.0
-            mode = 0.0
-            fsal = False
-            dist = 0.0
-            prev = 0.0
-            vprev = 0.0
-            bad = 0.0
-            this = 0.0
-            vthis = 0.0
+def _ak_stages(t: float, X: np.ndarray, tau: float, sig: float, sx: float, sv: float, sa: float, sj: float,
+           k: float, y: float, c: float, m: float, fk: float, cv: float, tab: np.ndarray, inv_step: float,
+           step: float, rmax: float, K: np.ndarray, lo: int, hi: int) -> None:
+    # stages lo..hi-1 of the extended tableau from the state X at t (K[0] given)
+    for i in range(lo, hi):
+        x = X[0]
+        u = X[1]
+        for j in range(i):
+            aij = _AK_A[i, j]
+            if aij != 0.0:
+                x += tau * aij * K[j, 0]
+                u += tau * aij * K[j, 1]
+        _ak_rhs(t + _AK_C[i] * tau, x, u, sig, sx, sv, sa, sj, k, y, c, m, fk, cv, tab, inv_step, step, rmax, K, i)
+
+
+def _ak_dense(X: np.ndarray, Y: np.ndarray, tau: float, K: np.ndarray, F: np.ndarray) -> None:
+    # DOP853's dense output (Hairer et al., II.10; scipy's Dop853DenseOutput), K[13:16] computed
+    for q in range(3):
+        dy = Y[q] - X[q]
+        F[0, q] = dy
+        F[1, q] = tau * K[0, q] - dy
+        F[2, q] = 2.0 * dy - tau * (K[12, q] + K[0, q])
+        for r in range(4):
+            acc = 0.0
+            for j in range(16):
+                acc += _AK_D[r, j] * K[j, q]
+            F[3 + r, q] = tau * acc
+
+
+def _ak_dense_at(X: np.ndarray, F: np.ndarray, th: float, q: int) -> float:
+    yv = 0.0
+    for i in range(7):
+        yv += F[6 - i, q]
+        if i % 2 == 0:
+            yv *= th
+        else:
+            yv *= 1.0 - th
+    return yv + X[q]
+
+
+def _ak_run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.ndarray, fs: np.ndarray,
+        fk: np.ndarray, cv: np.ndarray, y: np.ndarray, w: np.ndarray, seg_t0: np.ndarray, seg_l: np.ndarray,
+        seg_x: np.ndarray, seg_v: np.ndarray, seg_a: np.ndarray, seg_j: np.ndarray, tab: np.ndarray,
+        step: float, rmax: float, h_grid: float, h_first: float, h_max: float, tol: float, n_cycles: int,
+        max_cycles: int, rtol: float, out: np.ndarray) -> None:
+    n = s.shape[0]
+    nseg = seg_t0.shape[1]
+    inv_step = 1.0 / step
+    K = np.zeros((16, 3))
+    F = np.zeros((7, 3))
+    X = np.zeros(3)
+    Y = np.zeros(3)
+    for row in range(n):
+        cc, fsr, fkr, cvr, wr = c[row], fs[row], fk[row], cv[row], w[row]
+        # hinge_f and rhs take n·K_n·y and 1/y (n·K_n and 0 for the linear hinge), and 1/m_f
+        yr = 1.0 / y[row] if y[row] > 0.0 else 0.0
+        kk = k[row] * y[row] if y[row] > 0.0 else k[row]
+        mm = 1.0 / m[row]
+        # error scales: the breakaway deflection at the bound's tangent (a lower bound) and its speed
+        zsc = fsr * mm / (wr * wr)
+        sc0 = tol * zsc
+        sc1 = tol * zsc * wr
+        tau_max = h_max / wr
+        tau_ctrl = h_first / wr
+        X[0] = 0.0
+        X[1] = 0.0
+        X[2] = 0.0
+        mode = 0.0
+        fsal = False
+        dist = 0.0
+        prev = 0.0
+        vprev = 0.0
+        bad = 0.0
+        this = 0.0
+        vthis = 0.0
+        peak = 0.0
+        cyc = 0
+        nsteps = 0
+        while True:
+            d0 = dist
+            v0 = X[2]
             peak = 0.0
-            cyc = 0
-            nsteps = 0
-            while True:
-                d0 = dist
-                v0 = X[2]
-                peak = 0.0
-                for g in range(nseg):
-                    L = seg_l[row, g]
-                    if L <= 0.0:
-                        continue
-                    sx, sv, sa, sj = seg_x[row, g], seg_v[row, g], seg_a[row, g], seg_j[row, g]
-                    ng = max(1, int(math.ceil(wr * L / h_grid)))
-                    dtg = L / ng
-                    t = 0.0
-                    guard = 0
-                    while t < L and guard < 1000000:
-                        guard += 1
-                        if mode == 0.0:
-                            # stuck: the breakaway condition on the grid of ω·Δt = h_grid
-                            q = int(t / dtg) + 1
-                            tb = L if q >= ng else q * dtg
-                            if tb <= t:
-                                tb = L if q + 1 >= ng else (q + 1) * dtg
-                            xs = sx + tb * (sv + tb * (0.5 * sa + tb * sj / 6.0))
-                            vs = sv + tb * (sa + 0.5 * sj * tb)
-                            fb = hinge_f(xs - X[0], kk, yr, tab, inv_step, step, rmax) + cc * vs
-                            if not (abs(fb) > fsr):
-                                if fb != fb:
-                                    bad = 1.0
-                                te = tb
-                            else:
-                                sg = 1.0 if fb > 0.0 else -1.0
-                                lo = t
-                                hi = tb
-                                for _ in range(64):
-                                    mid = 0.5 * (lo + hi)
-                                    if mid <= lo or mid >= hi:
-                                        break
-                                    xs = sx + mid * (sv + mid * (0.5 * sa + mid * sj / 6.0))
-                                    vs = sv + mid * (sa + 0.5 * sj * mid)
-                                    if sg * (hinge_f(xs - X[0], kk, yr, tab, inv_step, step, rmax) + cc * vs) > fsr:
-                                        hi = mid
-                                    else:
-                                        lo = mid
-                                te = hi
-                                mode = sg
-                                fsal = False
-                                if tau_ctrl > h_first / wr:
-                                    tau_ctrl = h_first / wr
-                            # the deflection of a stuck frame is a cubic in t: Hermite is exact
-                            za = sx + t * (sv + t * (0.5 * sa + t * sj / 6.0)) - X[0]
-                            zda = sv + t * (sa + 0.5 * sj * t)
-                            zb = sx + te * (sv + te * (0.5 * sa + te * sj / 6.0)) - X[0]
-                            zdb = sv + te * (sa + 0.5 * sj * te)
-                            pz, _ = herm(za, zda, zb, zdb, te - t)
-                            if pz > peak:
-                                peak = pz
-                            t = te
-                            if bad != 0.0:
-                                break
-                            continue
-                        # sliding: one DOP853 step of controlled length
-                        tau = tau_ctrl
-                        if tau > tau_max:
-                            tau = tau_max
-                        last = False
-                        if t + tau >= L * (1.0 - 1e-13):
-                            tau = L - t
-                            last = True
-                        if not fsal:
-                            rhs(t, X[0], X[1], mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step,
-                                rmax, K, 0)
-                        stages(t, X, tau, mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step, rmax,
-                               K, 1, 12)
-                        for q in range(3):
-                            acc = 0.0
-                            for i in range(12):
-                                acc += B[i] * K[i, q]
-                            Y[q] = X[q] + tau * acc
-                        rhs(t + tau, Y[0], Y[1], mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step,
-                            rmax, K, 12)
-                        nsteps += 1
-                        e5a = 0.0
-                        e5b = 0.0
-                        e3a = 0.0
-                        e3b = 0.0
-                        for i in range(13):
-                            e5a += E5[i] * K[i, 0]
-                            e5b += E5[i] * K[i, 1]
-                            e3a += E3[i] * K[i, 0]
-                            e3b += E3[i] * K[i, 1]
-                        e5 = (e5a / sc0) ** 2 + (e5b / sc1) ** 2
-                        e3 = (e3a / sc0) ** 2 + (e3b / sc1) ** 2
-                        err = 0.0
-                        if e5 > 0.0 or e3 > 0.0:
-                            err = tau * e5 / math.sqrt((e5 + 0.01 * e3) * 2.0)
-                        if not (err <= 1.0):
-                            if err != err or Y[0] != Y[0]:
+            for g in range(nseg):
+                L = seg_l[row, g]
+                if L <= 0.0:
+                    continue
+                sx, sv, sa, sj = seg_x[row, g], seg_v[row, g], seg_a[row, g], seg_j[row, g]
+                ng = max(1, int(math.ceil(wr * L / h_grid)))
+                dtg = L / ng
+                t = 0.0
+                guard = 0
+                while t < L and guard < 1000000:
+                    guard += 1
+                    if mode == 0.0:
+                        # stuck: the breakaway condition on the grid of ω·Δt = h_grid
+                        q = int(t / dtg) + 1
+                        tb = L if q >= ng else q * dtg
+                        if tb <= t:
+                            tb = L if q + 1 >= ng else (q + 1) * dtg
+                        xs = sx + tb * (sv + tb * (0.5 * sa + tb * sj / 6.0))
+                        vs = sv + tb * (sa + 0.5 * sj * tb)
+                        fb = _ak_hinge_f(xs - X[0], kk, yr, tab, inv_step, step, rmax) + cc * vs
+                        if not (abs(fb) > fsr):
+                            if fb != fb:
                                 bad = 1.0
-                                break
-                            fac = 0.9 * err ** (-0.125)
-                            tau_ctrl = tau * (fac if fac > 0.2 else 0.2)
-                            fsal = True  # K[0] still belongs to (t, X)
-                            continue
-                        fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-0.125))
-                        if last:
-                            if tau * fac > tau_ctrl:
-                                tau_ctrl = tau * fac
+                            te = tb
                         else:
-                            tau_ctrl = tau * fac
-                        # a stop inside the step? also where the frame's speed dips through 0 between stages
-                        stop = not (mode * Y[1] > 0.0)
-                        dip = False
-                        if not stop:
-                            for i in range(1, 12):
-                                if mode * K[i, 0] <= 0.0:
-                                    dip = True
-                        have_dense = False
-                        th_hi = 1.0
-                        if stop or dip:
-                            stages(t, X, tau, mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step,
-                                   rmax, K, 13, 16)
-                            dense(X, Y, tau, K, F)
-                            have_dense = True
-                            if dip:  # sample the dense speed for a sign change
-                                for i in range(1, 33):
-                                    th = i / 32.0
-                                    if mode * dense_at(X, F, th, 1) <= 0.0:
-                                        stop = True
-                                        th_hi = th
-                                        break
-                        if stop:
-                            # ẋ_rf = 0 at θ*: Illinois regula falsi on the dense output
-                            a_ = 0.0
-                            fa = mode * X[1]
-                            b_ = th_hi
-                            fb2 = mode * (dense_at(X, F, b_, 1) if th_hi < 1.0 else Y[1])
-                            side = 0
-                            for _ in range(80):
-                                tc = (a_ * fb2 - b_ * fa) / (fb2 - fa)
-                                if not (tc > a_ and tc < b_):
-                                    tc = 0.5 * (a_ + b_)
-                                fc = mode * dense_at(X, F, tc, 1)
-                                if fc > 0.0:
-                                    a_ = tc
-                                    fa = fc
-                                    if side == -1:
-                                        fb2 *= 0.5
-                                    side = -1
-                                else:
-                                    b_ = tc
-                                    fb2 = fc
-                                    if side == 1:
-                                        fa *= 0.5
-                                    side = 1
-                                if b_ - a_ <= 1e-15 or fc == 0.0:
+                            sg = 1.0 if fb > 0.0 else -1.0
+                            lo = t
+                            hi = tb
+                            for _ in range(64):
+                                mid = 0.5 * (lo + hi)
+                                if mid <= lo or mid >= hi:
                                     break
-                            th_end = b_
-                            Y[0] = dense_at(X, F, th_end, 0)
-                            Y[2] = dense_at(X, F, th_end, 2)
-                            Y[1] = 0.0
-                        else:
-                            th_end = 1.0
-                        te = t + th_end * tau if th_end < 1.0 else (L if last else t + tau)
-                        if te > L:
-                            te = L
-                        # peak of |x_ws − x_rf| over the step: Hermite, refined on the dense output near a peak
+                                xs = sx + mid * (sv + mid * (0.5 * sa + mid * sj / 6.0))
+                                vs = sv + mid * (sa + 0.5 * sj * mid)
+                                if sg * (_ak_hinge_f(xs - X[0], kk, yr, tab, inv_step, step, rmax) + cc * vs) > fsr:
+                                    hi = mid
+                                else:
+                                    lo = mid
+                            te = hi
+                            mode = sg
+                            fsal = False
+                            if tau_ctrl > h_first / wr:
+                                tau_ctrl = h_first / wr
+                        # the deflection of a stuck frame is a cubic in t: Hermite is exact
                         za = sx + t * (sv + t * (0.5 * sa + t * sj / 6.0)) - X[0]
-                        zda = sv + t * (sa + 0.5 * sj * t) - X[1]
-                        zb = sx + te * (sv + te * (0.5 * sa + te * sj / 6.0)) - Y[0]
-                        zdb = sv + te * (sa + 0.5 * sj * te) - Y[1]
-                        pz, arg = herm(za, zda, zb, zdb, te - t)
+                        zda = sv + t * (sa + 0.5 * sj * t)
+                        zb = sx + te * (sv + te * (0.5 * sa + te * sj / 6.0)) - X[0]
+                        zdb = sv + te * (sa + 0.5 * sj * te)
+                        pz, _ = _ak_herm(za, zda, zb, zdb, te - t)
                         if pz > peak:
                             peak = pz
-                        if 0.0 < arg < 1.0 and pz >= 0.98 * peak:
-                            if not have_dense:
-                                stages(t, X, tau, mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step,
-                                       rmax, K, 13, 16)
-                                dense(X, Y, tau, K, F)
-                                have_dense = True
-                            # Newton on ż = ẋ_ws − ẋ_rf = 0 in θ of the dense output
-                            th = arg * (te - t) / tau
-                            for _ in range(6):
-                                tt = t + th * tau
-                                xf = dense_at(X, F, th, 0)
-                                uf = dense_at(X, F, th, 1)
-                                xs = sx + tt * (sv + tt * (0.5 * sa + tt * sj / 6.0))
-                                vs = sv + tt * (sa + 0.5 * sj * tt)
-                                as_ = sa + sj * tt
-                                fh = hinge_f(xs - xf, kk, yr, tab, inv_step, step, rmax)
-                                zz = abs(xs - xf)
-                                if zz > peak:
-                                    peak = zz
-                                gd = as_ - (fh + cc * (vs - uf) - mode * fkr - cvr * uf) * mm
-                                if gd == 0.0:
-                                    break
-                                dth = -(vs - uf) / gd / tau
-                                th2 = th + dth
-                                if th2 < 0.0:
-                                    th2 = 0.0
-                                if th2 > th_end:
-                                    th2 = th_end
-                                if abs(th2 - th) < 1e-14:
-                                    break
-                                th = th2
-                        dist += abs(Y[0] - X[0])
-                        X[0] = Y[0]
-                        X[1] = Y[1]
-                        X[2] = Y[2]
                         t = te
-                        if stop:
-                            mode = 0.0
-                            fsal = False
-                            xs = sx + t * (sv + t * (0.5 * sa + t * sj / 6.0))
-                            vs = sv + t * (sa + 0.5 * sj * t)
-                            fh = hinge_f(xs - X[0], kk, yr, tab, inv_step, step, rmax) + cc * vs
-                            if abs(fh) > fsr * (1.0 + 1e-12):
-                                mode = 1.0 if fh > 0.0 else -1.0
-                        else:
-                            # FSAL: the last stage is the next step's first (the right-hand side depends on the
-                            # stage's position and speed only, continuous across the kinks)
-                            for q in range(3):
-                                K[0, q] = K[12, q]
-                            fsal = True
-                        if X[0] != X[0]:
+                        if bad != 0.0:
+                            break
+                        continue
+                    # sliding: one DOP853 step of controlled length
+                    tau = tau_ctrl
+                    if tau > tau_max:
+                        tau = tau_max
+                    last = False
+                    if t + tau >= L * (1.0 - 1e-13):
+                        tau = L - t
+                        last = True
+                    if not fsal:
+                        _ak_rhs(t, X[0], X[1], mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step,
+                            rmax, K, 0)
+                    _ak_stages(t, X, tau, mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step, rmax,
+                           K, 1, 12)
+                    for q in range(3):
+                        acc = 0.0
+                        for i in range(12):
+                            acc += _AK_B[i] * K[i, q]
+                        Y[q] = X[q] + tau * acc
+                    _ak_rhs(t + tau, Y[0], Y[1], mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step,
+                        rmax, K, 12)
+                    nsteps += 1
+                    e5a = 0.0
+                    e5b = 0.0
+                    e3a = 0.0
+                    e3b = 0.0
+                    for i in range(13):
+                        e5a += _AK_E5[i] * K[i, 0]
+                        e5b += _AK_E5[i] * K[i, 1]
+                        e3a += _AK_E3[i] * K[i, 0]
+                        e3b += _AK_E3[i] * K[i, 1]
+                    e5 = (e5a / sc0) ** 2 + (e5b / sc1) ** 2
+                    e3 = (e3a / sc0) ** 2 + (e3b / sc1) ** 2
+                    err = 0.0
+                    if e5 > 0.0 or e3 > 0.0:
+                        err = tau * e5 / math.sqrt((e5 + 0.01 * e3) * 2.0)
+                    if not (err <= 1.0):
+                        if err != err or Y[0] != Y[0]:
                             bad = 1.0
                             break
-                    if bad != 0.0:
+                        fac = 0.9 * err ** (-0.125)
+                        tau_ctrl = tau * (fac if fac > 0.2 else 0.2)
+                        fsal = True  # K[0] still belongs to (t, X)
+                        continue
+                    fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-0.125))
+                    if last:
+                        if tau * fac > tau_ctrl:
+                            tau_ctrl = tau * fac
+                    else:
+                        tau_ctrl = tau * fac
+                    # a stop inside the step? also where the frame's speed dips through 0 between stages
+                    stop = not (mode * Y[1] > 0.0)
+                    dip = False
+                    if not stop:
+                        for i in range(1, 12):
+                            if mode * K[i, 0] <= 0.0:
+                                dip = True
+                    have_dense = False
+                    th_hi = 1.0
+                    if stop or dip:
+                        _ak_stages(t, X, tau, mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step,
+                               rmax, K, 13, 16)
+                        _ak_dense(X, Y, tau, K, F)
+                        have_dense = True
+                        if dip:  # sample the dense speed for a sign change
+                            for i in range(1, 33):
+                                th = i / 32.0
+                                if mode * _ak_dense_at(X, F, th, 1) <= 0.0:
+                                    stop = True
+                                    th_hi = th
+                                    break
+                    if stop:
+                        # ẋ_rf = 0 at θ*: Illinois regula falsi on the dense output
+                        a_ = 0.0
+                        fa = mode * X[1]
+                        b_ = th_hi
+                        fb2 = mode * (_ak_dense_at(X, F, b_, 1) if th_hi < 1.0 else Y[1])
+                        side = 0
+                        for _ in range(80):
+                            tc = (a_ * fb2 - b_ * fa) / (fb2 - fa)
+                            if not (tc > a_ and tc < b_):
+                                tc = 0.5 * (a_ + b_)
+                            fc = mode * _ak_dense_at(X, F, tc, 1)
+                            if fc > 0.0:
+                                a_ = tc
+                                fa = fc
+                                if side == -1:
+                                    fb2 *= 0.5
+                                side = -1
+                            else:
+                                b_ = tc
+                                fb2 = fc
+                                if side == 1:
+                                    fa *= 0.5
+                                side = 1
+                            if b_ - a_ <= 1e-15 or fc == 0.0:
+                                break
+                        th_end = b_
+                        Y[0] = _ak_dense_at(X, F, th_end, 0)
+                        Y[2] = _ak_dense_at(X, F, th_end, 2)
+                        Y[1] = 0.0
+                    else:
+                        th_end = 1.0
+                    te = t + th_end * tau if th_end < 1.0 else (L if last else t + tau)
+                    if te > L:
+                        te = L
+                    # peak of |x_ws − x_rf| over the step: Hermite, refined on the dense output near a peak
+                    za = sx + t * (sv + t * (0.5 * sa + t * sj / 6.0)) - X[0]
+                    zda = sv + t * (sa + 0.5 * sj * t) - X[1]
+                    zb = sx + te * (sv + te * (0.5 * sa + te * sj / 6.0)) - Y[0]
+                    zdb = sv + te * (sa + 0.5 * sj * te) - Y[1]
+                    pz, arg = _ak_herm(za, zda, zb, zdb, te - t)
+                    if pz > peak:
+                        peak = pz
+                    if 0.0 < arg < 1.0 and pz >= 0.98 * peak:
+                        if not have_dense:
+                            _ak_stages(t, X, tau, mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, inv_step, step,
+                                   rmax, K, 13, 16)
+                            _ak_dense(X, Y, tau, K, F)
+                            have_dense = True
+                        # Newton on ż = ẋ_ws − ẋ_rf = 0 in θ of the dense output
+                        th = arg * (te - t) / tau
+                        for _ in range(6):
+                            tt = t + th * tau
+                            xf = _ak_dense_at(X, F, th, 0)
+                            uf = _ak_dense_at(X, F, th, 1)
+                            xs = sx + tt * (sv + tt * (0.5 * sa + tt * sj / 6.0))
+                            vs = sv + tt * (sa + 0.5 * sj * tt)
+                            as_ = sa + sj * tt
+                            fh = _ak_hinge_f(xs - xf, kk, yr, tab, inv_step, step, rmax)
+                            zz = abs(xs - xf)
+                            if zz > peak:
+                                peak = zz
+                            gd = as_ - (fh + cc * (vs - uf) - mode * fkr - cvr * uf) * mm
+                            if gd == 0.0:
+                                break
+                            dth = -(vs - uf) / gd / tau
+                            th2 = th + dth
+                            if th2 < 0.0:
+                                th2 = 0.0
+                            if th2 > th_end:
+                                th2 = th_end
+                            if abs(th2 - th) < 1e-14:
+                                break
+                            th = th2
+                    dist += abs(Y[0] - X[0])
+                    X[0] = Y[0]
+                    X[1] = Y[1]
+                    X[2] = Y[2]
+                    t = te
+                    if stop:
+                        mode = 0.0
+                        fsal = False
+                        xs = sx + t * (sv + t * (0.5 * sa + t * sj / 6.0))
+                        vs = sv + t * (sa + 0.5 * sj * t)
+                        fh = _ak_hinge_f(xs - X[0], kk, yr, tab, inv_step, step, rmax) + cc * vs
+                        if abs(fh) > fsr * (1.0 + 1e-12):
+                            mode = 1.0 if fh > 0.0 else -1.0
+                    else:
+                        # FSAL: the last stage is the next step's first (the right-hand side depends on the
+                        # stage's position and speed only, continuous across the kinks)
+                        for q in range(3):
+                            K[0, q] = K[12, q]
+                        fsal = True
+                    if X[0] != X[0]:
+                        bad = 1.0
                         break
                 if bad != 0.0:
                     break
-                this = dist - d0
-                vthis = X[2] - v0
-                cyc += 1
-                err_c = abs(this - prev)
-                if cyc >= n_cycles and (err_c <= rtol * max(this, 1e-300) or cyc >= max_cycles):
-                    break
-                prev = this
-                vprev = vthis
-            out[row, 0] = 0.5 * (this + prev)
-            out[row, 1] = peak
-            out[row, 2] = abs(this - prev)
-            out[row, 3] = 0.5 * (vthis + vprev)
-            out[row, 4] = bad
-            out[row, 5] = nsteps
+            if bad != 0.0:
+                break
+            this = dist - d0
+            vthis = X[2] - v0
+            cyc += 1
+            err_c = abs(this - prev)
+            if cyc >= n_cycles and (err_c <= rtol * max(this, 1e-300) or cyc >= max_cycles):
+                break
+            prev = this
+            vprev = vthis
+        out[row, 0] = 0.5 * (this + prev)
+        out[row, 1] = peak
+        out[row, 2] = abs(this - prev)
+        out[row, 3] = 0.5 * (vthis + vprev)
+        out[row, 4] = bad
+        out[row, 5] = nsteps
 
-    return run
+
+_AK_NAMES = ("_ak_hinge_f", "_ak_herm", "_ak_rhs", "_ak_stages", "_ak_dense", "_ak_dense_at", "_ak_run")
+
+
+@lru_cache(maxsize=1)
+def _adaptive_kernel() -> Any:
+    """Compile (once per process; numba caches the machine code on disk) and return the kernel."""
+    import numba
+    from scipy.integrate import DOP853
+
+    g = globals()
+    A = np.zeros((16, 16))
+    A[:12, :12] = DOP853.A
+    A[12, :12] = DOP853.B
+    A[13:, :] = DOP853.A_EXTRA
+    g["_AK_A"] = np.ascontiguousarray(A)
+    g["_AK_B"] = np.ascontiguousarray(DOP853.B, dtype=float)
+    g["_AK_C"] = np.ascontiguousarray(np.concatenate([DOP853.C, [1.0], DOP853.C_EXTRA]), dtype=float)
+    g["_AK_E3"] = np.ascontiguousarray(DOP853.E3, dtype=float)
+    g["_AK_E5"] = np.ascontiguousarray(DOP853.E5, dtype=float)
+    g["_AK_D"] = np.ascontiguousarray(DOP853.D, dtype=float)
+    jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
+    for name in _AK_NAMES:  # callees first
+        g[name] = jit(g[name])
+    return g["_ak_run"]
 
 
 def integrate_rows(s: np.ndarray, v: np.ndarray, a: np.ndarray, dw: np.ndarray, tj: np.ndarray, k: np.ndarray,
