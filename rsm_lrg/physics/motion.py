@@ -205,7 +205,9 @@ def scurve_stroke(tau, stroke, velocity, acceleration, jerk_time):
     ts = s / vp + ta
     x1, v1, a1, F1 = _trap(tau, s, vp, a, ta, ts)
     x0, v0, a0, F0 = _trap(tau - tj, s, vp, a, ta, ts)
-    x = (F1 - F0) / tj
+    # the difference quotient of F cancels digits near the ends of the stroke: it may pass
+    # 0 or s by a few ulps of F (seen: 5e-14 m past s), so it is held to the stroke
+    x = np.clip((F1 - F0) / tj, 0.0, s)
     vel = (x1 - x0) / tj
     acc = (v1 - v0) / tj
     before, after = tau <= 0, tau >= ts + tj
