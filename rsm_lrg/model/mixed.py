@@ -332,7 +332,7 @@ def kr_test(parts: _KRParts, L: np.ndarray, beta: np.ndarray) -> tuple[float, fl
     scale = 1.0 if abs(df2 - 4.0) < 1e-2 else df2 * (1.0 - A2 / q) / (df2 - 2.0)
     Lb = L @ beta
     wald = float(Lb @ np.linalg.solve(L @ parts.phi_a @ L.T, Lb))
-    F = scale * wald / q
+    F = float(scale * wald / q)
     p = float(special.fdtrc(q, df2, F)) if df2 > 0 and math.isfinite(df2) and F >= 0 else math.nan
     return F, float(df2), p, q
 
