@@ -355,8 +355,9 @@ def diagnostics(result, *, alpha: float = 0.05, boxcox_rule: str = "likelihood")
     bc = None
     mixed = getattr(result, "mixed", None)
     if mixed is not None:  # REML: both residuals; the leverages and studentized ones are the whitened model's
-        table.insert(table.columns.get_loc("residual") + 1, "marginal_residual", mixed.marginal_residuals)
-        table.insert(table.columns.get_loc("residual") + 1, "conditional_residual", mixed.conditional_residuals)
+        at = list(table.columns).index("residual") + 1
+        table.insert(at, "marginal_residual", mixed.marginal_residuals)
+        table.insert(at, "conditional_residual", mixed.conditional_residuals)
         note = ("REML fit: 'residual' is the conditional residual y - Xb - Zu, 'marginal_residual' y - Xb; leverage, "
                 "studentized residuals, Cook's D and DFFITS are those of the whitened model V^-1/2 y = V^-1/2 X b + e; "
                 "no Box-Cox (its likelihood is the least-squares one)")

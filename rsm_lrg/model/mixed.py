@@ -38,10 +38,14 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from . import statistics as special
+
+if TYPE_CHECKING:
+    from .least_squares import Regression
 
 __all__ = ["MixedModel", "KRTest", "VarianceComponent", "fit_reml", "group_codes", "kr_test", "whiten",
            "ETA_LOG_RANGE", "CI_METHOD"]
@@ -137,7 +141,7 @@ class _Profile:
 
     eta: float
     m2l: float
-    reg: object
+    reg: Regression
 
 
 def _profile_at(eta: float, X: np.ndarray, y: np.ndarray, groups: _Groups, names: Sequence[str]) -> _Profile:
@@ -464,7 +468,7 @@ class MixedModel:
 
 
 def fit_reml(X: np.ndarray, y: np.ndarray, codes: np.ndarray, labels: Sequence, names: Sequence[str], *,
-             column: str, kind: str = "whole_plot") -> tuple[MixedModel, object]:
+             column: str, kind: str = "whole_plot") -> tuple[MixedModel, Regression]:
     """REML fit of ``y = X b + Z u + e`` (one random intercept per group ``codes``).
 
     Returns
