@@ -282,6 +282,11 @@ def _random_column(data: Any, response: str, whole_plot: str | None, random_bloc
     empty = np.asarray(empty_cells(data[col]), dtype=bool)
     if empty.any():
         raise ValueError(f"{what} column {quote_value(col)}, row {int(empty.argmax()) + 1}: is empty")
+    levels = data[col].unique()
+    if len(levels) < 2:
+        unit = "whole plots" if kind == "whole_plot" else "blocks"
+        raise ValueError(f"{what} column {quote_value(col)} has a single level ({quote_value(str(levels[0]))}); a "
+                         f"random {unit[:-1]} effect needs at least two {unit}")
     return col, kind, what
 
 

@@ -203,6 +203,12 @@ def test_refusals(kw, match):
         rsm_lrg.fit(d, BAL[0], factors=BAL[1], **kw)
 
 
+def test_a_single_whole_plot_is_refused():
+    d = pd.read_csv(R / "mixed_sp_bal.csv").assign(whole_plot="X")
+    with pytest.raises(ValueError, match=r"whole-plot column 'whole_plot' has a single level \('X'\)"):
+        rsm_lrg.fit(d, BAL[0], factors=BAL[1], whole_plot="whole_plot")
+
+
 def test_empty_whole_plot_cell_names_the_row():
     d = pd.read_csv(R / "mixed_sp_bal.csv")
     d.loc[6, "whole_plot"] = None
