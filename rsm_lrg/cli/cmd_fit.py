@@ -133,7 +133,7 @@ def run(args: argparse.Namespace) -> int:
         unsupported = [o for o in ("reduce", "transform", "diagnostics", "report", "whole_plot", "random_block")
                        if getattr(args, o, None)]
         if unsupported:
-            raise ValueError(f"{args.data}: --{unsupported[0]} is not available when fitting several files")
+            raise ValueError(f"{args.data}: --{unsupported[0].replace('_', '-')} is not available when fitting several files")
     data = many[0] if many is not None else read_input(args)
     with about_file(args.data), _about_files(many, args):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=model_spec(args),

@@ -99,7 +99,8 @@ class FitResult:
     vif, actual``), ``anova`` (Table 5 layout), ``statistics``, ``stationary_point``,
     ``fitted``, ``residuals``, ``hat``, ``cov_unscaled``, ``sigma2``, ``df_resid``,
     ``pure_error``, ``block_effects``, ``actual_coefficients``, ``actual_std_errors``,
-    ``term_vif``, ``notes``, ``actual_solution``, ``design_matrix``, ``ols`` (statsmodels, built lazily).
+    ``term_vif``, ``notes``, ``actual_solution``, ``design_matrix``, ``ols`` (statsmodels, built lazily),
+    ``tests`` (the Kenward–Roger tests of a REML fit).
     """
 
     response: str

@@ -91,3 +91,10 @@ def test_too_few_whole_plots_exit_2(tmp_path, capsys):
     bad.write_text("\n".join(lines) + "\n")
     assert main(["fit", str(bad), "--response", "wear_um", "--whole-plot", "whole_plot"]) == 2
     assert "6 whole plots cannot estimate the 6 whole-plot terms" in _err(capsys)
+
+
+def test_whole_plot_over_several_files_exits_2(tmp_path, capsys):
+    for name in ("a.csv", "b.csv"):
+        (tmp_path / name).write_text(Path(SP).read_text())
+    assert main(["fit", str(tmp_path), "--response", "wear_um", "--whole-plot", "whole_plot"]) == 2
+    assert "--whole-plot is not available when fitting several files" in _err(capsys)
