@@ -325,15 +325,23 @@ def kr_test(parts: _KRParts, L: np.ndarray, beta: np.ndarray) -> tuple[float, fl
             e = 1.0 if i == j else 2.0
             A1 += e * W[i, j] * float(np.trace(us[i])) * float(np.trace(us[j]))
             A2 += e * W[i, j] * float(np.sum(us[i] * us[j].T))
-    B = (A1 + 6.0 * A2) / (2.0 * q)
-    g = ((q + 1) * A1 - (q + 4) * A2) / ((q + 2) * A2)
-    den = 3.0 * q + 2.0 * (1.0 - g)
-    c1, c2, c3 = g / den, (q - g) / den, (q + 2 - g) / den
-    V0, V1, V2 = 1.0 + c1 * B, 1.0 - c2 * B, 1.0 - c3 * B
-    V0 = 0.0 if abs(V0) < 1e-10 else V0
-    rho = (1.0 / q) * _div_zero(1.0 - A2 / q, V1) ** 2 * V0 / V2
-    df2 = 4.0 + (q + 2.0) / (q * rho - 1.0)
-    scale = 1.0 if abs(df2 - 4.0) < 1e-2 else df2 * (1.0 - A2 / q) / (df2 - 2.0)
+    if q == 1:
+        # one df: A1 = A2 = A (u is of rank one), so g = -1, c1 = -1/7, c2 = 2/7, c3 = 4/7,
+        # V1 = 1 - A = 1 - A2/q and pbkrtest's formulas reduce exactly to den df = 2/A and
+        # F scaling 1; written so, since (1 - A2/q)/V1 is 0/0 in rounding when A is near 1
+        # (den df near 2, e.g. a balanced split-plot with 2 whole-plot error df)
+        df2 = 2.0 / A2 if A2 > 0 else math.inf
+        scale = 1.0
+    else:
+        B = (A1 + 6.0 * A2) / (2.0 * q)
+        g = ((q + 1) * A1 - (q + 4) * A2) / ((q + 2) * A2)
+        den = 3.0 * q + 2.0 * (1.0 - g)
+        c1, c2, c3 = g / den, (q - g) / den, (q + 2 - g) / den
+        V0, V1, V2 = 1.0 + c1 * B, 1.0 - c2 * B, 1.0 - c3 * B
+        V0 = 0.0 if abs(V0) < 1e-10 else V0
+        rho = (1.0 / q) * _div_zero(1.0 - A2 / q, V1) ** 2 * V0 / V2
+        df2 = 4.0 + (q + 2.0) / (q * rho - 1.0)
+        scale = 1.0 if abs(df2 - 2.0) < 1e-2 else df2 * (1.0 - A2 / q) / (df2 - 2.0)
     Lb = L @ beta
     wald = float(Lb @ np.linalg.solve(L @ parts.phi_a @ L.T, Lb))
     F = float(scale * wald / q)
