@@ -505,6 +505,10 @@ def fit_reml(X: np.ndarray, y: np.ndarray, codes: np.ndarray, labels: Sequence, 
     reg = reg.second_pass(lambda: ((Xw[s:s + CHUNK_ROWS], yw[s:s + CHUNK_ROWS]) for s in range(0, n, CHUNK_ROWS)))
     reg = replace(reg, shift=c, intercept=ones)  # params: b[0] + c (the whitened intercept column fits y - c)
     s2 = float(reg.sigma2)
+    spread = float(np.sum((y - np.mean(y)) ** 2))
+    if not (math.isfinite(s2) and s2 * (n - p) > 1e-20 * spread):  # residual RMS at round-off of the spread
+        raise ValueError(f"the model fits the data exactly within every {'whole plot' if kind == 'whole_plot' else 'block'}"
+                         " (no residual variance): REML has nothing to estimate the variance components from")
     beta = np.asarray(reg.params, dtype=float)
     parts = _kr_parts(X, groups, eta * s2, s2)
     mm = MixedModel(column=column, kind=kind, codes=np.asarray(codes, dtype=int), labels=tuple(labels), eta=float(eta),

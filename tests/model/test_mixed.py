@@ -233,6 +233,13 @@ def test_one_run_whole_plots_name_the_plot():
         rsm_lrg.fit(d, BAL[0], factors=BAL[1], model="linear", whole_plot="whole_plot")
 
 
+def test_exact_fit_is_refused():
+    d = pd.read_csv(R / "mixed_sp_bal.csv")
+    d[BAL[0]] = 3.0 + d.temp_c / 100 - 2 * d.speed_m_s  # a linear response without error
+    with pytest.raises(ValueError, match="fits the data exactly"):
+        rsm_lrg.fit(d, BAL[0], factors=BAL[1], model="linear", whole_plot="whole_plot")
+
+
 def test_group_codes_keep_first_appearance():
     codes, labels = group_codes(["b", "a", "b", "c"])
     assert codes.tolist() == [0, 1, 0, 2] and labels == ("b", "a", "c")
