@@ -270,6 +270,27 @@ def add_block_option(p: argparse.ArgumentParser, role: str = "effects sum to zer
     p.add_argument("--block", metavar="COL", default=None, help=f"block column ({role})")
 
 
+def add_random_effect_options(p: argparse.ArgumentParser) -> None:
+    """``--whole-plot COL`` and ``--random-block COL``: a random intercept, fitted by REML with
+    Kenward-Roger tests (:mod:`rsm_lrg.model.mixed`)."""
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--whole-plot", metavar="COL", default=None,
+                   help="whole-plot column of a split-plot experiment: a random intercept per whole plot, fitted by "
+                        "REML with Kenward-Roger F tests")
+    g.add_argument("--random-block", metavar="COL", default=None,
+                   help="block column whose blocks are a random intercept (REML, Kenward-Roger), not fixed effects")
+
+
+def random_effect(args: argparse.Namespace) -> dict:
+    """The ``whole_plot=``/``random_block=`` keyword of :func:`rsm_lrg.fit` from the options."""
+    out = {}
+    if getattr(args, "whole_plot", None) is not None:
+        out["whole_plot"] = args.whole_plot
+    if getattr(args, "random_block", None) is not None:
+        out["random_block"] = args.random_block
+    return out
+
+
 def add_data_response(parser: argparse.ArgumentParser) -> None:
     """DATA.csv (the runs) and ``--response COL``: what every analysis command reads."""
     parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each (CSV, .xlsx, .parquet or - for stdin)")

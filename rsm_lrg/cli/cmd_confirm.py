@@ -15,6 +15,7 @@ from ._common import (
     add_json,
     add_model_option,
     add_model_refinements,
+    add_random_effect_options,
 )
 
 NAME = "confirm"
@@ -45,6 +46,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_component_option(parser)
     add_block_option(parser, "prediction for the average block")
+    add_random_effect_options(parser)
     add_model_option(parser, FIT_MODELS)
     add_model_refinements(parser)
     add_json(parser)
@@ -74,14 +76,14 @@ def _check_at(settings) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ..optimize.confirm import confirm
-    from ._common import model_spec, print_notes, print_summary_or_json, read_input
+    from ._common import model_spec, print_notes, print_summary_or_json, random_effect, read_input
 
     _check_at(args.at)
     spec = model_spec(args)
     data = read_input(args)
     with about_file(args.data):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=spec,
-                     components=args.component)
+                     components=args.component, **random_effect(args))
     extra = {"reduction": result.reduction.to_dict()} if result.reduction is not None else {}
     try:  # the settings are an option: an error names --at, not the data file
         from ..optimize.confirm import parse_settings

@@ -12,6 +12,7 @@ from ._common import (
     add_json,
     add_model_inputs,
     add_model_refinements,
+    add_random_effect_options,
     model_spec,
     print_notes,
 )
@@ -28,6 +29,7 @@ DESCRIPTION = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_model_inputs(parser)
+    add_random_effect_options(parser)
     add_model_refinements(parser)
     parser.add_argument("--diagnostics", action="store_true",
                         help="also print per-run diagnostics and the Box-Cox recommendation (JSON key 'diagnostics')")
@@ -119,7 +121,7 @@ def run(args: argparse.Namespace) -> int:
     _one_blas_thread(str(args.data))
     from ..io import dump_json
     from ..model import fit
-    from ._common import read_input
+    from ._common import random_effect, read_input
 
     model_spec(args)  # a bad --model/--terms/--transform is named before any data is read
     if args.component and args.report:
@@ -128,13 +130,14 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--report: the report of a mixture model (ternary plots, trace plot) is not available yet")
     many = _many_files(str(args.data))  # a directory or glob: fitted partition by partition (Dask)
     if many is not None:
-        unsupported = [o for o in ("reduce", "transform", "diagnostics", "report") if getattr(args, o, None)]
+        unsupported = [o for o in ("reduce", "transform", "diagnostics", "report", "whole_plot", "random_block")
+                       if getattr(args, o, None)]
         if unsupported:
-            raise ValueError(f"{args.data}: --{unsupported[0]} is not available when fitting several files")
+            raise ValueError(f"{args.data}: --{unsupported[0].replace('_', '-')} is not available when fitting several files")
     data = many[0] if many is not None else read_input(args)
     with about_file(args.data), _about_files(many, args):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=model_spec(args),
-                     components=args.component)
+                     components=args.component, **random_effect(args))
         extra: dict = {}
         if args.diagnostics:
             diag = result.diagnostics(boxcox_rule=args.boxcox_rule)

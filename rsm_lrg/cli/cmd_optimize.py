@@ -15,7 +15,9 @@ from ._common import (
     add_goal_options,
     add_json,
     add_model_refinements,
+    add_random_effect_options,
     add_reader_options,
+    random_effect,
 )
 
 NAME = "optimize"
@@ -52,6 +54,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "\"velocity_m_s**2/acceleration_m_s2 <= stroke_m\" or \"0.5*A + B <= 1.2\" "
                              "(repeatable; with several responses the desirability optimum satisfies them)")
     add_block_option(parser, "optimum for the average block")
+    add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
     add_json(parser)
     add_force(parser)
@@ -81,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
     parse_goal(args.goal)  # a bad goal fails before any work
     data = read_input(args)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=specs[0])
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=specs[0], **random_effect(args))
         with _constraint_errors(args.constraint):
             best = optimize(result, goal=args.goal, bounds=args.bound, constraints=args.constraint)
     print_notes(result.input_notes)
@@ -132,14 +135,16 @@ def _multi(args) -> int:
         from ..factors import COLUMNS_LEFT_OUT, choose_factors
 
         # one factor space for every response (no response is a factor of another)
-        choice = choose_factors(data, args.factor, exclude=list(args.response) + ([args.block] if args.block else []))
+        choice = choose_factors(data, args.factor, exclude=list(args.response) + ([args.block] if args.block else [])
+                                + list(random_effect(args).values()))
         notes = list(choice.notes)
         fits = {}
         models = {}
         for i, r in enumerate(args.response):
             opts = response_options(args, i)
             with about_response(r, n > 1):
-                fits[r] = fit(data, r, factors=choice.space, block=args.block, model=model_spec(opts))
+                fits[r] = fit(data, r, factors=choice.space, block=args.block, model=model_spec(opts),
+                              **random_effect(args))
             models[r] = fits[r].label
             # the choice's notes cover the columns; each fit adds its runs left out
             fit_notes = fits[r].input_notes

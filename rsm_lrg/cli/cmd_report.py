@@ -13,8 +13,10 @@ from ._common import (
     add_force,
     add_goal_options,
     add_model_refinements,
+    add_random_effect_options,
     add_reader_options,
     print_notes,
+    random_effect,
 )
 
 NAME = "report"
@@ -43,6 +45,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_component_option(parser)
     add_block_option(parser)
+    add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
     add_goal_options(parser,
                      goal_help="goal of the response it follows (several listed together: in --response order; "
@@ -121,12 +124,13 @@ def run(args: argparse.Namespace) -> int:
         factors = args.factor
         notes = []
         if n > 1:  # one factor space for every response (no response is a factor of another)
-            choice = choose_factors(data, args.factor, exclude=responses + ([args.block] if args.block else []))
+            choice = choose_factors(data, args.factor, exclude=responses + ([args.block] if args.block else [])
+                                    + list(random_effect(args).values()))
             factors, notes = choice.space, list(choice.notes)
         fits = {}
         for i, r in enumerate(responses):
             with about_response(r, n > 1):
-                fits[r] = fit(data, r, factors=factors, block=args.block, model=specs[i])
+                fits[r] = fit(data, r, factors=factors, block=args.block, model=specs[i], **random_effect(args))
             fit_notes = fits[r].input_notes
             notes += [(f"{r}: {x}" if n > 1 else x) for x in fit_notes
                       if x not in notes and (n == 1 or getattr(x, "kind", "") != COLUMNS_LEFT_OUT)]

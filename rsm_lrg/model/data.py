@@ -68,10 +68,16 @@ class PreparedData:
     notes: tuple
 
 
-def _columns(data) -> str:
+def columns_text(data) -> str:
+    """The column names of ``data`` for an error message (at most 30, long names cut)."""
     cols = [str(c) for c in data.columns]
     shown = ", ".join(c if len(c) <= 40 else c[:40] + "…" for c in cols[:30])
     return shown + (f" and {len(cols) - 30} more" if len(cols) > 30 else "")
+
+
+def empty_cells(col) -> np.ndarray:
+    """Mask of the empty cells of a column: missing, or text of blanks only."""
+    return _empty_cells(col)
 
 
 def _empty_cells(col) -> np.ndarray:
@@ -111,9 +117,9 @@ def _rows(rows) -> str:
 def check_response_block(data, response: str, block: str | None) -> None:
     """The response and block columns are in ``data`` (a pandas or Dask DataFrame) and differ."""
     if response not in data.columns:
-        raise ValueError(f"response column {quote_value(str(response))} not found (columns: {_columns(data)})")
+        raise ValueError(f"response column {quote_value(str(response))} not found (columns: {columns_text(data)})")
     if block is not None and block not in data.columns:
-        raise ValueError(f"block column {quote_value(str(block))} not found (columns: {_columns(data)})")
+        raise ValueError(f"block column {quote_value(str(block))} not found (columns: {columns_text(data)})")
     if block is not None and block == response:
         raise ValueError(f"column {quote_value(str(response))} cannot be both the response and the block")
 

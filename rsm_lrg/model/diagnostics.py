@@ -353,7 +353,15 @@ def diagnostics(result, *, alpha: float = 0.05, boxcox_rule: str = "likelihood")
     table["flagged"] = table[["flag_outlier", "flag_leverage", "flag_cooks", "flag_dffits"]].any(axis=1)
     note = ""
     bc = None
-    if np.all(box_cox_response(result) > 0) and nu > 0:
+    mixed = getattr(result, "mixed", None)
+    if mixed is not None:  # REML: both residuals; the leverages and studentized ones are the whitened model's
+        at = list(table.columns).index("residual") + 1
+        table.insert(at, "marginal_residual", mixed.marginal_residuals)
+        table.insert(at, "conditional_residual", mixed.conditional_residuals)
+        note = ("REML fit: 'residual' is the conditional residual y - Xb - Zu, 'marginal_residual' y - Xb; leverage, "
+                "studentized residuals, Cook's D and DFFITS are those of the whitened model V^-1/2 y = V^-1/2 X b + e; "
+                "no Box-Cox (its likelihood is the least-squares one)")
+    elif np.all(box_cox_response(result) > 0) and nu > 0:
         bc = box_cox(result, rule=boxcox_rule)
     else:
         note = ("no Box-Cox plot: the response has values <= 0" if nu > 0

@@ -40,7 +40,8 @@ __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual
 
 def fit(data: Any, response: str, factors: Any = None, block: str | None = None, model: Any = "quadratic", *,
         terms: Any = None, intercept: bool = True, transform: Any = None, transform_constant: float = 0.0,
-        reduce: Any = None, chunk_rows: int = CHUNK_ROWS, components: Any = None) -> FitResult:
+        reduce: Any = None, chunk_rows: int = CHUNK_ROWS, components: Any = None, whole_plot: str | None = None,
+        random_block: str | None = None) -> FitResult:
     """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
 
     Parameters
@@ -93,6 +94,15 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
         ``terms``: fitted without an intercept on L-pseudo-components, the ANOVA and R²
         about the mean (:mod:`rsm_lrg.model.mixture`). Every row must sum to the same
         total within 1e-6 relative.
+    whole_plot : str, optional
+        Whole-plot column of a split-plot experiment: the model gets a random intercept per
+        whole plot and is fitted by REML (:mod:`rsm_lrg.model.mixed`); the result's
+        ``mixed`` holds the variance components and Kenward–Roger tests, its coefficients
+        and standard errors are the GLS ones. ``reduce`` then eliminates by the
+        Kenward–Roger p-values (hierarchy kept).
+    random_block : str, optional
+        Block column whose blocks are a random intercept (the same REML machinery; the
+        variance component is named ``"block"``). Not with ``block``.
 
     Returns
     -------
@@ -118,6 +128,10 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
         from .dask_fit import fit_dask
 
         return fit_dask(data, response, factors=factors, block=block, spec=spec, chunk_rows=chunk_rows)
+    if whole_plot is not None or random_block is not None:
+        if is_dask(data):
+            raise SpecError("whole_plot", "a REML fit is made from one in-memory table, not several files")
+        return _fit_mixed(data, response, factors, block, spec, whole_plot, random_block, components)
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
     if components is not None or spec.mixture:
@@ -242,6 +256,130 @@ def _mixture_terms(spec: ModelSpec, space: Any, n: int, settings: Any, hint: str
                          f"components{'' if q == len(space) else ' and ' + str(len(space) - q) + ' process factors'})"
                          f"{hint}")
     return terms
+
+
+def _random_column(data: Any, response: str, whole_plot: str | None, random_block: str | None,
+                   block: str | None) -> tuple[str, str, str]:
+    """``(column, kind, what)`` of the random intercept, checked on every row (exists, not the
+    response or the block, no empty cell)."""
+    import numpy as np
+
+    from ..factors import quote_value
+    from .data import columns_text, empty_cells
+
+    if whole_plot is not None and random_block is not None:
+        raise SpecError("random_block", "give a whole-plot column or a random block column, not both")
+    col, kind, what, option = ((whole_plot, "whole_plot", "whole-plot", "whole_plot") if whole_plot is not None
+                               else (random_block, "block", "random block", "random_block"))
+    col = str(col)
+    if block is not None:
+        raise SpecError("block", f"fixed blocks together with a {what} column are not available (give the blocks as "
+                                 "random_block)")
+    if col not in data.columns:
+        raise ValueError(f"{what} column {quote_value(col)} not found (columns: {columns_text(data)})")
+    if col == response:
+        raise ValueError(f"column {quote_value(col)} cannot be both the response and the {what} column")
+    empty = np.asarray(empty_cells(data[col]), dtype=bool)
+    if empty.any():
+        raise ValueError(f"{what} column {quote_value(col)}, row {int(empty.argmax()) + 1}: is empty")
+    levels = data[col].unique()
+    if len(levels) < 2:
+        unit = "whole plots" if kind == "whole_plot" else "blocks"
+        raise ValueError(f"{what} column {quote_value(col)} has a single level ({quote_value(str(levels[0]))}); a "
+                         f"random {unit[:-1]} effect needs at least two {unit}")
+    return col, kind, what
+
+
+def _fit_mixed(data: Any, response: str, factors: Any, block: str | None, spec: ModelSpec, whole_plot: str | None,
+               random_block: str | None, components: Any) -> FitResult:
+    """A REML fit with one random intercept (:mod:`rsm_lrg.model.mixed`), the reduction (if
+    asked) by Kenward–Roger p-values."""
+    import pandas as pd
+
+    if not isinstance(data, pd.DataFrame):
+        raise TypeError("data must be a pandas DataFrame")
+    if components is not None or spec.mixture:
+        raise SpecError("model", "a mixture model with a random whole-plot or block effect is not available yet")
+    col, kind, what = _random_column(data, response, whole_plot, random_block, block)
+    inp = model_inputs(data, response, factors, col, transform=spec.transform, origin=not spec.intercept)
+    from dataclasses import replace
+
+    labels = inp.prep.data[col].tolist()
+    inp = replace(inp, block=None, bcodes=None, bkeys=None, blevels=None)
+    reduction = None
+    if spec.reduce is not None:
+        from .mixed_reduce import reduce_mixed
+
+        if spec.reduce.criterion != "p":
+            raise SpecError("reduce", "a REML fit is reduced by the Kenward-Roger p-values (criterion 'p'), "
+                                      f"not {spec.reduce.criterion!r}")
+        reduction = reduce_mixed(lambda sp: _fit_mixed_inputs(inp, response, sp, labels, col, kind, what), spec,
+                                 inp.space)
+        spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept") or None)
+        if spec.terms is None:
+            raise ValueError("backward elimination removed every term: no factor explains the response "
+                             f"(alpha_out {reduction.alpha_out:g})")
+    return _fit_mixed_inputs(inp, response, spec, labels, col, kind, what, reduction=reduction)
+
+
+def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: list, col: str, kind: str, what: str,
+                      reduction: Any = None) -> FitResult:
+    """The REML fit of checked inputs to ``spec``'s terms (estimability checked first)."""
+    import numpy as np
+
+    from .mixed import fit_reml, group_codes
+
+    space, y, hint, n = inp.space, inp.y, inp.hint, inp.n
+    model = spec.order
+    if spec.terms is None:
+        try:
+            check_model_size(n, len(space), model, 0, categoric=space.categoric)
+        except ValueError as exc:
+            raise ValueError(f"{exc}{hint}") from None
+        terms = tuple(model_terms(space.letters, model, space.categoric))
+    else:
+        try:
+            terms = chosen_terms(spec.terms, space.letters, space.categoric, intercept=spec.intercept)
+        except ValueError as exc:
+            raise SpecError("terms", str(exc)) from None
+    col_names = inp.column_names(terms)
+    p = len(col_names)
+    what_model = f"the {model} model" if spec.terms is None else "the model"
+    if n < p:
+        raise ValueError(f"{n} runs cannot fit {p} coefficients ({what_model} in {len(space)} factors){hint}")
+    codes, glabels = group_codes(labels)
+    G = len(glabels)
+    X = inp.rows(terms)
+    gsum = np.zeros((G, p))
+    np.add.at(gsum, codes, X)
+    m = np.bincount(codes, minlength=G).astype(float)
+    within = X - (gsum / m[:, None])[codes]
+    scale = np.maximum(np.abs(X).max(axis=0), 1.0)
+    constant = np.all(np.abs(within) <= 1e-12 * scale, axis=0)  # the group-level (whole-plot) columns
+    group_cols = [col_names[j] for j in np.flatnonzero(constant)]
+    unit = "whole plots" if kind == "whole_plot" else "blocks"
+    if len(group_cols) >= G:
+        raise ValueError(f"{col!r}: {G} {unit} cannot estimate the {len(group_cols)} {what} terms "
+                         f"({', '.join(group_cols)}) and their variance: the model needs at least "
+                         f"{len(group_cols) + 1} {unit}")
+    rank_within = int(np.linalg.matrix_rank(within[:, ~constant])) if (~constant).any() else 0
+    if n - G - rank_within <= 0:
+        singles = [str(glabels[i]) for i in np.flatnonzero(m == 1)]
+        where = (f"{what.split()[-1] if kind == 'block' else 'whole plot'} {singles[0]!r} has one run"
+                 if singles else f"the {unit} are too small")
+        raise ValueError(f"{col!r}: {where} and the model needs more: {n} runs in {G} {unit} leave no degree of "
+                         f"freedom for the residual variance within {unit} after the {rank_within} within-{unit[:-1]} "
+                         "model columns")
+    from .least_squares import least_squares
+
+    least_squares(X, y, col_names).require_full_rank(f"{model} model" if spec.terms is None else "model")
+    mm, ls = fit_reml(X, y, codes, glabels, col_names, column=col, kind=kind)
+    pe = pure_error(inp.settings, y - float(np.mean(y)), None)
+    prep = inp.prep
+    return assemble(spec=spec, response=response, block=None, space=space, terms=terms, col_names=col_names,
+                    ls=ls, pe=pe, bkeys=None, blevels=None, data=prep.data.copy(), coded=inp.coded, y=y,
+                    y_response=inp.y_response, input_notes=prep.notes, omitted_rows=prep.omitted_rows,
+                    omitted_data=prep.omitted_data, reduction=reduction, mixed=mm)
 
 
 def fit_transformed(data: Any, response: str, transform: Any, *, constant: float = 0.0, **fit_kwargs: Any) -> FitResult:

@@ -85,12 +85,22 @@ class FitResult:
         1-based data rows left out because their response cell is empty.
     reduction : Reduction or None
         The backward elimination that chose the terms.
+    mixed : MixedModel or None
+        The mixed-model part of a REML fit (``fit(..., whole_plot=COL)`` or
+        ``random_block=COL``; :mod:`rsm_lrg.model.mixed`): variance components, Kenward–Roger
+        tests, BLUPs. ``least_squares`` is then the regression core of the *whitened* data
+        (``V^-1/2 X``, ``V^-1/2 y`` at the REML variance ratio), so coefficients, their
+        covariance and ``sigma2`` are the GLS ones; ``fitted`` is ``X b`` (marginal),
+        ``residuals`` the conditional residuals ``y - X b - Z u``, ``hat`` the leverages of the
+        whitened model; the ANOVA holds the Kenward–Roger tests (no sums of squares) and
+        PRESS, R² and lack of fit are not computed (NaN / none).
 
     Derived (cached): ``coefficients`` (columns ``coded, std_error, t, p, ci_low, ci_high,
     vif, actual``), ``anova`` (Table 5 layout), ``statistics``, ``stationary_point``,
     ``fitted``, ``residuals``, ``hat``, ``cov_unscaled``, ``sigma2``, ``df_resid``,
     ``pure_error``, ``block_effects``, ``actual_coefficients``, ``actual_std_errors``,
-    ``term_vif``, ``notes``, ``actual_solution``, ``design_matrix``, ``ols`` (statsmodels, built lazily).
+    ``term_vif``, ``notes``, ``actual_solution``, ``design_matrix``, ``ols`` (statsmodels, built lazily),
+    ``tests`` (the Kenward–Roger tests of a REML fit).
     """
 
     response: str
@@ -111,6 +121,7 @@ class FitResult:
     omitted_rows: tuple = field(default=(), repr=False)
     omitted_data: Any = field(default=None, repr=False)
     reduction: Any = field(default=None, repr=False)
+    mixed: Any = field(default=None, repr=False)
 
     # -- what the regression core says ------------------------------------------------
     @property
@@ -127,12 +138,19 @@ class FitResult:
 
     @property
     def fitted(self) -> np.ndarray | None:
-        """ŷ on the model's scale (None for a Dask fit, which keeps no per-run arrays)."""
+        """ŷ on the model's scale (None for a Dask fit, which keeps no per-run arrays); for a
+        REML fit the conditional ``X b + Z u`` (BLUPs u; nlme's default), so that
+        ``y = fitted + residuals``; the marginal ``X b`` is ``mixed.marginal_fitted``."""
+        if self.mixed is not None:
+            return self.mixed.conditional_fitted
         return self.least_squares.fitted
 
     @property
     def residuals(self) -> np.ndarray | None:
-        """e = y - ŷ on the model's scale (None for a Dask fit)."""
+        """e = y - ŷ on the model's scale (None for a Dask fit); for a REML fit the
+        conditional residuals ``y - X b - Z u`` (the estimated within-group errors)."""
+        if self.mixed is not None:
+            return self.mixed.conditional_residuals
         return self.least_squares.residuals
 
     @property
@@ -156,8 +174,22 @@ class FitResult:
 
     @cached_property
     def pure_error(self) -> PureError | None:
-        """Pure error (R ``rsm``'s ``PE()``), or None when no setting is replicated."""
+        """Pure error (R ``rsm``'s ``PE()``), or None when no setting is replicated (and for a
+        REML fit: no lack-of-fit test against a pure error that mixes whole-plot variation)."""
+        if self.mixed is not None:
+            return None
         return None if self.raw_pure_error.df == 0 else self.raw_pure_error
+
+    @cached_property
+    def tests(self) -> list:
+        """The Kenward–Roger F tests of the model terms of a REML fit
+        (:class:`~rsm_lrg.model.mixed.KRTest`, one per term, no intercept); empty for OLS."""
+        if self.mixed is None:
+            return []
+        lead = 1 if self.intercept else 0
+        groups = term_columns(self.model_terms, lead)
+        tidx = self.term_index
+        return self.mixed.tests([t.name for t in self.model_terms], [tidx[g] for g in groups])
 
     @cached_property
     def _sums(self) -> dict[str, Any]:
@@ -177,7 +209,19 @@ class FitResult:
 
     @cached_property
     def anova(self) -> Any:
-        """The Design-Expert ANOVA (Table 5 layout): columns ``source, sum_sq, df, mean_sq, f, p``."""
+        """The Design-Expert ANOVA (Table 5 layout): columns ``source, sum_sq, df, mean_sq, f, p``.
+
+        For a REML fit, one row per term with the Kenward–Roger test (``df`` its numerator df,
+        a ``den_df`` column, ``sum_sq`` and ``mean_sq`` NaN: a GLS fit has no sums of squares
+        that add up)."""
+        if self.mixed is not None:
+            import pandas as pd
+
+            return pd.DataFrame({"source": [t.term for t in self.tests], "sum_sq": math.nan,
+                                 "df": [t.num_df for t in self.tests], "mean_sq": math.nan,
+                                 "f": [t.f for t in self.tests], "p": [t.p for t in self.tests],
+                                 "den_df": [t.den_df for t in self.tests]},
+                                columns=["source", "sum_sq", "df", "mean_sq", "f", "p", "den_df"])
         s, ls = self._sums, self.least_squares
         n, nb = ls.n, self.n_blocks
         if self.mixture:  # Design-Expert's mixture ANOVA: Linear Mixture, non-linear terms, Cor Total
@@ -199,6 +243,8 @@ class FitResult:
         """Remarks for the text output: ``input_notes`` first, then the fit's own."""
         ls, nb = self.least_squares, self.n_blocks
         notes = []
+        if self.mixed is not None:
+            return tuple(self.input_notes) + self._mixed_notes()
         if self.raw_pure_error.df == 0:
             notes.append("No lack-of-fit test: no factor setting is replicated"
                          + (" (once the block effects are removed)" if nb > 1 else "") + ", so there is no pure error.")
@@ -211,6 +257,26 @@ class FitResult:
                          "and standard errors measure round-off, not noise.")
         return tuple(self.input_notes) + tuple(notes)
 
+    def _mixed_notes(self) -> tuple:
+        from .mixed import CI_METHOD
+
+        mm = self.mixed
+        what = "whole plot" if mm.kind == "whole_plot" else "block"
+        notes = [f"REML fit with a random intercept per {what} ({mm.column!r}, {mm.n_groups} {what}s): coefficients "
+                 "and standard errors are generalised least squares at the REML variance ratio; F tests use the "
+                 "Kenward–Roger adjusted covariance and den df (pbkrtest's computation, den df not clamped); "
+                 "t and p of the coefficients are the one-df Kenward–Roger tests.",
+                 "No sums of squares, PRESS, R², adequate precision or lack-of-fit test: they are ordinary "
+                 "least-squares quantities with no counterpart in a REML fit.",
+                 f"Variance component intervals: {CI_METHOD}.",
+                 "Residuals are conditional (y - Xb - Zu, BLUPs u); studentized residuals and leverages are those of "
+                 "the whitened (V^-1/2) model; prediction intervals are for a new run in a new "
+                 f"{what} (variance x'Φ_A x + s2_{'wp' if mm.kind == 'whole_plot' else 'block'} + s2)."]
+        if mm.boundary:
+            notes.append(f"The {what} variance component is estimated at zero (REML on the boundary): the fit equals "
+                         "the ordinary least-squares fit and its tests the OLS t and F tests.")
+        return tuple(notes)
+
     @cached_property
     def actual_solution(self) -> Any:
         """The model solved in actual units to the accuracy of the data
@@ -220,8 +286,8 @@ class FitResult:
         is used then)."""
         from .actual_units import is_closed_under_shift, solve_actual
 
-        if self.coded is None or self.y is None or self.mixture:  # mixture: actual_coefficients expands exactly
-            return None
+        if self.coded is None or self.y is None or self.mixture or self.mixed is not None:
+            return None  # mixture, REML: the exact change of basis of the coded coefficients
         x = np.column_stack([self.coded[f.letter].to_numpy(dtype=float) if f.kind == "categoric"
                              else float_column(self.data, f.name).to_numpy(dtype=float) for f in self.space.factors])
         nb = self.n_blocks
@@ -264,6 +330,15 @@ class FitResult:
             names, cov = actual_covariance(self.terms, self.space, self.cov_unscaled[np.ix_(self.term_index,
                                                                                            self.term_index)])
             return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None) * self.sigma2).tolist()))
+        if self.mixed is not None:  # linear in the coefficients: cov = M Phi M' (M from unit coefficient vectors)
+            idx = self.term_index
+            cols = column_names(self.terms)
+            basis = [actual_coefficients(dict(zip(cols, e)), self.terms, self.space)
+                     for e in np.eye(len(cols)).tolist()]
+            names = list(basis[0])
+            M = np.array([[b.get(nm, 0.0) for b in basis] for nm in names])
+            cov = M @ self.mixed.cov[np.ix_(idx, idx)] @ M.T
+            return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None)).tolist()))
         sol = self.actual_solution
         if sol is None:
             return None
@@ -281,6 +356,19 @@ class FitResult:
         b_t, se, df_res = ls.params[tidx], ls.std_errors[tidx], ls.df_resid
         with np.errstate(divide="ignore", invalid="ignore"):
             tval = b_t / se
+        if self.mixed is not None:  # one-df Kenward-Roger tests: t = b / se_A, KR den df
+            var_a, kdf = self.mixed.contrast_df(np.eye(len(ls.params))[tidx])
+            se_a = np.sqrt(var_a)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                tval = b_t / se_a
+                pval = 2.0 * special.stdtr(kdf, -np.abs(tval))
+                tqv = special.stdtrit(kdf, 0.975)
+            cols = column_names(self.terms)
+            return pd.DataFrame(
+                {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tqv * se_a,
+                 "ci_high": b_t + tqv * se_a, "vif": np.full(b_t.size, np.nan),
+                 "actual": [self.actual_coefficients.get(nm, 0.0) for nm in cols], "den_df": kdf},
+                index=pd.Index(cols, name="term"))
         if df_res > 0:
             pval = 2.0 * special.stdtr(df_res, -np.abs(tval))
             tq = float(special.stdtrit(df_res, 0.975))
@@ -299,7 +387,7 @@ class FitResult:
     @cached_property
     def term_vif(self) -> dict:
         """Generalised VIF of each term when a categoric term has several columns (else empty)."""
-        if not (self.intercept and any(t.df > 1 for t in self.terms)):
+        if self.mixed is not None or not (self.intercept and any(t.df > 1 for t in self.terms)):
             return {}
         tidx = self.term_index
         gv = self.least_squares.gvif([tidx[g] for g in self._sums["groups"]])
@@ -308,7 +396,14 @@ class FitResult:
     @cached_property
     def statistics(self) -> FitStatistics:
         """R², adjusted and predicted R², PRESS, adequate precision, std dev, mean, C.V."""
-        ls, s = self.least_squares, self._sums
+        ls = self.least_squares
+        if self.mixed is not None:  # std dev of the residual (within-group) component only
+            ybar = float(np.mean(self.mixed.y))
+            sd = math.sqrt(self.mixed.sigma2)
+            return FitStatistics(r2=math.nan, adj_r2=math.nan, pred_r2=math.nan, press=math.nan,
+                                 adeq_precision=math.nan, std_dev=sd, mean=ybar,
+                                 cv_percent=100.0 * sd / abs(ybar) if ybar != 0 else math.nan)
+        s = self._sums
         if ls.pass_sums is None:
             raise ValueError("the fit's statistics need the second pass over the rows")
         sol = self.actual_solution  # its residual sum of squares is exact to the data's digits (NIST StRD)
@@ -433,8 +528,9 @@ class FitResult:
         return np.r_[0, np.arange(1 + nb, len(self.column_names))] if nb else np.arange(len(self.column_names))
 
     def _residuals_and_hat(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(residuals, hat)``; a Dask fit keeps no per-run arrays."""
-        e, h = self.residuals, self.hat
+        """``(residuals, hat)``; a Dask fit keeps no per-run arrays. For a REML fit those of the
+        whitened model (scaled residuals ``V^-1/2 (y - X b)``)."""
+        e, h = (self.least_squares.residuals if self.mixed is not None else self.residuals), self.hat
         if e is None or h is None:
             raise ValueError("a Dask fit keeps no per-run residuals or leverages")
         return e, h
@@ -585,6 +681,8 @@ class FitResult:
         q = np.einsum("ij,jk,ik->i", Xt, C, Xt)
         se = np.sqrt(q * self.sigma2)
         out = pd.DataFrame({"predicted": pred, "se_fit": se}, index=index)
+        if self.mixed is not None:
+            return self._mixed_intervals(out, Xt, interval, alpha)
         if interval:
             tq = float(special.stdtrit(self.df_resid, 1 - alpha / 2)) if self.df_resid > 0 else np.nan
             if interval in ("confidence", "both"):
@@ -594,6 +692,40 @@ class FitResult:
                 spi = np.sqrt((1.0 + q) * self.sigma2)
                 out["pi_low"] = pred - tq * spi
                 out["pi_high"] = pred + tq * spi
+        return out
+
+    def _kr_mean(self, Xt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        L = np.zeros((Xt.shape[0], len(self.column_names)))
+        L[:, self.term_index] = Xt
+        return self.mixed.contrast_df(L)
+
+    def kr_mean(self, points: Any, *, coded: bool = False) -> tuple[np.ndarray, np.ndarray]:
+        """For a REML fit: ``(x' Phi_A x, Kenward-Roger den df)`` of the predicted mean at each
+        point (points as for :meth:`predict`) [model-scale units², -]."""
+        if self.mixed is None:
+            raise ValueError("kr_mean needs a REML fit (whole_plot= or random_block=)")
+        return self._kr_mean(design_matrix(self._coded_points(points, coded), self.terms))
+
+    def _mixed_intervals(self, out: Any, Xt: np.ndarray, interval: str | None, alpha: float) -> Any:
+        """Intervals of a REML fit: the mean with the Kenward–Roger adjusted variance
+        ``x' Phi_A x`` and its KR den df; a new run in a new group adds ``s2_group + s2``
+        (same df)."""
+        from . import statistics as special
+
+        if not interval:
+            return out
+        mm = self.mixed
+        var_a, kdf = self._kr_mean(Xt)
+        with np.errstate(invalid="ignore"):
+            tq = special.stdtrit(kdf, 1 - alpha / 2)
+        pred = out["predicted"].to_numpy()
+        if interval in ("confidence", "both"):
+            out["ci_low"] = pred - tq * np.sqrt(var_a)
+            out["ci_high"] = pred + tq * np.sqrt(var_a)
+        if interval in ("prediction", "both"):
+            spi = np.sqrt(var_a + mm.sigma2_group + mm.sigma2)
+            out["pi_low"] = pred - tq * spi
+            out["pi_high"] = pred + tq * spi
         return out
 
     # -- optimisation ------------------------------------------------------------------
@@ -628,7 +760,16 @@ class FitResult:
 
         spec = replace(self.spec, terms=tuple(t.name for t in self.model_terms),
                        reduce=ReduceSpec(criterion=criterion, alpha_out=alpha_out))
-        return lookup("fit")(self.data, self.response, factors=self.space, block=self.block, model=spec)
+        return lookup("fit")(self.data, self.response, factors=self.space, block=self.block, model=spec,
+                             **self.random_effect)
+
+    @property
+    def random_effect(self) -> dict:
+        """``{"whole_plot": COL}`` or ``{"random_block": COL}`` of a REML fit (the keyword
+        :func:`rsm_lrg.fit` takes to refit it), else empty."""
+        if self.mixed is None:
+            return {}
+        return {"whole_plot" if self.mixed.kind == "whole_plot" else "random_block": self.mixed.column}
 
     # -- faces -------------------------------------------------------------------------
     def summary(self) -> str:
@@ -700,10 +841,14 @@ class FitResult:
 
         if self.block is not None:
             out["block_effects"] = {k: _f(v) for k, v in (self.block_effects or {}).items()}
-        out["anova"] = [
-            {"source": r.source, "sum_sq": _f(r.sum_sq), "df": int(r.df), "mean_sq": _f(r.mean_sq), "f": _f(r.f), "p": _f(r.p)}
-            for r in self.anova.itertuples(index=False)
-        ]
+        if self.mixed is not None:
+            out.update(self._mixed_dict())
+        if self.mixed is None:  # a REML fit has no sums of squares: its "tests" replace the ANOVA
+            out["anova"] = [
+                {"source": r.source, "sum_sq": _f(r.sum_sq), "df": int(r.df), "mean_sq": _f(r.mean_sq), "f": _f(r.f),
+                 "p": _f(r.p)}
+                for r in self.anova.itertuples(index=False)
+            ]
         out["statistics"] = {k: _f(v) for k, v in self.statistics.to_dict().items()}
         out["stationary_point"] = self.stationary_point.to_dict()
         if self.term_vif:
@@ -717,6 +862,21 @@ class FitResult:
         if self.reduction is not None:
             out["reduction"] = self.reduction.to_dict()
         return out
+
+    def _mixed_dict(self) -> dict:
+        from .mixed import CI_METHOD
+
+        mm = self.mixed
+        key = "whole_plot" if mm.kind == "whole_plot" else "random_block"
+        vc = {k: {kk: _f(vv) for kk, vv in c.to_dict().items()} for k, c in mm.variance_components.items()}
+        return {
+            key: mm.column, "method": "REML", "variance_ratio": _f(mm.eta),
+            "variance_components": vc, "variance_component_ci": CI_METHOD,
+            "tests": [{k: (_f(v) if k not in ("term", "num_df") else v) for k, v in t.to_dict().items()}
+                      for t in self.tests],
+            "den_df_method": "Kenward-Roger",
+            "random_effects": {str(lab): _f(u) for lab, u in zip(mm.labels, mm.blups)},
+        }
 
     def to_frame(self):
         """Per-run diagnostics: actual and coded settings, response, fitted, residual,
@@ -736,6 +896,12 @@ class FitResult:
         df["studentized"] = self.studentized_residuals
         df["externally_studentized"] = self.externally_studentized_residuals
         df["cooks_distance"] = self.cooks_distance
+        if self.mixed is not None:
+            mm = self.mixed
+            df.insert(df.columns.get_loc(self.response), mm.column, self.data[mm.column].to_numpy())
+            df["marginal_residual"] = mm.marginal_residuals
+            df["conditional_residual"] = mm.conditional_residuals
+            df["marginal_fitted"] = mm.marginal_fitted
         return df
 
 
@@ -750,7 +916,8 @@ def _f(v):
 def assemble(*, spec: ModelSpec, response: str, block: str | None, space: FactorSpace, terms: Sequence[Term],
              col_names: Sequence[str], ls: Regression, pe: PureError, bkeys: list | None, blevels: dict | None,
              data: Any, coded: Any, y: Any, y_response: Any = None, input_notes: Sequence = (),
-             omitted_rows: Sequence[int] = (), omitted_data: Any = None, reduction: Any = None) -> FitResult:
+             omitted_rows: Sequence[int] = (), omitted_data: Any = None, reduction: Any = None,
+             mixed: Any = None) -> FitResult:
     """The :class:`FitResult` of a factorised fit (both passes done) and its pure error; every
     statistic is derived from them on first use.
 
@@ -761,4 +928,4 @@ def assemble(*, spec: ModelSpec, response: str, block: str | None, space: Factor
                      raw_pure_error=pe, column_names=tuple(col_names), data=data, coded=coded, y=y,
                      y_response=y_response, block_keys=None if bkeys is None else tuple(bkeys), block_levels=blevels,
                      input_notes=tuple(input_notes), omitted_rows=tuple(omitted_rows), omitted_data=omitted_data,
-                     reduction=reduction)
+                     reduction=reduction, mixed=mixed)

@@ -86,6 +86,8 @@ def summary_data(result: Any) -> SummaryData:
              + (" (Linear Mixture sequential, other terms partial sum of squares - Type III; about the mean)"
                 if mixture else " (partial sum of squares - Type III)")
              + ("" if result.intercept or mixture else "; no intercept: the model row and total are uncorrected"))
+    if getattr(result, "mixed", None) is not None:
+        title = "Fixed effects of the REML fit: Kenward-Roger F tests (no sums of squares)"
     anova = result.anova
     rows = {r.source: r for r in anova.itertuples(index=False)}
     notes: list[str] = []

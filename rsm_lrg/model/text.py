@@ -44,6 +44,27 @@ def format_anova(result, alpha: float = 0.05) -> str:
     return text_table(head, rows, ["<", ">", ">", ">", ">", ">", "<"])
 
 
+def format_mixed(result, alpha: float = 0.05) -> list[str]:
+    """The REML part of the text: variance components and the Kenward–Roger F tests of the
+    model terms (in place of the least-squares ANOVA)."""
+    mm = result.mixed
+    out = [f"REML variance components (random intercept per {'whole plot' if mm.kind == 'whole_plot' else 'block'}: "
+           f"{mm.column!r}, {mm.n_groups} groups; 95 % CI Wald on the log scale)"]
+    rows = []
+    for name, c in mm.variance_components.items():
+        rows.append([name, format_g(c.variance), format_g(math.sqrt(c.variance)), format_g(c.ci_low),
+                     format_g(c.ci_high)])
+    out.append(text_table(["Component", "Variance", "Std Dev", "95% CI Low", "95% CI High"], rows))
+    out.append("")
+    out.append("Fixed effects: Kenward-Roger F tests (Type III, each term's columns jointly)")
+    rows = [[t.term, t.num_df, format_g(t.den_df), format_g(t.f), _p(t.p), "*" if t.p == t.p and t.p < alpha else ""]
+            for t in result.tests]
+    out.append(text_table(["Term", "num df", "den df", "F-value", "p-value", ""], rows,
+                          ["<", ">", ">", ">", ">", "<"]))
+    out.append("")
+    return out
+
+
 #: Accuracy the printed equations promise: evaluated anywhere in the factor box, they
 #: reproduce the model's prediction to ``EQUATION_ACCURACY`` times the largest fitted
 #: response (so to 1e-6 relative wherever the prediction is a tenth of that or more).
@@ -211,22 +232,27 @@ def format_summary(result) -> str:
             out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6, trim=True)} .. {format_g(f.high, 6, trim=True)}")
     out.append("")
     sd = summary_data(result)  # the one summary every face renders
-    out.append(sd.anova_title)
-    out.append(format_anova(result))
-    out.append("")
-    out.extend(sd.anova_notes)
-    out.append("")
-    s = result.statistics
-    stat_rows = [
-        ["Std. Dev.", format_g(s.std_dev), "R²", format_g(s.r2)],
-        ["Mean", format_g(s.mean), "Adjusted R²", format_g(s.adj_r2)],
-        ["C.V. %", format_g(s.cv_percent), "Predicted R²", format_g(s.pred_r2)],
-        ["PRESS", format_g(s.press), "Adeq Precision", format_g(s.adeq_precision)],
-    ]
-    out.append("Fit statistics")
-    out.append(text_table(["", "", "", ""], stat_rows, ["<", ">", "<", ">"]).split("\n", 2)[2])
-    out.extend(sd.statistics_notes)
-    out.append("")
+    if getattr(result, "mixed", None) is not None:
+        out.extend(format_mixed(result))
+        out.extend(sd.anova_notes)
+        out.append("")
+    else:
+        out.append(sd.anova_title)
+        out.append(format_anova(result))
+        out.append("")
+        out.extend(sd.anova_notes)
+        out.append("")
+        s = result.statistics
+        stat_rows = [
+            ["Std. Dev.", format_g(s.std_dev), "R²", format_g(s.r2)],
+            ["Mean", format_g(s.mean), "Adjusted R²", format_g(s.adj_r2)],
+            ["C.V. %", format_g(s.cv_percent), "Predicted R²", format_g(s.pred_r2)],
+            ["PRESS", format_g(s.press), "Adeq Precision", format_g(s.adeq_precision)],
+        ]
+        out.append("Fit statistics")
+        out.append(text_table(["", "", "", ""], stat_rows, ["<", ">", "<", ">"]).split("\n", 2)[2])
+        out.extend(sd.statistics_notes)
+        out.append("")
     out.append("Coefficients in terms of coded factors (95 % CI)")
     rows = []
     cscale = float(result.coefficients["coded"].abs().max())

@@ -7,7 +7,10 @@ Myers, Montgomery & Anderson-Cook, Eq. 2.40 generalised to a mean of n runs):
 
     ŷ ± t(1 - α/2, ν) · √( σ² (1/n + x'(X'X)⁻¹x) ),
 
-with σ² the residual mean square on ν df. The run mean is **inside** when it lies in that
+with σ² the residual mean square on ν df. For a REML fit (split-plot whole plots or random
+blocks, :mod:`rsm_lrg.model.mixed`) the n runs are taken to be made in one new whole plot
+(block): ``√( x'Φ_A x + σ²_wp + σ²/n )`` with Kenward–Roger's adjusted covariance ``Φ_A``
+and ν its den df for the mean at ``x``. The run mean is **inside** when it lies in that
 interval. The relative error is ``100 · (ȳ - ŷ) / ŷ`` [%] against the exact prediction,
 and against a ``reference`` value when given (a published, rounded prediction).
 
@@ -220,6 +223,11 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
     n = int(obs.size)
     se = math.sqrt(result.sigma2 / n + q_sigma2)
     t = float(stdtrit(result.df_resid, 1 - (1 - confidence) / 2))
+    mixed = getattr(result, "mixed", None)
+    if mixed is not None:  # REML: the n runs in one new whole plot (block): x'Φ_A x + s2_group + s2/n, KR df
+        var_a, kdf = result.kr_mean(x, coded=True)
+        se = math.sqrt(float(var_a[0]) + mixed.sigma2_group + mixed.sigma2 / n)
+        t = float(stdtrit(float(kdf[0]), 1 - (1 - confidence) / 2))
     mean = float(obs.mean())
     tinfo = {}
     if not tr.identity:  # interval on the transformed scale, ends back-transformed

@@ -422,6 +422,20 @@ def table_sections(result, source_name: str | None, optimum) -> dict:
         ("Model F-value, p-value",
          next((f"{fmt_f(r['f'])}, {fmt_p(r['p'])}" for r in anova_rows if r["source"] == "Model"), "—")),
     ]
+    mixed = getattr(result, "mixed", None)
+    caption = (f"ANOVA for the {result.model} model of {result.response} "
+               "(partial sums of squares, Type III), laid out like Table 5.")
+    if mixed is not None:  # REML: no sums of squares; Kenward-Roger tests and the variance components
+        what = "whole plot" if mixed.kind == "whole_plot" else "block"
+        summary[4] = ("Model", f"{result.model} ({len(result.terms)} terms, fitted by REML in coded units with a random "
+                               f"intercept per {what}: column {mixed.column!r}, {mixed.n_groups} {what}s)")
+        summary[6] = ("Lack of fit", "not tested (REML fit)")
+        summary.insert(5, ("Variance components (95 % CI, Wald on the log scale)", "; ".join(
+            f"{k} {fmt_num(c.variance, 4)} ({fmt_num(c.ci_low, 3)} .. {fmt_num(c.ci_high, 3)})"
+            for k, c in mixed.variance_components.items())))
+        caption = (f"Fixed effects of the REML fit of {result.response}: Kenward–Roger F tests, each term's columns "
+                   "jointly (Type III); no sums of squares. df is the numerator df; the Kenward–Roger den df are "
+                   + ", ".join(f"{t.term} {fmt_num(t.den_df, 4)}" for t in result.tests) + ".")
     if optimum is not None:
         summary.append(("Optimum (" + optimum.goal + ")",
                         ", ".join(f"{n} = {fmt_num(v, 4)}" for n, v in optimum.actual.items())
@@ -438,8 +452,7 @@ def table_sections(result, source_name: str | None, optimum) -> dict:
                      "high": f.levels[-1]}
                     for f in space.factors],
         "anova": {"rows": anova_rows, "notes": anova_notes,
-                  "caption": f"ANOVA for the {result.model} model of {result.response} "
-                             "(partial sums of squares, Type III), laid out like Table 5.",
+                  "caption": caption,
                   "legend": "** p < 0.01, * 0.01 ≤ p < 0.05 (see the notes)."},
         "statistics": stats_rows,
         "statistics_notes": stats_notes,
