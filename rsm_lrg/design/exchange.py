@@ -159,6 +159,139 @@ def is_gain(v: float, cur: float) -> bool:
     relative 1e-10, so that rounding never cycles an exchange)."""
     return v < cur - 1e-10 * max(1.0, abs(cur))
 
+def _pair_value(crit: str, base: float, gAg: np.ndarray, fAg: np.ndarray, fAf: np.ndarray,
+                t11: Any = None, t12: Any = None, t22: Any = None) -> np.ndarray:
+    """Criterion (to minimise) of ``M - f f' + g g'`` from the quadratic forms of ``A = M^-1``
+    (and of ``K = A W A``, ``A A`` for I, A): ``det`` times ``(1 + g'Ag)(1 - f'Af) + (f'Ag)^2``
+    (Fedorov 1972; Meyer & Nachtsheim 1995) and the rank-two Woodbury identity for the traces of
+    A and I. ``base`` is ``log det M`` (D) or the current trace (I, A); inf where the exchange
+    leaves M singular."""
+    with np.errstate(all="ignore"):
+        if crit == "D":
+            r = (1.0 + gAg) * (1.0 - fAf) + fAg ** 2
+            v = -(base + np.log(r))
+            ok = r > 0
+        else:
+            s11, s12, s22 = 1.0 + gAg, fAg, fAf - 1.0
+            det = s11 * s22 - s12 ** 2
+            v = base - (s22 * t11 - 2.0 * s12 * t12 + s11 * t22) / det
+            ok = np.abs(det) > 1e-12
+    return np.where(ok & np.isfinite(v), v, np.inf)
+
+
+class _Rank2:
+    """``A = M^-1`` (and ``K = A W A`` for I, ``A A`` for A) of an information matrix ``M``,
+    kept through the exchanges ``M - f f' + g g'`` by the rank-two Woodbury identity (``O(p^2)``
+    per exchange, no factorisation), refreshed from ``M`` every :attr:`REFRESH` exchanges. The
+    quadratic forms ``x'Ax``, ``x'Ay`` (and with ``K``) of any stored points follow the same
+    update in ``O(p)`` per point (:meth:`shift_quad`, :meth:`shift_cross`).
+
+    With ``U = [g, f]``, ``B = A U`` and ``S = [[1 + g'Ag, g'Af], [g'Af, f'Af - 1]]``:
+    ``A' = A - B S^-1 B'``, ``det M' = -det S det M``; with ``H = A W B``, ``Q = B' W B``:
+    ``K' = K - B S^-1 H' - H S^-1 B' + B S^-1 Q S^-1 B'`` and ``trace(A'W) = trace(AW) -
+    trace(S^-1 Q)``.
+    """
+
+    REFRESH = 20
+
+    def __init__(self, crit: str, W: np.ndarray | None):
+        self.crit, self.W = crit, W
+        self.ok = False
+        self.A = self.K = np.empty((0, 0))
+        self.base = 0.0
+        self.age = 0
+        self.d: tuple[np.ndarray, np.ndarray | None, np.ndarray, np.ndarray | None] | None = None
+
+    def reset(self, M: np.ndarray) -> bool:
+        """Factorise ``M`` afresh; False (and :attr:`ok` False) when it is badly conditioned
+        (1-norm condition number 1e8 or more), where the exact criteria must be used."""
+        self.age = 0
+        self.ok = False
+        try:
+            A = np.linalg.inv(M)
+        except np.linalg.LinAlgError:
+            return False
+        if not np.all(np.isfinite(A)) or np.abs(M).sum(0).max() * np.abs(A).sum(0).max() >= 1e8:
+            return False
+        A = 0.5 * (A + A.T)
+        self.A, self.ok = A, True
+        if self.crit == "D":
+            self.base = float(np.linalg.slogdet(M)[1])
+        else:
+            WA = A if self.crit == "A" else cast(np.ndarray, self.W) @ A
+            self.K = A @ WA
+            self.base = float(np.trace(WA))
+        return True
+
+    def quad(self, X: np.ndarray) -> tuple[np.ndarray, Any]:
+        """``(x'Ax, x'Kx)`` of every row x of X (last axis; K part None for D)."""
+        XA = X @ self.A
+        xax = np.einsum("...j,...j->...", XA, X)
+        return xax, (None if self.crit == "D" else np.einsum("...j,...j->...", X @ self.K, X))
+
+    def cross(self, X: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, Any]:
+        """``(x'Af, x'Kf)`` of every row x of X against the vector(s) f (broadcast)."""
+        Af = f @ self.A
+        xaf = np.einsum("...j,...j->...", X, Af)
+        return xaf, (None if self.crit == "D" else np.einsum("...j,...j->...", X, f @ self.K))
+
+    def update(self, f: np.ndarray, g: np.ndarray) -> None:
+        """Exchange ``f`` for ``g`` in ``M``: update ``A``, ``K`` and the criterion; the
+        pieces for the stored quadratic forms are kept in :attr:`d` until the next update."""
+        A = self.A
+        U = np.column_stack([g, f])
+        B = A @ U
+        S = U.T @ B
+        S[0, 0] += 1.0
+        S[1, 1] -= 1.0
+        Si = np.linalg.inv(S)
+        self.A = A - B @ Si @ B.T
+        if self.crit == "D":
+            self.base += float(np.log(-np.linalg.det(S)))
+            self.d = (B, None, Si, None)
+        else:
+            H = B if self.crit == "A" else cast(np.ndarray, self.W) @ B
+            H = A @ H
+            Q = B.T @ (B if self.crit == "A" else cast(np.ndarray, self.W) @ B)
+            SQS = Si @ Q @ Si
+            BSi = B @ Si
+            self.K = self.K - BSi @ H.T - H @ BSi.T + B @ SQS @ B.T
+            self.base -= float(np.trace(Si @ Q))
+            self.d = (B, H, Si, SQS)
+        self.age += 1
+
+    @property
+    def stale(self) -> bool:
+        """Whether the kept inverse is due for an exact refresh."""
+        return not self.ok or self.age >= self.REFRESH
+
+    def projections(self, X: np.ndarray) -> tuple[np.ndarray, Any]:
+        """``(X B, X H)`` of the last update (inputs of :meth:`shift_quad`, :meth:`shift_cross`)."""
+        B, H, _, _ = cast(tuple, self.d)
+        return X @ B, (None if H is None else X @ H)
+
+    def shift_quad(self, xq: list[Any], proj: tuple[np.ndarray, Any]) -> None:
+        """Update ``(x'Ax, x'Kx)`` of stored points in place for the last exchange."""
+        _, _, Si, SQS = cast(tuple, self.d)
+        XB, XH = proj
+        XBS = XB @ Si
+        xq[0] -= np.einsum("...j,...j->...", XBS, XB)
+        if XH is not None:
+            xq[1] -= 2.0 * np.einsum("...j,...j->...", XBS, XH) - np.einsum("...j,...j->...", XB @ SQS, XB)
+
+    def shift_cross(self, xq: list[Any], proj: tuple[np.ndarray, Any],
+                    fproj: tuple[np.ndarray, Any]) -> None:
+        """Update the cross forms ``(x'Af, x'Kf)`` in place (``proj`` of the x, ``fproj`` of
+        the f, broadcast against each other) for the last exchange."""
+        _, _, Si, SQS = cast(tuple, self.d)
+        XB, XH = proj
+        FB, FH = fproj
+        FBS = FB @ Si
+        xq[0] -= np.einsum("...j,...j->...", FBS, XB)
+        if XH is not None:
+            xq[1] -= (np.einsum("...j,...j->...", FBS, XH) + np.einsum("...j,...j->...", FH @ Si, XB)
+                      - np.einsum("...j,...j->...", FB @ SQS, XB))
+
 
 class ExchangeProblem:
     """One exchange search: the factor space, the model terms, the criterion (``W`` for I),
@@ -172,10 +305,12 @@ class ExchangeProblem:
         self.p = n_columns(terms)
         self.pool = pool
         cands = at_every_level(pool, space)
-        self._P = None
-        if not space.has_categoric and not any(t.diff for t in terms):  # monomials: products of powers (fast path)
-            self._P = np.array([t.powers for t in terms], dtype=int)
-            self._factor_index = np.arange(self.k)[None, :]
+        self._idx: np.ndarray | None = None
+        if not space.has_categoric:  # all numeric: each monomial a product of gathered columns (fast path)
+            factors = [[i + 1 for i, e in enumerate(t.powers) for _ in range(int(e))] for t in terms]
+            deg = max(1, max(len(f) for f in factors))
+            # column 0 of [1, x] pads the lower-degree monomials
+            self._idx = np.array([f + [0] * (deg - len(f)) for f in factors], dtype=np.intp).T
         self.candidates = cands
         self.cand_rows = self.rows(cands)
         self._cache_key = None
@@ -185,14 +320,16 @@ class ExchangeProblem:
 
     def rows(self, coded: np.ndarray) -> np.ndarray:
         """Model rows of coded points (:func:`rsm_lrg.terms.design_matrix`); all-numeric
-        factors: each monomial as a product of gathered powers (no ``**`` per entry)."""
-        if self._P is not None:
-            P = self._P
-            powers = np.ones((int(P.max()) + 1,) + coded.shape)
-            for d in range(1, powers.shape[0]):
-                powers[d] = powers[d - 1] * coded
-            # powers[P[t, f], :, f] for every term t and factor f, multiplied over f
-            return np.prod(powers[P, :, self._factor_index], axis=1).T
+        factors: each monomial as a product of gathered columns of ``[1, x]`` (no ``**`` per
+        entry; any leading axes)."""
+        if self._idx is not None:
+            X1 = np.empty(coded.shape[:-1] + (self.k + 1,))
+            X1[..., 0] = 1.0
+            X1[..., 1:] = coded
+            out = X1[..., self._idx[0]]
+            for d in range(1, len(self._idx)):
+                out *= X1[..., self._idx[d]]
+            return out
         return design_matrix(coded, self.terms)
 
     def _prepared(self, M: np.ndarray):
@@ -200,15 +337,8 @@ class ExchangeProblem:
         ``M`` is badly conditioned."""
         if self._cache_key is not None and self._cache_key[0] is M:
             return self._cache_key[1]
-        out: tuple | None = None
-        if np.linalg.cond(M) < 1e8:
-            A = np.linalg.inv(M)
-            if self.crit == "D":
-                out = (A, None, np.linalg.slogdet(M)[1])
-            elif self.crit == "I":
-                out = (A, A @ self.W @ A, float(np.trace(A @ self.W)))
-            else:
-                out = (A, A @ A, float(np.trace(A)))
+        st = _Rank2(self.crit, self.W)
+        out = (st.A, st.K, st.base) if st.reset(M) else None
         self._cache_key = (M, out)
         return out
 
@@ -237,48 +367,42 @@ class ExchangeProblem:
         gAg = np.einsum("ij,ij->i", G @ A, G)
         fAg = np.einsum("ij,ij->i", FA[own], G)
         fAf = np.einsum("ij,ij->i", FA, F)[own]
-        with np.errstate(all="ignore"):
-            if self.crit == "D":
-                r = (1.0 + gAg) * (1.0 - fAf) + fAg ** 2
-                v = -(base + np.log(r))
-                ok = r > 0
-            else:
-                FK = F @ K
-                t11 = np.einsum("ij,ij->i", G @ K, G)
-                t12 = np.einsum("ij,ij->i", FK[own], G)
-                t22 = np.einsum("ij,ij->i", FK, F)[own]
-                s11, s12, s22 = 1.0 + gAg, fAg, fAf - 1.0
-                det = s11 * s22 - s12 ** 2
-                v = base - (s22 * t11 - 2.0 * s12 * t12 + s11 * t22) / det
-                ok = np.abs(det) > 1e-12
-        return np.where(ok & np.isfinite(v), v, np.inf)
+        if self.crit == "D":
+            return _pair_value("D", base, gAg, fAg, fAf)
+        FK = F @ K
+        t11 = np.einsum("ij,ij->i", G @ K, G)
+        t12 = np.einsum("ij,ij->i", FK[own], G)
+        t22 = np.einsum("ij,ij->i", FK, F)[own]
+        return _pair_value(self.crit, base, gAg, fAg, fAf, t11, t12, t22)
 
-    def _moves(self, D: np.ndarray, rows: np.ndarray, coords, phase: int, step: float,
-               coarse: bool) -> tuple[np.ndarray, np.ndarray]:
-        """Every single-coordinate move of the runs ``rows`` of ``D``: ``(points, run index)``,
-        feasible ones only, the current settings left out."""
-        pts, owner = [], []
-        base = D[rows]
+    def _move_table(self, base: np.ndarray, coords, phase: int, step: float,
+                    coarse: bool) -> tuple[np.ndarray, np.ndarray]:
+        """Every single-coordinate move of each run of ``base`` (m x k), in fixed slots:
+        ``(points (m, s, k), usable (m, s))``, a slot unusable where it keeps the current
+        setting or breaks a constraint. Phase 0 tries the factor's levels (-1, 0, +1 with
+        ``coarse``), phases 1 and 2 eleven steps of ``step`` around the current setting."""
+        m, k = base.shape
+        blocks = []
         for j in coords:
             if phase == 0:
                 vals = self.values[j]
                 if coarse and self.space.factors[j].kind == "numeric":
                     vals = _COARSE
-                vals = np.broadcast_to(vals, (len(rows), len(vals)))
+                blocks.append((j, np.broadcast_to(vals, (m, len(vals)))))
             else:
-                vals = np.clip(base[:, j:j + 1] + np.linspace(-step, step, 11)[None, :], -1.0, 1.0)
-            m = vals.shape[1]
-            block = np.repeat(base, m, axis=0)
-            block[:, j] = vals.reshape(-1)
-            keep = block[:, j] != np.repeat(base[:, j], m)
-            pts.append(block[keep])
-            owner.append(np.repeat(rows, m)[keep])
-        P = np.vstack(pts) if pts else np.empty((0, D.shape[1]))
-        own = np.concatenate(owner) if owner else np.empty(0, dtype=int)
-        if self.cons is not None and self.cons and len(P):
-            ok = self.cons.feasible_coded(P)
-            P, own = P[ok], own[ok]
-        return P, own
+                blocks.append((j, np.clip(base[:, j:j + 1] + np.linspace(-step, step, 11)[None, :], -1.0, 1.0)))
+        s = sum(v.shape[1] for _, v in blocks)
+        P = np.repeat(base[:, None, :], s, axis=1)
+        usable = np.empty((m, s), dtype=bool)
+        off = 0
+        for j, vals in blocks:
+            w = vals.shape[1]
+            P[:, off:off + w, j] = vals
+            usable[:, off:off + w] = vals != base[:, j:j + 1]
+            off += w
+        if self.cons is not None and self.cons and P.size:
+            usable &= self.cons.feasible_coded(P.reshape(-1, k)).reshape(m, s)
+        return P, usable
 
     def ridge(self, n):
         return 1e-9 * max(n, 1) * np.eye(self.p)
@@ -291,7 +415,7 @@ class ExchangeProblem:
         """A copy of ``D`` to exchange on, its model rows ``F``, information ``M`` (with the
         small ridge) and criterion value."""
         D = D.copy()
-        F = design_matrix(D, self.terms)
+        F = self.rows(D)
         M = F.T @ F + self.ridge(len(D))
         return D, F, M, float(information_criterion(M, self.crit, self.W))
 
@@ -308,8 +432,8 @@ class ExchangeProblem:
         """The acceptance step of both exchanges: run ``i`` of ``D`` (model row ``F[i]``;
         information ``M``, criterion ``cur``) is replaced by the point ``x`` (model row ``g``)
         only if the exact criterion of the new information matrix is a real gain (the
-        rank-one updates of :meth:`batch` only rank the candidates). On a gain ``D`` and
-        ``F`` are updated in place and the new ``(M, criterion)`` returned; else None."""
+        updates of :class:`_Rank2` and :meth:`batch` only rank the candidates). On a gain ``D``
+        and ``F`` are updated in place and the new ``(M, criterion)`` returned; else None."""
         M2 = M - np.outer(F[i], F[i]) + np.outer(g, g)
         v2 = float(information_criterion(M2, self.crit, self.W))
         if not is_gain(v2, cur):
@@ -321,62 +445,114 @@ class ExchangeProblem:
         """Coordinate exchange on rows ``fixed..`` of ``D`` (earlier rows held); ``coarse``:
         numeric coordinates at -1, 0, +1 only (the levels of the classical designs).
 
-        Each step ranks every single-coordinate move of every run at once
-        (:meth:`batch_pairs`) and makes the best one that the exact criterion confirms
-        (:meth:`_replace`), until no move gains; phases 1 and 2 (``polish``) then refine the
-        numeric coordinates by steps of 0.05 and 0.01."""
+        Each step ranks every single-coordinate move of every run at once and makes the best
+        one that the exact criterion confirms (:meth:`_replace`), until no move gains; phases
+        1 and 2 (``polish``) then refine the numeric coordinates by steps of 0.05 and 0.01.
+        The moves sit in a fixed table (run x slot); ``M^-1`` and the quadratic forms of every
+        move are carried from step to step by rank-two updates (:class:`_Rank2`, ``O(p)`` per
+        move and step), and only the moved run's slots are remade."""
         D, F, M, cur = self._start(D)
         n = len(D)
         rows = np.arange(fixed, n)
+        m = len(rows)
+        if not m:
+            return D, cur
         num = self.space.numeric_index
+        st = _Rank2(self.crit, self.W)
         for phase in (0, 1, 2) if polish else (0,):
             coords = range(self.k) if phase == 0 else num
+            if not len(coords):
+                continue
             step = 0.05 / (5 ** (phase - 1)) if phase else 0.0
-            # each run's moves and their model rows, remade only for the run that changed
-            moves: dict[int, tuple[np.ndarray, np.ndarray]] = {}
-            for i in rows:
-                Pi = self._moves(D, np.array([i]), coords, phase, step, coarse)[0]
-                moves[int(i)] = (Pi, self.rows(Pi))
-            for _ in range(100 * max(1, len(rows)) * max(1, len(coords))):
-                P = np.vstack([moves[int(i)][0] for i in rows])
-                if not len(P):
-                    break
-                G = np.vstack([moves[int(i)][1] for i in rows])
-                own = np.repeat(rows, [len(moves[int(i)][0]) for i in rows])
-                v = self.batch_pairs(M, F, own, G)
-                got, r = None, -1
-                for b in np.argsort(v)[:3]:  # the ranking is rank-one; the exact value decides
-                    if not is_gain(v[b], cur):
+            P, usable = self._move_table(D[rows], coords, phase, step, coarse)
+            s = P.shape[1]
+            G = self.rows(P.reshape(-1, self.k)).reshape(m, s, self.p)
+            own = np.repeat(rows, s)
+            gq: list[Any] = []
+            xq: list[Any] = []
+            fq: list[Any] = []
+            st.ok = False  # a new table: its forms afresh
+            for _ in range(100 * m * len(coords)):
+                if st.stale:
+                    st.reset(M)
+                    if st.ok:
+                        gq = list(st.quad(G))
+                        Fr = F[rows]
+                        fq = list(st.quad(Fr))
+                        xq = list(st.cross(G, Fr[:, None, :]))
+                if st.ok:
+                    t11, t12, t22 = (gq[1], xq[1], fq[1][:, None]) if self.crit != "D" else (None, None, None)
+                    v = _pair_value(self.crit, st.base, gq[0], xq[0], fq[0][:, None], t11, t12, t22)
+                else:  # badly conditioned M: exact criteria of every exchange
+                    v = self.batch_pairs(M, F, own, G.reshape(m * s, self.p)).reshape(m, s)
+                v = np.where(usable, v, np.inf).reshape(-1)
+                got, a, b = None, -1, -1
+                for _try in range(3):  # the ranking is an update; the exact value decides
+                    best = int(np.argmin(v))
+                    if not _gains(v[best], cur):
                         break
-                    r = int(own[b])
-                    got = self._replace(D, F, r, P[b], G[b], M, cur)
+                    v[best] = np.inf
+                    a, b = divmod(best, s)
+                    f_old = F[rows[a]].copy()
+                    got = self._replace(D, F, int(rows[a]), P[a, b], G[a, b], M, cur)
                     if got:
                         break
                 if not got:
                     break
                 M, cur = got
-                Pr = self._moves(D, np.array([r]), coords, phase, step, coarse)[0]
-                moves[r] = (Pr, self.rows(Pr))
+                if st.ok:
+                    st.update(f_old, F[rows[a]])
+                    proj = st.projections(G)
+                    st.shift_quad(gq, proj)
+                    st.shift_quad(fq, st.projections(F[rows]))
+                    st.shift_cross(xq, proj, tuple(None if x is None else x[:, None, :]
+                                                   for x in st.projections(F[rows])))
+                # the moved run's slots remade (its own forms afresh once the inverse is fresh)
+                P[a], usable[a] = (t[0] for t in self._move_table(D[rows[a]][None, :], coords, phase, step, coarse))
+                G[a] = self.rows(P[a])
+                if st.ok and not st.stale:
+                    fa = F[rows[a]]
+                    for q, (x1, x2) in ((gq, st.quad(G[a])), (xq, st.cross(G[a], fa))):
+                        q[0][a] = x1
+                        if x2 is not None:
+                            q[1][a] = x2
+                    f1, f2 = st.quad(fa)
+                    fq[0][a] = f1
+                    if f2 is not None:
+                        fq[1][a] = f2
         return D, cur
 
     def row_exchange(self, D: np.ndarray, fixed: int = 0, coarse: bool = False) -> tuple[np.ndarray, float]:
         """Replace whole runs by the best candidate point (the feasible pool at every level
-        combination), run by run, until no replacement improves the criterion."""
+        combination), run by run, until no replacement improves the criterion (the modified
+        Fedorov exchange, Cook & Nachtsheim 1980). ``M^-1`` and every candidate's ``g'M^-1 g``
+        are carried by rank-two updates (:class:`_Rank2`): a run costs ``O(p)`` per candidate."""
         D, F, M, cur = self._start(D)
         n = len(D)
         cands, G = self._on_grid(self.candidates, self.cand_rows) if coarse else (self.candidates, self.cand_rows)
+        st = _Rank2(self.crit, self.W)
+        gq: list[Any] = []
         for _ in range(50):
             improved = False
             for i in range(fixed, n):
-                best_v, best_j = cur, -1
-                for lo in range(0, len(G), 2048):
-                    v = self.batch(M, F[i], G[lo:lo + 2048])
-                    j = int(np.argmin(v))
-                    if is_gain(v[j], best_v):
-                        best_v, best_j = float(v[j]), lo + j
-                if best_j >= 0 and (got := self._replace(D, F, i, cands[best_j], G[best_j], M, cur)):
+                if st.stale and st.reset(M):
+                    gq = list(st.quad(G))
+                if st.ok:
+                    x1, x2 = st.cross(G, F[i])
+                    f1, f2 = st.quad(F[i])
+                    v = _pair_value(self.crit, st.base, gq[0], x1, f1, gq[1], x2, f2)
+                else:
+                    v = np.concatenate([self.batch(M, F[i], G[lo:lo + 2048]) for lo in range(0, len(G), 2048)])
+                j = int(np.argmin(v))
+                if not _gains(v[j], cur):
+                    continue
+                f_old = F[i].copy()
+                if got := self._replace(D, F, i, cands[j], G[j], M, cur):
                     M, cur = got
                     improved = True
+                    if st.ok:
+                        st.update(f_old, G[j])
+                        st.shift_quad(gq, st.projections(G))
             if not improved:
                 break
         return D, cur
