@@ -40,6 +40,10 @@ MAX_COLUMNS = 120
 #: Most random starts accepted.
 MAX_STARTS = 1000
 
+#: Most (run, candidate) pairs ranked at once by :meth:`ExchangeProblem.fedorov`; beyond it
+#: the exchange goes run by run (:meth:`ExchangeProblem.row_exchange`).
+FEDOROV_PAIRS = 2 ** 15
+
 def check_criterion(c: Any) -> str:
     """``c`` as one of :data:`CRITERIA` (upper case), or a ValueError."""
     if not isinstance(c, str) or c.strip().upper() not in CRITERIA:
@@ -179,6 +183,26 @@ def _pair_value(crit: str, base: float, gAg: np.ndarray, fAg: np.ndarray, fAf: n
     return np.where(ok & np.isfinite(v), v, np.inf)
 
 
+def _pair_key(crit: str, base: float, gAg: np.ndarray, fAg: np.ndarray, fAf: np.ndarray,
+              t11: Any = None, t12: Any = None, t22: Any = None) -> np.ndarray:
+    """A ranking key of the exchanges of :func:`_pair_value` (smaller is better, the same
+    order): for D minus the determinant ratio ``(1 + g'Ag)(1 - f'Af) + (f'Ag)^2``, without a
+    logarithm per pair (:func:`_key_value` turns one key into the criterion); for I, A the
+    criterion itself."""
+    if crit != "D":
+        return _pair_value(crit, base, gAg, fAg, fAf, t11, t12, t22)
+    with np.errstate(all="ignore"):
+        r = (1.0 + gAg) * (1.0 - fAf) + fAg ** 2
+        return np.where(r > 0, -r, np.inf)
+
+
+def _key_value(crit: str, base: float, key: float) -> float:
+    """The criterion (to minimise) of one exchange from its :func:`_pair_key`."""
+    if crit != "D":
+        return float(key)
+    return -(base + math.log(-key)) if key < 0 and math.isfinite(key) else math.inf
+
+
 class _Rank2:
     """``A = M^-1`` (and ``K = A W A`` for I, ``A A`` for A) of an information matrix ``M``,
     kept through the exchanges ``M - f f' + g g'`` by the rank-two Woodbury identity (``O(p^2)``
@@ -232,6 +256,8 @@ class _Rank2:
     def cross(self, X: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, Any]:
         """``(x'Af, x'Kf)`` of every row x of X against the vector(s) f (broadcast)."""
         Af = f @ self.A
+        if f.ndim == 1:  # one f: a matrix-vector product
+            return X @ Af, (None if self.crit == "D" else X @ (f @ self.K))
         xaf = np.einsum("...j,...j->...", X, Af)
         return xaf, (None if self.crit == "D" else np.einsum("...j,...j->...", X, f @ self.K))
 
@@ -239,15 +265,16 @@ class _Rank2:
         """Exchange ``f`` for ``g`` in ``M``: update ``A``, ``K`` and the criterion; the
         pieces for the stored quadratic forms are kept in :attr:`d` until the next update."""
         A = self.A
-        U = np.column_stack([g, f])
+        U = np.array([g, f]).T
         B = A @ U
         S = U.T @ B
         S[0, 0] += 1.0
         S[1, 1] -= 1.0
-        Si = np.linalg.inv(S)
+        det = S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]
+        Si = np.array([[S[1, 1], -S[0, 1]], [-S[1, 0], S[0, 0]]]) / det
         self.A = A - B @ Si @ B.T
         if self.crit == "D":
-            self.base += float(np.log(-np.linalg.det(S)))
+            self.base += math.log(-det)
             self.d = (B, None, Si, None)
         else:
             H = B if self.crit == "A" else cast(np.ndarray, self.W) @ B
@@ -375,31 +402,35 @@ class ExchangeProblem:
         t22 = np.einsum("ij,ij->i", FK, F)[own]
         return _pair_value(self.crit, base, gAg, fAg, fAf, t11, t12, t22)
 
-    def _move_table(self, base: np.ndarray, coords, phase: int, step: float,
-                    coarse: bool) -> tuple[np.ndarray, np.ndarray]:
-        """Every single-coordinate move of each run of ``base`` (m x k), in fixed slots:
-        ``(points (m, s, k), usable (m, s))``, a slot unusable where it keeps the current
-        setting or breaks a constraint. Phase 0 tries the factor's levels (-1, 0, +1 with
-        ``coarse``), phases 1 and 2 eleven steps of ``step`` around the current setting."""
-        m, k = base.shape
-        blocks = []
+    def _slots(self, coords, phase: int, step: float, coarse: bool) -> tuple[np.ndarray, np.ndarray]:
+        """The single-coordinate moves of one stage, as slots: ``(factor (s,), value (s,))``.
+        Phase 0 tries the factor's levels (-1, 0, +1 with ``coarse``), phases 1 and 2 eleven
+        steps of ``step`` around the current setting (``value`` then an offset)."""
+        col, val = [], []
         for j in coords:
             if phase == 0:
-                vals = self.values[j]
+                v = self.values[j]
                 if coarse and self.space.factors[j].kind == "numeric":
-                    vals = _COARSE
-                blocks.append((j, np.broadcast_to(vals, (m, len(vals)))))
+                    v = _COARSE
             else:
-                blocks.append((j, np.clip(base[:, j:j + 1] + np.linspace(-step, step, 11)[None, :], -1.0, 1.0)))
-        s = sum(v.shape[1] for _, v in blocks)
+                v = np.linspace(-step, step, 11)
+            col.append(np.full(len(v), j))
+            val.append(v)
+        return np.concatenate(col), np.concatenate(val)
+
+    def _move_table(self, base: np.ndarray, slots: tuple[np.ndarray, np.ndarray],
+                    relative: bool) -> tuple[np.ndarray, np.ndarray]:
+        """The moves of each run of ``base`` (m x k) in the slots of :meth:`_slots`: ``(points
+        (m, s, k), usable (m, s))``, a slot unusable where it keeps the current setting or
+        breaks a constraint (``relative``: the values are offsets, clipped to [-1, 1])."""
+        col, val = slots
+        m, k = base.shape
+        s = len(col)
         P = np.repeat(base[:, None, :], s, axis=1)
-        usable = np.empty((m, s), dtype=bool)
-        off = 0
-        for j, vals in blocks:
-            w = vals.shape[1]
-            P[:, off:off + w, j] = vals
-            usable[:, off:off + w] = vals != base[:, j:j + 1]
-            off += w
+        cur = base[:, col]
+        new = np.clip(cur + val, -1.0, 1.0) if relative else np.broadcast_to(val, (m, s))
+        P[:, np.arange(s), col] = new
+        usable = new != cur
         if self.cons is not None and self.cons and P.size:
             usable &= self.cons.feasible_coded(P.reshape(-1, k)).reshape(m, s)
         return P, usable
@@ -459,12 +490,16 @@ class ExchangeProblem:
             return D, cur
         num = self.space.numeric_index
         st = _Rank2(self.crit, self.W)
-        for phase in (0, 1, 2) if polish else (0,):
+        # off the coarse grid, the -1/0/+1 levels first (few moves a step, most of the climb),
+        # then every level
+        stages = [(0, True)] + ([] if coarse else [(0, False)]) + ([(1, False), (2, False)] if polish else [])
+        for phase, coarse_now in stages:
             coords = range(self.k) if phase == 0 else num
             if not len(coords):
                 continue
             step = 0.05 / (5 ** (phase - 1)) if phase else 0.0
-            P, usable = self._move_table(D[rows], coords, phase, step, coarse)
+            slots = self._slots(coords, phase, step, coarse_now)
+            P, usable = self._move_table(D[rows], slots, phase > 0)
             s = P.shape[1]
             G = self.rows(P.reshape(-1, self.k)).reshape(m, s, self.p)
             own = np.repeat(rows, s)
@@ -482,14 +517,16 @@ class ExchangeProblem:
                         xq = list(st.cross(G, Fr[:, None, :]))
                 if st.ok:
                     t11, t12, t22 = (gq[1], xq[1], fq[1][:, None]) if self.crit != "D" else (None, None, None)
-                    v = _pair_value(self.crit, st.base, gq[0], xq[0], fq[0][:, None], t11, t12, t22)
+                    v = _pair_key(self.crit, st.base, gq[0], xq[0], fq[0][:, None], t11, t12, t22)
+                    crit, base = self.crit, st.base
                 else:  # badly conditioned M: exact criteria of every exchange
                     v = self.batch_pairs(M, F, own, G.reshape(m * s, self.p)).reshape(m, s)
+                    crit, base = "value", 0.0
                 v = np.where(usable, v, np.inf).reshape(-1)
                 got, a, b = None, -1, -1
                 for _try in range(3):  # the ranking is an update; the exact value decides
                     best = int(np.argmin(v))
-                    if not _gains(v[best], cur):
+                    if not _gains(_key_value(crit, base, v[best]), cur):
                         break
                     v[best] = np.inf
                     a, b = divmod(best, s)
@@ -508,7 +545,7 @@ class ExchangeProblem:
                     st.shift_cross(xq, proj, tuple(None if x is None else x[:, None, :]
                                                    for x in st.projections(F[rows])))
                 # the moved run's slots remade (its own forms afresh once the inverse is fresh)
-                P[a], usable[a] = (t[0] for t in self._move_table(D[rows[a]][None, :], coords, phase, step, coarse))
+                P[a], usable[a] = (t[0] for t in self._move_table(D[rows[a]][None, :], slots, phase > 0))
                 G[a] = self.rows(P[a])
                 if st.ok and not st.stale:
                     fa = F[rows[a]]
@@ -540,11 +577,14 @@ class ExchangeProblem:
                 if st.ok:
                     x1, x2 = st.cross(G, F[i])
                     f1, f2 = st.quad(F[i])
-                    v = _pair_value(self.crit, st.base, gq[0], x1, f1, gq[1], x2, f2)
+                    v = _pair_key(self.crit, st.base, gq[0], x1, f1, gq[1], x2, f2)
+                    j = int(np.argmin(v))
+                    vj = _key_value(self.crit, st.base, v[j])
                 else:
                     v = np.concatenate([self.batch(M, F[i], G[lo:lo + 2048]) for lo in range(0, len(G), 2048)])
-                j = int(np.argmin(v))
-                if not _gains(v[j], cur):
+                    j = int(np.argmin(v))
+                    vj = float(v[j])
+                if not _gains(vj, cur):
                     continue
                 f_old = F[i].copy()
                 if got := self._replace(D, F, i, cands[j], G[j], M, cur):
@@ -557,12 +597,69 @@ class ExchangeProblem:
                 break
         return D, cur
 
+    def fedorov(self, D: np.ndarray, fixed: int = 0, coarse: bool = False) -> tuple[np.ndarray, float]:
+        """Fedorov's exchange (Fedorov 1972; AlgDesign's ``optFederov``): each step makes the
+        best exchange of any run (rows ``fixed..``) for any candidate point, all ``runs x
+        candidates`` pairs ranked at once from ``F A G'`` (one matrix product) with ``A = M^-1``
+        and every candidate's ``g'Ag`` carried by rank-two updates (:class:`_Rank2`); the exact
+        criterion confirms each exchange (:meth:`_replace`). More pairs than
+        :data:`FEDOROV_PAIRS`, or a badly conditioned start, go run by run instead
+        (:meth:`row_exchange`)."""
+        cands, G = self._on_grid(self.candidates, self.cand_rows) if coarse else (self.candidates, self.cand_rows)
+        rows = np.arange(fixed, len(D))
+        if len(rows) * len(G) > FEDOROV_PAIRS:
+            return self.row_exchange(D, fixed, coarse)
+        D, F, M, cur = self._start(D)
+        st = _Rank2(self.crit, self.W)
+        gq: list[Any] = []
+        nc = len(G)
+        for _ in range(50 * max(1, len(rows))):
+            if st.stale:
+                if not st.reset(M):
+                    return self.row_exchange(D, fixed, coarse)
+                gq = list(st.quad(G))
+            Fr = F[rows]
+            fAf, t22 = st.quad(Fr)
+            fAg = (Fr @ st.A) @ G.T
+            if self.crit == "D":
+                v = _pair_key("D", st.base, gq[0][None, :], fAg, fAf[:, None])
+            else:
+                v = _pair_key(self.crit, st.base, gq[0][None, :], fAg, fAf[:, None], gq[1][None, :],
+                              (Fr @ st.K) @ G.T, t22[:, None])
+            v = v.reshape(-1)
+            got, i, j = None, -1, -1
+            for _try in range(3):  # the ranking is an update; the exact value decides
+                best = int(np.argmin(v))
+                if not _gains(_key_value(self.crit, st.base, v[best]), cur):
+                    break
+                v[best] = np.inf
+                a, j = divmod(best, nc)
+                i = int(rows[a])
+                f_old = F[i].copy()
+                got = self._replace(D, F, i, cands[j], G[j], M, cur)
+                if got:
+                    break
+            if not got:
+                break
+            M, cur = got
+            st.update(f_old, G[j])
+            st.shift_quad(gq, st.projections(G))
+        return D, cur
+
     def improve(self, D: np.ndarray, fixed: int = 0, polish: bool = False, coarse: bool = False) -> tuple[np.ndarray, float]:
-        """Coordinate exchange and row exchange in turn until neither improves."""
-        D, v = self.exchange(D, fixed, polish=polish, coarse=coarse)
+        """Fedorov exchange (:meth:`fedorov`) and coordinate exchange (:meth:`exchange`) in
+        turn until neither improves."""
+        if coarse:  # on the -1/0/+1 grid the candidate-set exchange first, as optFederov
+            D, v = self.fedorov(D, fixed, coarse=True)
+            D2, v2 = self.exchange(D, fixed, polish=polish, coarse=True)
+            if not _gains(v2, v):
+                return D, v
+            D, v = D2, v2
+        else:
+            D, v = self.exchange(D, fixed, polish=polish, coarse=coarse)
         for _ in range(10):
-            D2, v2 = self.row_exchange(D, fixed, coarse=coarse)
-            if not is_gain(v2, v):
+            D2, v2 = self.fedorov(D, fixed, coarse=coarse)
+            if not _gains(v2, v):
                 break
             D, v = self.exchange(D2, fixed, polish=polish, coarse=coarse)
         return D, v
