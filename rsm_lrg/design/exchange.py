@@ -541,9 +541,9 @@ class ExchangeProblem:
                     st.update(f_old, F[rows[a]])
                     proj = st.projections(G)
                     st.shift_quad(gq, proj)
-                    st.shift_quad(fq, st.projections(F[rows]))
-                    st.shift_cross(xq, proj, tuple(None if x is None else x[:, None, :]
-                                                   for x in st.projections(F[rows])))
+                    FB, FH = st.projections(F[rows])
+                    st.shift_quad(fq, (FB, FH))
+                    st.shift_cross(xq, proj, (FB[:, None, :], None if FH is None else FH[:, None, :]))
                 # the moved run's slots remade (its own forms afresh once the inverse is fresh)
                 P[a], usable[a] = (t[0] for t in self._move_table(D[rows[a]][None, :], slots, phase > 0))
                 G[a] = self.rows(P[a])

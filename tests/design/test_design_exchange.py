@@ -5,7 +5,7 @@ exchanged design, and the Halton candidates are the published sequence."""
 import numpy as np
 import pytest
 
-from rsm_lrg.design.exchange import ExchangeProblem, candidate_pool, halton, moment_matrix
+from rsm_lrg.design.exchange import ExchangeProblem, _Rank2, _value, candidate_pool, halton, moment_matrix
 from rsm_lrg.factors import FactorSpace
 from rsm_lrg.terms import design_matrix, model_terms
 
@@ -45,3 +45,89 @@ def test_halton_is_the_radical_inverse_sequence():
     shifted = halton(100, 5, seed=7)
     assert shifted.min() >= 0 and shifted.max() < 1
     np.testing.assert_array_equal(shifted, halton(100, 5, seed=7))  # the seed repeats it
+
+
+@pytest.mark.parametrize("crit", ["D", "I", "A"])
+def test_rank_two_updates_follow_a_sequence_of_exchanges(crit):
+    # M^-1, K = A W A (A A for A), the criterion and the kept quadratic and cross forms after
+    # twelve exchanges equal those of a fresh factorisation of the exchanged M
+    space = FactorSpace.from_specs(["a=0:1", "b=0:1", "c=0:1"])
+    terms = model_terms(space.letters, "quadratic")
+    W = moment_matrix(space, terms) if crit == "I" else None
+    rng = np.random.default_rng(5)
+    F = design_matrix(rng.uniform(-1, 1, size=(16, 3)), terms)
+    G = design_matrix(rng.uniform(-1, 1, size=(40, 3)), terms)
+    st = _Rank2(crit, W)
+    assert st.reset(F.T @ F)
+    gq, xq = list(st.quad(G)), list(st.cross(G, F[15]))
+    for step in range(12):
+        i = step % 15  # run 15 stays: its cross forms with G are kept
+        st.update(F[i].copy(), G[step])
+        st.shift_quad(gq, st.projections(G))
+        st.shift_cross(xq, st.projections(G), st.projections(F[15]))
+        F[i] = G[step]
+    M = F.T @ F
+    fresh = _Rank2(crit, W)
+    assert fresh.reset(M)
+    np.testing.assert_allclose(st.A, np.linalg.inv(M), rtol=1e-9, atol=1e-9 * np.abs(fresh.A).max())
+    assert st.base == pytest.approx(fresh.base, rel=1e-10)
+    assert _value(M, crit, W) == pytest.approx(-st.base if crit == "D" else st.base, rel=1e-10)
+    for kept, new in zip(gq + xq, list(fresh.quad(G)) + list(fresh.cross(G, F[15]))):
+        if new is None:
+            assert kept is None and crit == "D"
+            continue
+        np.testing.assert_allclose(kept, new, rtol=1e-8, atol=1e-10 * np.abs(new).max())
+
+
+def test_a_badly_conditioned_matrix_is_not_inverted():
+    st = _Rank2("D", None)
+    assert not st.reset(np.diag([1.0, 1e-10]))
+    assert st.stale
+
+
+@pytest.mark.parametrize("crit", ["D", "I"])
+def test_fedorov_ends_where_no_exchange_of_a_run_for_a_candidate_gains(crit):
+    # every (run, candidate) exchange, by exact factorisation: none improves the result
+    space = FactorSpace.from_specs(["a=0:1", "b=0:1", "c=0:1"])
+    terms = model_terms(space.letters, "quadratic")
+    W = moment_matrix(space, terms) if crit == "I" else None
+    prob = ExchangeProblem(space, terms, crit, W, None, candidate_pool(space, None, n=32, seed=1))
+    start = prob.random_start(13, np.random.default_rng(2), grid=True)
+    D, v = prob.fedorov(start, coarse=True)
+    cands, G = prob.candidates, prob.cand_rows
+    on = np.all(np.isin(cands, [-1.0, 0.0, 1.0]), axis=1)
+    F = design_matrix(D, terms)
+    M = F.T @ F + prob.ridge(len(D))
+    assert v == pytest.approx(_exact(M, crit, W), rel=1e-12)
+    assert v < prob.score(start)
+    exchanged = [_exact(M - np.outer(f, f) + np.outer(g, g), crit, W) for f in F for g in G[on]]
+    assert min(exchanged) >= v * (1 - 1e-9) if v > 0 else min(exchanged) >= v - 1e-9 * abs(v)
+    # the same start gives the same design
+    np.testing.assert_array_equal(prob.fedorov(start, coarse=True)[0], D)
+
+
+def test_coordinate_exchange_ends_where_no_single_coordinate_move_gains():
+    space = FactorSpace.from_specs(["a=0:1", "b=0:1", "c=0:1"])
+    terms = model_terms(space.letters, "quadratic")
+    prob = ExchangeProblem(space, terms, "D", None, None, candidate_pool(space, None, n=32, seed=1))
+    start = np.random.default_rng(3).uniform(-1, 1, size=(12, 3))
+    D, v = prob.exchange(start, polish=False)
+    F = design_matrix(D, terms)
+    M = F.T @ F + prob.ridge(len(D))
+    assert v == pytest.approx(_exact(M, "D", None), rel=1e-12)
+    for i in range(len(D)):
+        for j in range(3):
+            for level in np.linspace(-1, 1, 21):
+                x = D[i].copy()
+                x[j] = level
+                g = design_matrix(x[None, :], terms)[0]
+                assert _exact(M - np.outer(F[i], F[i]) + np.outer(g, g), "D", None) >= v - 1e-9 * abs(v)
+
+
+def test_model_rows_of_a_cubic_model_equal_the_design_matrix():
+    space = FactorSpace.from_specs(["a=0:1", "b=0:1", "c=0:1", "d=0:1"])
+    terms = model_terms(space.letters, "cubic")
+    prob = ExchangeProblem(space, terms, "D", None, None, candidate_pool(space, None, n=16, seed=1))
+    X = np.random.default_rng(4).uniform(-1, 1, size=(30, 4))
+    np.testing.assert_allclose(prob.rows(X), design_matrix(X, terms), rtol=1e-14, atol=1e-15)
+    np.testing.assert_allclose(prob.rows(X.reshape(5, 6, 4)), design_matrix(X, terms).reshape(5, 6, -1), rtol=1e-14)
