@@ -20,8 +20,11 @@ turn to the best of a grid of values (21 levels over [-1, 1] for a numeric facto
 level of a categoric one) among those that keep the run inside the constraints, until a
 whole pass changes nothing; a finer local grid then polishes the numeric settings. The
 best of ``starts`` random starts is kept; every start comes from ``seed``, so the same seed
-gives the same design. The updates are evaluated in batches (``M - f f' + g g'`` for every
-candidate ``g``) with a tiny ridge so a singular start can still climb.
+gives the same design. A start on the -1/0/+1 grid is first improved by Fedorov's exchange
+of runs for candidate points (Fedorov 1972, as AlgDesign's ``optFederov``), a continuous start
+by coordinate exchange first; the two alternate until neither gains. The updates are
+evaluated in batches (``M - f f' + g g'`` for every candidate ``g``) from ``M^-1`` carried by
+rank-two updates, with a tiny ridge so a singular start can still climb.
 
 Design-Expert's extras: ``lof_points`` runs spread by distance (each the feasible
 candidate farthest from every run so far: lack-of-fit points) and ``replicates`` runs that
@@ -114,8 +117,8 @@ def optimal(
     starts : int or None
         Random starts in the continuous region; twice as many start on the -1/0/+1 grid
         and one more is a sequential build (default 6 for up to 10 model columns, 4 up
-        to 21, 2 beyond: with the vectorised exchange these match R AlgDesign's
-        ``optFederov`` D-efficiency on the quadratic benchmarks, ``benchmarks/bench_design.py``).
+        to 21, 2 beyond: with these the median D-efficiency is above R AlgDesign's
+        ``optFederov`` on the quadratic benchmarks, ``benchmarks/bench_design.py``).
     randomize : bool
         ``False``: run order = standard order (model points, replicates, lof points).
 
