@@ -349,15 +349,69 @@ def half_normal_plot(abs_effects, scores, labels, *, me: float | None = None, sm
         slope = float(np.sum(x[small] * y[small]) / np.sum(x[small] ** 2))
         xs = np.array([0.0, min(float(x.max()), float(y.max()) / slope)])
         ax.plot(xs, slope * xs, color=_LINE_COLOR, linewidth=1)
-    for value, name in ((me, "ME"), (sme, "SME")):
+    # ME and SME are named in a legend (two lines a hair apart would put their names on one spot)
+    for value, name, style in ((me, "ME", "--"), (sme, "SME", ":")):
         if value is not None and math.isfinite(value):
-            ax.axvline(value, color="#b5261e", linewidth=0.8, linestyle="--")
-            ax.annotate(name, (value, 0.02), xycoords=("data", "axes fraction"), fontsize=7, color="#b5261e")
-    for xi, yi, lab in zip(x, y, labels):
-        if me is not None and xi > me:
-            ax.annotate(_t(lab), (xi, yi), xytext=(4, -3), textcoords="offset points", fontsize=8)
+            ax.axvline(value, color="#b5261e", linewidth=0.8, linestyle=style, label=f"{name} {format_number(value)}")
     _finish(ax, title, "|Effect|", "Half-normal quantile")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="lower right", fontsize=7, frameon=True, framealpha=0.9, edgecolor="none")
+    active = [(float(xi), float(yi), lab) for xi, yi, lab in zip(x, y, labels) if me is not None and xi > me]
+    _place_labels(fig, ax, active)
     return fig
+
+
+#: Offsets tried for a point's label [points], in order: right, right above, right below, left,
+#: left above, left below, then further above and below.
+_LABEL_OFFSETS = [(4, -3, "left"), (4, 5, "left"), (4, -11, "left"), (-4, -3, "right"), (-4, 5, "right"),
+                  (-4, -11, "right")] + [(dx, dy, ha) for k in (2, 3, 4) for dy in (-3 + 8 * k, -3 - 8 * k)
+                                         for dx, ha in ((4, "left"), (-4, "right"))]
+
+
+def _drawn_tick_labels(ax) -> list:
+    """The tick labels of ``ax`` that are drawn: with text, at a tick inside the view."""
+    out = []
+    for axis, (lo, hi) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+        lo, hi = min(lo, hi), max(lo, hi)
+        for tick in axis.get_major_ticks():
+            if lo <= tick.get_loc() <= hi and tick.label1.get_visible() and tick.label1.get_text():
+                out.append(tick.label1)
+    return out
+
+
+def _place_labels(fig: Figure, ax, points: Sequence[tuple[float, float, str]]) -> None:
+    """Label points so that no two labels, the legend or the tick labels overlap: each label
+    (largest ``x`` first) takes the first of :data:`_LABEL_OFFSETS` whose box, as drawn, is
+    inside the axes and clear of everything placed before (else the first offset)."""
+    if not points:
+        return
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)  # the tick labels as they will be drawn
+    frame = ax.get_window_extent(renderer)
+    taken = [t.get_window_extent(renderer) for t in _drawn_tick_labels(ax)]
+    legend = ax.get_legend()
+    if legend is not None:
+        taken.append(legend.get_window_extent(renderer))
+    for xi, yi, lab in sorted(points, key=lambda p: (-p[0], -p[1])):
+        note = None
+        for dx, dy, ha in _LABEL_OFFSETS:
+            if note is not None:
+                note.remove()
+            note = ax.annotate(_t(lab), (xi, yi), xytext=(dx, dy), textcoords="offset points", fontsize=8,
+                               ha=ha, va="baseline")
+            box = note.get_window_extent(renderer)
+            if (frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1
+                    and not any(box.overlaps(t) for t in taken)):
+                break
+        else:
+            if note is not None:
+                note.remove()
+            dx, dy, ha = _LABEL_OFFSETS[0]
+            note = ax.annotate(_t(lab), (xi, yi), xytext=(dx, dy), textcoords="offset points", fontsize=8, ha=ha)
+            box = note.get_window_extent(renderer)
+        taken.append(box)
 
 
 def evaluate_on_grid(predict: Callable[[np.ndarray, np.ndarray], np.ndarray],

@@ -146,3 +146,47 @@ def test_rendered_carries_size_and_text():
     r = P.render(fig, "cooks", "Cook's distance", "caption", "svg")
     assert (r.width_px, r.height_px) == (480, 346)  # 5.0 x 3.6 in at 96 px/in
     assert r.to_dict()["key"] == "cooks"
+
+
+def _text_boxes(fig):
+    """Window boxes of every visible text drawn in a figure's axes (labels, tick labels,
+    legend entries), as rendered by Agg."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)
+    out = []
+    for ax in fig.axes:
+        texts = list(ax.texts)
+        for axis, (lo, hi) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):  # ticks in view
+            texts += [t.label1 for t in axis.get_major_ticks() if min(lo, hi) <= t.get_loc() <= max(lo, hi)]
+        if ax.get_legend() is not None:
+            texts += ax.get_legend().get_texts()
+        for t in texts:
+            if t.get_visible() and t.get_text():
+                out.append((t.get_text(), t.get_window_extent(renderer)))
+    return out
+
+
+@pytest.mark.parametrize("n_active", [3, 9, 15])
+def test_half_normal_labels_never_overlap(n_active):
+    # long names, many active effects close together, ME and SME a hair apart (issue 25)
+    from rsm_lrg.report.plots import half_normal_plot
+
+    rng = np.random.default_rng(n_active)
+    names = [f"thickness_of_the_guide_rail_{i}×velocity_of_carriage" if i % 2 else f"T{i}" for i in range(31)]
+    small = np.sort(rng.uniform(0, 0.25, 31 - n_active))
+    big = 5.0 + np.sort(rng.uniform(0, 0.3, n_active))  # nearly equal effects: points almost on one spot
+    x = np.concatenate([small, big])
+    y = np.sort(np.abs(rng.normal(0, 1, 31)))
+    fig = half_normal_plot(x, y, names, me=0.30, sme=0.31)
+    boxes = _text_boxes(fig)
+    labelled = [t for t, _ in boxes if t in names]
+    assert len(labelled) == n_active
+    assert {"ME 0.3", "SME 0.31"} <= {t for t, _ in boxes}
+    for i, (ta, a) in enumerate(boxes):
+        for tb, b in boxes[i + 1:]:
+            assert not a.overlaps(b), (ta, tb)
+    frame = fig.bbox
+    for t, b in boxes:  # nothing drawn off the figure
+        assert frame.x0 <= b.x0 and b.x1 <= frame.x1 and frame.y0 <= b.y0 and b.y1 <= frame.y1, t
