@@ -543,7 +543,7 @@ def contour_plot(X, Y, Z, *, points=None, xlabel: str = "x", ylabel: str = "y",
     if np.ptp(Z[np.isfinite(Z)]) > 0:
         cf = ax.contourf(X, Y, Z, levels=levels, cmap="viridis")
         cs = ax.contour(X, Y, Z, levels=cf.levels, colors="k", linewidths=0.4)
-        ax.clabel(cs, inline=True, fontsize=6, fmt="%.4g")
+        ax.clabel(cs, inline=True, fontsize=6, fmt=format_number)  # the one number format
         cb = fig.colorbar(cf, ax=ax, shrink=0.9)
         cb.set_label(_t(zlabel), fontsize=8)
         cb.ax.tick_params(labelsize=7)

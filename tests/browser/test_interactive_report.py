@@ -322,8 +322,11 @@ def test_surface_follows_the_profiler(page2):
     page.evaluate(SET, ["stroke_m", "0.058", "input"])
     page.evaluate("() => window.rsmReport.drawNow()")
     surf = page.evaluate("""() => { const d = document.getElementById('surface-plot'); const c = document.getElementById('contour-plot');
-        return {type: d.data[0].type, x: d.data[0].x, y: d.data[0].y, z: d.data[0].z, cz: c.data[0].z}; }""")
-    assert surf["type"] == "surface" and surf["z"] == surf["cz"]
+        return {type: d.data[0].type, x: d.data[0].x, y: d.data[0].y, z: d.data[0].z, cz: c.data[0].z,
+                scale: c.data[0].meta.scale}; }""")
+    # the contour draws the surface's values, the wear rate in units of 10^E (its labels stay plain)
+    assert surf["type"] == "surface" and surf["scale"] % 3 == 0 and surf["scale"] < -9
+    np.testing.assert_allclose(np.array(surf["cz"]) * 10.0 ** surf["scale"], surf["z"], rtol=1e-14)
     state = page.evaluate(READ)
     rng = np.random.default_rng(5)
     i, j = rng.integers(0, len(surf["x"]), 20), rng.integers(0, len(surf["y"]), 20)
@@ -719,3 +722,39 @@ def test_hover_labels_use_the_page_number_format(page2):
     v = float(fits["wear_volume_m3_per_h"].predict(pd.DataFrame([page.evaluate("() => window.rsmReport.setting()")]))
               ["predicted"].iloc[0])
     assert any(f"wear_volume_m3_per_h = {format_number(v)} (current setting)" in t for t in texts[0])
+
+
+def test_contour_labels_use_the_page_number_format(page2):
+    """The contour lines' labels (Plotly's, with a d3 format) read as the page's number format
+    writes each level (:func:`rsm_lrg.present.format_number`; Plotly's minus is U+2212); a
+    response of size outside [1e-2, 1e5) is drawn in units of 10^E, named on the colour bar;
+    the overlay names each limit line with its value in the same format."""
+    from rsm_lrg.present import format_number
+
+    page, log, _, fits = page2
+    page.select_option("#surface-x", "thickness_m")
+    page.select_option("#surface-y", "velocity_m_s")
+    for k, response in enumerate(fits):
+        page.select_option("#surface-response", str(k))
+        page.evaluate("() => window.rsmReport.drawNow()")
+        got = page.evaluate("""() => { const c = document.getElementById('contour-plot'); const t = c._fullData[0];
+            return {labels: Array.from(c.querySelectorAll('.contourlabels text')).map(e => e.textContent),
+                    start: t.contours.start, size: t.contours.size, end: t.contours.end, scale: t.meta.scale,
+                    title: c._fullLayout ? t.colorbar.title.text : ''}; }""")
+        levels = np.arange(got["start"], got["end"] + got["size"] / 2, got["size"])
+        shown = {format_number(float(v)) for v in levels} | {"0"}
+        assert len(got["labels"]) >= 3, got
+        bad = [s for s in got["labels"] if s.replace("\u2212", "-") not in shown]
+        assert bad == [], (response, bad, sorted(shown))
+        assert all("e" not in s and "×" not in s for s in got["labels"])  # plain decimals, as fmt writes them
+        if response == "wear_volume_m3_per_h":  # ~4e-11: drawn in units of 10^-12
+            assert got["scale"] == -12 and got["title"] == f"{response} (× 10⁻¹²)"
+        else:
+            assert got["scale"] == 0 and got["title"] == response
+    names = page.evaluate("() => (document.getElementById('overlay-plot').data || []).map(t => t.name)")
+    limits = page.evaluate("() => window.rsmReport.limits()")
+    for (lo, hi), response in zip(limits, fits):
+        for value, side in ((lo, "low"), (hi, "high")):
+            if value is not None and value == value:
+                assert f"{response} {side} limit {format_number(value)}" in names, names
+    assert log["errors"] == []

@@ -190,3 +190,18 @@ def test_half_normal_labels_never_overlap(n_active):
     frame = fig.bbox
     for t, b in boxes:  # nothing drawn off the figure
         assert frame.x0 <= b.x0 and b.x1 <= frame.x1 and frame.y0 <= b.y0 and b.y1 <= frame.y1, t
+
+
+@pytest.mark.parametrize("scale", [1e-11, 0.03, 2.5e6])
+def test_contour_labels_are_present_format_number(scale):
+    # the static contour's line labels are written by the one number format (issue 25)
+    from rsm_lrg.present import format_number
+
+    X, Y, Z = P.evaluate_on_grid(lambda a, b: scale * (1 + a * a + 0.5 * b), (-1, 1), (-1, 1))
+    fig = P.contour_plot(X, Y, Z)
+    labels = [t for t in fig.axes[0].texts if t.get_text()]
+    assert len(labels) >= 3
+    levels = next(c.levels for c in fig.axes[0].collections if hasattr(c, "levels"))
+    for t in labels:
+        assert "e" not in t.get_text()  # never %g's 1e-11 or 2.5e+06
+        assert t.get_text() in {format_number(float(v)) for v in levels}, t.get_text()

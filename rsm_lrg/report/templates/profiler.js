@@ -53,8 +53,21 @@
     var mant = h.length > 1 ? h.charAt(0) + "." + h.slice(1) : h;
     if (trim !== false) mant = trimZeros(mant);
     if (style === "ascii") return sign + mant + "e" + (e < 0 ? "-" : "+") + (Math.abs(e) < 10 ? "0" : "") + Math.abs(e);
-    return sign + mant + " \u00d7 10" + String(e).split("").map(function (ch) { return SUP[ch]; }).join("");
+    return sign + mant + " \u00d7 " + power10(e);
   }
+  /* Contour labels in the page's number format. Plotly writes a contour label with a d3 format;
+   * ".4~r" (4 significant figures, plain decimals, trailing zeros dropped) is fmt's plain form,
+   * so a response of size (largest |value| on the grid) outside [1e-2, 1e5) is drawn in units of
+   * 10^E (E a multiple of 3, named on the colour bar) to keep every level in that form. Plotly
+   * writes a negative label with the typographic minus (U+2212). */
+  var LABEL_FORMAT = ".4~r";
+  function plainNumber(v) { var a = Math.abs(v); return v === 0 || (a >= 1e-4 && a < 1e5); }
+  function labelScale(z) {
+    var a = 0;
+    z.forEach(function (r) { r.forEach(function (v) { if (isFinite(v)) a = Math.max(a, Math.abs(v)); }); });
+    return !(a > 0) || (a >= 1e-2 && a < 1e5) ? 0 : 3 * Math.floor(Math.log10(a) / 3);
+  }
+  function power10(e) { return "10" + String(e).split("").map(function (ch) { return SUP[ch]; }).join(""); }
   /* names (factors, levels, responses) are data, never object keys with a prototype: every
    * object indexed by a name is prototype-free, so __proto__, constructor or toString are
    * ordinary names */
@@ -431,10 +444,13 @@
       var lim = limitsOf(m);
       [0, 1].forEach(function (e) {
         if (!isFinite(lim[e])) return;
+        /* the limit is labelled on its line where fmt writes it plainly, and named with its value
+           (fmt) in the legend always */
         traces.push({type: "contour", x: g.x, y: g.y, z: g.zr[k], showscale: false, hoverinfo: "skip",
-                     contours: {coloring: "none", start: lim[e], end: lim[e], size: 1, showlabels: true, labelformat: ".4~g"},
+                     contours: {coloring: "none", start: lim[e], end: lim[e], size: 1, showlabels: plainNumber(lim[e]),
+                                labelformat: LABEL_FORMAT},
                      line: {color: COLORS[k % COLORS.length], width: 2, dash: e ? "solid" : "dash"},
-                     name: esc(m.response + (e ? " high limit" : " low limit"))});
+                     name: esc(m.response + (e ? " high limit " : " low limit ")) + fmt(lim[e])});
       });
     });
     var opt = DATA.desirability ? DATA.desirability.setting : (MODELS.length && DATA.optima[MODELS[0].response]
@@ -482,9 +498,11 @@
       {margin: {l: 0, r: 0, t: 10, b: 0}, showlegend: false, uirevision: "keep",
        scene: {aspectmode: "cube", xaxis: axis(xl), yaxis: axis(yl), zaxis: axis(zl),
                camera: keepCamera || SURFACE_CAMERA}}, CONFIG);
+    var E = labelScale(z), zs = E ? z.map(function (row) { return row.map(function (v) { return v / Math.pow(10, E); }); }) : z;
     Plotly.react(el2, [
-      {type: "contour", x: xs, y: ys, z: z, colorscale: "Viridis", contours: {showlabels: true, labelformat: ".4~g"},
-       colorbar: {title: {text: zl}, exponentformat: "power"}, text: tip, hovertemplate: "%{text}<extra></extra>"},
+      {type: "contour", x: xs, y: ys, z: zs, colorscale: "Viridis", contours: {showlabels: true, labelformat: LABEL_FORMAT},
+       colorbar: {title: {text: zl + (E ? " (\u00d7 " + power10(E) + ")" : "")}, exponentformat: "power"}, meta: {scale: E}, text: tip,
+       hovertemplate: "%{text}<extra></extra>"},
       {type: "scatter", mode: "markers", x: [s[fx.name]], y: [s[fy.name]], marker: {size: 10, color: "#a11d1d"},
        name: "current setting", text: here, hovertemplate: "%{text}<extra></extra>"}],
       {margin: {l: 70, r: 20, t: 20, b: 60}, showlegend: false, uirevision: "keep",
