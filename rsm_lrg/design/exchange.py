@@ -340,6 +340,11 @@ class ExchangeProblem:
             self._idx = np.array([f + [0] * (deg - len(f)) for f in factors], dtype=np.intp).T
         self.candidates = cands
         self.cand_rows = self.rows(cands)
+        # whether the -1/0/+1 grid points of the pool can estimate the model (a cubic cannot: x^3
+        # is x there); if not, the grid starts and moves are those of the whole pool
+        on = np.all(np.isin(cands[:, space.numeric_index], _COARSE), axis=1)
+        Gon = self.cand_rows[on]
+        self.grid_ok = bool(on.sum() >= max(2, self.p) and np.linalg.cond(Gon.T @ Gon) < 1e12)
         self._cache_key = None
         self.values = []
         for f in space.factors:
@@ -452,9 +457,10 @@ class ExchangeProblem:
 
     def _on_grid(self, points: np.ndarray, *rows: np.ndarray) -> tuple[np.ndarray, ...]:
         """``points`` (and the matching ``rows``) with every numeric coordinate at -1, 0 or
-        +1, when there are at least two such points; else all of them."""
+        +1, when there are at least two such points and the grid can estimate the model
+        (:attr:`grid_ok`); else all of them."""
         on = np.all(np.isin(points[:, self.space.numeric_index], _COARSE), axis=1)
-        if on.sum() >= 2:
+        if on.sum() >= 2 and self.grid_ok:
             return (points[on], *(r[on] for r in rows))
         return (points, *rows)
 
@@ -648,7 +654,9 @@ class ExchangeProblem:
 
     def improve(self, D: np.ndarray, fixed: int = 0, polish: bool = False, coarse: bool = False) -> tuple[np.ndarray, float]:
         """Fedorov exchange (:meth:`fedorov`) and coordinate exchange (:meth:`exchange`) in
-        turn until neither improves."""
+        turn until neither improves (``coarse`` only where the -1/0/+1 grid can estimate the
+        model, :attr:`grid_ok`)."""
+        coarse = coarse and self.grid_ok
         if coarse:  # on the -1/0/+1 grid the candidate-set exchange first, as optFederov
             D, v = self.fedorov(D, fixed, coarse=True)
             D2, v2 = self.exchange(D, fixed, polish=polish, coarse=True)

@@ -131,3 +131,17 @@ def test_model_rows_of_a_cubic_model_equal_the_design_matrix():
     X = np.random.default_rng(4).uniform(-1, 1, size=(30, 4))
     np.testing.assert_allclose(prob.rows(X), design_matrix(X, terms), rtol=1e-14, atol=1e-15)
     np.testing.assert_allclose(prob.rows(X.reshape(5, 6, 4)), design_matrix(X, terms).reshape(5, 6, -1), rtol=1e-14)
+
+
+def test_grid_starts_only_where_the_grid_estimates_the_model():
+    # x^3 equals x on -1/0/+1: a cubic model is singular on the grid, so grid starts and grid
+    # candidates are the whole pool there; a quadratic is estimable on the grid
+    space = FactorSpace.from_specs(["a=0:1", "b=0:1", "c=0:1"])
+    pool = candidate_pool(space, None, n=64, seed=1)
+    quad = ExchangeProblem(space, model_terms(space.letters, "quadratic"), "D", None, None, pool)
+    cubic = ExchangeProblem(space, model_terms(space.letters, "cubic"), "D", None, None, pool)
+    assert quad.grid_ok and not cubic.grid_ok
+    assert len(quad._on_grid(pool)[0]) == 27 and len(cubic._on_grid(pool)[0]) == len(pool)
+    D, v = cubic.improve(cubic.random_start(24, np.random.default_rng(0), grid=True), coarse=True)
+    assert np.isfinite(v) and v == pytest.approx(cubic.score(D), rel=1e-12)
+    assert np.linalg.matrix_rank(design_matrix(D, cubic.terms)) == cubic.p  # estimable, off the grid
