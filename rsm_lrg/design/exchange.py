@@ -333,7 +333,8 @@ class ExchangeProblem:
         self.pool = pool
         cands = at_every_level(pool, space)
         self._idx: np.ndarray | None = None
-        if not space.has_categoric:  # all numeric: each monomial a product of gathered columns (fast path)
+        if not space.has_categoric and not any(t.diff for t in terms):
+            # all numeric monomials: each a product of gathered columns (fast path)
             factors = [[i + 1 for i, e in enumerate(t.powers) for _ in range(int(e))] for t in terms]
             deg = max(1, max(len(f) for f in factors))
             # column 0 of [1, x] pads the lower-degree monomials
@@ -532,7 +533,7 @@ class ExchangeProblem:
                 got, a, b = None, -1, -1
                 for _try in range(3):  # the ranking is an update; the exact value decides
                     best = int(np.argmin(v))
-                    if not _gains(_key_value(crit, base, v[best]), cur):
+                    if not is_gain(_key_value(crit, base, v[best]), cur):
                         break
                     v[best] = np.inf
                     a, b = divmod(best, s)
@@ -590,7 +591,7 @@ class ExchangeProblem:
                     v = np.concatenate([self.batch(M, F[i], G[lo:lo + 2048]) for lo in range(0, len(G), 2048)])
                     j = int(np.argmin(v))
                     vj = float(v[j])
-                if not _gains(vj, cur):
+                if not is_gain(vj, cur):
                     continue
                 f_old = F[i].copy()
                 if got := self._replace(D, F, i, cands[j], G[j], M, cur):
@@ -636,7 +637,7 @@ class ExchangeProblem:
             got, i, j = None, -1, -1
             for _try in range(3):  # the ranking is an update; the exact value decides
                 best = int(np.argmin(v))
-                if not _gains(_key_value(self.crit, st.base, v[best]), cur):
+                if not is_gain(_key_value(self.crit, st.base, v[best]), cur):
                     break
                 v[best] = np.inf
                 a, j = divmod(best, nc)
@@ -660,14 +661,14 @@ class ExchangeProblem:
         if coarse:  # on the -1/0/+1 grid the candidate-set exchange first, as optFederov
             D, v = self.fedorov(D, fixed, coarse=True)
             D2, v2 = self.exchange(D, fixed, polish=polish, coarse=True)
-            if not _gains(v2, v):
+            if not is_gain(v2, v):
                 return D, v
             D, v = D2, v2
         else:
             D, v = self.exchange(D, fixed, polish=polish, coarse=coarse)
         for _ in range(10):
             D2, v2 = self.fedorov(D, fixed, coarse=coarse)
-            if not _gains(v2, v):
+            if not is_gain(v2, v):
                 break
             D, v = self.exchange(D2, fixed, polish=polish, coarse=coarse)
         return D, v

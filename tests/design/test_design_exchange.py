@@ -5,7 +5,14 @@ exchanged design, and the Halton candidates are the published sequence."""
 import numpy as np
 import pytest
 
-from rsm_lrg.design.exchange import ExchangeProblem, _Rank2, _value, candidate_pool, halton, moment_matrix
+from rsm_lrg.design.exchange import (
+    ExchangeProblem,
+    _Rank2,
+    candidate_pool,
+    halton,
+    information_criterion,
+    moment_matrix,
+)
 from rsm_lrg.factors import FactorSpace
 from rsm_lrg.terms import design_matrix, model_terms
 
@@ -71,7 +78,7 @@ def test_rank_two_updates_follow_a_sequence_of_exchanges(crit):
     assert fresh.reset(M)
     np.testing.assert_allclose(st.A, np.linalg.inv(M), rtol=1e-9, atol=1e-9 * np.abs(fresh.A).max())
     assert st.base == pytest.approx(fresh.base, rel=1e-10)
-    assert _value(M, crit, W) == pytest.approx(-st.base if crit == "D" else st.base, rel=1e-10)
+    assert information_criterion(M, crit, W) == pytest.approx(-st.base if crit == "D" else st.base, rel=1e-10)
     for kept, new in zip(gq + xq, list(fresh.quad(G)) + list(fresh.cross(G, F[15]))):
         if new is None:
             assert kept is None and crit == "D"
