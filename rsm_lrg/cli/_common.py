@@ -279,16 +279,30 @@ def add_random_effect_options(p: argparse.ArgumentParser) -> None:
                         "REML with Kenward-Roger F tests")
     g.add_argument("--random-block", metavar="COL", default=None,
                    help="block column whose blocks are a random intercept (REML, Kenward-Roger), not fixed effects")
+    p.add_argument("--hard-to-change", action="append", default=None, metavar="NAME",
+                   help="with --whole-plot: a factor that must be constant within every whole plot (repeatable); one "
+                        "that varies inside a whole plot is an error naming the whole plot")
 
 
 def random_effect(args: argparse.Namespace) -> dict:
-    """The ``whole_plot=``/``random_block=`` keyword of :func:`rsm_lrg.fit` from the options."""
+    """The ``whole_plot=``/``random_block=`` (and ``hard_to_change=``) keywords of
+    :func:`rsm_lrg.fit` from the options."""
     out = {}
     if getattr(args, "whole_plot", None) is not None:
         out["whole_plot"] = args.whole_plot
     if getattr(args, "random_block", None) is not None:
         out["random_block"] = args.random_block
+    if getattr(args, "hard_to_change", None) is not None:
+        if out.get("whole_plot") is None:
+            raise InputError("--hard-to-change: give --whole-plot COL too (the factors are checked against the whole "
+                             "plots)")
+        out["hard_to_change"] = list(args.hard_to_change)
     return out
+
+
+def random_effect_columns(args: argparse.Namespace) -> list[str]:
+    """The whole-plot or random-block column named on the command line (none, or one)."""
+    return [c for c in (getattr(args, "whole_plot", None), getattr(args, "random_block", None)) if c is not None]
 
 
 def add_data_response(parser: argparse.ArgumentParser) -> None:

@@ -18,6 +18,7 @@ from ._common import (
     add_random_effect_options,
     add_reader_options,
     random_effect,
+    random_effect_columns,
 )
 
 NAME = "optimize"
@@ -136,7 +137,7 @@ def _multi(args) -> int:
 
         # one factor space for every response (no response is a factor of another)
         choice = choose_factors(data, args.factor, exclude=list(args.response) + ([args.block] if args.block else [])
-                                + list(random_effect(args).values()))
+                                + random_effect_columns(args))
         notes = list(choice.notes)
         fits = {}
         models = {}

@@ -17,6 +17,7 @@ from ._common import (
     add_reader_options,
     print_notes,
     random_effect,
+    random_effect_columns,
 )
 
 NAME = "report"
@@ -125,7 +126,7 @@ def run(args: argparse.Namespace) -> int:
         notes = []
         if n > 1:  # one factor space for every response (no response is a factor of another)
             choice = choose_factors(data, args.factor, exclude=responses + ([args.block] if args.block else [])
-                                    + list(random_effect(args).values()))
+                                    + random_effect_columns(args))
             factors, notes = choice.space, list(choice.notes)
         fits = {}
         for i, r in enumerate(responses):

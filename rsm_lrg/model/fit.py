@@ -24,6 +24,7 @@ for the average block (block effect 0).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 from .actual import actual_coefficients, actual_equations
@@ -41,7 +42,7 @@ __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual
 def fit(data: Any, response: str, factors: Any = None, block: str | None = None, model: Any = "quadratic", *,
         terms: Any = None, intercept: bool = True, transform: Any = None, transform_constant: float = 0.0,
         reduce: Any = None, chunk_rows: int = CHUNK_ROWS, components: Any = None, whole_plot: str | None = None,
-        random_block: str | None = None) -> FitResult:
+        random_block: str | None = None, hard_to_change: Any = None) -> FitResult:
     """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
 
     Parameters
@@ -103,6 +104,11 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
     random_block : str, optional
         Block column whose blocks are a random intercept (the same REML machinery; the
         variance component is named ``"block"``). Not with ``block``.
+    hard_to_change : str or sequence of str, optional
+        With ``whole_plot``: factors (column names) that must be constant within every whole
+        plot; one that varies inside a whole plot raises ValueError naming the factor, the
+        whole plot and its rows. Without it the notes list the factors found constant
+        within every whole plot.
 
     Returns
     -------
@@ -128,10 +134,11 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
         from .dask_fit import fit_dask
 
         return fit_dask(data, response, factors=factors, block=block, spec=spec, chunk_rows=chunk_rows)
+    hard = _hard_names(hard_to_change, whole_plot)
     if whole_plot is not None or random_block is not None:
         if is_dask(data):
             raise SpecError("whole_plot", "a REML fit is made from one in-memory table, not several files")
-        return _fit_mixed(data, response, factors, block, spec, whole_plot, random_block, components)
+        return _fit_mixed(data, response, factors, block, spec, whole_plot, random_block, components, hard)
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
     if components is not None or spec.mixture:
@@ -290,8 +297,78 @@ def _random_column(data: Any, response: str, whole_plot: str | None, random_bloc
     return col, kind, what
 
 
+def _hard_names(hard_to_change: Any, whole_plot: str | None) -> list[str] | None:
+    """The ``hard_to_change`` names as a list (None when not given), checked: only with a
+    whole-plot column, no name twice."""
+    if hard_to_change is None:
+        return None
+    names = [hard_to_change] if isinstance(hard_to_change, str) else [str(h) for h in hard_to_change]
+    if whole_plot is None:
+        raise SpecError("hard_to_change", "hard-to-change factors are checked against a whole-plot column: give "
+                                          "whole_plot too")
+    if not names:
+        raise SpecError("hard_to_change", "name at least one hard-to-change factor")
+    for i, h in enumerate(names):
+        if h in names[:i]:
+            raise SpecError("hard_to_change", f"{h!r} is given twice")
+    return names
+
+
+def _row_ranges(rows: Sequence[int], most: int = 4) -> str:
+    """``[9, 10, 11, 12, 20]`` -> ``"rows 9-12, 20"`` (1-based rows; at most ``most`` ranges)."""
+    spans: list[list[int]] = []
+    for r in rows:
+        if spans and r == spans[-1][1] + 1:
+            spans[-1][1] = r
+        else:
+            spans.append([r, r])
+    text = [f"{a}" if a == b else f"{a}-{b}" for a, b in spans[:most]]
+    return ("row " if len(rows) == 1 else "rows ") + ", ".join(text) + (", ..." if len(spans) > most else "")
+
+
+def _check_hard_to_change(data: Any, col: str, hard: list[str] | None, factor_names: Sequence[str],
+                          response: str) -> str:
+    """Check that each hard-to-change factor is constant within every whole plot (ValueError
+    naming the factor, the whole plot and its rows); return the note saying which factors are
+    constant within every whole plot."""
+    import numpy as np
+
+    from ..factors import quote_value
+
+    labels = data[col].tolist()
+    plots: dict = {}
+    for i, lab in enumerate(labels):
+        plots.setdefault(lab, []).append(i)
+
+    def varies(name: str) -> tuple | None:
+        values = data[name].tolist()
+        for lab, rows in plots.items():
+            first = values[rows[0]]
+            if any(not (values[r] == first or (values[r] != values[r] and first != first)) for r in rows[1:]):
+                return lab, rows
+        return None
+
+    if hard is not None:
+        for h in hard:
+            if h not in data.columns:
+                raise SpecError("hard_to_change", f"hard-to-change factor {quote_value(h)} is not a column of the data")
+            if h in (col, response) or h not in factor_names:
+                raise SpecError("hard_to_change", f"hard-to-change factor {quote_value(h)} is not a factor of the "
+                                                  f"model (factors: {', '.join(factor_names)})")
+            bad = varies(h)
+            if bad is not None:
+                lab, rows = bad
+                where = str(lab) if isinstance(lab, (int, np.integer)) else quote_value(str(lab))
+                raise ValueError(f"hard-to-change factor {quote_value(h)} varies inside whole plot {where} "
+                                 f"({_row_ranges([r + 1 for r in rows])})")
+        return (f"Hard-to-change factors (checked constant within every whole plot): {', '.join(hard)}.")
+    const = [f for f in factor_names if f in data.columns and varies(f) is None]
+    return (f"Factors constant within every whole plot (whole-plot factors): {', '.join(const)}."
+            if const else "No factor is constant within every whole plot (every factor varies inside some whole plot).")
+
+
 def _fit_mixed(data: Any, response: str, factors: Any, block: str | None, spec: ModelSpec, whole_plot: str | None,
-               random_block: str | None, components: Any) -> FitResult:
+               random_block: str | None, components: Any, hard: list[str] | None = None) -> FitResult:
     """A REML fit with one random intercept (:mod:`rsm_lrg.model.mixed`), the reduction (if
     asked) by Kenward–Roger p-values."""
     import pandas as pd
@@ -304,6 +381,9 @@ def _fit_mixed(data: Any, response: str, factors: Any, block: str | None, spec: 
     inp = model_inputs(data, response, factors, col, transform=spec.transform, origin=not spec.intercept)
     from dataclasses import replace
 
+    if kind == "whole_plot":
+        note = _check_hard_to_change(data, col, hard, inp.space.names, response)
+        inp = replace(inp, prep=replace(inp.prep, notes=tuple(inp.prep.notes) + (note,)))
     labels = inp.prep.data[col].tolist()
     inp = replace(inp, block=None, bcodes=None, bkeys=None, blevels=None)
     reduction = None

@@ -98,3 +98,33 @@ def test_whole_plot_over_several_files_exits_2(tmp_path, capsys):
         (tmp_path / name).write_text(Path(SP).read_text())
     assert main(["fit", str(tmp_path), "--response", "wear_um", "--whole-plot", "whole_plot"]) == 2
     assert "--whole-plot is not available when fitting several files" in _err(capsys)
+
+
+def test_hard_to_change_factor_varying_inside_a_whole_plot_exits_2(capsys):
+    # x2 is the sub-plot factor of the cake data: it varies inside oven run 1 (rows 1-3)
+    assert main(["fit", CAKE, *BASE, "--hard-to-change", "x2"]) == 2
+    assert _err(capsys).endswith("hard-to-change factor 'x2' varies inside whole plot 1 (rows 1-3)")
+
+
+@pytest.mark.parametrize("cmd", ["fit", "optimize"])
+def test_hard_to_change_checked_and_noted(cmd, capsys):
+    extra = ["--goal", "maximize"] if cmd == "optimize" else []
+    assert main([cmd, CAKE, *BASE, "--hard-to-change", "x1", *extra, "--json", "-"]) == 0
+    out = capsys.readouterr()
+    assert "Hard-to-change factors (checked constant within every whole plot): x1." in out.out + out.err
+
+
+def test_whole_plot_factors_listed_without_hard_to_change(capsys):
+    assert main(["fit", SP, "--response", "wear_um", "--whole-plot", "whole_plot", "--json", "-"]) == 0
+    js = json.loads(capsys.readouterr().out)
+    assert "Factors constant within every whole plot (whole-plot factors): temp_c, preload_kn." in js["notes"]
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--hard-to-change", "x1"], "--hard-to-change: give --whole-plot COL too"),
+    (["--whole-plot", "Ovenrun", "--hard-to-change", "x9"], "hard-to-change factor 'x9' is not a column"),
+    (["--whole-plot", "Ovenrun", "--hard-to-change", "x1", "--hard-to-change", "x1"], "'x1' is given twice"),
+])
+def test_bad_hard_to_change_exits_2(args, needle, capsys):
+    assert main(["fit", CAKE, "--response", "y", "--factor", "x1", "--factor", "x2", *args]) == 2
+    assert needle in _err(capsys)

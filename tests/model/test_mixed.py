@@ -251,3 +251,24 @@ def test_fit_reml_direct_matches_result():
                        column="whole_plot")
     np.testing.assert_allclose(reg.params, res.coefficients["coded"], rtol=1e-12)
     assert mm.m2loglik == pytest.approx(res.mixed.m2loglik)
+
+
+def test_hard_to_change_factors_are_checked_per_whole_plot():
+    """A hard-to-change factor that varies inside a whole plot is refused naming the whole
+    plot and its rows; the accepted ones leave the fit unchanged and are named in the notes."""
+    plain, d = _bal()
+    assert "Factors constant within every whole plot (whole-plot factors): temp_c, preload_kn." in plain.notes
+    checked = rsm_lrg.fit(d, BAL[0], factors=BAL[1], whole_plot="whole_plot", hard_to_change=["temp_c", "preload_kn"])
+    np.testing.assert_array_equal(checked.mixed.beta, plain.mixed.beta)
+    assert "Hard-to-change factors (checked constant within every whole plot): temp_c, preload_kn." in checked.notes
+    rows = np.flatnonzero(d.whole_plot == "W3") + 1
+    with pytest.raises(ValueError, match=r"hard-to-change factor 'speed_m_s' varies inside whole plot 'W1' \(rows 1-4\)"):
+        rsm_lrg.fit(d, BAL[0], factors=BAL[1], whole_plot="whole_plot", hard_to_change="speed_m_s")
+    moved = d.copy()
+    moved.loc[rows[-1] - 1, "temp_c"] += 1.0  # one run of whole plot W3 at another temperature
+    with pytest.raises(ValueError, match=rf"'temp_c' varies inside whole plot 'W3' \(rows {rows[0]}-{rows[-1]}\)"):
+        rsm_lrg.fit(moved, BAL[0], factors=BAL[1], whole_plot="whole_plot", hard_to_change=["preload_kn", "temp_c"])
+    notes = rsm_lrg.fit(moved, BAL[0], factors=BAL[1], whole_plot="whole_plot", model="linear").notes
+    assert "Factors constant within every whole plot (whole-plot factors): preload_kn." in notes
+    with pytest.raises(ValueError, match="give whole_plot too"):
+        rsm_lrg.fit(d, BAL[0], factors=BAL[1], hard_to_change="temp_c")
