@@ -29,7 +29,7 @@ from .screening import (
     plackett_burman,
 )
 from .spacefill import latin_hypercube, sobol
-from .split_plot import gls_criteria, gls_information, split_plot
+from .split_plot import gls_criteria, gls_information, split_plot, split_plot_ccd
 
 __all__ = [
     "Design",
@@ -58,6 +58,7 @@ __all__ = [
     "simplex_centroid",
     "extreme_vertices",
     "split_plot",
+    "split_plot_ccd",
     "gls_information",
     "gls_criteria",
     "mixture_optimal",

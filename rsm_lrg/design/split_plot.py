@@ -53,7 +53,7 @@ from .exchange import (
     reported_value,
 )
 
-__all__ = ["split_plot", "gls_information", "gls_criteria", "whole_plot_terms", "plot_sizes", "plot_weights",
+__all__ = ["split_plot", "split_plot_ccd", "equivalent_alpha", "gls_information", "gls_criteria", "whole_plot_terms", "plot_sizes", "plot_weights",
            "check_variance_ratio"]
 
 _COARSE = np.array([-1.0, 0.0, 1.0])
@@ -409,24 +409,176 @@ def split_plot(
     if len(set(sizes)) > 1:
         options["note"] = (f"{n} runs do not divide into {W_plots} whole plots: {sizes.count(max(sizes))} whole plots "
                            f"of {max(sizes)} runs and {sizes.count(min(sizes))} of {min(sizes)}")
-    return _ordered(space, best, search, options, rng if used_seed is None else used_seed, randomize)
+    return _ordered(space, best, search.sizes, options, rng if used_seed is None else used_seed, randomize)
 
 
-def _ordered(space: FactorSpace, D: np.ndarray, search: _Search, options: dict, seed: Any,
-             randomize: bool) -> Design:
-    """The design with the whole plots (standard order as searched) in random order and the
-    runs in random order within each (``randomize``), whole plots numbered in run order."""
+#: Most whole-plot and most sub-plot factors of :func:`split_plot_ccd` (full 2^k cubes).
+_MAX_CCD_K = 5
+
+
+def equivalent_alpha(k_wp: int, k_sp: int, alpha: float | None = None) -> tuple[float, float]:
+    """Whole-plot and sub-plot star distances ``(α_w, α_s)`` [coded units] that give the
+    split-plot CCD of :func:`split_plot_ccd` equivalent estimation (OLS = GLS for every η).
+
+    The sums of each sub-plot square ``s_j²`` over a whole plot are ``2^k_sp`` in a whole-plot
+    cube plot, 0 in a whole-plot star plot and ``2 α_s²`` in a centre plot; they lie in the
+    column space of the quadratic model (``a + c Σ w_i²`` over the whole-plot points) only when
+
+    ``2 α_s² (1 - k_wp / α_w²) = 2^k_sp``,  i.e.  ``α_s² = 2^(k_sp-1) α_w² / (α_w² - k_wp)``.
+
+    ``alpha=None``: one common distance, ``α_w = α_s = sqrt(k_wp + 2^(k_sp-1))`` (1.414 for
+    one whole-plot and one sub-plot factor, 1.732 for 1 + 2, 2 for 2 + 2, 2.236 for 1 + 3);
+    else ``alpha`` is ``α_w`` (it must exceed ``sqrt(k_wp)``) and ``α_s`` follows.
+    """
+    if alpha is None:
+        a = math.sqrt(k_wp + 2.0 ** (k_sp - 1))
+        return a, a
+    a_w = float(alpha)
+    if not (math.isfinite(a_w) and a_w * a_w > k_wp):
+        raise ValueError(f"alpha: the whole-plot star distance must exceed sqrt({k_wp}) = {math.sqrt(k_wp):.4g} for "
+                         f"equivalent estimation (got {alpha!r})")
+    return a_w, math.sqrt(2.0 ** (k_sp - 1) * a_w * a_w / (a_w * a_w - k_wp))
+
+
+def split_plot_ccd(
+    factors: Any,
+    hard_to_change: Any,
+    alpha: float | None = None,
+    center_whole_plots: int = 1,
+    seed: Any = None,
+    randomize: bool = True,
+) -> Design:
+    """The equivalent-estimation split-plot central composite design (after Vining, Kowalski &
+    Montgomery 2005, *J. Quality Technology* 37(2), 115-129; conditions as in Parker,
+    Kowalski & Vining 2007): OLS and GLS (REML) estimates of the quadratic model coincide
+    for every variance ratio η.
+
+    With ``k_w`` hard-to-change (whole-plot) and ``k_s`` easy (sub-plot) factors, every whole
+    plot holds ``m = max(2^k_s, 2 k_s + 1)`` runs:
+
+    * ``2^k_w`` whole-plot cube plots (``w = ±1``): the sub-plot 2^k_s cube and ``m - 2^k_s``
+      sub-plot centre runs;
+    * ``2 k_w`` whole-plot star plots (``w = ±α_w e_i``): ``m`` sub-plot centre runs;
+    * ``center_whole_plots`` centre plots (``w = 0``): the ``2 k_s`` sub-plot star points
+      (``±α_s``) and ``m - 2 k_s`` centre runs.
+
+    ``N = m (2^k_w + 2 k_w + K)`` runs in ``2^k_w + 2 k_w + K`` whole plots. Equal whole-plot
+    sizes, sub-plot sets symmetric about 0 and the star distances of
+    :func:`equivalent_alpha` make ``Z Z' X`` (whole-plot sums) a linear combination of the
+    columns of ``X``, so the column space of ``X`` is invariant under ``V = I + η Z Z'``
+    (the equivalent-estimation condition; checked numerically in the tests).
+
+    Parameters
+    ----------
+    factors : FactorSpace, mapping or list
+        Numeric factors only; low/high [factor units] are coded ±1, star points lie beyond.
+    hard_to_change : str or list of str
+        The whole-plot factors (1 to 5); the other factors (1 to 5) are the sub-plot factors.
+    alpha : float or None
+        Whole-plot star distance ``α_w`` [coded units] (the sub-plot one follows); ``None``:
+        the common distance of :func:`equivalent_alpha`.
+    center_whole_plots : int
+        Whole plots at the whole-plot centre, each holding the sub-plot star and centre runs.
+    seed, randomize
+        As for :func:`split_plot`: whole plots in random order, runs in random order within each.
+
+    Returns
+    -------
+    Design
+        ``kind="split-plot-ccd"`` with ``whole_plots``; ``options`` holds both star distances,
+        the hard-to-change factors, the whole-plot size and count, and the seed.
+
+    Examples
+    --------
+    >>> d = split_plot_ccd(["T=100:200", "x=0:1", "y=0:1"], ["T"], randomize=False)
+    >>> d.n_runs, int(d.whole_plots.max()), round(d.options["alpha_whole_plot"], 4)
+    (25, 5, 1.7321)
+    """
+    from pyDOE3 import ff2n
+
+    space = as_factor_space(factors)
+    names = space.names
+    if space.categoric:
+        raise ValueError("factor: a split-plot central composite design takes numeric factors only")
+    hard_names = [hard_to_change] if isinstance(hard_to_change, str) else list(hard_to_change or [])
+    if not hard_names:
+        raise ValueError("hard_to_change: name at least one hard-to-change factor")
+    hard: list[int] = []
+    for h in hard_names:
+        if h not in names:
+            raise ValueError(f"hard_to_change: {h!r} is not among the factors ({', '.join(names)})")
+        if names.index(h) in hard:
+            raise ValueError(f"hard_to_change: {h!r} is given twice")
+        hard.append(names.index(h))
+    easy = [i for i in range(len(names)) if i not in hard]
+    kw, ks = len(hard), len(easy)
+    if not 1 <= ks <= _MAX_CCD_K or kw > _MAX_CCD_K:
+        raise ValueError(f"hard_to_change: a split-plot central composite design needs 1 to {_MAX_CCD_K} hard-to-change "
+                         f"and 1 to {_MAX_CCD_K} other factors (got {kw} and {ks})")
+    K = center_whole_plots
+    if isinstance(K, (bool, np.bool_)) or int(K) != K or K < 1:
+        raise ValueError(f"center_whole_plots: must be a whole number >= 1 (got {K!r})")
+    K = int(K)
+    a_w, a_s = equivalent_alpha(kw, ks, alpha)
+
+    def cube(k: int) -> np.ndarray:
+        c = np.asarray(ff2n(k), dtype=float)
+        return c[np.lexsort(c.T)]  # Yates order, first factor fastest (as central_composite)
+
+    def star(k: int, a: float) -> np.ndarray:
+        st = np.zeros((2 * k, k))
+        for i in range(k):
+            st[2 * i, i], st[2 * i + 1, i] = -a, a
+        return st
+
+    m = max(2 ** ks, 2 * ks + 1)
+    plots: list[tuple[np.ndarray, np.ndarray]] = []  # (whole-plot setting, sub-plot runs)
+    for w in cube(kw):
+        plots.append((w, np.vstack([cube(ks), np.zeros((m - 2 ** ks, ks))])))
+    for w in star(kw, a_w):
+        plots.append((w, np.zeros((m, ks))))
+    for _ in range(K):
+        plots.append((np.zeros(kw), np.vstack([star(ks, a_s), np.zeros((m - 2 * ks, ks))])))
+    D = np.zeros((m * len(plots), len(names)))
+    for b, (w, sub) in enumerate(plots):
+        D[b * m:(b + 1) * m, hard] = w
+        D[b * m:(b + 1) * m, easy] = sub
+    options: dict[str, Any] = {
+        "alpha_whole_plot": a_w,
+        "alpha_sub_plot": a_s,
+        "hard_to_change": [names[i] for i in hard],
+        "whole_plots": len(plots),
+        "whole_plot_size": m,
+        "whole_plot_sizes": [m] * len(plots),
+        "center_whole_plots": K,
+        "construction": (f"{2 ** kw} whole-plot cube plots (sub-plot cube + {m - 2 ** ks} centre), {2 * kw} whole-plot "
+                         f"star plots ({m} sub-plot centre runs), {K} centre plot(s) (sub-plot star + {m - 2 * ks} "
+                         "centre): equivalent estimation, OLS = GLS for every variance ratio (Vining, Kowalski & "
+                         "Montgomery 2005)"),
+    }
+    rng, used_seed = resolve_seed(seed)
+    return _ordered(space, D, [m] * len(plots), options, rng if used_seed is None else used_seed, randomize,
+                    kind="split-plot-ccd")
+
+
+def _ordered(space: FactorSpace, D: np.ndarray, sizes: Any, options: dict, seed: Any,
+             randomize: bool, kind: str = "split-plot") -> Design:
+    """The design with the whole plots (consecutive blocks of ``sizes`` runs of ``D``, standard
+    order) in random order and the runs in random order within each (``randomize``), whole
+    plots numbered in run order."""
     order_rng, opts = seeded_options(options, seed, randomize)
-    n_plots = len(search.sizes)
+    n_plots = len(sizes)
+    bounds = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
+    plot = np.repeat(np.arange(n_plots), sizes)
     plot_seq = np.arange(n_plots) if order_rng is None else order_rng.permutation(n_plots)
     perm: list[int] = []
     for b in plot_seq:
-        members = np.arange(search.bounds[b], search.bounds[b + 1])
+        members = np.arange(bounds[b], bounds[b + 1])
         perm.extend((members if order_rng is None else members[order_rng.permutation(len(members))]).tolist())
     n = len(D)
     run_order = np.empty(n, dtype=int)
     run_order[np.asarray(perm)] = np.arange(1, n + 1)
     number = np.empty(n_plots, dtype=int)
     number[plot_seq] = np.arange(1, n_plots + 1)
-    return Design(factors=space, kind="split-plot", coded_runs=D, std_order=np.arange(1, n + 1),
-                  run_order=run_order, options=opts, whole_plots=number[search.plot])
+    return Design(factors=space, kind=kind, coded_runs=D, std_order=np.arange(1, n + 1),
+                  run_order=run_order, options=opts, whole_plots=number[plot])
