@@ -8,8 +8,8 @@ from typing import Any
 from ._common import add_force, add_reader_options, whole_number
 
 NAME = "design"
-HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, split-plot, augment, "
-        "definitive-screening, fractional-factorial, plackett-burman, latin-hypercube, sobol, "
+HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, split-plot, split-plot-ccd, "
+        "augment, definitive-screening, fractional-factorial, plackett-burman, latin-hypercube, sobol, "
         "simplex-lattice, simplex-centroid, extreme-vertices)")
 DESCRIPTION = (
     "Generate an experimental design and write it as CSV: std_order, run_order, block (when "
@@ -127,6 +127,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     op.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
                     help="random starts of the exchange (default by model size)")
     _split_plot_parser(sub)
+    _split_plot_ccd_parser(sub)
     ag = sub.add_parser("augment", help="add runs to a design CSV (optimal, star + centre points, fold-over)",
                         description="Add runs to the runs of DESIGN.csv, which are kept untouched and first, "
                                     "with their responses: D/I/A-optimal runs for a bigger model, star and "
@@ -224,6 +225,46 @@ def _split_plot_parser(sub: Any) -> None:
                     help="eta = sigma^2 whole plot / sigma^2, 0 to 1e6 (default 1)")
     sp.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
                     help="random starts of the exchange (default 20 for up to 21 model terms, else 6)")
+
+
+def _split_plot_ccd_parser(sub: Any) -> None:
+    """``split-plot-ccd``: the equivalent-estimation split-plot central composite design."""
+    from ._common import number
+
+    sc = sub.add_parser("split-plot-ccd", help="split-plot central composite design (OLS = GLS estimates)",
+                        description="Equivalent-estimation split-plot central composite design (after Vining, "
+                                    "Kowalski & Montgomery 2005): whole plots at the whole-plot cube points hold the "
+                                    "sub-plot cube, those at the whole-plot star points hold sub-plot centre runs, "
+                                    "the centre whole plot(s) hold the sub-plot star points; equal whole plots and "
+                                    "matched star distances make the OLS and GLS (REML) estimates of the quadratic "
+                                    "model coincide for every variance ratio. The CSV adds a whole_plot column.")
+    _base(sc)
+    sc.add_argument("--hard-to-change", action="append", required=True, metavar="NAME",
+                    help="a factor (name) held constant within each whole plot (repeatable; 1 to 5)")
+    sc.add_argument("--alpha", type=number(0, MAX_ALPHA, above=True), default=None, metavar="A",
+                    help="whole-plot star distance in coded units, above sqrt(whole-plot factors); the sub-plot one "
+                         "follows (default: one common distance sqrt(k_wp + 2^(k_sp-1)))")
+    sc.add_argument("--center-whole-plots", type=whole_number(1, 100), default=1, metavar="K",
+                    help="whole plots at the whole-plot centre, each with the sub-plot star and centre runs "
+                         "(default 1)")
+
+
+def _split_plot_ccd(args: argparse.Namespace) -> Any:
+    """Build the split-plot CCD; bad input is an InputError naming the option."""
+    from ..design.split_plot import split_plot_ccd
+    from ..io import InputError
+
+    space = _space(args)
+    try:
+        return split_plot_ccd(space, args.hard_to_change, alpha=args.alpha,
+                              center_whole_plots=args.center_whole_plots, seed=args.seed,
+                              randomize=not args.no_randomize)
+    except ValueError as exc:
+        msg = str(exc)
+        opts = {"hard_to_change: ": "--hard-to-change", "alpha: ": "--alpha",
+                "center_whole_plots: ": "--center-whole-plots", "factor: ": "--factor"}
+        opt = next((o for w, o in opts.items() if msg.startswith(w)), "--factor")
+        raise InputError(f"{opt}: {msg.split(': ', 1)[1] if msg.startswith(tuple(opts)) else msg}") from None
 
 
 def _split_plot(args: argparse.Namespace) -> Any:
@@ -333,8 +374,9 @@ def run(args) -> int:
         print(design.summary())
         print(f"wrote {out}")
         return 0
-    if args.kind in _NEW_KINDS or args.kind == "split-plot":
-        design = _split_plot(args) if args.kind == "split-plot" else _new_kind(args)
+    if args.kind in _NEW_KINDS or args.kind in ("split-plot", "split-plot-ccd"):
+        design = (_split_plot(args) if args.kind == "split-plot" else _split_plot_ccd(args)
+                  if args.kind == "split-plot-ccd" else _new_kind(args))
         write_design(design, out, args)
         print(design.summary())
         print(f"wrote {out}")

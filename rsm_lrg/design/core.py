@@ -466,6 +466,11 @@ class Design:
                          f"{format_g(o.get('variance_ratio'), 6, trim=True)}: GLS criterion "
                          f"{format_g(o.get('criterion_value'), 6, trim=True) or 'n/a'}; hard to change: "
                          + ", ".join(o.get("hard_to_change", [])))
+        if self.kind == "split-plot-ccd":
+            lines.append(f"equivalent estimation (OLS = GLS for every variance ratio): star distance "
+                         f"{format_g(o.get('alpha_whole_plot'), 6, trim=True)} whole plot, "
+                         f"{format_g(o.get('alpha_sub_plot'), 6, trim=True)} sub-plot [coded]; hard to change: "
+                         + ", ".join(o.get("hard_to_change", [])))
         if self.whole_plots is not None:
             sizes = np.unique(self.whole_plots, return_counts=True)[1]
             each = (f"{int(sizes[0])} runs each" if sizes.min() == sizes.max()
