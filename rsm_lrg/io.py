@@ -757,7 +757,8 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     tx = _TRANSACTION.get()
     for inp in list(inputs) + (tx.inputs if tx is not None else []):
         if _same_file(p, Path(inp)):
-            raise InputError(f"{head}: it is the input file {_show(inp)}; an input is never overwritten")
+            shown = "read from standard input" if str(inp) == "/dev/stdin" else _show(inp)
+            raise InputError(f"{head}: it is the input file {shown}; an input is never overwritten")
     fd = output_stream(p)
     if fd is not None:
         try:

@@ -115,10 +115,26 @@ def matched_files(path: str) -> list[str]:
     return expand_data_path(path) or []
 
 
+#: The name that stands for standard input when it is a file the shell opened (``fit - < runs.csv``).
+STDIN_PATH = "/dev/stdin"
+
+
+def _regular_stream(fd: int):
+    """``os.fstat(fd)`` when descriptor ``fd`` is open on a regular file, else None."""
+    import stat
+
+    try:
+        st = os.fstat(fd)
+    except (OSError, ValueError):
+        return None
+    return st if stat.S_ISREG(st.st_mode) else None
+
+
 def input_paths(args: argparse.Namespace) -> list[str]:
     """Every option or argument value (other than an output) that names an existing file: the
     files a command may read, which it must never write (with every file that a directory or
-    glob given as DATA matches: :func:`matched_files`)."""
+    glob given as DATA matches: :func:`matched_files`). An input given as ``-`` whose standard
+    input is a file (``fit - < runs.csv``) counts as that file (:data:`STDIN_PATH`)."""
     labels = getattr(args, "_output_labels", {}) or {}
     found = []
     for dest, value in vars(args).items():
@@ -126,6 +142,8 @@ def input_paths(args: argparse.Namespace) -> list[str]:
             continue
         if dest == "data" and isinstance(value, str) and len(value) < 4096:
             found.extend(matched_files(value))
+        if value == "-" and STDIN_PATH not in found and _regular_stream(0) is not None:
+            found.append(STDIN_PATH)
         for v in value if isinstance(value, (list, tuple)) else [value]:
             if isinstance(v, (str, os.PathLike)) and str(v) and str(v) != "-" and len(str(v)) < 4096:
                 try:
@@ -153,10 +171,14 @@ def planned_outputs(args: argparse.Namespace, module=None) -> list[tuple[str, st
         pairs = [(labels[d], getattr(args, d)) for d in labels if getattr(args, d, None) is not None]
     force = bool(getattr(args, "force", False))
     inputs = input_paths(args)
+    check_standard_output(inputs)
     checked: list[tuple[str, str]] = []
     for label, path in pairs:
-        if str(path) == "-" and "json" in label:
-            continue
+        if str(path) == "-":
+            if "json" in label:
+                continue
+            raise InputError(f"cannot write {label} -: '-' (standard output) is taken by --json only; give a file "
+                             f"name (./- for a file named '-', /dev/stdout for standard output)")
         p = check_output(path, force=force, inputs=inputs, option=label, probe=True)
         for other_label, other in checked:
             if os.path.realpath(other) == os.path.realpath(p) or _samefile(other, p):
@@ -164,6 +186,24 @@ def planned_outputs(args: argparse.Namespace, module=None) -> list[tuple[str, st
                                  f"{other_label} names the same file")
         checked.append((label, str(p)))
     return checked
+
+
+def check_standard_output(inputs) -> None:
+    """Refuse to run when standard output is one of the input files (``rsm-lrg fit runs.csv ...
+    >> runs.csv``): what the command prints would be appended to its own input (as ``cat``
+    refuses "input file is output file")."""
+    out = _regular_stream(1)
+    if out is None:
+        return
+    for inp in inputs:
+        try:
+            st = os.stat(inp)
+        except (OSError, ValueError):
+            continue
+        if (st.st_dev, st.st_ino) == (out.st_dev, out.st_ino):
+            shown = "read from standard input" if str(inp) == STDIN_PATH else show_path(inp)
+            raise InputError(f"standard output is the input file {shown}; an input is never written "
+                             f"(redirect the output to another file)")
 
 
 def _samefile(a, b) -> bool:

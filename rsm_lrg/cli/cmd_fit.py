@@ -54,7 +54,7 @@ def _write_report(result, path, force: bool) -> None:
     writer(result, path, force=force, optimum=optimize(result, goal="minimize"))  # found here, presented there
 
 
-def _many_files(path: str):
+def _many_files(path: str, args: argparse.Namespace):
     """A Dask DataFrame of the CSV or Parquet files of a directory or glob pattern (one
     partition per file, :mod:`rsm_lrg.cli.file_sets`), the files and the notes on the files
     skipped (printed after a success), or None for one file
@@ -64,7 +64,8 @@ def _many_files(path: str):
     files = expand_data_path(path)
     if files is None:
         return None
-    ddf, notes = read_file_set(path, files)
+    ddf, notes = read_file_set(path, files, sep=getattr(args, "sep", None), decimal=getattr(args, "decimal", "."),
+                               sheet=getattr(args, "sheet", None))
     return ddf, files, notes
 
 
@@ -110,7 +111,8 @@ def _about_files(many, args: argparse.Namespace):
             names = [str(f).split("=", 1)[0].strip() for f in args.factor]
         else:
             names = [str(c) for c in many[0].columns if str(c) != args.response]
-        found = locate_empty_cell(many[1], names + ([args.block] if args.block else []))
+        found = locate_empty_cell(many[1], names + ([args.block] if args.block else []), sep=getattr(args, "sep", None),
+                                  decimal=getattr(args, "decimal", "."))
         if found is None:
             raise
         where, what = found
@@ -128,7 +130,7 @@ def run(args: argparse.Namespace) -> int:
         from ..io import InputError
 
         raise InputError("--report: the report of a mixture model (ternary plots, trace plot) is not available yet")
-    many = _many_files(str(args.data))  # a directory or glob: fitted partition by partition (Dask)
+    many = _many_files(str(args.data), args)  # a directory or glob: fitted partition by partition (Dask)
     if many is not None:
         unsupported = [o for o in ("reduce", "transform", "diagnostics", "report", "whole_plot", "random_block")
                        if getattr(args, o, None)]

@@ -42,17 +42,40 @@ def expand_data_path(path: str) -> list[str] | None:
 
     A directory gives its files (not those of its sub-directories); a path that does not
     exist and holds a glob character (``*``, ``?``, ``[``) gives the files it matches; a path
-    that exists is one file, glob characters and all.
+    that exists is one file, glob characters and all. A directory that cannot be listed (its
+    permissions) is :class:`rsm_lrg.io.InputError` naming it, not "no files".
     """
     try:
-        if os.path.isdir(path):
+        directory = os.path.isdir(path)
+    except (OSError, ValueError):
+        return None
+    if directory:
+        _listable(path)
+    try:
+        if directory:
             return sorted(glob.glob(os.path.join(glob.escape(path), "*"))
                           + glob.glob(os.path.join(glob.escape(path), ".*")))
         if os.path.lexists(path) or not any(c in path for c in "*?["):
             return None
-        return sorted(glob.glob(path))
+        found = sorted(glob.glob(path))
     except (OSError, ValueError):
         return None
+    if not found:  # a pattern in a directory that cannot be listed matches nothing: say why
+        head = os.path.dirname(path)
+        if head and not any(c in head for c in "*?[") and os.path.isdir(head):
+            _listable(head)
+    return found
+
+
+def _listable(directory: str) -> None:
+    """A directory whose entries can be listed, or InputError naming it (glob says nothing)."""
+    from ..io import InputError, show_path
+
+    try:
+        os.listdir(directory)
+    except OSError as exc:
+        raise InputError(f"{show_path(directory)}: the directory cannot be read "
+                         f"({exc.strerror or type(exc).__name__})") from None
 
 
 def skipped_reason(name: str) -> str | None:
@@ -109,26 +132,38 @@ def _check_file(f: str) -> None:
         raise InputError(f"{show_path(f)}: cannot be read ({exc.strerror or type(exc).__name__})") from None
 
 
-def _csv_header(f: str) -> list[str]:
-    """The column names of a CSV file's header line, read in a bounded way."""
-    import csv
+def _csv_columns(f: str, sep: str | None, decimal: str):
+    """The column names of a CSV file as the one-file reader reads them (the same separator
+    detection, ``--sep`` and ``--decimal``, names kept as written) and its
+    :class:`rsm_lrg.readers.ReadAs`, from the file's first lines only (those the separator
+    is detected from), read in a bounded way; the whole file (bounded by
+    :func:`rsm_lrg.io.read_table_as`) where those lines alone cannot be parsed."""
+    from .. import readers
+    from ..io import MAX_LINE_BYTES, InputError, read_table_as, show_path
 
-    from ..io import MAX_LINE_BYTES, InputError, show_path
-
+    lines = []
     try:
         with open(f, "rb") as fh:
-            line = fh.readline(MAX_LINE_BYTES + 1)
+            for _ in range(readers.SNIFF_LINES + 1):
+                line = fh.readline(MAX_LINE_BYTES + 1)
+                if not line:
+                    break
+                if len(line) > MAX_LINE_BYTES:
+                    raise InputError(f"{show_path(f)}: line {len(lines) + 1} is longer than the limit of "
+                                     f"{MAX_LINE_BYTES / 2**20:g} MiB")
+                lines.append(line)
+            whole = not fh.read(1)
     except OSError as exc:
         raise InputError(f"{show_path(f)}: cannot be read ({exc.strerror or type(exc).__name__})") from None
-    if b"\x00" in line:
-        raise InputError(f"{show_path(f)}: is not a CSV text file (it contains NUL bytes, line 1)")
-    if len(line) > MAX_LINE_BYTES:
-        raise InputError(f"{show_path(f)}: line 1 is longer than the limit of {MAX_LINE_BYTES / 2**20:g} MiB")
-    try:
-        text = line.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        raise InputError(f"{show_path(f)}: is not a UTF-8 CSV text file (line 1)") from None
-    return [c.strip() for c in next(csv.reader([text.rstrip("\r\n")], skipinitialspace=True), [])]
+    head = b"".join(lines)
+    if not whole and not head.startswith((b"\xff\xfe", b"\xfe\xff")):
+        try:
+            df, how = readers.parse_csv(head, sep=sep, decimal=decimal)
+            return [str(c) for c in df.columns], how
+        except readers.TableError:
+            pass  # a quoted cell across the cut, ...: the whole file says what is wrong, or reads
+    df, how = read_table_as(f, sep=sep, decimal=decimal)
+    return [str(c) for c in df.columns], how
 
 
 def _parquet_schema(f: str) -> dict[str, str]:
@@ -186,14 +221,15 @@ def _compare_columns(f: str, cols: list[str], first: str, ref: list[str]) -> Non
                      f"({'; '.join(parts)}); every file must hold the same columns")
 
 
-def _read_csv_part(f: str, columns: list[str]):
-    """One CSV file by the one-file reader, its columns in the first file's order, whole
-    numbers as floats (a file of whole numbers next to one of decimals reads alike)."""
+def _read_csv_part(f: str, columns: list[str], sep: str | None = None, decimal: str = "."):
+    """One CSV file by the one-file reader (with ``--sep`` and ``--decimal``), its columns in
+    the first file's order, whole numbers as floats (a file of whole numbers next to one of
+    decimals reads alike)."""
     import numpy as np
 
     from ..io import InputError, read_table, show_path
 
-    df = read_table(f)
+    df = read_table(f, sep=sep, decimal=decimal)
     if sorted(map(str, df.columns)) != sorted(columns):  # changed since its header was checked
         raise InputError(f"{show_path(f)}: its columns changed while it was read")
     df = df[columns]
@@ -262,15 +298,20 @@ def _conform(df, meta, f: str):
     return df
 
 
-def _read_part(f: str, kind: str, names: list[str], like):
+def _read_part(f: str, kind: str, names: list[str], like, sep: str | None = None, decimal: str = "."):
     """One file as a partition, conformed to ``like`` (the first file's empty frame) when given."""
-    df = _read_csv_part(f, names) if kind == "csv" else _read_parquet_part(f, names)
+    df = _read_csv_part(f, names, sep, decimal) if kind == "csv" else _read_parquet_part(f, names)
     return df if like is None else _conform(df, like, f)
 
 
-def read_file_set(path: str, files: list[str]) -> tuple[Any, list[str]]:
+def read_file_set(path: str, files: list[str], *, sep: str | None = None, decimal: str = ".",
+                  sheet: str | None = None) -> tuple[Any, list[str]]:
     """The files of a directory or pattern (:func:`expand_data_path`) as one Dask DataFrame,
-    one partition per file, and the notes on the files skipped.
+    one partition per file, and the notes on the files skipped and on how the CSV files were
+    read (a separator other than a comma, as the one-file reader says).
+
+    ``sep`` and ``decimal`` (``--sep``, ``--decimal``) apply to every CSV file as to one file;
+    they and ``sheet`` (``--sheet``) are refused where they cannot apply, never ignored.
 
     Raises :class:`rsm_lrg.io.InputError` naming the file at fault: none left to read, CSV and
     Parquet files mixed, a file that is not a regular readable file or is larger than the
@@ -298,14 +339,24 @@ def read_file_set(path: str, files: list[str]) -> tuple[Any, list[str]]:
     if len(kinds) > 1:
         raise InputError(f"{show_path(path)}: holds both CSV and Parquet files; give a pattern that picks one kind")
     kind = kinds.pop()
+    if sheet is not None:
+        raise InputError(f"--sheet is for an Excel workbook; {show_path(path)} names {kind.upper()} files")
+    if kind != "csv" and (sep is not None or decimal != "."):
+        raise InputError(f"--sep and --decimal are for CSV text; {show_path(path)} names {kind.upper()} files")
     for f in keep:
         register_input(f)
         _check_file(f)
     first = keep[0]
     if kind == "csv":
-        ref = _csv_header(first)
+        ref, how = _csv_columns(first, sep, decimal)
+        read_as = {} if how is None or how.plain else {how.describe(): [first]}
         for f in keep[1:]:
-            _compare_columns(f, _csv_header(f), first, ref)
+            cols, how = _csv_columns(f, sep, decimal)
+            _compare_columns(f, cols, first, ref)
+            if how is not None and not how.plain:
+                read_as.setdefault(how.describe(), []).append(f)
+        for said, fs in read_as.items():
+            notes.append(f"read {show_path(path)}: {len(fs)} file(s) as {said}: {_names(fs)}.")
     else:
         schema = _parquet_schema(first)
         ref = list(schema)
@@ -321,16 +372,18 @@ def read_file_set(path: str, files: list[str]) -> tuple[Any, list[str]]:
         import dask.dataframe as dd
     except ImportError as exc:
         raise InputError(f"{show_path(path)}: fitting several files needs dask[dataframe] ({exc})") from None
-    meta = _read_part(first, kind, ref, None)
+    meta = _read_part(first, kind, ref, None, sep, decimal)
     if kind == "csv" and len(set(map(str, meta.columns))) != len(meta.columns):
         raise InputError(f"{show_path(first)}: a column appears more than once in the header")
     columns = [str(c) for c in meta.columns]
     empty = meta.iloc[:0]
-    ddf = dd.from_map(_read_part, keep, kind=kind, names=columns, like=empty, meta=empty, enforce_metadata=False)
+    ddf = dd.from_map(_read_part, keep, kind=kind, names=columns, like=empty, sep=sep, decimal=decimal, meta=empty,
+                      enforce_metadata=False)
     return ddf, notes
 
 
-def locate_empty_cell(files: list[str], columns: list[str]) -> tuple[str, str] | None:
+def locate_empty_cell(files: list[str], columns: list[str], *, sep: str | None = None,
+                      decimal: str = ".") -> tuple[str, str] | None:
     """The first empty cell of ``columns`` in ``files`` (read one at a time) as ``(file,
     "column 'x', row N is empty")``, or None: to name the file behind a fit's "a cell is empty"."""
     from ..io import quote_user_value, read_table, show_path
@@ -339,7 +392,7 @@ def locate_empty_cell(files: list[str], columns: list[str]) -> tuple[str, str] |
         if skipped_reason(f) is not None:
             continue
         try:
-            df = read_table(f)
+            df = read_table(f, sep=sep, decimal=decimal)
         except ValueError:
             continue
         for c in columns:
