@@ -277,17 +277,19 @@ def read_table_as(path, *, sep: str | None = None, decimal: str = ".", sheet: st
         if kind != "csv" and (sep is not None or decimal != "."):
             raise readers.TableError(f"--sep and --decimal are for CSV text; this is {kind.upper()}")
         if kind == "xlsx":
-            return readers.parse_xlsx(raw, sheet=sheet, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
-        if kind == "parquet":
-            return readers.parse_parquet(raw, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
-        if raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # UTF-16: the limits are checked on the table read
+            df, how = readers.parse_xlsx(raw, sheet=sheet, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
+        elif kind == "parquet":
+            df, how = readers.parse_parquet(raw, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
+        elif raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # UTF-16: the limits are checked on the table read
             df, how = readers.parse_csv(raw, sep=sep, decimal=decimal)
             if len(df) > MAX_ROWS or df.shape[1] > MAX_COLUMNS:
                 raise readers.TableError(f"has {len(df)} rows and {df.shape[1]} columns, more than the limits of "
                                          f"{MAX_ROWS} and {MAX_COLUMNS}")
-            return df, how
-        _check_table_shape(p, raw)
-        return readers.parse_csv(raw, sep=sep, decimal=decimal)
+        else:
+            _check_table_shape(p, raw)
+            df, how = readers.parse_csv(raw, sep=sep, decimal=decimal)
+        readers.check_control_characters(df)  # names and levels are printed: never a terminal command
+        return df, how
     except readers.TableError as exc:
         raise InputError(f"{name}: {exc}") from None
 

@@ -34,7 +34,7 @@ if TYPE_CHECKING:
 __all__ = ["TableError", "ReadAs", "SEPARATORS", "DECIMALS", "FORMATS", "detect_format", "detect_separator",
            "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes",
            "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_parquet_chunks", "keep_coded_text",
-           "LEADING_ZERO"]
+           "LEADING_ZERO", "check_control_characters", "CONTROL_CHARACTERS"]
 
 #: CSV separators read (given with ``sep=`` / ``--sep`` or detected), in the order tried.
 SEPARATORS = (",", ";", "\t", "|")
@@ -344,6 +344,47 @@ def check_columns(header: list[Any], df: pd.DataFrame) -> None:
         seen.add(str(name))
     if df.shape[0] == 0:
         raise TableError("has a header but no data rows")
+
+
+#: Control characters (C0 but tab, line feed and carriage return; DEL; C1): never in a name or
+#: a cell of a table, and printed to a terminal they are commands (``ESC [ 31 m``, ``ESC ] 0 ;``
+#: retitles the window): a table holding one is refused, naming the column and the row.
+CONTROL_CHARACTERS = "[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]"
+
+
+def check_control_characters(df: pd.DataFrame) -> None:
+    """Refuse a table whose column names hold a control character (any: tab and line breaks
+    included) or whose text cells hold one of :data:`CONTROL_CHARACTERS`: :class:`TableError`
+    naming the column and the 1-based data row, the character escaped.
+
+    >>> import pandas as pd
+    >>> try:
+    ...     check_control_characters(pd.DataFrame({"a": ["x", "y" + chr(27) + "[31m"]}))
+    ... except TableError as exc:
+    ...     print(str(exc)[:52])
+    column 'a', row 2 holds a control character ('\\x1b')
+    """
+    import pandas as pd
+
+    names = re.compile("[\x00-\x1f\x7f-\x9f]")
+    for c in df.columns:
+        m = names.search(str(c))
+        if m:
+            raise TableError(f"the column name {_quote(c)} holds a control character ({m.group()!r}); "
+                             "rename the column")
+    cells = re.compile(CONTROL_CHARACTERS)
+    for c in df.columns:
+        col = df[c]
+        if not (col.dtype == object or pd.api.types.is_string_dtype(col.dtype)):
+            continue
+        text = col.map(lambda v: v if isinstance(v, str) else "")
+        hit = text.str.contains(CONTROL_CHARACTERS, regex=True).to_numpy()
+        if hit.any():
+            i = int(hit.nonzero()[0][0])
+            ch = cells.search(text.iloc[i])
+            raise TableError(f"column {_quote(c)}, row {i + 1} holds a control character "
+                             f"({ch.group() if ch else ''!r}); remove it (it is never data, and a terminal "
+                             "would obey it)")
 
 
 # --- Excel ----------------------------------------------------------------------------------

@@ -178,15 +178,23 @@ def _calibration_with_overrides(calibration, overrides, surrogate):
 
 
 @contextmanager
-def _lost_scheduler(address: str | None):
+def _lost_scheduler(address: str | None, workers: int | None = None):
     """With a ``--scheduler``, a failure of the cluster itself (a CancelledError, lost
-    communications: the scheduler killed mid-run) is one error naming the scheduler."""
-    from .processes import Terminated, scheduler_lost
+    communications: the scheduler killed mid-run) is one error naming the scheduler; with
+    ``--workers``, a worker process that died (killed by a signal, by the out-of-memory
+    killer) is one error naming the option."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    from .processes import Terminated, pool_lost, scheduler_lost
 
     try:
         yield
     except (ValueError, TypeError, KeyboardInterrupt, SystemExit, Terminated):
         raise
+    except BrokenProcessPool as exc:
+        if address is not None or not workers:
+            raise
+        raise pool_lost(workers, exc) from None
     except BaseException as exc:
         if address is None:
             raise
@@ -259,7 +267,7 @@ def run(args) -> int:
     try:
         if args.workers and args.workers > 1:
             executor = process_pool(args.workers)
-        elif args.scheduler:
+        elif args.scheduler is not None:  # an empty address is refused, not run locally
             client = connect_scheduler(args.scheduler, args.scheduler_timeout)
             executor = client.get_executor()
         from .. import readers
@@ -271,7 +279,9 @@ def run(args) -> int:
 
         watch = (watch_workers(client, args.scheduler, args.scheduler_timeout) if client is not None
                  else contextlib.nullcontext())
-        with about_file(args.design), _lost_scheduler(args.scheduler if client is not None else None), watch:
+        with about_file(args.design), _lost_scheduler(args.scheduler if client is not None else None,
+                                                      args.workers if executor is not None and client is None
+                                                      else None), watch:
             if streamed is None:
                 runs = simulate(design, seed=seed, noise_sd=noise, duration_min=args.duration_min,
                                 executor=executor, calibration=calibration, params=params,

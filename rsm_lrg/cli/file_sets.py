@@ -141,7 +141,7 @@ def _csv_columns(f: str, sep: str | None, decimal: str):
     from .. import readers
     from ..io import MAX_LINE_BYTES, InputError, read_table_as, show_path
 
-    lines = []
+    lines: list[bytes] = []
     try:
         with open(f, "rb") as fh:
             for _ in range(readers.SNIFF_LINES + 1):
@@ -246,6 +246,7 @@ def _read_parquet_part(f: str, columns: list[str]):
     import numpy as np
     import pandas as pd
 
+    from .. import readers
     from ..io import InputError, read_input_bytes, show_path
 
     raw = read_input_bytes(f, "Parquet file")
@@ -255,6 +256,10 @@ def _read_parquet_part(f: str, columns: list[str]):
         first = (str(exc).strip().splitlines() or [type(exc).__name__])[0][:120]
         raise InputError(f"{show_path(f)}: is not a readable Parquet file ({first})") from None
     df.columns = [str(c) for c in df.columns]
+    try:
+        readers.check_control_characters(df)
+    except readers.TableError as exc:
+        raise InputError(f"{show_path(f)}: {exc}") from None
     if sorted(df.columns) != sorted(columns):
         raise InputError(f"{show_path(f)}: its columns changed while it was read")
     df = df[columns].reset_index(drop=True)

@@ -26,7 +26,7 @@ from collections.abc import Iterator
 from typing import Any
 
 __all__ = ["Terminated", "handle_signals", "pending_signal", "process_pool", "close_pool", "stop_children", "connect_scheduler",
-           "scheduler_lost", "DEFAULT_SCHEDULER_TIMEOUT"]
+           "scheduler_lost", "pool_lost", "DEFAULT_SCHEDULER_TIMEOUT"]
 
 #: Seconds a Dask scheduler has to answer (``--scheduler-timeout``).
 DEFAULT_SCHEDULER_TIMEOUT = 60.0
@@ -193,6 +193,8 @@ def connect_scheduler(address: str, timeout: float = DEFAULT_SCHEDULER_TIMEOUT):
         log.handlers = [logging.NullHandler()]
         log.propagate = False
 
+    connected = _reachable(address, timeout)
+
     async def probe() -> None:
         r = rpc(address, timeout=timeout)
         try:
@@ -207,6 +209,9 @@ def connect_scheduler(address: str, timeout: float = DEFAULT_SCHEDULER_TIMEOUT):
         raise InputError(f"--scheduler {_show(address)}: no answer within {timeout:g} s "
                          f"(--scheduler-timeout); is a Dask scheduler listening there?") from None
     except Exception as exc:  # a bad address, nothing listening, garbage from whatever answered
+        if connected or isinstance(exc, (MemoryError, OverflowError)):  # MemoryError: a header claiming exabytes
+            raise InputError(f"--scheduler {_show(address)}: what answers there is not a Dask scheduler (it does "
+                             f"not speak Dask's protocol: {type(exc).__name__}: {str(exc)[:80]})") from None
         raise InputError(f"--scheduler {_show(address)}: cannot connect "
                          f"({type(exc).__name__}: {str(exc)[:120]})") from None
     try:
@@ -222,6 +227,69 @@ def connect_scheduler(address: str, timeout: float = DEFAULT_SCHEDULER_TIMEOUT):
         raise InputError(f"--scheduler {_show(address)}: no worker joined within {timeout:g} s "
                          f"(--scheduler-timeout; {type(exc).__name__})") from None
     return client
+
+
+def _reachable(address: str, timeout: float) -> bool:
+    """Check a scheduler address before Dask tries it, so that what is wrong is said at once
+    and by name rather than after ``timeout`` seconds of retries: an empty or malformed
+    address, a port outside 1..65535, a host name that does not resolve, a TCP port where
+    nothing listens (connection refused). Resolving and connecting are bounded by ``timeout``
+    (a resolver that does not answer is left to the probe that follows). True when a TCP
+    connection was made (then whatever fails next is the protocol)."""
+    import socket
+
+    from ..io import InputError
+
+    if not address.strip():
+        raise InputError("--scheduler: an empty address was given (e.g. tcp://10.0.0.5:8786)")
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    try:
+        scheme, loc = parse_address(address)
+        if scheme not in ("tcp", "tls", "ws", "wss"):
+            return False
+        host, port = parse_host_port(loc)
+    except (ValueError, TypeError) as exc:
+        raise InputError(f"--scheduler {_show(address)}: not a scheduler address such as tcp://HOST:PORT "
+                         f"({str(exc)[:100]})") from None
+    if not isinstance(port, int) or not 1 <= port <= 65535:
+        raise InputError(f"--scheduler {_show(address)}: the port must be a whole number from 1 to 65535")
+    if not host:
+        raise InputError(f"--scheduler {_show(address)}: no host name (e.g. tcp://10.0.0.5:8786)")
+    found: list[Any] = []
+
+    def resolve() -> None:
+        try:
+            found.append(socket.getaddrinfo(host, port, type=socket.SOCK_STREAM))
+        except (OSError, UnicodeError) as exc:
+            found.append(exc)
+
+    worker = threading.Thread(target=resolve, name="rsm-lrg-resolve", daemon=True)
+    worker.start()
+    worker.join(timeout)
+    if not found:
+        return False  # the resolver is slow: the probe says what happens within the timeout
+    if isinstance(found[0], BaseException):
+        err = found[0]
+        why = getattr(err, "strerror", None) or str(err)[:80] or type(err).__name__
+        raise InputError(f"--scheduler {_show(address)}: the host name {_show(host)} does not resolve ({why})")
+    refused: OSError | None = None
+    for family, kind, proto, _, sockaddr in found[0]:
+        sock = socket.socket(family, kind, proto)
+        sock.settimeout(timeout)
+        try:
+            sock.connect(sockaddr)
+            return True
+        except ConnectionRefusedError as exc:
+            refused = exc
+        except OSError:
+            return False  # unreachable, filtered, slow: the probe reports it within the timeout
+        finally:
+            sock.close()
+    if refused is not None:
+        raise InputError(f"--scheduler {_show(address)}: nothing listens there (connection refused); "
+                         "is the Dask scheduler running?")
+    return False
 
 
 @contextlib.contextmanager
@@ -281,3 +349,13 @@ def scheduler_lost(address: str, exc: BaseException):
     detail = str(exc).strip().splitlines()[0][:100] if str(exc).strip() else ""
     return InputError(f"--scheduler {_show(address)}: the scheduler was lost during the run "
                       f"({type(exc).__name__}{': ' + detail if detail else ''}); no output written")
+
+
+def pool_lost(workers: int, exc: BaseException):
+    """The error for a run whose local pool broke: one of its worker processes died (killed
+    by a signal, by the out-of-memory killer); the other workers are then stopped by
+    :func:`close_pool`."""
+    from ..io import InputError
+
+    return InputError(f"--workers {workers}: a worker process ended abruptly during the run (killed by a signal "
+                      f"or for lack of memory; {type(exc).__name__}); no output written")

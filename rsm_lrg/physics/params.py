@@ -438,6 +438,14 @@ def load_params(path: str | Path | None = None, base: LRGParams | None = None, *
                     if extra:
                         raise ValueError(f"table [{k}] has an unknown key {extra[0]!r} "
                                          f"(known: value, unit, source, assumption)")
+                    unit = v.get("unit")
+                    own = PARAM_INFO[k]["unit"] if k in PARAM_INFO else None
+                    if unit is not None and own is not None and (not isinstance(unit, str) or unit.strip() != own):
+                        from ..io import quote_user_value
+
+                        raise ValueError(f"table [{k}] unit {quote_user_value(unit)} is not the unit of {k}, "
+                                         f"{own!r}; write the value {'as a plain number' if own in ('1', '') else 'in ' + own} "
+                                         "(values are never converted)")
                     v = v["value"]
                 values[k] = v
             values = {k: _coerce(k, v) for k, v in values.items()}

@@ -675,6 +675,24 @@ def _typed(where: str, key: str, v, kind):
     return v
 
 
+def _check_unit(where: str, name: str, unit: str | None) -> None:
+    """A ``unit`` written beside a value must be the parameter's own unit (the value is read
+    in it): ``unit = "mm"`` for a parameter in m would otherwise be ignored silently and the
+    value taken 1000 times too large."""
+    from ..io import quote_user_value
+    from ..physics.params import PARAM_INFO
+    from .runs import SURROGATE_PARAMETERS
+
+    if unit is None:
+        return
+    own = PARAM_INFO[name]["unit"] if name in PARAM_INFO else SURROGATE_PARAMETERS[name][1] \
+        if name in SURROGATE_PARAMETERS else None
+    if own is not None and unit.strip() != own:
+        raise ValueError(f"{where} unit {quote_user_value(unit)} is not the unit of {name}, "
+                         f"{quote_user_value(own)}; write the value {'as a plain number' if own in ('1', '') else 'in ' + own} "
+                         "(values are never converted)")
+
+
 def _unknown_key(where: str, key, allowed) -> ValueError:
     import difflib
 
@@ -749,6 +767,7 @@ def _calibration_from_toml(raw: dict, lrg_names, surrogate_names, outputs) -> Ca
         if "value" not in t:
             raise ValueError(f"{where} has no value")
         f = {k: _typed(where, k, v, _PARAM_KEYS[k]) for k, v in t.items()}
+        _check_unit(where, name, f.get("unit"))
         v = f["value"]
         lo, hi, what = documented_bounds(name)
         if not math.isfinite(v) or not lo <= v <= hi:
