@@ -203,6 +203,24 @@ if __name__ == "__main__":
 """
 
 
+def _wait_connected(proc, port: int, timeout: float = 120.0) -> None:
+    """Wait until ``proc`` holds an established TCP connection to ``port`` (its Dask client is
+    connected), read from /proc: a fixed sleep is too short on a loaded machine."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end and proc.poll() is None:
+        try:
+            mine = {os.readlink(f"/proc/{proc.pid}/fd/{fd}") for fd in os.listdir(f"/proc/{proc.pid}/fd")}
+            lines = Path(f"/proc/{proc.pid}/net/tcp").read_text().splitlines()[1:]
+        except OSError:
+            lines, mine = [], set()
+        for line in lines:
+            f = line.split()
+            if f[3] == "01" and int(f[2].split(":")[1], 16) == port and f"socket:[{f[9]}]" in mine:
+                return
+        time.sleep(0.2)
+    pytest.fail(f"the command never connected to the scheduler on port {port}")
+
+
 @pytest.mark.slow
 @pytest.mark.cluster
 def test_a_scheduler_lost_mid_run_is_one_error_line(tmp_path):
@@ -217,7 +235,8 @@ def test_a_scheduler_lost_mid_run_is_one_error_line(tmp_path):
         work = tmp_path / "work"
         work.mkdir()
         proc = _start_simulate(work, "--scheduler", address)
-        time.sleep(6)  # the run is under way on the cluster's worker
+        _wait_connected(proc, int(address.rsplit(":", 1)[1]))  # start-up takes long on a loaded machine
+        time.sleep(3)  # the run is under way on the cluster's worker
         assert proc.poll() is None, proc.communicate()[1][-500:]
         os.killpg(cluster.pid, signal.SIGKILL)  # the scheduler and its worker, gone
         _, err = proc.communicate(timeout=180)
