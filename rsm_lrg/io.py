@@ -712,6 +712,23 @@ def output_stream(path: str | os.PathLike) -> int | None:
     return None
 
 
+def _shipped_file(p: Path) -> str | None:
+    """``data/NAME`` when ``p`` is (also through a link) one of the data files shipped in the
+    package (``rsm_lrg/data``: the parameter defaults, the calibration, the paper's tables),
+    which commands read without naming them; else None."""
+    here = Path(__file__).resolve().parent / "data"
+    try:
+        names = os.listdir(here)
+    except OSError:
+        return None
+    if not os.path.lexists(p):
+        return None
+    for name in names:
+        if _same_file(p, here / name) and (here / name).is_file():
+            return f"data/{name}"
+    return None
+
+
 def _stream_name(fd: int) -> str:
     return {0: "standard input", 1: "standard output", 2: "standard error"}.get(fd, f"descriptor {fd}")
 
@@ -761,6 +778,10 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
         if _same_file(p, Path(inp)):
             shown = "read from standard input" if str(inp) == "/dev/stdin" else _show(inp)
             raise InputError(f"{head}: it is the input file {shown}; an input is never overwritten")
+    shipped = _shipped_file(p)
+    if shipped is not None:
+        raise InputError(f"{head}: it is the file {shipped} shipped with rsm-lrg, which its commands read (defaults, "
+                         f"the calibration, the paper's tables); it is never overwritten: write elsewhere")
     fd = output_stream(p)
     if fd is not None:
         try:

@@ -416,3 +416,31 @@ def test_control_characters_in_names_and_cells_are_refused(tmp_path, capsys):
     df.assign(note=["two\nlines" if i == 2 else "" for i in range(len(df))]).to_csv(note, index=False)
     assert main(["fit", str(note), "--response", RESPONSE, "--json", "-"]) == 0
     assert json.loads(capsys.readouterr().out)["n"] == 27
+
+
+def test_a_data_file_the_package_reads_is_never_an_output(tmp_path):
+    # physics reads data/lrg_shs15v.toml when it is imported, simulate data/calibration.toml, reproduce
+    # the paper's tables: none named on the command line; `physics --json .../lrg_shs15v.toml --force`
+    # replaced the defaults. Run on a copy of the package, so that a failure cannot harm this one.
+    import rsm_lrg
+
+    pkg = tmp_path / "copy" / "rsm_lrg"
+    shutil.copytree(Path(rsm_lrg.__file__).parent, pkg, ignore=shutil.ignore_patterns("__pycache__"))
+    env = dict(os.environ, PYTHONPATH=str(pkg.parent))
+    shipped = {p.name: p.read_bytes() for p in (pkg / "data").iterdir() if p.is_file()}
+    link = tmp_path / "link.toml"
+    link.symlink_to(pkg / "data" / "lrg_shs15v.toml")
+    for args in (["physics", "--json", str(pkg / "data" / "lrg_shs15v.toml"), "--force"],
+                 ["physics", "--json", str(link), "--force"],
+                 ["simulate", str(pkg / "data" / "table4.csv"), "-o", str(pkg / "data" / "calibration.toml"), "--force"],
+                 ["fit", str(TABLE4), "--response", RESPONSE, "--json", str(pkg / "data" / "table5_anova.csv"),
+                  "--force"]):
+        proc = subprocess.run([sys.executable, "-m", "rsm_lrg", *args], cwd=tmp_path, env=env, text=True,
+                              capture_output=True, timeout=300)
+        assert proc.returncode == 2, (args, proc.stderr)
+        _one_error(proc.stderr, "shipped with rsm-lrg", "never overwritten")
+    assert {p.name: p.read_bytes() for p in (pkg / "data").iterdir() if p.is_file()} == shipped
+    # a new file beside them is no shipped file
+    proc = subprocess.run([sys.executable, "-m", "rsm_lrg", "physics", "--json", str(pkg / "data" / "new.json")],
+                          cwd=tmp_path, env=env, text=True, capture_output=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
