@@ -614,7 +614,9 @@ def _place(tmp: str, target: Path, force: bool, label: str | None = None) -> Non
     what = f"{label} " if label else ""
     try:
         if force:
+            owner = _owner_of(target)
             os.replace(tmp, target)
+            _give_back(target, owner)
             return
         try:
             os.link(tmp, target)
@@ -873,7 +875,7 @@ def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO
                 fh.write(data.encode("utf-8") if isinstance(data, str) else data)
             fh.flush()
             os.fsync(fh.fileno())
-        os.chmod(tmp, 0o644)
+        _take_mode(tmp, target)
         if tx is not None:
             tx.staged.append((tmp, target, force))
         else:
@@ -888,6 +890,62 @@ def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO
             _unlink(tmp)
         raise
     return p
+
+
+def _umask() -> int:
+    """The process's file-mode creation mask (read from /proc where it can be, so that it is
+    never changed, even for an instant)."""
+    try:
+        with open("/proc/self/status", encoding="ascii", errors="replace") as fh:
+            for line in fh:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def _take_mode(tmp: str, target: Path) -> None:
+    """Give the new file ``tmp`` the permissions it replaces: those of the file at ``target``
+    when there is one (``--force`` never makes a private ``0600`` file world-readable; its
+    owner is given back by :func:`_place`), else ``0666`` less the umask, as any new file."""
+    import stat
+
+    try:
+        st = os.stat(target)
+    except OSError:
+        st = None
+    if st is not None and stat.S_ISREG(st.st_mode):
+        os.chmod(tmp, stat.S_IMODE(st.st_mode) & 0o777)
+        return
+    os.chmod(tmp, 0o666 & ~_umask())
+
+
+def _owner_of(target: Path) -> tuple[int, int] | None:
+    """``(uid, gid)`` of the regular file at ``target`` when it is not this process's own."""
+    import stat
+
+    try:
+        st = os.stat(target)
+    except OSError:
+        return None
+    if not stat.S_ISREG(st.st_mode) or not hasattr(os, "getuid") or (st.st_uid, st.st_gid) == (os.getuid(),
+                                                                                                  os.getgid()):
+        return None
+    return st.st_uid, st.st_gid
+
+
+def _give_back(target: Path, owner: tuple[int, int] | None) -> None:
+    """Once the new file is in place, give it the owner of the file it replaced where this
+    process may (root replacing a user's file leaves it theirs); done after the rename, so
+    that a temporary file is always this process's to remove."""
+    if owner is not None:
+        try:
+            os.chown(target, *owner)
+        except OSError:
+            pass
 
 
 def to_jsonable(obj: Any) -> Any:

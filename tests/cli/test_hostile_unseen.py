@@ -444,3 +444,30 @@ def test_a_data_file_the_package_reads_is_never_an_output(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "rsm_lrg", "physics", "--json", str(pkg / "data" / "new.json")],
                           cwd=tmp_path, env=env, text=True, capture_output=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
+
+
+def test_an_output_keeps_the_permissions_of_the_file_it_replaces_and_the_umask(tmp_path):
+    # --force made a private 0600 file world-readable (0644), and a new file ignored the umask
+    private = tmp_path / "private.json"
+    private.write_text("{}")
+    private.chmod(0o600)
+    shared = tmp_path / "shared.json"
+    shared.write_text("{}")
+    shared.chmod(0o664)
+    for out in (private, shared):
+        proc = _cli(["fit", str(TABLE4), "--response", RESPONSE, "--json", out.name, "--force"], tmp_path,
+                    capture_output=True)
+        assert proc.returncode == 0, proc.stderr
+        assert json.loads(out.read_text())["n"] == 27
+    assert (private.stat().st_mode & 0o777, shared.stat().st_mode & 0o777) == (0o600, 0o664)
+    proc = subprocess.run(f"umask 077 && exec {sys.executable} -m rsm_lrg fit {TABLE4} --response {RESPONSE} "
+                          f"--json new.json", shell=True, cwd=tmp_path, env=_env(), text=True, capture_output=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "new.json").stat().st_mode & 0o777 == 0o600
+    if ROOT:  # root replacing another user's file leaves it theirs
+        os.chown(private, 65534, 65534)
+        proc = _cli(["fit", str(TABLE4), "--response", RESPONSE, "--json", private.name, "--force"], tmp_path,
+                    capture_output=True)
+        assert proc.returncode == 0, proc.stderr
+        assert (private.stat().st_uid, private.stat().st_mode & 0o777) == (65534, 0o600)
