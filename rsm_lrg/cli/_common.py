@@ -298,8 +298,8 @@ def add_terms_options(parser: argparse.ArgumentParser, *, per_response: bool = F
     flag: dict[str, Any] = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} \
         if per_response else {"action": "store_true"}
     parser.add_argument("--terms", default=None, metavar='"A B AB A^2"',
-                        help="fit exactly these terms instead of --model: letters, products (AB), powers of any "
-                             "degree (A^3, A^2B), categoric terms as in the ANOVA; space- or comma-separated", **kw)
+                        help="fit exactly these terms instead of --model: letters, products (AB), powers (a term "
+                             "of degree at most 20: A^3, A^2B), categoric terms as in the ANOVA; space- or comma-separated", **kw)
     parser.add_argument("--no-intercept",
                         help="fit without an intercept (with --terms; the ANOVA total is then uncorrected, as R's lm)",
                         **flag)
@@ -692,6 +692,7 @@ def model_spec(opts: argparse.Namespace, *, order: str | None = None):
     if mixture and not getattr(opts, "component", None):
         raise InputError(f"--model {getattr(opts, 'model', order)}: a mixture model needs its components "
                          "(--component NAME, once per component)")
+    check_terms_option(getattr(opts, "terms", None))
     try:
         return ModelSpec.build(order or getattr(opts, "model", None) or "quadratic", terms=getattr(opts, "terms", None),
                                intercept=not getattr(opts, "no_intercept", False),
@@ -699,6 +700,40 @@ def model_spec(opts: argparse.Namespace, *, order: str | None = None):
                                transform_constant=getattr(opts, "transform_constant", 0.0), reduce=reduce)
     except SpecError as exc:
         raise option_error(exc, opts) from None
+
+
+#: The highest degree of a term given with ``--terms`` (``A^20``, ``A^10B^10``): far beyond any
+#: response surface (Design-Expert stops at 6), and the exact conversion of the coefficients to
+#: actual units costs time growing with the degree (``A^99999`` ran for ever).
+MAX_TERM_DEGREE = 20
+
+
+def check_terms_option(terms: Any) -> None:
+    """Refuse a ``--terms`` list holding a term of degree above :data:`MAX_TERM_DEGREE` (its
+    letters counted once each, plus their powers), naming the term.
+
+    >>> check_terms_option("A B AB A^2 A^3B^2")
+    >>> check_terms_option("A^99999")
+    Traceback (most recent call last):
+    ...
+    rsm_lrg.io.InputError: --terms: the term 'A^99999' has degree 99999; at most 20 ...
+    """
+    import re
+
+    if not isinstance(terms, str):
+        return
+    for tok in terms.replace(",", " ").split():
+        if tok == "Intercept":
+            continue
+        degree = 0
+        for m in re.finditer(r"[A-Z](?:\^(\d+))?", tok):
+            power = m.group(1)
+            degree += 1 if power is None else (int(power) if len(power) < 10 else 10**10)
+        if degree > MAX_TERM_DEGREE:
+            shown = degree if degree < 10**10 else "beyond 10^10"
+            raise InputError(f"--terms: the term {quote_user_value(tok)} has degree {shown}; at most "
+                             f"{MAX_TERM_DEGREE} (a polynomial of such degree fits noise, and its actual-unit "
+                             "coefficients would take for ever)")
 
 
 def option_error(exc: Exception, opts: argparse.Namespace | None = None) -> InputError:

@@ -471,3 +471,19 @@ def test_an_output_keeps_the_permissions_of_the_file_it_replaces_and_the_umask(t
                     capture_output=True)
         assert proc.returncode == 0, proc.stderr
         assert (private.stat().st_uid, private.stat().st_mode & 0o777) == (65534, 0o600)
+
+
+@pytest.mark.parametrize("terms, degree", [("A^99999", "99999"), ("A" * 5000, "5000"), ("A^10B^11", "21"),
+                                           ("B A^123456789012345", "beyond 10^10")])
+def test_a_term_of_absurd_degree_is_refused_not_computed_for_ever(capsys, terms, degree):
+    # fit --terms "A^99999" ran for ever (exact actual-unit coefficients of degree 99999)
+    t0 = time.monotonic()
+    assert main(["fit", str(TABLE4), "--response", RESPONSE, "--terms", terms]) == 2
+    _one_error(capsys.readouterr().err, "--terms", f"degree {degree}", "at most 20")
+    assert time.monotonic() - t0 < 30
+
+
+def test_a_term_of_degree_twenty_still_fits(capsys):
+    assert main(["fit", str(TABLE4), "--response", RESPONSE, "--terms", "A^20 B", "--json", "-"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert "A^20" in out["coefficients"]["coded"]
