@@ -117,7 +117,13 @@ class OptimumResult:
     n_starts : int
         Local searches run (besides the exact enumeration).
     method : str
-        ``"exact-faces+multistart"`` or ``"multistart"``.
+        ``"exact-faces+multistart"`` or ``"multistart"`` (a mixture: ``"exact-faces"`` or
+        ``"multistart"``, :mod:`rsm_lrg.optimize.mixture`).
+    total : float or None
+        A mixture's total (``actual`` holds the blend in real proportions, ``coded`` its
+        L-pseudo components); ``None`` otherwise.
+    components : tuple of str
+        A mixture's component names (empty otherwise).
     """
 
     response: str
@@ -135,6 +141,8 @@ class OptimumResult:
     n_starts: int = 0
     method: str = "multistart"
     by_level: tuple = ()
+    total: float | None = None
+    components: tuple = ()
 
     def to_dict(self) -> dict:
         """The optimize JSON of INTERFACE.md (plus ``target``, ``bounds``, ``warnings``)."""
@@ -154,6 +162,8 @@ class OptimumResult:
         out["warnings"] = list(self.warnings)
         if self.by_level:
             out["by_level"] = [dict(r) for r in self.by_level]
+        if self.total is not None:
+            out["total"] = self.total
         return out
 
     def to_frame(self):
@@ -172,11 +182,15 @@ class OptimumResult:
 
         g = self.goal if self.target is None else f"target {format_g(self.target, 6, trim=True)}"
         lines = [f"Optimum of {self.response} ({g})"]
-        for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):
-            if isinstance(a, str):
+        for i, ((L, c), (name, a)) in enumerate(zip(self.coded.items(), self.actual.items())):
+            if name in self.components:
+                lines.append(f"  {L}: {name} = {format_g(a, 6, trim=True)}   (L-pseudo {c:.4f})")
+            elif isinstance(a, str):
                 lines.append(f"  {L}: {name} = {a}   (categoric)")
             else:
                 lines.append(f"  {L}: {name} = {format_g(a, 6, trim=True)}   (coded {c:+.4f})")
+        if self.total is not None:
+            lines.append(f"  (the blend sums to the total {format_g(self.total, 6, trim=True)})")
         pc = int(round(self.confidence * 100))
         lines.append(f"  predicted: {format_g(self.predicted, 6, trim=True)}")
         lines.append(f"  {pc} % CI:  {format_g(self.ci[0], 6, trim=True)} .. {format_g(self.ci[1], 6, trim=True)}")
@@ -263,6 +277,10 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     if not 0.0 < confidence < 1.0:
         raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
     exprs = _constraint_texts(constraints)
+    if getattr(fitted, "mixture", False):  # the constrained simplex (rsm_lrg.optimize.mixture)
+        from .mixture import optimize_mixture
+
+        return optimize_mixture(fitted, goal, bounds, confidence=confidence, constraints=exprs)
     if fitted.space.has_categoric:
         return _optimize_categoric(fitted, goal, bounds, confidence=confidence,
                                    allow_extrapolation=allow_extrapolation, seed=seed, constraints=exprs)
