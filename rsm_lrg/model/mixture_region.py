@@ -30,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..factors import FactorSpace, MixtureComponent
 
 __all__ = ["MixtureRegion", "mixture_region", "MAX_ACTIVE_SETS", "FEAS_TOL"]
@@ -188,19 +189,19 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
             for s in bounds:
                 name, a, b = parse_factor_spec(str(s))
                 if a is None or b is None:
-                    raise ValueError(f"bound {s!r}: expected NAME=LOW:HIGH")
+                    raise ParameterError("bound", f"bound {s!r}: expected NAME=LOW:HIGH")
                 pairs = [*pairs, (name, (a, b))]
         for key, pair in pairs:
             try:
                 f = space[key]
             except KeyError:
-                raise ValueError(f"bound for {key!r}: no such component or factor "
+                raise ParameterError("bound", f"bound for {key!r}: no such component or factor "
                                  f"(factors: {', '.join(space.names)})") from None
             a, b = (float(v) for v in pair)
             if not (math.isfinite(a) and math.isfinite(b)) or not a < b:
-                raise ValueError(f"bound for {f.name!r}: expected LOW < HIGH, finite (got {a:g}, {b:g})")
+                raise ParameterError("bound", f"bound for {f.name!r}: expected LOW < HIGH, finite (got {a:g}, {b:g})")
             if f.name in items:
-                raise ValueError(f"bound for {f.name!r} is given more than once")
+                raise ParameterError("bound", f"bound for {f.name!r} is given more than once")
             items[f.name] = (a, b)
     k = len(space)
     G_rows: list[np.ndarray] = []
@@ -211,7 +212,7 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
         assert isinstance(f, MixtureComponent)
         name = f.name
         if not lo < hi:
-            raise ValueError(f"bound for {name!r}: the region is empty (its limits {lo:g}..{hi:g} leave nothing)")
+            raise ParameterError("bound", f"bound for {name!r}: the region is empty (its limits {lo:g}..{hi:g} leave nothing)")
         e = np.zeros(k)
         e[j] = 1.0
         G_rows += [-e, e]
@@ -225,7 +226,7 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
             a, b = items[f.name]
             lo_c, hi_c = float(f.encode(a)), float(f.encode(b))
             if lo_c < -1.0 - 1e-9 or hi_c > 1.0 + 1e-9:
-                raise ValueError(f"bound for {f.name!r} ({a:g}..{b:g}) reaches outside the design range "
+                raise ParameterError("bound", f"bound for {f.name!r} ({a:g}..{b:g}) reaches outside the design range "
                                  f"{f.low:g}..{f.high:g}")
             lo_c, hi_c = max(lo_c, -1.0), min(hi_c, 1.0)
         e = np.zeros(k)
@@ -253,9 +254,14 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
             rows.append(c.text)
     region = MixtureRegion(space=space, comps=comps, G=np.array(G_rows), h=np.array(h, dtype=float), rows=tuple(rows),
                            total=float(T))
-    V = region.vertices()  # raises on an empty region
+    try:
+        V = region.vertices()
+    except ValueError as exc:  # named as the constraints' fault when there are any, else the bounds'
+        raise (ValueError(f"constraints and bounds leave no blend summing to the total {T:g} (the region is empty)")
+               if texts
+               else ParameterError("bound", str(exc))) from None
     free = np.linalg.matrix_rank(V[1:] - V[0], tol=1e-9) if len(V) > 1 else 0
     if free < k - 1:
-        raise ValueError(f"the region has no interior (dimension {free} where {k - 1} is needed): the bounds and "
+        raise ValueError(f"constraints and bounds leave the region no interior (dimension {free} where {k - 1} is needed): the bounds and "
                          "constraints pin some blend or setting")
     return region

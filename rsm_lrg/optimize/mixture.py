@@ -36,7 +36,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..model.mixture_region import MixtureRegion, mixture_region
 
-__all__ = ["optimize_mixture", "kkt_faces", "region_starts", "polish", "SEED"]
+__all__ = ["optimize_mixture", "kkt_faces", "region_starts", "polish", "face_newton", "desirability_search",
+           "limits_of", "SEED"]
 
 #: Seed of the random blends among the starts.
 SEED = 20240
@@ -92,9 +93,11 @@ def region_starts(region: MixtureRegion, seed: int = SEED, n_random: int = 64) -
     return np.vstack(pts)
 
 
-def polish(obj: Any, starts: np.ndarray, region: MixtureRegion, maxiter: int = 400) -> list[np.ndarray]:
-    """End points (and the starts) of SLSQP from each start: ``obj(x) -> (value, gradient)``,
-    the sum as an equality and ``G x <= h`` as inequalities; only points in the region are kept."""
+def polish(obj: Any, starts: np.ndarray, region: MixtureRegion, maxiter: int = 400, *,
+           jac: bool = True) -> list[np.ndarray]:
+    """End points (and the starts) of SLSQP from each start: ``obj(x) -> (value, gradient)``
+    (``jac=False``: ``obj(x) -> value``, differences taken by SciPy), the sum as an equality
+    and ``G x <= h`` as inequalities; only points in the region are kept."""
     from scipy import optimize as so
 
     E, G, h = region.E, region.G, region.h
@@ -105,7 +108,7 @@ def polish(obj: Any, starts: np.ndarray, region: MixtureRegion, maxiter: int = 4
         if region.contains(x0)[0]:
             out.append(np.asarray(x0, dtype=float))
         try:
-            r = so.minimize(obj, x0, jac=True, method="SLSQP", constraints=cons,
+            r = so.minimize(obj, x0, jac=jac, method="SLSQP", constraints=cons,
                             options={"ftol": 1e-15, "maxiter": maxiter})
         except (ValueError, FloatingPointError):
             continue
@@ -331,3 +334,48 @@ def extrapolation_notes(fitted: Any, actual: dict) -> list[str]:
             notes.append(f"{name} = {format_g(v, 6, trim=True)} is outside the range of the data "
                          f"({format_g(lo, 6, trim=True)}..{format_g(hi, 6, trim=True)}): an extrapolation")
     return notes
+
+
+def desirability_search(objective: Any, objective_many: Any, region: MixtureRegion, extra: list, *,
+                        n_polish: int = 6, seed: int = SEED) -> tuple[np.ndarray, int]:
+    """The point of ``region`` minimising ``objective`` (``-D``, or a distance to the limits
+    where D is 0: :mod:`rsm_lrg.optimize.desirability`): every start of :func:`region_starts`
+    (256 random blends) and ``extra`` (each response's own optimum) screened at once with
+    ``objective_many``, the best ``n_polish`` polished by SLSQP, the winner by Nelder–Mead
+    in coordinates of the simplex's plane (a point outside the region scores +inf).
+    Returns ``(x, number of starts)``."""
+    from scipy import optimize as so
+
+    S = region_starts(region, seed, n_random=256)
+    if extra:
+        S = np.vstack([S, np.array(extra, dtype=float)])
+    S = S[region.contains(S)]
+    vals = objective_many(S)
+    cands = polish(objective, S[np.argsort(vals)[:n_polish]], region, maxiter=200, jac=False)
+    cvals = [objective(c) for c in cands]
+    best = cands[int(np.argmin(cvals))]
+    best_v = float(min(cvals))
+    N = null_basis(region.E)
+
+    def inside(u: np.ndarray) -> float:
+        x = best + N @ u
+        return objective(x) if region.contains(x)[0] else math.inf
+
+    r = so.minimize(inside, np.zeros(N.shape[1]), method="Nelder-Mead",
+                    options={"xatol": 1e-10, "fatol": 1e-15, "maxiter": 400 * region.k,
+                             "initial_simplex": _small_simplex(N.shape[1], 1e-3)})
+    x = best + N @ r.x
+    if region.contains(x)[0] and objective(x) < best_v:
+        best = x
+    return _project(best, region), len(S)
+
+
+def null_basis(e: np.ndarray) -> np.ndarray:
+    """An orthonormal basis (columns) of the vectors orthogonal to ``e``."""
+    e = np.asarray(e, dtype=float)
+    _, _, vt = np.linalg.svd(e[None, :])
+    return np.asarray(vt[1:].T)
+
+
+def _small_simplex(d: int, size: float) -> np.ndarray:
+    return np.vstack([np.zeros(d), size * np.eye(d)])
