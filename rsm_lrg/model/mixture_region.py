@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from itertools import combinations
 from typing import Any
 
@@ -57,6 +57,9 @@ class MixtureRegion:
         What each row is (``"A >= 0.1"``, ``"D <= 1 (coded)"``, a constraint's text).
     total : float
         The blend's total T [the components' units].
+    limits : dict
+        ``{name: (low, high)}`` each component's bounds and each process factor's limits
+        [real proportions / actual units], as given (before coding).
     """
 
     space: FactorSpace
@@ -65,6 +68,7 @@ class MixtureRegion:
     h: np.ndarray
     rows: tuple
     total: float
+    limits: dict = field(default_factory=dict)
 
     @property
     def k(self) -> int:
@@ -135,9 +139,18 @@ class MixtureRegion:
         return self.vertices().mean(axis=0)
 
     def to_actual(self, x: Any) -> dict:
-        """``{name: actual value}`` of the coded point ``x`` (real proportions for the components)."""
+        """``{name: actual value}`` of the coded point ``x`` (real proportions for the components),
+        kept inside each factor's :attr:`limits` (decoding a bound's coded value can land
+        ``1e-17`` outside it)."""
         x = np.asarray(x, dtype=float).ravel()
-        return {f.name: float(f.decode(v)) for f, v in zip(self.space.factors, x)}
+        out = {}
+        for f, v in zip(self.space.factors, x):
+            a = float(f.decode(v))
+            if f.name in self.limits:
+                lo, hi = self.limits[f.name]
+                a = min(max(a, lo), hi)
+            out[f.name] = a
+        return out
 
 
 def _component_limits(space: FactorSpace, comps: Sequence[int], bounds: Mapping[str, tuple[float, float]]) -> dict:
@@ -207,6 +220,7 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
     G_rows: list[np.ndarray] = []
     h: list[float] = []
     rows: list[str] = []
+    limits: dict[str, tuple[float, float]] = {}
     for j, (lo, hi) in _component_limits(space, comps, items).items():
         f = space.factors[j]
         assert isinstance(f, MixtureComponent)
@@ -218,6 +232,7 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
         G_rows += [-e, e]
         h += [-(lo - f.lower) / R, (hi - f.lower) / R]
         rows += [f"bound {name} >= {lo:g}", f"bound {name} <= {hi:g}"]
+        limits[name] = (float(lo), float(hi))
     for j, f in enumerate(space.factors):
         if j in comps:
             continue
@@ -234,6 +249,7 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
         G_rows += [-e, e]
         h += [-lo_c, hi_c]
         rows += [f"process {f.name} >= {lo_c:g} (coded)", f"process {f.name} <= {hi_c:g} (coded)"]
+        limits[f.name] = (float(f.decode(lo_c)), float(f.decode(hi_c)))
     texts = [constraints] if isinstance(constraints, str) else list(getattr(constraints, "expressions", constraints) or [])
     if texts:
         from ..design.constraints import Constraints
@@ -253,7 +269,7 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
             h.append(float(b[i]))
             rows.append(c.text)
     region = MixtureRegion(space=space, comps=comps, G=np.array(G_rows), h=np.array(h, dtype=float), rows=tuple(rows),
-                           total=float(T))
+                           total=float(T), limits=limits)
     try:
         V = region.vertices()
     except ValueError as exc:  # named as the constraints' fault when there are any, else the bounds'

@@ -305,12 +305,8 @@ def optimize_mixture(fitted: Any, goal: Any = "minimize", bounds: Any = None, *,
 def limits_of(region: MixtureRegion) -> dict:
     """``{name: (low, high)}`` of each factor over the region's vertices (actual units): the
     range a component can take in the constrained simplex."""
-    V = region.vertices()
-    out = {}
-    for j, f in enumerate(region.space.factors):
-        vals = f.decode(V[:, j])
-        out[f.name] = (float(np.min(vals)), float(np.max(vals)))
-    return out
+    A = [region.to_actual(v) for v in region.vertices()]
+    return {f.name: (min(a[f.name] for a in A), max(a[f.name] for a in A)) for f in region.space.factors}
 
 
 def extrapolation_notes(fitted: Any, actual: dict) -> list[str]:

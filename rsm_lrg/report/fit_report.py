@@ -584,6 +584,14 @@ def notebook_html(result, *, source_name: str | None = None) -> str:
 
     ctx = table_sections(result, source_name, None)
     ctx["title"] = f"{result.model.capitalize()} fit of {result.response}: {result.n} runs, {len(result.space)} factors"
+    if getattr(result, "mixture", False):  # the effects along the Cox direction (rsm_lrg.model.mixture_trace)
+        from ..model.mixture_trace import mixture_trace
+
+        tr = mixture_trace(result)
+        letter = {f.name: f.letter for f in result.space.factors}
+        ctx["mixture_effects"] = [{"component": f"{letter[c]}: {c}", "reference": tr.reference[c], "low": tr.low[c],
+                                   "high": tr.high[c], "effect": tr.effects[c], "gradient": tr.gradients[c]}
+                                  for c in tr.effects]
     return environment().get_template("notebook.html.j2").render(**ctx)
 
 
