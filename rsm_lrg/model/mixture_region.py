@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..factors import FactorSpace, MixtureComponent
+from ..factors import Factor, FactorSpace, MixtureComponent
 
 __all__ = ["MixtureRegion", "mixture_region", "MAX_ACTIVE_SETS", "FEAS_TOL"]
 
@@ -236,6 +236,8 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
     for j, f in enumerate(space.factors):
         if j in comps:
             continue
+        if not isinstance(f, Factor):
+            raise ValueError(f"process factor {f.name!r} is categoric; a mixture region takes numeric ones")
         lo_c, hi_c = -1.0, 1.0
         if f.name in items:
             a, b = items[f.name]
@@ -259,14 +261,14 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
             if not c.is_linear:
                 raise ValueError(f"constraint {c.text!r} is not linear; the region of a mixture is cut by linear "
                                  "constraints on the components (and process factors)")
-        A, b = cons.linear_system(coded=True)
-        if not (np.all(np.isfinite(A)) and np.all(np.isfinite(b))):
+        Ac, bc = cons.linear_system(coded=True)
+        if not (np.all(np.isfinite(Ac)) and np.all(np.isfinite(bc))):
             raise ValueError("constraint: its coefficients are not finite")
         for i, c in enumerate(cons.items):
-            if not np.any(A[i]):
+            if not np.any(Ac[i]):
                 raise ValueError(f"constraint {c.text!r} holds no factor")
-            G_rows.append(A[i])
-            h.append(float(b[i]))
+            G_rows.append(Ac[i])
+            h.append(float(bc[i]))
             rows.append(c.text)
     region = MixtureRegion(space=space, comps=comps, G=np.array(G_rows), h=np.array(h, dtype=float), rows=tuple(rows),
                            total=float(T), limits=limits)

@@ -220,8 +220,8 @@ def optimize_mixture(fitted: Any, goal: Any = "minimize", bounds: Any = None, *,
     from scipy import optimize as so
 
     from ..model.canonical import quadratic_parts
-    from ..present import format_g
     from ..model.terms import design_gradient, design_matrix
+    from ..present import format_g
     from .single import OptimumResult
 
     if not 0.0 < confidence < 1.0:

@@ -182,9 +182,9 @@ class OptimumResult:
 
         g = self.goal if self.target is None else f"target {format_g(self.target, 6, trim=True)}"
         lines = [f"Optimum of {self.response} ({g})"]
-        for i, ((L, c), (name, a)) in enumerate(zip(self.coded.items(), self.actual.items())):
+        for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):
             if name in self.components:
-                lines.append(f"  {L}: {name} = {format_g(a, 6, trim=True)}   (L-pseudo {c:.4f})")
+                lines.append(f"  {L}: {name} = {format_g(a, 6, trim=True)}   (L-pseudo {format_g(c, 6, trim=True)})")
             elif isinstance(a, str):
                 lines.append(f"  {L}: {name} = {a}   (categoric)")
             else:

@@ -375,8 +375,8 @@ def mixture_data(specs) -> dict | None:
     data = first.data
     points = [[float(v) for v in row] for row in np.asarray(data[[c.name for c in comps]], dtype=float)]
     return {"total": float(region.total),
-            "components": [{"name": str(c.name), "letter": c.letter, "lower": float(c.lower),  # type: ignore[union-attr]
-                            "upper": float(min(c.upper, c.total)),  # type: ignore[union-attr]
+            "components": [{"name": str(c.name), "letter": c.letter, "lower": float(c.lower),
+                            "upper": float(min(c.upper, c.total)),
                             "low": ranges[c.name][0], "high": ranges[c.name][1], "reference": ref[c.name]}
                            for c in comps],
             "process": [str(f.name) for j, f in enumerate(first.space.factors) if j not in region.comps],

@@ -705,7 +705,7 @@ def ternary_contour(fractions, z, *, labels: Sequence[str], share: float = 1.0, 
     if np.isfinite(zz).sum() >= 3 and np.ptp(zz[np.isfinite(zz)]) > 0:
         zf = np.where(np.isfinite(zz), zz, np.nanmean(zz))
         cf = ax.tricontourf(tri, zf, levels=levels, cmap="viridis")
-        cs = ax.tricontour(tri, zf, levels=cf.levels, colors="k", linewidths=0.4)
+        cs = ax.tricontour(tri, zf, levels=np.asarray(cf.levels), colors="k", linewidths=0.4)
         ax.clabel(cs, inline=True, fontsize=6, fmt="%.4g")
         cb = fig.colorbar(cf, ax=ax, shrink=0.8)
         cb.set_label(_t(zlabel), fontsize=8)

@@ -69,7 +69,7 @@ def test_cox_trace_is_the_cox_blend(fits, which, bounds):
             assert min(gaps) <= 1e-12
         # the slope at the reference: a central difference along the Cox blend
         # (Richardson: exact for a cubic along a line up to round-off; coded values carry 12 decimals)
-        def diff(h):
+        def diff(h, name=name):
             yy = fit.predict(pd.DataFrame([_cox_blend(s, name, -h), _cox_blend(s, name, h)]))["predicted"].to_numpy()
             return (yy[1] - yy[0]) / (2 * h)
 
