@@ -222,7 +222,7 @@ def optimize_mixture(fitted: Any, goal: Any = "minimize", bounds: Any = None, *,
     from ..model.canonical import quadratic_parts
     from ..model.terms import design_gradient, design_matrix
     from ..present import format_g
-    from .single import OptimumResult
+    from .result import OptimumResult
 
     if not 0.0 < confidence < 1.0:
         raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")

@@ -584,6 +584,7 @@ def notebook_html(result, *, source_name: str | None = None) -> str:
 
     ctx = table_sections(result, source_name, None)
     ctx["title"] = f"{result.model.capitalize()} fit of {result.response}: {result.n} runs, {len(result.space)} factors"
+    ctx["mixture_effects"] = []
     if getattr(result, "mixture", False):  # the effects along the Cox direction (rsm_lrg.model.mixture_trace)
         from ..model.mixture_trace import mixture_trace
 
