@@ -31,7 +31,10 @@ DESCRIPTION = (
     "'fit' (--model, --reduce, --alpha-out, --criterion, --transform, --transform-constant); with "
     "several responses, the model options that follow a --response apply to that response only "
     "(given before the first --response they apply to all): --response Y1 --model quadratic "
-    "--response Y2 --model linear --transform log."
+    "--response Y2 --model linear --transform log. Mixture components (--component NAME[=LOW:HIGH] "
+    "with a Scheffé --model) are optimised over the constrained simplex: the blend sums to the total, "
+    "each component stays inside its bounds (and --bound), every linear --constraint on the component "
+    "names holds, and process factors (--factor) are searched over their box at the same time."
 )
 
 
