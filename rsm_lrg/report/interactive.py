@@ -81,7 +81,8 @@ def model_data(result, confidence: float = 0.95) -> dict:
     dict
         ``response``, ``factors`` (``name``, ``letter``, ``kind``, ``low``/``high`` or
         ``levels``), ``terms`` (``p``: numeric exponents, ``cat``: ``[[factor index, number of
-        levels], ...]``, ``combos``: level indices of each column), ``b`` (coded
+        levels], ...]``, ``combos``: level indices of each column, ``diff``: ``[i, j]`` for a
+        Scheffé full-cubic term, whose column is also multiplied by ``x_i - x_j``), ``b`` (coded
         coefficients), ``C`` ((X'X)⁻¹ without block rows/columns), ``sigma2`` [response
         units²], ``df_resid``, ``t``, ``transform`` (``None`` or ``name``/``lam``/``constant``)
         and ``coded_decimals`` (the rounding of :meth:`Factor.encode`).
@@ -107,6 +108,7 @@ def model_data(result, confidence: float = 0.95) -> dict:
     for t in fit.terms:
         cat = [[int(i), len(lv)] for i, lv in t.cat]
         terms.append({"name": t.name, "p": [int(p) for p in t.numeric_powers], "cat": cat,
+                      "diff": [int(i) for i in getattr(t, "diff", ())],  # a full-cubic AB(A-B): times x_i - x_j
                       "combos": [list(map(int, c)) for c in t.level_combinations()] if cat else []})
     b = fit.coefficients["coded"].to_numpy(dtype=float)
     idx = fit.term_index

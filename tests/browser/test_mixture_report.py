@@ -73,7 +73,14 @@ def mixture_pages(tmp_path_factory):
     etch = pd.read_csv(ETCH)
     fit3 = rsm_lrg.fit(etch, "erate", components=["x1", "x2", "x3"], model="mixture-quadratic")
     p3 = write_interactive_report(fit3, tmp / "three.html", goals="maximize", source_name="etch")
-    return {"four": (p4, fit4), "three": (p3, fit3)}
+    lat = rsm_lrg.simplex_lattice(["a", "b", "c"], 3, center=True, axial=True).to_frame()[["a", "b", "c"]]
+    rng = np.random.default_rng(9)
+    z = lat.to_numpy()
+    lat["y"] = z @ [10.0, 14.0, 8.0] + 12 * z[:, 0] * z[:, 1] * (z[:, 0] - z[:, 1]) + 20 * z[:, 1] * z[:, 2] \
+        + rng.normal(0, 0.3, len(z))
+    fitc = rsm_lrg.fit(lat, "y", components=["a", "b", "c"], model="mixture-cubic")  # with AB(A-B) terms
+    pc = write_interactive_report(fitc, tmp / "cubic.html", goals="minimize", source_name="etch")
+    return {"four": (p4, fit4), "three": (p3, fit3), "cubic": (pc, fitc)}
 
 
 def _open(chromium, path):
@@ -105,7 +112,7 @@ def _check_state(fit, state) -> None:
     np.testing.assert_allclose(got, want, rtol=RTOL, atol=0)
 
 
-@pytest.mark.parametrize("which", ["four", "three"])
+@pytest.mark.parametrize("which", ["four", "three", "cubic"])
 def test_sliders_keep_the_blend_on_the_simplex_and_inside_the_bounds(chromium, mixture_pages, which):
     path, fit = mixture_pages[which]
     ctx, page, errors = _open(chromium, path)
@@ -140,7 +147,7 @@ def test_sliders_keep_the_blend_on_the_simplex_and_inside_the_bounds(chromium, m
         page.click("[data-jump=optimum]")
         state = page.evaluate(READ)
         _check_state(fit, state)
-        best = fit.optimize(goal="maximize")
+        best = fit.optimize(goal="minimize" if which == "cubic" else "maximize")
         for k, v in best.actual.items():
             assert state["setting"][k] == pytest.approx(v, abs=1e-12)
         assert moved == 5 * len(controls)
@@ -161,7 +168,7 @@ def _blend_at(cell_x, cell_y, meta, held):
     return out
 
 
-@pytest.mark.parametrize("which", ["four", "three"])
+@pytest.mark.parametrize("which", ["four", "three", "cubic"])
 def test_ternary_contour_and_trace_carry_the_model(chromium, mixture_pages, which):
     path, fit = mixture_pages[which]
     ctx, page, errors = _open(chromium, path)

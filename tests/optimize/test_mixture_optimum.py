@@ -302,3 +302,15 @@ def test_bad_region_is_named():
         rsm_lrg.optimize(fit, goal="maximize", constraints=["oil*additive <= 0.1"])
     with pytest.raises(ValueError, match="no such"):
         rsm_lrg.optimize(fit, goal="maximize", bounds={"nope": (0, 1)})
+
+
+@pytest.mark.parametrize("goal", ["maximize", "minimize"])
+def test_full_cubic_equals_grid_plus_refinement(goal):
+    """The Scheffé full cubic (terms x_i x_j (x_i - x_j)) on the constrained three-component case."""
+    q, lower, bounds, constraints = CASES["q3-constrained"]
+    df, specs = _data(q, 4, lower)
+    fit = rsm_lrg.fit(df, "y", components=specs, model="mixture-cubic")
+    assert any("(" in t for t in fit.coefficients.index)
+    want = _grid_refined(fit, 1.0 if goal == "minimize" else -1.0, bounds, constraints)
+    got = _check(fit, "q3-constrained", goal, want)
+    assert got.method == "multistart"

@@ -102,6 +102,7 @@
       }
       var v = 1.0;
       if (parts.length) { v = parts[0]; for (var q = 1; q < parts.length; q++) v = v * parts[q]; }
+      if (t.diff && t.diff.length) v = v * (xc[t.diff[0]] - xc[t.diff[1]]);  /* full cubic AB(A-B) */
       if (!t.cat.length) { row.push(v); continue; }
       for (var k = 0; k < t.combos.length; k++) {
         var col = v;
