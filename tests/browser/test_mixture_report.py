@@ -30,14 +30,15 @@ BOUNDS = {"oil": (0.1, 0.6), "additive": (0.05, 0.4), "thickener": (0.0, 0.5), "
 RTOL = 1e-9
 ETCH = Path(__file__).parents[1] / "model" / "r" / "mixture_etch.csv"
 
-READ = """() => ({
-  setting: Object.fromEntries(Array.from(document.querySelectorAll('[data-factor]')).map(
-      e => [e.dataset.factor, parseFloat(e.value)])),
+READ_JS = """() => ({
+  setting: Array.from(document.querySelectorAll('[data-factor]')).map(e => [e.dataset.factor, parseFloat(e.value)]),
   rows: Array.from(document.querySelectorAll('[data-prediction]')).map(e => ({
       response: e.dataset.response, value: parseFloat(e.dataset.value), ci_low: parseFloat(e.dataset.ciLow),
       ci_high: parseFloat(e.dataset.ciHigh), pi_low: parseFloat(e.dataset.piLow), pi_high: parseFloat(e.dataset.piHigh)}))
 })"""
 
+# (the setting leaves the page as (name, value) pairs: a name such as __proto__ does not survive
+# as an object key on its way out of the page; _read makes them a dict)
 SET = """([name, value, kind]) => {
   const el = Array.from(document.querySelectorAll('[data-factor]')).find(e => e.dataset.factor === name);
   el.value = String(value);
@@ -49,6 +50,12 @@ FIGURE = """([id, kind]) => {
   return (el.data || []).filter(t => t.meta && t.meta.kind === kind).map(t => ({
     x: Array.from(t.x), y: Array.from(t.y), z: t.z ? t.z.map(r => Array.from(r)) : null, meta: t.meta}));
 }"""
+
+
+def _read(page) -> dict:
+    state = page.evaluate(READ_JS)
+    state["setting"] = dict(state["setting"])
+    return state
 
 
 def _four_component_data() -> pd.DataFrame:
@@ -120,7 +127,7 @@ def test_sliders_keep_the_blend_on_the_simplex_and_inside_the_bounds(chromium, m
         controls = page.evaluate("() => Array.from(document.querySelectorAll('[data-factor]')).map(e => "
                                  "({name: e.dataset.factor, min: parseFloat(e.min), max: parseFloat(e.max)}))")
         assert [c["name"] for c in controls] == fit.space.names
-        _check_state(fit, page.evaluate(READ))  # the start: the region's centroid
+        _check_state(fit, _read(page))  # the start: the region's centroid
         rng = np.random.default_rng(5)
         moved = 0
         for rnd in range(5):
@@ -128,7 +135,7 @@ def test_sliders_keep_the_blend_on_the_simplex_and_inside_the_bounds(chromium, m
                 lo, hi = c["min"], c["max"]
                 v = [lo, hi, lo - 0.3, hi + 0.3, float(rng.uniform(lo, hi))][rnd]
                 page.evaluate(SET, [c["name"], repr(v), "input" if rnd % 2 == 0 else "change"])
-                state = page.evaluate(READ)
+                state = _read(page)
                 _check_state(fit, state)
                 if lo <= v <= hi:  # the moved component takes the value unless the others' bounds forbid it
                     others = [f for f in fit.space.factors if f.name != c["name"]]
@@ -142,10 +149,10 @@ def test_sliders_keep_the_blend_on_the_simplex_and_inside_the_bounds(chromium, m
         page.evaluate("""([name, v]) => { const el = Array.from(document.querySelectorAll('[data-factor-text]'))
             .find(e => e.dataset.factorText === name); el.value = String(v); el.dispatchEvent(new Event('change')); }""",
                       [name, controls[0]["min"] + 0.37 * (controls[0]["max"] - controls[0]["min"])])
-        _check_state(fit, page.evaluate(READ))
+        _check_state(fit, _read(page))
         # the jump buttons: the optimum blend, then the centre (the region's centroid)
         page.click("[data-jump=optimum]")
-        state = page.evaluate(READ)
+        state = _read(page)
         _check_state(fit, state)
         best = fit.optimize(goal="minimize" if which == "cubic" else "maximize")
         for k, v in best.actual.items():
@@ -175,7 +182,7 @@ def test_ternary_contour_and_trace_carry_the_model(chromium, mixture_pages, whic
     try:
         page.evaluate(SET, [fit.space.names[0], repr(0.35), "input"])  # off the centroid: the slice moves too
         page.evaluate("() => window.rsmReport.drawNow()")
-        setting = page.evaluate(READ)["setting"]
+        setting = _read(page)["setting"]
         (fig,) = page.evaluate(FIGURE, ["ternary-plot", "ternary-contour"])
         a, b, c = fig["meta"]["components"]
         assert [a, b, c] == fit.space.names[:3]
@@ -219,6 +226,27 @@ def test_ternary_contour_and_trace_carry_the_model(chromium, mixture_pages, whic
         (surf,) = page.evaluate(FIGURE, ["ternary-surface", "ternary-surface"])
         np.testing.assert_array_equal(np.isfinite(np.array(surf["z"], dtype=float)), np.isfinite(Z))
         assert page.evaluate(FIGURE, ["ternary-overlay", "ternary-overlay"])
+        assert errors == []
+    finally:
+        ctx.close()
+
+
+def test_component_names_are_data(chromium, tmp_path):
+    """Components named like Object.prototype's members or with markup: the page keeps them as
+    data (prototype-free objects, arrays of records), so the blend still sums to the total."""
+    names = ["__proto__", "constructor", "a<b>&c"]
+    etch = pd.read_csv(ETCH).rename(columns=dict(zip(["x1", "x2", "x3"], names)))
+    fit = rsm_lrg.fit(etch, "erate", components=names, model="mixture-quadratic")
+    path = write_interactive_report(fit, tmp_path / "names.html", goals="maximize")
+    ctx, page, errors = _open(chromium, path)
+    try:
+        for name, v in zip(names, (0.6, 0.1, 0.45)):
+            page.evaluate(SET, [name, repr(v), "input"])
+            state = _read(page)
+            assert list(state["setting"]) == names
+            _check_state(fit, state)
+        (fig,) = page.evaluate(FIGURE, ["ternary-plot", "ternary-contour"])
+        assert fig["meta"]["components"] == names
         assert errors == []
     finally:
         ctx.close()
