@@ -1,7 +1,7 @@
 """The report of a mixture fit (static page, interactive page data, notebook fragment): the
 ternary contour and the trace plot are there, with the numbers of rsm_lrg.model.mixture_trace
 and rsm_lrg.model.mixture_region (Myers & Montgomery's plasma-etch blends, ``r/mixture_etch*.csv``).
-The browser side (sliders, figures drawn) is tests/browser/test_mixture_report.py."""
+The browser side (sliders, figures drawn) is tests/browser/test_mixture_browser.py."""
 
 from __future__ import annotations
 
