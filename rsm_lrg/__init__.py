@@ -38,6 +38,7 @@ _LAZY = {
     "load_table3": "rsm_lrg.datasets",
     "load_table5": "rsm_lrg.datasets",
     "load_equation19": "rsm_lrg.datasets",
+    "load_mixture_etch": "rsm_lrg.datasets",
     "read_table": "rsm_lrg.io",
 }
 
@@ -59,6 +60,7 @@ _register("rsm_lrg.surrogate", "simulate", "calibrate", "Calibration")
 _register("rsm_lrg.model.summary", "fit_summary")
 _register("rsm_lrg.model.reduce", "reduce_terms")
 _register("rsm_lrg.model.ridge", "ridge")
+_register("rsm_lrg.model.mixture_trace", "mixture_trace", "MixtureTrace")
 _register("rsm_lrg.model.fit", "fit_transformed")
 _register("rsm_lrg.model.evaluate", "evaluate_design", "compare_designs")
 _register("rsm_lrg.model.effects", "screening_effects", "EffectsResult")

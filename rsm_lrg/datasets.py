@@ -1,4 +1,4 @@
-"""The paper's published data, shipped inside the package.
+"""The paper's published data (and a published mixture example), shipped inside the package.
 
 The files live in ``rsm_lrg/data/`` (package data) and, for people reading the repository,
 in ``data/`` at the top level; ``tests/test_datasets.py`` keeps the two identical.
@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["data_path", "load_table4", "load_table3", "load_table5", "load_equation19"]
+__all__ = ["data_path", "load_table4", "load_table3", "load_table5", "load_equation19", "load_mixture_etch"]
 
 
 def data_path(name: str) -> Path:
@@ -53,3 +53,15 @@ def load_table5():
 def load_equation19():
     """Eq. 19: the coded quadratic coefficients of κ, as a Series indexed by term."""
     return _csv("equation19_coded.csv").set_index("term")["coefficient"]
+
+
+def load_mixture_etch():
+    """A published mixture experiment: the plasma etch rate (``erate``) of 14 blends of three
+    components ``x1``, ``x2``, ``x3`` (a simplex-centroid design with the three axial check
+    blends, vertices and centroid replicated). Myers & Montgomery, *Response Surface
+    Methodology*, 2nd ed. (2002), Table 12.4, as shipped in R mixexp's ``etch`` data set.
+
+    >>> load_mixture_etch().shape
+    (14, 4)
+    """
+    return _csv("mixture_etch.csv")

@@ -281,12 +281,6 @@ def add_component_option(p: argparse.ArgumentParser) -> None:
     )
 
 
-def refuse_components(opts: argparse.Namespace, command: str) -> None:
-    """Exit 2 naming ``--component`` where a command does not handle mixtures yet."""
-    if getattr(opts, "component", None):
-        raise InputError(f"--component: {command} of a mixture model is not available yet (fit it with 'fit')")
-
-
 def add_model_option(p: argparse.ArgumentParser, orders=MODEL_ORDERS, what: str = "model order") -> None:
     """``--model ORDER`` (default quadratic)."""
     p.add_argument("--model", default="quadratic", choices=list(orders), help=f"{what} (default quadratic)")

@@ -126,10 +126,6 @@ def run(args: argparse.Namespace) -> int:
     from ._common import random_effect, read_input
 
     model_spec(args)  # a bad --model/--terms/--transform is named before any data is read
-    if args.component and args.report:
-        from ..io import InputError
-
-        raise InputError("--report: the report of a mixture model (ternary plots, trace plot) is not available yet")
     many = _many_files(str(args.data), args)  # a directory or glob: fitted partition by partition (Dask)
     if many is not None:
         unsupported = [o for o in ("reduce", "transform", "diagnostics", "report", "whole_plot", "random_block")

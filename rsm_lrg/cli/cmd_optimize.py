@@ -31,7 +31,10 @@ DESCRIPTION = (
     "'fit' (--model, --reduce, --alpha-out, --criterion, --transform, --transform-constant); with "
     "several responses, the model options that follow a --response apply to that response only "
     "(given before the first --response they apply to all): --response Y1 --model quadratic "
-    "--response Y2 --model linear --transform log."
+    "--response Y2 --model linear --transform log. Mixture components (--component NAME[=LOW:HIGH] "
+    "with a Scheffé --model) are optimised over the constrained simplex: the blend sums to the total, "
+    "each component stays inside its bounds (and --bound), every linear --constraint on the component "
+    "names holds, and process factors (--factor) are searched over their box at the same time."
 )
 
 
@@ -62,9 +65,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ._common import refuse_components
-
-    refuse_components(args, 'optimize')
     from ..model import fit
     from ..optimize import optimize, parse_goal
     from ._common import (
@@ -85,7 +85,8 @@ def run(args: argparse.Namespace) -> int:
     parse_goal(args.goal)  # a bad goal fails before any work
     data = read_input(args)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, block=args.block, model=specs[0], **random_effect(args))
+        result = fit(data, args.response, factors=args.factor, block=args.block, model=specs[0],
+                     components=args.component, **random_effect(args))
         with _constraint_errors(args.constraint):
             best = optimize(result, goal=args.goal, bounds=args.bound, constraints=args.constraint)
     print_notes(result.input_notes)
@@ -135,21 +136,28 @@ def _multi(args) -> int:
     with about_file(args.data):
         from ..factors import COLUMNS_LEFT_OUT, choose_factors
 
-        # one factor space for every response (no response is a factor of another)
-        choice = choose_factors(data, args.factor, exclude=list(args.response) + ([args.block] if args.block else [])
-                                + random_effect_columns(args))
-        notes = list(choice.notes)
+        # one factor space for every response (no response is a factor of another); a mixture's
+        # components (and process factors) are named, each fit codes them on its own rows
+        choice = None if args.component else choose_factors(
+            data, args.factor, exclude=list(args.response) + ([args.block] if args.block else [])
+            + random_effect_columns(args))
+        notes = list(choice.notes) if choice is not None else []
         fits = {}
         models = {}
         for i, r in enumerate(args.response):
             opts = response_options(args, i)
             with about_response(r, n > 1):
-                fits[r] = fit(data, r, factors=choice.space, block=args.block, model=model_spec(opts),
-                              **random_effect(args))
+                if choice is None:
+                    fits[r] = fit(data, r, factors=args.factor, block=args.block, model=model_spec(opts),
+                                  components=args.component, **random_effect(args))
+                else:
+                    fits[r] = fit(data, r, factors=choice.space, block=args.block, model=model_spec(opts),
+                                  **random_effect(args))
             models[r] = fits[r].label
             # the choice's notes cover the columns; each fit adds its runs left out
             fit_notes = fits[r].input_notes
-            notes += [f"{r}: {n}" for n in fit_notes if n not in choice.notes and getattr(n, "kind", "") != COLUMNS_LEFT_OUT]
+            notes += [f"{r}: {n}" for n in fit_notes
+                      if (choice is None or n not in choice.notes) and getattr(n, "kind", "") != COLUMNS_LEFT_OUT]
         with _constraint_errors(args.constraint):
             best = optimize_desirability(fits, specs, bounds=args.bound, constraints=args.constraint)
     print_notes(notes)

@@ -79,9 +79,6 @@ def _limits(text, response: str):
 
 
 def run(args: argparse.Namespace) -> int:
-    from ._common import refuse_components
-
-    refuse_components(args, 'report')
     from pathlib import Path
 
     from ..io import InputError, check_output
@@ -124,14 +121,15 @@ def run(args: argparse.Namespace) -> int:
 
         factors = args.factor
         notes = []
-        if n > 1:  # one factor space for every response (no response is a factor of another)
+        if n > 1 and not args.component:  # one factor space for every response (no response is a factor of another)
             choice = choose_factors(data, args.factor, exclude=responses + ([args.block] if args.block else [])
                                     + random_effect_columns(args))
             factors, notes = choice.space, list(choice.notes)
         fits = {}
         for i, r in enumerate(responses):
             with about_response(r, n > 1):
-                fits[r] = fit(data, r, factors=factors, block=args.block, model=specs[i], **random_effect(args))
+                fits[r] = fit(data, r, factors=factors, block=args.block, model=specs[i], components=args.component,
+                              **random_effect(args))
             fit_notes = fits[r].input_notes
             notes += [(f"{r}: {x}" if n > 1 else x) for x in fit_notes
                       if x not in notes and (n == 1 or getattr(x, "kind", "") != COLUMNS_LEFT_OUT)]

@@ -607,7 +607,7 @@ class FitResult:
         if bad.size:
             i = int(bad[0])
             raise ValueError(f"prediction point {i + 1}: the components sum to {f0.lower_sum + sums[i] * f0.pseudo_range:.12g}, "
-                             f"not the total {f0.total:.12g}")
+                             f"not the total {f0.total:.12g} (tolerance {SUM_RTOL:g} of the total)")
 
     def predict_coded(self, coded: np.ndarray) -> np.ndarray:
         """ŷ at coded settings (n x k array), average block [response units]."""

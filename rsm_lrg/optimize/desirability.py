@@ -351,8 +351,15 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
 
     goals = [g.with_limits(float(np.nanmin(observed(fits[g.response]))), float(np.nanmax(observed(fits[g.response]))))
              for g in goals]
-    lo, hi, notes = parse_bounds(space, bounds)
-    cons = parse_constraints(constraints, space)
+    mixture = bool(getattr(first, "mixture", False))
+    if mixture:  # the constrained simplex (rsm_lrg.optimize.mixture)
+        from ..model.mixture_region import mixture_region
+
+        region = mixture_region(space, bounds, constraints)
+        lo, hi, notes, cons = -np.ones(len(space)), np.ones(len(space)), [], None
+    else:
+        lo, hi, notes = parse_bounds(space, bounds)
+        cons = parse_constraints(constraints, space)
     k = len(space)
     polys = []
     inverses = []
@@ -401,6 +408,21 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
     def objective(x):
         return float(objective_many(np.asarray(x, dtype=float)[None, :])[0])
 
+    if mixture:
+        from .mixture import desirability_search, limits_of
+
+        extra = []
+        for g in goals:
+            goal = g.goal if g.goal in ("maximize", "minimize") else (("target", g.target) if g.goal == "target" else None)
+            if goal is not None:
+                try:
+                    o = single_optimize(fits[g.response], goal=goal, bounds=bounds, constraints=constraints)
+                except ValueError:
+                    continue
+                extra.append([o.coded[L] for L in space.letters])
+        x, n_starts = desirability_search(objective, objective_many, region, extra, n_polish=n_polish, seed=seed)
+        return _result(names, goals, space, x, D_of, limits_of(region), n_starts, [],
+                       "the region of the blends")
     starts = [np.clip(np.zeros(k), lo, hi), (lo + hi) / 2]
     if k <= 8:
         starts += [np.where(np.array(v) > 0, hi, lo) for v in itertools.product((0, 1), repeat=k)]
@@ -441,12 +463,17 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
     c = np.clip(r2.x, lo, hi)
     if objective(c) < best_v and is_feasible(c, cons):
         best_x, best_v = c, objective(c)
-    x = best_x + 0.0
+    bnds = {f.name: (float(f.decode(a)), float(f.decode(b))) for f, a, b in zip(space.factors, lo, hi)}
+    return _result(names, goals, space, best_x + 0.0, D_of, bnds, len(starts), notes,
+                   "the box and the constraints" if cons is not None else "the box")
+
+
+def _result(names, goals, space, x, D_of, bnds, n_starts, notes, where) -> DesirabilityResult:
+    """The :class:`DesirabilityResult` at the coded point ``x``."""
     D, ys = D_of(x)
     ds = [float(individual_desirability(y, g)[0]) for y, g in zip(ys, goals)]
     warns = list(notes)
     if D[0] <= 0:
-        where = "the box and the constraints" if cons is not None else "the box"
         warns.append(f"no setting in {where} meets every response's limits (D = 0); the point shown is the closest")
     return DesirabilityResult(
         responses=tuple(names), goals=tuple(goals),
@@ -454,6 +481,5 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
         actual={f.name: float(f.decode(v)) for f, v in zip(space.factors, x)},
         predicted={g.response: float(y[0]) for g, y in zip(goals, ys)},
         individual=dict(zip(names, ds)), desirability=float(D[0]),
-        bounds={f.name: (float(f.decode(a)), float(f.decode(b))) for f, a, b in zip(space.factors, lo, hi)},
-        n_starts=len(starts), warnings=tuple(warns),
+        bounds=bnds, n_starts=n_starts, warnings=tuple(warns),
     )

@@ -26,7 +26,6 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -34,6 +33,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..model.goals import parse_goal
 from ..model.levels import LevelView  # the optimisers' view of a fit at one level combination
+from .result import OptimumResult
 
 __all__ = ["optimize", "OptimumResult", "parse_goal", "parse_bounds"]
 
@@ -86,109 +86,6 @@ def parse_bounds(space, bounds, *, allow_extrapolation: bool = False):
         if not allow_extrapolation:
             lo[i], hi[i] = max(lo[i], -1.0), min(hi[i], 1.0)
     return lo, hi, notes
-
-
-@dataclass(frozen=True)
-class OptimumResult:
-    """The optimum of a fitted response (frozen).
-
-    Attributes
-    ----------
-    response : str
-    goal : str
-        ``"minimize"``, ``"maximize"`` or ``"target"``.
-    target : float or None
-        The target value for ``goal == "target"`` [response units].
-    coded : dict
-        ``{letter: value}`` [coded units].
-    actual : dict
-        ``{factor name: value}`` [actual units].
-    predicted : float
-        ŷ at the optimum (average block) [response units].
-    confidence : float
-        Level of ``ci`` and ``pi`` (0.95).
-    ci, pi : tuple of float
-        Confidence interval of the mean and prediction interval of one new run.
-    se_fit : float
-        Standard error of ŷ.
-    bounds : dict
-        ``{factor name: (low, high)}`` searched [actual units].
-    warnings : tuple of str
-    n_starts : int
-        Local searches run (besides the exact enumeration).
-    method : str
-        ``"exact-faces+multistart"`` or ``"multistart"``.
-    """
-
-    response: str
-    goal: str
-    target: float | None
-    coded: dict
-    actual: dict
-    predicted: float
-    confidence: float
-    ci: tuple
-    pi: tuple
-    se_fit: float = math.nan
-    bounds: dict = field(default_factory=dict)
-    warnings: tuple = ()
-    n_starts: int = 0
-    method: str = "multistart"
-    by_level: tuple = ()
-
-    def to_dict(self) -> dict:
-        """The optimize JSON of INTERFACE.md (plus ``target``, ``bounds``, ``warnings``)."""
-        out = {
-            "response": self.response,
-            "goal": self.goal,
-            "coded": dict(self.coded),
-            "actual": dict(self.actual),
-            "predicted": self.predicted,
-            "confidence": self.confidence,
-            "ci": [self.ci[0], self.ci[1]],
-            "pi": [self.pi[0], self.pi[1]],
-        }
-        if self.target is not None:
-            out["target"] = self.target
-        out["bounds"] = {k: (list(v) if isinstance(v, tuple) else v) for k, v in self.bounds.items()}
-        out["warnings"] = list(self.warnings)
-        if self.by_level:
-            out["by_level"] = [dict(r) for r in self.by_level]
-        return out
-
-    def to_frame(self):
-        """One-row DataFrame: actual settings, coded settings, prediction and intervals."""
-        import pandas as pd
-
-        row: dict[str, Any] = dict(self.actual)
-        row.update({f"coded_{k}": v for k, v in self.coded.items()})
-        row.update({"predicted": self.predicted, "ci_low": self.ci[0], "ci_high": self.ci[1],
-                    "pi_low": self.pi[0], "pi_high": self.pi[1]})
-        return pd.DataFrame([row])
-
-    def summary(self) -> str:
-        """A few lines of text."""
-        from ..present import format_g
-
-        g = self.goal if self.target is None else f"target {format_g(self.target, 6, trim=True)}"
-        lines = [f"Optimum of {self.response} ({g})"]
-        for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):
-            if isinstance(a, str):
-                lines.append(f"  {L}: {name} = {a}   (categoric)")
-            else:
-                lines.append(f"  {L}: {name} = {format_g(a, 6, trim=True)}   (coded {c:+.4f})")
-        pc = int(round(self.confidence * 100))
-        lines.append(f"  predicted: {format_g(self.predicted, 6, trim=True)}")
-        lines.append(f"  {pc} % CI:  {format_g(self.ci[0], 6, trim=True)} .. {format_g(self.ci[1], 6, trim=True)}")
-        lines.append(f"  {pc} % PI:  {format_g(self.pi[0], 6, trim=True)} .. {format_g(self.pi[1], 6, trim=True)}")
-        lines.extend(f"  warning: {w}" for w in self.warnings)
-        if len(self.by_level) > 1:
-            lines.append("  best setting per level combination:")
-            for r in self.by_level:
-                lv = ", ".join(f"{k} = {v}" for k, v in r["level"].items())
-                at = ", ".join(f"{k} = {format_g(v, 6, trim=True)}" for k, v in r["actual"].items() if k not in r["level"])
-                lines.append(f"    {lv}: {format_g(r['predicted'], 6, trim=True)} at {at}")
-        return "\n".join(lines) + "\n"
 
 
 def _exact_quadratic(b, B, lo, hi, sign):
@@ -263,6 +160,10 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     if not 0.0 < confidence < 1.0:
         raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
     exprs = _constraint_texts(constraints)
+    if getattr(fitted, "mixture", False):  # the constrained simplex (rsm_lrg.optimize.mixture)
+        from .mixture import optimize_mixture
+
+        return optimize_mixture(fitted, goal, bounds, confidence=confidence, constraints=exprs)
     if fitted.space.has_categoric:
         return _optimize_categoric(fitted, goal, bounds, confidence=confidence,
                                    allow_extrapolation=allow_extrapolation, seed=seed, constraints=exprs)

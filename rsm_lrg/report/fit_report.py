@@ -270,6 +270,8 @@ def surface_figures(result, hold: str, optimum) -> tuple[list[dict], str]:
     (``hold="center"``) or at the optimum (``hold="optimum"``); every figure says so in its
     caption and on the figure. The optimum's star is drawn only on slices that contain it.
     """
+    if getattr(result, "mixture", False):  # components are not free: a ternary contour and the trace instead
+        return mixture_figures(result, optimum)
     from . import plots as P
 
     space = result.space
@@ -348,6 +350,59 @@ def surface_figures(result, hold: str, optimum) -> tuple[list[dict], str]:
         note += (f" The optimum's star appears only on slices that contain it ({len(out) - off_slice} of "
                  f"{len(out)} here).")
     return out, note
+
+
+def mixture_figures(result, optimum) -> tuple[list[dict], str]:
+    """A mixture fit's static figures: the ternary contour of the first three components (a
+    slice through the region's centroid for more than three, said on the figure and in the
+    caption; process factors at their centre) and the trace plot along the Cox direction
+    from the region's centroid (:mod:`rsm_lrg.model.mixture_trace`)."""
+    from ..factors import MixtureComponent
+    from ..model.mixture_trace import mixture_trace, ternary_slice
+    from . import plots as P
+
+    space = result.space
+    comps = [f for f in space.factors if isinstance(f, MixtureComponent)]
+    out = []
+    tr = mixture_trace(result)
+    ref = ", ".join(f"{k} = {fmt_num(v)}" for k, v in tr.reference.items())
+    trace = P.render(
+        P.trace_plot({f"{f.letter}: {f.name}": (tr.deviation[f.name], tr.predicted[f.name]) for f in comps},
+                     xlabel="Deviation from the reference blend (real proportion)", ylabel=str(result.response)),
+        "trace", f"Trace plot of {result.response} (Cox direction)",
+        f"Each component moved from the reference blend ({ref}; the centroid of the region) along its Cox "
+        "direction, the others giving way in proportion to their shares, over the range the region allows.", "svg")
+    if len(comps) >= 3:
+        sl = ternary_slice(result, n=60)
+        a, b, c = sl["components"]
+        held = [(k, v) for k, v in sl["held"].items()]
+        note = ("slice: " + ", ".join(f"{k} = {fmt_num(v)}" for k, v in held)) if held else None
+        X = result.data
+        pts = None
+        if X is not None and all(n in X.columns for n in (a, b, c)):
+            share = X[a].to_numpy(dtype=float) + X[b].to_numpy(dtype=float) + X[c].to_numpy(dtype=float)
+            on = np.ones(len(X), dtype=bool)
+            for k, v in held:
+                on &= np.abs(X[k].to_numpy(dtype=float) - v) <= 1e-9 * max(abs(v), 1.0)
+            if on.any():
+                pts = np.column_stack([X[n].to_numpy(dtype=float)[on] for n in (a, b, c)]) / share[on, None]
+        mark = None
+        if optimum is not None and all(abs(float(optimum.actual[k]) - v) <= 1e-9 for k, v in held):
+            mark = np.array([float(optimum.actual[n]) for n in (a, b, c)]) / sl["share"]
+        letter = {f.name: f.letter for f in space.factors}
+        tern = P.render(
+            P.ternary_contour(sl["fractions"], sl["predicted"], labels=[f"{letter[n]}: {n}" for n in (a, b, c)],
+                              share=sl["share"], points=pts, zlabel=str(result.response), mark=mark, note=note),
+            "ternary", f"Ternary contour of {result.response}",
+            ("The fitted model over the triangle of the three components; white: outside the region of the bounds. "
+             + (f"A slice of the simplex: {', '.join(f'{k} = {fmt_num(v)}' for k, v in held)} (the region's centroid). "
+                if held else "") + ("Star: the optimum." if mark is not None else "")), "png")
+        out.append({"pair": "ternary", "surface": tern, "contour": trace})
+        note_text = "The ternary contour of the fitted blend model and its trace plot."
+    else:
+        out.append({"pair": "trace", "surface": trace, "contour": None})
+        note_text = "A two-component blend: the trace plot (a ternary contour needs three components)."
+    return out, note_text
 
 
 # -- sections: stationary point and optimum ------------------------------------------------------
@@ -529,6 +584,15 @@ def notebook_html(result, *, source_name: str | None = None) -> str:
 
     ctx = table_sections(result, source_name, None)
     ctx["title"] = f"{result.model.capitalize()} fit of {result.response}: {result.n} runs, {len(result.space)} factors"
+    ctx["mixture_effects"] = []
+    if getattr(result, "mixture", False):  # the effects along the Cox direction (rsm_lrg.model.mixture_trace)
+        from ..model.mixture_trace import mixture_trace
+
+        tr = mixture_trace(result)
+        letter = {f.name: f.letter for f in result.space.factors}
+        ctx["mixture_effects"] = [{"component": f"{letter[c]}: {c}", "reference": tr.reference[c], "low": tr.low[c],
+                                   "high": tr.high[c], "effect": tr.effects[c], "gradient": tr.gradients[c]}
+                                  for c in tr.effects]
     return environment().get_template("notebook.html.j2").render(**ctx)
 
 

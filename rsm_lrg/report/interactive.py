@@ -55,6 +55,9 @@ PAGE_IDS = ("summary", "profiler", "overlay", "surfaces-3d", "data")
 
 _TITLES = {"summary": "Summary", "profiler": "Prediction profiler", "overlay": "Overlay (sweet spot)",
            "surfaces-3d": "3-D surfaces and contours", "data": "Data"}
+#: The titles that change on a mixture page (the figures are ternary plots and the trace).
+_MIXTURE_TITLES = {"overlay": "Overlay on the ternary (sweet spot)",
+                   "surfaces-3d": "Ternary contour, 3-D surface and trace"}
 
 
 # -- the numbers the page computes with --------------------------------------------------------
@@ -78,7 +81,8 @@ def model_data(result, confidence: float = 0.95) -> dict:
     dict
         ``response``, ``factors`` (``name``, ``letter``, ``kind``, ``low``/``high`` or
         ``levels``), ``terms`` (``p``: numeric exponents, ``cat``: ``[[factor index, number of
-        levels], ...]``, ``combos``: level indices of each column), ``b`` (coded
+        levels], ...]``, ``combos``: level indices of each column, ``diff``: ``[i, j]`` for a
+        Scheffé full-cubic term, whose column is also multiplied by ``x_i - x_j``), ``b`` (coded
         coefficients), ``C`` ((X'X)⁻¹ without block rows/columns), ``sigma2`` [response
         units²], ``df_resid``, ``t``, ``transform`` (``None`` or ``name``/``lam``/``constant``)
         and ``coded_decimals`` (the rounding of :meth:`Factor.encode`).
@@ -104,6 +108,7 @@ def model_data(result, confidence: float = 0.95) -> dict:
     for t in fit.terms:
         cat = [[int(i), len(lv)] for i, lv in t.cat]
         terms.append({"name": t.name, "p": [int(p) for p in t.numeric_powers], "cat": cat,
+                      "diff": [int(i) for i in getattr(t, "diff", ())],  # a full-cubic AB(A-B): times x_i - x_j
                       "combos": [list(map(int, c)) for c in t.level_combinations()] if cat else []})
     b = fit.coefficients["coded"].to_numpy(dtype=float)
     idx = fit.term_index
@@ -254,12 +259,20 @@ def _as_specs(results, goals, limits, labels) -> list[ResponseSpec]:
     return specs
 
 
-def _controls(specs) -> list[dict]:
+def _controls(specs, mixture: dict | None = None) -> list[dict]:
     """One control per factor: a range slider over the union of the responses' factor ranges
-    (actual units), or a level picker."""
+    (actual units), or a level picker; a mixture component's slider spans the range the
+    component takes in the region (starting at the reference blend, ``"component": true``)."""
     spaces = [s.result.space for s in specs]
+    comps = {c["name"]: c for c in (mixture or {}).get("components", [])}
     out = []
     for j, f in enumerate(spaces[0].factors):
+        if str(f.name) in comps:
+            c = comps[str(f.name)]
+            out.append({"name": str(f.name), "letter": f.letter, "kind": "numeric", "component": True,
+                        "low": c["low"], "high": c["high"], "value": c["reference"], "center": c["reference"],
+                        "step": "any"})
+            continue
         if getattr(f, "kind", "numeric") == "categoric":
             out.append({"name": str(f.name), "letter": f.letter, "kind": "categoric",
                         "levels": [str(v) for v in f.levels], "value": str(f.levels[0])})
@@ -326,8 +339,52 @@ def page_data(specs, *, confidence: float = 0.95, desirability=True, optima=None
                      "predicted": {k: float(v) for k, v in d.predicted.items()}}
         elif opt.desirability_missing:
             notes.append(f"No desirability optimum: {opt.desirability_missing}")
-    data = {"models": models, "controls": _controls(specs), "optima": shown, "desirability": desir}
+    mix = mixture_data(specs)
+    data = {"models": models, "controls": _controls(specs, mix), "optima": shown, "desirability": desir,
+            "mixture": mix}
     return data, notes
+
+
+def mixture_data(specs) -> dict | None:
+    """What the page needs to keep a blend on the simplex and draw the ternary and trace plots
+    (``None`` when the fits are not mixture fits): the total, each component's bounds and the
+    range it takes in the region (:func:`rsm_lrg.optimize.mixture.limits_of`), the region's
+    rows ``G x <= h`` in coded units, the reference blend (the region's centroid), each run's
+    blend, and per response the trace along the Cox direction from the reference
+    (:func:`rsm_lrg.model.mixture_trace.mixture_trace`). Ordered things are arrays of
+    records, never objects keyed by a name."""
+    first = specs[0].result
+    if not getattr(first, "mixture", False):
+        return None
+    from ..model.mixture_region import mixture_region
+    from ..model.mixture_trace import mixture_trace
+    from ..optimize.mixture import limits_of
+
+    region = mixture_region(first.space)
+    ranges = limits_of(region)
+    ref = region.to_actual(region.centroid())
+    comps = [first.space.factors[j] for j in region.comps]
+    traces = []
+    for s in specs:
+        tr = mixture_trace(s.result)
+        traces.append({"response": str(s.result.response), "direction": tr.direction,
+                       "curves": [{"name": str(c.name), "letter": c.letter,
+                                   "deviation": [float(v) for v in tr.deviation[c.name]],
+                                   "predicted": [_finite_or_none(v) for v in tr.predicted[c.name]],
+                                   "effect": float(tr.effects[c.name]), "gradient": float(tr.gradients[c.name]),
+                                   "low": float(tr.low[c.name]), "high": float(tr.high[c.name])} for c in comps]})
+    names = [str(c.name) for c in comps]
+    data = first.data
+    points = [[float(v) for v in row] for row in np.asarray(data[[c.name for c in comps]], dtype=float)]
+    return {"total": float(region.total),
+            "components": [{"name": str(c.name), "letter": c.letter, "lower": float(c.lower),
+                            "upper": float(min(c.upper, c.total)),
+                            "low": ranges[c.name][0], "high": ranges[c.name][1], "reference": ref[c.name]}
+                           for c in comps],
+            "process": [str(f.name) for j, f in enumerate(first.space.factors) if j not in region.comps],
+            "reference": [ref[n] for n in names],
+            "G": [[float(v) for v in row] for row in region.G], "h": [float(v) for v in region.h],
+            "rows": list(region.rows), "points": points, "traces": traces}
 
 
 def _response_sections(specs, source_name, static: bool = False, hold: str = "center", optima=None) -> list[dict]:
@@ -386,7 +443,8 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
     names = [m["response"] for m in data["models"]]
     first = specs[0].result
     space = first.space
-    numeric = [c for c in data["controls"] if c["kind"] == "numeric"]
+    numeric = [c for c in data["controls"] if c["kind"] == "numeric" and not c.get("component")]
+    mixture = data["mixture"]
     summary = [("Responses", ", ".join(names)), ("Data", source_name or "a DataFrame"),
                ("Runs", str(first.n)),
                ("Factors", ", ".join(f"{f.letter} = {f.name}" for f in space.factors))]
@@ -399,7 +457,7 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
         "title": title or ("Interactive response surface report: " + ", ".join(names)),
         "subtitle": (f"{len(names)} response{'s' if len(names) > 1 else ''} over {len(space)} factors from "
                      f"{first.n} runs" + (f" ({source_name})" if source_name else "") + "."),
-        "toc": [(sid, _TITLES[sid]) for sid in PAGE_IDS
+        "toc": [(sid, _MIXTURE_TITLES.get(sid, _TITLES[sid]) if mixture else _TITLES[sid]) for sid in PAGE_IDS
                 if not (static and sid in ("profiler", "overlay", "surfaces-3d"))]
         + [(f"response-{i}", f"Response {n}") for i, n in enumerate(names, start=1)],
         "summary": summary,
@@ -414,7 +472,21 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
         "data": data_table(first, runs_from) if tables else None,
         "responses": _response_sections(specs, source_name, static, start, optima) if tables else [],
         "static": bool(static),
+        "mixture": mixture,
+        "effects": _effects_rows(mixture) if mixture else [],
     }
+
+
+def _effects_rows(mixture: dict) -> list[dict]:
+    """The effects table of the mixture section: per response and component, the total
+    effect and the slope along the Cox direction from the reference blend."""
+    rows = []
+    for tr in mixture["traces"]:
+        for c in tr["curves"]:
+            rows.append({"response": tr["response"], "component": f"{c['letter']}: {c['name']}",
+                         "reference": next(m["reference"] for m in mixture["components"] if m["name"] == c["name"]),
+                         "low": c["low"], "high": c["high"], "effect": c["effect"], "gradient": c["gradient"]})
+    return rows
 
 
 def interactive_html(results, *, goals=None, limits=None, labels=None, title: str | None = None,

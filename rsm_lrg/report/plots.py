@@ -54,6 +54,8 @@ __all__ = [
     "temperature_history",
     "grouped_bars",
     "grouped_curves",
+    "ternary_contour",
+    "trace_plot",
     "DEFAULT_DPI",
 ]
 
@@ -653,5 +655,101 @@ def grouped_curves(curves: Mapping[str, tuple[Sequence[float], Sequence[float]]]
         xa, ya = _paired(x, y, f"x of {label!r}", f"y of {label!r}")
         ax.plot(xa, ya, marker="o" if markers else None, markersize=3, linewidth=1.2, label=_t(label))
     ax.legend(fontsize=8, frameon=False)
+    _finish(ax, title, xlabel, ylabel)
+    return fig
+
+
+# -- mixtures ---------------------------------------------------------------------------------
+
+_H3 = float(np.sqrt(3.0) / 2.0)
+
+
+def _ternary_xy(fractions) -> tuple[np.ndarray, np.ndarray]:
+    """Cartesian place of ``(a, b, c)`` fractions: a at the top, b bottom left, c bottom right."""
+    f = np.atleast_2d(np.asarray(fractions, dtype=float))
+    return f[:, 2] + f[:, 0] / 2.0, f[:, 0] * _H3
+
+
+def ternary_contour(fractions, z, *, labels: Sequence[str], share: float = 1.0, points=None,
+                    zlabel: str = "response", mark=None, mark_label: str | None = None,
+                    note: str | None = None, levels: int = 12, size=(5.2, 4.6)) -> Figure:
+    """Filled contour of a response over the triangle of three components.
+
+    Parameters
+    ----------
+    fractions : array_like
+        ``(m, 3)`` shares ``(a, b, c)`` of the three components (each row sums to one).
+    z : array_like
+        ``(m,)`` predictions; ``nan`` outside the region (left white).
+    labels : three str
+        The corners: top, bottom left, bottom right.
+    share : float
+        What the three share in real proportions (``T`` less any held components); the grid
+        lines are labelled in real proportions.
+    points, mark : array_like, optional
+        ``(n, 3)`` fractions of the runs, and one ``(3,)`` point drawn as a star.
+    note : str, optional
+        One line of small text at the top (a slice: where the other components are held).
+    """
+    import matplotlib.tri as mtri
+
+    fr = np.atleast_2d(np.asarray(fractions, dtype=float))
+    zz = np.asarray(z, dtype=float).ravel()
+    x, y = _ternary_xy(fr)
+    fig = Figure(figsize=size)
+    fig.subplots_adjust(left=0.03, right=0.97, bottom=0.08, top=0.9)
+    ax = fig.add_subplot()
+    tri = mtri.Triangulation(x, y)
+    bad = ~np.isfinite(zz)
+    tri.set_mask(np.any(bad[tri.triangles], axis=1))
+    if np.isfinite(zz).sum() >= 3 and np.ptp(zz[np.isfinite(zz)]) > 0:
+        zf = np.where(np.isfinite(zz), zz, np.nanmean(zz))
+        cf = ax.tricontourf(tri, zf, levels=levels, cmap="viridis")
+        cs = ax.tricontour(tri, zf, levels=np.asarray(cf.levels), colors="k", linewidths=0.4)
+        ax.clabel(cs, inline=True, fontsize=6, fmt="%.4g")
+        cb = fig.colorbar(cf, ax=ax, shrink=0.8)
+        cb.set_label(_t(zlabel), fontsize=8)
+        cb.ax.tick_params(labelsize=7)
+    ax.plot([0.5, 0.0, 1.0, 0.5], [_H3, 0.0, 0.0, _H3], color="black", linewidth=1.0)
+    for f in (0.2, 0.4, 0.6, 0.8):
+        ends = [((f / 2, f * _H3), (1 - f / 2, f * _H3)), (((1 - f) / 2, (1 - f) * _H3), (1 - f, 0.0)),
+                ((f, 0.0), ((1 + f) / 2, (1 - f) * _H3))]
+        for k, (p0, p1) in enumerate(ends):
+            ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color="#999999", linewidth=0.4, zorder=1)
+            at = p1 if k == 0 else p0
+            ax.text(at[0] + (0.01 if k == 0 else (-0.01 if k == 1 else 0.0)), at[1] - (0.03 if k == 2 else 0.0),
+                    format_number(share * f, 3), fontsize=6, color="#555555",
+                    ha="left" if k == 0 else ("right" if k == 1 else "center"), va="center")
+    ax.text(0.5, _H3 + 0.03, _t(labels[0]), ha="center", va="bottom", fontsize=9)
+    ax.text(-0.02, -0.05, _t(labels[1]), ha="center", va="top", fontsize=9)
+    ax.text(1.02, -0.05, _t(labels[2]), ha="center", va="top", fontsize=9)
+    if points is not None and len(points):
+        px, py = _ternary_xy(points)
+        ax.scatter(px, py, s=20, marker="o", label="runs", clip_on=False, **_POINT_STYLE)
+    if mark is not None:
+        mx, my = _ternary_xy(np.asarray(mark, dtype=float)[None, :])
+        ax.scatter(mx, my, s=160, marker="*", color="#ffd21f", edgecolor="black", linewidth=0.7, zorder=7,
+                   clip_on=False, label=_t(mark_label or "optimum"))
+    if (points is not None and len(points)) or mark is not None:
+        ax.legend(loc="upper left", fontsize=7, frameon=False)
+    ax.set_xlim(-0.1, 1.1)
+    ax.set_ylim(-0.12, _H3 + 0.1)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    _note(fig, note)
+    return fig
+
+
+def trace_plot(curves: Mapping[str, tuple[Sequence[float], Sequence[float]]], *, xlabel: str,
+               ylabel: str = "response", title: str | None = None, size=(6.0, 3.8)) -> Figure:
+    """The trace plot of a mixture: the prediction along each component's direction from the
+    reference blend, one line per component (``{label: (deviation, predicted)}``)."""
+    fig = _new_figure(size)
+    fig.subplots_adjust(right=0.78)
+    ax = fig.add_subplot()
+    for label, (dx, yy) in curves.items():
+        ax.plot(np.asarray(dx, dtype=float), np.asarray(yy, dtype=float), linewidth=1.6, label=_t(label))
+    ax.axvline(0.0, color="#888888", linewidth=0.8, linestyle=":")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=False)
     _finish(ax, title, xlabel, ylabel)
     return fig

@@ -75,9 +75,13 @@ def test_fit_mixture_bad_row(tmp_path, capsys):
     assert not out.exists()
 
 
-def test_components_refused_where_not_handled(capsys):
-    assert main(["optimize", str(DATA), "--response", "erate", *COMPS, "--model", "mixture-linear"]) == 2
-    assert "--component: optimize of a mixture model is not available yet" in capsys.readouterr().err
+def test_fit_report_of_a_mixture(tmp_path, capsys):
+    """fit --report writes the static page with the ternary contour and the trace plot."""
+    out = tmp_path / "r.html"
+    assert main(["fit", str(DATA), "--response", "erate", *COMPS, "--model", "mixture-quadratic",
+                 "--report", str(out)]) == 0
+    html = out.read_text()
+    assert 'id="fig-ternary"' in html and 'id="fig-trace"' in html
 
 
 def test_fit_mixture_process_keys(tmp_path, capsys):

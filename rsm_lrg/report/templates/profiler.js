@@ -11,7 +11,9 @@
   });
   var MODELS = DATA.models;
   var CONTROLS = DATA.controls;
-  var NUMERIC = CONTROLS.filter(function (c) { return c.kind === "numeric"; });
+  /* the free numeric factors (a mixture's components are not free: they move together, see rebalance) */
+  var NUMERIC = CONTROLS.filter(function (c) { return c.kind === "numeric" && !c.component; });
+  var MIX = DATA.mixture || null;
 
   function esc(s) {  /* Plotly reads <b>, <a href>, ... in labels: make user text plain */
     return String(s).replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;");
@@ -100,6 +102,7 @@
       }
       var v = 1.0;
       if (parts.length) { v = parts[0]; for (var q = 1; q < parts.length; q++) v = v * parts[q]; }
+      if (t.diff && t.diff.length) v = v * (xc[t.diff[0]] - xc[t.diff[1]]);  /* full cubic AB(A-B) */
       if (!t.cat.length) { row.push(v); continue; }
       for (var k = 0; k < t.combos.length; k++) {
         var col = v;
@@ -174,6 +177,250 @@
     });
     return s;
   }
+
+  // -- a mixture: the blend stays on the simplex and inside the bounds ------------------------
+  var COMP = MIX ? MIX.components : [];
+  var COMP_NAMES = COMP.map(function (c) { return c.name; });
+  function isComponent(name) { return COMP_NAMES.indexOf(name) >= 0; }
+  /* The blend after component `name` is set to v: v is clamped to what the others' bounds
+     allow, the others share the rest in proportion to their current amounts (JMP's mixture
+     profiler; the Cox direction), a component pushed past a bound is held there and the rest
+     shared again among the others; the residue of the sum (round-off) goes to the component
+     with the most room, so the blend sums to the total exactly. */
+  function rebalance(s, name, v) {
+    var T = MIX.total, out = copy(s), me = COMP[COMP_NAMES.indexOf(name)];
+    var others = COMP.filter(function (c) { return c.name !== name; });
+    var sumLo = 0, sumHi = 0, old = 0;
+    others.forEach(function (c) { sumLo += c.lower; sumHi += c.upper; old += s[c.name]; });
+    v = Math.min(Math.min(me.upper, T - sumLo), Math.max(Math.max(me.lower, T - sumHi), v));
+    out[name] = v;
+    var free = others.slice(), fixed = 0, rest = T - v;
+    for (var it = 0; it <= others.length && free.length; it++) {
+      var w = 0;
+      free.forEach(function (c) { w += old > 0 ? s[c.name] : 1; });
+      var avail = rest - fixed, viol = [];
+      free.forEach(function (c) {
+        var share = w > 0 ? (old > 0 ? s[c.name] : 1) / w : 1 / free.length;
+        out[c.name] = avail * share;
+        if (out[c.name] < c.lower || out[c.name] > c.upper) viol.push(c);
+      });
+      if (!viol.length) break;
+      viol.forEach(function (c) { out[c.name] = Math.min(c.upper, Math.max(c.lower, out[c.name])); fixed += out[c.name]; });
+      free = free.filter(function (c) { return viol.indexOf(c) < 0; });
+    }
+    var sum = 0;
+    COMP.forEach(function (c) { sum += out[c.name]; });
+    var resid = T - sum;
+    if (resid !== 0) {
+      var best = null, room = -Infinity;
+      others.forEach(function (c) {
+        var r = resid > 0 ? c.upper - out[c.name] : out[c.name] - c.lower;
+        if (r > room) { room = r; best = c; }
+      });
+      if (best) out[best.name] = out[best.name] + resid;
+    }
+    return out;
+  }
+  /* coded setting of the first model (components as L-pseudo components) */
+  function codedOf(s) {
+    var m = MODELS[0];
+    return m.factors.map(function (f) { return encode(f, s[f.name], m.coded_decimals); });
+  }
+  /* whether a setting lies in the region of the bounds and constraints (rows G x <= h, coded) */
+  function inRegion(s) {
+    var x = codedOf(s);
+    for (var r = 0; r < MIX.h.length; r++) {
+      var g = MIX.G[r], v = 0;
+      for (var j = 0; j < x.length; j++) v += g[j] * x[j];
+      if (v - MIX.h[r] > 1e-9 * (1 + Math.abs(MIX.h[r]))) return false;
+    }
+    return true;
+  }
+  var H3 = Math.sqrt(3) / 2;
+  function ternaryPicks() {
+    var ids = ["ternary-a", "ternary-b", "ternary-c"], out = [];
+    ids.forEach(function (id, k) {
+      var el = document.getElementById(id);
+      out.push(el ? el.value : COMP_NAMES[k]);
+    });
+    return out;
+  }
+  /* the triangle of three components (top a, left b, right c) on a regular x-y grid: at (x, y)
+     the three take the shares fa = y / (sqrt(3)/2), fc = x - fa/2, fb = 1 - fa - fc of what the
+     held components leave (S); z is null outside the triangle and outside the region */
+  function ternaryGrid(s, fn, n) {
+    var picks = ternaryPicks();
+    if (picks[0] === picks[1] || picks[0] === picks[2] || picks[1] === picks[2]) return null;
+    var S = MIX.total, held = [];
+    COMP.forEach(function (c) { if (picks.indexOf(c.name) < 0) { S -= s[c.name]; held.push([c.letter + ": " + c.name, s[c.name]]); } });
+    n = n || 90;
+    var xs = linspace(0, 1, n + 1), ys = linspace(0, H3, Math.round(n * H3) + 1), z = [], inside = 0, total = 0;
+    ys.forEach(function (yv) {
+      var row = [];
+      xs.forEach(function (xv) {
+        var fa = yv / H3, fc = xv - fa / 2, fb = 1 - fa - fc;
+        if (fa < -1e-12 || fb < -1e-12 || fc < -1e-12) { row.push(null); return; }
+        var t = copy(s);
+        t[picks[0]] = S * Math.max(fa, 0); t[picks[1]] = S * Math.max(fb, 0); t[picks[2]] = S * Math.max(fc, 0);
+        total++;
+        if (!inRegion(t)) { row.push(null); return; }
+        inside++;
+        var v = fn(t);
+        row.push(isFinite(v) ? v : null);
+      });
+      z.push(row);
+    });
+    return {x: xs, y: ys, z: z, picks: picks, share: S, held: held, inside: inside, total: total};
+  }
+  function toXY(s, picks, S) {  /* a blend's place on the triangle */
+    var fa = s[picks[0]] / S, fc = s[picks[2]] / S;
+    return [fc + fa / 2, fa * H3];
+  }
+  function triangleFurniture(g, traces, annotations) {
+    var p = g.picks.map(function (n) { return COMP[COMP_NAMES.indexOf(n)]; });
+    traces.push({type: "scatter", mode: "lines", x: [0.5, 0, 1, 0.5], y: [H3, 0, 0, H3], hoverinfo: "skip",
+                 line: {color: "#1b1f24", width: 1.5}, showlegend: false, name: "simplex"});
+    [0.2, 0.4, 0.6, 0.8].forEach(function (f) {
+      var lines = [[[f / 2, f * H3], [1 - f / 2, f * H3]],              /* a = f */
+                   [[(1 - f) / 2, (1 - f) * H3], [1 - f, 0]],           /* b = f */
+                   [[f, 0], [(1 + f) / 2, (1 - f) * H3]]];               /* c = f */
+      lines.forEach(function (L, k) {
+        traces.push({type: "scatter", mode: "lines", x: [L[0][0], L[1][0]], y: [L[0][1], L[1][1]], hoverinfo: "skip",
+                     line: {color: "rgba(0,0,0,0.22)", width: 0.7}, showlegend: false});
+        /* each edge carries one component's scale: a on the right edge, b on the left, c along the bottom */
+        var at = k === 0 ? L[1] : L[0];
+        annotations.push({x: at[0], y: at[1], text: fmt(g.share * f, 3), showarrow: false, font: {size: 9, color: "#555"},
+                          xanchor: k === 0 ? "left" : (k === 1 ? "right" : "center"), yanchor: k === 2 ? "top" : "middle"});
+      });
+    });
+    annotations.push({x: 0.5, y: H3, text: esc(p[0].letter + ": " + p[0].name), showarrow: false, yanchor: "bottom", font: {size: 12}});
+    annotations.push({x: 0, y: 0, text: esc(p[1].letter + ": " + p[1].name), showarrow: false, yanchor: "top", xanchor: "center", yshift: -12, font: {size: 12}});
+    annotations.push({x: 1, y: 0, text: esc(p[2].letter + ": " + p[2].name), showarrow: false, yanchor: "top", xanchor: "center", yshift: -12, font: {size: 12}});
+    var note = [];
+    if (g.held.length) note.push("Slice: " + g.held.map(function (h) { return esc(h[0]) + " = " + fmt(h[1], 4); }).join(", ") +
+                                 "; the three share " + fmt(g.share, 4));
+    MIX.process.forEach(function (nm) { note.push(esc(nm) + " = " + fmt(setting()[nm], 4)); });
+    if (note.length) annotations.push({xref: "paper", yref: "paper", x: 0, y: 1.06, xanchor: "left", showarrow: false,
+                                       text: note.join("; "), font: {size: 10, color: "#333"}});
+  }
+  /* new axis objects for every draw: Plotly writes the domain it computes into the layout it is
+     given, and a shared object would carry one figure's domain into the next */
+  function triAxes() {
+    return {xaxis: {visible: false, range: [-0.08, 1.08], fixedrange: true, constrain: "domain"},
+            yaxis: {visible: false, range: [-0.12, H3 + 0.08], scaleanchor: "x", fixedrange: true, constrain: "domain"}};
+  }
+  function runPoints(g) {  /* the runs on this slice (every run when there are three components) */
+    var xs = [], ys = [];
+    MIX.points.forEach(function (row) {
+      var t = dict(), onSlice = true, S = 0;
+      COMP.forEach(function (c, k) { t[c.name] = row[k]; });
+      COMP.forEach(function (c) {
+        if (g.picks.indexOf(c.name) >= 0) S += t[c.name];
+        else if (Math.abs(t[c.name] - setting()[c.name]) > 1e-9 * MIX.total) onSlice = false;
+      });
+      if (!onSlice || !(S > 0)) return;
+      var p = toXY(t, g.picks, S); xs.push(p[0]); ys.push(p[1]);
+    });
+    return {x: xs, y: ys};
+  }
+  function drawTernary(s) {
+    var el = document.getElementById("ternary-plot"), el3 = document.getElementById("ternary-surface");
+    if (!el || !MIX) return;
+    var m = MODELS[parseInt((document.getElementById("ternary-response") || {}).value, 10) || 0];
+    var g = ternaryGrid(s, function (t) { return predictValue(m, t); });
+    if (!g) { Plotly.purge(el); if (el3) Plotly.purge(el3); return; }
+    var zl = esc(m.response), traces = [], ann = [];
+    traces.push({type: "contour", x: g.x, y: g.y, z: g.z, colorscale: "Viridis", connectgaps: false, name: zl,
+                 contours: {showlabels: true, labelformat: ".4~g"},
+                 colorbar: {title: {text: zl}, exponentformat: "power", len: 0.75, thickness: 14},
+                 hoverinfo: "skip", meta: {kind: "ternary-contour", response: m.response, components: g.picks,
+                 share: g.share}});
+    triangleFurniture(g, traces, ann);
+    var pts = runPoints(g);
+    traces.push({type: "scatter", mode: "markers", x: pts.x, y: pts.y, name: "runs", showlegend: false,
+                 marker: {symbol: "circle-open", size: 8, color: "#a11d1d", line: {width: 1.5}}, hoverinfo: "skip"});
+    var cur = toXY(s, g.picks, g.share), pc = predict(m, s).predicted;
+    traces.push({type: "scatter", mode: "markers", x: [cur[0]], y: [cur[1]], name: "current blend", showlegend: false,
+                 marker: {size: 10, color: "#a11d1d"},
+                 text: [g.picks.map(function (n) { return esc(n) + " = " + fmt(s[n]); }).join("<br>") + "<br>" + zl + " = " + fmt(pc)],
+                 hovertemplate: "%{text}<extra></extra>"});
+    Plotly.react(el, traces, Object.assign({margin: {l: 20, r: 20, t: 40, b: 30}, showlegend: false,
+                                            annotations: ann}, triAxes()), CONFIG);
+    if (!el3) return;
+    var keep = el3.layout && el3.layout.scene && el3.layout.scene.camera;
+    var p = g.picks.map(function (n) { return COMP[COMP_NAMES.indexOf(n)]; });
+    var zmin = Infinity;
+    g.z.forEach(function (r) { r.forEach(function (v) { if (v !== null && v < zmin) zmin = v; }); });
+    Plotly.react(el3, [
+      {type: "surface", x: g.x, y: g.y, z: g.z, colorscale: "Viridis", showscale: false, name: zl, hoverinfo: "skip",
+       meta: {kind: "ternary-surface", response: m.response, components: g.picks, share: g.share}},
+      {type: "scatter3d", mode: "lines", x: [0.5, 0, 1, 0.5], y: [H3, 0, 0, H3], z: [zmin, zmin, zmin, zmin],
+       line: {color: "#1b1f24", width: 3}, hoverinfo: "skip", name: "simplex"},
+      {type: "scatter3d", mode: "text", x: [0.5, 0, 1], y: [H3 + 0.06, -0.06, -0.06], z: [zmin, zmin, zmin],
+       text: p.map(function (c) { return esc(c.letter + ": " + c.name); }), hoverinfo: "skip", name: "corners"},
+      {type: "scatter3d", mode: "markers", x: [cur[0]], y: [cur[1]], z: [pc], marker: {size: 5, color: "#a11d1d"},
+       name: "current blend", hoverinfo: "skip"}],
+      {margin: {l: 0, r: 0, t: 10, b: 0}, showlegend: false, uirevision: "keep",
+       scene: {aspectmode: "manual", aspectratio: {x: 1, y: H3, z: 0.7},
+               xaxis: {visible: false}, yaxis: {visible: false}, zaxis: axis(zl),
+               camera: keep || {eye: {x: -0.9, y: -1.6, z: 0.9}, up: {x: 0, y: 0, z: 1}}}}, CONFIG);
+  }
+  function drawTernaryOverlay(s) {
+    var el = document.getElementById("ternary-overlay");
+    if (!el || !MIX) return;
+    var g = ternaryGrid(s, function (t) {
+      var mt = margin(t);
+      return mt === Infinity ? 1 : (!isFinite(mt) ? -1 : Math.max(-1, Math.min(1, mt)));
+    }, 80);
+    var out = document.getElementById("ternary-overlay-readout");
+    if (!g) { Plotly.purge(el); if (out) out.textContent = "Choose three different components."; return; }
+    var traces = [{type: "contour", x: g.x, y: g.y, z: g.z, zmin: -1, zmax: 1, showscale: false, connectgaps: false,
+                   contours: {start: 0, end: 0, size: 1, coloring: "fill", showlines: false},
+                   colorscale: [[0, "rgba(210,210,210,0.6)"], [0.5, "rgba(210,210,210,0.6)"], [0.5, "rgba(240,200,0,0.6)"],
+                                [1, "rgba(240,200,0,0.6)"]], hoverinfo: "skip", name: "inside every limit",
+                   meta: {kind: "ternary-overlay", components: g.picks, share: g.share}}];
+    var ann = [];
+    MODELS.forEach(function (m, k) {
+      var lim = limitsOf(m);
+      var gz = null;
+      [0, 1].forEach(function (e) {
+        if (!isFinite(lim[e])) return;
+        gz = gz || ternaryGrid(s, function (t) { return predictValue(m, t); }, 80);
+        traces.push({type: "contour", x: gz.x, y: gz.y, z: gz.z, showscale: false, hoverinfo: "skip", connectgaps: false,
+                     contours: {coloring: "none", start: lim[e], end: lim[e], size: 1, showlabels: true, labelformat: ".4~g"},
+                     line: {color: COLORS[k % COLORS.length], width: 2, dash: e ? "solid" : "dash"},
+                     name: esc(m.response + (e ? " high limit" : " low limit"))});
+      });
+    });
+    triangleFurniture(g, traces, ann);
+    var cur = toXY(s, g.picks, g.share);
+    traces.push({type: "scatter", mode: "markers", x: [cur[0]], y: [cur[1]], name: "current blend",
+                 marker: {symbol: "circle-open", size: 12, color: "#1b1f24", line: {width: 2}}});
+    var n = 0;
+    g.z.forEach(function (r) { r.forEach(function (v) { if (v !== null && v >= 0) n++; }); });
+    if (out) out.textContent = "Inside every limit: " + fmt(100 * n / Math.max(g.inside, 1), 3) + " % of the region's grid points on this triangle. The current blend is " +
+      (inside(s) ? "inside." : "outside.");
+    Plotly.react(el, traces, Object.assign({margin: {l: 20, r: 20, t: 40, b: 30}, showlegend: false, annotations: ann},
+                                           triAxes()), CONFIG);
+  }
+  function drawTrace() {
+    var el = document.getElementById("trace-plot");
+    if (!el || !MIX) return;
+    var k = parseInt((document.getElementById("ternary-response") || {}).value, 10) || 0;
+    var tr = MIX.traces[k], traces = [];
+    tr.curves.forEach(function (c, i) {
+      traces.push({type: "scatter", mode: "lines", x: c.deviation, y: c.predicted, name: esc(c.letter + ": " + c.name),
+                   line: {color: COLORS[i % COLORS.length], width: 2},
+                   meta: {kind: "trace", response: tr.response, component: c.name, direction: tr.direction},
+                   text: c.deviation.map(function (d, j) { return esc(c.name) + ": \u0394 = " + fmt(d) + "<br>" + esc(tr.response) + " = " + fmt(c.predicted[j]); }),
+                   hovertemplate: "%{text}<extra></extra>"});
+    });
+    Plotly.react(el, traces, {margin: {l: 70, r: 20, t: 20, b: 60}, showlegend: true, legend: {orientation: "h", y: -0.2},
+                              xaxis: axis("Deviation from the reference blend (" + (tr.direction === "cox" ? "real proportion" : "L-pseudo units") + ")"),
+                              yaxis: axis(esc(tr.response)),
+                              shapes: [{type: "line", xref: "x", yref: "paper", x0: 0, x1: 0, y0: 0, y1: 1,
+                                        line: {color: "#888", width: 1, dash: "dot"}}]}, CONFIG);
+  }
   function shq(s) {
     s = String(s);
     return /^[A-Za-z0-9_.,:=+\-\/@%]+$/.test(s) ? s : "'" + s.replace(/'/g, "'\\''") + "'";
@@ -223,7 +470,8 @@
         var xs, lo = [], hi = [], ys = [];
         var pts = c.kind === "categoric" ? c.levels.slice() : linspace(c.low, c.high, 41);
         pts.forEach(function (v) {
-          var t = copy(s); t[c.name] = v;
+          var t = c.component ? rebalance(s, c.name, v) : copy(s);
+          if (!c.component) t[c.name] = v;
           var p = predict(m, t); ys.push(p.predicted); lo.push(p.ci_low); hi.push(p.ci_high);
         });
         xs = pts.map(function (v) { return c.kind === "categoric" ? esc(v) : v; });
@@ -510,7 +758,8 @@
   }
 
   /* a figure is redrawn when it is on screen (or comes on screen) and out of date */
-  var FIGS = {"profile-plot": drawProfiles, "overlay-plot": drawOverlay, "surface-plot": drawSurface};
+  var FIGS = {"profile-plot": drawProfiles, "overlay-plot": drawOverlay, "surface-plot": drawSurface,
+              "ternary-plot": drawTernary, "ternary-overlay": drawTernaryOverlay, "trace-plot": drawTrace};
   var onScreen = dict(), stale = dict();
   var pending = false;
   function drawFig(id, s) {
@@ -556,13 +805,26 @@
   }
 
   // -- events ----------------------------------------------------------------------------------
+  /* the blend last shown: a component's move rescales the others from it */
+  var lastBlend = null;
+  function setBlend(b) {
+    COMP.forEach(function (c) { ctl[c.name].value = String(b[c.name]); });
+    lastBlend = copy(b);
+  }
+  function moveComponent(name, v) {
+    var base = copy(setting(), lastBlend || dict());
+    setBlend(rebalance(base, name, v));
+    update();
+  }
   Object.keys(ctl).forEach(function (name) {
-    ctl[name].addEventListener("input", update);
-    ctl[name].addEventListener("change", update);
+    var handler = isComponent(name) ? function () { moveComponent(name, parseFloat(ctl[name].value)); } : update;
+    ctl[name].addEventListener("input", handler);
+    ctl[name].addEventListener("change", handler);
   });
   Object.keys(txt).forEach(function (name) {
     txt[name].addEventListener("change", function () {
       var v = parseFloat(txt[name].value), c = control(name);
+      if (isComponent(name)) { if (isFinite(v)) moveComponent(name, v); else update(); return; }
       if (isFinite(v)) { ctl[name].value = String(Math.min(c.high, Math.max(c.low, v))); }
       update();
     });
@@ -572,6 +834,7 @@
       if (!(c.name in set)) return;
       ctl[c.name].value = String(set[c.name]);
     });
+    if (MIX) lastBlend = copy(setting());
     update();
   }
   document.querySelectorAll("[data-jump]").forEach(function (b) {
@@ -579,7 +842,9 @@
       var kind = b.getAttribute("data-jump");
       if (kind === "center") {
         var set = dict();
-        CONTROLS.forEach(function (c) { set[c.name] = c.kind === "categoric" ? c.levels[0] : (c.low + c.high) / 2; });
+        CONTROLS.forEach(function (c) {
+          set[c.name] = c.kind === "categoric" ? c.levels[0] : (c.center !== undefined ? c.center : (c.low + c.high) / 2);
+        });
         jumpTo(set);
       } else if (kind === "desirability" && DATA.desirability) jumpTo(DATA.desirability.setting);
       else if (kind === "optimum") {
@@ -590,7 +855,8 @@
   });
   var deepBtn = document.getElementById("overlay-deepest");
   if (deepBtn) deepBtn.addEventListener("click", goDeepest);
-  document.querySelectorAll("[data-limit-low], [data-limit-high], #overlay-x, #overlay-y, #surface-x, #surface-y, #surface-response")
+  document.querySelectorAll("[data-limit-low], [data-limit-high], #overlay-x, #overlay-y, #surface-x, #surface-y, #surface-response, " +
+                            "#ternary-a, #ternary-b, #ternary-c, #ternary-response")
     .forEach(function (el) { el.addEventListener("input", schedule); el.addEventListener("change", schedule); });
   var pre = document.getElementById("setting-text");
   pre.addEventListener("click", function () {
@@ -611,8 +877,11 @@
     goDeepest: goDeepest,
     drawNow: drawAll,
     formatNumber: fmt,
+    rebalance: function (name, v) { return rebalance(setting(), name, v); },
+    ternaryGrid: function () { return MIX ? ternaryGrid(setting(), function (t) { return predictValue(MODELS[0], t); }) : null; },
     limits: function () { return MODELS.map(limitsOf); }
   };
+  if (MIX) lastBlend = copy(setting());
   update();
   if (hasPlotly) drawAll();
 })();
