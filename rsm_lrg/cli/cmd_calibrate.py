@@ -28,7 +28,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("data", metavar="DATA.csv", help="measured runs: the design columns and the response")
     add_reader_options(p)
     p.add_argument("--response", required=True, metavar="COL", help="the measured column (e.g. tcr_c_per_min)")
-    p.add_argument("--model", default="v4", choices=("v4", "v4-coulomb", "v3", "v3-overconstraint", "v2"),
+    p.add_argument("--model", default="v4", choices=("v4", "v5", "v5-nodrive", "v4-coulomb", "v3", "v3-overconstraint",
+                                                     "v2"),
                    help="calibration model: the physics it fixes and its default parameters (default v4: "
                         "elastic hinge with held ends, the drive's viscous friction heat conducted through the "
                         "leaves; v2 reproduces the earlier calibration)")
@@ -40,6 +41,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "overconstraint_misfit_m instead of drive_heat_w; v2: heat_partition, "
                         "viscous_friction_n_s_m, hinge_damping_ratio; also hinge_length_m, hinge_width_m, "
                         "frame_mass_fraction)")
+    p.add_argument("--select", default=None, metavar="M1,M2,...",
+                   help="candidate models (comma-separated, e.g. v5,v5-nodrive): each is calibrated and the one "
+                        "of smallest AICc kept; leave-one-out repeats the choice inside every fold (--model and "
+                        "--parameter are then not used)")
     from ._common import number
 
     p.add_argument("--duration-min", type=number(1), default=50.0, metavar="M",
@@ -74,11 +79,23 @@ def run(args) -> int:
         duration = check_duration(args.duration_min, "--duration-min")
     except ValueError as exc:
         raise InputError(str(exc)) from None
+    select = None
+    if args.select is not None:
+        from ..surrogate.calibrate import MODELS
+
+        select = [m.strip() for m in str(args.select).split(",")]
+        bad = [m for m in select if m not in MODELS]
+        if bad or not select or len(set(select)) != len(select):
+            what = f"{bad[0]!r} is not a calibration model" if bad else "give different models"
+            raise InputError(f"--select: {what} (choose among {', '.join(MODELS)})")
+        if args.parameter:
+            raise InputError("--select: the candidates calibrate their own parameters; drop --parameter")
     data = read_input(args)
     with about_file(args.data):
         cal = calibrate(data, args.response, parameters=args.parameter, duration_min=duration,
                         loo=not args.no_loo, source=_safe_name(Path(args.data).name),
-                        data_sha256=file_sha256(args.data), progress=args.progress, model=args.model)
+                        data_sha256=file_sha256(args.data), progress=args.progress, model=args.model,
+                        select=select)
     print(cal.summary())
     argv = [_safe_name(a) for a in sys.argv[2:]]
     cmd = "rsm-lrg calibrate " + " ".join(shlex.quote(a) for a in argv) if argv else ""

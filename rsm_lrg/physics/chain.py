@@ -22,10 +22,19 @@ from . import convection, dynamics, heat, hinge, motion, wear
 from .params import LRGParams
 
 __all__ = ["PhysicsResult", "HingeRow", "physics_chain", "TABLE3_THICKNESSES_M", "PAPER_VALUES",
-           "PAPER_WEAR_RATIO"]
+           "PAPER_WEAR_RATIO", "TABLE3_BOX", "LeafYieldScan", "leaf_yield_scan"]
 
 #: Hinge thicknesses of Table 3 (low, centre, high) [m].
 TABLE3_THICKNESSES_M = (0.0001, 0.0003, 0.0005)
+
+#: The factor box of Table 3 (low, high) in SI units: thickness, stroke, velocity, acceleration.
+TABLE3_BOX = {"thickness_m": (1e-4, 5e-4), "stroke_m": (0.04, 0.06), "velocity_m_s": (0.4, 0.6),
+              "acceleration_m_s2": (20.0, 40.0)}
+
+#: What the model does where a leaf would yield (printed with the scan).
+YIELD_BEHAVIOUR = ("the model keeps the elastic beam-column law there and flags the rows (simulate: hinge_yields, "
+                   "a warning on stderr); a real leaf would take a permanent set, so the rows' dynamics, heat and "
+                   "wear are outside the model's validity")
 
 #: RFCMS/RMS wear volume per unit time from the paper's FEM (Section 3.2).
 PAPER_WEAR_RATIO = 0.5893
@@ -71,6 +80,95 @@ class HingeRow:
 
 
 @dataclass(frozen=True)
+class LeafYieldScan:
+    """Where in the Table 3 box a leaf would yield: the exact beam-column clamp stress
+    (:func:`.hinge.hinge_peak_stress`) at the peak leaf deflection over the periodic cycle
+    (:func:`.dynamics.cycle_metrics`) on a full grid of ``levels`` equally spaced values per
+    factor of :data:`TABLE3_BOX`, against ``hinge_yield_pa``.
+
+    ``region`` gives bounds that every yielding point satisfies (thickness at most, stroke,
+    velocity and acceleration at least; ``None`` where nothing yields): necessary conditions,
+    not sufficient ones. ``by_thickness`` lists, per thickness level, the points that yield,
+    the points scanned and the largest stress [Pa].
+    """
+
+    levels: int
+    n_points: int
+    n_yield: int
+    viscous_friction_n_s_m: float
+    yield_strength_pa: float
+    max_stress_pa: float
+    max_at: dict
+    region: dict | None
+    by_thickness: tuple
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"box": {k: list(v) for k, v in TABLE3_BOX.items()}, "levels": self.levels,
+                "n_points": self.n_points, "n_yield": self.n_yield,
+                "viscous_friction_n_s_m": self.viscous_friction_n_s_m, "yield_strength_pa": self.yield_strength_pa,
+                "max_stress_pa": self.max_stress_pa, "max_at": dict(self.max_at),
+                "region": None if self.region is None else dict(self.region),
+                "by_thickness": [{"thickness_m": t, "n_yield": k, "n_points": m, "max_stress_pa": sm}
+                                 for t, k, m, sm in self.by_thickness],
+                "model_there": YIELD_BEHAVIOUR}
+
+    def to_text(self) -> str:
+        lines = [f"leaf yield over the Table 3 box ({self.levels} levels per factor, {self.n_points} settings, "
+                 f"exact beam-column clamp stress at the cycle's peak deflection, block viscous friction "
+                 f"{self.viscous_friction_n_s_m:g} N s/m; yield {self.yield_strength_pa / 1e6:.0f} MPa): "
+                 f"{self.n_yield} settings yield"]
+        for t, k, m, sm in self.by_thickness:
+            lines.append(f"  {t * 1e3:.2f} mm leaf: {k} of {m} yield, largest stress {sm / 1e6:.0f} MPa")
+        a = self.max_at
+        lines.append(f"  largest {self.max_stress_pa / 1e6:.0f} MPa at y = {a['thickness_m'] * 1e3:.2f} mm, "
+                     f"s = {a['stroke_m']:g} m, v = {a['velocity_m_s']:g} m/s, a = {a['acceleration_m_s2']:g} m/s^2")
+        if self.region is not None:
+            r = self.region
+            lines.append(f"  every yielding setting has y <= {r['thickness_m_max'] * 1e3:.2f} mm, s >= "
+                         f"{r['stroke_m_min']:g} m, v >= {r['velocity_m_s_min']:g} m/s, a >= "
+                         f"{r['acceleration_m_s2_min']:g} m/s^2; of those leaves' settings, yielding:")
+            for name, unit in (("acceleration_m_s2", "m/s^2"), ("velocity_m_s", "m/s"), ("stroke_m", "m")):
+                parts = ", ".join(f"{x:g} {unit} {k}/{m}" for x, k, m in r[f"share_by_{name}"])
+                lines.append(f"    by {name.split('_')[0]}: {parts}")
+            lines.append(f"  where a leaf yields, {YIELD_BEHAVIOUR}")
+        return "\n".join(lines)
+
+
+def leaf_yield_scan(params: LRGParams | None = None, *, levels: int = 5) -> LeafYieldScan:
+    """Scan the Table 3 box for leaves past yield (:class:`LeafYieldScan`).
+
+    ``params`` gives everything but the four factors (default: the shipped defaults; the
+    shipped calibration's ``viscous_friction_n_s_m`` changes the peak deflections, pass it to
+    scan the calibrated model). The RFCMS only (the RMS has no leaves).
+    """
+    p = params or LRGParams()
+    if not (isinstance(levels, int) and 2 <= levels <= 21):
+        raise ValueError(f"levels must be a whole number in [2, 21], got {levels!r}")
+    axes = [np.linspace(lo, hi, levels) for lo, hi in TABLE3_BOX.values()]
+    y, s, v, a = (g.ravel() for g in np.meshgrid(*axes, indexing="ij"))
+    cm = dynamics.cycle_metrics(s, v, a, params=p, method="auto", hinge_thickness_m=y)
+    pk = np.asarray(cm.peak_deflection_m, dtype=float)
+    st = np.asarray(hinge.hinge_peak_stress(p.hinge_modulus_pa, y, p.hinge_length_m, pk,
+                                            membrane=p.hinge_membrane), dtype=float)
+    ylds = st > p.hinge_yield_pa
+    k = int(np.argmax(st))
+    max_at = {"thickness_m": float(y[k]), "stroke_m": float(s[k]), "velocity_m_s": float(v[k]),
+              "acceleration_m_s2": float(a[k])}
+    region: dict[str, Any] | None = None
+    if ylds.any():
+        region = {"thickness_m_max": float(y[ylds].max()), "stroke_m_min": float(s[ylds].min()),
+                  "velocity_m_s_min": float(v[ylds].min()), "acceleration_m_s2_min": float(a[ylds].min())}
+        thin = y <= region["thickness_m_max"]  # the leaves that yield somewhere: where in (s, v, a)
+        for name, col, ax in (("stroke_m", s, axes[1]), ("velocity_m_s", v, axes[2]),
+                              ("acceleration_m_s2", a, axes[3])):
+            region[f"share_by_{name}"] = [[float(x), int((ylds & thin & (col == x)).sum()),
+                                           int((thin & (col == x)).sum())] for x in ax]
+    by = tuple((float(t), int(ylds[y == t].sum()), int((y == t).sum()), float(st[y == t].max())) for t in axes[0])
+    return LeafYieldScan(levels, int(y.size), int(ylds.sum()), float(p.viscous_friction_n_s_m),
+                         float(p.hinge_yield_pa), float(st[k]), max_at, region, by)
+
+
+@dataclass(frozen=True)
 class PhysicsResult:
     """The chain's numbers. ``to_dict()`` is the ``physics --json`` document of INTERFACE.md
     (exactly those keys); ``details`` holds the rest (wear volumes, the Eq. 14 and quasi-static
@@ -90,6 +188,7 @@ class PhysicsResult:
     rfcms_over_rms: float
     params: LRGParams = field(repr=False)
     details: dict[str, Any] = field(default_factory=dict, repr=False)
+    leaf_yield: LeafYieldScan | None = None
 
     def to_dict(self, extended: bool = False) -> dict[str, Any]:
         out = {
@@ -100,6 +199,7 @@ class PhysicsResult:
             "hinge": [h.to_dict() for h in self.hinge],
             "thermal": {k: self.thermal.get(k) for k in _THERMAL_KEYS},
             "wear": {"rfcms_over_rms": self.rfcms_over_rms},
+            "leaf_yield": None if self.leaf_yield is None else self.leaf_yield.to_dict(),
         }
         if extended:
             out["details"] = dict(self.details)
@@ -164,6 +264,8 @@ class PhysicsResult:
         if ylds:
             lines.append(f"WARNING: the leaf of {', '.join(ylds)} would yield at this motion (peak stress above "
                          f"hinge_yield_pa = {self.params.hinge_yield_pa:.4g} Pa); its dynamics are not elastic")
+        if self.leaf_yield is not None:
+            lines.append(self.leaf_yield.to_text())
         lines.append("heat_w follows Eq. 8 as written (divided by J = 4.184)" if self.params.heat_in_calories
                      else "heat_w is the friction power in W (heat_in_calories = false)")
         return "\n".join(lines)
@@ -211,7 +313,7 @@ def _check_geometry(p: LRGParams) -> None:
 
 
 def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
-                  thicknesses=TABLE3_THICKNESSES_M, **overrides) -> PhysicsResult:
+                  thicknesses=TABLE3_THICKNESSES_M, yield_scan: bool = True, **overrides) -> PhysicsResult:
     """Run the chain for ``params`` (default: the shipped defaults) with ``overrides``.
 
     Parameters
@@ -221,6 +323,9 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
         Run the thermal model (``False``: the four thermal numbers are ``None``).
     thicknesses : sequence of float
         Hinge thicknesses for the ``hinge`` rows [m] (Table 3).
+    yield_scan : bool
+        Scan the Table 3 box for leaves past yield (:func:`leaf_yield_scan`, 625 settings);
+        ``False``: ``leaf_yield`` is ``None``.
     **overrides
         Any parameter by name (``mu_k=0.01``).
 
@@ -303,4 +408,5 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
     th: dict[str, float | None] = _thermal(p, q, hs, hf) if thermal else {k: None for k in _THERMAL_KEYS}
     if not thermal:
         details["thermal_skipped"] = True
-    return PhysicsResult(load, fmax, q, phi, re, pr, hs, hf, tuple(rows), th, ratio, p, details)
+    scan = leaf_yield_scan(p) if yield_scan else None
+    return PhysicsResult(load, fmax, q, phi, re, pr, hs, hf, tuple(rows), th, ratio, p, details, scan)

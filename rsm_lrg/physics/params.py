@@ -72,7 +72,7 @@ _OPEN_UNIT = {"frame_mass_fraction"}
 _NONNEG = {"dwell_s", "jerk_time_s", "hinge_damping_ratio", "preload_n", "viscous_friction_n_s_m", "drive_heat_w",
            "overconstraint_misfit_m"}
 _INTS = {"hinge_count", "ball_rows", "balls_per_row"}
-_BOOLS = {"heat_in_calories", "hinge_membrane"}
+_BOOLS = {"heat_in_calories", "hinge_membrane", "heat_balance"}
 
 #: Physical range of every numeric parameter, inclusive, in its unit: what a linear rolling
 #: guide on a motion stage of this kind (and its air, steel and test) can physically be.
@@ -88,6 +88,9 @@ PHYSICAL_RANGES: dict[str, tuple[float, float]] = {
     "frame_mass_fraction": (0.0, 1.0), "carriage_mass_kg": (1e-3, 1e3),
     "hinge_yield_pa": (1e6, 1e10), "hinge_conductivity_w_mk": (0.01, 5000.0),
     "drive_heat_w": (0.0, 1e3), "stage_loss_conductance_w_k": (1e-4, 1e3), "overconstraint_misfit_m": (0.0, 1e-3),
+    "ball_contact_conductance_w_k": (1e-4, 1e4), "joint_conductance_w_m2k": (1.0, 1e7),
+    "base_heat_capacity_j_k": (1e-3, 1e9), "base_loss_conductance_w_k": (1e-4, 1e4),
+    "hinge_density_kg_m3": (100.0, 3e4), "hinge_specific_heat_j_kgk": (10.0, 2e4),
     "ball_radius_m": (1e-4, 0.05), "raceway_radius_m": (1e-4, 0.1), "ball_rows": (1, 16),
     "balls_per_row": (1, 1000), "contact_angle_deg": (0.0, 90.0),
     "velocity_m_s": (1e-4, 20.0), "thermal_equivalent_j_per_cal": (4.18, 4.21),
@@ -157,6 +160,14 @@ class LRGParams:
     overconstraint_misfit_m: float = _d("overconstraint_misfit_m")
     frame_mass_fraction: float = _d("frame_mass_fraction")
     carriage_mass_kg: float = _d("carriage_mass_kg")
+    # one heat balance in watts (the rig's bodies)
+    heat_balance: bool = _d("heat_balance")
+    ball_contact_conductance_w_k: float = _d("ball_contact_conductance_w_k")
+    joint_conductance_w_m2k: float = _d("joint_conductance_w_m2k")
+    base_heat_capacity_j_k: float = _d("base_heat_capacity_j_k")
+    base_loss_conductance_w_k: float = _d("base_loss_conductance_w_k")
+    hinge_density_kg_m3: float = _d("hinge_density_kg_m3")
+    hinge_specific_heat_j_kgk: float = _d("hinge_specific_heat_j_kgk")
     # balls
     ball_radius_m: float = _d("ball_radius_m")
     raceway_radius_m: float = _d("raceway_radius_m")

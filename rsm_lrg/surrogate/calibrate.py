@@ -21,6 +21,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -99,6 +100,13 @@ DRIVE_VISCOUS = ParameterSpec(
     "capacity (tau = m_ws c/(G + G_s)); the RMS's rigid joint passes all of it. Bounds those of "
     "the block's own viscous friction c_v")
 VISCOUS = DEFAULT_PARAMETERS[1]
+BALL_CONTACT = ParameterSpec(
+    "ball_contact_conductance_w_k", 0.01, 20.0, 0.62, "W/K",
+    "conductance between the ball contacts and the carriage (the same to the rail), all contacts of a side: "
+    "with the rig's other bodies (frame, leaves, working stage, rail, base; data/lrg_shs15v.toml) it sets "
+    "which share of the friction heat (in watts) reaches the carriage. Hertzian constriction estimate 0.62 W/K "
+    "(1/(4 lambda a) per contact, a ~ 0.05 mm); bounds from 1/60 of it (a dry, barely touching contact) to "
+    "30 times it (the perfect contact of the paper's FEM gives about 20)")
 
 
 @dataclass(frozen=True)
@@ -131,6 +139,15 @@ MODELS = {
         "'drive friction through the leaves': the heat of the drive element's viscous friction, "
         "c_d <v^2>, enters the working stage and reaches the carriage through the leaves "
         "(conductance ~ y) behind the stage's heat capacity"),
+    "v5": CalibrationModel(
+        "v5", (("heat_balance", True),), (VISCOUS, DRIVE_VISCOUS, BALL_CONTACT),
+        "one heat balance in watts: the friction power at the ball contacts and the drive element's viscous "
+        "heat c_d <v^2> entering the working stage flow through one network of the rig's bodies (carriage, "
+        "balls, rail, base, frame, leaves, working stage); no heat share: what reaches the carriage follows "
+        "from the conductances, the ball contacts' calibrated"),
+    "v5-nodrive": CalibrationModel(
+        "v5-nodrive", (("heat_balance", True),), (VISCOUS, BALL_CONTACT),
+        "as v5 without a drive heat (the paper's Section 2.2: motor heat not considered): friction heat alone"),
     "v4-coulomb": CalibrationModel(
         "v4-coulomb", (), (DEFAULT_PARAMETERS[0], VISCOUS, DRIVE_FRICTION),
         "as v4, with the drive element's Coulomb friction, F_d <|v|>, instead of its viscous friction"),
@@ -209,6 +226,8 @@ class Calibration:
     method: str = "scipy.optimize.least_squares (trf, bounded), noise-free virtual runs"
     uncalibrated_r2: float | None = None
     model: str = ""
+    selected_from: tuple = ()
+    loo_models: tuple = field(default=(), repr=False)
 
     def fixed_values(self) -> dict:
         """The physics the calibration's ``model`` fixes (``{}`` without a model)."""
@@ -230,6 +249,8 @@ class Calibration:
             "parameters": [p.to_dict() for p in self.parameters],
             "observed": list(self.observed), "predicted": list(self.predicted),
             "loo_predicted": list(self.loo_predicted),
+            "selected_from": list(self.selected_from),
+            "loo_models": [self.selected_from[k] for k in self.loo_models] if self.selected_from else [],
         }
 
     def to_frame(self):
@@ -252,6 +273,13 @@ class Calibration:
         if self.loo_r2 is not None:
             lines.append(f"  leave-one-out R2 {self.loo_r2:.4f}   RMSE {format_g(self.loo_rmse, 4, trim=True)}   (the paper's quadratic, "
                          f"Eq. 19: PRESS R2 {PAPER_PRESS_R2:.3f})")
+        if self.selected_from:
+            line = (f"  model chosen by AICc among {', '.join(self.selected_from)}")
+            if self.loo_models:
+                counts = ", ".join(f"{m} {sum(1 for k in self.loo_models if self.selected_from[k] == m)}"
+                                   for m in self.selected_from)
+                line += f"; inside the leave-one-out folds: {counts} of {len(self.loo_models)}"
+            lines.append(line)
         if self.uncalibrated_r2 is not None:
             lines.append(f"  raw physics (uncalibrated) R2 {self.uncalibrated_r2:.4f}")
         return "\n".join(lines)
@@ -265,7 +293,8 @@ def _specs(parameters, model: str = DEFAULT_MODEL) -> tuple:
         return MODELS[model].parameters
     out = []
     by_name = {s.name: s for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS + (DRIVE_HEAT, OVERCONSTRAINT,
-                                                                             DRIVE_FRICTION, DRIVE_VISCOUS)}
+                                                                             DRIVE_FRICTION, DRIVE_VISCOUS,
+                                                                             BALL_CONTACT)}
     for p in parameters:
         if isinstance(p, ParameterSpec):
             out.append(p)
@@ -310,13 +339,14 @@ def _r2(obs, pred) -> float:
 
 
 #: Calibratable parameters that do not enter the stage dynamics (cheap to vary).
-_HEAT_ONLY = ("heat_partition", "drive_heat_w", "drive_friction_n", "drive_viscous_n_s_m")
+_HEAT_ONLY = ("heat_partition", "drive_heat_w", "drive_friction_n", "drive_viscous_n_s_m",
+              "ball_contact_conductance_w_k")
 
 
 def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=None,
               duration_min: float = 50.0, loo: bool = True, source: str = "",
               data_sha256: str = "", grid_points: int | None = None, progress: bool = False,
-              model: str = DEFAULT_MODEL) -> Calibration:
+              model: str = DEFAULT_MODEL, select=None) -> Calibration:
     """Fit the surrogate's unknown parameters to measured runs.
 
     Parameters
@@ -351,6 +381,14 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     progress : bool
         Show a progress bar (tqdm) on stderr, one step per least-squares fit or grid point
         (the CLI shows it; a full calibration with leave-one-out takes minutes).
+    select : sequence of str, optional
+        Candidate models (keys of :data:`MODELS`, each with its own parameters; ``model``
+        and ``parameters`` are then ignored): each is calibrated and the one of smallest
+        AICc, ``n ln(SSR/n) + 2k + 2k(k+1)/(n-k-1)`` (Hurvich & Tsai 1989), is returned. The
+        choice is part of the procedure that leave-one-out repeats: in every fold each
+        candidate is recalibrated from scratch on the other runs and the fold's own AICc
+        choice predicts the run left out (``loo_models``), so the LOO figure includes the
+        optimism of choosing a mechanism.
 
     Returns
     -------
@@ -362,9 +400,16 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     from .design_input import OUTPUT_COLUMNS, read_design_arrays
     from .runs import check_duration, evaluate_rows
 
-    if model not in MODELS:
-        raise ValueError(f"unknown calibration model {model!r}; choose one of {', '.join(MODELS)}")
-    specs = _specs(parameters, model)
+    if select is not None:
+        models = [str(m) for m in select]
+        if not models or len(set(models)) != len(models):
+            raise ValueError("select needs one or more different calibration models")
+        parameters = None
+    else:
+        models = [model]
+    for m in models:
+        if m not in MODELS:
+            raise ValueError(f"unknown calibration model {m!r}; choose one of {', '.join(MODELS)}")
     duration_min = check_duration(duration_min)
     if response not in data.columns:
         from ..io import quote_user_value
@@ -377,6 +422,81 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     from ..io import float_column
 
     obs = float_column(data, response).to_numpy()
+    n = obs.size
+    probs = [_problem(m, parameters, data, response, params, duration_min, grid_points, obs, least_squares,
+                      LRGParams, read_design_arrays, evaluate_rows) for m in models]
+    from .progress import progress_bar
+
+    steps = 0
+    for pr in probs:
+        per_fit = len(pr.grid) + 2
+        steps += per_fit * (1 + (n if loo else 0)) + (2 if len(pr.stage_idx) == 1 else 0)
+    bar = progress_bar(steps, bool(progress), desc="calibration fits", unit="fit")
+    try:
+        if len(probs) == 1:
+            pr = probs[0]
+            cal = _calibrate_steps(pr.specs, pr.grid, pr.stage_idx, pr.x0, pr.lo, pr.hi, pr.scale, pr.fit,
+                                   pr.predict, obs, n, loo, bar, pr.arrays, pr.p, duration_min, response, source,
+                                   data_sha256, evaluate_rows)
+            return dataclasses.replace(cal, model=pr.model)
+        bests = [_fit_from_scratch(None, pr.specs, pr.grid, pr.stage_idx, pr.x0, pr.lo, pr.hi, pr.fit, pr.predict,
+                                   obs, bar) for pr in probs]
+        k = int(np.argmin([aicc(2.0 * b.cost, n, len(pr.specs)) for b, pr in zip(bests, probs)]))
+        pr = probs[k]
+        cal = _calibrate_steps(pr.specs, pr.grid, pr.stage_idx, pr.x0, pr.lo, pr.hi, pr.scale, pr.fit, pr.predict,
+                               obs, n, False, bar, pr.arrays, pr.p, duration_min, response, source, data_sha256,
+                               evaluate_rows, best=bests[k])
+        cal = dataclasses.replace(cal, model=pr.model, selected_from=tuple(models))
+        if loo:
+            lp, chosen = np.empty(n), []
+            for i in range(n):
+                keep = np.delete(np.arange(n), i)
+                fits = [_fit_from_scratch(keep, q.specs, q.grid, q.stage_idx, q.x0, q.lo, q.hi, q.fit, q.predict,
+                                          obs, bar) for q in probs]
+                kk = int(np.argmin([aicc(2.0 * f.cost, n - 1, len(q.specs)) for f, q in zip(fits, probs)]))
+                lp[i] = probs[kk].predict(fits[kk].x, np.array([i]))[0]
+                chosen.append(kk)
+            cal = dataclasses.replace(cal, loo_predicted=tuple(float(x) for x in lp), loo_r2=_r2(obs, lp),
+                                      loo_rmse=float(np.sqrt(np.mean((obs - lp) ** 2))), loo_models=tuple(chosen))
+        return cal
+    finally:
+        bar.close()
+
+
+def aicc(ssr: float, n: int, k: int) -> float:
+    """Small-sample Akaike criterion of a least-squares fit, ``n ln(SSR/n) + 2k +
+    2k(k+1)/(n-k-1)`` (Hurvich & Tsai 1989, Biometrika 76:297; constants dropped): the
+    smaller, the better; it charges each parameter what it gains on average by chance.
+
+    >>> round(aicc(1.0, 20, 2) - aicc(1.0, 20, 1), 4)   # one more parameter, same SSR
+    2.5588
+    """
+    if not n - k - 1 > 0:
+        raise ValueError(f"AICc needs n > k + 1 (n = {n}, k = {k})")
+    return n * math.log(max(ssr, 1e-300) / n) + 2 * k + 2 * k * (k + 1) / (n - k - 1)
+
+
+@dataclass(frozen=True)
+class _Problem:
+    model: str
+    specs: tuple
+    grid: list
+    stage_idx: list
+    x0: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    scale: np.ndarray
+    fit: Any
+    predict: Any
+    arrays: Any
+    p: Any
+
+
+def _problem(model, parameters, data, response, params, duration_min, grid_points, obs, least_squares, LRGParams,
+             read_design_arrays, evaluate_rows) -> _Problem:
+    """The calibration problem of one model: its parameters, bounds, profile grid, and the
+    prediction and least-squares closures."""
+    specs = _specs(parameters, model)
     n = obs.size
     if n <= len(specs) + 1:
         k = len(specs)
@@ -424,17 +544,7 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
         m = int(grid_points) if grid_points is not None else (13 if len(stage_idx) == 1 else 7)
         axes = [np.geomspace(lo[i], hi[i], m) if lo[i] > 0 else np.linspace(lo[i], hi[i], m) for i in stage_idx]
         grid = list(itertools.product(*axes))
-    from .progress import progress_bar
-
-    per_fit = len(grid) + 2
-    bar = progress_bar(per_fit * (1 + (n if loo else 0)) + (2 if len(stage_idx) == 1 else 0), bool(progress),
-                        desc="calibration fits", unit="fit")
-    try:
-        cal = _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar,
-                               arrays, p, duration_min, response, source, data_sha256, evaluate_rows)
-        return dataclasses.replace(cal, model=model)
-    finally:
-        bar.close()
+    return _Problem(model, specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, arrays, p)
 
 
 def _fit_from_scratch(idx, specs, grid, stage_idx, x0, lo, hi, fit, predict, obs, bar):
@@ -518,10 +628,11 @@ def _profile_interval(i, specs, theta, cost_min, lo, hi, fit, predict, obs, n, b
 
 
 def _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar, arrays, p,
-                     duration_min, response, source, data_sha256, evaluate_rows):
+                     duration_min, response, source, data_sha256, evaluate_rows, best=None):
     """The calibration (:func:`_fit_from_scratch`), the profile interval of a single stage
     parameter and leave-one-out with every fold recalibrated from scratch."""
-    best = _fit_from_scratch(None, specs, grid, stage_idx, x0, lo, hi, fit, predict, obs, bar)
+    if best is None:
+        best = _fit_from_scratch(None, specs, grid, stage_idx, x0, lo, hi, fit, predict, obs, bar)
     theta = best.x
     pred = predict(theta)
     resid = obs - pred
@@ -609,6 +720,8 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
         if v is None or (k == "model" and not v):
             continue
         lines.append(f"{k} = {toml_value(v)}")
+    if cal.selected_from:
+        lines.append(f"selected_from = {toml_value(','.join(cal.selected_from))}")
     lines.append("")
     for p in cal.parameters:
         lines.append(f"[parameters.{p.name}]")
@@ -623,19 +736,22 @@ def calibration_toml(cal: Calibration, command: str = "") -> str:
     lines.append(f"predicted = {toml_value(list(cal.predicted))}")
     if cal.loo_predicted:
         lines.append(f"loo_predicted = {toml_value(list(cal.loo_predicted))}")
+    if cal.loo_models:
+        lines.append(f"loo_model_index = {toml_value([int(k) for k in cal.loo_models])}")
     return "\n".join(lines) + "\n"
 
 
 #: Keys of a calibration file, with their types (what :func:`calibration_toml` writes).
 _HEAD_KEYS = {"model": str, "response": str, "n": int, "r2": float, "rmse": float, "loo_r2": float, "loo_rmse": float,
-              "uncalibrated_r2": float, "data": str, "data_sha256": str, "method": str, "command": str}
+              "uncalibrated_r2": float, "data": str, "data_sha256": str, "method": str, "command": str,
+              "selected_from": str}
 _PARAM_KEYS = {"value": float, "std_error": float, "lower": float, "upper": float, "unit": str,
                "meaning": str, "at_bound": bool, "ci_low": float, "ci_high": float, "ci_method": str}
-_RUN_KEYS = ("observed", "predicted", "loo_predicted")
+_RUN_KEYS = ("observed", "predicted", "loo_predicted", "loo_model_index")
 
 
 #: LRGParams switches (true/false): fixed by a calibration model, never a calibrated number.
-_SWITCHES = ("hinge_membrane", "heat_in_calories")
+_SWITCHES = ("hinge_membrane", "heat_in_calories", "heat_balance")
 
 
 def documented_bounds(name: str) -> tuple[float, float, str]:
@@ -645,7 +761,8 @@ def documented_bounds(name: str) -> tuple[float, float, str]:
     :data:`rsm_lrg.physics.params.PHYSICAL_RANGES` (``heat_partition``: (0, 1])."""
     from ..physics.params import PHYSICAL_RANGES
 
-    for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS + (DRIVE_HEAT, OVERCONSTRAINT, DRIVE_FRICTION, DRIVE_VISCOUS):
+    for s in DEFAULT_PARAMETERS + OTHER_PARAMETERS + (DRIVE_HEAT, OVERCONSTRAINT, DRIVE_FRICTION, DRIVE_VISCOUS,
+                                                      BALL_CONTACT):
         if s.name == name:
             return s.lower, s.upper, "documented in rsm_lrg.surrogate.calibrate"
     if name in PHYSICAL_RANGES:
@@ -800,7 +917,15 @@ def _calibration_from_toml(raw: dict, lrg_names, surrogate_names, outputs) -> Ca
         if not isinstance(v, list) or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in v):
             raise ValueError(f"[runs] {k} must be a list of numbers")
         lists[k] = tuple(float(x) for x in v)
+    selected = tuple(x for x in h.get("selected_from", "").split(",") if x)
+    for m in selected:
+        if m not in MODELS:
+            raise ValueError(f"[calibration] selected_from names {quote_user_value(m)}, not one of {', '.join(MODELS)}")
+    idx = lists.get("loo_model_index", ())
+    if any(not float(k).is_integer() or not 0 <= k < len(selected) for k in idx):
+        raise ValueError(f"[runs] loo_model_index must hold indices into selected_from (0 to {len(selected) - 1})")
     return Calibration(
+        selected_from=selected, loo_models=tuple(int(k) for k in idx),
         parameters=tuple(ests), response=h.get("response", "tcr_c_per_min"), n=h.get("n", 0),
         r2=h.get("r2", math.nan), rmse=h.get("rmse", math.nan), loo_r2=h.get("loo_r2"),
         loo_rmse=h.get("loo_rmse"), data=h.get("data", ""), data_sha256=h.get("data_sha256", ""),
@@ -833,7 +958,7 @@ def resolve_calibration(spec) -> Calibration | None:
         for k, v in spec.items():
             if k not in known:
                 raise ValueError(f"calibration: unknown parameter {k!r}")
-            if k == "hinge_membrane" and isinstance(v, (bool, np.bool_)):  # a switch of the physics
+            if k in _SWITCHES and isinstance(v, (bool, np.bool_)):  # a switch of the physics
                 ests.append(ParameterEstimate(str(k), bool(v), math.nan, 0.0, 1.0))
                 continue
             if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):

@@ -118,6 +118,30 @@ def _rise_at(values: dict, dur: np.ndarray):
     return np.interp(dur, knots, hist), float(net.steady_rise_per_w)
 
 
+@lru_cache(maxsize=64)
+def _geometry_and_h(items: tuple):
+    """The guide's geometry and the convection coefficients h_side, h_front (Eqs. 10-12)."""
+    net = _network_cached(items)
+    return net.geometry, net.h_side_w_m2k, net.h_front_w_m2k
+
+
+def _rig_rise_at(values: dict, dur: np.ndarray, y: float, rigid: bool):
+    """One heat balance in watts (:func:`rsm_lrg.physics.thermal.network.rig_network`): the
+    carriage's rise per watt [K/W] at the durations ``dur`` [min] (linear between whole
+    minutes, as :func:`_rise_at`) for a watt at the ball contacts and for a watt entering the
+    working stage, and the two steady rises per watt, for leaves of thickness ``y`` (``rigid``:
+    the RMS)."""
+    from ..physics.thermal.network import rig_bodies, rig_network
+
+    geometry, hs, hf = _geometry_and_h(_thermal_items(values))
+    net = rig_network(geometry, hs, hf, rig_bodies(values, y, rigid=rigid, h_side_w_m2k=hs))
+    knots = np.unique(np.concatenate([np.floor(dur), np.ceil(dur)]))
+    out = []
+    for src in ("balls", "stage"):
+        out.append(np.interp(dur, knots, net.response(knots * 60.0, source=src)))
+    return out[0], out[1], float(net.steady_rise("balls")[0]), float(net.steady_rise("stage")[0])
+
+
 def _lagged_rise_at(values: dict, dur: np.ndarray, tau: np.ndarray, unit: np.ndarray, q: np.ndarray):
     """Unit rise [K/W] at the durations ``dur`` [min] of a heat that arrives through the lag
     ``tau`` [s] (the drive heat behind the working stage's heat capacity), read like
@@ -180,14 +204,22 @@ _MAX_STEPS = 10_000
 
 #: Parameters that do not enter the stage dynamics (calibrating them reuses the memo).
 _NOT_DYNAMICS = ("drive_heat_w", "stage_loss_conductance_w_k", "hinge_yield_pa", "hinge_conductivity_w_mk",
-                 "stage_specific_heat_j_kgk")
+                 "stage_specific_heat_j_kgk", "heat_balance", "ball_contact_conductance_w_k",
+                 "joint_conductance_w_m2k", "base_heat_capacity_j_k", "base_loss_conductance_w_k",
+                 "hinge_density_kg_m3", "hinge_specific_heat_j_kgk")
 
 
 class _Base:
-    def __getattr__(self, name):
-        from ..physics.params import LRGParams
+    """The default parameters, built once on first use (not at import)."""
 
-        return getattr(LRGParams(), name)
+    _p = None
+
+    def __getattr__(self, name):
+        if _Base._p is None:
+            from ..physics.params import LRGParams
+
+            _Base._p = LRGParams()
+        return getattr(_Base._p, name)
 
 
 _BASE = _Base()
@@ -269,7 +301,11 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         rigid, 0.0, np.asarray(hv["overconstraint_misfit_m"], float))))
     # 3: friction heat, cycle-averaged (Eq. 8 mechanism): Coulomb work + viscous work
     power = (col("mu_k") * load * slide + visc) / T
-    q = power / p.thermal_equivalent_j_per_cal if p.heat_in_calories else power
+    balance = bool(p.heat_balance)
+    if balance and np.any(np.asarray(extra["heat_partition"]) != 1.0):
+        raise ValueError("heat_partition must stay 1 with heat_balance = true: the share of the friction heat "
+                         "that reaches the carriage follows from the network's conductances")
+    q = power if balance else (power / p.thermal_equivalent_j_per_cal if p.heat_in_calories else power)
     q = q * extra["heat_partition"]
     q_fric = np.broadcast_to(q, (n,)).astype(float)
     # drive heat (a constant drive_heat_w, the drive element's Coulomb friction F_d <|v|> with
@@ -284,8 +320,9 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
 
         p_drive = p_drive + extra["drive_viscous_n_s_m"] * motion.mean_square_speed(s, v, a, col("dwell_s"),
                                                                                   col("jerk_time_s"))
-    q_drive = np.broadcast_to(heat.drive_heat_to_carriage(p_drive, g_joint, hv["stage_loss_conductance_w_k"]),
-                              (n,)).astype(float)
+    p_drive = np.broadcast_to(np.asarray(p_drive, float), (n,)).astype(float)
+    q_drive = p_drive if balance else np.broadcast_to(
+        heat.drive_heat_to_carriage(p_drive, g_joint, hv["stage_loss_conductance_w_k"]), (n,)).astype(float)
     tau_stage = np.broadcast_to(heat.stage_time_constant(
         (1.0 - np.asarray(hv["frame_mass_fraction"], float)) * np.asarray(hv["stage_mass_kg"], float)
         * np.asarray(hv["stage_specific_heat_j_kgk"], float), g_joint, hv["stage_loss_conductance_w_k"]),
@@ -309,7 +346,23 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     else:
         uniq, inv = np.zeros((1, 0)), np.zeros(n, dtype=int)
     lag_end = np.empty(n)
-    for g, row in enumerate(uniq):
+    steady_drive = np.empty(n)
+    if balance:  # one network per leaf thickness, stage kind and per-row parameters; both sources in watts
+        names_b = sorted(pcols)
+        keys_b = np.stack([y, rigid.astype(float)] + [np.broadcast_to(np.asarray(pcols[k], float), (n,))
+                                                       for k in names_b], axis=1)
+        uniq_b, inv_b = np.unique(keys_b, axis=0, return_inverse=True)
+        inv_b = inv_b.reshape(-1)
+        for g, row in enumerate(uniq_b):
+            m = inv_b == g
+            vals = dict(base, **{k: float(x) for k, x in zip(names_b, row[2:].tolist())})
+            try:
+                unit_end[m], lag_end[m], steady[m], steady_drive[m] = _rig_rise_at(vals, dur[m], float(row[0]),
+                                                                                   bool(row[1]))
+            except ValueError as exc:
+                i = int(np.flatnonzero(m)[0])
+                raise ValueError(f"row {row_start + i + 1}: {exc}") from None
+    for g, row in enumerate(uniq if not balance else ()):
         vals = dict(base, **dict(zip(th_names, row)))
         m = inv == g
         try:
@@ -339,7 +392,8 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     vw = wear.wear_rate_per_hour(col("wear_coefficient"), fi, slide, T, wear.brinell_to_pa(col("hardness_hb")))
     b = lambda x: np.broadcast_to(np.asarray(x, float), (n,)).copy()  # noqa: E731
     out = {
-        "tcr_c_per_min": b(tcr), "temperature_rise_k": b(rise), "steady_rise_k": b(q * steady),
+        "tcr_c_per_min": b(tcr), "temperature_rise_k": b(rise),
+        "steady_rise_k": b(q_fric * steady + q_drive * steady_drive if balance else q * steady),
         "wear_volume_m3_per_h": b(vw), "sliding_distance_m_per_cycle": b(slide),
         "heat_w": b(q), "cycle_time_s": b(T),
         "hinge_peak_stress_pa": b(stress),

@@ -165,7 +165,10 @@ def test_calibrate_refuses_bad_options(tmp_path, capsys):
     for extra, needles in [(["--duration-min", "1e12"], ["--duration-min"]),
                            (["--duration-min", "inf"], ["--duration-min"]),
                            (["--parameter", "offset"], ["offset"]),
-                           (["--parameter", "heat_partition"] * 2, ["twice"])]:
+                           (["--parameter", "heat_partition"] * 2, ["twice"]),
+                           (["--select", "v5,nope"], ["--select", "'nope'"]),
+                           (["--select", "v5,v5"], ["--select", "different"]),
+                           (["--select", "v5,v5-nodrive", "--parameter", "mu_k"], ["--select", "--parameter"])]:
         check_refused(capsys, base + extra, needles, [data], [out])
 
 

@@ -8,7 +8,7 @@ from rsm_lrg.physics.chain import TABLE3_THICKNESSES_M, physics_chain
 from rsm_lrg.physics.params import LRGParams
 
 TOP = ["normal_load_n", "f_mu_max_n", "heat_w", "heat_source_w_m3", "reynolds", "prandtl",
-       "h_side_w_m2k", "h_front_w_m2k", "hinge", "thermal", "wear"]
+       "h_side_w_m2k", "h_front_w_m2k", "hinge", "thermal", "wear", "leaf_yield"]
 THERMAL = ["steady_rise_k_fv", "steady_rise_k_network", "time_to_95_percent_h", "tcr_c_per_min"]
 
 
@@ -80,3 +80,26 @@ def test_thermal_is_wired_in_when_available():
     r = physics_chain()
     assert all(isinstance(r.thermal[k], float) for k in THERMAL)
     assert r.thermal["steady_rise_k_fv"] > 0 and r.thermal["tcr_c_per_min"] > 0
+
+
+def test_leaf_yield_scan_says_where_in_the_table3_box_a_leaf_yields(result):
+    # issue 24: the exact beam-column clamp stress over a 5-level grid of the Table 3 box
+    from rsm_lrg.physics.hinge import hinge_peak_stress
+
+    ly = result.leaf_yield
+    d = json.loads(json.dumps(result.to_dict()))["leaf_yield"]
+    assert d["n_points"] == 625 and d["n_yield"] == ly.n_yield > 0
+    assert d["region"]["thickness_m_max"] == pytest.approx(1e-4)  # only the thinnest leaf yields
+    by = {round(t * 1e4): (k, m) for t, k, m, _ in ly.by_thickness}
+    assert by[1][0] == ly.n_yield and all(by[i][0] == 0 for i in (2, 3, 4, 5))
+    # hard accelerations dominate: at 40 m/s^2 more of the thin leaf's settings yield than at 20
+    acc = {x: k for x, k, _ in d["region"]["share_by_acceleration_m_s2"]}
+    assert acc[40.0] > acc[20.0]
+    assert "elastic" in d["model_there"] and "yield" in result.to_text()
+    # the reported maximum is the exact stress at the dynamics' peak deflection of that setting
+    from rsm_lrg.physics.dynamics import cycle_metrics
+
+    at = ly.max_at
+    pk = cycle_metrics(at["stroke_m"], at["velocity_m_s"], at["acceleration_m_s2"], method="auto",
+                       hinge_thickness_m=at["thickness_m"]).peak_deflection_m
+    assert ly.max_stress_pa == pytest.approx(float(hinge_peak_stress(211e9, at["thickness_m"], 0.02, pk)), rel=1e-9)

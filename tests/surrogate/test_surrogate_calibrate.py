@@ -102,10 +102,43 @@ def test_bad_files(tmp_path):
 
 
 @pytest.mark.parametrize("value", ["3", "false", "0.5"])
-@pytest.mark.parametrize("switch", ["hinge_membrane", "heat_in_calories"])
+@pytest.mark.parametrize("switch", ["hinge_membrane", "heat_in_calories", "heat_balance"])
 def test_a_switch_is_not_a_calibrated_number(tmp_path, switch, value):
     # value = 3 used to be 'outside its bounds [0, 1] (a share of the heat)'; false: 'must be a number'
     p = tmp_path / "c.toml"
     p.write_text(f"[parameters.{switch}]\nvalue = {value}\n")
     with pytest.raises(ValueError, match=rf"\[parameters\.{switch}\]: {switch} is a switch of the physics"):
         load_calibration(p)
+
+
+def test_aicc_charges_each_parameter():
+    # Hurvich & Tsai (1989): n ln(SSR/n) + 2k + 2k(k+1)/(n-k-1), by hand for n = 26
+    import math
+
+    from rsm_lrg.surrogate.calibrate import aicc
+
+    assert aicc(0.5, 26, 3) == pytest.approx(26 * math.log(0.5 / 26) + 6 + 24 / 22, rel=1e-14)
+    assert aicc(0.5, 26, 3) > aicc(0.5, 26, 2)
+    with pytest.raises(ValueError, match="n > k"):
+        aicc(1.0, 4, 3)
+
+
+def test_selection_is_checked_and_recorded_in_the_file(tmp_path):
+    d = synthetic({"heat_partition": 0.4}, n=6)
+    with pytest.raises(ValueError, match="unknown calibration model"):
+        calibrate(d, select=["v5", "nope"])
+    with pytest.raises(ValueError, match="different"):
+        calibrate(d, select=["v5", "v5"])
+    p = tmp_path / "c.toml"
+    p.write_text('[calibration]\nselected_from = "v5,v5-nodrive"\n[parameters.viscous_friction_n_s_m]\nvalue = 1.0\n'
+                 "[runs]\nloo_model_index = [0, 1, 2]\n")
+    with pytest.raises(ValueError, match="loo_model_index"):
+        load_calibration(p)
+    p.write_text('[calibration]\nselected_from = "v5,v9"\n[parameters.viscous_friction_n_s_m]\nvalue = 1.0\n')
+    with pytest.raises(ValueError, match="selected_from"):
+        load_calibration(p)
+    p.write_text('[calibration]\nselected_from = "v5,v5-nodrive"\n[parameters.viscous_friction_n_s_m]\nvalue = 1.0\n'
+                 "[runs]\nloo_model_index = [0, 1, 1]\n")
+    c = load_calibration(p)
+    assert c.selected_from == ("v5", "v5-nodrive") and c.loo_models == (0, 1, 1)
+    assert c.to_dict()["loo_models"] == ["v5", "v5-nodrive", "v5-nodrive"]

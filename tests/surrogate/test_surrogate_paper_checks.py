@@ -66,8 +66,11 @@ def test_a_loo_fold_is_a_calibration_from_scratch(cal, fold):
 
     t4 = load_table4()
     rest = t4.drop(index=fold).reset_index(drop=True)
+    # the same procedure as the shipped file's: its model, or its AICc choice among its candidates
     c26 = calibrate(rest[["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2", "tcr_c_per_min"]],
-                    loo=False)
+                    loo=False, model=cal.model, select=list(cal.selected_from) or None)
+    if cal.loo_models:
+        assert c26.model == cal.selected_from[cal.loo_models[fold]]
     got = simulate(t4.iloc[[fold]][["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]], noise_sd=0,
                    calibration=c26)
     assert float(got.tcr_c_per_min.iloc[0]) == pytest.approx(cal.loo_predicted[fold], rel=1e-3)

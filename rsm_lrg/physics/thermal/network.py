@@ -31,6 +31,7 @@ arrays of Q (and groups rows by their h), which is what the virtual-run surrogat
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, fields
 from functools import lru_cache
 
 import numpy as np
@@ -38,7 +39,13 @@ import numpy as np
 from .fixed_order import solve_spd, symmetric_eigen
 from .geometry import GuideGeometry
 
-__all__ = ["ThermalNetwork", "network_response", "network_rise", "fin_conductance"]
+__all__ = ["ThermalNetwork", "network_response", "network_rise", "fin_conductance", "RigBodies", "HeatPaths",
+           "rig_bodies", "rig_network", "RIG_SOURCES"]
+
+#: Heat inputs of the rig network (:class:`RigBodies`): ``"balls"`` (friction at the ball
+#: contacts, Eq. 8 in watts) and ``"stage"`` (heat entering the working stage, e.g. through
+#: the drive's link span, Section 4.1).
+RIG_SOURCES = ("balls", "stage")
 
 
 def fin_conductance(h_w_m2k, perimeter_m, conductivity_w_mk, area_m2, length_m, *, tip_h_w_m2k=0.0):
@@ -72,6 +79,81 @@ def _rail_edges(g: GuideGeometry, dx_m: float) -> np.ndarray:
     return np.asarray(edges)
 
 
+@dataclass(frozen=True)
+class RigBodies:
+    """The bodies around the guide in the rig (Section 4.1), for one heat balance in watts.
+
+    Every value is for the whole rig (the network halves it for its half model), in W/K or
+    J/K; :func:`rig_bodies` derives them from the parameters (``data/lrg_shs15v.toml``: each
+    with its source or marked ASSUMPTION).
+
+    Attributes
+    ----------
+    ball_contact_w_k : float
+        Conductance between the ball contacts and the carriage, and (the same) between them
+        and the rail, all rows together [W/K]: Hertzian constriction, replaces the perfect
+        ball-row contact of the paper's FEM.
+    frame_joint_w_k : float
+        Bolted joint carriage -> rigid frame (and, in the RMS, frame -> working stage) [W/K].
+    frame_capacity_j_k, frame_loss_w_k : float
+        Heat capacity of the rigid frame [J/K] and its loss to the air [W/K].
+    leaf_w_k : float
+        End-to-end conduction of the n leaves, ``n lambda w y / l`` [W/K] (Eq. 3); ``inf``:
+        the RMS, no leaves (the stage is bolted, ``frame_joint_w_k``).
+    leaf_capacity_j_k, leaf_loss_w_k : float
+        Heat capacity [J/K] and loss to the air (both faces) [W/K] of the leaves.
+    stage_capacity_j_k, stage_loss_w_k : float
+        The working stage [J/K], [W/K].
+    rail_base_w_m2k : float
+        Contact conductance per area of the rail's mounting face on the base [W/(m^2 K)].
+    base_capacity_j_k, base_loss_w_k : float
+        The base the rail is bolted to [J/K], [W/K].
+    """
+
+    ball_contact_w_k: float
+    frame_joint_w_k: float
+    frame_capacity_j_k: float
+    frame_loss_w_k: float
+    leaf_w_k: float
+    leaf_capacity_j_k: float
+    leaf_loss_w_k: float
+    stage_capacity_j_k: float
+    stage_loss_w_k: float
+    rail_base_w_m2k: float
+    base_capacity_j_k: float
+    base_loss_w_k: float
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            v = getattr(self, f.name)
+            ok = (v > 0 and (math.isfinite(v) or f.name == "leaf_w_k")) if isinstance(v, float) else False
+            if not ok:
+                raise ValueError(f"RigBodies.{f.name} must be a positive number, got {v!r}.")
+
+    @property
+    def rigid(self) -> bool:
+        """The RMS: the working stage bolted to the frame, no leaves."""
+        return math.isinf(self.leaf_w_k)
+
+
+@dataclass(frozen=True)
+class HeatPaths:
+    """Where each watt of a source goes in the steady state of the rig network.
+
+    ``to_ambient`` maps each body (``carriage``, ``balls``, ``rail``, ``frame``, ``leaves``,
+    ``stage``, ``base``) to the share of the source's heat it gives to the air; the shares sum
+    to 1 (energy balance). ``into_carriage`` and ``into_rail`` are the shares that leave the
+    ball contacts into the carriage and into the rail (friction source; they sum to 1);
+    ``carriage_rise_per_w`` the thermocouple's steady rise per watt [K/W].
+    """
+
+    source: str
+    to_ambient: dict
+    into_carriage: float
+    into_rail: float
+    carriage_rise_per_w: float
+
+
 class ThermalNetwork:
     """The reduced network for one geometry and one set of convection coefficients.
 
@@ -96,7 +178,8 @@ class ThermalNetwork:
     """
 
     def __init__(self, geometry: GuideGeometry, h_side_w_m2k: float, h_front_w_m2k: float, *,
-                 h_rail_w_m2k: float | None = None, h_base_w_m2k: float = 0.0, dx_m: float = 2e-3):
+                 h_rail_w_m2k: float | None = None, h_base_w_m2k: float = 0.0, dx_m: float = 2e-3,
+                 rig: RigBodies | None = None):
         if h_rail_w_m2k is None:
             h_rail_w_m2k = h_side_w_m2k
         for name, v in (("h_side_w_m2k", h_side_w_m2k), ("h_front_w_m2k", h_front_w_m2k),
@@ -137,7 +220,9 @@ class ThermalNetwork:
         lam_b = g.ball_row_conductivity_w_mk
         g_row_side = lam_b * d / (gap / 2)  # per row, per unit length, strip centre -> one face
         G_ball_car = g.n_rows * g_row_side * dx[:nb]
-        G_ball_rail = g.n_rows * g_row_side * dx[:nb]
+        if rig is not None:  # Hertzian contacts (whole guide) spread along the rows, half model
+            G_ball_car = rig.ball_contact_w_k * dx[:nb] / Lrow
+        G_ball_rail = G_ball_car.copy()
         C_ball = g.ball_mass_kg * g.ball_specific_heat_j_kgk * dx[:nb] / Lrow
 
         # ---- clearance air: carriage <-> rail (parallel to the balls) -----------------
@@ -154,8 +239,9 @@ class ThermalNetwork:
         G_car_amb = 0.5 * (h_side_w_m2k * area_side + h_front_w_m2k * area_front)
         C_car = 0.5 * g.carriage_steel_volume_m3 * steel_rc
 
-        # ---- assemble: node 0 carriage, 1..nb balls, then rail ------------------------
-        n = 1 + nb + nr
+        # ---- assemble: node 0 carriage, 1..nb balls, then rail, then the rig's bodies -----
+        extra = [] if rig is None else (["frame"] + ([] if rig.rigid else ["leaves"]) + ["stage", "base"])
+        n = 1 + nb + nr + len(extra)
         K = np.zeros((n, n))
         C = np.zeros(n)
         b = np.zeros(n)
@@ -182,10 +268,42 @@ class ThermalNetwork:
                 link(0, ir[k], G_air[k])
         for k in range(nr - 1):
             link(ir[k], ir[k + 1], G_axial[k])
+        g_amb = np.zeros(n)  # conductance of every node to the air [W/K]
+        g_amb[0] = G_car_amb
+        g_amb[ir] = G_rail_amb
+        sources = {"balls": b}
+        if rig is not None:
+            idx = {name: 1 + nb + nr + k for k, name in enumerate(extra)}
+            fr, st, ba = idx["frame"], idx["stage"], idx["base"]
+            C[fr], C[st], C[ba] = 0.5 * rig.frame_capacity_j_k, 0.5 * rig.stage_capacity_j_k, 0.5 * rig.base_capacity_j_k
+            for node, loss in ((fr, rig.frame_loss_w_k), (st, rig.stage_loss_w_k), (ba, rig.base_loss_w_k)):
+                K[node, node] += 0.5 * loss
+                g_amb[node] = 0.5 * loss
+            link(0, fr, 0.5 * rig.frame_joint_w_k)
+            if rig.rigid:
+                link(fr, st, 0.5 * rig.frame_joint_w_k)
+            else:  # the leaves' node at their mid-length: half their conduction on each side
+                lf = idx["leaves"]
+                C[lf] = 0.5 * rig.leaf_capacity_j_k
+                K[lf, lf] += 0.5 * rig.leaf_loss_w_k
+                g_amb[lf] = 0.5 * rig.leaf_loss_w_k
+                link(fr, lf, rig.leaf_w_k)  # 0.5 (half model) x 2 (half the length)
+                link(lf, st, rig.leaf_w_k)
+            for k in range(nr):  # the rail's mounting face on the base
+                link(ir[k], ba, rig.rail_base_w_m2k * w * dx[k])
+            b_stage = np.zeros(n)
+            b_stage[st] = 0.5
+            sources["stage"] = b_stage
         self.K, self.C, self.b = K, C, b
-        self.names = ["carriage"] + [f"balls[{k}]" for k in range(nb)] + [f"rail[{k}]" for k in range(nr)]
+        self.sources = sources
+        self.rig = rig
+        self.g_ambient = g_amb
+        self._ball_links = (ib, ir[:nb], G_ball_car, G_ball_rail)
+        self.names = (["carriage"] + [f"balls[{k}]" for k in range(nb)] + [f"rail[{k}]" for k in range(nr)]
+                      + extra)
         self.rail_x_m = xc
         self.carriage_convection_w_k = 2 * G_car_amb
+        self.h_side_w_m2k, self.h_front_w_m2k = float(h_side_w_m2k), float(h_front_w_m2k)
         # modal decomposition (exact in time), in a fixed order of floating-point operations
         # (no BLAS/LAPACK: their threading changes the last bits; see .fixed_order)
         s = 1.0 / np.sqrt(C)
@@ -196,9 +314,12 @@ class ThermalNetwork:
         self._mu = mu
         self._eig = eig
         self._s = s
-        self._load = eig.project(s * b)[0]  # V^T C^-1/2 b
-        self._coef: dict[int, np.ndarray] = {}
-        self._steady = solve_spd(K, b)
+        self._loads = {name: eig.project(s * vec)[0] for name, vec in sources.items()}  # V^T C^-1/2 b
+        self._load = self._loads["balls"]
+        self._coef: dict[tuple[int, str], np.ndarray] = {}
+        self._node_proj: dict[int, np.ndarray] = {}
+        self._steadies = {name: solve_spd(K, vec) for name, vec in sources.items()}
+        self._steady = self._steadies["balls"]
 
     # ------------------------------------------------------------------------------
     @property
@@ -216,22 +337,54 @@ class ThermalNetwork:
         """Time constants 1/mu of the network's modes [s], slowest first."""
         return 1.0 / self._mu
 
-    def modal_coefficients(self, node: int = 0) -> np.ndarray:
-        """Coefficients a_k [K/W] of ``node``'s unit response ``sum_k a_k (1 - exp(-mu_k t))``,
-        in the order of :attr:`time_constants_s`."""
+    def _source(self, source: str) -> str:
+        if source not in self.sources:
+            raise ValueError(f"source must be one of {', '.join(self.sources)}, got {source!r}.")
+        return source
+
+    def modal_coefficients(self, node: int = 0, source: str = "balls") -> np.ndarray:
+        """Coefficients a_k [K/W] of ``node``'s unit response ``sum_k a_k (1 - exp(-mu_k t))``
+        to a watt of ``source`` (:attr:`sources`), in the order of :attr:`time_constants_s`."""
         node = int(node)
         if not 0 <= node < self._mu.size:
             raise ValueError(f"node must be in [0, {self._mu.size}), got {node}.")
-        if node not in self._coef:
-            unit = np.zeros(self._mu.size)
-            unit[node] = 1.0
-            coef = self._s[node] * self._eig.project(unit)[0] * self._load / self._mu
+        key = (node, self._source(source))
+        if key not in self._coef:
+            if node not in self._node_proj:
+                unit = np.zeros(self._mu.size)
+                unit[node] = 1.0
+                self._node_proj[node] = self._s[node] * self._eig.project(unit)[0]
+            coef = self._node_proj[node] * self._loads[source] / self._mu
             coef.setflags(write=False)
-            self._coef[node] = coef
-        return self._coef[node]
+            self._coef[key] = coef
+        return self._coef[key]
 
-    def response(self, times_s, node: int = 0) -> np.ndarray:
-        """Rise per watt [K/W] of ``node`` (0 = carriage) at ``times_s`` after a heat step.
+    def steady_rise(self, source: str = "balls") -> np.ndarray:
+        """Steady rise of every node per watt of ``source`` [K/W] (read-only copy)."""
+        return self._steadies[self._source(source)].copy()
+
+    def heat_paths(self, source: str = "balls") -> HeatPaths:
+        """Where each watt of ``source`` leaves the network in the steady state (the energy
+        balance: the shares sum to 1) and, for the ball contacts, which share flows into the
+        carriage and which into the rail. The shares follow from the conductances alone."""
+        th = self._steadies[self._source(source)]
+        total = 2.0 * float(self.sources[source].sum())  # the half model: 1 W in all
+        groups: dict[str, float] = {}
+        for name, flow in zip(self.names, (self.g_ambient * th).tolist()):
+            key = name.split("[")[0]
+            groups[key] = groups.get(key, 0.0) + 2.0 * flow / total
+        ib, ir, gc, gr = self._ball_links
+        into_c = 2.0 * float(np.sum(gc * (th[ib] - th[0])))
+        into_r = 2.0 * float(np.sum(gr * (th[ib] - th[ir])))
+        gen = into_c + into_r
+        share_c = into_c / gen if source == "balls" else math.nan
+        share_r = into_r / gen if source == "balls" else math.nan
+        return HeatPaths(source, groups, share_c, share_r, float(th[0]))
+
+    def response(self, times_s, node: int = 0, source: str = "balls") -> np.ndarray:
+        """Rise per watt [K/W] of ``node`` (0 = carriage) at ``times_s`` after a heat step of
+        ``source`` (``"balls"``: the friction at the ball contacts; ``"stage"``: heat entering
+        the working stage, rig networks only).
 
         Each time's value is the sum over the modes in a fixed order of element-wise
         operations: it does not depend on the other times asked for, on the number of
@@ -240,7 +393,7 @@ class ThermalNetwork:
         if np.any(t < 0) or not np.all(np.isfinite(t)):
             raise ValueError("times_s must be finite and >= 0 [s].")
         t = np.ascontiguousarray(t)
-        coef = self.modal_coefficients(node)
+        coef = self.modal_coefficients(node, source)
         out = np.zeros(t.shape)
         for a, mu in zip(coef.tolist(), self._mu.tolist()):
             out -= a * np.expm1(-mu * t)
@@ -345,3 +498,63 @@ def network_rise(heat_w, times_s, h_side_w_m2k=8.82, h_front_w_m2k=22.45, *, h_r
         rows = inv == k
         out[rows] = q[rows, None] * resp[None, :]
     return out
+
+
+def rig_bodies(values, thickness_m: float, *, rigid: bool = False, h_side_w_m2k: float = 8.82) -> RigBodies:
+    """The rig's bodies (:class:`RigBodies`) from the parameters ``values`` (a full
+    :meth:`rsm_lrg.physics.params.LRGParams.to_dict`), for leaves of thickness ``thickness_m``
+    [m] (``rigid``: the RMS, no leaves).
+
+    * ball contacts: ``ball_contact_conductance_w_k`` (each side);
+    * frame: ``frame_mass_fraction * stage_mass_kg`` of 6061-T6 (Table 2), bolted to the
+      carriage's top face (``block_width_m * block_length_m``) with the contact conductance
+      ``joint_conductance_w_m2k``; it loses ``stage_loss_conductance_w_k`` to the air (a block
+      of the working stage's size);
+    * leaves: ``hinge_count`` leaves of 65Mn (Table 2), ``n lambda w y / l`` end to end (Eq. 3),
+      heat capacity ``n rho c w y l``, both faces convecting at ``h_side_w_m2k`` (Eq. 11);
+    * working stage: the rest of ``stage_mass_kg``, ``stage_loss_conductance_w_k``;
+    * base: ``base_heat_capacity_j_k``, ``base_loss_conductance_w_k``; the rail's mounting
+      face on it with ``joint_conductance_w_m2k``.
+
+    >>> from rsm_lrg.physics.params import LRGParams
+    >>> r = rig_bodies(LRGParams().to_dict(), 3e-4)
+    >>> round(r.leaf_w_k, 4), r.rigid, rig_bodies(LRGParams().to_dict(), 3e-4, rigid=True).rigid
+    (0.0288, False, True)
+    """
+    v = values
+    y = float(thickness_m)
+    n, w, lh = float(v["hinge_count"]), float(v["hinge_width_m"]), float(v["hinge_length_m"])
+    m_frame = float(v["frame_mass_fraction"]) * float(v["stage_mass_kg"])
+    m_stage = float(v["stage_mass_kg"]) - m_frame
+    c_al = float(v["stage_specific_heat_j_kgk"])
+    hj = float(v["joint_conductance_w_m2k"])
+    leaf = math.inf if rigid else n * float(v["hinge_conductivity_w_mk"]) * w * y / lh
+    return RigBodies(
+        ball_contact_w_k=float(v["ball_contact_conductance_w_k"]),
+        frame_joint_w_k=hj * float(v["block_width_m"]) * float(v["block_length_m"]),
+        frame_capacity_j_k=m_frame * c_al if m_frame > 0 else 1e-6,
+        frame_loss_w_k=float(v["stage_loss_conductance_w_k"]),
+        leaf_w_k=leaf,
+        leaf_capacity_j_k=n * float(v["hinge_density_kg_m3"]) * float(v["hinge_specific_heat_j_kgk"]) * w * y * lh,
+        leaf_loss_w_k=n * 2.0 * w * lh * float(h_side_w_m2k),
+        stage_capacity_j_k=m_stage * c_al if m_stage > 0 else 1e-6,
+        stage_loss_w_k=float(v["stage_loss_conductance_w_k"]),
+        rail_base_w_m2k=hj,
+        base_capacity_j_k=float(v["base_heat_capacity_j_k"]),
+        base_loss_w_k=float(v["base_loss_conductance_w_k"]),
+    )
+
+
+@lru_cache(maxsize=512)
+def _rig_network(geometry, h_side, h_front, rig, dx_m):
+    return ThermalNetwork(geometry, h_side, h_front, dx_m=dx_m, rig=rig)
+
+
+def rig_network(geometry: GuideGeometry, h_side_w_m2k: float, h_front_w_m2k: float, rig: RigBodies, *,
+                dx_m: float = 1e-2) -> ThermalNetwork:
+    """The guide's network with the rig's bodies (one heat balance in watts), cached per
+    (geometry, h, bodies, dx). ``dx_m`` 10 mm: the rail's 1-D cells (the carriage's rise at
+    50 min is 0.2 % above that of 1 mm cells, tests/physics/thermal/test_rig_network.py; the
+    leaves' conductance varies row by row, so a design of many thicknesses builds one network
+    per thickness)."""
+    return _rig_network(geometry, float(h_side_w_m2k), float(h_front_w_m2k), rig, float(dx_m))
