@@ -28,7 +28,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("data", metavar="DATA.csv", help="measured runs: the design columns and the response")
     add_reader_options(p)
     p.add_argument("--response", required=True, metavar="COL", help="the measured column (e.g. tcr_c_per_min)")
-    p.add_argument("--model", default="v4", choices=("v4", "v5", "v5-nodrive", "v4-coulomb", "v3", "v3-overconstraint",
+    p.add_argument("--model", default="v5", choices=("v4", "v5", "v5-nodrive", "v4-coulomb", "v3", "v3-overconstraint",
                                                      "v2"),
                    help="calibration model: the physics it fixes and its default parameters (default v4: "
                         "elastic hinge with held ends, the drive's viscous friction heat conducted through the "

@@ -398,10 +398,11 @@ def _surrogate_rows(sim_fig9, sim_t4, why_missing: str, table4, cal=None, press_
         rows.append(_info(S, "Fig. 9 setting without the drive heat (c_d = 0): κ [°C/min]", "RMS above RFCMS",
                           "; ".join(shown),
                           "what produces the surrogate's κ ordering of Fig. 9: the calibrated drive heat c_d⟨v²⟩, "
-                          "which the RMS's rigid joint passes whole and the RFCMS's leaves only in part; the guide's "
-                          "own friction heat is the same within the sliding difference (±0.3 %, the wear row). The "
-                          "paper (Section 2.2) does not consider motor heat: this mechanism is the model's, fitted "
-                          "to Table 4, not the paper's"))
+                          "which the RMS's rigid joint passes whole and the RFCMS's leaves only in part; without it "
+                          "the two stages' guides slide the same within ±0.3 % (the wear row), and in the heat "
+                          "balance (model v5) the RMS's stage, bolted to its carriage, draws friction heat away, so "
+                          "the RFCMS is the warmer. The paper (Section 2.2) does not consider motor heat: this "
+                          "mechanism is the model's, fitted to Table 4, not the paper's"))
     if cal is not None and cal.parameter_values().get("heat_balance"):
         rows.extend(_heat_balance_rows(S, cal))
     if cal is not None:

@@ -154,7 +154,7 @@ MODELS = {
 }
 
 #: The model ``rsm-lrg calibrate`` uses by default.
-DEFAULT_MODEL = "v4"
+DEFAULT_MODEL = "v5"
 
 #: Other parameters one may calibrate instead (``--parameter NAME``).
 OTHER_PARAMETERS = (
@@ -497,6 +497,10 @@ def _problem(model, parameters, data, response, params, duration_min, grid_point
     """The calibration problem of one model: its parameters, bounds, profile grid, and the
     prediction and least-squares closures."""
     specs = _specs(parameters, model)
+    if dict(MODELS[model].fixed).get("heat_balance") and any(sp.name == "heat_partition" for sp in specs):
+        raise ValueError(f"heat_partition is not a parameter of model {model}: with one heat balance in watts the "
+                         "share of the friction heat that reaches the carriage follows from the conductances "
+                         "(calibrate ball_contact_conductance_w_k, or use --model v4)")
     n = obs.size
     if n <= len(specs) + 1:
         k = len(specs)

@@ -11,7 +11,7 @@ import pytest
 from rsm_lrg.cli import main
 from rsm_lrg.surrogate import simulate
 
-HEAT = ["--parameter", "heat_partition", "--parameter", "viscous_friction_n_s_m"]
+HEAT = ["--model", "v4", "--parameter", "heat_partition", "--parameter", "viscous_friction_n_s_m"]
 
 
 @pytest.fixture()
@@ -69,7 +69,8 @@ def test_json_and_force(measured, tmp_path, capsys):
 def test_bad_parameters_are_one_error_line(measured, extra, needle):
     p, d = measured
     d.rename(columns={"kappa": "tcr_c_per_min"}).to_csv(p, index=False)
-    r = subprocess.run([sys.executable, "-m", "rsm_lrg", "calibrate", str(p), "--response", "tcr_c_per_min", *extra],
+    r = subprocess.run([sys.executable, "-m", "rsm_lrg", "calibrate", str(p), "--response", "tcr_c_per_min", "--model",
+                        "v4", *extra],
                        capture_output=True, text=True)
     assert r.returncode == 2
     lines = r.stderr.strip().splitlines()

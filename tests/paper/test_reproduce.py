@@ -173,3 +173,17 @@ def test_fig9_wear_row_shows_both_motion_profiles(rep):
     ratios = lambda text: [float(x.split(": ")[1]) for x in text.removeprefix("trapezoid ").split(", ")]  # noqa: E731
     assert all(v > 1 for v in ratios(trap)) and all(v < 1 for v in ratios(scurve))
     assert "Akribis" in r.note
+
+
+@pytest.mark.slow
+def test_heat_balance_and_leaf_yield_rows(rep):
+    # issue 24: one heat balance in watts (Eq. 8 in calories only where it is printed) and where in
+    # the Table 3 box a leaf yields, with the shipped calibration
+    r = _row(rep, "heat balance (model v5): friction heat")
+    assert r.paper.startswith("0.4150") and "into the carriage" in r.toolkit
+    assert r.toolkit_value == pytest.approx(4.184 * 0.4150, rel=1e-3)
+    assert "the share that reaches the carriage follows from the conductances" in r.note
+    y = _row(rep, "leaf past yield in the Table 3 box")
+    assert "y ≤ 0.10 mm" in y.toolkit and y.toolkit_value > 0
+    loo = _row(rep, "surrogate leave-one-out R²")
+    assert "inside every fold" in loo.note and "0.894" in loo.note

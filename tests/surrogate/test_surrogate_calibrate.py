@@ -30,7 +30,7 @@ def test_recovers_known_heat_parameters_exactly():
     # exact solution: data made by the surrogate itself with known parameters, no noise
     truth = {"heat_partition": 0.4, "viscous_friction_n_s_m": 5.0}
     d = synthetic(truth)
-    cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], source="synthetic")
+    cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], source="synthetic", model="v4")
     got = cal.parameter_values()
     assert got["heat_partition"] == pytest.approx(0.4, rel=1e-5)
     assert got["viscous_friction_n_s_m"] == pytest.approx(5.0, rel=1e-4)
@@ -54,7 +54,7 @@ def test_noise_gives_finite_standard_errors_that_cover_the_truth():
     truth = {"heat_partition": 0.4, "viscous_friction_n_s_m": 5.0}
     d = synthetic(truth, n=20)
     d["tcr_c_per_min"] += np.random.default_rng(1).normal(0, 5e-4, len(d))
-    cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], loo=False)
+    cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], loo=False, model="v4")
     for p in cal.parameters:
         assert math.isfinite(p.std_error) and p.std_error > 0
         assert abs(p.value - truth[p.name]) < 4 * p.std_error
@@ -63,7 +63,7 @@ def test_noise_gives_finite_standard_errors_that_cover_the_truth():
 @pytest.mark.slow
 def test_toml_round_trip(tmp_path):
     d = synthetic({"heat_partition": 0.4, "viscous_friction_n_s_m": 5.0}, n=6)
-    cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], source="x.csv",
+    cal = calibrate(d, parameters=["heat_partition", "viscous_friction_n_s_m"], source="x.csv", model="v4",
                     data_sha256="ab" * 32)
     path = tmp_path / "cal.toml"
     path.write_text(calibration_toml(cal))
@@ -85,7 +85,9 @@ def test_bad_requests():
     with pytest.raises(ValueError, match="start within the bounds"):
         calibrate(d, parameters=[ParameterSpec("heat_partition", 0.5, 1.0, 0.1, "1", "")])
     with pytest.raises(ValueError, match="too few"):
-        calibrate(d.iloc[:2], parameters=["heat_partition"])
+        calibrate(d.iloc[:2], parameters=["heat_partition"], model="v4")
+    with pytest.raises(ValueError, match="heat_partition is not a parameter of model v5"):
+        calibrate(d, parameters=["heat_partition"])
 
 
 def test_bad_files(tmp_path):
