@@ -210,7 +210,7 @@ def test_calibrate_writes_valid_toml_for_a_hostile_file_name(tmp_path):
     data.write_bytes(data_path("table4.csv").read_bytes())
     out = tmp_path / "cal.toml"
     r = subprocess.run([sys.executable, "-m", "rsm_lrg", "calibrate", str(data), "--response", "tcr_c_per_min",
-                        "--parameter", "heat_partition", "--no-loo", "-o", str(out)],
+                        "--model", "v4", "--parameter", "heat_partition", "--no-loo", "-o", str(out)],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr[-2000:]
     assert "calibration fits" in r.stderr  # the progress bar (tqdm) on stderr
