@@ -32,7 +32,7 @@ __all__ = [
     "Calibration", "calibrate", "load_calibration", "resolve_calibration", "calibration_toml",
     "OTHER_PARAMETERS", "file_sha256", "documented_bounds", "MODELS", "CalibrationModel", "DEFAULT_MODEL",
     "PAPER_PRESS_R2",
-    "DRIVE_FRICTION", "DRIVE_VISCOUS",
+    "DRIVE_FRICTION", "DRIVE_VISCOUS", "BALL_CONTACT", "aicc", "profile_interval",
 ]
 
 #: The paper's quadratic (Eq. 19) predicts unseen runs with R² 0.818 (PRESS 2.079e-4 against
@@ -629,6 +629,41 @@ def _profile_interval(i, specs, theta, cost_min, lo, hi, fit, predict, obs, n, b
             ends.append(float(brentq(g, theta[i], edge, xtol=1e-4 * (hi[i] - lo[i]))))
         bar.update(1)
     return min(ends), max(ends)
+
+
+def profile_interval(data, cal: Calibration, name: str, *, level: float = 0.95,
+                     duration_min: float = 50.0) -> tuple[float, float]:
+    """Profile-likelihood interval [lower, upper] of the calibrated parameter ``name`` of
+    ``cal`` on the runs ``data`` (those it was fitted to): the parameter fixed at each trial
+    value, the others refitted by least squares from ``cal``'s optimum, the ends where the cost
+    passes ``SSR_min/2 · (1 + F(level; 1, n−p)/(n−p))`` (Bates & Watts 1988, Section 6.1); a
+    bound where the profile stays below it. ``calibrate`` computes it for the stage parameter;
+    this gives it for any parameter of a calibration (minutes: every trial value is a fit).
+    """
+    from scipy.optimize import least_squares
+
+    from ..io import float_column
+    from ..physics.params import LRGParams
+    from .design_input import read_design_arrays
+    from .runs import check_duration, evaluate_rows
+
+    if not cal.model:
+        raise ValueError("the calibration names no model; profile intervals need one")
+    names = [q.name for q in cal.parameters]
+    if name not in names:
+        raise ValueError(f"{name!r} is not a parameter of this calibration ({', '.join(names)})")
+    obs = float_column(data, cal.response).to_numpy()
+    pr = _problem(cal.model, names, data, cal.response, None, check_duration(duration_min), None, obs,
+                  least_squares, LRGParams, read_design_arrays, evaluate_rows)
+    theta = np.array([q.value for q in cal.parameters])
+    cost = 0.5 * float(np.sum((pr.predict(theta) - obs) ** 2))
+
+    class _NoBar:
+        def update(self, k: int) -> None:
+            pass
+
+    return _profile_interval(names.index(name), pr.specs, theta, cost, pr.lo, pr.hi, pr.fit, pr.predict, obs,
+                             obs.size, _NoBar(), level=level)
 
 
 def _calibrate_steps(specs, grid, stage_idx, x0, lo, hi, scale, fit, predict, obs, n, loo, bar, arrays, p,

@@ -144,3 +144,14 @@ def test_selection_is_checked_and_recorded_in_the_file(tmp_path):
     c = load_calibration(p)
     assert c.selected_from == ("v5", "v5-nodrive") and c.loo_models == (0, 1, 1)
     assert c.to_dict()["loo_models"] == ["v5", "v5-nodrive", "v5-nodrive"]
+
+
+def test_profile_interval_needs_a_parameter_of_the_calibration():
+    from rsm_lrg.datasets import load_table4
+    from rsm_lrg.surrogate.calibrate import profile_interval
+
+    cal = resolve_calibration("default")
+    with pytest.raises(ValueError, match="'mu_k' is not a parameter of this calibration"):
+        profile_interval(load_table4(), cal, "mu_k")
+    with pytest.raises(ValueError, match="names no model"):
+        profile_interval(load_table4(), resolve_calibration({"heat_partition": 0.5}), "heat_partition")
