@@ -86,7 +86,9 @@ class LeafYieldScan:
     (:func:`.dynamics.cycle_metrics`) on a full grid of ``levels`` equally spaced values per
     factor of :data:`TABLE3_BOX`, against ``hinge_yield_pa``.
 
-    ``region`` gives bounds that every yielding point satisfies (thickness at most, stroke,
+    Settings where a leaf deflects beyond the tabulated law (``n_beyond_model``) count as
+    yielding, with the stress at that limit (a lower bound). ``region`` gives bounds that every
+    yielding point satisfies (thickness at most, stroke,
     velocity and acceleration at least; ``None`` where nothing yields): necessary conditions,
     not sufficient ones. ``by_thickness`` lists, per thickness level, the points that yield,
     the points scanned and the largest stress [Pa].
@@ -95,6 +97,7 @@ class LeafYieldScan:
     levels: int
     n_points: int
     n_yield: int
+    n_beyond_model: int
     viscous_friction_n_s_m: float
     yield_strength_pa: float
     max_stress_pa: float
@@ -104,7 +107,7 @@ class LeafYieldScan:
 
     def to_dict(self) -> dict[str, Any]:
         return {"box": {k: list(v) for k, v in TABLE3_BOX.items()}, "levels": self.levels,
-                "n_points": self.n_points, "n_yield": self.n_yield,
+                "n_points": self.n_points, "n_yield": self.n_yield, "n_beyond_model": self.n_beyond_model,
                 "viscous_friction_n_s_m": self.viscous_friction_n_s_m, "yield_strength_pa": self.yield_strength_pa,
                 "max_stress_pa": self.max_stress_pa, "max_at": dict(self.max_at),
                 "region": None if self.region is None else dict(self.region),
@@ -117,6 +120,9 @@ class LeafYieldScan:
                  f"exact beam-column clamp stress at the cycle's peak deflection, block viscous friction "
                  f"{self.viscous_friction_n_s_m:g} N s/m; yield {self.yield_strength_pa / 1e6:.0f} MPa): "
                  f"{self.n_yield} settings yield"]
+        if self.n_beyond_model:
+            lines.append(f"  {self.n_beyond_model} of them deflect beyond the tabulated leaf law (200 thicknesses); "
+                         "their stress is a lower bound")
         for t, k, m, sm in self.by_thickness:
             lines.append(f"  {t * 1e3:.2f} mm leaf: {k} of {m} yield, largest stress {sm / 1e6:.0f} MPa")
         a = self.max_at
@@ -146,11 +152,28 @@ def leaf_yield_scan(params: LRGParams | None = None, *, levels: int = 5) -> Leaf
         raise ValueError(f"levels must be a whole number in [2, 21], got {levels!r}")
     axes = [np.linspace(lo, hi, levels) for lo, hi in TABLE3_BOX.values()]
     y, s, v, a = (g.ravel() for g in np.meshgrid(*axes, indexing="ij"))
-    cm = dynamics.cycle_metrics(s, v, a, params=p, method="auto", hinge_thickness_m=y)
-    pk = np.asarray(cm.peak_deflection_m, dtype=float)
+    beyond = np.zeros(y.size, dtype=bool)
+    try:
+        pk = np.asarray(dynamics.cycle_metrics(s, v, a, params=p, method="auto", hinge_thickness_m=y)
+                        .peak_deflection_m, dtype=float)
+    except ValueError as exc:  # some rows leave the tabulated leaf law: find them, one row at a time
+        if "leaf model" not in str(exc):
+            raise
+        pk = np.empty(y.size)
+        for i in range(y.size):
+            try:
+                pk[i] = float(np.asarray(dynamics.cycle_metrics(s[i], v[i], a[i], params=p, method="auto",
+                                                                hinge_thickness_m=y[i]).peak_deflection_m))
+            except ValueError as exc_i:
+                if "leaf model" not in str(exc_i):
+                    raise
+                # deflected beyond LEAF_TABLE_MAX_RATIO thicknesses: far past yield; the stress at
+                # that deflection is a lower bound of the leaf's
+                beyond[i] = True
+                pk[i] = hinge.LEAF_TABLE_MAX_RATIO * y[i]
     st = np.asarray(hinge.hinge_peak_stress(p.hinge_modulus_pa, y, p.hinge_length_m, pk,
                                             membrane=p.hinge_membrane), dtype=float)
-    ylds = st > p.hinge_yield_pa
+    ylds = (st > p.hinge_yield_pa) | beyond
     k = int(np.argmax(st))
     max_at = {"thickness_m": float(y[k]), "stroke_m": float(s[k]), "velocity_m_s": float(v[k]),
               "acceleration_m_s2": float(a[k])}
@@ -164,7 +187,7 @@ def leaf_yield_scan(params: LRGParams | None = None, *, levels: int = 5) -> Leaf
             region[f"share_by_{name}"] = [[float(x), int((ylds & thin & (col == x)).sum()),
                                            int((thin & (col == x)).sum())] for x in ax]
     by = tuple((float(t), int(ylds[y == t].sum()), int((y == t).sum()), float(st[y == t].max())) for t in axes[0])
-    return LeafYieldScan(levels, int(y.size), int(ylds.sum()), float(p.viscous_friction_n_s_m),
+    return LeafYieldScan(levels, int(y.size), int(ylds.sum()), int(beyond.sum()), float(p.viscous_friction_n_s_m),
                          float(p.hinge_yield_pa), float(st[k]), max_at, region, by)
 
 

@@ -101,10 +101,15 @@ def test_a_design_object_and_a_heat_share_column():
                      "acceleration_m_s2=20:40"], center=1, seed=1)
     out = simulate(d, noise_sd=0)
     assert len(out) == 25 and "coded_A" in out
-    # heat_partition scales the guide's friction heat (Eq. 8) only: the drive heat of the shipped
-    # calibration (model v4, issue 15) is not partitioned, so the heat is affine in the share,
-    # and proportional to it without the drive heat
-    three = simulate(rows(3, stage="rms", heat_partition=[0.25, 0.5, 0.75]), noise_sd=0)
+    # heat_partition scales the guide's friction heat (Eq. 8) only: the drive heat of model v4
+    # (issue 15) is not partitioned, so the heat is affine in the share, and proportional to it
+    # without the drive heat
+    v4 = {"viscous_friction_n_s_m": 4.0, "drive_viscous_n_s_m": 1.5}
+    three = simulate(rows(3, stage="rms", heat_partition=[0.25, 0.5, 0.75]), noise_sd=0, calibration=v4)
     assert three.heat_w[2] - three.heat_w[1] == pytest.approx(three.heat_w[1] - three.heat_w[0], rel=1e-12)
-    two = simulate(rows(2, stage="rms", heat_partition=[0.25, 0.5], drive_viscous_n_s_m=0.0), noise_sd=0)
+    two = simulate(rows(2, stage="rms", heat_partition=[0.25, 0.5], drive_viscous_n_s_m=0.0), noise_sd=0,
+                   calibration=v4)
     assert two.heat_w[1] == pytest.approx(2 * two.heat_w[0], rel=1e-12)
+    # the shipped calibration (model v5, one heat balance in watts) has no heat share to scale
+    with pytest.raises(ValueError, match="heat_partition must stay 1"):
+        simulate(rows(2, stage="rms", heat_partition=[0.25, 0.5]), noise_sd=0)
