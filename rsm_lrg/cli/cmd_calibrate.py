@@ -9,13 +9,13 @@ from ._common import about_file, add_force, add_json, add_reader_options
 NAME = "calibrate"
 HELP = "fit the surrogate's unknown parameters to measured runs"
 DESCRIPTION = (
-    "Fit at most three parameters the paper does not give (model v4, the default: the share of "
-    "the friction heat that enters the guide, the viscous friction of the block, and the viscous "
-    "friction of the drive element on the working stage, whose heat reaches the carriage through "
-    "the leaves; --model v4-coulomb: the drive element's Coulomb friction instead; --model v3: a "
-    "constant drive heat; --model v3-overconstraint: the over-constraint misfit instead of the "
-    "drive heat; --model v2: the earlier calibration, small-deflection hinge with the frame "
-    "damping calibrated, reproduced with data/calibration_v2.toml) "
+    "Fit at most three parameters the paper does not give (model v5, the default: one heat balance in "
+    "watts, the friction power at the ball contacts and the drive's viscous heat entering the working "
+    "stage through one network of the rig's bodies; calibrated: the viscous friction of the block, "
+    "that of the drive, and the conductance of the ball contacts; --model v5-nodrive: no drive heat; "
+    "--model v4: the earlier calibration, a share of Eq. 8's calories plus a drive heat; v4-coulomb, "
+    "v3, v3-overconstraint, v2: earlier models; --select M1,M2: the candidate of smallest AICc, the "
+    "choice repeated inside every leave-one-out fold) "
     "by bounded least squares to the measured response of noise-free virtual runs; report R2, "
     "RMSE, standard errors and leave-one-out cross-validation next to the paper's quadratic's "
     "PRESS R2 (0.818), and write them with the data's "
@@ -30,11 +30,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--response", required=True, metavar="COL", help="the measured column (e.g. tcr_c_per_min)")
     p.add_argument("--model", default="v5", choices=("v4", "v5", "v5-nodrive", "v4-coulomb", "v3", "v3-overconstraint",
                                                      "v2"),
-                   help="calibration model: the physics it fixes and its default parameters (default v4: "
-                        "elastic hinge with held ends, the drive's viscous friction heat conducted through the "
-                        "leaves; v2 reproduces the earlier calibration)")
+                   help="calibration model: the physics it fixes and its default parameters (default v5: one "
+                        "heat balance in watts; v4: a share of Eq. 8's calories plus a drive heat; v2 reproduces "
+                        "the earliest calibration)")
     p.add_argument("--parameter", action="append", default=None, metavar="NAME",
-                   help="a parameter to calibrate (repeatable, at most 3; default: the model's -- v4: "
+                   help="a parameter to calibrate (repeatable, at most 3; default: the model's -- v5: "
+                        "viscous_friction_n_s_m, drive_viscous_n_s_m, ball_contact_conductance_w_k; v4: "
                         "heat_partition, viscous_friction_n_s_m, drive_viscous_n_s_m; v4-coulomb: "
                         "drive_friction_n instead of drive_viscous_n_s_m; v3: "
                         "heat_partition, viscous_friction_n_s_m, drive_heat_w; v3-overconstraint: "

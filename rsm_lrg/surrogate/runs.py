@@ -16,7 +16,11 @@ For every row of a design (arrays, never one Python call per row):
    paper); times the share ``heat_partition`` that enters the guide (1 in the raw physics).
 4. **Thermal model** (:func:`rsm_lrg.physics.thermal.network.network_response`): the
    carriage (thermocouple) temperature rise per watt after a heat step, exact in time,
-   linear in Q; the convection coefficients of Eqs. 10-12.
+   linear in Q; the convection coefficients of Eqs. 10-12. With ``heat_balance`` (calibration
+   model v5) one heat balance in watts instead: no division by J and no ``heat_partition``;
+   the friction power enters the ball contacts and the drive heat the working stage of one
+   network of the rig's bodies (:func:`rsm_lrg.physics.thermal.network.rig_network`, one per
+   leaf thickness and stage kind), and what reaches the carriage follows from its conductances.
 5. **The rig's record**: readings every minute from 0 to the test duration on two
    thermocouples, each with Gaussian reading noise (:mod:`.noise`), averaged; κ by Eq. 18
    from the first and the last reading.
