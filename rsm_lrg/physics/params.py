@@ -458,6 +458,11 @@ def load_params(path: str | Path | None = None, base: LRGParams | None = None, *
                                          f"{own!r}; write the value {'as a plain number' if own in ('1', '') else 'in ' + own} "
                                          "(values are never converted)")
                     v = v["value"]
+                if isinstance(v, str):  # a TOML value has its type: text is never read as a number
+                    from ..io import quote_user_value
+
+                    raise ValueError(f"{k} = {quote_user_value(v)} is text, not a "
+                                     f"{'boolean' if k in _BOOLS else 'number'}; write it without quotes")
                 values[k] = v
             values = {k: _coerce(k, v) for k, v in values.items()}
         except ValueError as exc:

@@ -373,6 +373,18 @@ def test_a_unit_beside_a_parameter_value_must_be_its_unit(tmp_path, capsys, text
         _one_error(err, "p.toml", "is not the unit of", "never converted")
 
 
+@pytest.mark.parametrize("text, kind", [
+    ('mu_k = "0.02"\n', "number"),
+    ('[mu_k]\nvalue = "0.02"\n', "number"),
+    ('hinge_membrane = "true"\n', "boolean"),
+])
+def test_text_is_never_read_as_a_number_in_a_params_file(tmp_path, capsys, text, kind):
+    p = tmp_path / "p.toml"
+    p.write_text(text)
+    assert main(["physics", "--params-file", str(p)]) == 2
+    _one_error(capsys.readouterr().err, "p.toml", f"is text, not a {kind}")
+
+
 def test_a_unit_beside_a_calibrated_value_must_be_its_unit(tmp_path):
     from rsm_lrg.surrogate.calibrate import load_calibration
 
