@@ -53,7 +53,8 @@ __all__ = ["fit_summary", "FitSummary", "ORDERS"]
 ORDERS = ("linear", "2fi", "quadratic", "cubic")
 
 _LABEL = {"mean": "Mean", "block": "Block", "linear": "Linear", "2fi": "2FI", "quadratic": "Quadratic",
-          "cubic": "Cubic"}
+          "cubic": "Cubic", "mixture-linear": "Linear", "mixture-quadratic": "Quadratic",
+          "special-cubic": "Special Cubic", "mixture-cubic": "Cubic"}
 
 
 @dataclass(frozen=True)
@@ -77,7 +78,9 @@ class FitSummary:
         Columns ``source, std_dev, r2, adj_r2, pred_r2, press, aliased``; one row per order.
     suggested : str or None
         ``"linear"``, ``"2fi"``, ``"quadratic"``, ``"cubic"`` or ``"mean"`` (no order is
-        significant).
+        significant); for a mixture the Scheffé model (``"mixture-linear"``,
+        ``"mixture-quadratic"``, ``"special-cubic"``, ``"mixture-cubic"``, as ``fit``'s
+        ``model``) or ``"mean"``.
     alpha : float
         Significance level used for the suggestion.
     notes : tuple of str
@@ -120,7 +123,7 @@ class FitSummary:
             if lof is not None and name in lof.index:
                 row.update(lof_p=lof.loc[name, "p"])
             row.update(st.loc[name].to_dict())
-            row["suggested"] = name.lower() == (self.suggested or "")
+            row["suggested"] = name == _LABEL.get(self.suggested or "", "")
             out.append(row)
         return pd.DataFrame(out)
 
@@ -140,7 +143,7 @@ class FitSummary:
             out.append(text_table(["Source", "Sum of Squares", "df", "Mean Square", "F-value", "p-value"], rows))
         out += ["", "Model summary statistics"]
         rows = [[r.source, format_g(r.std_dev), format_g(r.r2), format_g(r.adj_r2), format_g(r.pred_r2),
-                 format_g(r.press), "Aliased" if r.aliased else ("Suggested" if r.source.lower() == self.suggested else "")]
+                 format_g(r.press), "Aliased" if r.aliased else ("Suggested" if r.source == _LABEL.get(self.suggested or "") else "")]
                 for r in self.statistics.itertuples(index=False)]
         out.append(text_table(["Source", "Std. Dev.", "R²", "Adjusted R²", "Predicted R²", "PRESS", ""], rows))
         label = None if self.suggested is None else _LABEL.get(self.suggested, self.suggested)
@@ -163,7 +166,7 @@ def _clean(v):
 
 
 def fit_summary(data, response: str, factors=None, block: str | None = None, *, alpha: float = 0.05,
-                orders=ORDERS, transform=None, transform_constant: float = 0.0) -> FitSummary:
+                orders=None, transform=None, transform_constant: float = 0.0, components=None) -> FitSummary:
     """Sequential sums of squares, lack of fit and statistics per model order.
 
     Parameters
@@ -175,8 +178,19 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
         As for :func:`rsm_lrg.fit`.
     alpha : float
         Level for "significant" (sequential F) and "not significant" (lack of fit).
-    orders : sequence of str
-        Model orders to compare, a prefix-closed subset of ``ORDERS`` (default all four).
+    orders : sequence of str, optional
+        Model orders to compare, a prefix-closed subset of ``ORDERS`` (default all four); with
+        ``components``, of the Scheffé models ``MIXTURE_ORDERS`` (default all four).
+    transform, transform_constant
+        As for :func:`rsm_lrg.fit`.
+    components : sequence of str, optional
+        Mixture components (names or ``"NAME=LOW:HIGH"``, as for :func:`rsm_lrg.fit`;
+        ``factors`` are then process factors). The models compared are the Scheffé
+        mixture-linear, mixture-quadratic, special-cubic and mixture-cubic (no intercept,
+        L-pseudo-components, each crossed with the process factors' main effects), those
+        with no more terms than distinct blends; "Linear vs Mean" is the linear model's sum
+        of squares about the mean on q - 1 df (Design-Expert's mixture fit summary; Cornell,
+        *Experiments with Mixtures*, 3rd ed., Sec. 2.8). No blocks.
 
     Returns
     -------
@@ -188,39 +202,50 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
     from .inputs import model_inputs
     from .least_squares import factorise
     from .statistics import fit_statistics
-    from .terms import MAX_TERMS, check_model_size, model_terms, n_columns, n_model_terms
+    from .terms import MAX_TERMS, MIXTURE_ORDERS, check_model_size, model_terms, n_columns, n_model_terms
+    from .transform import parse_transform
 
     if not 0.0 < alpha < 1.0:
         raise ParameterError("alpha", f"alpha must lie between 0 and 1, not {alpha!r}")
-    orders = tuple(orders)
-    bad = [o for o in orders if o not in ORDERS]
+    mixture = components is not None
+    known = tuple(MIXTURE_ORDERS) if mixture else ORDERS
+    orders = known if orders is None else tuple(orders)
+    bad = [o for o in orders if o not in known]
     if bad or not orders:
-        raise ValueError(f"orders must be among {', '.join(ORDERS)} (got {', '.join(map(str, orders)) or 'none'})")
-    orders = tuple(o for o in ORDERS if o in orders)
-    from .transform import parse_transform
-
-    inp = model_inputs(data, response, factors, block, transform=parse_transform(transform, transform_constant))
-    y, n, nb, letters = inp.y, inp.n, inp.nb, inp.space.letters
-    cats = inp.space.categoric
-    check_model_size(n, len(letters), "linear", nb - 1, categoric=cats)
-    notes = []
-    fitted = []
-    for order in orders:
-        count = n_model_terms(len(letters), order, cats)
-        if count > MAX_TERMS:  # counted, not built
-            notes.append(f"The {_LABEL[order]} model in {len(letters)} factors has {count} terms and was not fitted "
-                         f"(more than the {MAX_TERMS} this toolkit builds).")
-            break
-        fitted.append(order)
-
-    # one factorisation of the largest model; its estimable columns, in order
-    terms = model_terms(letters, fitted[-1], cats)
-    chunks = inp.chunks(terms)
-    big = factorise(chunks, n_columns(terms) + nb - 1, inp.column_names(terms))
-    big.submodel(range(nb - 1 + n_model_terms(len(letters), "linear", cats))).require_full_rank("linear model")
+        raise ValueError(f"orders must be among {', '.join(known)} (got {', '.join(map(str, orders)) or 'none'})")
+    orders = tuple(o for o in known if o in orders)
+    tr = parse_transform(transform, transform_constant)
+    notes: list[str] = []
+    fitted: list[str] = []
+    if mixture:
+        inp, terms, fitted, ends_all = _mixture_models(data, response, components, factors, block, orders, tr, notes)
+        nb = 1
+        chunks = inp.chunks(terms)
+        big = factorise(chunks, len(terms), inp.column_names(terms), shift=0.0)
+        n_lin = ends_all[fitted[0]]
+        big.submodel(range(n_lin)).require_full_rank("mixture-linear model")
+        first_end = 1  # the mean, implicit in the linear blending terms
+    else:
+        inp = model_inputs(data, response, factors, block, transform=tr)
+        nb, letters, cats = inp.nb, inp.space.letters, inp.space.categoric
+        check_model_size(inp.n, len(letters), "linear", nb - 1, categoric=cats)
+        for order in orders:
+            count = n_model_terms(len(letters), order, cats)
+            if count > MAX_TERMS:  # counted, not built
+                notes.append(f"The {_LABEL[order]} model in {len(letters)} factors has {count} terms and was not "
+                             f"fitted (more than the {MAX_TERMS} this toolkit builds).")
+                break
+            fitted.append(order)
+        # one factorisation of the largest model; its estimable columns, in order
+        terms = model_terms(letters, fitted[-1], cats)
+        chunks = inp.chunks(terms)
+        big = factorise(chunks, n_columns(terms) + nb - 1, inp.column_names(terms))
+        big.submodel(range(nb - 1 + n_model_terms(len(letters), "linear", cats))).require_full_rank("linear model")
+        ends_all = {o: nb - 1 + n_model_terms(len(letters), o, cats) for o in fitted}  # columns up to each order
+        first_end = nb
+    y, n = inp.y, inp.n
     kept = np.asarray(big.kept)
     ls = big if big.full_rank else big.submodel(kept)
-    ends_all = {o: nb - 1 + n_model_terms(len(letters), o, cats) for o in fitted}  # columns up to each order
     ends = {o: int(np.sum(kept < ends_all[o])) for o in fitted}  # estimable ones
     sub_chunks = chunks if big.full_rank else (lambda: ((X[:, kept], yy) for X, yy in chunks()))
     nested = dict(zip(fitted, ls.nested_press(sub_chunks, [ends[o] for o in fitted])))
@@ -237,7 +262,7 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
         seq_rows.append({"source": "Block vs Mean", "sum_sq": ss_block, "df": nb - 1,
                          "mean_sq": ss_block / (nb - 1), "f": math.nan, "p": math.nan, "aliased": False})
     lof_rows, stat_rows = [], []
-    prev_label, prev_end = ("Block" if nb > 1 else "Mean"), nb
+    prev_label, prev_end = ("Block" if nb > 1 else "Mean"), first_end
     results = {}
     for order in fitted:
         end = ends[order]
@@ -246,7 +271,10 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
         aliased = end < ends_all[order]
         df_res = n - end
         ms_res = ss_res / df_res if df_res > 0 else math.nan
-        ss_add = ls.sequential_ss(np.arange(prev_end, end)) if df_add > 0 else 0.0
+        if mixture and prev_end == first_end:  # Linear vs Mean: the linear model's SS about the mean
+            ss_add = max(ss_tot_corr - ss_res, 0.0)
+        else:
+            ss_add = ls.sequential_ss(np.arange(prev_end, end)) if df_add > 0 else 0.0
         ms_add = ss_add / df_add if df_add > 0 else math.nan
         f, p = f_test(ms_add, df_add, ms_res, df_res)
         seq_rows.append({"source": f"{_LABEL[order]} vs {prev_label}", "sum_sq": ss_add, "df": int(df_add),
@@ -295,3 +323,50 @@ def fit_summary(data, response: str, factors=None, block: str | None = None, *, 
         statistics=pd.DataFrame(stat_rows, columns=["source", "std_dev", "r2", "adj_r2", "pred_r2", "press", "aliased"]),
         suggested=suggested, alpha=float(alpha), notes=tuple(notes),
     )
+
+
+def _mixture_models(data: Any, response: str, components: Any, factors: Any, block: str | None,
+                    orders: tuple, transform: Any, notes: list[str]) -> tuple[Any, list, list[str], dict[str, int]]:
+    """The inputs of a mixture fit summary (as :func:`rsm_lrg.fit` reads them), the Scheffé
+    terms of the largest estimable model in nesting order (each model's new terms after the
+    previous model's), the models fitted, and the number of columns up to each.
+
+    A model that adds no term (special cubic of two components) is left out; the models
+    with more terms than distinct blends (settings, with process factors) are not fitted
+    (a note says so)."""
+    from ..factors import MixtureComponent
+    from .inputs import model_inputs
+    from .mixture import mixture_space, scheffe_names
+    from .inputs import chosen_terms
+
+    if block is not None:
+        raise ParameterError("block", "blocks in a mixture model are not available yet")
+    if isinstance(components, str):
+        components = [components]
+    space = mixture_space(data, list(components), response, process=factors)
+    inp = model_inputs(data, response, space, None, transform=transform)
+    q = sum(isinstance(f, MixtureComponent) for f in space.factors)
+    letters = space.letters
+    blends = int(np.unique(np.asarray(inp.settings, dtype=float), axis=0).shape[0])
+    kind = "blends" if q == len(space) else "settings"
+    names: list[str] = []
+    fitted: list[str] = []
+    ends_all: dict[str, int] = {}
+    for order in orders:
+        new = [t for t in scheffe_names(letters[:q], order, letters[q:]) if t not in names]
+        if not new:
+            continue
+        if len(names) + len(new) > blends:
+            if fitted:
+                notes.append(f"The {_LABEL[order]} model has {len(names) + len(new)} terms and was not fitted "
+                             f"({blends} distinct {kind}).")
+                break
+            raise ValueError(f"{blends} distinct {kind} cannot fit {len(names) + len(new)} terms (the {order} model "
+                             f"in {q} components)")
+        names += new
+        fitted.append(order)
+        ends_all[order] = len(names)
+    if fitted[0] != "mixture-linear":
+        raise ValueError("a mixture fit summary starts from the mixture-linear model (orders must include it)")
+    terms = list(chosen_terms(names, letters, None, intercept=False))
+    return inp, terms, fitted, ends_all
