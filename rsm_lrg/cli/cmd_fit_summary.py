@@ -7,6 +7,7 @@ import argparse
 from ._common import (
     about_file,
     add_block_option,
+    add_component_option,
     add_data_response,
     add_factor_options,
     add_force,
@@ -22,13 +23,18 @@ DESCRIPTION = (
     "linear, 2FI, quadratic and cubic models (flagged 'Aliased' where the design cannot "
     "estimate every term), the lack-of-fit test of each order, R², adjusted and predicted R² "
     "and PRESS per order, and the suggested model: the highest order that is significant, "
-    "not aliased, and without significant lack of fit."
+    "not aliased, and without significant lack of fit. With --component (once per mixture "
+    "component, --factor then names process factors) the Scheffé models are compared instead: "
+    "mixture linear, quadratic, special cubic and cubic (those the distinct blends can fit), "
+    "'Linear vs Mean' being the linear model's sum of squares about the mean; the suggested "
+    "model is then named as 'fit --model' takes it."
 )
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_data_response(parser)
     add_factor_options(parser)
+    add_component_option(parser)
     add_block_option(parser, "entered first")
     from ._common import probability
 
@@ -49,12 +55,13 @@ def run(args: argparse.Namespace) -> int:
     from ..model.summary import fit_summary
     from ._common import model_spec, read_input
 
-    spec = model_spec(args)  # a bad --transform is named before any data is read
+    spec = model_spec(args, order="mixture-linear" if args.component else None)  # a bad --transform: named first
     data = read_input(args)
     with about_file(args.data):
-        notes = prepare(data, args.response, args.factor, args.block).notes
         s = fit_summary(data, args.response, factors=args.factor, block=args.block, alpha=args.alpha,
-                        transform=spec.transform)
+                        transform=spec.transform, components=args.component)
+        names = args.factor if not args.component else list(args.component) + list(args.factor or [])
+        notes = prepare(data, args.response, names, args.block).notes
     print_notes(notes)  # after the work: a failed command prints one error line only
     print_summary_or_json(args, s)
     return 0
