@@ -335,9 +335,8 @@ def _mixture_models(data: Any, response: str, components: Any, factors: Any, blo
     with more terms than distinct blends (settings, with process factors) are not fitted
     (a note says so)."""
     from ..factors import MixtureComponent
-    from .inputs import model_inputs
+    from .inputs import chosen_terms, model_inputs
     from .mixture import mixture_space, scheffe_names
-    from .inputs import chosen_terms
 
     if block is not None:
         raise ParameterError("block", "blocks in a mixture model are not available yet")
