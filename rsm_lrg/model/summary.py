@@ -367,5 +367,5 @@ def _mixture_models(data: Any, response: str, components: Any, factors: Any, blo
         ends_all[order] = len(names)
     if fitted[0] != "mixture-linear":
         raise ValueError("a mixture fit summary starts from the mixture-linear model (orders must include it)")
-    terms = list(chosen_terms(names, letters, None, intercept=False))
-    return inp, terms, fitted, ends_all
+    by_name = {t.name: t for t in chosen_terms(names, letters, None, intercept=False)}  # sorted by degree there
+    return inp, [by_name[nm] for nm in names], fitted, ends_all  # nesting order: each model's terms first

@@ -108,3 +108,22 @@ def test_bad_requests_are_refused():
         fit_summary(d, "erate", components=["x1", "x2", "x3"], orders=("mixture-quadratic",))
     with pytest.raises(ValueError, match="block"):
         fit_summary(d.assign(b=1), "erate", components=["x1", "x2", "x3"], block="b")
+
+
+def test_process_factors_each_model_is_the_fit_of_that_name():
+    # Cornell's fish patties (mixexp fishp): 7 blends x 2^3 process settings. Every model of the
+    # summary (each Scheffé model crossed with the process main effects) is the model fit() fits
+    # under that name (fit() itself checked against R in test_mixture_fit.py).
+    d = pd.read_csv(HERE / "mixture_fishp.csv")
+    comps, proc = ["x1", "x2", "x3"], ["z1", "z2", "z3"]
+    s = fit_summary(d, "y", components=comps, factors=proc)
+    st = s.statistics.set_index("source")
+    for model in ("mixture-linear", "mixture-quadratic", "special-cubic"):
+        f = rsm_lrg.fit(d, "y", components=comps, factors=proc, model=model)
+        for q in ("std_dev", "r2", "adj_r2", "pred_r2", "press"):
+            assert st.loc[LABEL[model], q] == pytest.approx(getattr(f.statistics, q), rel=1e-9), (model, q)
+    seq = s.sequential.set_index("source")
+    assert seq.loc["Linear vs Mean", "df"] == 11 and seq.loc["Quadratic vs Linear", "df"] == 12
+    # 7 blends cannot estimate the full cubic's delta terms: the cubic adds nothing, flagged aliased
+    assert seq.loc["Cubic vs Special Cubic", "df"] == 0 and seq.loc["Cubic vs Special Cubic", "aliased"]
+    assert s.suggested == "mixture-quadratic"
