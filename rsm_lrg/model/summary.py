@@ -28,6 +28,14 @@ coding and validation are those of :func:`rsm_lrg.fit` (:func:`~rsm_lrg.model.fi
 pure error and lack of fit those of :mod:`rsm_lrg.model.anova`, the statistics those of
 :func:`~rsm_lrg.model.statistics.fit_statistics`.
 
+With mixture components (``components=``) the nested models are the Scheffé ones, mean ⊂
+mixture-linear ⊂ mixture-quadratic ⊂ special-cubic ⊂ mixture-cubic, without an intercept
+column on L-pseudo-components (as :func:`rsm_lrg.fit` fits them, process factors crossed
+with every mixture term), each model's new terms after the previous model's in one
+factorisation; "Linear vs Mean" is the linear model's sum of squares about the mean,
+``SS_total(corrected) - SS_res(linear)`` on q - 1 df (Design-Expert's mixture fit summary),
+and only the models with no more terms than distinct blends are fitted.
+
 Reference: Myers, Montgomery & Anderson-Cook, *Response Surface Methodology* (3rd ed.),
 Sec. 3.3 (extra sum of squares) and 6.2; Design-Expert help, "Fit Summary".
 
