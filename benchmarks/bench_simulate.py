@@ -58,9 +58,10 @@ def timed(fn, repeat=1):
 
 
 def compare(n, noise_sd, repeat=2):
-    """Rows per CPU-second of simulate() with the old integrator (``integrator="compiled"``: DOP853's
-    tableau in equal steps of ω·Δt = 0.6, the reference) and the new one (``"adaptive"``: the same
-    order-8 pair with error-controlled steps, dense output for stops and peaks, the default) on the
+    """Rows per CPU-second of simulate() with the default integrator (``integrator="compiled"``:
+    DOP853's tableau in equal steps of ω·Δt = 0.6, the reference) and the optional one
+    (``"adaptive"``: the same order-8 pair with error-controlled steps, dense output for stops and
+    peaks; not the default, see :func:`rsm_lrg.physics.dynamics.cycle_metrics`) on the
     same n rows of the box, alternated in this one process (best of ``repeat`` each), and the
     largest relative difference of every numeric column simulate writes."""
     import functools
@@ -70,7 +71,7 @@ def compare(n, noise_sd, repeat=2):
 
     d = box(n, seed=11)
     original = dynamics.cycle_metrics
-    names = {"old DOP853 fixed": "compiled", "new adaptive": "adaptive"}
+    names = {"compiled (default)": "compiled", "adaptive (option)": "adaptive"}
     cpu = {k: np.inf for k in names}
     frames = {}
     try:
@@ -82,15 +83,15 @@ def compare(n, noise_sd, repeat=2):
                 cpu[name] = min(cpu[name], time.process_time() - t)
     finally:
         dynamics.cycle_metrics = original
-    old, new = frames["old DOP853 fixed"], frames["new adaptive"]
-    print(f"old vs new integrator, {n} random rows of the Table 3 box through simulate (one BLAS thread, "
+    old, new = frames["compiled (default)"], frames["adaptive (option)"]
+    print(f"compiled (default) vs adaptive integrator, {n} random rows of the Table 3 box through simulate (one BLAS thread, "
           f"CPU time, best of {repeat}):")
     print(f"{'integrator':>18} {'CPU s':>8} {'rows/CPU-s':>11}")
     res = {}
     for name in names:
         res[name] = {"rows": n, "cpu_seconds": cpu[name], "rows_per_cpu_s": n / cpu[name]}
         print(f"{name:>18} {cpu[name]:>8.3f} {n / cpu[name]:>11.0f}")
-    speedup = cpu["old DOP853 fixed"] / cpu["new adaptive"]
+    speedup = cpu["compiled (default)"] / cpu["adaptive (option)"]
     print(f"speed-up {speedup:.2f}x")
     diffs = {}
     for col in OUTPUT_COLUMNS + EXTRA_OUTPUT_COLUMNS:

@@ -268,7 +268,7 @@ def _stage_is_rigid(stage) -> np.ndarray:
 
 def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms",
                   params: LRGParams | None = None, method="auto", n_cycles=3, max_cycles=12,
-                  rtol=1e-5, h=0.3, max_steps_per_cycle=200_000, integrator="adaptive", h_rk=0.6,
+                  rtol=1e-5, h=0.3, max_steps_per_cycle=200_000, integrator="compiled", h_rk=0.6,
                   tol_rk=1e-6,
                   **columns) -> CycleMetrics:
     """Per-cycle sliding, friction work and peak hinge deflection, vectorised over rows.
@@ -291,11 +291,15 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         linear steps between events with the hinge's tangent; 0.3 agrees with the event-driven
         reference to ~1e-5 relative on the linear hinge, see the tests).
     integrator : "adaptive", "compiled" or "fixed_step"
-        ``adaptive`` (default): :mod:`.stepper`, DOP853's order-8 pair in steps whose length its
-        error estimate controls, dense output for stops and the peak, compiled per row (numba);
-        ``compiled``: the same tableau in equal steps ω·Δt = ``h_rk`` per segment of the profile,
-        the reference (``benchmarks/bench_simulate.py`` and ``tests/physics/test_stepper.py``
-        compare the two); ``fixed_step``: the earlier vectorised NumPy integrator.
+        ``compiled`` (default, the reference): :mod:`.stepper`, DOP853's tableau in equal steps
+        ω·Δt = ``h_rk`` per segment of the profile, compiled per row (numba); ``adaptive``: the
+        same order-8 pair in steps whose length its error estimate controls, dense output for
+        stops and the peak — about 1.8× faster, but not the default: at ``tol_rk`` = 1e-6 it
+        can settle on another periodic state than the reference (µ_k = 0.04 above µ_s = 0.03,
+        s = 0.04 m, v = 0.4 m/s, a = 20 m/s²: sliding 0.122 m against 0.0804 m, which the
+        reference at h_rk = 0.1 and ``adaptive`` at tol_rk = 1e-9 both give);
+        ``benchmarks/bench_simulate.py`` and ``tests/physics/test_stepper.py`` compare the two;
+        ``fixed_step``: the earlier vectorised NumPy integrator.
     h_rk : float
         ω·Δt of the equal steps of ``integrator="compiled"`` (ω at a bound of the hinge's tangent
         stiffness, :func:`_omega_step`; 0.6 agrees with the event-driven reference to 3e-7
