@@ -843,7 +843,12 @@ class FitResult:
             out["block_effects"] = {k: _f(v) for k, v in (self.block_effects or {}).items()}
         if self.mixed is not None:
             out.update(self._mixed_dict())
-        if self.mixed is None:  # a REML fit has no sums of squares: its "tests" replace the ANOVA
+        if self.mixed is not None:
+            # a REML fit has no sums of squares: its "anova" is the Kenward-Roger tests in the
+            # ANOVA's shape (one row per term, unused numbers null, den_df added), as "tests"
+            out["anova"] = [{"source": t["term"], "sum_sq": None, "df": t["num_df"], "mean_sq": None,
+                             "f": t["f"], "p": t["p"], "den_df": t["den_df"]} for t in out["tests"]]
+        else:
             out["anova"] = [
                 {"source": r.source, "sum_sq": _f(r.sum_sq), "df": int(r.df), "mean_sq": _f(r.mean_sq), "f": _f(r.f),
                  "p": _f(r.p)}

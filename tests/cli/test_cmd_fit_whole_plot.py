@@ -24,7 +24,8 @@ def _err(capsys) -> str:
 def test_fit_whole_plot_json(capsys):
     assert main(["fit", CAKE, *BASE, "--json", "-"]) == 0
     js = json.loads(capsys.readouterr().out)
-    assert js["whole_plot"] == "Ovenrun" and js["method"] == "REML" and "anova" not in js
+    assert js["whole_plot"] == "Ovenrun" and js["method"] == "REML"
+    assert [(r["source"], r["df"], r["f"], r["sum_sq"]) for r in js["anova"]] == [(t["term"], t["num_df"], t["f"], None) for t in js["tests"]]
     assert set(js["variance_components"]) == {"whole_plot", "residual"}
     tests = {t["term"]: t for t in js["tests"]}
     assert list(tests) == ["A", "B", "AB", "A^2", "B^2"]

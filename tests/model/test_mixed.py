@@ -154,10 +154,12 @@ def test_residuals_blups_and_frame():
     assert "marginal_residual" in diag["runs"][0] and diag["box_cox"] is None
 
 
-def test_json_replaces_anova_by_tests():
+def test_json_anova_is_the_kenward_roger_tests():
     res, _ = _bal()
     js = res.to_dict()
-    assert "anova" not in js and js["whole_plot"] == "whole_plot" and js["method"] == "REML"
+    assert [r["source"] for r in js["anova"]] == [t["term"] for t in js["tests"]]
+    assert all(r["sum_sq"] is None and r["f"] == t["f"] and r["den_df"] == t["den_df"] for r, t in zip(js["anova"], js["tests"]))
+    assert js["whole_plot"] == "whole_plot" and js["method"] == "REML"
     assert [t["term"] for t in js["tests"]] == [t.name for t in res.model_terms]
     assert set(js["tests"][0]) == {"term", "num_df", "den_df", "f", "p"}
     json.dumps(js, allow_nan=False)
