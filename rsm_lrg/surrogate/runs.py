@@ -353,7 +353,8 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     steady_drive = np.empty(n)
     if balance:  # one network per leaf thickness, stage kind and per-row parameters; both sources in watts
         names_b = sorted(pcols)
-        keys_b = np.stack([y, rigid.astype(float)] + [np.broadcast_to(np.asarray(pcols[k], float), (n,))
+        # the RMS's network has no leaves: its rows share one network whatever their thickness
+        keys_b = np.stack([np.where(rigid, 0.0, y), rigid.astype(float)] + [np.broadcast_to(np.asarray(pcols[k], float), (n,))
                                                        for k in names_b], axis=1)
         uniq_b, inv_b = np.unique(keys_b, axis=0, return_inverse=True)
         inv_b = inv_b.reshape(-1)

@@ -50,3 +50,23 @@ def test_rise_is_friction_and_drive_heat_through_one_network():
     # and thick leaves more than thin ones
     per_w = ((out.temperature_rise_k - nodrive.temperature_rise_k) / (out.heat_w - nodrive.heat_w)).to_numpy()
     assert per_w[2] > per_w[1] > per_w[0] > 0
+
+
+def test_rms_rows_share_one_network_whatever_their_thickness():
+    # the RMS has no leaves: a thickness column on its rows changes nothing and builds no
+    # network per row (2,000,000 streamed RMS rows with random thicknesses built one network
+    # per row: hours instead of a minute)
+    from rsm_lrg.physics.thermal import network
+
+    rng = np.random.default_rng(3)
+    n = 300
+    d = pd.DataFrame({"thickness_m": rng.uniform(1e-4, 5e-4, n), "stroke_m": rng.uniform(0.04, 0.06, n),
+                      "velocity_m_s": rng.uniform(0.4, 0.6, n), "acceleration_m_s2": rng.uniform(20, 40, n),
+                      "stage": "rms"})
+    network._rig_network.cache_clear()
+    with_y = simulate(d, noise_sd=0, seed=1, progress=False)
+    assert network._rig_network.cache_info().currsize == 1
+    without_y = simulate(d.assign(thickness_m=np.nan), noise_sd=0, seed=1, progress=False)
+    np.testing.assert_array_equal(with_y.tcr_c_per_min.to_numpy(), without_y.tcr_c_per_min.to_numpy())
+    p = LRGParams().to_dict()
+    assert rig_bodies(p, 1e-4, rigid=True) == rig_bodies(p, 5e-4, rigid=True)

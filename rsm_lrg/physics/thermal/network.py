@@ -522,7 +522,9 @@ def rig_bodies(values, thickness_m: float, *, rigid: bool = False, h_side_w_m2k:
     (0.0288, False, True)
     """
     v = values
-    y = float(thickness_m)
+    # the RMS has no leaves: its network does not depend on a thickness, so the leaves' (unused)
+    # entries take the parameter set's own and every RMS row shares one network
+    y = float(v["hinge_thickness_m"]) if rigid else float(thickness_m)
     n, w, lh = float(v["hinge_count"]), float(v["hinge_width_m"]), float(v["hinge_length_m"])
     m_frame = float(v["frame_mass_fraction"]) * float(v["stage_mass_kg"])
     m_stage = float(v["stage_mass_kg"]) - m_frame
