@@ -469,7 +469,7 @@ def aicc(ssr: float, n: int, k: int) -> float:
     smaller, the better; it charges each parameter what it gains on average by chance.
 
     >>> round(aicc(1.0, 20, 2) - aicc(1.0, 20, 1), 4)   # one more parameter, same SSR
-    2.5588
+    2.4837
     """
     if not n - k - 1 > 0:
         raise ValueError(f"AICc needs n > k + 1 (n = {n}, k = {k})")

@@ -85,7 +85,7 @@ def test_adaptive_stepper_equals_the_fixed_step_reference_on_the_box():
     y, s, v, a = X.T
     p = LRGParams(viscous_friction_n_s_m=4.32)
     kw = dict(params=p, method="integrate", hinge_thickness_m=y)
-    new = dynamics.cycle_metrics(s, v, a, **kw)
+    new = dynamics.cycle_metrics(s, v, a, integrator="adaptive", **kw)
     ref = dynamics.cycle_metrics(s, v, a, integrator="compiled", **kw)
     fine = dynamics.cycle_metrics(s, v, a, integrator="compiled", h_rk=0.15, **kw)
     settled = (ref.periodicity_error_m <= 1e-5 * ref.sliding_distance_m) & (
@@ -99,7 +99,7 @@ def test_adaptive_stepper_equals_the_fixed_step_reference_on_the_box():
 
 def test_old_integrator_stays_callable_and_differs_from_the_new_only_in_its_steps():
     p = LRGParams(hinge_thickness_m=2e-4, viscous_friction_n_s_m=4.32)
-    new = dynamics.cycle_metrics(0.05, 0.5, 30.0, params=p, method="integrate")
+    new = dynamics.cycle_metrics(0.05, 0.5, 30.0, params=p, method="integrate", integrator="adaptive")
     old = dynamics.cycle_metrics(0.05, 0.5, 30.0, params=p, method="integrate", integrator="compiled")
     assert float(new.sliding_distance_m) == pytest.approx(float(old.sliding_distance_m), rel=1e-6)
     assert float(new.sliding_distance_m) != float(old.sliding_distance_m)  # two integrators, not one
