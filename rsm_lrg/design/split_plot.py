@@ -32,6 +32,7 @@ step is taken only for a relative gain of at least :data:`POLISH_GAIN`).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -274,6 +275,23 @@ class _Search:
         return D, cur
 
 
+def hard_to_change_indices(names: Sequence[str], hard_to_change: str | Sequence[str] | None) -> list[int]:
+    """Positions in ``names`` of the hard-to-change factors (a name or a list of names), in the
+    order given; none, an unknown name or a name given twice is a ``ValueError`` naming the
+    option."""
+    hard_names = [hard_to_change] if isinstance(hard_to_change, str) else list(hard_to_change or [])
+    if not hard_names:
+        raise ValueError("hard_to_change: name at least one hard-to-change factor")
+    hard: list[int] = []
+    for h in hard_names:
+        if h not in names:
+            raise ValueError(f"hard_to_change: {h!r} is not among the factors ({', '.join(names)})")
+        if names.index(h) in hard:
+            raise ValueError(f"hard_to_change: {h!r} is given twice")
+        hard.append(names.index(h))
+    return hard
+
+
 def split_plot(
     factors: Any,
     hard_to_change: Any,
@@ -339,16 +357,7 @@ def split_plot(
     crit = check_criterion(criterion)
     eta = check_variance_ratio(variance_ratio)
     names = space.names
-    hard_names = [hard_to_change] if isinstance(hard_to_change, str) else list(hard_to_change or [])
-    if not hard_names:
-        raise ValueError("hard_to_change: name at least one hard-to-change factor")
-    hard: list[int] = []
-    for h in hard_names:
-        if h not in names:
-            raise ValueError(f"hard_to_change: {h!r} is not among the factors ({', '.join(names)})")
-        if names.index(h) in hard:
-            raise ValueError(f"hard_to_change: {h!r} is given twice")
-        hard.append(names.index(h))
+    hard = hard_to_change_indices(names, hard_to_change)
     for name, given in (("whole_plots", whole_plots), ("runs", runs), ("starts", starts)):
         if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 1):
             raise ValueError(f"{name}: must be a whole number >= 1 (got {given!r})")
@@ -500,16 +509,7 @@ def split_plot_ccd(
     names = space.names
     if space.categoric:
         raise ValueError("factor: a split-plot central composite design takes numeric factors only")
-    hard_names = [hard_to_change] if isinstance(hard_to_change, str) else list(hard_to_change or [])
-    if not hard_names:
-        raise ValueError("hard_to_change: name at least one hard-to-change factor")
-    hard: list[int] = []
-    for h in hard_names:
-        if h not in names:
-            raise ValueError(f"hard_to_change: {h!r} is not among the factors ({', '.join(names)})")
-        if names.index(h) in hard:
-            raise ValueError(f"hard_to_change: {h!r} is given twice")
-        hard.append(names.index(h))
+    hard = hard_to_change_indices(names, hard_to_change)
     easy = [i for i in range(len(names)) if i not in hard]
     kw, ks = len(hard), len(easy)
     if not 1 <= ks <= _MAX_CCD_K or kw > _MAX_CCD_K:
