@@ -39,7 +39,7 @@ from ..terms import MIXTURE_ORDERS, Term, design_matrix, parse_term, scheffe_nam
 from .core import resolve_seed
 from .exchange import MAX_RUNS, MAX_STARTS, ExchangeProblem, check_columns, check_criterion, criterion_value
 from .mixture import CandidateSet, MixtureDesign, candidate_blends, finish_mixture, process_space
-from .optimal import farthest_candidates
+from .optimal import farthest_candidates, run_budget
 
 __all__ = ["mixture_optimal"]
 
@@ -132,17 +132,7 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
         check_columns(p, model, q + k)
     except ValueError as exc:
         raise ValueError(f"model: {exc}") from None
-    for name, given in (("runs", runs), ("lof_points", lof_points), ("replicates", replicates), ("starts", starts)):
-        if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 0):
-            raise ValueError(f"{name} must be a whole number >= 0 (got {given!r})")
-    if runs is None:
-        n_lof = 5 if lof_points is None else int(lof_points)
-        n_rep = 5 if replicates is None else int(replicates)
-        runs = p + n_lof + n_rep
-    else:
-        runs = int(runs)
-        n_lof = 0 if lof_points is None else int(lof_points)
-        n_rep = 0 if replicates is None else int(replicates)
+    runs, n_lof, n_rep = run_budget(p, runs, lof_points, replicates, starts)
     n_model = runs - n_lof - n_rep
     what = f"the {model} model in {q} components" + (f" and {k} process factor{'s' * (k > 1)}" if k else "")
     if n_model < p:

@@ -60,7 +60,7 @@ from .exchange import (
     moment_matrix,
 )
 
-__all__ = ["optimal", "criterion_value", "moment_matrix", "CRITERIA", "information", "farthest_candidates"]
+__all__ = ["optimal", "criterion_value", "moment_matrix", "CRITERIA", "information", "farthest_candidates", "run_budget"]
 
 
 def farthest_candidates(D: np.ndarray, pool: np.ndarray, space, count: int) -> np.ndarray:
@@ -79,6 +79,21 @@ def farthest_candidates(D: np.ndarray, pool: np.ndarray, space, count: int) -> n
         out.append(cands[best])
         cur = np.vstack([cur, cands[best]])
     return np.array(out).reshape(count, len(space))
+
+
+def run_budget(p: int, runs: Any, lof_points: Any, replicates: Any, starts: Any = None) -> tuple[int, int, int]:
+    """Runs, lack-of-fit points and replicates of an optimal design with ``p`` model columns:
+    each given count a whole number >= 0 (``starts`` is only checked); without ``runs``, p
+    model points plus 5 lack-of-fit points and 5 replicates (as Design-Expert proposes),
+    with ``runs`` none of either unless asked for."""
+    for name, given in (("runs", runs), ("lof_points", lof_points), ("replicates", replicates), ("starts", starts)):
+        if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 0):
+            raise ValueError(f"{name} must be a whole number >= 0 (got {given!r})")
+    if runs is None:
+        n_lof = 5 if lof_points is None else int(lof_points)
+        n_rep = 5 if replicates is None else int(replicates)
+        return p + n_lof + n_rep, n_lof, n_rep
+    return int(runs), 0 if lof_points is None else int(lof_points), 0 if replicates is None else int(replicates)
 
 
 def optimal(
@@ -144,17 +159,7 @@ def optimal(
     check_columns(p, model, len(space))
     if constraints is not None and not isinstance(constraints, Constraints):
         constraints = Constraints.parse(constraints, space)
-    for name, given in (("runs", runs), ("lof_points", lof_points), ("replicates", replicates), ("starts", starts)):
-        if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 0):
-            raise ValueError(f"{name} must be a whole number >= 0 (got {given!r})")
-    if runs is None:
-        L = 5 if lof_points is None else int(lof_points)
-        R = 5 if replicates is None else int(replicates)
-        runs = p + L + R
-    else:
-        runs = int(runs)
-        L = 0 if lof_points is None else int(lof_points)
-        R = 0 if replicates is None else int(replicates)
+    runs, L, R = run_budget(p, runs, lof_points, replicates, starts)
     n_model = runs - L - R
     if n_model < 0:
         raise ValueError(f"{L} lack-of-fit points and {R} replicates are more than the {runs} runs; the {model} "
