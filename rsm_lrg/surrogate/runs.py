@@ -129,21 +129,23 @@ def _geometry_and_h(items: tuple):
     return net.geometry, net.h_side_w_m2k, net.h_front_w_m2k
 
 
-def _rig_rise_at(values: dict, dur: np.ndarray, y: float, rigid: bool):
-    """One heat balance in watts (:func:`rsm_lrg.physics.thermal.network.rig_network`): the
-    carriage's rise per watt [K/W] at the durations ``dur`` [min] (linear between whole
-    minutes, as :func:`_rise_at`) for a watt at the ball contacts and for a watt entering the
-    working stage, and the two steady rises per watt, for leaves of thickness ``y`` (``rigid``:
-    the RMS)."""
-    from ..physics.thermal.network import rig_bodies, rig_network
+def _rig_rise_rows(values: dict, dur: np.ndarray, y: np.ndarray, rigid: bool):
+    """One heat balance in watts (:func:`rsm_lrg.physics.thermal.network.rig_network`) for
+    rows of one rig whose leaves differ: the carriage's rise per watt [K/W] at the durations
+    ``dur`` [min] (linear between whole minutes, as :func:`_rise_at`) for a watt at the ball
+    contacts and for a watt entering the working stage, and the two steady rises per watt, for
+    leaves of thickness ``y`` [m] (``rigid``: the RMS), each row's network on its own
+    (:func:`rsm_lrg.physics.thermal.network.rig_responses`, one compiled loop)."""
+    from ..physics.thermal.network import leaf_terms, rig_bodies, rig_responses
 
     geometry, hs, hf = _geometry_and_h(_thermal_items(values))
-    net = rig_network(geometry, hs, hf, rig_bodies(values, y, rigid=rigid, h_side_w_m2k=hs))
-    knots = np.unique(np.concatenate([np.floor(dur), np.ceil(dur)]))
-    out = []
-    for src in ("balls", "stage"):
-        out.append(np.interp(dur, knots, net.response(knots * 60.0, source=src)))
-    return out[0], out[1], float(net.steady_rise("balls")[0]), float(net.steady_rise("stage")[0])
+    rig = rig_bodies(values, float(y[0]), rigid=rigid, h_side_w_m2k=hs)
+    g_leaf, c_leaf = leaf_terms(values, y)
+    lo, hi = np.floor(dur), np.ceil(dur)
+    resp, steady = rig_responses(geometry, hs, hf, rig, g_leaf, c_leaf, np.stack([lo, hi], axis=1) * 60.0)
+    w = np.where(hi > lo, dur - lo, 0.0)
+    unit = resp[:, :, 0] + w[:, None] * (resp[:, :, 1] - resp[:, :, 0])
+    return unit[:, 0], unit[:, 1], steady[:, 0], steady[:, 1]
 
 
 def _lagged_rise_at(values: dict, dur: np.ndarray, tau: np.ndarray, unit: np.ndarray, q: np.ndarray):
@@ -351,22 +353,24 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         uniq, inv = np.zeros((1, 0)), np.zeros(n, dtype=int)
     lag_end = np.empty(n)
     steady_drive = np.empty(n)
-    if balance:  # one network per leaf thickness, stage kind and per-row parameters; both sources in watts
+    if balance:  # one network per row (leaf thickness, stage kind, per-row parameters); both sources in watts
+        from ..physics.thermal.fixed_order import RowError
+
         names_b = sorted(pcols)
-        # the RMS's network has no leaves: its rows share one network whatever their thickness
-        keys_b = np.stack([np.where(rigid, 0.0, y), rigid.astype(float)] + [np.broadcast_to(np.asarray(pcols[k], float), (n,))
-                                                       for k in names_b], axis=1)
+        keys_b = np.stack([rigid.astype(float)] + [np.broadcast_to(np.asarray(pcols[k], float), (n,))
+                                                   for k in names_b], axis=1)
         uniq_b, inv_b = np.unique(keys_b, axis=0, return_inverse=True)
         inv_b = inv_b.reshape(-1)
         for g, row in enumerate(uniq_b):
-            m = inv_b == g
-            vals = dict(base, **{k: float(x) for k, x in zip(names_b, row[2:].tolist())})
+            idx = np.flatnonzero(inv_b == g)
+            vals = dict(base, **{k: float(x) for k, x in zip(names_b, row[1:].tolist())})
             try:
-                unit_end[m], lag_end[m], steady[m], steady_drive[m] = _rig_rise_at(vals, dur[m], float(row[0]),
-                                                                                   bool(row[1]))
+                unit_end[idx], lag_end[idx], steady[idx], steady_drive[idx] = _rig_rise_rows(
+                    vals, dur[idx], y[idx], bool(row[0]))
+            except RowError as exc:
+                raise ValueError(f"row {row_start + int(idx[exc.row]) + 1}: {exc.reason}") from None
             except ValueError as exc:
-                i = int(np.flatnonzero(m)[0])
-                raise ValueError(f"row {row_start + i + 1}: {exc}") from None
+                raise ValueError(f"row {row_start + int(idx[0]) + 1}: {exc}") from None
     for g, row in enumerate(uniq if not balance else ()):
         vals = dict(base, **dict(zip(th_names, row)))
         m = inv == g

@@ -1,16 +1,15 @@
 """Dense symmetric linear algebra with a fixed order of floating-point operations.
 
 The reduced thermal network (:mod:`.network`) needs a linear solve ``K x = b`` and the
-eigen-decomposition of a symmetric matrix of order ~100.  NumPy's ``linalg.solve`` and
+eigen-decomposition of a symmetric matrix of order ~30-100.  NumPy's ``linalg.solve`` and
 ``linalg.eigh`` call BLAS/LAPACK, whose blocking, threading (the number of OpenBLAS/MKL
 threads differs between the main process and, say, a Dask worker, which starts with one
 thread) and SIMD paths change the order of the additions, so the same matrix gives results
 that differ in the last bits (measured: 1.5e-15 relative on the steady rise per watt with 1
 thread against 2).  The virtual runs promise bit-identical rows wherever they run, so these
-routines use only element-wise NumPy operations (each element one IEEE-754 multiply or
-add, the same whatever the array's length, alignment or the number of threads), reductions
-in an order fixed by the code (loops) or exactly rounded (:func:`math.fsum`), and plain
-Python floats for the scalar iterations.
+routines are compiled loops (numba, ``fastmath`` off: every multiply and add one IEEE-754
+operation, in the order the code gives, no reassociation) that run the same operations
+whatever the process, the number of threads or the other rows of a batch.
 
 * :func:`solve_spd` -- Gaussian elimination without pivoting (for a symmetric positive
   definite matrix, where it is backward stable; Golub & Van Loan, *Matrix Computations*,
@@ -18,20 +17,27 @@ Python floats for the scalar iterations.
 * :func:`symmetric_eigen` -- Householder reduction to tridiagonal form (Golub & Van Loan
   Section 8.3.1) and the implicit QL iteration with Wilkinson shifts (Press et al.,
   *Numerical Recipes*, 3rd ed., Section 11.4, ``tqli``).  It returns the eigenvalues and the
-  projections ``V^T x`` of a few vectors on the eigenvectors, which is all the network's
-  exact-in-time response needs; :meth:`SymmetricEigen.project` gives more on request.
+  projections ``V^T x`` of given vectors on the eigenvectors (the reflections and rotations
+  are applied to the vectors as they are made), which is all the network's exact-in-time
+  response needs.
+* :func:`modal_sum` -- the step response ``sum_k a_k (1 - exp(-mu_k t))`` at given times.
+* :func:`rig_rows` -- all three for many rows whose networks differ only in the leaves'
+  conductance and heat capacity (one network per leaf thickness of a design), in one
+  compiled loop: no Python per row.
 
-Both are O(n^3) with O(n^2) NumPy calls: a few tens of milliseconds for n ~ 100.
+The kernels are compiled on first use (numba imported only then) and cached on disk.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
-__all__ = ["solve_spd", "symmetric_eigen", "SymmetricEigen", "dot"]
+__all__ = ["solve_spd", "symmetric_eigen", "SymmetricEigen", "dot", "modal_sum", "network_modes", "rig_rows", "RowError"]
 
 
 def dot(x, y) -> float:
@@ -44,39 +50,294 @@ def dot(x, y) -> float:
     return math.fsum((np.asarray(x, float) * np.asarray(y, float)).tolist())
 
 
+# ----------------------------------------------------------------------------------------
+# compiled kernels (module-level functions, compiled by _kernels() on first use; numba keys
+# its disk cache of module-level functions by their source, so each process loads them)
+# ----------------------------------------------------------------------------------------
+def _fo_solve(a: np.ndarray, x: np.ndarray) -> int:
+    # a (n, n) overwritten; x (n, m) overwritten by the solution; 1: not positive definite
+    n = a.shape[0]
+    m = x.shape[1]
+    for k in range(n):
+        piv = a[k, k]
+        if not (piv > 0.0 and piv < np.inf):
+            return 1
+        for i in range(k + 1, n):
+            f = a[i, k] / piv
+            for j in range(k + 1, n):
+                a[i, j] -= f * a[k, j]
+            for c in range(m):
+                x[i, c] -= f * x[k, c]
+    for k in range(n - 1, -1, -1):
+        for c in range(m):
+            x[k, c] = x[k, c] / a[k, k]
+        for i in range(k):
+            for c in range(m):
+                x[i, c] -= a[i, k] * x[k, c]
+    return 0
+
+
+def _fo_eigen(a: np.ndarray, x: np.ndarray, max_iter: int, values: np.ndarray, proj: np.ndarray) -> int:
+    # a (n, n) symmetric, overwritten; x (n, m) overwritten by Z^T Q^T x; values (n,) and
+    # proj (n, m) receive the eigenvalues ascending and V^T x in that order. 1: no convergence
+    n = a.shape[0]
+    m = x.shape[1]
+    v = np.empty(n)
+    p = np.empty(n)
+    # ---- Householder reduction to tridiagonal form: T = Q^T A Q --------------------------
+    for k in range(n - 2):
+        xn2 = 0.0
+        for i in range(k + 1, n):
+            xn2 += a[i, k] * a[i, k]
+        xn = math.sqrt(xn2)
+        if xn == 0.0:
+            continue
+        alpha = -xn if a[k + 1, k] >= 0.0 else xn
+        for i in range(k + 1, n):
+            v[i] = a[i, k]
+        v[k + 1] -= alpha
+        vv = 0.0
+        for i in range(k + 1, n):
+            vv += v[i] * v[i]
+        if vv == 0.0:
+            continue
+        beta = 2.0 / vv
+        for i in range(k + 1, n):  # p = beta B v, the columns added in a fixed order
+            acc = a[i, k + 1] * v[k + 1]
+            for j in range(k + 2, n):
+                acc += a[i, j] * v[j]
+            p[i] = acc * beta
+        vp = 0.0
+        for i in range(k + 1, n):
+            vp += v[i] * p[i]
+        half = 0.5 * beta * vp
+        for i in range(k + 1, n):
+            p[i] = p[i] - half * v[i]  # q
+        for i in range(k + 1, n):
+            for j in range(k + 1, n):
+                a[i, j] -= v[i] * p[j] + p[i] * v[j]  # stays exactly symmetric
+        for i in range(k + 1, n):
+            a[i, k] = 0.0
+            a[k, i] = 0.0
+        a[k + 1, k] = alpha
+        a[k, k + 1] = alpha
+        for c in range(m):  # H x = x - beta v (v^T x)
+            acc = 0.0
+            for i in range(k + 1, n):
+                acc += v[i] * x[i, c]
+            f = beta * acc
+            for i in range(k + 1, n):
+                x[i, c] -= f * v[i]
+    d = np.empty(n)
+    e = np.zeros(n)
+    for i in range(n):
+        d[i] = a[i, i]
+    for i in range(n - 1):
+        e[i] = a[i + 1, i]
+    # ---- implicit QL with Wilkinson shifts (Numerical Recipes tqli) -----------------------
+    eps = 2.220446049250313e-16
+    for l_ in range(n):
+        it = 0
+        while True:
+            mm = l_
+            while mm < n - 1:
+                dd = abs(d[mm]) + abs(d[mm + 1])
+                if abs(e[mm]) <= eps * dd:
+                    break
+                mm += 1
+            if mm == l_:
+                break
+            it += 1
+            if it > max_iter:
+                return 1
+            g = (d[l_ + 1] - d[l_]) / (2.0 * e[l_])
+            r = math.hypot(g, 1.0)
+            g = d[mm] - d[l_] + e[l_] / (g + (r if g >= 0.0 else -r))
+            s = 1.0
+            c_ = 1.0
+            pp = 0.0
+            i = mm - 1
+            early = False
+            while i >= l_:
+                f = s * e[i]
+                bb = c_ * e[i]
+                r = math.hypot(f, g)
+                e[i + 1] = r
+                if r == 0.0:  # underflow: the matrix splits here
+                    d[i + 1] -= pp
+                    e[mm] = 0.0
+                    early = True
+                    break
+                s = f / r
+                c_ = g / r
+                g = d[i + 1] - pp
+                r = (d[i] - g) * s + 2.0 * c_ * bb
+                pp = s * r
+                d[i + 1] = g + pp
+                g = c_ * r - bb
+                for col in range(m):  # the rotation of the columns i, i+1 of Z, on Z^T x
+                    fx = x[i + 1, col]
+                    x[i + 1, col] = s * x[i, col] + c_ * fx
+                    x[i, col] = c_ * x[i, col] - s * fx
+                i -= 1
+            if early:
+                continue
+            d[l_] -= pp
+            e[l_] = g
+            e[mm] = 0.0
+    # ---- ascending order (ties by index: insertion sort, stable) --------------------------
+    order = np.arange(n)
+    for i in range(1, n):
+        j = i
+        while j > 0 and d[order[j - 1]] > d[order[j]]:
+            t = order[j - 1]
+            order[j - 1] = order[j]
+            order[j] = t
+            j -= 1
+    for i in range(n):
+        values[i] = d[order[i]]
+        for col in range(m):
+            proj[i, col] = x[order[i], col]
+    return 0
+
+
+def _fo_modal_sum(coef: np.ndarray, mu: np.ndarray, t: np.ndarray, out: np.ndarray) -> None:
+    # out[j] = -sum_k coef_k expm1(-mu_k t_j), the modes added in their order
+    for j in range(t.shape[0]):
+        acc = 0.0
+        for k in range(mu.shape[0]):
+            acc -= coef[k] * math.expm1(-mu[k] * t[j])
+        out[j] = acc
+
+
+def _fo_network(k_mat: np.ndarray, cap: np.ndarray, src: np.ndarray, node: int, max_iter: int,
+                mu: np.ndarray, coef: np.ndarray, steady: np.ndarray) -> int:
+    # one network K (overwritten), C: its modes mu (ascending) and, per source (columns of
+    # src), the coefficients of node's unit response and its steady rise
+    n = k_mat.shape[0]
+    ns = src.shape[1]
+    s = np.empty(n)
+    for i in range(n):
+        s[i] = 1.0 / math.sqrt(cap[i])
+    a = np.empty((n, n))
+    for i in range(n):
+        for j in range(n):
+            a[i, j] = s[i] * k_mat[i, j] * s[j]
+    for i in range(n):  # exactly symmetric: (x + y) / 2 is the same sum either way
+        for j in range(i):
+            h = 0.5 * (a[i, j] + a[j, i])
+            a[i, j] = h
+            a[j, i] = h
+    x = np.zeros((n, 1 + ns))
+    x[node, 0] = 1.0
+    for c in range(ns):
+        for i in range(n):
+            x[i, 1 + c] = s[i] * src[i, c]
+    proj = np.empty((n, 1 + ns))
+    if _fo_eigen(a, x, max_iter, mu, proj) != 0:
+        return 1
+    if not mu[0] > 1e-13 * abs(mu[n - 1]):  # zero to rounding: a node set with no loss
+        return 2
+    for c in range(ns):
+        for k in range(n):
+            coef[k, c] = s[node] * proj[k, 0] * proj[k, 1 + c] / mu[k]
+    b = src.copy()
+    if _fo_solve(k_mat, b) != 0:
+        return 3
+    for c in range(ns):
+        steady[c] = b[node, c]
+    return 0
+
+
+def _fo_rig_rows(k0: np.ndarray, c0: np.ndarray, fr: int, lf: int, st: int, g: np.ndarray, cl: np.ndarray,
+                 src: np.ndarray, node: int, times: np.ndarray, max_iter: int, resp: np.ndarray,
+                 steady: np.ndarray, status: np.ndarray) -> None:
+    # rows whose networks are k0, c0 plus the leaves' node lf linked to the frame fr and to the
+    # stage st with the conductance g[r], heat capacity cl[r] (lf < 0: no leaves, the template)
+    n = k0.shape[0]
+    ns = src.shape[1]
+    mu = np.empty(n)
+    coef = np.empty((n, ns))
+    st_out = np.empty(ns)
+    col = np.empty(n)
+    out = np.empty(times.shape[1])
+    for r in range(times.shape[0]):
+        k_mat = k0.copy()
+        cap = c0.copy()
+        if lf >= 0:
+            gr = g[r]
+            for q in range(2):  # frame-leaves, then leaves-stage: the order ThermalNetwork links them
+                i = fr if q == 0 else lf
+                j = lf if q == 0 else st
+                k_mat[i, i] += gr
+                k_mat[j, j] += gr
+                k_mat[i, j] -= gr
+                k_mat[j, i] -= gr
+            cap[lf] = cl[r]
+        status[r] = _fo_network(k_mat, cap, src, node, max_iter, mu, coef, st_out)
+        if status[r] != 0:
+            continue
+        for c in range(ns):
+            for k in range(n):
+                col[k] = coef[k, c]
+            _fo_modal_sum(col, mu, times[r], out)
+            for j in range(times.shape[1]):
+                resp[r, c, j] = out[j]
+            steady[r, c] = st_out[c]
+
+
+_FO_NAMES = ("_fo_solve", "_fo_eigen", "_fo_modal_sum", "_fo_network", "_fo_rig_rows")
+
+
+@lru_cache(maxsize=1)
+def _kernels() -> dict[str, Any]:
+    """Compile the kernels (once per process; numba caches the machine code on disk)."""
+    import numba
+
+    g = globals()
+    jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
+    for name in _FO_NAMES:  # callees first
+        g[name] = jit(g[name])
+    return {name: g[name] for name in _FO_NAMES}
+
+
+_MESSAGES = {1: "the QL iteration did not converge", 2: "the network has no path to ambient (all h = 0): "
+             "no steady state.", 3: "the matrix is not positive definite"}
+
+
+def _square(a: Any, what: str) -> np.ndarray:
+    a = np.array(a, dtype=float, copy=True)
+    n = a.shape[0] if a.ndim else 0
+    if a.ndim != 2 or a.shape != (n, n) or n == 0:
+        raise ValueError(f"{what} needs a square matrix, got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{what}: the matrix has non-finite entries")
+    return np.ascontiguousarray(a)
+
+
 def solve_spd(a, b) -> np.ndarray:
     """Solve ``a x = b`` for a symmetric positive definite ``a`` (n, n) and ``b`` (n,).
 
-    Gaussian elimination without pivoting, row operations as element-wise array
-    operations in a fixed order: the result is bit-identical wherever it runs.
+    Gaussian elimination without pivoting, in a fixed order of operations: the result is
+    bit-identical wherever it runs.
 
     >>> solve_spd([[4.0, 2.0], [2.0, 3.0]], [2.0, 1.0]).tolist()
     [0.5, 0.0]
     """
-    a = np.array(a, dtype=float, copy=True)
+    a = _square(a, "solve_spd")
     x = np.array(b, dtype=float, copy=True)
-    n = a.shape[0]
-    if a.ndim != 2 or a.shape != (n, n) or x.shape != (n,):
+    if x.shape != (a.shape[0],):
         raise ValueError(f"solve_spd needs a square matrix and a matching vector, got {a.shape} and {x.shape}")
-    for k in range(n):
-        piv = a[k, k]
-        if not (math.isfinite(piv) and piv > 0):
-            raise ValueError("solve_spd: the matrix is not positive definite")
-        if k + 1 < n:
-            f = a[k + 1:, k] / piv
-            a[k + 1:, k + 1:] -= f[:, None] * a[k, k + 1:][None, :]
-            x[k + 1:] -= f * x[k]
-    for k in range(n - 1, -1, -1):
-        x[k] = x[k] / a[k, k]
-        if k:
-            x[:k] -= a[:k, k] * x[k]
-    return x
+    x2 = np.ascontiguousarray(x[:, None])
+    if _kernels()["_fo_solve"](a, x2) != 0:
+        raise ValueError("solve_spd: " + _MESSAGES[3])
+    return x2[:, 0].copy()
 
 
 @dataclass(frozen=True)
 class SymmetricEigen:
-    """Eigenvalues of a symmetric matrix, ascending, with what is needed to project vectors
-    on its eigenvectors (``V^T x``) in a fixed order of operations.
+    """Eigenvalues of a symmetric matrix, ascending, with the projections of vectors on its
+    eigenvectors (``V^T x``) in a fixed order of operations.
 
     Attributes
     ----------
@@ -85,30 +346,31 @@ class SymmetricEigen:
     """
 
     values: np.ndarray
-    _householder: tuple  # ((k, v, beta), ...): Q = H_0 H_1 ... with H = I - beta v v^T on rows k+1:
-    _rotations: tuple  # ((i, c, s), ...) of the QL iteration, in the order applied
-    _order: tuple  # sorts the QL eigenvalues ascending
+    _matrix: np.ndarray  # the symmetrised matrix: project() decomposes it again with the vectors
+    max_iter: int = 60
 
     def project(self, *vectors) -> np.ndarray:
         """``V^T x`` for each vector ``x`` (rows of the result, eigenvalue order ascending),
-        V the orthonormal eigenvectors: ``x = sum_k (V^T x)_k v_k``."""
-        ys = [np.array(x, dtype=float, copy=True) for x in vectors]
-        for y in ys:
-            for k, v, beta in self._householder:  # Q^T y = H_last ... H_0 y
-                y[k + 1:] -= (beta * dot(v, y[k + 1:])) * v
-        cols = [y.tolist() for y in ys]
-        for i, c, s in self._rotations:  # Z^T y: every rotation of Z's columns i, i+1
-            for y in cols:
-                f = y[i + 1]
-                y[i + 1] = s * y[i] + c * f
-                y[i] = c * y[i] - s * f
-        return np.array([[y[k] for k in self._order] for y in cols])
+        V the orthonormal eigenvectors: ``x = sum_k (V^T x)_k v_k``. The reflections and
+        rotations of the decomposition are applied to the vectors (each on its own: a
+        vector's projection does not depend on the others asked for with it)."""
+        _, p = _decompose(self._matrix, np.array(vectors, dtype=float).T, self.max_iter)
+        return np.ascontiguousarray(p.T)
+
+
+def _decompose(a: np.ndarray, x: np.ndarray, max_iter: int) -> tuple[np.ndarray, np.ndarray]:
+    n = a.shape[0]
+    values = np.empty(n)
+    proj = np.empty((n, x.shape[1]))
+    if _kernels()["_fo_eigen"](a.copy(), np.ascontiguousarray(x, dtype=float).copy(), int(max_iter), values,
+                               proj) != 0:
+        raise ValueError("symmetric_eigen: " + _MESSAGES[1])
+    return values, proj
 
 
 def symmetric_eigen(a, *, max_iter: int = 60) -> SymmetricEigen:
-    """Eigen-decomposition of the symmetric matrix ``a`` (only its lower triangle is read
-    after the first step; it is symmetrised element-wise first), bit-identical wherever it
-    runs.
+    """Eigen-decomposition of the symmetric matrix ``a`` (symmetrised element-wise first),
+    bit-identical wherever it runs.
 
     >>> e = symmetric_eigen([[2.0, 1.0], [1.0, 2.0]])
     >>> e.values.tolist()
@@ -117,90 +379,81 @@ def symmetric_eigen(a, *, max_iter: int = 60) -> SymmetricEigen:
     >>> [round(abs(float(x)), 12) for x in p]
     [0.0, 1.414213562373]
     """
-    a = np.array(a, dtype=float, copy=True)
-    n = a.shape[0]
-    if a.ndim != 2 or a.shape != (n, n) or n == 0:
-        raise ValueError(f"symmetric_eigen needs a square matrix, got shape {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError("symmetric_eigen: the matrix has non-finite entries")
-    a = 0.5 * (a + a.T)  # a_ij + a_ji == a_ji + a_ij: exactly symmetric
-    # ---- Householder reduction to tridiagonal form: T = Q^T A Q -------------------------
-    house = []
-    for k in range(n - 2):
-        x = a[k + 1:, k].copy()
-        xn = math.sqrt(dot(x, x))
-        if xn == 0.0:
-            continue
-        alpha = -math.copysign(xn, x[0])
-        v = x
-        v[0] -= alpha
-        vv = dot(v, v)
-        if vv == 0.0:
-            continue
-        beta = 2.0 / vv
-        b = a[k + 1:, k + 1:]
-        # p = beta * B v, the columns added in a fixed order
-        p = b[:, 0] * v[0]
-        for j in range(1, v.size):
-            p += b[:, j] * v[j]
-        p *= beta
-        q = p - (0.5 * beta * dot(v, p)) * v
-        b -= np.multiply.outer(v, q) + np.multiply.outer(q, v)  # stays exactly symmetric
-        a[k + 1:, k] = 0.0
-        a[k, k + 1:] = 0.0
-        a[k + 1, k] = a[k, k + 1] = alpha
-        house.append((k, v, beta))
-    d = [float(a[i, i]) for i in range(n)]
-    e = [float(a[i + 1, i]) for i in range(n - 1)] + [0.0]
-    # ---- implicit QL with Wilkinson shifts (Numerical Recipes tqli), plain floats -------
-    rot = []
-    eps = np.finfo(float).eps
-    for l_ in range(n):
-        it = 0
-        while True:
-            m = l_
-            while m < n - 1:
-                dd = abs(d[m]) + abs(d[m + 1])
-                if abs(e[m]) <= eps * dd:
-                    break
-                m += 1
-            if m == l_:
-                break
-            it += 1
-            if it > max_iter:
-                raise ValueError("symmetric_eigen: the QL iteration did not converge")
-            g = (d[l_ + 1] - d[l_]) / (2.0 * e[l_])
-            r = math.hypot(g, 1.0)
-            g = d[m] - d[l_] + e[l_] / (g + math.copysign(r, g))
-            s = c = 1.0
-            p = 0.0
-            i = m - 1
-            early = False
-            while i >= l_:
-                f = s * e[i]
-                bb = c * e[i]
-                r = math.hypot(f, g)
-                e[i + 1] = r
-                if r == 0.0:  # underflow: the matrix splits here
-                    d[i + 1] -= p
-                    e[m] = 0.0
-                    early = True
-                    break
-                s = f / r
-                c = g / r
-                g = d[i + 1] - p
-                r = (d[i] - g) * s + 2.0 * c * bb
-                p = s * r
-                d[i + 1] = g + p
-                g = c * r - bb
-                rot.append((i, c, s))
-                i -= 1
-            if early:
-                continue
-            d[l_] -= p
-            e[l_] = g
-            e[m] = 0.0
-    order = tuple(sorted(range(n), key=lambda k: (d[k], k)))
-    values = np.array([d[k] for k in order])
+    a = _square(a, "symmetric_eigen")
+    a = np.ascontiguousarray(0.5 * (a + a.T))  # a_ij + a_ji == a_ji + a_ij: exactly symmetric
+    values, _ = _decompose(a, np.zeros((a.shape[0], 0)), max_iter)
     values.setflags(write=False)
-    return SymmetricEigen(values, tuple(house), tuple(rot), order)
+    return SymmetricEigen(values, a, int(max_iter))
+
+
+def modal_sum(coef, mu, times_s) -> np.ndarray:
+    """``sum_k coef_k (1 - exp(-mu_k t))`` at each time ``t`` [s] (``expm1``, the modes added
+    in their order): a step response from its modal coefficients ``coef`` and rates ``mu``
+    [1/s]. Each time's value does not depend on the other times asked for.
+
+    >>> modal_sum([1.0, 2.0], [1.0, 0.5], [0.0, 1e9]).tolist()
+    [0.0, 3.0]
+    """
+    t = np.asarray(times_s, dtype=float)
+    out = np.empty(t.size)
+    _kernels()["_fo_modal_sum"](np.ascontiguousarray(coef, dtype=float), np.ascontiguousarray(mu, dtype=float),
+                                np.ascontiguousarray(t.reshape(-1)), out)
+    return out.reshape(t.shape)
+
+
+def network_modes(k_mat, capacity, sources, node: int = 0, *, max_iter: int = 60
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The modes of the network ``C θ' = -K θ + b`` (``K`` (n, n) symmetric positive definite
+    [W/K], ``C`` (n,) [J/K]): rates ``mu`` [1/s] ascending, and for each source (columns of
+    ``sources`` (n, m) [1]) the coefficients ``a_k`` [K/W] of ``node``'s unit response
+    ``sum_k a_k (1 - exp(-mu_k t))`` (:func:`modal_sum`) and its steady rise [K/W] (a solve of
+    ``K x = b``), from the decomposition of ``C^(-1/2) K C^(-1/2)``."""
+    k_mat = _square(k_mat, "network_modes")
+    cap = np.ascontiguousarray(capacity, dtype=float)
+    src = np.ascontiguousarray(sources, dtype=float)
+    n = k_mat.shape[0]
+    if cap.shape != (n,) or src.ndim != 2 or src.shape[0] != n or not np.all(cap > 0):
+        raise ValueError("network_modes needs positive capacities and sources of the matrix's order")
+    mu, coef, steady = np.empty(n), np.empty((n, src.shape[1])), np.empty(src.shape[1])
+    status = _kernels()["_fo_network"](k_mat, cap, src, int(node), int(max_iter), mu, coef, steady)
+    if status:
+        raise ValueError(_MESSAGES[status])
+    return mu, coef, steady
+
+
+def rig_rows(k0, c0, frame: int, leaves: int, stage: int, leaf_w_k, leaf_capacity_j_k, sources, times_s, *,
+             node: int = 0, max_iter: int = 60) -> tuple[np.ndarray, np.ndarray]:
+    """Unit responses of ``node`` for many networks that differ from the template ``k0``,
+    ``c0`` only in the leaves: each row's network links its node ``leaves`` to ``frame`` and
+    to ``stage`` with the conductance ``leaf_w_k[r]`` [W/K] and gives it the heat capacity
+    ``leaf_capacity_j_k[r]`` [J/K] (``leaves < 0``: the template alone, every row). Each row is
+    what :func:`network_modes` and :func:`modal_sum` give for its own network, to the bit.
+
+    Returns ``resp`` (rows, sources, times) [K/W] at ``times_s`` (rows, times) [s], and the
+    steady rises ``(rows, sources)`` [K/W]. Raises :class:`RowError` (a ``ValueError``) naming the
+    first row (from 0) whose network fails.
+    """
+    k0 = _square(k0, "rig_rows")
+    t = np.ascontiguousarray(times_s, dtype=float)
+    src = np.ascontiguousarray(sources, dtype=float)
+    rows = t.shape[0]
+    g = np.ascontiguousarray(np.broadcast_to(np.asarray(leaf_w_k, float), (rows,)))
+    cl = np.ascontiguousarray(np.broadcast_to(np.asarray(leaf_capacity_j_k, float), (rows,)))
+    resp = np.zeros((rows, src.shape[1], t.shape[1]))
+    steady = np.zeros((rows, src.shape[1]))
+    status = np.zeros(rows, dtype=np.int64)
+    _kernels()["_fo_rig_rows"](k0, np.ascontiguousarray(c0, dtype=float), int(frame), int(leaves), int(stage), g, cl,
+                               src, int(node), t, int(max_iter), resp, steady, status)
+    bad = np.flatnonzero(status)
+    if bad.size:
+        raise RowError(int(bad[0]), _MESSAGES[int(status[bad[0]])])
+    return resp, steady
+
+
+class RowError(ValueError):
+    """A row of :func:`rig_rows` whose network fails: ``row`` (from 0) and the reason."""
+
+    def __init__(self, row: int, reason: str):
+        super().__init__(f"row {row}: {reason}")
+        self.row = row
+        self.reason = reason

@@ -31,16 +31,17 @@ arrays of Q (and groups rows by their h), which is what the virtual-run surrogat
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from functools import lru_cache
 
 import numpy as np
 
-from .fixed_order import solve_spd, symmetric_eigen
+from .fixed_order import RowError, modal_sum, network_modes, rig_rows, solve_spd
 from .geometry import GuideGeometry
 
 __all__ = ["ThermalNetwork", "network_response", "network_rise", "fin_conductance", "RigBodies", "HeatPaths",
-           "rig_bodies", "rig_network", "RIG_SOURCES"]
+           "rig_bodies", "rig_network", "RIG_SOURCES",
+           "leaf_terms", "rig_responses"]
 
 #: Heat inputs of the rig network (:class:`RigBodies`): ``"balls"`` (friction at the ball
 #: contacts, Eq. 8 in watts) and ``"stage"`` (heat entering the working stage, e.g. through
@@ -154,6 +155,142 @@ class HeatPaths:
     carriage_rise_per_w: float
 
 
+@dataclass(frozen=True)
+class _Assembly:
+    K: np.ndarray
+    C: np.ndarray
+    sources: dict
+    g_ambient: np.ndarray
+    ball_links: tuple
+    names: list
+    rail_x_m: np.ndarray
+    carriage_convection_w_k: float
+    nodes: dict
+
+
+def _assemble(geometry: GuideGeometry, h_side_w_m2k: float, h_front_w_m2k: float, h_rail_w_m2k: float | None,
+              h_base_w_m2k: float, dx_m: float, rig: RigBodies | None, leaf_links: bool) -> _Assembly:
+    """Conductances, capacities and sources of the network (:class:`ThermalNetwork`);
+    ``leaf_links=False``: without the leaves' two links (a template for :func:`rig_responses`)."""
+    if h_rail_w_m2k is None:
+        h_rail_w_m2k = h_side_w_m2k
+    for name, v in (("h_side_w_m2k", h_side_w_m2k), ("h_front_w_m2k", h_front_w_m2k),
+                    ("h_rail_w_m2k", h_rail_w_m2k), ("h_base_w_m2k", h_base_w_m2k)):
+        if not (math.isfinite(v) and v >= 0):
+            raise ValueError(f"{name} must be a finite number >= 0 [W/(m^2 K)], got {v!r}.")
+    if not (math.isfinite(dx_m) and 0 < dx_m <= 0.05):
+        raise ValueError(f"dx_m must be in (0, 0.05] m, got {dx_m!r}.")
+    g = geometry
+    W, L, M, H1 = g.block_width_m, g.block_length_m, g.block_height_m, g.block_clearance_m
+    w, hr, gap, d, Lrow = g.rail_width_m, g.rail_height_m, g.clearance_m, g.ball_diameter_m, g.row_length_m
+    rho, lam, cp = g.body_properties()
+    steel_rc = g.steel_density_kg_m3 * g.steel_specific_heat_j_kgk
+
+    # ---- rail cells (half rail) -------------------------------------------------
+    xe = _rail_edges(g, dx_m)
+    dx = np.diff(xe)
+    xc = 0.5 * (xe[1:] + xe[:-1])
+    nr = len(dx)
+    under_block = xc < L / 2
+    under_rows = xc < Lrow / 2
+    A_r = w * hr  # homogenised rectangle (fill fraction is in rho and lambda)
+    lam_r = lam[4]
+    C_rail = rho[4] * cp[4] * A_r * dx
+    # convection per unit length
+    gconv_rail = np.where(
+        under_block,
+        h_rail_w_m2k * 2 * H1,  # rail sides below the skirts
+        h_rail_w_m2k * (w + 2 * hr),  # top and both sides
+    ) + h_base_w_m2k * w
+    G_rail_amb = gconv_rail * dx
+    G_rail_amb[-1] += h_rail_w_m2k * A_r  # rail end face
+    G_axial = lam_r * A_r / (0.5 * dx[:-1] + 0.5 * dx[1:])
+
+    # ---- ball nodes ------------------------------------------------------------
+    nb = int(under_rows.sum())
+    lam_b = g.ball_row_conductivity_w_mk
+    g_row_side = lam_b * d / (gap / 2)  # per row, per unit length, strip centre -> one face
+    G_ball_car = g.n_rows * g_row_side * dx[:nb]
+    if rig is not None:  # Hertzian contacts (whole guide) spread along the rows, half model
+        G_ball_car = rig.ball_contact_w_k * dx[:nb] / Lrow
+    G_ball_rail = G_ball_car.copy()
+    C_ball = g.ball_mass_kg * g.ball_specific_heat_j_kgk * dx[:nb] / Lrow
+
+    # ---- clearance air: carriage <-> rail (parallel to the balls) -----------------
+    lam_air = g.air_conductivity_w_mk
+    air_w = (w - 2 * d) + 2 * (hr - H1 - d)  # rail head perimeter not under balls
+    g_air = lam_air * air_w / gap + np.where(under_rows, 0.0, g.n_rows * lam_air * d / gap)
+    G_air = np.where(under_block, g_air * dx, 0.0)
+
+    # ---- carriage (half) ---------------------------------------------------------
+    hb = M - H1
+    chan_w, chan_h = w + 2 * gap, hr - H1 + gap
+    area_side = W * L + 2 * hb * L + (W - chan_w) * L  # top, two sides, underside
+    area_front = 2 * (W * hb - chan_w * chan_h)
+    G_car_amb = 0.5 * (h_side_w_m2k * area_side + h_front_w_m2k * area_front)
+    C_car = 0.5 * g.carriage_steel_volume_m3 * steel_rc
+
+    # ---- assemble: node 0 carriage, 1..nb balls, then rail, then the rig's bodies -----
+    extra = [] if rig is None else (["frame"] + ([] if rig.rigid else ["leaves"]) + ["stage", "base"])
+    n = 1 + nb + nr + len(extra)
+    K = np.zeros((n, n))
+    C = np.zeros(n)
+    b = np.zeros(n)
+
+    def link(i, j, G):
+        K[i, i] += G
+        K[j, j] += G
+        K[i, j] -= G
+        K[j, i] -= G
+
+    C[0] = C_car
+    K[0, 0] += G_car_amb
+    ib = 1 + np.arange(nb)
+    ir = 1 + nb + np.arange(nr)
+    C[ib] = C_ball
+    C[ir] = C_rail
+    b[ib] = dx[:nb] / Lrow  # sums to 1/2: half of every watt
+    for k in range(nb):
+        link(0, ib[k], G_ball_car[k])
+        link(ib[k], ir[k], G_ball_rail[k])
+    for k in range(nr):
+        K[ir[k], ir[k]] += G_rail_amb[k]
+        if G_air[k] > 0:
+            link(0, ir[k], G_air[k])
+    for k in range(nr - 1):
+        link(ir[k], ir[k + 1], G_axial[k])
+    g_amb = np.zeros(n)  # conductance of every node to the air [W/K]
+    g_amb[0] = G_car_amb
+    g_amb[ir] = G_rail_amb
+    sources = {"balls": b}
+    if rig is not None:
+        idx = {name: 1 + nb + nr + k for k, name in enumerate(extra)}
+        fr, st, ba = idx["frame"], idx["stage"], idx["base"]
+        C[fr], C[st], C[ba] = 0.5 * rig.frame_capacity_j_k, 0.5 * rig.stage_capacity_j_k, 0.5 * rig.base_capacity_j_k
+        for node, loss in ((fr, rig.frame_loss_w_k), (st, rig.stage_loss_w_k), (ba, rig.base_loss_w_k)):
+            K[node, node] += 0.5 * loss
+            g_amb[node] = 0.5 * loss
+        link(0, fr, 0.5 * rig.frame_joint_w_k)
+        if rig.rigid:
+            link(fr, st, 0.5 * rig.frame_joint_w_k)
+        else:  # the leaves' node at their mid-length: half their conduction on each side
+            lf = idx["leaves"]
+            C[lf] = 0.5 * rig.leaf_capacity_j_k
+            K[lf, lf] += 0.5 * rig.leaf_loss_w_k
+            g_amb[lf] = 0.5 * rig.leaf_loss_w_k
+            if leaf_links:  # the last additions to these entries (rig_rows makes them per row)
+                link(fr, lf, rig.leaf_w_k)  # 0.5 (half model) x 2 (half the length)
+                link(lf, st, rig.leaf_w_k)
+        for k in range(nr):  # the rail's mounting face on the base
+            link(ir[k], ba, rig.rail_base_w_m2k * w * dx[k])
+        b_stage = np.zeros(n)
+        b_stage[st] = 0.5
+        sources["stage"] = b_stage
+    names = (["carriage"] + [f"balls[{k}]" for k in range(nb)] + [f"rail[{k}]" for k in range(nr)] + extra)
+    nodes = {} if rig is None else idx
+    return _Assembly(K, C, sources, g_amb, (ib, ir[:nb], G_ball_car, G_ball_rail), names, xc, 2 * G_car_amb, nodes)
+
+
 class ThermalNetwork:
     """The reduced network for one geometry and one set of convection coefficients.
 
@@ -180,146 +317,35 @@ class ThermalNetwork:
     def __init__(self, geometry: GuideGeometry, h_side_w_m2k: float, h_front_w_m2k: float, *,
                  h_rail_w_m2k: float | None = None, h_base_w_m2k: float = 0.0, dx_m: float = 2e-3,
                  rig: RigBodies | None = None):
-        if h_rail_w_m2k is None:
-            h_rail_w_m2k = h_side_w_m2k
-        for name, v in (("h_side_w_m2k", h_side_w_m2k), ("h_front_w_m2k", h_front_w_m2k),
-                        ("h_rail_w_m2k", h_rail_w_m2k), ("h_base_w_m2k", h_base_w_m2k)):
-            if not (math.isfinite(v) and v >= 0):
-                raise ValueError(f"{name} must be a finite number >= 0 [W/(m^2 K)], got {v!r}.")
-        if not (math.isfinite(dx_m) and 0 < dx_m <= 0.05):
-            raise ValueError(f"dx_m must be in (0, 0.05] m, got {dx_m!r}.")
-        g = geometry
-        self.geometry = g
-        W, L, M, H1 = g.block_width_m, g.block_length_m, g.block_height_m, g.block_clearance_m
-        w, hr, gap, d, Lrow = g.rail_width_m, g.rail_height_m, g.clearance_m, g.ball_diameter_m, g.row_length_m
-        rho, lam, cp = g.body_properties()
-        steel_rc = g.steel_density_kg_m3 * g.steel_specific_heat_j_kgk
-
-        # ---- rail cells (half rail) -------------------------------------------------
-        xe = _rail_edges(g, dx_m)
-        dx = np.diff(xe)
-        xc = 0.5 * (xe[1:] + xe[:-1])
-        nr = len(dx)
-        under_block = xc < L / 2
-        under_rows = xc < Lrow / 2
-        A_r = w * hr  # homogenised rectangle (fill fraction is in rho and lambda)
-        lam_r = lam[4]
-        C_rail = rho[4] * cp[4] * A_r * dx
-        # convection per unit length
-        gconv_rail = np.where(
-            under_block,
-            h_rail_w_m2k * 2 * H1,  # rail sides below the skirts
-            h_rail_w_m2k * (w + 2 * hr),  # top and both sides
-        ) + h_base_w_m2k * w
-        G_rail_amb = gconv_rail * dx
-        G_rail_amb[-1] += h_rail_w_m2k * A_r  # rail end face
-        G_axial = lam_r * A_r / (0.5 * dx[:-1] + 0.5 * dx[1:])
-
-        # ---- ball nodes ------------------------------------------------------------
-        nb = int(under_rows.sum())
-        lam_b = g.ball_row_conductivity_w_mk
-        g_row_side = lam_b * d / (gap / 2)  # per row, per unit length, strip centre -> one face
-        G_ball_car = g.n_rows * g_row_side * dx[:nb]
-        if rig is not None:  # Hertzian contacts (whole guide) spread along the rows, half model
-            G_ball_car = rig.ball_contact_w_k * dx[:nb] / Lrow
-        G_ball_rail = G_ball_car.copy()
-        C_ball = g.ball_mass_kg * g.ball_specific_heat_j_kgk * dx[:nb] / Lrow
-
-        # ---- clearance air: carriage <-> rail (parallel to the balls) -----------------
-        lam_air = g.air_conductivity_w_mk
-        air_w = (w - 2 * d) + 2 * (hr - H1 - d)  # rail head perimeter not under balls
-        g_air = lam_air * air_w / gap + np.where(under_rows, 0.0, g.n_rows * lam_air * d / gap)
-        G_air = np.where(under_block, g_air * dx, 0.0)
-
-        # ---- carriage (half) ---------------------------------------------------------
-        hb = M - H1
-        chan_w, chan_h = w + 2 * gap, hr - H1 + gap
-        area_side = W * L + 2 * hb * L + (W - chan_w) * L  # top, two sides, underside
-        area_front = 2 * (W * hb - chan_w * chan_h)
-        G_car_amb = 0.5 * (h_side_w_m2k * area_side + h_front_w_m2k * area_front)
-        C_car = 0.5 * g.carriage_steel_volume_m3 * steel_rc
-
-        # ---- assemble: node 0 carriage, 1..nb balls, then rail, then the rig's bodies -----
-        extra = [] if rig is None else (["frame"] + ([] if rig.rigid else ["leaves"]) + ["stage", "base"])
-        n = 1 + nb + nr + len(extra)
-        K = np.zeros((n, n))
-        C = np.zeros(n)
-        b = np.zeros(n)
-
-        def link(i, j, G):
-            K[i, i] += G
-            K[j, j] += G
-            K[i, j] -= G
-            K[j, i] -= G
-
-        C[0] = C_car
-        K[0, 0] += G_car_amb
-        ib = 1 + np.arange(nb)
-        ir = 1 + nb + np.arange(nr)
-        C[ib] = C_ball
-        C[ir] = C_rail
-        b[ib] = dx[:nb] / Lrow  # sums to 1/2: half of every watt
-        for k in range(nb):
-            link(0, ib[k], G_ball_car[k])
-            link(ib[k], ir[k], G_ball_rail[k])
-        for k in range(nr):
-            K[ir[k], ir[k]] += G_rail_amb[k]
-            if G_air[k] > 0:
-                link(0, ir[k], G_air[k])
-        for k in range(nr - 1):
-            link(ir[k], ir[k + 1], G_axial[k])
-        g_amb = np.zeros(n)  # conductance of every node to the air [W/K]
-        g_amb[0] = G_car_amb
-        g_amb[ir] = G_rail_amb
-        sources = {"balls": b}
-        if rig is not None:
-            idx = {name: 1 + nb + nr + k for k, name in enumerate(extra)}
-            fr, st, ba = idx["frame"], idx["stage"], idx["base"]
-            C[fr], C[st], C[ba] = 0.5 * rig.frame_capacity_j_k, 0.5 * rig.stage_capacity_j_k, 0.5 * rig.base_capacity_j_k
-            for node, loss in ((fr, rig.frame_loss_w_k), (st, rig.stage_loss_w_k), (ba, rig.base_loss_w_k)):
-                K[node, node] += 0.5 * loss
-                g_amb[node] = 0.5 * loss
-            link(0, fr, 0.5 * rig.frame_joint_w_k)
-            if rig.rigid:
-                link(fr, st, 0.5 * rig.frame_joint_w_k)
-            else:  # the leaves' node at their mid-length: half their conduction on each side
-                lf = idx["leaves"]
-                C[lf] = 0.5 * rig.leaf_capacity_j_k
-                K[lf, lf] += 0.5 * rig.leaf_loss_w_k
-                g_amb[lf] = 0.5 * rig.leaf_loss_w_k
-                link(fr, lf, rig.leaf_w_k)  # 0.5 (half model) x 2 (half the length)
-                link(lf, st, rig.leaf_w_k)
-            for k in range(nr):  # the rail's mounting face on the base
-                link(ir[k], ba, rig.rail_base_w_m2k * w * dx[k])
-            b_stage = np.zeros(n)
-            b_stage[st] = 0.5
-            sources["stage"] = b_stage
-        self.K, self.C, self.b = K, C, b
-        self.sources = sources
+        asm = _assemble(geometry, h_side_w_m2k, h_front_w_m2k, h_rail_w_m2k, h_base_w_m2k, dx_m, rig, True)
+        self.geometry = geometry
+        self.K, self.C, self.b = asm.K, asm.C, asm.sources["balls"]
+        self.sources = asm.sources
         self.rig = rig
-        self.g_ambient = g_amb
-        self._ball_links = (ib, ir[:nb], G_ball_car, G_ball_rail)
-        self.names = (["carriage"] + [f"balls[{k}]" for k in range(nb)] + [f"rail[{k}]" for k in range(nr)]
-                      + extra)
-        self.rail_x_m = xc
-        self.carriage_convection_w_k = 2 * G_car_amb
+        self.g_ambient = asm.g_ambient
+        self._ball_links = asm.ball_links
+        self.names = asm.names
+        self.rail_x_m = asm.rail_x_m
+        self.carriage_convection_w_k = asm.carriage_convection_w_k
         self.h_side_w_m2k, self.h_front_w_m2k = float(h_side_w_m2k), float(h_front_w_m2k)
         # modal decomposition (exact in time), in a fixed order of floating-point operations
         # (no BLAS/LAPACK: their threading changes the last bits; see .fixed_order)
-        s = 1.0 / np.sqrt(C)
-        eig = symmetric_eigen(s[:, None] * K * s[None, :])
-        mu = eig.values
-        if mu.min() <= 0:
-            raise ValueError("the network has no path to ambient (all h = 0): no steady state.")
-        self._mu = mu
-        self._eig = eig
-        self._s = s
-        self._loads = {name: eig.project(s * vec)[0] for name, vec in sources.items()}  # V^T C^-1/2 b
-        self._load = self._loads["balls"]
+        self._src_names = list(asm.sources)
+        self._src = np.stack([asm.sources[k] for k in self._src_names], axis=1)
         self._coef: dict[tuple[int, str], np.ndarray] = {}
-        self._node_proj: dict[int, np.ndarray] = {}
-        self._steadies = {name: solve_spd(K, vec) for name, vec in sources.items()}
+        self._modes(0)
+        self._steadies = {name: solve_spd(self.K, vec) for name, vec in asm.sources.items()}
         self._steady = self._steadies["balls"]
+
+    def _modes(self, node: int) -> None:
+        """Rates and, per source, the modal coefficients of ``node``'s unit response
+        (:func:`.fixed_order.network_modes`: what :func:`rig_responses` computes per row)."""
+        mu, coef, _ = network_modes(self.K, self.C, self._src, node)
+        self._mu = mu
+        for k, name in enumerate(self._src_names):
+            c = np.ascontiguousarray(coef[:, k])
+            c.setflags(write=False)
+            self._coef[(node, name)] = c
 
     # ------------------------------------------------------------------------------
     @property
@@ -350,13 +376,7 @@ class ThermalNetwork:
             raise ValueError(f"node must be in [0, {self._mu.size}), got {node}.")
         key = (node, self._source(source))
         if key not in self._coef:
-            if node not in self._node_proj:
-                unit = np.zeros(self._mu.size)
-                unit[node] = 1.0
-                self._node_proj[node] = self._s[node] * self._eig.project(unit)[0]
-            coef = self._node_proj[node] * self._loads[source] / self._mu
-            coef.setflags(write=False)
-            self._coef[key] = coef
+            self._modes(node)
         return self._coef[key]
 
     def steady_rise(self, source: str = "balls") -> np.ndarray:
@@ -392,13 +412,7 @@ class ThermalNetwork:
         t = np.asarray(times_s, float)
         if np.any(t < 0) or not np.all(np.isfinite(t)):
             raise ValueError("times_s must be finite and >= 0 [s].")
-        t = np.ascontiguousarray(t)
-        coef = self.modal_coefficients(node, source)
-        out = np.zeros(t.shape)
-        for a, mu in zip(coef.tolist(), self._mu.tolist()):
-            out -= a * np.expm1(-mu * t)
-        return out
-
+        return modal_sum(self.modal_coefficients(node, source), self._mu, t)
 
     def lagged_response(self, times_s, tau_s, node: int = 0) -> np.ndarray:
         """Rise per watt [K/W] of ``node`` at ``times_s`` when the heat reaches the network
@@ -530,14 +544,15 @@ def rig_bodies(values, thickness_m: float, *, rigid: bool = False, h_side_w_m2k:
     m_stage = float(v["stage_mass_kg"]) - m_frame
     c_al = float(v["stage_specific_heat_j_kgk"])
     hj = float(v["joint_conductance_w_m2k"])
-    leaf = math.inf if rigid else n * float(v["hinge_conductivity_w_mk"]) * w * y / lh
+    g_leaf, c_leaf = leaf_terms(v, y)
+    leaf = math.inf if rigid else float(g_leaf)
     return RigBodies(
         ball_contact_w_k=float(v["ball_contact_conductance_w_k"]),
         frame_joint_w_k=hj * float(v["block_width_m"]) * float(v["block_length_m"]),
         frame_capacity_j_k=m_frame * c_al if m_frame > 0 else 1e-6,
         frame_loss_w_k=float(v["stage_loss_conductance_w_k"]),
         leaf_w_k=leaf,
-        leaf_capacity_j_k=n * float(v["hinge_density_kg_m3"]) * float(v["hinge_specific_heat_j_kgk"]) * w * y * lh,
+        leaf_capacity_j_k=float(c_leaf),
         leaf_loss_w_k=n * 2.0 * w * lh * float(h_side_w_m2k),
         stage_capacity_j_k=m_stage * c_al if m_stage > 0 else 1e-6,
         stage_loss_w_k=float(v["stage_loss_conductance_w_k"]),
@@ -545,6 +560,95 @@ def rig_bodies(values, thickness_m: float, *, rigid: bool = False, h_side_w_m2k:
         base_capacity_j_k=float(v["base_heat_capacity_j_k"]),
         base_loss_w_k=float(v["base_loss_conductance_w_k"]),
     )
+
+
+def leaf_terms(values, thickness_m):
+    """End-to-end conduction ``n lambda w y / l`` [W/K] (Eq. 3) and heat capacity
+    ``n rho c w y l`` [J/K] of the ``hinge_count`` leaves of thickness ``thickness_m`` [m]
+    (a number or an array), from the parameters ``values`` (:func:`rig_bodies`).
+
+    >>> from rsm_lrg.physics.params import LRGParams
+    >>> g, c = leaf_terms(LRGParams().to_dict(), np.array([1e-4, 3e-4]))
+    >>> (g / g[0]).tolist(), (c / c[0]).tolist()
+    ([1.0, 3.0], [1.0, 3.0])
+    """
+    v = values
+    y = np.asarray(thickness_m, float)
+    n, w, lh = float(v["hinge_count"]), float(v["hinge_width_m"]), float(v["hinge_length_m"])
+    g = n * float(v["hinge_conductivity_w_mk"]) * w * y / lh
+    c = n * float(v["hinge_density_kg_m3"]) * float(v["hinge_specific_heat_j_kgk"]) * w * y * lh
+    return g, c
+
+
+def rig_responses(geometry: GuideGeometry, h_side_w_m2k: float, h_front_w_m2k: float, rig: RigBodies,
+                  leaf_w_k, leaf_capacity_j_k, times_s, *, dx_m: float = 1e-2) -> tuple[np.ndarray, np.ndarray]:
+    """The carriage's rise per watt of each source (:data:`RIG_SOURCES`) for many rows of one
+    rig whose leaves differ (a design of many thicknesses), in one compiled loop.
+
+    Row ``r`` is the network :func:`rig_network` builds for ``rig`` with its leaves' conduction
+    ``leaf_w_k[r]`` [W/K] and heat capacity ``leaf_capacity_j_k[r]`` [J/K] (:func:`leaf_terms`;
+    ignored for the RMS), to the bit: the same assembly, decomposition and modal sum
+    (:func:`.fixed_order.rig_rows`), without a Python object per row.
+
+    Parameters
+    ----------
+    times_s : array (rows, m)
+        Times after the heat step of each row [s].
+
+    Returns
+    -------
+    resp : ndarray (rows, 2, m)
+        Rise per watt [K/W] at ``times_s`` of a watt at the ball contacts and a watt entering
+        the working stage.
+    steady : ndarray (rows, 2)
+        The steady rises per watt [K/W].
+
+    Examples
+    --------
+    >>> from rsm_lrg.physics.params import LRGParams
+    >>> from rsm_lrg.physics.thermal.geometry import GuideGeometry
+    >>> v = LRGParams().to_dict()
+    >>> rig = rig_bodies(v, 3e-4)
+    >>> g, c = leaf_terms(v, np.array([1e-4, 3e-4]))
+    >>> resp, steady = rig_responses(GuideGeometry(), 8.82, 22.45, rig, g, c, [[3000.0], [3000.0]])
+    >>> net = rig_network(GuideGeometry(), 8.82, 22.45, rig)
+    >>> bool(resp[1, 0, 0] == net.response([3000.0])[0]), bool(steady[1, 1] == net.steady_rise("stage")[0])
+    (True, True)
+    """
+    t = np.atleast_2d(np.asarray(times_s, float))
+    if np.any(t < 0) or not np.all(np.isfinite(t)):
+        raise ValueError("times_s must be finite and >= 0 [s].")
+    if not rig.rigid:  # the template has no leaf links and each row sets the capacity: one per rig
+        rig = replace(rig, leaf_w_k=1.0, leaf_capacity_j_k=1.0)
+    asm = _rig_template(geometry, float(h_side_w_m2k), float(h_front_w_m2k), rig, float(dx_m))
+    src = np.stack([asm.sources[k] for k in RIG_SOURCES], axis=1)
+    nodes = asm.nodes
+    # the leaves' node holds half their capacity and is linked with their whole conductance
+    # (half model x half the length), as ThermalNetwork does; rows of the same leaves (the RMS's
+    # rows, a Box-Behnken design's three thicknesses) share one network
+    rows = t.shape[0]
+    g = np.broadcast_to(np.asarray(leaf_w_k, float), (rows,))
+    c = np.broadcast_to(0.5 * np.asarray(leaf_capacity_j_k, float), (rows,))
+    keys = np.zeros((rows, 2)) if rig.rigid else np.stack([g, c], axis=1)
+    uniq, first, inv = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    inv = inv.reshape(-1)
+    if len(uniq) == rows:
+        return rig_rows(asm.K, asm.C, nodes["frame"], nodes.get("leaves", -1), nodes["stage"], g, c, src, t)
+    resp, steady = np.empty((rows, src.shape[1], t.shape[1])), np.empty((rows, src.shape[1]))
+    for k in range(len(uniq)):  # one network, its rows' times
+        m = inv == k
+        try:
+            r, s = rig_rows(asm.K, asm.C, nodes["frame"], nodes.get("leaves", -1), nodes["stage"], g[first[k]],
+                            c[first[k]], src, t[m])
+        except RowError as exc:
+            raise RowError(int(np.flatnonzero(m)[0]), exc.reason) from None
+        resp[m], steady[m] = r, s
+    return resp, steady
+
+
+@lru_cache(maxsize=64)
+def _rig_template(geometry, h_side, h_front, rig, dx_m):
+    return _assemble(geometry, h_side, h_front, None, 0.0, dx_m, rig, False)
 
 
 @lru_cache(maxsize=512)
@@ -556,7 +660,7 @@ def rig_network(geometry: GuideGeometry, h_side_w_m2k: float, h_front_w_m2k: flo
                 dx_m: float = 1e-2) -> ThermalNetwork:
     """The guide's network with the rig's bodies (one heat balance in watts), cached per
     (geometry, h, bodies, dx). ``dx_m`` 10 mm: the rail's 1-D cells (the carriage's rise at
-    50 min is 0.2 % above that of 1 mm cells, tests/physics/thermal/test_rig_network.py; the
-    leaves' conductance varies row by row, so a design of many thicknesses builds one network
-    per thickness)."""
+    50 min is 0.2 % above that of 1 mm cells, tests/physics/thermal/test_rig_network.py). A
+    design of many thicknesses goes through :func:`rig_responses` instead: the same numbers,
+    without an object per thickness."""
     return _rig_network(geometry, float(h_side_w_m2k), float(h_front_w_m2k), rig, float(dx_m))

@@ -58,3 +58,39 @@ def test_dot_is_exactly_rounded_and_errors():
         solve_spd([[1.0, 2.0], [2.0, 1.0]], [1.0, 1.0])
     with pytest.raises(ValueError, match="non-finite"):
         symmetric_eigen([[np.nan]])
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(2, 30), st.integers(0, 10**6))
+def test_network_modes_against_lapack(n, seed):
+    # a random conduction network (a graph Laplacian plus losses to the air, random capacities):
+    # modal coefficients and steady rise against numpy's eigh of C^-1/2 K C^-1/2
+    from rsm_lrg.physics.thermal.fixed_order import modal_sum, network_modes
+
+    rng = np.random.default_rng(seed)
+    w = np.triu(rng.uniform(0, 1, (n, n)) * (rng.uniform(size=(n, n)) < 0.5), 1)
+    k = np.diag((w + w.T).sum(axis=1) + rng.uniform(0.01, 1, n)) - (w + w.T)
+    cap = rng.uniform(0.1, 100, n)
+    src = rng.uniform(0, 1, (n, 2))
+    node = int(rng.integers(n))
+    mu, coef, steady = network_modes(k, cap, src, node)
+    s = 1 / np.sqrt(cap)
+    lam, v = np.linalg.eigh(s[:, None] * k * s[None, :])
+    np.testing.assert_allclose(mu, lam, rtol=1e-10)
+    ref = (s[node] * v[node])[:, None] * (v.T @ (s[:, None] * src)) / lam[:, None]
+    np.testing.assert_allclose(steady, np.linalg.solve(k, src)[node], rtol=1e-10)
+    t = np.array([0.0, 1.0 / lam[-1], 1.0 / lam[0], 1e12])
+    for c in range(2):
+        got = modal_sum(coef[:, c], mu, t)
+        want = -np.expm1(-np.multiply.outer(t, lam)) @ ref[:, c]
+        np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-12 * abs(steady[c]))
+        assert got[-1] == pytest.approx(steady[c], rel=1e-9)
+
+
+def test_rig_rows_bad_input():
+    from rsm_lrg.physics.thermal.fixed_order import network_modes
+
+    with pytest.raises(ValueError, match="no path to ambient"):
+        network_modes([[1.0, -1.0], [-1.0, 1.0]], [1.0, 1.0], [[1.0], [0.0]])
+    with pytest.raises(ValueError, match="positive capacities"):
+        network_modes([[1.0]], [0.0], [[1.0]])

@@ -90,3 +90,53 @@ def test_bodies_are_checked():
     with pytest.raises(ValueError, match="base_capacity_j_k"):
         RigBodies(**dict(good.__dict__, base_capacity_j_k=float("nan")))
     assert good.leaf_w_k == pytest.approx(4 * 48.0 * 0.010 * 3e-4 / 0.020, rel=1e-12)
+
+
+def test_many_rows_in_one_loop_are_each_rows_own_network_to_the_bit():
+    # rig_responses (one compiled loop over the rows) against rig_network (one ThermalNetwork per
+    # thickness), thicknesses drawn at random and repeated, two times per row; the RMS too
+    from rsm_lrg.physics.thermal.network import leaf_terms, rig_responses
+
+    rng = np.random.default_rng(7)
+    y = np.concatenate([rng.uniform(1e-4, 5e-4, 9), [2e-4, 2e-4]])
+    t = np.stack([rng.uniform(0, 3600, y.size), rng.uniform(0, 9000, y.size)], axis=1).round()
+    for rigid in (False, True):
+        rig = rig_bodies(V, 3e-4, rigid=rigid)
+        g, c = leaf_terms(V, y)
+        resp, steady = rig_responses(G, 8.82, 22.45, rig, g, c, t)
+        for r in range(y.size):
+            net = _net(y=y[r], rigid=rigid)
+            for k, source in enumerate(("balls", "stage")):
+                assert np.array_equal(resp[r, k], net.response(t[r], source=source))
+                assert steady[r, k] == net.steady_rise(source)[0]
+        # a row's values do not depend on the other rows asked for with it
+        r1, s1 = rig_responses(G, 8.82, 22.45, rig, g[3:4], c[3:4], t[3:4])
+        assert np.array_equal(r1[0], resp[3]) and np.array_equal(s1[0], steady[3])
+
+
+def test_many_rows_against_the_matrix_exponential():
+    # independent route (no eigen-decomposition): the augmented matrix exponential of each
+    # row's own network, assembled by ThermalNetwork
+    from rsm_lrg.physics.thermal.network import leaf_terms, rig_responses
+
+    y = np.array([1e-4, 2.7e-4, 5e-4])
+    g, c = leaf_terms(V, y)
+    resp, _ = rig_responses(G, 8.82, 22.45, rig_bodies(V, 1e-4), g, c, np.full((3, 1), 1800.0))
+    for r in range(3):
+        net = _net(y=y[r])
+        n = len(net.C)
+        for k, source in enumerate(("balls", "stage")):
+            M = np.zeros((n + 1, n + 1))
+            M[:n, :n] = -net.K / net.C[:, None]
+            M[:n, n] = net.sources[source] / net.C
+            assert resp[r, k, 0] == pytest.approx(scipy.linalg.expm(M * 1800.0)[0, n], rel=1e-9)
+
+
+def test_a_failing_row_is_named():
+    from rsm_lrg.physics.thermal.fixed_order import RowError
+    from rsm_lrg.physics.thermal.network import leaf_terms, rig_responses
+
+    g, c = leaf_terms(V, np.array([1e-4, 2e-4, 3e-4]))
+    with pytest.raises(RowError, match="row 1:") as e:
+        rig_responses(G, 8.82, 22.45, rig_bodies(V, 1e-4), g, np.array([c[0], -c[1], c[2]]), np.zeros((3, 1)))
+    assert e.value.row == 1
