@@ -63,9 +63,9 @@ def test_rms_rows_share_one_network_whatever_their_thickness():
     d = pd.DataFrame({"thickness_m": rng.uniform(1e-4, 5e-4, n), "stroke_m": rng.uniform(0.04, 0.06, n),
                       "velocity_m_s": rng.uniform(0.4, 0.6, n), "acceleration_m_s2": rng.uniform(20, 40, n),
                       "stage": "rms"})
-    network._rig_network.cache_clear()
+    network._rig_chain.cache_clear()
     with_y = simulate(d, noise_sd=0, seed=1, progress=False)
-    assert network._rig_network.cache_info().currsize == 1
+    assert network._rig_chain.cache_info().currsize == 1  # one rig: the RMS's
     without_y = simulate(d.assign(thickness_m=np.nan), noise_sd=0, seed=1, progress=False)
     np.testing.assert_array_equal(with_y.tcr_c_per_min.to_numpy(), without_y.tcr_c_per_min.to_numpy())
     p = LRGParams().to_dict()

@@ -21,9 +21,10 @@ whatever the process, the number of threads or the other rows of a batch.
   are applied to the vectors as they are made), which is all the network's exact-in-time
   response needs.
 * :func:`modal_sum` -- the step response ``sum_k a_k (1 - exp(-mu_k t))`` at given times.
-* :func:`rig_rows` -- all three for many rows whose networks differ only in the leaves'
-  conductance and heat capacity (one network per leaf thickness of a design), in one
-  compiled loop: no Python per row.
+* :func:`chain_network`, :func:`chain_rows` -- many rows whose networks share a core and
+  differ in a chain of nodes attached to it (the leaves of each thickness of a design): the
+  core is reduced to tridiagonal form once, so a row costs a QL iteration, in one compiled
+  loop with no Python per row.
 
 The kernels are compiled on first use (numba imported only then) and cached on disk.
 """
@@ -37,7 +38,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["solve_spd", "symmetric_eigen", "SymmetricEigen", "dot", "modal_sum", "network_modes", "rig_rows", "RowError"]
+__all__ = ["solve_spd", "symmetric_eigen", "SymmetricEigen", "dot", "modal_sum", "network_modes", "chain_network", "chain_rows", "ChainNetwork",
+           "RowError"]
 
 
 def dot(x, y) -> float:
@@ -88,9 +90,10 @@ def _fo_hypot(x: float, y: float) -> float:
     return math.hypot(x, y)
 
 
-def _fo_eigen(a: np.ndarray, x: np.ndarray, max_iter: int, values: np.ndarray, proj: np.ndarray) -> int:
-    # a (n, n) symmetric, overwritten; x (n, m) overwritten by Z^T Q^T x; values (n,) and
-    # proj (n, m) receive the eigenvalues ascending and V^T x in that order. 1: no convergence
+def _fo_tridiag(a: np.ndarray, x: np.ndarray, d: np.ndarray, e: np.ndarray) -> None:
+    # a (n, n) symmetric, overwritten: T = Q^T A Q tridiagonal, its diagonal in d (n,) and
+    # sub-diagonal in e (e[i] couples i and i+1, e[n-1] = 0); x (n, m) overwritten by Q^T x.
+    # Q's reflections act on rows 1.. only: Q e_0 = e_0
     n = a.shape[0]
     m = x.shape[1]
     v = np.empty(n)
@@ -139,12 +142,18 @@ def _fo_eigen(a: np.ndarray, x: np.ndarray, max_iter: int, values: np.ndarray, p
             f = beta * acc
             for i in range(k + 1, n):
                 x[i, c] -= f * v[i]
-    d = np.empty(n)
-    e = np.zeros(n)
     for i in range(n):
         d[i] = a[i, i]
-    for i in range(n - 1):
-        e[i] = a[i + 1, i]
+        e[i] = a[i + 1, i] if i < n - 1 else 0.0
+
+
+def _fo_ql(d: np.ndarray, e: np.ndarray, x: np.ndarray, max_iter: int, values: np.ndarray,
+           proj: np.ndarray) -> int:
+    # the symmetric tridiagonal matrix (d, e), both overwritten; x (n, m) overwritten by Z^T x;
+    # values (n,) and proj (n, m) receive the eigenvalues ascending and Z^T x in that order.
+    # 1: no convergence
+    n = d.shape[0]
+    m = x.shape[1]
     # ---- implicit QL with Wilkinson shifts (Numerical Recipes tqli) -----------------------
     eps = 2.220446049250313e-16
     for l_ in range(n):
@@ -212,6 +221,16 @@ def _fo_eigen(a: np.ndarray, x: np.ndarray, max_iter: int, values: np.ndarray, p
     return 0
 
 
+def _fo_eigen(a: np.ndarray, x: np.ndarray, max_iter: int, values: np.ndarray, proj: np.ndarray) -> int:
+    # a (n, n) symmetric, overwritten; x (n, m) overwritten; values (n,) and proj (n, m)
+    # receive the eigenvalues ascending and V^T x in that order. 1: no convergence
+    n = a.shape[0]
+    d = np.empty(n)
+    e = np.empty(n)
+    _fo_tridiag(a, x, d, e)
+    return _fo_ql(d, e, x, max_iter, values, proj)
+
+
 def _fo_modal_sum(coef: np.ndarray, mu: np.ndarray, t: np.ndarray, out: np.ndarray) -> None:
     # out[j] = -sum_k coef_k expm1(-mu_k t_j), the modes added in their order
     for j in range(t.shape[0]):
@@ -260,44 +279,96 @@ def _fo_network(k_mat: np.ndarray, cap: np.ndarray, src: np.ndarray, node: int, 
     return 0
 
 
-def _fo_rig_rows(k0: np.ndarray, c0: np.ndarray, fr: int, lf: int, st: int, g: np.ndarray, cl: np.ndarray,
-                 src: np.ndarray, node: int, times: np.ndarray, max_iter: int, resp: np.ndarray,
-                 steady: np.ndarray, status: np.ndarray) -> None:
-    # rows whose networks are k0, c0 plus the leaves' node lf linked to the frame fr and to the
-    # stage st with the conductance g[r], heat capacity cl[r] (lf < 0: no leaves, the template)
-    n = k0.shape[0]
-    ns = src.shape[1]
+def _fo_tri_solve(d: np.ndarray, e: np.ndarray, y: np.ndarray) -> int:
+    # the symmetric positive definite tridiagonal (d, e) (not overwritten): y overwritten by
+    # T^-1 y (elimination without pivoting); 1: not positive definite
+    n = d.shape[0]
+    w = np.empty(n)
+    w[0] = d[0]
+    if not w[0] > 0.0:
+        return 1
+    for i in range(1, n):
+        f = e[i - 1] / w[i - 1]
+        w[i] = d[i] - f * e[i - 1]
+        if not w[i] > 0.0:
+            return 1
+        y[i] -= f * y[i - 1]
+    y[n - 1] = y[n - 1] / w[n - 1]
+    for i in range(n - 2, -1, -1):
+        y[i] = (y[i] - e[i] * y[i + 1]) / w[i]
+    return 0
+
+
+def _fo_chain_rows(core_d: np.ndarray, core_e: np.ndarray, core_x: np.ndarray, s_hub: float, kd: np.ndarray,
+                   ko: np.ndarray, cc: np.ndarray, chain_src: np.ndarray, times: np.ndarray, max_iter: int,
+                   resp: np.ndarray, steady: np.ndarray, status: np.ndarray) -> None:
+    # rows of a network made of a fixed core, already tridiagonal (core_d, core_e; its sources
+    # Q^T C^-1/2 b in core_x (nc, ns_core); the hub, node 0 of the core, observed) and a chain
+    # of m nodes that changes row by row: K's diagonal kd[r] (m,), its links ko[r] (m,) (i to
+    # i + 1, the last to the hub), capacities cc[r] (m,), sources chain_src (m, ns_chain)
+    nc = core_d.shape[0]
+    m = kd.shape[1]
+    n = m + nc
+    ns_core = core_x.shape[1]
+    ns = ns_core + chain_src.shape[1]
+    d = np.empty(n)
+    e = np.empty(n)
+    d0 = np.empty(n)
+    e0 = np.empty(n)
+    x = np.zeros((n, 1 + ns))
+    x0 = np.empty((n, 1 + ns))
     mu = np.empty(n)
-    coef = np.empty((n, ns))
-    st_out = np.empty(ns)
-    col = np.empty(n)
+    proj = np.empty((n, 1 + ns))
+    y = np.empty(n)
+    coef = np.empty(n)
     out = np.empty(times.shape[1])
+    sc = np.empty(m + 1)
     for r in range(times.shape[0]):
-        k_mat = k0.copy()
-        cap = c0.copy()
-        if lf >= 0:
-            gr = g[r]
-            for q in range(2):  # frame-leaves, then leaves-stage: the order ThermalNetwork links them
-                i = fr if q == 0 else lf
-                j = lf if q == 0 else st
-                k_mat[i, i] += gr
-                k_mat[j, j] += gr
-                k_mat[i, j] -= gr
-                k_mat[j, i] -= gr
-            cap[lf] = cl[r]
-        status[r] = _fo_network(k_mat, cap, src, node, max_iter, mu, coef, st_out)
-        if status[r] != 0:
+        for i in range(m):
+            sc[i] = 1.0 / math.sqrt(cc[r, i])
+        sc[m] = s_hub
+        for i in range(m):
+            d[i] = sc[i] * kd[r, i] * sc[i]
+            e[i] = sc[i] * ko[r, i] * sc[i + 1]
+        for j in range(nc):
+            d[m + j] = core_d[j]
+            e[m + j] = core_e[j]
+        for i in range(n):
+            for c in range(1 + ns):
+                x[i, c] = 0.0
+        x[m, 0] = 1.0
+        for c in range(ns_core):
+            for j in range(nc):
+                x[m + j, 1 + c] = core_x[j, c]
+        for c in range(ns - ns_core):
+            for i in range(m):
+                x[i, 1 + ns_core + c] = sc[i] * chain_src[i, c]
+        for i in range(n):
+            d0[i] = d[i]
+            e0[i] = e[i]
+            for c in range(1 + ns):
+                x0[i, c] = x[i, c]
+        if _fo_ql(d, e, x, max_iter, mu, proj) != 0:
+            status[r] = 1
+            continue
+        if not mu[0] > 1e-13 * abs(mu[n - 1]):
+            status[r] = 2
             continue
         for c in range(ns):
             for k in range(n):
-                col[k] = coef[k, c]
-            _fo_modal_sum(col, mu, times[r], out)
+                coef[k] = s_hub * proj[k, 0] * proj[k, 1 + c] / mu[k]
+            _fo_modal_sum(coef, mu, times[r], out)
             for j in range(times.shape[1]):
                 resp[r, c, j] = out[j]
-            steady[r, c] = st_out[c]
+            for i in range(n):
+                y[i] = x0[i, 1 + c]
+            if _fo_tri_solve(d0, e0, y) != 0:
+                status[r] = 3
+                break
+            steady[r, c] = s_hub * y[m]
 
 
-_FO_NAMES = ("_fo_solve", "_fo_hypot", "_fo_eigen", "_fo_modal_sum", "_fo_network", "_fo_rig_rows")
+_FO_NAMES = ("_fo_solve", "_fo_hypot", "_fo_tridiag", "_fo_ql", "_fo_eigen", "_fo_modal_sum", "_fo_network", "_fo_tri_solve", "_fo_chain_rows")
 
 
 @lru_cache(maxsize=1)
@@ -432,29 +503,78 @@ def network_modes(k_mat, capacity, sources, node: int = 0, *, max_iter: int = 60
     return mu, coef, steady
 
 
-def rig_rows(k0, c0, frame: int, leaves: int, stage: int, leaf_w_k, leaf_capacity_j_k, sources, times_s, *,
-             node: int = 0, max_iter: int = 60) -> tuple[np.ndarray, np.ndarray]:
-    """Unit responses of ``node`` for many networks that differ from the template ``k0``,
-    ``c0`` only in the leaves: each row's network links its node ``leaves`` to ``frame`` and
-    to ``stage`` with the conductance ``leaf_w_k[r]`` [W/K] and gives it the heat capacity
-    ``leaf_capacity_j_k[r]`` [J/K] (``leaves < 0``: the template alone, every row). Each row is
-    what :func:`network_modes` and :func:`modal_sum` give for its own network, to the bit.
+@dataclass(frozen=True)
+class ChainNetwork:
+    """A network split into a fixed core, reduced once to tridiagonal form, and a chain of
+    nodes that changes from row to row (:func:`chain_network`, :func:`chain_rows`).
 
-    Returns ``resp`` (rows, sources, times) [K/W] at ``times_s`` (rows, times) [s], and the
-    steady rises ``(rows, sources)`` [K/W]. Raises :class:`RowError` (a ``ValueError``) naming the
-    first row (from 0) whose network fails.
+    Attributes
+    ----------
+    core_d, core_e : ndarray (nc,)
+        The core's ``C^(-1/2) K C^(-1/2)`` reduced to tridiagonal form ``Q^T A Q`` (Q fixes the
+        hub, the core's first node).
+    core_x : ndarray (nc, ns)
+        ``Q^T C^(-1/2) b`` of the core's sources.
+    s_hub : float
+        ``C^(-1/2)`` of the hub [K^(1/2) J^(-1/2)].
     """
-    k0 = _square(k0, "rig_rows")
+
+    core_d: np.ndarray
+    core_e: np.ndarray
+    core_x: np.ndarray
+    s_hub: float
+
+
+def chain_network(k_core, c_core, core_sources) -> ChainNetwork:
+    """Reduce the core of a network (``K`` (nc, nc) [W/K] among the core's nodes, every link
+    to the chain included on the diagonal; capacities (nc,) [J/K]; sources (nc, ns)) once,
+    by Householder reflections that leave its first node, the hub, in place."""
+    k_core = _square(k_core, "chain_network")
+    cap = np.ascontiguousarray(c_core, dtype=float)
+    src = np.ascontiguousarray(core_sources, dtype=float)
+    nc = k_core.shape[0]
+    if cap.shape != (nc,) or not np.all(cap > 0) or src.ndim != 2 or src.shape[0] != nc:
+        raise ValueError("chain_network needs positive capacities and sources of the core's order")
+    s = 1.0 / np.sqrt(cap)
+    a = s[:, None] * k_core * s[None, :]
+    a = np.ascontiguousarray(0.5 * (a + a.T))
+    x = np.ascontiguousarray(s[:, None] * src)
+    d, e = np.empty(nc), np.empty(nc)
+    _kernels()["_fo_tridiag"](a, x, d, e)
+    return ChainNetwork(d, e, x, float(s[0]))
+
+
+def chain_rows(core: ChainNetwork, k_diag, k_link, capacity, chain_sources, times_s, *, max_iter: int = 60
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """Unit responses of the hub for many rows of a network made of the fixed ``core``
+    (:func:`chain_network`) and a chain of m nodes attached to the hub, which changes row by
+    row: ``k_diag`` (rows, m) the chain's diagonal of K [W/K], ``k_link`` (rows, m) its links
+    (node i to i + 1; the last, to the hub) [W/K], ``capacity`` (rows, m) [J/K];
+    ``chain_sources`` (m, ns_chain) the chain's sources.
+
+    The row's matrix ``C^(-1/2) K C^(-1/2)`` is tridiagonal in the basis (chain, ``Q`` core), so
+    each row costs one QL iteration (:func:`symmetric_eigen`'s second half) and a tridiagonal
+    solve, O(n^2), instead of a dense decomposition, O(n^3). The eigenvalues and the hub's
+    response are those of the dense matrix (an orthogonal change of basis), to rounding.
+
+    Returns ``resp`` (rows, ns_core + ns_chain, times) [K/W] at ``times_s`` (rows, times) [s]
+    (sources: the core's, then the chain's) and the steady rises ``(rows, sources)`` [K/W].
+    Raises :class:`RowError` (a ``ValueError``) naming the first row (from 0) that fails.
+    """
     t = np.ascontiguousarray(times_s, dtype=float)
-    src = np.ascontiguousarray(sources, dtype=float)
     rows = t.shape[0]
-    g = np.ascontiguousarray(np.broadcast_to(np.asarray(leaf_w_k, float), (rows,)))
-    cl = np.ascontiguousarray(np.broadcast_to(np.asarray(leaf_capacity_j_k, float), (rows,)))
-    resp = np.zeros((rows, src.shape[1], t.shape[1]))
-    steady = np.zeros((rows, src.shape[1]))
+    kd, ko, cc = (np.ascontiguousarray(np.broadcast_to(np.asarray(q, float), (rows, np.shape(q)[-1])))
+                  for q in (k_diag, k_link, capacity))
+    src = np.ascontiguousarray(chain_sources, dtype=float)
+    ns = core.core_x.shape[1] + src.shape[1]
+    resp = np.zeros((rows, ns, t.shape[1]))
+    steady = np.zeros((rows, ns))
     status = np.zeros(rows, dtype=np.int64)
-    _kernels()["_fo_rig_rows"](k0, np.ascontiguousarray(c0, dtype=float), int(frame), int(leaves), int(stage), g, cl,
-                               src, int(node), t, int(max_iter), resp, steady, status)
+    bad_cap = np.flatnonzero(~np.all(cc > 0, axis=1))
+    if bad_cap.size:
+        raise RowError(int(bad_cap[0]), "a heat capacity is not positive")
+    _kernels()["_fo_chain_rows"](core.core_d, core.core_e, core.core_x, core.s_hub, kd, ko, cc, src, t,
+                                 int(max_iter), resp, steady, status)
     bad = np.flatnonzero(status)
     if bad.size:
         raise RowError(int(bad[0]), _MESSAGES[int(status[bad[0]])])

@@ -92,9 +92,10 @@ def test_bodies_are_checked():
     assert good.leaf_w_k == pytest.approx(4 * 48.0 * 0.010 * 3e-4 / 0.020, rel=1e-12)
 
 
-def test_many_rows_in_one_loop_are_each_rows_own_network_to_the_bit():
-    # rig_responses (one compiled loop over the rows) against rig_network (one ThermalNetwork per
-    # thickness), thicknesses drawn at random and repeated, two times per row; the RMS too
+def test_many_rows_in_one_loop_are_each_rows_own_network():
+    # rig_responses (the core reduced once, a QL per row) against rig_network (one dense
+    # decomposition per thickness): two routes to the same numbers, equal to rounding;
+    # thicknesses drawn at random and repeated, two times per row; the RMS too
     from rsm_lrg.physics.thermal.network import leaf_terms, rig_responses
 
     rng = np.random.default_rng(7)
@@ -107,8 +108,8 @@ def test_many_rows_in_one_loop_are_each_rows_own_network_to_the_bit():
         for r in range(y.size):
             net = _net(y=y[r], rigid=rigid)
             for k, source in enumerate(("balls", "stage")):
-                assert np.array_equal(resp[r, k], net.response(t[r], source=source))
-                assert steady[r, k] == net.steady_rise(source)[0]
+                np.testing.assert_allclose(resp[r, k], net.response(t[r], source=source), rtol=1e-11, atol=0)
+                assert steady[r, k] == pytest.approx(net.steady_rise(source)[0], rel=1e-12)
         # a row's values do not depend on the other rows asked for with it
         r1, s1 = rig_responses(G, 8.82, 22.45, rig, g[3:4], c[3:4], t[3:4])
         assert np.array_equal(r1[0], resp[3]) and np.array_equal(s1[0], steady[3])
