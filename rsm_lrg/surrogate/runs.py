@@ -353,7 +353,7 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         uniq, inv = np.zeros((1, 0)), np.zeros(n, dtype=int)
     lag_end = np.empty(n)
     steady_drive = np.empty(n)
-    if balance:  # one network per row (leaf thickness, stage kind, per-row parameters); both sources in watts
+    if balance:  # each row its own rig network (rig_responses), grouped by stage kind and per-row parameters
         from ..physics.thermal.fixed_order import RowError
 
         names_b = sorted(pcols)
