@@ -248,6 +248,19 @@ class CycleMetrics:
         return pd.DataFrame({f.name: np.atleast_1d(getattr(self, f.name)) for f in fields(self)})
 
 
+def _stiction(fs: Any, fk: Any) -> np.ndarray:
+    """The force a stuck frame holds [N]: ``max(µ_s, µ_k)·F_z``.
+
+    With µ_k > µ_s the switch model has no slip between µ_s·F_z and µ_k·F_z: a frame breaking
+    away there decelerates at once (the kinetic friction exceeds the force that moves it) and a
+    frame sliding backwards would too; Filippov's convex combination of the two sliding fields
+    keeps ẋ_rf = 0, so the frame stays stuck until the hinge force passes µ_k·F_z (Leine et al.
+    1998, Section 3). The integrators would otherwise chatter between breakaway and stop in
+    steps of machine length. Equal to µ_s·F_z, bit for bit, wherever µ_k ≤ µ_s.
+    """
+    return np.maximum(fs, fk)
+
+
 def _stage_is_rigid(stage) -> np.ndarray:
     """True where ``stage`` is the RMS: a boolean array of ``stage``'s shape from booleans
     (True = RMS, also as an object array such as a pandas object column) or the labels
@@ -364,6 +377,7 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
     s, v, a, dw, k, c, m, fs, fk, cv, yl = (np.ravel(x).astype(float) for x in arrays[:11])
     rigid = np.ravel(arrays[11]).copy()
     tj = np.ravel(arrays[12]).astype(float)
+    fs = _stiction(fs, fk)
 
     T = motion.cycle_time(s, v, a, dw, tj)
     stage_visc = cv * motion.mean_square_speed(s, v, a, dw, tj) * T  # ∫c_v·ẋ_ws² dt per cycle
@@ -836,6 +850,7 @@ def simulate_stage(params: LRGParams | None = None, *, n_cycles=4, stroke=None, 
     dw = p.dwell_s
     cst = stage_constants(p)
     k, c, m, fs, fk, cv, yl = (float(getattr(cst, f.name)) for f in fields(cst))
+    fs = float(_stiction(fs, fk))
 
     def hf(z):
         return k * z if yl <= 0 else k * yl * float(leaf_psi(z / yl))
