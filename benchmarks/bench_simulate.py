@@ -1,7 +1,7 @@
 """Virtual runs per second of ``rsm_lrg.simulate`` (the physics surrogate).
 
     python benchmarks/bench_simulate.py [--rows 1 27 1000 100000] [--single 40] [--workers 2]
-                                        [--noise-sd 0.03] [--json PATH]
+                                        [--noise-sd 0.03] [--compare 2000] [--json PATH]
 
 Workload: every row a different setting, drawn uniformly from the paper's Table 3 box
 (thickness 0.1-0.5 mm, stroke 0.04-0.06 m, velocity 0.4-0.6 m/s, acceleration 20-40 m/s^2),
@@ -16,12 +16,14 @@ Also:
   100,000 vs 1,000);
 - ``--workers N``: the largest size again on a ``ProcessPoolExecutor`` of N processes.
 
-- ``old vs new``: ``--compare`` rows (default 2,000) of the box through ``simulate`` with the
-  old integrator (``integrator="compiled"``: DOP853's tableau in equal steps, ω·Δt = 0.6) and
-  the new one (``"adaptive"``, the default: error-controlled DOP853 steps with dense output),
-  alternated in this one process: rows per CPU-second (``time.process_time``, one BLAS
-  thread), and the relative difference of every column simulate writes (issue 24 asks
-  >= 8,900 rows per CPU-second, the pre-membrane surrogate, and 1e-6).
+- ``old vs new``: ``--compare`` rows (default 2,000; :func:`compare_rows`: the box, 1/4 RMS,
+  1/2 S-curve strokes) through ``simulate`` with the default integrator
+  (``integrator="compiled"``: DOP853's tableau in equal steps, ω·Δt = 0.6) and the optional one
+  (``"adaptive"``: error-controlled DOP853 steps with dense output), alternated in this one
+  process: rows per CPU-second (``time.process_time``, one BLAS thread), and the relative
+  difference of every column simulate writes, between the two and against the converged
+  reference (:data:`CONVERGED`: the periodic state to 1e-10; issue 24 asks >= 8,900 rows per
+  CPU-second, the pre-membrane surrogate, and 1e-6).
 
 Figures go in the report, not in tests (wall-clock times depend on the machine).
 """
@@ -57,61 +59,87 @@ def timed(fn, repeat=1):
     return best
 
 
+#: The converged reference of ``--compare``: the reference integrator at a 3x finer step, run until
+#: two successive cycles agree to 1e-10 (at most 40 cycles): the periodic state itself, which the
+#: default criterion (1e-5, at least 3 cycles) reaches only to about 3e-3 on some rows.
+CONVERGED = {"integrator": "compiled", "h_rk": 0.2, "rtol": 1e-10, "max_cycles": 40}
+
+
+def compare_rows(n, seed=11):
+    """n rows of the box for ``--compare``: every fourth row the rigid stage (RMS), every other
+    row S-curve strokes (jerk time 2-20 ms), the rest trapezoids."""
+    d = box(n, seed=seed)
+    rng = np.random.default_rng(seed + 1)
+    d["stage"] = np.where(np.arange(n) % 4 == 3, "rms", "rfcms")
+    d["jerk_time_s"] = np.where(np.arange(n) % 2 == 1, rng.uniform(0.002, 0.02, n), 0.0)
+    return d
+
+
 def compare(n, noise_sd, repeat=2):
     """Rows per CPU-second of simulate() with the default integrator (``integrator="compiled"``:
     DOP853's tableau in equal steps of ω·Δt = 0.6, the reference) and the optional one
     (``"adaptive"``: the same order-8 pair with error-controlled steps, dense output for stops and
     peaks; not the default, see :func:`rsm_lrg.physics.dynamics.cycle_metrics`) on the
-    same n rows of the box, alternated in this one process (best of ``repeat`` each), and the
-    largest relative difference of every numeric column simulate writes."""
+    same n rows (:func:`compare_rows`), alternated in this one process (best of ``repeat`` each),
+    and the largest relative difference of every numeric column simulate writes between the two
+    and against the converged reference (:data:`CONVERGED`, timed once)."""
     import functools
 
     from rsm_lrg.physics import dynamics
     from rsm_lrg.surrogate.design_input import EXTRA_OUTPUT_COLUMNS, OUTPUT_COLUMNS
 
-    d = box(n, seed=11)
+    d = compare_rows(n)
     original = dynamics.cycle_metrics
-    names = {"compiled (default)": "compiled", "adaptive (option)": "adaptive"}
+    names = {"compiled (default)": {"integrator": "compiled"}, "adaptive (option)": {"integrator": "adaptive"},
+             "converged reference": CONVERGED}
     cpu = {k: np.inf for k in names}
     frames = {}
     try:
-        for _ in range(repeat):
-            for name, integ in names.items():
-                dynamics.cycle_metrics = functools.partial(original, integrator=integ)
+        for rep in range(repeat):
+            for name, kw in names.items():
+                if rep and name == "converged reference":
+                    continue
+                dynamics.cycle_metrics = functools.partial(original, **kw)
                 t = time.process_time()
                 frames[name] = simulate(d, seed=1, noise_sd=noise_sd, progress=False)
                 cpu[name] = min(cpu[name], time.process_time() - t)
     finally:
         dynamics.cycle_metrics = original
-    old, new = frames["compiled (default)"], frames["adaptive (option)"]
-    print(f"compiled (default) vs adaptive integrator, {n} random rows of the Table 3 box through simulate (one BLAS thread, "
-          f"CPU time, best of {repeat}):")
-    print(f"{'integrator':>18} {'CPU s':>8} {'rows/CPU-s':>11}")
+    print(f"integrators side by side, {n} random rows of the Table 3 box through simulate (1/4 RMS, 1/2 S-curve; "
+          f"one BLAS thread, CPU time, best of {repeat}; the converged reference once):")
+    print(f"{'integrator':>20} {'CPU s':>8} {'rows/CPU-s':>11}")
     res = {}
     for name in names:
         res[name] = {"rows": n, "cpu_seconds": cpu[name], "rows_per_cpu_s": n / cpu[name]}
-        print(f"{name:>18} {cpu[name]:>8.3f} {n / cpu[name]:>11.0f}")
+        print(f"{name:>20} {cpu[name]:>8.3f} {n / cpu[name]:>11.0f}")
     speedup = cpu["compiled (default)"] / cpu["adaptive (option)"]
-    print(f"speed-up {speedup:.2f}x")
+    print(f"speed-up of adaptive over compiled {speedup:.2f}x")
     diffs = {}
-    for col in OUTPUT_COLUMNS + EXTRA_OUTPUT_COLUMNS:
-        a, b = old[col].to_numpy(), new[col].to_numpy()
-        if a.dtype == bool:
-            diffs[col] = {"rows_differing": int(np.sum(a != b))}
-            print(f"  {col}: {diffs[col]['rows_differing']} rows differ")
-            continue
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = np.where(a == b, 0.0, np.abs(b / a - 1.0))
-        diffs[col] = {"median": float(np.median(r)), "p99": float(np.percentile(r, 99)), "max": float(np.max(r)),
-                      "rows_over_1e-6": int(np.sum(r > 1e-6))}
-        print(f"  {col}: relative difference median {diffs[col]['median']:.1e}, 99th percentile "
-              f"{diffs[col]['p99']:.1e}, max {diffs[col]['max']:.1e}; {diffs[col]['rows_over_1e-6']} rows over 1e-6")
+    for pair in (("compiled (default)", "adaptive (option)"), ("converged reference", "compiled (default)"),
+                 ("converged reference", "adaptive (option)")):
+        label = f"{pair[1]} vs {pair[0]}"
+        print(label + ":")
+        old, new = frames[pair[0]], frames[pair[1]]
+        diffs[label] = {}
+        for col in OUTPUT_COLUMNS + EXTRA_OUTPUT_COLUMNS:
+            a, b = old[col].to_numpy(), new[col].to_numpy()
+            if a.dtype == bool:
+                diffs[label][col] = {"rows_differing": int(np.sum(a != b))}
+                print(f"  {col}: {diffs[label][col]['rows_differing']} rows differ")
+                continue
+            with np.errstate(divide="ignore", invalid="ignore"):
+                r = np.where(a == b, 0.0, np.abs(b / a - 1.0))
+            q = {"median": float(np.median(r)), "p99": float(np.percentile(r, 99)), "max": float(np.max(r)),
+                 "rows_over_1e-6": int(np.sum(r > 1e-6))}
+            diffs[label][col] = q
+            print(f"  {col}: relative difference median {q['median']:.1e}, 99th percentile {q['p99']:.1e}, "
+                  f"max {q['max']:.1e}; {q['rows_over_1e-6']} rows over 1e-6")
     return res | {"speedup": speedup, "relative_differences": diffs}
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--rows", type=int, nargs="+", default=[1, 27, 1000, 100_000])
+    ap.add_argument("--rows", type=int, nargs="*", default=[1, 27, 1000, 100_000])
     ap.add_argument("--single", type=int, default=40, help="rows run one simulate() call each")
     ap.add_argument("--workers", type=int, default=0, help="also run the largest size on N processes")
     ap.add_argument("--noise-sd", type=float, default=0.03)
@@ -131,24 +159,25 @@ def main(argv=None):
         out["sizes"].append({"rows": n, "seconds": sec, "runs_per_s": n / sec})
         print(f"{n:>8} {sec:>10.3f} {n / sec:>12.1f} {1e3 * sec / n:>10.4f}")
 
-    d = box(a.single, seed=7)
-    t = time.perf_counter()
-    for i in range(a.single):
-        simulate(d.iloc[[i]], seed=1, noise_sd=a.noise_sd, progress=False)
-    single = (time.perf_counter() - t) / a.single
-    big = out["sizes"][-1]
-    batched = big["seconds"] / big["rows"]
-    out["row_at_a_time"] = {"rows": a.single, "seconds_per_run": single,
-                            "batched_seconds_per_run": batched, "speedup": single / batched}
-    print(f"row at a time: {1e3 * single:.2f} ms/run; batched ({big['rows']} rows): "
-          f"{1e3 * batched:.4f} ms/run; speed-up {single / batched:.0f}x")
+    if a.single > 0 and out["sizes"]:
+        d = box(a.single, seed=7)
+        t = time.perf_counter()
+        for i in range(a.single):
+            simulate(d.iloc[[i]], seed=1, noise_sd=a.noise_sd, progress=False)
+        single = (time.perf_counter() - t) / a.single
+        big = out["sizes"][-1]
+        batched = big["seconds"] / big["rows"]
+        out["row_at_a_time"] = {"rows": a.single, "seconds_per_run": single,
+                                "batched_seconds_per_run": batched, "speedup": single / batched}
+        print(f"row at a time: {1e3 * single:.2f} ms/run; batched ({big['rows']} rows): "
+              f"{1e3 * batched:.4f} ms/run; speed-up {single / batched:.0f}x")
     sizes = {s["rows"]: s["seconds"] for s in out["sizes"]}
     if 1000 in sizes and max(sizes) > 1000:
         n = max(sizes)
         ratio = sizes[n] / sizes[1000]
         out["scaling"] = {"rows": n, "over_1000": ratio, "ideal": n / 1000}
         print(f"scaling: {n} rows cost {ratio:.1f}x of 1,000 rows (ideal {n / 1000:.0f}x)")
-    if a.workers > 1:
+    if a.workers > 1 and a.rows:
         from concurrent.futures import ProcessPoolExecutor
 
         n = max(a.rows)
