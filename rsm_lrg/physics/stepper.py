@@ -147,6 +147,24 @@ _FK_B = np.zeros(12)
 _FK_C = np.zeros(12)
 
 
+def _settled(cyc: int, this: float, prev: float, n_cycles: int, max_cycles: int, rtol: float) -> bool:
+    # at least n_cycles, then until two successive cycles' sliding agree within rtol (or max_cycles)
+    return cyc >= n_cycles and (abs(this - prev) <= rtol * max(this, 1e-300) or cyc >= max_cycles)
+
+
+def _put_row(out: np.ndarray, row: int, this: float, prev: float, vthis: float, vprev: float, peak: float,
+             bad: float, nsteps: int, cyc: int) -> None:
+    # one row's result: mean sliding and viscous work of the last two cycles, the last cycle's peak,
+    # the periodicity error, the failure flag, steps and cycles taken
+    out[row, 0] = 0.5 * (this + prev)
+    out[row, 1] = peak
+    out[row, 2] = abs(this - prev)
+    out[row, 3] = 0.5 * (vthis + vprev)
+    out[row, 4] = bad
+    out[row, 5] = nsteps
+    out[row, 6] = cyc
+
+
 def _fk_hinge_f(z: float, k: float, y: float, tab: np.ndarray, step: float, rmax: float) -> float:
     if y <= 0.0:
         return k * z
@@ -157,6 +175,7 @@ def _fk_hinge_f(z: float, k: float, y: float, tab: np.ndarray, step: float, rmax
     t = r - i * step
     psi = tab[i, 0] + t * (tab[i, 1] + t * (tab[i, 2] + t * tab[i, 3]))
     return k * y * psi if z >= 0.0 else -k * y * psi
+
 
 def _fk_herm_max(z0: float, d0: float, z1: float, d1: float, dt: float) -> float:
     # largest |p| of the cubic Hermite interpolant of z over a step (z, ż at both ends)
@@ -188,6 +207,7 @@ def _fk_herm_max(z0: float, d0: float, z1: float, d1: float, dt: float) -> float
                 best = abs(p)
     return best
 
+
 def _fk_rk_step(t: float, X: np.ndarray, tau: float, sig: float, sx: float, sv: float, sa: float, sj: float,
             k: float, y: float, c: float, m: float, fk: float, cv: float, tab: np.ndarray, step: float,
             rmax: float, K: np.ndarray, out: np.ndarray) -> None:
@@ -213,11 +233,13 @@ def _fk_rk_step(t: float, X: np.ndarray, tau: float, sig: float, sx: float, sv: 
             acc += _FK_B[i] * K[i, q]
         out[q] = X[q] + tau * acc
 
+
 def _fk_brk(t: float, xf: float, sx: float, sv: float, sa: float, sj: float, k: float, y: float, c: float,
         tab: np.ndarray, step: float, rmax: float) -> float:
     xs = sx + t * (sv + t * (0.5 * sa + t * sj / 6.0))
     vs = sv + t * (sa + 0.5 * sj * t)
     return _fk_hinge_f(xs - xf, k, y, tab, step, rmax) + c * vs
+
 
 def _fk_run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.ndarray, fs: np.ndarray,
         fk: np.ndarray, cv: np.ndarray, y: np.ndarray, w: np.ndarray, seg_t0: np.ndarray, seg_l: np.ndarray,
@@ -351,21 +373,15 @@ def _fk_run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.n
             this = dist - d0
             vthis = X[2] - v0
             cyc += 1
-            err = abs(this - prev)
-            if cyc >= n_cycles and (err <= rtol * max(this, 1e-300) or cyc >= max_cycles):
+            if _settled(cyc, this, prev, n_cycles, max_cycles, rtol):
                 break
             prev = this
             vprev = vthis
-        out[row, 0] = 0.5 * (this + prev)
-        out[row, 1] = peak
-        out[row, 2] = abs(this - prev)
-        out[row, 3] = 0.5 * (vthis + vprev)
-        out[row, 4] = bad
-        out[row, 6] = cyc
+        _put_row(out, row, this, prev, vthis, vprev, peak, bad, 0, cyc)
 
 
 
-_FK_NAMES = ("_fk_hinge_f", "_fk_herm_max", "_fk_rk_step", "_fk_brk", "_fk_run")
+_FK_NAMES = ("_settled", "_put_row", "_fk_hinge_f", "_fk_herm_max", "_fk_rk_step", "_fk_brk", "_fk_run")
 
 
 @lru_cache(maxsize=1)
@@ -380,8 +396,9 @@ def _kernel() -> Any:
     g["_FK_B"] = np.ascontiguousarray(DOP853.B[:12], dtype=float)
     g["_FK_C"] = np.ascontiguousarray(DOP853.C[:12], dtype=float)
     jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
-    for name in _FK_NAMES:  # callees first
-        g[name] = jit(g[name])
+    for name in _FK_NAMES:  # callees first (the shared helpers once, by whichever kernel comes first)
+        if not hasattr(g[name], "py_func"):
+            g[name] = jit(g[name])
     return g["_fk_run"]
 
 
@@ -769,21 +786,14 @@ def _ak_run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.n
             this = dist - d0
             vthis = X[2] - v0
             cyc += 1
-            err_c = abs(this - prev)
-            if cyc >= n_cycles and (err_c <= rtol * max(this, 1e-300) or cyc >= max_cycles):
+            if _settled(cyc, this, prev, n_cycles, max_cycles, rtol):
                 break
             prev = this
             vprev = vthis
-        out[row, 0] = 0.5 * (this + prev)
-        out[row, 1] = peak
-        out[row, 2] = abs(this - prev)
-        out[row, 3] = 0.5 * (vthis + vprev)
-        out[row, 4] = bad
-        out[row, 5] = nsteps
-        out[row, 6] = cyc
+        _put_row(out, row, this, prev, vthis, vprev, peak, bad, nsteps, cyc)
 
 
-_AK_NAMES = ("_ak_hinge_f", "_ak_herm", "_ak_rhs", "_ak_stages", "_ak_dense", "_ak_dense_at", "_ak_run")
+_AK_NAMES = ("_settled", "_put_row", "_ak_hinge_f", "_ak_herm", "_ak_rhs", "_ak_stages", "_ak_dense", "_ak_dense_at", "_ak_run")
 
 
 @lru_cache(maxsize=1)
@@ -804,8 +814,9 @@ def _adaptive_kernel() -> Any:
     g["_AK_E5"] = np.ascontiguousarray(DOP853.E5, dtype=float)
     g["_AK_D"] = np.ascontiguousarray(DOP853.D, dtype=float)
     jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
-    for name in _AK_NAMES:  # callees first
-        g[name] = jit(g[name])
+    for name in _AK_NAMES:  # callees first (the shared helpers once, by whichever kernel comes first)
+        if not hasattr(g[name], "py_func"):
+            g[name] = jit(g[name])
     return g["_ak_run"]
 
 
