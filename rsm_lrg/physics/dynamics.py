@@ -309,9 +309,9 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
         same order-8 pair in steps whose length its error estimate controls, dense output for
         stops and the peak — about 1.9× faster on the dynamics. Both stop after the same cycles
         (``rtol``) and agree to a median 1e-9 in sliding; neither reaches the periodic state to
-        1e-6 on every row at ``rtol`` = 1e-5 (up to 3e-3 in sliding, 7 % in the peak, on box
-        rows that drift for ten cycles or more: :mod:`.stepper`), which is why the default is
-        unchanged. ``benchmarks/bench_simulate.py`` compares both with the periodic state and
+        1e-6 on every row at ``rtol`` = 1e-5 (up to 2.4e-3 in sliding, 3.8 % in the peak, on box
+        rows that drift for ten cycles or more: :mod:`.stepper`,
+        ``benchmarks/bench_dynamics.py --convergence``), which is why the default is unchanged. ``benchmarks/bench_simulate.py`` compares both with the periodic state and
         ``tests/physics/test_stepper.py`` checks that they reach the same one;
         ``fixed_step``: the earlier vectorised NumPy integrator.
     h_rk : float

@@ -43,16 +43,17 @@ the switch model has no slip below µ_k·F_z, and breakaway and stop would chatt
 
 What limits the accuracy is not the step but the periodic state: a row runs from rest until two
 successive cycles' sliding agree within ``rtol`` (1e-5, at least 3 cycles). On 2,000 rows of the
-Table 3 box (calibrated model, half of them S-curve strokes) that stops on average after 4.2
-cycles, and against the periodic state itself (cycles within 1e-10, up to 40, at ω·Δt = 0.2)
-the sliding is then off by up to 3.1e-3 (967 of 1,840 settled rows beyond 1e-6) and the peak by
-up to 7 %: some rows drift slowly for ten cycles or more (a nearly neutral stick-slip phase)
-before they settle, and the peak still carries the start-up oscillation. Both kernels stop at
-the same cycle on all but one of those rows, so they agree with each other far better (median
-1e-9) than with the periodic state. ``rtol`` = 1e-8 reaches it to 1e-6 in sliding on all but 1 row
-and in viscous work on all but 5, at 8.6 cycles a row (the adaptive kernel then costs what the
-equal steps cost at 1e-5; the peak needs 1e-10 and 10.5 cycles to come within 3e-5,
-the reference's own peak error at ω·Δt = 0.2).
+Table 3 box (the shipped viscous friction, half of them S-curve strokes;
+``python benchmarks/bench_dynamics.py --rows --convergence 2000``) that stops after 4.2 cycles on
+average, and against the periodic state itself (cycles within 1e-10, up to 40, at ω·Δt = 0.2;
+1,837 rows settle) the sliding is then off by up to 2.4e-3 (956 rows beyond 1e-6) and the peak
+by up to 3.8 %: some rows drift slowly for ten cycles or more (a nearly neutral stick-slip phase)
+before they settle, and the peak still carries the start-up oscillation. Both kernels stop after
+the same cycles, so they agree with each other far better (median 1e-9) than with the periodic
+state. ``rtol`` = 1e-8 with up to 40 cycles comes within 1e-6 in sliding on all but 1 settled
+row and in viscous work on all but 7, at 8.8 cycles a row, where the adaptive kernel costs what
+the equal steps cost at 1e-5 (the peak: all but 207 rows beyond 1e-6, up to 3.6e-3, where the
+reference's own Hermite peak at ω·Δt = 0.2 is good to about 1e-5).
 
 References
 ----------
@@ -823,8 +824,8 @@ def _adaptive_kernel() -> Any:
 def integrate_rows(s: np.ndarray, v: np.ndarray, a: np.ndarray, dw: np.ndarray, tj: np.ndarray, k: np.ndarray,
                    c: np.ndarray, m: np.ndarray, fs: np.ndarray, fk: np.ndarray, cv: np.ndarray, y: np.ndarray,
                    omega: np.ndarray, *, h: float = 0.6, n_cycles: int = 3, max_cycles: int = 12,
-                   rtol: float = 1e-5, method: str = "adaptive", tol: float = 1e-6, h_max: float = 2.0
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                   rtol: float = 1e-5, method: str = "adaptive", tol: float = 1e-6, h_max: float = 2.0,
+                   info: dict[str, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Integrate rows (1-D float arrays) to their periodic steady state with the compiled kernel.
 
     ``k`` n·K_n [N/m], ``c`` C_n [N·s/m], ``m`` m_f [kg], ``fs``/``fk`` µ_s·F_z/µ_k·F_z [N],
@@ -835,7 +836,8 @@ def integrate_rows(s: np.ndarray, v: np.ndarray, a: np.ndarray, dw: np.ndarray, 
     or ``"fixed"`` (the reference: equal steps ω·Δt ≤ ``h``).
     Returns, per row: mean sliding of the last two cycles [m], peak |x_ws − x_rf| of the last
     cycle [m], |difference of the last two cycles' sliding| [m], mean viscous work of the last
-    two cycles [J]. Raises ``ValueError`` where a leaf deflects beyond the tabulated law
+    two cycles [J]. ``info``, a dict, receives per row the cycles integrated (``"cycles"``) and the
+    Runge-Kutta steps taken while sliding (``"steps"``, adaptive only). Raises ``ValueError`` where a leaf deflects beyond the tabulated law
     (:data:`.hinge.LEAF_TABLE_MAX_RATIO` thicknesses) or the result is not finite.
     """
     f64 = [np.ascontiguousarray(q, dtype=float) for q in (s, v, a, dw, tj, k, c, m, fs, fk, cv, y, omega)]
@@ -852,6 +854,9 @@ def integrate_rows(s: np.ndarray, v: np.ndarray, a: np.ndarray, dw: np.ndarray, 
                   int(max_cycles), float(rtol), out)
     else:
         raise ValueError(f"method must be 'adaptive' or 'fixed', not {method!r}")
+    if info is not None:
+        info["cycles"] = out[:, 6].astype(np.int64)
+        info["steps"] = out[:, 5].astype(np.int64)
     if np.any(out[:, 4] != 0) or not np.all(np.isfinite(out[:, :4])):
         i = int(np.flatnonzero((out[:, 4] != 0) | ~np.all(np.isfinite(out[:, :4]), axis=1))[0])
         raise ValueError(f"the stage dynamics leave the leaf model at stroke {s[i]:.3g} m, velocity {v[i]:.3g} m/s, "
