@@ -190,3 +190,39 @@ def test_both_kernels_load_from_numba_disk_cache():
         out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     fixed_hits, adaptive_hits = map(int, out.split())
     assert fixed_hits >= 1 and adaptive_hits >= 1
+
+
+def test_integrate_rows_reports_cycles_and_steps():
+    from rsm_lrg.physics import stepper
+
+    X = _box_rows(12, 2)[16:]  # random rows (distinct strokes), in the order cycle_metrics integrates them
+    y, s, v, a = X[np.argsort(X[:, 1])].T
+    p = LRGParams(viscous_friction_n_s_m=4.32)
+    seen = {}
+    got = {}
+    original = stepper.integrate_rows
+
+    def spy(*args, **kwargs):
+        info = {}
+        res = original(*args, **kwargs, info=info)
+        seen[kwargs["method"]] = info
+        return res
+
+    dynamics.integrate_rows = spy
+    try:
+        for integ in ("compiled", "adaptive"):
+            got[{"compiled": "fixed"}.get(integ, integ)] = dynamics.cycle_metrics(
+                s, v, a, params=p, method="integrate", integrator=integ, hinge_thickness_m=y, n_cycles=3, max_cycles=7)
+    finally:
+        dynamics.integrate_rows = original
+    for method, info in seen.items():
+        m = got[method]
+        assert ((info["cycles"] >= 3) & (info["cycles"] <= 7)).all(), method
+        # a row that stopped before max_cycles met the criterion; one that did not ran them all
+        unsettled = m.periodicity_error_m > 1e-5 * m.sliding_distance_m
+        assert np.array_equal(unsettled, unsettled & (info["cycles"] == 7)), method
+        if method == "adaptive":
+            assert (info["steps"] > 0).all()
+        else:
+            assert (info["steps"] == 0).all()
+    assert set(seen) == {"fixed", "adaptive"}
