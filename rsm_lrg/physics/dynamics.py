@@ -280,8 +280,8 @@ def _stage_is_rigid(stage) -> np.ndarray:
 
 
 def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms",
-                  params: LRGParams | None = None, method="auto", n_cycles=3, max_cycles=12,
-                  rtol=1e-5, h=0.3, max_steps_per_cycle=200_000, integrator="compiled", h_rk=0.6,
+                  params: LRGParams | None = None, method="auto", n_cycles=3, max_cycles=40,
+                  rtol=1e-8, h=0.3, max_steps_per_cycle=200_000, integrator="adaptive", h_rk=0.6,
                   tol_rk=1e-6,
                   **columns) -> CycleMetrics:
     """Per-cycle sliding, friction work and peak hinge deflection, vectorised over rows.
@@ -298,21 +298,23 @@ def cycle_metrics(stroke=None, velocity=None, acceleration=None, *, stage="rfcms
     n_cycles, max_cycles, rtol : int, int, float
         Integration runs from rest for at least ``n_cycles`` and at most ``max_cycles``
         cycles, until two successive cycles' sliding agree within ``rtol`` (every row); the
-        last cycle is reported and ``periodicity_error_m`` says how well it converged.
+        last cycle is reported and ``periodicity_error_m`` says how well it converged. The
+        defaults (1e-8, 40) put sliding and viscous work within 1e-6 of the periodic state on
+        all but a few of the rows that have one (``benchmarks/bench_dynamics.py
+        --convergence``: 1 and 7 of 1,837 box rows); the earlier 1e-5 and 12 cycles left 956
+        rows beyond 1e-6 (up to 2.4e-3), because some rows drift for ten cycles or more.
     h : float
         Largest ω_n·Δt of the fixed-step NumPy integrator (``integrator="fixed_step"``; exact
         linear steps between events with the hinge's tangent; 0.3 agrees with the event-driven
         reference to ~1e-5 relative on the linear hinge, see the tests).
     integrator : "adaptive", "compiled" or "fixed_step"
-        ``compiled`` (default, the reference): :mod:`.stepper`, DOP853's tableau in equal steps
-        ω·Δt = ``h_rk`` per segment of the profile, compiled per row (numba); ``adaptive``: the
-        same order-8 pair in steps whose length its error estimate controls, dense output for
-        stops and the peak — about 1.9× faster on the dynamics. Both stop after the same cycles
-        (``rtol``) and agree to a median 1e-9 in sliding; neither reaches the periodic state to
-        1e-6 on every row at ``rtol`` = 1e-5 (up to 2.4e-3 in sliding, 3.8 % in the peak, on box
-        rows that drift for ten cycles or more: :mod:`.stepper`,
-        ``benchmarks/bench_dynamics.py --convergence``), which is why the default is unchanged. ``benchmarks/bench_simulate.py`` compares both with the periodic state and
-        ``tests/physics/test_stepper.py`` checks that they reach the same one;
+        ``adaptive`` (default): :mod:`.stepper`, DOP853's order-8 pair in steps whose length
+        its error estimate controls, dense output for stops and the peak, compiled per row
+        (numba); about 1.9× faster per cycle than ``compiled``, the reference: the same
+        tableau in equal steps ω·Δt = ``h_rk`` per segment of the profile. Both reach the same
+        periodic state (``tests/physics/test_stepper.py``); what limits the accuracy is the
+        cycle criterion (``rtol``, ``max_cycles``), not the step (:mod:`.stepper`,
+        ``benchmarks/bench_dynamics.py --convergence``, ``benchmarks/bench_simulate.py``);
         ``fixed_step``: the earlier vectorised NumPy integrator.
     h_rk : float
         ω·Δt of the equal steps of ``integrator="compiled"`` (ω at a bound of the hinge's tangent

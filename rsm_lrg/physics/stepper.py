@@ -17,8 +17,8 @@ Runge-Kutta step's own length, and a breakaway (``|F_h + C_n·ẋ_ws| = µ_s·F_
 rest, the stage on its polynomial) by bisection to machine precision. That is the reference
 (``method="fixed"``, :func:`.dynamics.cycle_metrics` with ``integrator="compiled"``).
 
-The default of :func:`integrate_rows` (``method="adaptive"``; ``integrator="adaptive"`` of
-:func:`.dynamics.cycle_metrics`, whose default is the reference) takes the same order-8 steps with their length controlled by
+The default (``method="adaptive"`` of :func:`integrate_rows`, ``integrator="adaptive"`` of
+:func:`.dynamics.cycle_metrics`, the default there too) takes the same order-8 steps with their length controlled by
 DOP853's embedded error estimate (the 5th- and 3rd-order estimators of Hairer et al., as in
 :class:`scipy.integrate.DOP853`; local error per step below ``tol`` times the breakaway
 deflection f_µmax/(m_f·ω²) and its speed, ω·Δt ≤ ``h_max``), the last stage reused as the next
@@ -42,7 +42,8 @@ a stuck frame holds, ``max(µ_s, µ_k)·F_z`` (:func:`.dynamics.cycle_metrics`):
 the switch model has no slip below µ_k·F_z, and breakaway and stop would chatter.
 
 What limits the accuracy is not the step but the periodic state: a row runs from rest until two
-successive cycles' sliding agree within ``rtol`` (1e-5, at least 3 cycles). On 2,000 rows of the
+successive cycles' sliding agree within ``rtol`` (at least 3 cycles). With the earlier 1e-5 and at
+most 12 cycles, on 2,000 rows of the
 Table 3 box (the shipped viscous friction, half of them S-curve strokes;
 ``python benchmarks/bench_dynamics.py --rows --convergence 2000``) that stops after 4.2 cycles on
 average, and against the periodic state itself (cycles within 1e-10, up to 40, at ω·Δt = 0.2;
@@ -50,10 +51,11 @@ average, and against the periodic state itself (cycles within 1e-10, up to 40, a
 by up to 3.8 %: some rows drift slowly for ten cycles or more (a nearly neutral stick-slip phase)
 before they settle, and the peak still carries the start-up oscillation. Both kernels stop after
 the same cycles, so they agree with each other far better (median 1e-9) than with the periodic
-state. ``rtol`` = 1e-8 with up to 40 cycles comes within 1e-6 in sliding on all but 1 settled
-row and in viscous work on all but 7, at 8.8 cycles a row, where the adaptive kernel costs what
-the equal steps cost at 1e-5 (the peak: all but 207 rows beyond 1e-6, up to 3.6e-3, where the
-reference's own Hermite peak at ω·Δt = 0.2 is good to about 1e-5).
+state. ``rtol`` = 1e-8 with up to 40 cycles, the default of :func:`.dynamics.cycle_metrics`
+now, comes within 1e-6 in sliding on all but 1 settled row and in viscous work on all but 7, at
+8.8 cycles a row, where the adaptive kernel costs what the equal steps cost at 1e-5 (the peak:
+207 rows beyond 1e-6, up to 3.6e-3, against the reference's own Hermite peak at ω·Δt = 0.2,
+good to about 1e-5).
 
 References
 ----------
