@@ -278,7 +278,7 @@ def _assemble(geometry: GuideGeometry, h_side_w_m2k: float, h_front_w_m2k: float
             C[lf] = 0.5 * rig.leaf_capacity_j_k
             K[lf, lf] += 0.5 * rig.leaf_loss_w_k
             g_amb[lf] = 0.5 * rig.leaf_loss_w_k
-            if leaf_links:  # the last additions to these entries (rig_responses makes them per row)
+            if leaf_links:  # rig_responses adds these two per row
                 link(fr, lf, rig.leaf_w_k)  # 0.5 (half model) x 2 (half the length)
                 link(lf, st, rig.leaf_w_k)
         for k in range(nr):  # the rail's mounting face on the base
