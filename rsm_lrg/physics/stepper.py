@@ -155,6 +155,32 @@ def _settled(cyc: int, this: float, prev: float, n_cycles: int, max_cycles: int,
     return cyc >= n_cycles and (abs(this - prev) <= rtol * max(this, 1e-300) or cyc >= max_cycles)
 
 
+def _falsi_point(a_: float, fa: float, b_: float, fb: float) -> float:
+    # the regula falsi point of the bracket [a_, b_] (fa > 0 >= fb), its midpoint if it falls outside
+    tc = (a_ * fb - b_ * fa) / (fb - fa)
+    if not (tc > a_ and tc < b_):
+        tc = 0.5 * (a_ + b_)
+    return tc
+
+
+def _illinois(a_: float, fa: float, b_: float, fb: float, side: int, tc: float,
+              fc: float) -> tuple[float, float, float, float, int]:
+    # the bracket after the value fc at tc, halving the value kept twice in a row (Illinois)
+    if fc > 0.0:
+        a_ = tc
+        fa = fc
+        if side == -1:
+            fb *= 0.5
+        side = -1
+    else:
+        b_ = tc
+        fb = fc
+        if side == 1:
+            fa *= 0.5
+        side = 1
+    return a_, fa, b_, fb, side
+
+
 def _put_row(out: np.ndarray, row: int, this: float, prev: float, vthis: float, vprev: float, peak: float,
              bad: float, nsteps: int, cyc: int) -> None:
     # one row's result: mean sliding and viscous work of the last two cycles, the last cycle's peak,
@@ -328,24 +354,11 @@ def _fk_run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.n
                         fb2 = mode * Y[1]
                         side = 0
                         for _ in range(60):
-                            tc = (a_ * fb2 - b_ * fa) / (fb2 - fa)
-                            if not (tc > a_ and tc < b_):
-                                tc = 0.5 * (a_ + b_)
+                            tc = _falsi_point(a_, fa, b_, fb2)
                             _fk_rk_step(t, X, tc, mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, step, rmax,
                                     K, Y)
                             fc = mode * Y[1]
-                            if fc > 0.0:
-                                a_ = tc
-                                fa = fc
-                                if side == -1:
-                                    fb2 *= 0.5
-                                side = -1
-                            else:
-                                b_ = tc
-                                fb2 = fc
-                                if side == 1:
-                                    fa *= 0.5
-                                side = 1
+                            a_, fa, b_, fb2, side = _illinois(a_, fa, b_, fb2, side, tc, fc)
                             if b_ - a_ <= 1e-15 * (t + tau) or abs(fc) < 1e-15:
                                 break
                         _fk_rk_step(t, X, b_, mode, sx, sv, sa, sj, kk, yr, cc, mm, fkr, cvr, tab, step, rmax,
@@ -384,7 +397,7 @@ def _fk_run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.n
 
 
 
-_FK_NAMES = ("_settled", "_put_row", "_fk_hinge_f", "_fk_herm_max", "_fk_rk_step", "_fk_brk", "_fk_run")
+_FK_NAMES = ("_settled", "_falsi_point", "_illinois", "_put_row", "_fk_hinge_f", "_fk_herm_max", "_fk_rk_step", "_fk_brk", "_fk_run")
 
 
 @lru_cache(maxsize=1)
@@ -694,22 +707,9 @@ def _ak_run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.n
                         fb2 = mode * (_ak_dense_at(X, F, b_, 1) if th_hi < 1.0 else Y[1])
                         side = 0
                         for _ in range(80):
-                            tc = (a_ * fb2 - b_ * fa) / (fb2 - fa)
-                            if not (tc > a_ and tc < b_):
-                                tc = 0.5 * (a_ + b_)
+                            tc = _falsi_point(a_, fa, b_, fb2)
                             fc = mode * _ak_dense_at(X, F, tc, 1)
-                            if fc > 0.0:
-                                a_ = tc
-                                fa = fc
-                                if side == -1:
-                                    fb2 *= 0.5
-                                side = -1
-                            else:
-                                b_ = tc
-                                fb2 = fc
-                                if side == 1:
-                                    fa *= 0.5
-                                side = 1
+                            a_, fa, b_, fb2, side = _illinois(a_, fa, b_, fb2, side, tc, fc)
                             if b_ - a_ <= 1e-15 or fc == 0.0:
                                 break
                         th_end = b_
@@ -796,7 +796,7 @@ def _ak_run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.n
         _put_row(out, row, this, prev, vthis, vprev, peak, bad, nsteps, cyc)
 
 
-_AK_NAMES = ("_settled", "_put_row", "_ak_hinge_f", "_ak_herm", "_ak_rhs", "_ak_stages", "_ak_dense", "_ak_dense_at", "_ak_run")
+_AK_NAMES = ("_settled", "_falsi_point", "_illinois", "_put_row", "_ak_hinge_f", "_ak_herm", "_ak_rhs", "_ak_stages", "_ak_dense", "_ak_dense_at", "_ak_run")
 
 
 @lru_cache(maxsize=1)
