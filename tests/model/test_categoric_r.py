@@ -10,12 +10,12 @@ Tolerance: 1e-9 relative (the issue's bar) on every coefficient, standard error,
 their confidence and prediction intervals.
 """
 
-import re
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
+from _r_names import ours, source
 
 import rsm_lrg
 
@@ -39,29 +39,6 @@ def _fit(name):
     return rsm_lrg.fit(pd.read_csv(R / f"{name}.csv"), response, factors=factors)
 
 
-def _ours(r_name: str, space) -> str:
-    """Our column name of an R column (``A:D1`` -> ``AD[north]``, ``I(A^2)`` -> ``A^2``)."""
-    if r_name == "(Intercept)":
-        return "Intercept"
-    num, cat = "", ""
-    for part in r_name.split(":"):
-        m = re.fullmatch(r"I\(([A-Z])\^2\)", part)
-        if m:
-            num += f"{m.group(1)}^2"
-            continue
-        m = re.fullmatch(r"([A-Z])(\d*)", part)
-        f = space[m.group(1)]
-        if f.kind == "categoric":
-            cat += f"{m.group(1)}[{f.levels[int(m.group(2)) - 1]}]"
-        else:
-            num += m.group(1)
-    return num + cat
-
-
-def _source(r_label: str) -> str:
-    return "".join(re.sub(r"I\(([A-Z])\^2\)", r"\1^2", p) for p in r_label.split(":"))
-
-
 @pytest.mark.parametrize("name", list(CASES))
 def test_coefficients_and_errors_match_r(name):
     res = _fit(name)
@@ -69,7 +46,7 @@ def test_coefficients_and_errors_match_r(name):
     exp = exp[exp.dataset == name]
     assert len(exp) == len(res.coefficients)
     for row in exp.itertuples():
-        col = _ours(row.column, res.space)
+        col = ours(row.column, res.space)
         np.testing.assert_allclose(res.coefficients.loc[col, "coded"], row.estimate, rtol=RTOL, atol=1e-12, err_msg=col)
         np.testing.assert_allclose(res.coefficients.loc[col, "std_error"], row.std_error, rtol=RTOL, err_msg=col)
 
@@ -81,7 +58,7 @@ def test_anova_rows_match_r(name):
     exp = exp[exp.dataset == name]
     ours = res.anova.set_index("source")
     for row in exp.itertuples():
-        src = _source(row.source)
+        src = source(row.source)
         assert int(ours.loc[src, "df"]) == row.df, src
         np.testing.assert_allclose(ours.loc[src, "sum_sq"], row.sum_sq, rtol=RTOL, err_msg=src)
         if not np.isnan(row.f):

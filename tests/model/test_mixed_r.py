@@ -22,12 +22,12 @@ better elsewhere), Kenward–Roger den df, F and p 1e-5 relative to pbkrtest's `
 (computed on lme4's fit, whose own convergence limits the agreement to ~1e-7).
 """
 
-import re
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
+from _r_names import ours, source
 
 import rsm_lrg
 
@@ -51,30 +51,6 @@ def _fit(name):
     return _FITS[name]
 
 
-def _ours(r_name: str, space) -> str:
-    """Our column name of an R column (``A:D1`` -> ``AD[north]``, ``I(A^2)`` -> ``A^2``)."""
-    if r_name == "(Intercept)":
-        return "Intercept"
-    num, cat = "", ""
-    for part in r_name.split(":"):
-        m = re.fullmatch(r"I\(([A-Z])\^2\)", part)
-        if m:
-            num += f"{m.group(1)}^2"
-            continue
-        m = re.fullmatch(r"([A-Z])(\d*)", part)
-        assert m is not None, part
-        f = space[m.group(1)]
-        if f.kind == "categoric":
-            cat += f"{m.group(1)}[{f.levels[int(m.group(2)) - 1]}]"
-        else:
-            num += m.group(1)
-    return num + cat
-
-
-def _source(r_label: str) -> str:
-    return "".join(re.sub(r"I\(([A-Z])\^2\)", r"\1^2", p) for p in r_label.split(":"))
-
-
 @pytest.mark.parametrize("name", list(CASES))
 def test_coefficients_and_gls_errors_match_nlme(name):
     res = _fit(name)
@@ -83,7 +59,7 @@ def test_coefficients_and_gls_errors_match_nlme(name):
     assert len(exp) == len(res.coefficients)
     scale = float(np.max(np.abs(exp.estimate)))
     for row in exp.itertuples():
-        col = _ours(row.column, res.space)
+        col = ours(row.column, res.space)
         np.testing.assert_allclose(res.coefficients.loc[col, "coded"], row.estimate, rtol=RTOL_EST,
                                    atol=RTOL_EST * scale, err_msg=col)
         np.testing.assert_allclose(res.coefficients.loc[col, "std_error"], row.std_error, rtol=RTOL_EST, err_msg=col)
@@ -113,7 +89,7 @@ def test_kenward_roger_tests_match_pbkrtest(name):
     ours = {t["term"]: t for t in res.to_dict()["tests"]}
     assert len(ours) == len(exp) == len(res.model_terms)  # one row per term, no intercept
     for row in exp.itertuples():
-        t = ours[_source(row.term)]
+        t = ours[source(row.term)]
         assert t["num_df"] == row.num_df
         np.testing.assert_allclose(t["den_df"], row.den_df, rtol=RTOL_KR, err_msg=row.term)
         np.testing.assert_allclose(t["f"], row.f, rtol=RTOL_KR, err_msg=row.term)
