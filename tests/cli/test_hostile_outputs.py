@@ -19,6 +19,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from _cli_process import cli_env, one_error_line, run_cli
 
 from rsm_lrg.cli import main
 from rsm_lrg.datasets import data_path
@@ -28,25 +29,6 @@ TABLE4 = Path(data_path("table4.csv"))
 RESPONSE = "tcr_c_per_min"
 DESIGN = ["design", "box-behnken", "--factor", "a=1:2", "--factor", "b=1:2", "--factor", "c=1:2", "--seed", "1"]
 ROOT = hasattr(os, "geteuid") and os.geteuid() == 0
-
-
-def _env() -> dict:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(Path(__file__).resolve().parents[2]) + os.pathsep + env.get("PYTHONPATH", "")
-    return env
-
-
-def _cli(args, cwd, **kw):
-    return subprocess.run([sys.executable, "-m", "rsm_lrg", *map(str, args)], cwd=cwd, env=_env(), timeout=300,
-                          text=True, **kw)
-
-
-def _one_error(err: str, *words: str) -> str:
-    lines = err.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error:"), err[-800:]
-    for w in words:
-        assert w in lines[0], (w, lines[0])
-    return lines[0]
 
 
 def test_output_stream_names_open_descriptors(tmp_path):
@@ -70,7 +52,7 @@ def test_a_link_to_standard_output_is_written_through_never_replaced(force, tmp_
     link = tmp_path / "out.csv"
     link.symlink_to("/dev/stdout")
     with open(tmp_path / "res.txt", "w") as res:
-        proc = _cli([*DESIGN, "-o", link, *(["--force"] if force else [])], tmp_path, stdout=res,
+        proc = run_cli([*DESIGN, "-o", link, *(["--force"] if force else [])], tmp_path, stdout=res,
                     stderr=subprocess.PIPE)
     assert proc.returncode == 0, proc.stderr
     assert link.is_symlink() and os.readlink(link) == "/dev/stdout"
@@ -99,7 +81,7 @@ echo "rc=$?" >&2
 echo "rc=$?" >&2
 [ -L /dev/stdout ] && echo "stdout-still-a-link" >&2
 """
-    proc = subprocess.run(["unshare", "-m", "sh", "-c", script], env=_env(), text=True, capture_output=True,
+    proc = subprocess.run(["unshare", "-m", "sh", "-c", script], env=cli_env(), text=True, capture_output=True,
                           timeout=300)
     if "mount:" in proc.stderr and "rc=" not in proc.stderr:
         pytest.skip(f"no private mount namespace here: {proc.stderr.strip()[:200]}")
@@ -151,7 +133,7 @@ def test_a_special_file_is_never_replaced(cmd, kind, force, tmp_path, capsys):
     argv = [*DESIGN, "-o", str(path)] if cmd == "design" else \
         ["fit", str(TABLE4), "--response", RESPONSE, "--json", str(path)]
     assert main(argv + (["--force"] if force else [])) == 2
-    line = _one_error(capsys.readouterr().err, word, "-o" if cmd == "design" else "--json")
+    line = one_error_line(capsys.readouterr().err, word, "-o" if cmd == "design" else "--json")
     assert "never replaced" in line
     after = os.lstat(path)
     assert stat.S_IFMT(after.st_mode) == stat.S_IFMT(before.st_mode) and after.st_ino == before.st_ino
@@ -164,7 +146,7 @@ def test_force_through_a_link_to_a_regular_file_replaces_the_file_and_keeps_the_
     link = tmp_path / "link.csv"
     link.symlink_to(real.name)
     assert main([*DESIGN, "-o", str(link)]) == 2  # without --force: it exists
-    _one_error(capsys.readouterr().err, "already exists")
+    one_error_line(capsys.readouterr().err, "already exists")
     assert real.read_text() == "old\n"
     assert main([*DESIGN, "-o", str(link), "--force"]) == 0
     capsys.readouterr()
@@ -209,10 +191,10 @@ def test_backup_kept_when_hard_links_are_refused(tmp_path):
     drop = "-fowner,-dac_override"
     proc = subprocess.run(["setpriv", f"--inh-caps={drop}", f"--bounding-set={drop}", sys.executable, "-m",
                            "rsm_lrg", "fit", str(TABLE4), "--response", RESPONSE, "--json", "d1/out.json",
-                           "--report", "d2/out.html", "--force"], cwd=tmp_path, env=_env(), text=True,
+                           "--report", "d2/out.html", "--force"], cwd=tmp_path, env=cli_env(), text=True,
                           capture_output=True, timeout=300)
     assert proc.returncode == 2, proc.stderr
-    _one_error(proc.stderr, "--report", "d2/out.html")
+    one_error_line(proc.stderr, "--report", "d2/out.html")
     st = (d1 / "out.json").stat()
     assert (d1 / "out.json").read_text() == "keep me\n" and st.st_ino == ino and st.st_uid == nobody
     assert (d2 / "out.html").read_text() == "theirs\n"
@@ -227,7 +209,7 @@ def test_a_file_a_glob_or_directory_matches_is_never_an_output(how, tmp_path, ca
         shutil.copy(TABLE4, parts / f"{n}.csv")
     src = str(parts / "*.csv") if how == "glob" else str(parts)
     assert main(["fit", src, "--response", RESPONSE, "--json", str(parts / "a.csv"), "--force"]) == 2
-    _one_error(capsys.readouterr().err, "--json", "input")
+    one_error_line(capsys.readouterr().err, "--json", "input")
     assert (parts / "a.csv").read_bytes() == TABLE4.read_bytes()
 
 
@@ -240,20 +222,20 @@ def _closed(*fds):
 
 def test_closed_standard_output_is_ordinary(tmp_path):
     # `rsm-lrg fit ... --json j.json --report r.html >&-`: files written, exit 0
-    proc = _cli(["fit", TABLE4, "--response", RESPONSE, "--json", "j.json", "--report", "r.html"], tmp_path,
+    proc = run_cli(["fit", TABLE4, "--response", RESPONSE, "--json", "j.json", "--report", "r.html"], tmp_path,
                 stderr=subprocess.PIPE, preexec_fn=_closed(1))
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr == ""
     assert (tmp_path / "j.json").read_text().startswith("{")
     assert (tmp_path / "r.html").read_text().rstrip().endswith("</html>")
     # --json - and -o /dev/stdout into a closed standard output: dropped, as after `| head -0`
-    proc = _cli(["fit", TABLE4, "--response", RESPONSE, "--json", "-"], tmp_path, stderr=subprocess.PIPE,
+    proc = run_cli(["fit", TABLE4, "--response", RESPONSE, "--json", "-"], tmp_path, stderr=subprocess.PIPE,
                 preexec_fn=_closed(1))
     assert proc.returncode == 0 and "error" not in proc.stderr  # the notes still go to stderr
-    proc = _cli([*DESIGN, "-o", "/dev/stdout"], tmp_path, stderr=subprocess.PIPE, preexec_fn=_closed(1))
+    proc = run_cli([*DESIGN, "-o", "/dev/stdout"], tmp_path, stderr=subprocess.PIPE, preexec_fn=_closed(1))
     assert proc.returncode == 0 and proc.stderr == ""
     # with standard error closed too, an error is still exit 2 and nothing lands in a file
-    proc = _cli(["fit", "missing.csv", "--response", RESPONSE, "--json", "j2.json"], tmp_path,
+    proc = run_cli(["fit", "missing.csv", "--response", RESPONSE, "--json", "j2.json"], tmp_path,
                 preexec_fn=_closed(1, 2))
     assert proc.returncode == 2
     assert sorted(p.name for p in tmp_path.iterdir()) == ["j.json", "r.html"]
@@ -266,8 +248,8 @@ def test_a_full_standard_output_fails_cleanly(json_to, tmp_path):
     # (once an internal error, exit 1)
     dest = "j.json" if json_to == "file" else "/dev/stdout"
     with open("/dev/full", "w") as full:
-        proc = _cli(["fit", TABLE4, "--response", RESPONSE, "--json", dest, "--report", "r.html"], tmp_path,
+        proc = run_cli(["fit", TABLE4, "--response", RESPONSE, "--json", dest, "--report", "r.html"], tmp_path,
                     stdout=full, stderr=subprocess.PIPE)
     assert proc.returncode == 2, proc.stderr
-    _one_error(proc.stderr, "standard output", "No space left")
+    one_error_line(proc.stderr, "standard output", "No space left")
     assert list(tmp_path.iterdir()) == []

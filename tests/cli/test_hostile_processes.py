@@ -19,18 +19,13 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from _cli_process import child_pids, cli_env, is_alive
 
 from rsm_lrg.cli.processes import Terminated
 from rsm_lrg.datasets import data_path
 from rsm_lrg.io import output_transaction, write_output
 
 FACTORS = ["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]
-
-
-def _env() -> dict:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(Path(__file__).resolve().parents[2]) + os.pathsep + env.get("PYTHONPATH", "")
-    return env
 
 
 def _design(tmp_path: Path, copies: int) -> Path:
@@ -40,36 +35,20 @@ def _design(tmp_path: Path, copies: int) -> Path:
     return p
 
 
-def _children(pid: int) -> list[int]:
-    try:
-        return [int(x) for x in Path(f"/proc/{pid}/task/{pid}/children").read_text().split()]
-    except OSError:
-        return []
-
-
-def _alive(pid: int) -> bool:
-    """Running (not gone, not a zombie waiting to be reaped)."""
-    try:
-        stat = Path(f"/proc/{pid}/stat").read_text()
-    except OSError:
-        return False
-    return stat.rsplit(")", 1)[1].split()[0] != "Z"
-
-
 def _start_simulate(tmp_path, *extra):
     design = _design(tmp_path, 4000)  # 108 000 runs: long enough to be caught while running
     return subprocess.Popen([sys.executable, "-m", "rsm_lrg", "simulate", str(design), "-o", str(tmp_path / "o.csv"),
-                             "--seed", "1", "--no-progress", *extra], cwd=tmp_path, env=_env(), text=True,
+                             "--seed", "1", "--no-progress", *extra], cwd=tmp_path, env=cli_env(), text=True,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
 
 
 def _wait_for_workers(proc, n, timeout=60.0) -> list[int]:
     end = time.monotonic() + timeout
     while time.monotonic() < end:
-        kids = _children(proc.pid)
+        kids = child_pids(proc.pid)
         if len(kids) >= n:
             time.sleep(0.5)  # the workers have started computing
-            return _children(proc.pid)
+            return child_pids(proc.pid)
         if proc.poll() is not None:
             break
         time.sleep(0.1)
@@ -92,9 +71,9 @@ def test_a_signal_stops_the_pool_and_leaves_nothing(sig, tmp_path):
     lines = err.splitlines()
     assert len(lines) == 1 and lines[0].startswith("error:"), err[-800:]
     deadline = time.monotonic() + 10
-    while any(_alive(k) for k in kids) and time.monotonic() < deadline:
+    while any(is_alive(k) for k in kids) and time.monotonic() < deadline:
         time.sleep(0.1)
-    assert not any(_alive(k) for k in kids), f"workers left running: {kids}"
+    assert not any(is_alive(k) for k in kids), f"workers left running: {kids}"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["design.csv"]  # no output, no temporary file
 
 
@@ -105,9 +84,9 @@ def test_workers_die_with_a_parent_killed_by_sigkill(tmp_path):
     proc.kill()
     proc.wait(timeout=30)
     deadline = time.monotonic() + 15
-    while any(_alive(k) for k in kids) and time.monotonic() < deadline:
+    while any(is_alive(k) for k in kids) and time.monotonic() < deadline:
         time.sleep(0.1)
-    assert not any(_alive(k) for k in kids), f"workers outlived their parent: {kids}"
+    assert not any(is_alive(k) for k in kids), f"workers outlived their parent: {kids}"
 
 
 def test_a_signal_inside_the_transaction_removes_its_temporary_files(tmp_path):
@@ -131,7 +110,7 @@ def test_sigterm_at_any_moment_leaves_no_temporary_file(tmp_path):
         d = tmp_path / f"run{k}"
         d.mkdir()
         proc = subprocess.Popen([sys.executable, "-m", "rsm_lrg", "fit", str(table), "--response", "tcr_c_per_min",
-                                 "--json", "o.json", "--report", "r.html"], cwd=d, env=_env(),
+                                 "--json", "o.json", "--report", "r.html"], cwd=d, env=cli_env(),
                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         time.sleep(0.15 * k)
         proc.send_signal(signal.SIGTERM)
@@ -181,7 +160,7 @@ def test_a_scheduler_that_never_answers_is_an_error_after_the_timeout(tmp_path):
         t0 = time.monotonic()
         proc = subprocess.run([sys.executable, "-m", "rsm_lrg", "simulate", str(design), "-o", "o.csv", "--seed", "1",
                                "--scheduler", f"tcp://127.0.0.1:{srv.port}", "--scheduler-timeout", "2"],
-                              cwd=tmp_path, env=_env(), text=True, capture_output=True, timeout=120)
+                              cwd=tmp_path, env=cli_env(), text=True, capture_output=True, timeout=120)
         took = time.monotonic() - t0
     finally:
         srv.close()
@@ -227,7 +206,7 @@ def test_a_scheduler_lost_mid_run_is_one_error_line(tmp_path):
     pytest.importorskip("distributed")
     script = tmp_path / "cluster.py"
     script.write_text(CLUSTER)
-    cluster = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path, env=_env(), text=True,
+    cluster = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path, env=cli_env(), text=True,
                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, start_new_session=True)
     try:
         address = cluster.stdout.readline().strip()
@@ -267,14 +246,14 @@ def test_a_scheduler_without_workers_is_an_error_after_the_timeout(tmp_path):
     pytest.importorskip("distributed")
     script = tmp_path / "scheduler.py"
     script.write_text(NO_WORKERS)
-    sched = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path, env=_env(), text=True,
+    sched = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path, env=cli_env(), text=True,
                              stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, start_new_session=True)
     try:
         address = sched.stdout.readline().strip()
         assert address.startswith("tcp://"), address
         design = _design(tmp_path, 1)
         proc = subprocess.run([sys.executable, "-m", "rsm_lrg", "simulate", str(design), "-o", "o.csv", "--seed", "1",
-                               "--scheduler", address, "--scheduler-timeout", "3"], cwd=tmp_path, env=_env(),
+                               "--scheduler", address, "--scheduler-timeout", "3"], cwd=tmp_path, env=cli_env(),
                               text=True, capture_output=True, timeout=120)
     finally:
         os.killpg(sched.pid, signal.SIGKILL)

@@ -32,6 +32,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from _cli_process import child_pids, cli_env, is_alive, one_error_line, run_cli
 
 from rsm_lrg.cli import main
 from rsm_lrg.datasets import data_path
@@ -43,25 +44,6 @@ FACTORS = ["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]
 ROOT = hasattr(os, "geteuid") and os.geteuid() == 0
 
 
-def _env() -> dict:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(Path(__file__).resolve().parents[2]) + os.pathsep + env.get("PYTHONPATH", "")
-    return env
-
-
-def _cli(args, cwd, **kw):
-    return subprocess.run([sys.executable, "-m", "rsm_lrg", *map(str, args)], cwd=cwd, env=_env(), timeout=300,
-                          text=True, **kw)
-
-
-def _one_error(err: str, *words: str) -> str:
-    lines = err.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error:"), err[-800:]
-    for w in words:
-        assert w in lines[0], (w, lines[0])
-    return lines[0]
-
-
 # --- outputs -----------------------------------------------------------------------------------
 
 def test_standard_input_that_is_a_file_is_never_an_output(tmp_path):
@@ -69,13 +51,13 @@ def test_standard_input_that_is_a_file_is_never_an_output(tmp_path):
     shutil.copy(TABLE4, data)
     before = data.read_bytes()
     with open(data, "rb") as stdin:
-        proc = _cli(["fit", "-", "--response", RESPONSE, "--json", "a.csv", "--force"], tmp_path, stdin=stdin,
+        proc = run_cli(["fit", "-", "--response", RESPONSE, "--json", "a.csv", "--force"], tmp_path, stdin=stdin,
                     capture_output=True)
     assert proc.returncode == 2
-    _one_error(proc.stderr, "--json", "a.csv", "standard input", "never overwritten")
+    one_error_line(proc.stderr, "--json", "a.csv", "standard input", "never overwritten")
     assert data.read_bytes() == before
     # a pipe on standard input is no file: the output is written
-    proc = _cli(["fit", "-", "--response", RESPONSE, "--json", "o.json"], tmp_path, input=before.decode(),
+    proc = run_cli(["fit", "-", "--response", RESPONSE, "--json", "o.json"], tmp_path, input=before.decode(),
                 capture_output=True)
     assert proc.returncode == 0, proc.stderr
     assert json.loads((tmp_path / "o.json").read_text())["n"] == 27
@@ -87,14 +69,14 @@ def test_standard_output_that_is_an_input_is_refused(tmp_path, stdin_too):
     shutil.copy(TABLE4, data)
     before = data.read_bytes()
     with open(data, "ab") as out, open(data if stdin_too else os.devnull, "rb") as stdin:
-        proc = _cli(["fit", "-" if stdin_too else "a.csv", "--response", RESPONSE, "--json", "-"], tmp_path,
+        proc = run_cli(["fit", "-" if stdin_too else "a.csv", "--response", RESPONSE, "--json", "-"], tmp_path,
                     stdout=out, stdin=stdin, stderr=subprocess.PIPE)
     assert proc.returncode == 2
-    _one_error(proc.stderr, "standard output is the input file")
+    one_error_line(proc.stderr, "standard output is the input file")
     assert data.read_bytes() == before
     # standard output on another file is as usual
     with open(tmp_path / "out.txt", "wb") as out:
-        proc = _cli(["fit", "a.csv", "--response", RESPONSE, "--json", "-"], tmp_path, stdout=out,
+        proc = run_cli(["fit", "a.csv", "--response", RESPONSE, "--json", "-"], tmp_path, stdout=out,
                     stderr=subprocess.PIPE)
     assert proc.returncode == 0, proc.stderr
     assert json.loads((tmp_path / "out.txt").read_text())["n"] == 27
@@ -107,7 +89,7 @@ def test_standard_output_that_is_an_input_is_refused(tmp_path, stdin_too):
 def test_dash_for_a_file_output_is_refused_not_a_file_named_dash(tmp_path, monkeypatch, capsys, args):
     monkeypatch.chdir(tmp_path)
     assert main(args) == 2
-    _one_error(capsys.readouterr().err, "'-'", "--json only")
+    one_error_line(capsys.readouterr().err, "'-'", "--json only")
     assert list(tmp_path.iterdir()) == []
     assert main([*args[:-1], "./-"]) == 0  # a file named '-', spelled so
     assert (tmp_path / "-").is_file()
@@ -160,21 +142,21 @@ def test_reader_options_on_a_file_set_are_applied_or_refused_never_ignored(tmp_p
     d = _parts(tmp_path)
     status, _, err = _fit(capsys, d, "--sep", ";")  # wrong separator: the file says so, as alone
     assert status == 2
-    _one_error(err, "p0.csv", "single column")
+    one_error_line(err, "p0.csv", "single column")
     status, _, err = _fit(capsys, d, "--sheet", "Runs")
     assert status == 2
-    _one_error(err, "--sheet", "Excel")
+    one_error_line(err, "--sheet", "Excel")
     pq = tmp_path / "pq"
     pq.mkdir()
     pd.read_csv(TABLE4).to_parquet(pq / "a.parquet")
     status, _, err = _fit(capsys, pq, "--decimal", ",")
     assert status == 2
-    _one_error(err, "--sep and --decimal", "PARQUET")
+    one_error_line(err, "--sep and --decimal", "PARQUET")
     # names are kept as written, file by file: a header with a blank after a name differs
     (d / "p1.csv").write_text((d / "p1.csv").read_text().replace("order,", "order ,", 1))
     status, _, err = _fit(capsys, d)
     assert status == 2
-    _one_error(err, "p1.csv", "missing 'order'", "extra 'order '")
+    one_error_line(err, "p1.csv", "missing 'order'", "extra 'order '")
 
 
 def test_a_quoted_cell_across_the_sniffed_lines_is_read_whole(tmp_path, capsys):
@@ -200,28 +182,14 @@ def test_a_directory_that_cannot_be_listed_is_named_with_its_error(tmp_path, mod
     drop = "-dac_override,-dac_read_search"
     for arg in (str(d), str(d / "*.csv")):
         proc = subprocess.run(["setpriv", f"--inh-caps={drop}", f"--bounding-set={drop}", sys.executable, "-m",
-                               "rsm_lrg", "fit", arg, "--response", RESPONSE], env=_env(), text=True,
+                               "rsm_lrg", "fit", arg, "--response", RESPONSE], env=cli_env(), text=True,
                               capture_output=True, timeout=300)
         assert proc.returncode == 2
-        _one_error(proc.stderr, str(d), "cannot be read", "Permission denied")
+        one_error_line(proc.stderr, str(d), "cannot be read", "Permission denied")
     os.chmod(d, 0o755)
 
 
 # --- processes and clusters ----------------------------------------------------------------------
-
-def _children(pid: int) -> list[int]:
-    try:
-        return [int(x) for x in Path(f"/proc/{pid}/task/{pid}/children").read_text().split()]
-    except OSError:
-        return []
-
-
-def _alive(pid: int) -> bool:
-    try:
-        stat = Path(f"/proc/{pid}/stat").read_text()
-    except OSError:
-        return False
-    return stat.rsplit(")", 1)[1].split()[0] != "Z"
 
 
 @pytest.mark.slow
@@ -235,12 +203,12 @@ def test_a_worker_killed_mid_run_is_one_error_naming_workers(tmp_path, streamed)
     out = "o.parquet" if streamed else "o.csv"
     extra = ["--chunk-rows", "1000"] if streamed else []
     proc = subprocess.Popen([sys.executable, "-m", "rsm_lrg", "simulate", design.name, "-o", out, "--seed", "1",
-                             "--no-progress", "--workers", "2", *extra], cwd=tmp_path, env=_env(), text=True,
+                             "--no-progress", "--workers", "2", *extra], cwd=tmp_path, env=cli_env(), text=True,
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     end = time.monotonic() + 120
     kids: list[int] = []
     while time.monotonic() < end and proc.poll() is None:
-        kids = _children(proc.pid)
+        kids = child_pids(proc.pid)
         if len(kids) >= 2:
             break
         time.sleep(0.1)
@@ -253,9 +221,9 @@ def test_a_worker_killed_mid_run_is_one_error_naming_workers(tmp_path, streamed)
         proc.kill()
         pytest.fail("the command hung after a worker was killed")
     assert proc.returncode == 2, err
-    _one_error(err, "--workers 2", "worker process ended abruptly", "no output written")
+    one_error_line(err, "--workers 2", "worker process ended abruptly", "no output written")
     time.sleep(0.5)
-    assert not [k for k in kids if _alive(k)]
+    assert not [k for k in kids if is_alive(k)]
     assert sorted(p.name for p in tmp_path.iterdir()) == [design.name]
 
 
@@ -344,10 +312,10 @@ def test_an_empty_scheduler_is_refused_not_run_locally(tmp_path):
     pytest.importorskip("distributed")
     d = pd.read_csv(TABLE4)[FACTORS]
     d.to_csv(tmp_path / "design.csv", index=False)
-    proc = _cli(["simulate", "design.csv", "-o", "o.csv", "--seed", "1", "--scheduler", ""], tmp_path,
+    proc = run_cli(["simulate", "design.csv", "-o", "o.csv", "--seed", "1", "--scheduler", ""], tmp_path,
                 capture_output=True)
     assert proc.returncode == 2
-    _one_error(proc.stderr, "--scheduler", "empty address")
+    one_error_line(proc.stderr, "--scheduler", "empty address")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["design.csv"]
 
 
@@ -370,7 +338,7 @@ def test_a_unit_beside_a_parameter_value_must_be_its_unit(tmp_path, capsys, text
         assert status == 0, err
     else:
         assert status == 2
-        _one_error(err, "p.toml", "is not the unit of", "never converted")
+        one_error_line(err, "p.toml", "is not the unit of", "never converted")
 
 
 @pytest.mark.parametrize("text, kind", [
@@ -382,7 +350,7 @@ def test_text_is_never_read_as_a_number_in_a_params_file(tmp_path, capsys, text,
     p = tmp_path / "p.toml"
     p.write_text(text)
     assert main(["physics", "--params-file", str(p)]) == 2
-    _one_error(capsys.readouterr().err, "p.toml", f"is text, not a {kind}")
+    one_error_line(capsys.readouterr().err, "p.toml", f"is text, not a {kind}")
 
 
 def test_a_unit_beside_a_calibrated_value_must_be_its_unit(tmp_path):
@@ -408,21 +376,21 @@ def test_control_characters_in_names_and_cells_are_refused(tmp_path, capsys):
     assert main(["fit", str(name), "--response", RESPONSE]) == 2
     cap = capsys.readouterr()
     assert "\x1b" not in cap.out + cap.err
-    _one_error(cap.err, "name.csv", "control character", "'\\x1b'")
+    one_error_line(cap.err, "name.csv", "control character", "'\\x1b'")
     cell = tmp_path / "cell.csv"
     lot = df.assign(lot=["a\x1b[2J" if i == 4 else "a" for i in range(len(df))])
     lot.to_csv(cell, index=False)
     assert main(["fit", str(cell), "--response", RESPONSE]) == 2
     cap = capsys.readouterr()
     assert "\x1b" not in cap.out + cap.err
-    _one_error(cap.err, "cell.csv", "column 'lot', row 5", "control character")
+    one_error_line(cap.err, "cell.csv", "column 'lot', row 5", "control character")
     # the same in a Parquet file of a file set
     pq = tmp_path / "pq"
     pq.mkdir()
     lot.to_parquet(pq / "a.parquet")
     lot.assign(lot="a").to_parquet(pq / "b.parquet")
     assert main(["fit", str(pq), "--response", RESPONSE, "--factor", "thickness_m", "--factor", "lot=cat"]) == 2
-    _one_error(capsys.readouterr().err, "a.parquet", "column 'lot', row 5", "control character")
+    one_error_line(capsys.readouterr().err, "a.parquet", "column 'lot', row 5", "control character")
     # a line break inside a quoted text cell (a note) is text, read as before
     note = tmp_path / "note.csv"
     df.assign(note=["two\nlines" if i == 2 else "" for i in range(len(df))]).to_csv(note, index=False)
@@ -450,7 +418,7 @@ def test_a_data_file_the_package_reads_is_never_an_output(tmp_path):
         proc = subprocess.run([sys.executable, "-m", "rsm_lrg", *args], cwd=tmp_path, env=env, text=True,
                               capture_output=True, timeout=300)
         assert proc.returncode == 2, (args, proc.stderr)
-        _one_error(proc.stderr, "shipped with rsm-lrg", "never overwritten")
+        one_error_line(proc.stderr, "shipped with rsm-lrg", "never overwritten")
     assert {p.name: p.read_bytes() for p in (pkg / "data").iterdir() if p.is_file()} == shipped
     # a new file beside them is no shipped file
     proc = subprocess.run([sys.executable, "-m", "rsm_lrg", "physics", "--json", str(pkg / "data" / "new.json")],
@@ -467,19 +435,19 @@ def test_an_output_keeps_the_permissions_of_the_file_it_replaces_and_the_umask(t
     shared.write_text("{}")
     shared.chmod(0o664)
     for out in (private, shared):
-        proc = _cli(["fit", str(TABLE4), "--response", RESPONSE, "--json", out.name, "--force"], tmp_path,
+        proc = run_cli(["fit", str(TABLE4), "--response", RESPONSE, "--json", out.name, "--force"], tmp_path,
                     capture_output=True)
         assert proc.returncode == 0, proc.stderr
         assert json.loads(out.read_text())["n"] == 27
     assert (private.stat().st_mode & 0o777, shared.stat().st_mode & 0o777) == (0o600, 0o664)
     proc = subprocess.run(f"umask 077 && exec {sys.executable} -m rsm_lrg fit {TABLE4} --response {RESPONSE} "
-                          f"--json new.json", shell=True, cwd=tmp_path, env=_env(), text=True, capture_output=True,
+                          f"--json new.json", shell=True, cwd=tmp_path, env=cli_env(), text=True, capture_output=True,
                           timeout=300)
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "new.json").stat().st_mode & 0o777 == 0o600
     if ROOT:  # root replacing another user's file leaves it theirs
         os.chown(private, 65534, 65534)
-        proc = _cli(["fit", str(TABLE4), "--response", RESPONSE, "--json", private.name, "--force"], tmp_path,
+        proc = run_cli(["fit", str(TABLE4), "--response", RESPONSE, "--json", private.name, "--force"], tmp_path,
                     capture_output=True)
         assert proc.returncode == 0, proc.stderr
         assert (private.stat().st_uid, private.stat().st_mode & 0o777) == (65534, 0o600)
@@ -491,7 +459,7 @@ def test_a_term_of_absurd_degree_is_refused_not_computed_for_ever(capsys, terms,
     # fit --terms "A^99999" ran for ever (exact actual-unit coefficients of degree 99999)
     t0 = time.monotonic()
     assert main(["fit", str(TABLE4), "--response", RESPONSE, "--terms", terms]) == 2
-    _one_error(capsys.readouterr().err, "--terms", f"degree {degree}", "at most 20")
+    one_error_line(capsys.readouterr().err, "--terms", f"degree {degree}", "at most 20")
     assert time.monotonic() - t0 < 30
 
 

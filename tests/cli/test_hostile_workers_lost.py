@@ -6,7 +6,6 @@ the worker killed with SIGKILL."""
 
 from __future__ import annotations
 
-import os
 import shutil
 import signal
 import socket
@@ -16,10 +15,9 @@ import time
 from pathlib import Path
 
 import pytest
+from _cli_process import cli_env
 
 pytestmark = [pytest.mark.slow, pytest.mark.cluster]
-
-ROOT = Path(__file__).resolve().parents[2]
 
 
 def _free_port() -> int:
@@ -28,17 +26,11 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
-def _env() -> dict:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
-    return env
-
-
 @pytest.mark.skipif(shutil.which("dask") is None, reason="the dask command (dask[distributed]) is not installed")
 def test_every_worker_lost_mid_run_is_one_error_not_a_hang(tmp_path):
     port = _free_port()
     address = f"tcp://127.0.0.1:{port}"
-    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "env": _env()}
+    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "env": cli_env()}
     sched = subprocess.Popen(["dask", "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
                              **quiet)
     worker = None
@@ -50,12 +42,12 @@ def test_every_worker_lost_mid_run_is_one_error_not_a_hang(tmp_path):
         made = subprocess.run([sys.executable, "-m", "rsm_lrg", "design", "latin-hypercube", "--runs", "40000",
                                "--factor", "thickness_m=0.0001:0.0005", "--factor", "stroke_m=0.04:0.06",
                                "--factor", "velocity_m_s=0.4:0.6", "--factor", "acceleration_m_s2=20:40",
-                               "--seed", "1", "-o", str(design)], capture_output=True, text=True, env=_env())
+                               "--seed", "1", "-o", str(design)], capture_output=True, text=True, env=cli_env())
         assert made.returncode == 0, made.stderr
         out = tmp_path / "runs.csv"
         run = subprocess.Popen([sys.executable, "-m", "rsm_lrg", "simulate", str(design), "--scheduler", address,
                                 "--scheduler-timeout", "5", "--no-progress", "-o", str(out)],
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=_env())
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=cli_env())
         time.sleep(6.0)  # connected, batches submitted (the worker compiles and runs for longer than this)
         assert run.poll() is None, run.communicate()
         worker.send_signal(signal.SIGKILL)
