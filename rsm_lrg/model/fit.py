@@ -197,6 +197,23 @@ def _fit_mixture(data: Any, response: str, components: Any, factors: Any, block:
     return fit_inputs(inp, response, spec, chunk_rows=chunk_rows, reduction=reduction)
 
 
+def _spec_terms(inp: ModelInputs, spec: ModelSpec, block_df: int) -> tuple:
+    """The terms of ``spec``'s standard model or term list over ``inp``'s factors (not a
+    mixture). A standard model's size is checked against the runs before any term is built (a
+    cubic in 16 factors has 969); ``block_df`` the degrees of freedom the blocks take."""
+    space = inp.space
+    if spec.terms is None:
+        try:
+            check_model_size(inp.n, len(space), spec.order, block_df, categoric=space.categoric)
+        except ValueError as exc:
+            raise ValueError(f"{exc}{inp.hint}") from None
+        return tuple(model_terms(space.letters, spec.order, space.categoric))
+    try:
+        return chosen_terms(spec.terms, space.letters, space.categoric, intercept=spec.intercept)
+    except ValueError as exc:
+        raise SpecError("terms", str(exc)) from None
+
+
 def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: int = CHUNK_ROWS,
                reduction: Any = None) -> FitResult:
     """The fit of checked inputs (:func:`~rsm_lrg.model.inputs.model_inputs`) to ``spec``'s
@@ -205,17 +222,8 @@ def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: 
     model = spec.order
     if spec.mixture:
         terms = _mixture_terms(spec, space, n, inp.settings, hint)
-    elif spec.terms is None:  # count the terms before building any (a cubic in 16 factors has 969)
-        try:
-            check_model_size(n, len(space), model, nb - 1, categoric=space.categoric)
-        except ValueError as exc:
-            raise ValueError(f"{exc}{hint}") from None
-        terms = tuple(model_terms(space.letters, model, space.categoric))
     else:
-        try:
-            terms = chosen_terms(spec.terms, space.letters, space.categoric, intercept=spec.intercept)
-        except ValueError as exc:
-            raise SpecError("terms", str(exc)) from None
+        terms = _spec_terms(inp, spec, nb - 1)
     if nb > 1 and not spec.intercept:
         raise SpecError("terms", "blocks need a model with an intercept (block effects sum to zero about it)")
     col_names = inp.column_names(terms)
@@ -411,17 +419,7 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
 
     space, y, hint, n = inp.space, inp.y, inp.hint, inp.n
     model = spec.order
-    if spec.terms is None:
-        try:
-            check_model_size(n, len(space), model, 0, categoric=space.categoric)
-        except ValueError as exc:
-            raise ValueError(f"{exc}{hint}") from None
-        terms = tuple(model_terms(space.letters, model, space.categoric))
-    else:
-        try:
-            terms = chosen_terms(spec.terms, space.letters, space.categoric, intercept=spec.intercept)
-        except ValueError as exc:
-            raise SpecError("terms", str(exc)) from None
+    terms = _spec_terms(inp, spec, 0)
     col_names = inp.column_names(terms)
     p = len(col_names)
     what_model = f"the {model} model" if spec.terms is None else "the model"
