@@ -472,12 +472,7 @@ def _heat_balance_rows(S, cal) -> list[Row]:
     vals = {k: v for k, v in cal.parameter_values().items() if k in LRGParams().to_dict()}
     p = LRGParams().with_overrides(**vals)
     v = p.to_dict()
-    re = convection.reynolds(p.air_velocity_m_s, p.char_length_m, p.air_kinematic_viscosity_m2_s)
-    pr = convection.prandtl(p.air_specific_heat_j_kgk, p.air_dynamic_viscosity_pa_s, p.air_conductivity_w_mk)
-    hs = float(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr),
-                                                    p.air_conductivity_w_mk, p.char_length_m))
-    hf = float(convection.heat_transfer_coefficient(convection.nusselt_normal_plate(re, pr),
-                                                    p.air_conductivity_w_mk, p.char_length_m))
+    hs, hf = convection.coefficients(p.to_dict())
     net = rig_network(GuideGeometry.from_params(v), hs, hf, rig_bodies(v, p.hinge_thickness_m, h_side_w_m2k=hs))
     fr, st = net.heat_paths("balls"), net.heat_paths("stage")
     q_w = float(heat.friction_heat(p.mu_k, p.normal_load_n, p.velocity_m_s, in_calories=False))

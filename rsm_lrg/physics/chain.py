@@ -373,10 +373,7 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
     phi = float(heat.heat_source_intensity(q, vt))
     re = float(convection.reynolds(p.air_velocity_m_s, p.char_length_m, p.air_kinematic_viscosity_m2_s))
     pr = float(convection.prandtl(p.air_specific_heat_j_kgk, p.air_dynamic_viscosity_pa_s, p.air_conductivity_w_mk))
-    hs = float(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr),
-                                                    p.air_conductivity_w_mk, p.char_length_m))
-    hf = float(convection.heat_transfer_coefficient(convection.nusselt_normal_plate(re, pr),
-                                                    p.air_conductivity_w_mk, p.char_length_m))
+    hs, hf = convection.coefficients(p.to_dict())
     rows = []
     ys = np.asarray(list(thicknesses), dtype=float)
     peaks = _peak_deflections(p, ys) if ys.size else ys

@@ -10,7 +10,7 @@ import numpy as np
 
 __all__ = [
     "reynolds", "prandtl", "nusselt_parallel_plate", "nusselt_normal_plate",
-    "heat_transfer_coefficient", "h_side", "h_front",
+    "heat_transfer_coefficient", "h_side", "h_front", "coefficients",
 ]
 
 
@@ -109,3 +109,23 @@ def h_front(air_velocity=0.3, length=0.015, kinematic_viscosity=15.5e-6, dynamic
     re = reynolds(air_velocity, length, kinematic_viscosity)
     pr = prandtl(specific_heat, dynamic_viscosity, conductivity)
     return heat_transfer_coefficient(nusselt_normal_plate(re, pr), conductivity, length)
+
+
+#: The air parameters (:class:`rsm_lrg.physics.params.LRGParams` names) of Eqs. 10-12, in the
+#: order :func:`h_side` and :func:`h_front` take them.
+AIR_PARAMETERS = ("air_velocity_m_s", "char_length_m", "air_kinematic_viscosity_m2_s", "air_dynamic_viscosity_pa_s",
+                  "air_conductivity_w_mk", "air_specific_heat_j_kgk")
+
+
+def coefficients(values) -> tuple[float, float]:
+    """``h_side`` and ``h_front`` [W/(m²·K)] (Eqs. 10-12) from a parameter mapping (the names of
+    :class:`rsm_lrg.physics.params.LRGParams`, e.g. its ``to_dict()``).
+
+    Examples
+    --------
+    >>> from rsm_lrg.physics.params import LRGParams
+    >>> [round(h, 2) for h in coefficients(LRGParams().to_dict())]
+    [8.82, 22.45]
+    """
+    args = tuple(values[k] for k in AIR_PARAMETERS)
+    return float(h_side(*args)), float(h_front(*args))

@@ -126,12 +126,7 @@ def thermal_cases(params: LRGParams | None = None, *, rail_lengths=RAIL_LENGTHS_
     p = params or LRGParams()
     q = float(friction_heat(p.mu_k, p.normal_load_n, p.velocity_m_s, p.thermal_equivalent_j_per_cal,
                             in_calories=p.heat_in_calories)) if heat_w is None else float(heat_w)
-    re = convection.reynolds(p.air_velocity_m_s, p.char_length_m, p.air_kinematic_viscosity_m2_s)
-    pr = convection.prandtl(p.air_specific_heat_j_kgk, p.air_dynamic_viscosity_pa_s, p.air_conductivity_w_mk)
-    hs = float(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr),
-                                                    p.air_conductivity_w_mk, p.char_length_m))
-    hf = float(convection.heat_transfer_coefficient(convection.nusselt_normal_plate(re, pr),
-                                                    p.air_conductivity_w_mk, p.char_length_m))
+    hs, hf = convection.coefficients(p.to_dict())
     base = GuideGeometry.fields_from_params(p.to_dict())
     out = []
     for length in rail_lengths:

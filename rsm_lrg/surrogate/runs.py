@@ -94,12 +94,7 @@ def _network_cached(items: tuple):
 
     v = dict(items)
     geometry = GuideGeometry.from_params(v)
-    re = convection.reynolds(v["air_velocity_m_s"], v["char_length_m"], v["air_kinematic_viscosity_m2_s"])
-    pr = convection.prandtl(v["air_specific_heat_j_kgk"], v["air_dynamic_viscosity_pa_s"], v["air_conductivity_w_mk"])
-    hs = float(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr),
-                                                    v["air_conductivity_w_mk"], v["char_length_m"]))
-    hf = float(convection.heat_transfer_coefficient(convection.nusselt_normal_plate(re, pr),
-                                                    v["air_conductivity_w_mk"], v["char_length_m"]))
+    hs, hf = convection.coefficients(v)
     return ThermalNetwork(geometry, hs, hf)
 
 

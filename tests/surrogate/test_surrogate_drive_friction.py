@@ -39,12 +39,7 @@ def test_drive_friction_heat_by_hand(name):
         power = 2.0 * 2 * 0.05 / T
     else:  # trapezoid: v_p = 0.5 m/s (0.5^2/30 < 0.05 m)
         power = 2.0 * 2 * (0.5 * 0.05 - 0.5 ** 3 / (3 * 30.0)) / T
-    re = convection.reynolds(p.air_velocity_m_s, p.char_length_m, p.air_kinematic_viscosity_m2_s)
-    pr = convection.prandtl(p.air_specific_heat_j_kgk, p.air_dynamic_viscosity_pa_s, p.air_conductivity_w_mk)
-    hs = float(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr),
-                                                    p.air_conductivity_w_mk, p.char_length_m))
-    hf = float(convection.heat_transfer_coefficient(convection.nusselt_normal_plate(re, pr),
-                                                    p.air_conductivity_w_mk, p.char_length_m))
+    hs, hf = convection.coefficients(p.to_dict())
     net = ThermalNetwork(GuideGeometry.from_params(p.to_dict()), hs, hf)
     cap = (1 - p.frame_mass_fraction) * p.stage_mass_kg * p.stage_specific_heat_j_kgk
     for i, y in enumerate([1e-4, 3e-4, 5e-4]):
