@@ -5,6 +5,7 @@ crossed categoric factors (issue 12): through rsm_lrg.cli.main; bad input exits 
 import numpy as np
 import pandas as pd
 import pytest
+from _cli_errors import error_line
 
 from rsm_lrg.cli import main
 from rsm_lrg.design import read_design
@@ -13,15 +14,6 @@ from rsm_lrg.factors import choose_factors
 
 GUIDE = ["--factor", "velocity_m_s=0.2:1.0", "--factor", "acceleration_m_s2=5:40", "--factor", "stroke_m=0.02:0.1"]
 MOTION = "velocity_m_s**2/acceleration_m_s2 <= stroke_m"
-
-
-def _error_line(capsys, rc):
-    cap = capsys.readouterr()
-    assert rc == 2
-    lines = cap.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error:"), cap.err
-    assert "Traceback" not in cap.err
-    return lines[0]
 
 
 def test_optimal_with_constraint_and_seed(tmp_path, capsys):
@@ -129,7 +121,7 @@ def test_crossed_box_behnken_from_the_cli(tmp_path, capsys):
 ])
 def test_bad_input_names_the_option(argv, expect, tmp_path, capsys):
     rc = main([*argv, "-o", str(tmp_path / "x.csv")])
-    line = _error_line(capsys, rc)
+    line = error_line(capsys, rc)
     assert expect in line, line
     assert not (tmp_path / "x.csv").exists()
 
@@ -139,17 +131,17 @@ def test_augment_bad_input(tmp_path, capsys):
     assert main(["design", "full-factorial", "--factor", "a=0:1", "--factor", "b=0:1", "--levels", "2",
                  "--seed", "1", "-o", str(base)]) == 0
     capsys.readouterr()
-    line = _error_line(capsys, main(["design", "augment", str(base), "--method", "foldover", "--fold", "Q",
+    line = error_line(capsys, main(["design", "augment", str(base), "--method", "foldover", "--fold", "Q",
                                      "-o", str(tmp_path / "f.csv")]))
     assert "--fold" in line
-    line = _error_line(capsys, main(["design", "augment", str(base), "--method", "ccd", "--alpha", "-2",
+    line = error_line(capsys, main(["design", "augment", str(base), "--method", "ccd", "--alpha", "-2",
                                      "-o", str(tmp_path / "f.csv")]))
     assert "--alpha" in line
-    line = _error_line(capsys, main(["design", "augment", str(base), "--model", "cubic", "--runs", "2",
+    line = error_line(capsys, main(["design", "augment", str(base), "--model", "cubic", "--runs", "2",
                                      "-o", str(tmp_path / "f.csv")]))
     assert "--runs" in line
-    line = _error_line(capsys, main(["design", "augment", str(base), "--force", "-o", str(base)]))
+    line = error_line(capsys, main(["design", "augment", str(base), "--force", "-o", str(base)]))
     assert "input" in line
     (tmp_path / "junk.csv").write_text("a,b\n1,2\n")
-    line = _error_line(capsys, main(["design", "augment", str(tmp_path / "junk.csv"), "-o", str(tmp_path / "g.csv")]))
+    line = error_line(capsys, main(["design", "augment", str(tmp_path / "junk.csv"), "-o", str(tmp_path / "g.csv")]))
     assert "junk.csv" in line

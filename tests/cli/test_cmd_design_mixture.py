@@ -8,20 +8,12 @@ from fractions import Fraction
 import numpy as np
 import pandas as pd
 import pytest
+from _cli_errors import error_line
 
 from rsm_lrg.cli import main
 
 FLARE = ["--component", "magnesium=0.40:0.60", "--component", "sodium_nitrate=0.10:0.50",
          "--component", "strontium_nitrate=0.10:0.50", "--component", "binder=0.03:0.08"]
-
-
-def _error_line(capsys, rc):
-    cap = capsys.readouterr()
-    assert rc == 2
-    lines = cap.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error:"), cap.err
-    assert "Traceback" not in cap.err
-    return lines[0]
 
 
 def test_simplex_lattice_csv(tmp_path, capsys):
@@ -104,6 +96,6 @@ def test_extreme_vertices_linear_constraint(tmp_path, capsys):
 ])
 def test_bad_input_exits_2_and_writes_nothing(tmp_path, capsys, argv, needle):
     p = tmp_path / "out.csv"
-    line = _error_line(capsys, main(["design", *argv, "-o", str(p)]))
+    line = error_line(capsys, main(["design", *argv, "-o", str(p)]))
     assert needle in line, line
     assert not p.exists() and list(tmp_path.iterdir()) == []

@@ -10,20 +10,13 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
+from _cli_errors import error_line
 
 from rsm_lrg.cli import main
 from rsm_lrg.design.mixture import candidate_blends
 
 COMPS = ["--component", "a=0.1:0.8", "--component", "b=0.1:0.8", "--component", "c=0:0.5"]
 CONS = ["--constraint", "a + b <= 0.85"]
-
-
-def _error_line(capsys, rc):
-    cap = capsys.readouterr()
-    assert rc == 2
-    lines = cap.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error:"), cap.err
-    return lines[0]
 
 
 def _respond(path, out, rng, process=None):
@@ -105,19 +98,19 @@ def test_errors(tmp_path, capsys):
     out = tmp_path / "o.csv"
     # an empty region and one without interior: the constraint is named
     rc = main(["design", "optimal", *COMPS, "--constraint", "a + b <= 0.1", "-o", str(out)])
-    line = _error_line(capsys, rc)
+    line = error_line(capsys, rc)
     assert line.startswith("error: --constraint:") and "a + b <= 0.1" in line and "empty" in line
     rc = main(["design", "extreme-vertices", "--component", "a=0.5:0.8", "--component", "b=0.5:0.8",
                "--component", "c=0:0.5", "-o", str(out)])
-    line = _error_line(capsys, rc)
+    line = error_line(capsys, rc)
     assert line.startswith("error: --constraint:") and "no interior" in line and "a >= 0.5; b >= 0.5" in line
     rc = main(["design", "optimal", *COMPS, "--runs", "4", "-o", str(out)])
-    assert _error_line(capsys, rc).startswith("error: --runs:")
+    assert error_line(capsys, rc).startswith("error: --runs:")
     rc = main(["design", "optimal", *COMPS, "--model", "quadratic", "-o", str(out)])
-    assert _error_line(capsys, rc).startswith("error: --model:")
+    assert error_line(capsys, rc).startswith("error: --model:")
     rc = main(["design", "simplex-centroid", "--component", "a", "--component", "b", "--factor", "a=0:1",
                "-o", str(out)])
-    assert _error_line(capsys, rc).startswith("error: --factor:")
+    assert error_line(capsys, rc).startswith("error: --factor:")
     assert not out.exists()
     # fitting a design file: a row off the total, a component outside its bounds, too few blends
     p = tmp_path / "ev.csv"
@@ -130,14 +123,14 @@ def test_errors(tmp_path, capsys):
     bad.to_csv(tmp_path / "bad.csv", index=False)
     rc = main(["fit", str(tmp_path / "bad.csv"), "--response", "y", *COMPS, "--model", "mixture-linear",
                "--json", str(js)])
-    assert "row 4: the components sum to 1.01" in _error_line(capsys, rc)
+    assert "row 4: the components sum to 1.01" in error_line(capsys, rc)
     rc = main(["fit", str(tmp_path / "good.csv"), "--response", "y", "--component", "a=0.2:0.8", "--component",
                "b=0.1:0.8", "--component", "c=0:0.5", "--model", "mixture-linear", "--json", str(js)])
-    line = _error_line(capsys, rc)
+    line = error_line(capsys, rc)
     assert "component 'a'" in line and "outside its bounds 0.2..0.8" in line and line.startswith("error: ")
     few = good[good["a"].round(12).isin(good["a"].round(12).unique()[:3])]
     few.to_csv(tmp_path / "few.csv", index=False)
     rc = main(["fit", str(tmp_path / "few.csv"), "--response", "y", *COMPS, "--model", "mixture-cubic",
                "--json", str(js)])
-    assert "distinct blends cannot fit 10 terms" in _error_line(capsys, rc)
+    assert "distinct blends cannot fit 10 terms" in error_line(capsys, rc)
     assert not js.exists()

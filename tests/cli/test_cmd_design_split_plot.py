@@ -6,21 +6,13 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
+from _cli_errors import error_line
 
 from rsm_lrg.cli import main
 from rsm_lrg.design import read_design
 
 FACTORS = ["--factor", "T=150:250", "--factor", "P=1:3", "--factor", "v=0.1:0.5", "--factor", "a=1:5"]
 HARD = ["--hard-to-change", "T", "--hard-to-change", "P"]
-
-
-def _error_line(capsys, rc):
-    cap = capsys.readouterr()
-    assert rc == 2
-    lines = cap.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error:"), cap.err
-    assert "Traceback" not in cap.err
-    return lines[0]
 
 
 def _dense_d(coded, plots, eta):
@@ -88,7 +80,7 @@ def test_split_plot_errors(tmp_path, capsys, extra, option):
     out = tmp_path / "bad.csv"
     hard = [] if "--hard-to-change" in extra else HARD
     rc = main(["design", "split-plot", *FACTORS, *hard, *extra, "--seed", "1", "--starts", "1", "-o", str(out)])
-    line = _error_line(capsys, rc)
+    line = error_line(capsys, rc)
     assert option in line
     assert not out.exists()
 
@@ -96,7 +88,7 @@ def test_split_plot_errors(tmp_path, capsys, extra, option):
 def test_split_plot_needs_hard_to_change(tmp_path, capsys):
     out = tmp_path / "bad.csv"
     rc = main(["design", "split-plot", *FACTORS, "--whole-plots", "8", "--runs", "32", "-o", str(out)])
-    assert "--hard-to-change" in _error_line(capsys, rc)
+    assert "--hard-to-change" in error_line(capsys, rc)
     assert not out.exists()
 
 
@@ -105,6 +97,6 @@ def test_augment_refuses_a_split_plot_design(tmp_path, capsys):
     assert main(["design", "split-plot", *FACTORS, *HARD, "--whole-plots", "8", "--runs", "32", "--model", "linear",
                  "--seed", "1", "--starts", "1", "-o", str(src)]) == 0
     capsys.readouterr()
-    line = _error_line(capsys, main(["design", "augment", str(src), "--runs", "4", "--seed", "1", "-o", str(out)]))
+    line = error_line(capsys, main(["design", "augment", str(src), "--runs", "4", "--seed", "1", "-o", str(out)]))
     assert "split-plot" in line and str(src) in line
     assert not out.exists()

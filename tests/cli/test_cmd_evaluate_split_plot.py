@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
+from _cli_errors import error_line
 
 from rsm_lrg.cli import main
 
@@ -102,28 +103,20 @@ def test_no_whole_plots_is_unchanged(tmp_path, capsys):
     assert "Split-plot" not in capsys.readouterr().out
 
 
-def _error_line(capsys, rc):
-    cap = capsys.readouterr()
-    assert rc == 2
-    lines = cap.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error:"), cap.err
-    return lines[0]
-
-
 def test_errors(design, tmp_path, capsys):
     capsys.readouterr()
-    assert "--whole-plot" in _error_line(capsys, main(["evaluate", str(design), "--whole-plot", "nope"]))
-    assert "--variance-ratio" in _error_line(capsys, main(["evaluate", str(design), "--variance-ratio", "-2"]))
+    assert "--whole-plot" in error_line(capsys, main(["evaluate", str(design), "--whole-plot", "nope"]))
+    assert "--variance-ratio" in error_line(capsys, main(["evaluate", str(design), "--variance-ratio", "-2"]))
     ccd = tmp_path / "ccd.csv"
     assert main(["design", "central-composite", "--factor", "x=0:1", "--factor", "y=0:1", "--seed", "1",
                  "-o", str(ccd)]) == 0
     capsys.readouterr()
-    assert "--variance-ratio" in _error_line(capsys, main(["evaluate", str(ccd), "--variance-ratio", "1"]))
+    assert "--variance-ratio" in error_line(capsys, main(["evaluate", str(ccd), "--variance-ratio", "1"]))
     df = pd.read_csv(design)
     df.loc[5, "whole_plot"] = None
     holed = tmp_path / "holed.csv"
     df.to_csv(holed, index=False)
-    line = _error_line(capsys, main(["evaluate", str(holed)]))
+    line = error_line(capsys, main(["evaluate", str(holed)]))
     assert "whole_plot" in line and "row 6" in line
 
 
