@@ -221,8 +221,7 @@ def optimize_mixture(fitted: Any, goal: Any = "minimize", bounds: Any = None, *,
 
     from ..model.canonical import quadratic_parts
     from ..model.terms import design_gradient, design_matrix
-    from ..present import format_g
-    from .result import OptimumResult
+    from .result import OptimumResult, optimum_notes
 
     if not 0.0 < confidence < 1.0:
         raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
@@ -282,14 +281,8 @@ def optimize_mixture(fitted: Any, goal: Any = "minimize", bounds: Any = None, *,
         best = face_newton(obj, cands[int(np.argmin(vals))], region)
     best = _project(best, region)
     pr = fitted.predict(best[None, :], interval="both", alpha=1.0 - confidence, coded=True).iloc[0]
-    notes = []
-    if kind == "target" and abs(yhat(best) - target) > 1e-3 * scale:
-        notes.append(f"the target {format_g(goal_target, 6, trim=True)} cannot be reached inside the region: the "
-                     f"closest predicted value is {format_g(float(pr['predicted']), 6, trim=True)}")
-    tr = fitted.transform
-    if not tr.identity:
-        notes.append(f"model fitted to the {tr.label}-transformed response; prediction and intervals "
-                     "back-transformed (standard error on the transformed scale)")
+    notes = optimum_notes(fitted, goal_target, float(pr["predicted"]),
+                          kind == "target" and abs(yhat(best) - target) > 1e-3 * scale)
     actual = region.to_actual(best)
     notes += extrapolation_notes(fitted, actual)
     lims = limits_of(region)

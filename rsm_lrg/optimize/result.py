@@ -10,7 +10,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["OptimumResult"]
+__all__ = ["OptimumResult", "optimum_notes"]
 
 
 @dataclass(frozen=True)
@@ -128,3 +128,20 @@ class OptimumResult:
                 at = ", ".join(f"{k} = {format_g(v, 6, trim=True)}" for k, v in r["actual"].items() if k not in r["level"])
                 lines.append(f"    {lv}: {format_g(r['predicted'], 6, trim=True)} at {at}")
         return "\n".join(lines) + "\n"
+
+
+def optimum_notes(fitted: Any, goal_target: Any, predicted: float, missed_target: bool) -> list[str]:
+    """The notes of every single-response optimum: a target that the region cannot reach
+    (``missed_target``, judged by the optimiser on the model's scale; ``predicted`` the closest
+    value [response units]) and a model fitted to a transformed response."""
+    from ..present import format_g
+
+    notes = []
+    if missed_target:
+        notes.append(f"the target {format_g(goal_target, 6, trim=True)} cannot be reached inside the region: the closest "
+                     f"predicted value is {format_g(float(predicted), 6, trim=True)}")
+    tr = fitted.transform
+    if not tr.identity:
+        notes.append(f"model fitted to the {tr.label}-transformed response; prediction and intervals "
+                     "back-transformed (standard error on the transformed scale)")
+    return notes

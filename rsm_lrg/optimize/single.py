@@ -33,7 +33,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..model.goals import parse_goal
 from ..model.levels import LevelView  # the optimisers' view of a fit at one level combination
-from .result import OptimumResult
+from .result import OptimumResult, optimum_notes
 
 __all__ = ["optimize", "OptimumResult", "parse_goal", "parse_bounds"]
 
@@ -285,15 +285,8 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
 
     alpha = 1.0 - confidence
     pr = fitted.predict(best[None, :], interval="both", alpha=alpha, coded=True).iloc[0]
-    if kind == "target" and abs(yhat(best) - target) > 1e-3 * scale:  # judged on the model's scale
-        from ..present import format_g
-
-        notes.append(f"the target {format_g(goal_target, 6, trim=True)} cannot be reached inside the region: the closest "
-                     f"predicted value is {format_g(float(pr['predicted']), 6, trim=True)}")
-    tr = fitted.transform
-    if not tr.identity:
-        notes.append(f"model fitted to the {tr.label}-transformed response; prediction and intervals "
-                     "back-transformed (standard error on the transformed scale)")
+    missed = kind == "target" and abs(yhat(best) - target) > 1e-3 * scale  # judged on the model's scale
+    notes += optimum_notes(fitted, goal_target, float(pr["predicted"]), missed)
     coded = {L: float(v) for L, v in zip(space.letters, best)}
     actual = {f.name: float(f.decode(v)) for f, v in zip(space.factors, best)}
     bnds = {f.name: (float(f.decode(a)), float(f.decode(b))) for f, a, b in zip(space.factors, lo, hi)}
