@@ -38,18 +38,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["solve_spd", "symmetric_eigen", "SymmetricEigen", "dot", "modal_sum", "network_modes", "chain_network", "chain_rows", "ChainNetwork",
+__all__ = ["solve_spd", "symmetric_eigen", "SymmetricEigen", "modal_sum", "network_modes", "chain_network", "chain_rows", "ChainNetwork",
            "RowError"]
-
-
-def dot(x, y) -> float:
-    """Exactly rounded dot product (:func:`math.fsum` of the element-wise products, each
-    rounded once): independent of the order of the elements.
-
-    >>> dot([1e16, 1.0, -1e16], [1.0, 1.0, 1.0])
-    1.0
-    """
-    return math.fsum((np.asarray(x, float) * np.asarray(y, float)).tolist())
 
 
 # ----------------------------------------------------------------------------------------
