@@ -88,13 +88,9 @@ def _thermal_items(values: dict) -> tuple:
 
 @lru_cache(maxsize=64)
 def _network_cached(items: tuple):
-    from ..physics import convection
-    from ..physics.thermal.geometry import GuideGeometry
     from ..physics.thermal.network import ThermalNetwork
 
-    v = dict(items)
-    geometry = GuideGeometry.from_params(v)
-    hs, hf = convection.coefficients(v)
+    geometry, hs, hf = _geometry_and_h(items)
     return ThermalNetwork(geometry, hs, hf)
 
 
@@ -119,9 +115,13 @@ def _rise_at(values: dict, dur: np.ndarray):
 
 @lru_cache(maxsize=64)
 def _geometry_and_h(items: tuple):
-    """The guide's geometry and the convection coefficients h_side, h_front (Eqs. 10-12)."""
-    net = _network_cached(items)
-    return net.geometry, net.h_side_w_m2k, net.h_front_w_m2k
+    """The guide's geometry and the convection coefficients h_side, h_front (Eqs. 10-12)
+    (without building the guide-only network, which the rig's heat balance does not use)."""
+    from ..physics import convection
+    from ..physics.thermal.geometry import GuideGeometry
+
+    v = dict(items)
+    return GuideGeometry.from_params(v), *convection.coefficients(v)
 
 
 def _rig_rise_rows(values: dict, dur: np.ndarray, y: np.ndarray, rigid: bool):
