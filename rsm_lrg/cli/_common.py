@@ -281,9 +281,13 @@ def add_component_option(p: argparse.ArgumentParser) -> None:
     )
 
 
-def add_model_option(p: argparse.ArgumentParser, orders=MODEL_ORDERS, what: str = "model order") -> None:
-    """``--model ORDER`` (default quadratic)."""
-    p.add_argument("--model", default="quadratic", choices=list(orders), help=f"{what} (default quadratic)")
+def add_model_option(p: argparse.ArgumentParser, orders=MODEL_ORDERS, what: str = "model order", *,
+                     default: str | None = "quadratic") -> None:
+    """``--model ORDER`` (default quadratic). For a fitted model ``default=None``: with
+    ``--component`` and ``--terms`` the terms are the Scheffé model, so :func:`model_spec`
+    decides the order when none was given."""
+    p.add_argument("--model", default=default, choices=list(orders),
+                   help=f"{what} (default quadratic; with --component and --terms, the terms' Scheffé model)")
 
 
 def add_terms_options(parser: argparse.ArgumentParser, *, per_response: bool = False) -> None:
@@ -419,7 +423,7 @@ def add_model_inputs(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_component_option(parser)
     add_block_option(parser)
-    add_model_option(parser, FIT_MODELS)
+    add_model_option(parser, FIT_MODELS, default=None)
 
 
 @contextmanager
@@ -581,8 +585,9 @@ def add_model_refinements(parser: argparse.ArgumentParser, *, per_response: bool
     flag: dict[str, Any] = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} \
         if per_response else {"action": "store_true"}
     if model:
-        parser.add_argument("--model", default="quadratic", choices=list(FIT_MODELS),
-                            help="model order (default quadratic)", **kw)
+        parser.add_argument("--model", default=None, choices=list(FIT_MODELS),
+                            help="model order (default quadratic; with --component and --terms the terms are the "
+                                 "Scheffé model)", **kw)
     add_terms_options(parser, per_response=per_response)
     parser.add_argument("--reduce", help="backward elimination keeping hierarchy", **flag)
     parser.add_argument("--alpha-out", type=number(0, 1, above=True, below=True), default=0.1, metavar="A",
@@ -679,6 +684,9 @@ def model_spec(opts: argparse.Namespace, *, order: str | None = None):
 
     reduce = ({"criterion": getattr(opts, "criterion", "p"), "alpha_out": getattr(opts, "alpha_out", 0.1)}
               if getattr(opts, "reduce", False) else None)
+    if (order is None and getattr(opts, "model", None) is None and getattr(opts, "component", None)
+            and getattr(opts, "terms", None) is not None):
+        order = "mixture-quadratic"  # --terms names the Scheffé model; the order only starts a reduction
     mixture = str(order or getattr(opts, "model", None) or "quadratic") in MIXTURE_MODEL_NAMES
     if getattr(opts, "component", None) and not mixture:
         raise InputError("--model: mixture components (--component) need a Scheffé model: "

@@ -47,7 +47,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_component_option(parser)
     add_block_option(parser, "prediction for the average block")
     add_random_effect_options(parser)
-    add_model_option(parser, FIT_MODELS)
+    add_model_option(parser, FIT_MODELS, default=None)
     add_model_refinements(parser)
     add_json(parser)
     add_force(parser)

@@ -128,7 +128,12 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
 
     spec = ModelSpec.build(model, terms=terms, intercept=intercept, transform=transform,
                            transform_constant=transform_constant, reduce=reduce)
-    if is_dask(data):  # fitted partition by partition, never collected
+    if is_dask(data):  # fitted partition by partition, never collected; OLS only
+        for option, given in (("whole_plot", whole_plot), ("random_block", random_block),
+                              ("hard_to_change", hard_to_change)):
+            if given is not None:  # a REML fit needs every run in memory: never an OLS fit instead
+                raise SpecError(option, f"{option}: a REML fit (random whole plots or blocks) is made from one "
+                                        "in-memory table, not from a Dask DataFrame (call .compute() first)")
         if components is not None or spec.mixture:
             raise SpecError("model", "a mixture model is fitted from one in-memory table, not several files")
         from .dask_fit import fit_dask
@@ -136,8 +141,6 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
         return fit_dask(data, response, factors=factors, block=block, spec=spec, chunk_rows=chunk_rows)
     hard = _hard_names(hard_to_change, whole_plot)
     if whole_plot is not None or random_block is not None:
-        if is_dask(data):
-            raise SpecError("whole_plot", "a REML fit is made from one in-memory table, not several files")
         return _fit_mixed(data, response, factors, block, spec, whole_plot, random_block, components, hard)
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")

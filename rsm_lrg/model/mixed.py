@@ -274,7 +274,10 @@ def _kr_parts(X: np.ndarray, groups: _Groups, s2g: float, s2: float) -> _KRParts
     SX = sinv(X)
     phi = np.linalg.inv(X.T @ SX)
     phi = 0.5 * (phi + phi.T)
-    G: list[Callable[[np.ndarray], np.ndarray]] = [zzt, lambda M: M] if s2g > 0 else [lambda M: M]
+    # the group component stays in the computation when it is estimated at zero (the boundary),
+    # as pbkrtest and lmerTest keep it: Sigma = s2 I there, but the information about s2_group,
+    # and so W, Phi_A and the den df, still count it
+    G: list[Callable[[np.ndarray], np.ndarray]] = [zzt, lambda M: M]
     # O_r = G_r Sigma^-1 X ; P_r = -O_r' Sigma^-1 X ; Q_rs = O_r' Sigma^-1 O_s
     O = [gr(SX) for gr in G]
     P = [-(o.T @ SX) for o in O]
@@ -287,7 +290,7 @@ def _kr_parts(X: np.ndarray, groups: _Groups, s2g: float, s2: float) -> _KRParts
     tr_zz_zz = float(np.sum((m * f) ** 2)) / s2 ** 2
     tr_zz_i = float(np.sum(m * f ** 2)) / s2 ** 2
     tr_i_i = float(np.sum(m - 1.0 + f ** 2)) / s2 ** 2
-    K = np.array([[tr_zz_zz, tr_zz_i], [tr_zz_i, tr_i_i]]) if k == 2 else np.array([[tr_i_i]])
+    K = np.array([[tr_zz_zz, tr_zz_i], [tr_zz_i, tr_i_i]])
     info = np.empty((k, k))
     for r in range(k):
         for s in range(k):
@@ -437,14 +440,10 @@ class MixedModel:
         z = float(special.stdtrit(math.inf, 0.975))
         W = self.parts.W
         out = {}
-        vals = [self.sigma2_group, self.sigma2] if self.sigma2_group > 0 else [self.sigma2]
-        names = [self.kind, "residual"] if self.sigma2_group > 0 else ["residual"]
-        for i, (nm, v) in enumerate(zip(names, vals)):
+        for i, (nm, v) in enumerate(zip([self.kind, "residual"], [self.sigma2_group, self.sigma2])):
             se_log = math.sqrt(W[i, i]) / v if W[i, i] > 0 and v > 0 else math.nan
             lo, hi = (v * math.exp(-z * se_log), v * math.exp(z * se_log)) if math.isfinite(se_log) else (math.nan,) * 2
             out[nm] = VarianceComponent(nm, float(v), float(lo), float(hi))
-        if self.sigma2_group == 0:
-            out = {self.kind: VarianceComponent(self.kind, 0.0, math.nan, math.nan), **out}
         return out
 
     @property

@@ -273,8 +273,11 @@ class FitResult:
                  "the whitened (V^-1/2) model; prediction intervals are for a new run in a new "
                  f"{what} (variance x'Φ_A x + s2_{'wp' if mm.kind == 'whole_plot' else 'block'} + s2)."]
         if mm.boundary:
-            notes.append(f"The {what} variance component is estimated at zero (REML on the boundary): the fit equals "
-                         "the ordinary least-squares fit and its tests the OLS t and F tests.")
+            notes.append(f"The {what} variance component is estimated at zero (REML on the boundary): the coefficients "
+                         "and their standard errors equal the ordinary least-squares ones, but the zero component "
+                         "stays in the Kenward–Roger computation (as pbkrtest and lmerTest keep it), so the den df, F "
+                         f"and p still count the {what}-to-{what} variation the data could hold; they are not the OLS "
+                         "tests.")
         return tuple(notes)
 
     @cached_property

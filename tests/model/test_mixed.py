@@ -61,10 +61,10 @@ def test_whitening_gives_v_inverse():
     np.testing.assert_allclose(Xw.T @ Xw, X.T @ np.linalg.solve(V, X), rtol=1e-12)
 
 
-def test_zero_whole_plot_variance_is_ols():
+def test_zero_whole_plot_variance_keeps_the_ols_estimates():
     """mixed_sp_zero.csv has no whole-plot variation: REML puts the component at 0 (the
-    boundary), and then coefficients, errors and tests are the OLS ones (t² = F, the
-    residual df as den df)."""
+    boundary); coefficients and standard errors are then the OLS ones, while the tests keep the
+    zero component (pbkrtest's numbers: tests/model/test_mixed_boundary.py)."""
     d = pd.read_csv(R / "mixed_sp_zero.csv")
     res = rsm_lrg.fit(d, BAL[0], factors=BAL[1], whole_plot="whole_plot")
     ols = rsm_lrg.fit(d, BAL[0], factors=BAL[1])
@@ -73,12 +73,6 @@ def test_zero_whole_plot_variance_is_ols():
     assert vc["whole_plot"]["variance"] == 0.0 and vc["whole_plot"]["ci_low"] is None
     np.testing.assert_allclose(res.coefficients["coded"], ols.coefficients["coded"], rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(res.coefficients["std_error"], ols.coefficients["std_error"], rtol=1e-10)
-    np.testing.assert_allclose(res.coefficients["p"], ols.coefficients["p"], rtol=1e-8)
-    a = ols.anova.set_index("source")
-    for t in res.tests:
-        assert t.den_df == pytest.approx(ols.df_resid, rel=1e-9)
-        assert t.f == pytest.approx(a.loc[t.term, "f"], rel=1e-9)
-        assert t.p == pytest.approx(a.loc[t.term, "p"], rel=1e-8)
     assert any("boundary" in n for n in res.notes)
     # the profile's minimum over eta > 0 is not below the boundary's
     X, y, codes = res.design_matrix, res.y, res.mixed.codes

@@ -10,6 +10,8 @@
   whole-plot factors, speed_m_s easy, lube a 3-level categoric easy factor.
 * ``mixed_sp_zero.csv``: as the balanced one with no whole-plot variation (seed chosen so that
   REML puts the whole-plot variance at zero).
+* ``mixed_sp_small.csv``: as the balanced one with a small whole-plot effect (sd 0.5; the first
+  seed at which REML puts the whole-plot variance at zero): the boundary with a true component.
 """
 
 from pathlib import Path
@@ -62,3 +64,4 @@ if __name__ == "__main__":
     balanced(20261127, 1.5).to_csv(HERE / "mixed_sp_bal.csv", index=False)
     unbalanced(7).to_csv(HERE / "mixed_sp_unbal.csv", index=False)
     balanced(4, 0.0).to_csv(HERE / "mixed_sp_zero.csv", index=False)
+    balanced(4, 0.5).to_csv(HERE / "mixed_sp_small.csv", index=False)
