@@ -53,6 +53,17 @@ def test_fit_mixture_cubic_json(tmp_path, capsys):
     assert list(json.loads(out2.read_text())["coefficients"]["coded"]) == ["A", "B", "C", "AB", "AB(A-B)"]
 
 
+def test_fit_mixture_terms_without_model(tmp_path, capsys):
+    """--terms is the alternative to --model (README): with --component it is the Scheffé model."""
+    out, ref = tmp_path / "t.json", tmp_path / "m.json"
+    args = ["fit", str(DATA), "--response", "erate", *COMPS]
+    assert main([*args, "--terms", "A B C AB AC BC ABC", "--json", str(out)]) == 0
+    assert main([*args, "--model", "special-cubic", "--json", str(ref)]) == 0
+    got, want = json.loads(out.read_text()), json.loads(ref.read_text())
+    assert got["coefficients"]["coded"] == pytest.approx(want["coefficients"]["coded"], rel=1e-12)
+    assert got["terms"] == want["terms"] and got["intercept"] is False
+
+
 @pytest.mark.parametrize("args, message", [
     (["--model", "quadratic"], "error: --model: mixture components (--component) need a Scheffé model"),
     (["--model", "mixture-cubic", "--terms", "A B C AB BA(B-A)"], "error: --terms: model term 'BA(B-A)'"),

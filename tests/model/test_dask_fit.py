@@ -274,3 +274,20 @@ def test_fit_command_fits_blocked_categoric_csv_files_as_the_one_file_fit(tmp_pa
     assert texts[0] == texts[1]
     assert "C: stage  categoric, levels" in texts[1] and "Block  " in texts[1]
     assert "Text column left out (not a factor, response or block): operator." in texts[1]
+
+
+@pytest.mark.parametrize("keyword", ["whole_plot", "random_block", "hard_to_change"])
+def test_dask_frame_with_a_random_effect_is_never_fitted_by_ols(keyword):
+    """A REML fit needs one in-memory table: a Dask frame with a whole plot (or random block,
+    or hard-to-change factors) is refused by a ParameterError naming the argument, never
+    fitted by OLS with the column left out."""
+    from rsm_lrg.errors import ParameterError
+
+    df = _data(64, 2)
+    df["wp"] = np.repeat(np.arange(16), 4)
+    ddf = dd.from_pandas(df, npartitions=2)
+    kwargs = {"whole_plot": "wp", "random_block": "wp", "hard_to_change": ["x0"]}
+    extra = {"whole_plot": "wp"} if keyword == "hard_to_change" else {}
+    with pytest.raises(ParameterError, match="in-memory") as info:
+        rsm_lrg.fit(ddf, "y", factors=["x0", "x1"], **{keyword: kwargs[keyword]}, **extra)
+    assert info.value.parameter in (keyword, "whole_plot")
