@@ -43,6 +43,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import statistics as special
+from .prediction import IntervalForm
 
 if TYPE_CHECKING:
     from .least_squares import Regression
@@ -426,12 +427,16 @@ class MixedModel:
             out.append(KRTest(term=str(name), num_df=q, den_df=df2, f=F, p=pv))
         return out
 
-    def contrast_df(self, L: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """For each row ``l`` of ``L``: ``(l Phi_A l', KR den df)`` of the one-df contrast ``l b``."""
-        L = np.atleast_2d(np.asarray(L, dtype=float))
-        var = np.einsum("ij,jk,ik->i", L, self.parts.phi_a, L)
-        df = np.array([self.test(row[None, :])[1] if np.any(row) else math.nan for row in L])
-        return var, df
+    def interval_form(self, columns: np.ndarray) -> IntervalForm:
+        """The prediction contract's :class:`~rsm_lrg.model.prediction.IntervalForm` of the
+        model columns ``columns``: ``Φ`` for ``se_fit``, ``Φ_A`` for the mean, a new run in a
+        new group (``σ²_g + σ²``), and the Kenward–Roger den df per point from ``Φ P_r Φ``
+        and ``W``."""
+        ix = np.ix_(columns, columns)
+        phi = self.parts.phi
+        return IntervalForm(cov_se=phi[ix], cov_mean=self.parts.phi_a[ix], s2_new=self.sigma2_group + self.sigma2,
+                            df=math.nan, kr_phi_p_phi=tuple((phi @ P @ phi)[ix] for P in self.parts.P),
+                            kr_w=self.parts.W)
 
     @property
     def variance_components(self) -> dict:

@@ -31,6 +31,7 @@ from .canonical import StationaryPoint, canonical_analysis
 from .goals import parse_goal
 from .inputs import MAX_FACTOR_MAGNITUDE, block_codes, model_rows, unrounded_coding
 from .least_squares import Regression
+from .prediction import IntervalForm
 from .spec import ModelSpec, ReduceSpec
 from .statistics import FitStatistics, fit_statistics
 from .terms import Term, column_names, design_matrix, n_columns, term_columns
@@ -360,7 +361,7 @@ class FitResult:
         with np.errstate(divide="ignore", invalid="ignore"):
             tval = b_t / se
         if self.mixed is not None:  # one-df Kenward-Roger tests: t = b / se_A, KR den df
-            var_a, kdf = self.mixed.contrast_df(np.eye(len(ls.params))[tidx])
+            _, var_a, _, kdf = self.interval_form.at(np.eye(len(tidx)))
             se_a = np.sqrt(var_a)
             with np.errstate(divide="ignore", invalid="ignore"):
                 tval = b_t / se_a
@@ -679,57 +680,39 @@ class FitResult:
         Xt = design_matrix(x, self.terms)
         beta = self.coefficients["coded"].to_numpy()
         pred = Xt @ beta
-        idx = self.term_index
-        C = self.cov_unscaled[np.ix_(idx, idx)]
-        q = np.einsum("ij,jk,ik->i", Xt, C, Xt)
-        se = np.sqrt(q * self.sigma2)
+        se, var_mean, var_new, df = self.interval_form.at(Xt)
         out = pd.DataFrame({"predicted": pred, "se_fit": se}, index=index)
-        if self.mixed is not None:
-            return self._mixed_intervals(out, Xt, interval, alpha)
         if interval:
-            tq = float(special.stdtrit(self.df_resid, 1 - alpha / 2)) if self.df_resid > 0 else np.nan
+            with np.errstate(invalid="ignore"):
+                tq = special.stdtrit(df, 1 - alpha / 2)
             if interval in ("confidence", "both"):
-                out["ci_low"] = pred - tq * se
-                out["ci_high"] = pred + tq * se
+                out["ci_low"] = pred - tq * np.sqrt(var_mean)
+                out["ci_high"] = pred + tq * np.sqrt(var_mean)
             if interval in ("prediction", "both"):
-                spi = np.sqrt((1.0 + q) * self.sigma2)
-                out["pi_low"] = pred - tq * spi
-                out["pi_high"] = pred + tq * spi
+                out["pi_low"] = pred - tq * np.sqrt(var_new)
+                out["pi_high"] = pred + tq * np.sqrt(var_new)
         return out
 
-    def _kr_mean(self, Xt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        L = np.zeros((Xt.shape[0], len(self.column_names)))
-        L[:, self.term_index] = Xt
-        return self.mixed.contrast_df(L)
+    @cached_property
+    def interval_form(self) -> IntervalForm:
+        """How the uncertainty of a prediction follows from the model row (the prediction
+        contract, :class:`~rsm_lrg.model.prediction.IntervalForm`): OLS ``C σ²`` and ``n - p``
+        df; REML the GLS ``Φ``, Kenward–Roger's ``Φ_A`` and a den df per point, a new run in a
+        new whole plot or block."""
+        idx = self.term_index
+        if self.mixed is not None:
+            return self.mixed.interval_form(idx)
+        cov = np.asarray(self.cov_unscaled, dtype=float)[np.ix_(idx, idx)] * self.sigma2
+        return IntervalForm(cov_se=cov, cov_mean=cov, s2_new=self.sigma2,
+                            df=float(self.df_resid) if self.df_resid > 0 else math.nan)
 
     def kr_mean(self, points: Any, *, coded: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """For a REML fit: ``(x' Phi_A x, Kenward-Roger den df)`` of the predicted mean at each
         point (points as for :meth:`predict`) [model-scale units², -]."""
         if self.mixed is None:
             raise ValueError("kr_mean needs a REML fit (whole_plot= or random_block=)")
-        return self._kr_mean(design_matrix(self._coded_points(points, coded), self.terms))
-
-    def _mixed_intervals(self, out: Any, Xt: np.ndarray, interval: str | None, alpha: float) -> Any:
-        """Intervals of a REML fit: the mean with the Kenward–Roger adjusted variance
-        ``x' Phi_A x`` and its KR den df; a new run in a new group adds ``s2_group + s2``
-        (same df)."""
-        from . import statistics as special
-
-        if not interval:
-            return out
-        mm = self.mixed
-        var_a, kdf = self._kr_mean(Xt)
-        with np.errstate(invalid="ignore"):
-            tq = special.stdtrit(kdf, 1 - alpha / 2)
-        pred = out["predicted"].to_numpy()
-        if interval in ("confidence", "both"):
-            out["ci_low"] = pred - tq * np.sqrt(var_a)
-            out["ci_high"] = pred + tq * np.sqrt(var_a)
-        if interval in ("prediction", "both"):
-            spi = np.sqrt(var_a + mm.sigma2_group + mm.sigma2)
-            out["pi_low"] = pred - tq * spi
-            out["pi_high"] = pred + tq * spi
-        return out
+        _, var_mean, _, df = self.interval_form.at(design_matrix(self._coded_points(points, coded), self.terms))
+        return var_mean, df
 
     # -- optimisation ------------------------------------------------------------------
     def optimize(self, goal="minimize", bounds=None, **kwargs):

@@ -2,15 +2,17 @@
 3-D surfaces of one or several fitted responses, in one self-contained HTML page.
 
 The page carries the fitted models themselves as data (per response: the model terms, the
-coded coefficients b, the unscaled covariance C = (X'X)⁻¹ without block columns, σ², the
-residual degrees of freedom and the t quantile t(0.975, df)), and a small script computes,
-at the setting of the factor controls, exactly what :meth:`rsm_lrg.model.FitResult.predict`
-computes with ``interval="both"``::
+coded coefficients b and the fit's interval form, :class:`rsm_lrg.model.prediction.IntervalForm`),
+and a small script computes, at the setting of the factor controls, exactly what
+:meth:`rsm_lrg.model.FitResult.predict` computes with ``interval="both"``, whatever the kind
+of model (OLS, blocked, categoric, mixture, transformed, REML whole plot or random block)::
 
     x  = row of the model matrix at the coded setting (rsm_lrg.terms.design_matrix)
-    ŷ  = x · b                          CI = ŷ ± t √(x C x' σ²)
-    se = √(x C x' σ²)                   PI = ŷ ± t √((1 + x C x') σ²)
+    ŷ  = x · b          se = √(x' cov_se x)
+    CI = ŷ ± t √(x' cov_mean x)          PI = ŷ ± t √(x' cov_mean x + s2_new)
 
+with ``t`` the quantile at the fit's residual df (OLS, embedded) or at the Kenward–Roger df
+of ``x`` (REML: the page computes ``2 / A₂(x)`` and the quantile itself)
 (back-transformed, interval ends sorted, for a fit of a transformed response, as
 :meth:`rsm_lrg.model.result.FitResult.predict` does). The figures are drawn with Plotly
 (plotly.js from the ``plotly`` Python package, inlined so the page works offline); the page's
@@ -83,9 +85,13 @@ def model_data(result, confidence: float = 0.95) -> dict:
         ``levels``), ``terms`` (``p``: numeric exponents, ``cat``: ``[[factor index, number of
         levels], ...]``, ``combos``: level indices of each column, ``diff``: ``[i, j]`` for a
         Scheffé full-cubic term, whose column is also multiplied by ``x_i - x_j``), ``b`` (coded
-        coefficients), ``C`` ((X'X)⁻¹ without block rows/columns), ``sigma2`` [response
-        units²], ``df_resid``, ``t``, ``transform`` (``None`` or ``name``/``lam``/``constant``)
-        and ``coded_decimals`` (the rounding of :meth:`Factor.encode`).
+        coefficients), ``interval`` (the fit's
+        :class:`~rsm_lrg.model.prediction.IntervalForm` as data: the covariances of ``se_fit``
+        and of the mean without block rows/columns, the variance of a new run, the df, and for
+        a REML fit the Kenward–Roger parts from which the page computes the df of each
+        point), ``df_text``, ``t`` (the quantile at a constant df; None for Kenward–Roger),
+        ``transform`` (``None`` or ``name``/``lam``/``constant``) and ``coded_decimals`` (the
+        rounding of :meth:`Factor.encode`).
     """
     from scipy import special
 
@@ -111,21 +117,19 @@ def model_data(result, confidence: float = 0.95) -> dict:
                       "diff": [int(i) for i in getattr(t, "diff", ())],  # a full-cubic AB(A-B): times x_i - x_j
                       "combos": [list(map(int, c)) for c in t.level_combinations()] if cat else []})
     b = fit.coefficients["coded"].to_numpy(dtype=float)
-    idx = fit.term_index
-    C = np.asarray(fit.cov_unscaled, dtype=float)[np.ix_(idx, idx)]
+    form = fit.interval_form
     n_cols = sum(max(1, len(t["combos"])) for t in terms)
-    if n_cols != len(b) or C.shape != (len(b), len(b)):
+    if n_cols != len(b) or form.cov_mean.shape != (len(b), len(b)):
         raise ValueError(f"response {fit.response!r}: {len(b)} coefficients but {n_cols} model columns")
-    df = int(fit.df_resid)
+    df = form.df
     tq = float(special.stdtrit(df, 1 - (1 - confidence) / 2)) if df > 0 else float("nan")
     return {
-        "response": str(getattr(result, "response", fit.response)),
+        "response": str(fit.response),
         "factors": factors,
         "terms": terms,
         "b": [float(v) for v in b],
-        "C": [[float(v) for v in row] for row in C],
-        "sigma2": _finite_or_none(fit.sigma2),
-        "df_resid": df,
+        "interval": form.to_dict(),
+        "df_text": "Kenward–Roger df" if form.kenward_roger else f"{int(df) if df > 0 else 0} residual df",
         "t": _finite_or_none(tq),
         "confidence": float(confidence),
         "transform": None if tr is None else {"name": tr.name, "lam": tr.lam, "constant": float(tr.constant)},
@@ -450,7 +454,7 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
                ("Factors", ", ".join(f"{f.letter} = {f.name}" for f in space.factors))]
     for m in data["models"]:
         summary.append((f"Model of {m['response']}", f"{m['model']}, {len(m['b'])} coefficients, "
-                                                     f"{m['df_resid']} residual df"
+                                                     f"{m['df_text']}"
                         + (f", {m['transform']['name']} transform" if m["transform"] else "")))
     _, runs_from = run_numbers(first)
     return {

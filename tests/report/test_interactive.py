@@ -43,14 +43,17 @@ def _scripts(html: str) -> list[tuple[str, str]]:
 
 
 def test_model_data_is_the_fit(fits):
-    """The numbers the page multiplies are the fit's own: b, C without blocks, σ², t."""
+    """The numbers the page multiplies are the fit's own: b, C σ² without blocks, σ², t."""
     from scipy import special
 
     f = fits["tcr_c_per_min"]
     m = model_data(f)
+    form = m["interval"]
     assert m["b"] == f.coefficients["coded"].tolist()
-    np.testing.assert_array_equal(np.array(m["C"]), f.cov_unscaled[np.ix_(f.term_index, f.term_index)])
-    assert m["sigma2"] == f.sigma2 and m["df_resid"] == f.df_resid == 12
+    C = f.cov_unscaled[np.ix_(f.term_index, f.term_index)] * f.sigma2
+    np.testing.assert_array_equal(np.array(form["cov_mean"]), C)
+    np.testing.assert_array_equal(np.array(form["cov_se"]), C)
+    assert form["s2_new"] == f.sigma2 and form["df"] == f.df_resid == 12 and "kr" not in form
     assert m["t"] == float(special.stdtrit(12, 0.975))  # t(0.975, 12) = 2.1788 (tables)
     assert m["t"] == pytest.approx(2.178813, abs=1e-6)
     # the page's row of the model matrix: for each term, the product of coded factors to their powers
@@ -61,10 +64,10 @@ def test_model_data_is_the_fit(fits):
     np.testing.assert_allclose(rows, X, rtol=1e-15)
     # ŷ, CI, PI by the page's formulas in numpy equal predict
     ref = f.predict(x, coded=True, interval="both")
-    q = np.einsum("ij,jk,ik->i", rows, np.array(m["C"]), rows)
+    q = np.einsum("ij,jk,ik->i", rows, np.array(form["cov_mean"]), rows)
     y = rows @ np.array(m["b"])
-    np.testing.assert_allclose(y - m["t"] * np.sqrt(q * m["sigma2"]), ref["ci_low"], rtol=1e-12)
-    np.testing.assert_allclose(y + m["t"] * np.sqrt((1 + q) * m["sigma2"]), ref["pi_high"], rtol=1e-12)
+    np.testing.assert_allclose(y - m["t"] * np.sqrt(q), ref["ci_low"], rtol=1e-12)
+    np.testing.assert_allclose(y + m["t"] * np.sqrt(q + form["s2_new"]), ref["pi_high"], rtol=1e-12)
 
 
 @pytest.mark.slow
@@ -176,13 +179,13 @@ def test_model_data_of_a_blocked_fit_predicts_the_average_block():
     df["day"] = np.where(np.arange(len(df)) < 14, "one", "two")
     f = rsm_lrg.fit(df, "tcr_c_per_min", factors=FACTORS, block="day")
     m = model_data(f)
-    assert len(m["b"]) == len(f.terms) == 15 and np.array(m["C"]).shape == (15, 15)
+    assert len(m["b"]) == len(f.terms) == 15 and np.array(m["interval"]["cov_mean"]).shape == (15, 15)
     x = np.random.default_rng(1).uniform(-1, 1, (4, 4))
     X = design_matrix(x, f.terms)
     ref = f.predict(x, coded=True, interval="both")
-    q = np.einsum("ij,jk,ik->i", X, np.array(m["C"]), X)
+    q = np.einsum("ij,jk,ik->i", X, np.array(m["interval"]["cov_mean"]), X)
     np.testing.assert_allclose(X @ np.array(m["b"]), ref["predicted"], rtol=1e-13)
-    np.testing.assert_allclose(X @ np.array(m["b"]) - m["t"] * np.sqrt(q * m["sigma2"]), ref["ci_low"], rtol=1e-12)
+    np.testing.assert_allclose(X @ np.array(m["b"]) - m["t"] * np.sqrt(q), ref["ci_low"], rtol=1e-12)
 
 
 def test_without_plotly_the_cli_says_so_in_one_line(tmp_path, capsys, monkeypatch):

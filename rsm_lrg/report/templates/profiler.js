@@ -136,20 +136,97 @@
     var y = fitted(m, rowAt(m, setting));
     return m.transform ? backTransform(m.transform, y) : y;
   }
-  /* setting: {factor name: actual value or level}; returns predicted, se, ci, pi */
-  function predict(m, setting) {
-    var x = rowAt(m, setting);
-    var n = x.length, y = fitted(m, x), qf = 0.0;
+  /* x' M x */
+  function quad(M, x) {
+    var n = x.length, q = 0.0;
     for (var a = 0; a < n; a++) {
-      var s = 0.0, Ca = m.C[a];
-      for (var b = 0; b < n; b++) s += Ca[b] * x[b];
-      qf += x[a] * s;
+      var s = 0.0, Ma = M[a];
+      for (var b = 0; b < n; b++) s += Ma[b] * x[b];
+      q += x[a] * s;
     }
-    var s2 = m.sigma2 === null ? NaN : m.sigma2;
-    var tq = m.t === null ? NaN : m.t;
-    var se = Math.sqrt(qf * s2), spi = Math.sqrt((1.0 + qf) * s2);
-    var out = {predicted: y, se: se, ci_low: y - tq * se, ci_high: y + tq * se,
-               pi_low: y - tq * spi, pi_high: y + tq * spi};
+    return q;
+  }
+  /* log Gamma (Lanczos, g = 7, n = 9: relative error below 1e-15 for x > 0) */
+  var LANCZOS = [0.99999999999980993, 676.5203681218851, -1259.1392167224028, 771.32342877765313,
+                 -176.61502916214059, 12.507343278686905, -0.13857109526572012, 9.9843695780195716e-6,
+                 1.5056327351493116e-7];
+  function lgamma(x) {
+    if (x < 0.5) return Math.log(Math.PI / Math.abs(Math.sin(Math.PI * x))) - lgamma(1 - x);
+    x -= 1;
+    var a = LANCZOS[0], t = x + 7.5;
+    for (var i = 1; i < 9; i++) a += LANCZOS[i] / (x + i);
+    return 0.5 * Math.log(2 * Math.PI) + (x + 0.5) * Math.log(t) - t + Math.log(a);
+  }
+  /* regularised incomplete beta I_x(a, b) by its continued fraction (modified Lentz) */
+  function betacf(a, b, x) {
+    var TINY = 1e-300, c = 1.0, d = 1.0 - (a + b) * x / (a + 1);
+    if (Math.abs(d) < TINY) d = TINY;
+    d = 1.0 / d;
+    var h = d;
+    for (var m = 1; m <= 10000; m++) {
+      var m2 = 2 * m, aa = m * (b - m) * x / ((a + m2 - 1) * (a + m2));
+      d = 1.0 + aa * d; if (Math.abs(d) < TINY) d = TINY; c = 1.0 + aa / c; if (Math.abs(c) < TINY) c = TINY;
+      d = 1.0 / d; h *= d * c;
+      aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + m2 + 1));
+      d = 1.0 + aa * d; if (Math.abs(d) < TINY) d = TINY; c = 1.0 + aa / c; if (Math.abs(c) < TINY) c = TINY;
+      d = 1.0 / d;
+      var del = d * c;
+      h *= del;
+      if (Math.abs(del - 1.0) < 1e-16) break;
+    }
+    return h;
+  }
+  function ibeta(a, b, x) {
+    if (x <= 0) return 0.0;
+    if (x >= 1) return 1.0;
+    var lbt = lgamma(a + b) - lgamma(a) - lgamma(b) + a * Math.log(x) + b * Math.log1p(-x);
+    if (x < (a + 1) / (a + b + 2)) return Math.exp(lbt) * betacf(a, b, x) / a;
+    return 1.0 - Math.exp(lbt) * betacf(b, a, 1 - x) / b;
+  }
+  /* upper tail P(T > t) of Student's t with df degrees of freedom, t >= 0 */
+  function tUpper(t, df) {
+    var x = df / (df + t * t);
+    return x < 0.5 ? 0.5 * ibeta(df / 2, 0.5, x) : 0.5 * (1.0 - ibeta(0.5, df / 2, t * t / (df + t * t)));
+  }
+  /* the quantile t(p, df) for p > 0.5 (any real df > 0): bisection to a bracket, then Newton
+   * on the tail (the density in closed form); what FitResult.predict takes from SciPy's stdtrit */
+  function tQuantile(df, p) {
+    if (!(df > 0) || !isFinite(df)) return df === Infinity ? tQuantile(1e300, p) : NaN;
+    var tail = 1.0 - p, lo = 0.0, hi = 1.0;
+    while (tUpper(hi, df) > tail && hi < 1e300) { lo = hi; hi *= 2; }
+    var t = 0.5 * (lo + hi);
+    var logc = lgamma((df + 1) / 2) - lgamma(df / 2) - 0.5 * Math.log(df * Math.PI);
+    for (var i = 0; i < 200; i++) {
+      var f = tUpper(t, df) - tail;
+      if (f > 0) lo = t; else hi = t;
+      var dens = Math.exp(logc - (df + 1) / 2 * Math.log1p(t * t / df));
+      var next = t + f / dens;
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (Math.abs(next - t) <= 1e-15 * Math.abs(next)) { t = next; break; }
+      t = next;
+    }
+    return t;
+  }
+  /* setting: {factor name: actual value or level}; returns predicted, se, ci, pi, computed as
+   * FitResult.predict computes them from the model's interval form (rsm_lrg.model.prediction):
+   * se² = x'·cov_se·x, var_mean = x'·cov_mean·x, var_new = var_mean + s2_new, and the t
+   * quantile at the fit's df (OLS: embedded) or at the Kenward-Roger df of x (REML) */
+  function predict(m, setting) {
+    var x = rowAt(m, setting), f = m.interval;
+    var y = fitted(m, x);
+    var se2 = quad(f.cov_se, x), vm = quad(f.cov_mean, x);
+    var s2new = f.s2_new === null ? NaN : f.s2_new;
+    var tq;
+    if (f.kr) {
+      var a = f.kr.phi_p_phi.map(function (M) { return quad(M, x); }), A2 = 0.0;
+      for (var r = 0; r < a.length; r++) for (var q = 0; q < a.length; q++) A2 += f.kr.w[r][q] * a[r] * a[q];
+      A2 /= se2 * se2;
+      tq = se2 > 0 ? tQuantile(A2 > 0 ? 2.0 / A2 : Infinity, 1 - (1 - m.confidence) / 2) : NaN;
+    } else {
+      tq = m.t === null ? NaN : m.t;
+    }
+    var se = Math.sqrt(Math.max(se2, 0)), hm = tq * Math.sqrt(vm), hn = tq * Math.sqrt(vm + s2new);
+    var out = {predicted: y, se: se, ci_low: y - hm, ci_high: y + hm, pi_low: y - hn, pi_high: y + hn};
     if (m.transform) {
       var tr = m.transform;
       out.predicted_transformed = y;
