@@ -434,8 +434,8 @@ class MixedModel:
         and ``W``."""
         ix = np.ix_(columns, columns)
         phi = self.parts.phi
-        return IntervalForm(cov_se=phi[ix], cov_mean=self.parts.phi_a[ix], s2_new=self.sigma2_group + self.sigma2,
-                            df=math.nan, kr_phi_p_phi=tuple((phi @ P @ phi)[ix] for P in self.parts.P),
+        return IntervalForm(cov_se=phi[ix], cov_mean=self.parts.phi_a[ix], s2_residual=self.sigma2,
+                            s2_group=self.sigma2_group, df=math.nan, kr_phi_p_phi=tuple((phi @ P @ phi)[ix] for P in self.parts.P),
                             kr_w=self.parts.W)
 
     @property

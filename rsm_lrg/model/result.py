@@ -703,7 +703,7 @@ class FitResult:
         if self.mixed is not None:
             return self.mixed.interval_form(idx)
         cov = np.asarray(self.cov_unscaled, dtype=float)[np.ix_(idx, idx)] * self.sigma2
-        return IntervalForm(cov_se=cov, cov_mean=cov, s2_new=self.sigma2,
+        return IntervalForm(cov_se=cov, cov_mean=cov, s2_residual=self.sigma2,
                             df=float(self.df_resid) if self.df_resid > 0 else math.nan)
 
     def kr_mean(self, points: Any, *, coded: bool = False) -> tuple[np.ndarray, np.ndarray]:

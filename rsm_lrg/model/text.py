@@ -131,7 +131,7 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
     if units == "coded":
         values, mags = coded, [1.0] * len(letters)
     else:
-        if getattr(result, "mixture", False):  # the Scheffé polynomial in real proportions
+        if result.space.has_components:  # the Scheffé polynomial in real proportions
             from .mixture import pseudo_to_actual
 
             values = pseudo_to_actual(coded, result.terms, result.space)
@@ -212,7 +212,7 @@ def format_summary(result) -> str:
     sp = result.space
     out.append(f"Response: {result.response}   runs: {result.n}   model: {result.model}"
                + (f"   blocks: {result.block} ({len(result.block_effects)})" if result.block else ""))
-    mixture = bool(getattr(result, "mixture", False))
+    mixture = result.space.has_components
     if mixture:
         f0 = sp.factors[0]
         out.append(f"Mixture components (total {format_g(getattr(f0, 'total', 1.0), 6)}; coded as L-pseudo components "
@@ -232,7 +232,7 @@ def format_summary(result) -> str:
             out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6, trim=True)} .. {format_g(f.high, 6, trim=True)}")
     out.append("")
     sd = summary_data(result)  # the one summary every face renders
-    if getattr(result, "mixed", None) is not None:
+    if result.mixed is not None:
         out.extend(format_mixed(result))
         out.extend(sd.anova_notes)
         out.append("")
