@@ -42,8 +42,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import statistics as special
 from .prediction import IntervalForm
+from .statistics import fdtrc, stdtrit
 
 if TYPE_CHECKING:
     from .least_squares import Regression
@@ -349,7 +349,7 @@ def kr_test(parts: _KRParts, L: np.ndarray, beta: np.ndarray) -> tuple[float, fl
     Lb = L @ beta
     wald = float(Lb @ np.linalg.solve(L @ parts.phi_a @ L.T, Lb))
     F = float(scale * wald / q)
-    p = float(special.fdtrc(q, df2, F)) if df2 > 0 and math.isfinite(df2) and F >= 0 else math.nan
+    p = float(fdtrc(q, df2, F)) if df2 > 0 and math.isfinite(df2) and F >= 0 else math.nan
     return F, float(df2), p, q
 
 
@@ -442,7 +442,7 @@ class MixedModel:
     def variance_components(self) -> dict:
         """``{kind: VarianceComponent, "residual": VarianceComponent}`` with Wald intervals on
         the log scale (:data:`CI_METHOD`; none for a component at zero)."""
-        z = float(special.stdtrit(math.inf, 0.975))
+        z = float(stdtrit(math.inf, 0.975))
         W = self.parts.W
         out = {}
         for i, (nm, v) in enumerate(zip([self.kind, "residual"], [self.sigma2_group, self.sigma2])):

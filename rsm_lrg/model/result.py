@@ -17,7 +17,7 @@ import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -36,6 +36,13 @@ from .spec import ModelSpec, ReduceSpec
 from .statistics import FitStatistics, fit_statistics
 from .terms import Term, column_names, design_matrix, n_columns, term_columns
 from .transform import Transform
+
+if TYPE_CHECKING:
+    import dask.dataframe as dd
+    import pandas as pd
+
+    from .mixed import MixedModel
+    from .reduce import Reduction
 
 __all__ = ["FitResult", "assemble", "COEF_COLUMNS"]
 
@@ -112,17 +119,17 @@ class FitResult:
     least_squares: Regression = field(repr=False)
     raw_pure_error: PureError = field(repr=False)
     column_names: tuple = field(repr=False)
-    data: Any = field(repr=False)
-    coded: Any = field(repr=False)
-    y: Any = field(repr=False)
-    y_response: Any = field(default=None, repr=False)
+    data: pd.DataFrame | dd.DataFrame = field(repr=False)
+    coded: pd.DataFrame | None = field(repr=False)
+    y: np.ndarray | None = field(repr=False)
+    y_response: np.ndarray | None = field(default=None, repr=False)
     block_keys: tuple | None = field(default=None, repr=False)
     block_levels: dict | None = field(default=None, repr=False)
     input_notes: tuple = field(default=(), repr=False)
     omitted_rows: tuple = field(default=(), repr=False)
-    omitted_data: Any = field(default=None, repr=False)
-    reduction: Any = field(default=None, repr=False)
-    mixed: Any = field(default=None, repr=False)
+    omitted_data: pd.DataFrame | None = field(default=None, repr=False)
+    reduction: Reduction | None = field(default=None, repr=False)
+    mixed: MixedModel | None = field(default=None, repr=False)
 
     # -- what the regression core says ------------------------------------------------
     @property
@@ -209,7 +216,7 @@ class FitResult:
                 "groups": groups, "term_ss": [ls.partial_ss(tidx[g]) for g in groups]}
 
     @cached_property
-    def anova(self) -> Any:
+    def anova(self) -> pd.DataFrame:
         """The Design-Expert ANOVA (Table 5 layout): columns ``source, sum_sq, df, mean_sq, f, p``.
 
         For a REML fit, one row per term with the Kenward–Roger test (``df`` its numerator df,
@@ -245,7 +252,7 @@ class FitResult:
         ls, nb = self.least_squares, self.n_blocks
         notes = []
         if self.mixed is not None:
-            return tuple(self.input_notes) + self._mixed_notes()
+            return tuple(self.input_notes) + self._mixed_notes(self.mixed)
         if self.raw_pure_error.df == 0:
             notes.append("No lack-of-fit test: no factor setting is replicated"
                          + (" (once the block effects are removed)" if nb > 1 else "") + ", so there is no pure error.")
@@ -258,10 +265,9 @@ class FitResult:
                          "and standard errors measure round-off, not noise.")
         return tuple(self.input_notes) + tuple(notes)
 
-    def _mixed_notes(self) -> tuple:
+    def _mixed_notes(self, mm: MixedModel) -> tuple:
         from .mixed import CI_METHOD
 
-        mm = self.mixed
         what = "whole plot" if mm.kind == "whole_plot" else "block"
         notes = [f"REML fit with a random intercept per {what} ({mm.column!r}, {mm.n_groups} {what}s): coefficients "
                  "and standard errors are generalised least squares at the REML variance ratio; F tests use the "
@@ -350,11 +356,11 @@ class FitResult:
         return {k: float(v) for k, v in sol.std_errors.items() if k not in blocks}
 
     @cached_property
-    def coefficients(self) -> Any:
+    def coefficients(self) -> pd.DataFrame:
         """Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``."""
         import pandas as pd
 
-        from . import statistics as special  # the t and F tails without importing SciPy
+        from .statistics import stdtr, stdtrit  # the t and F tails without importing SciPy
 
         ls, tidx = self.least_squares, self.term_index
         b_t, se, df_res = ls.params[tidx], ls.std_errors[tidx], ls.df_resid
@@ -365,8 +371,8 @@ class FitResult:
             se_a = np.sqrt(var_a)
             with np.errstate(divide="ignore", invalid="ignore"):
                 tval = b_t / se_a
-                pval = 2.0 * special.stdtr(kdf, -np.abs(tval))
-                tqv = special.stdtrit(kdf, 0.975)
+                pval = 2.0 * stdtr(kdf, -np.abs(tval))
+                tqv = stdtrit(kdf, 0.975)
             cols = column_names(self.terms)
             return pd.DataFrame(
                 {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tqv * se_a,
@@ -374,8 +380,8 @@ class FitResult:
                  "actual": [self.actual_coefficients.get(nm, 0.0) for nm in cols], "den_df": kdf},
                 index=pd.Index(cols, name="term"))
         if df_res > 0:
-            pval = 2.0 * special.stdtr(df_res, -np.abs(tval))
-            tq = float(special.stdtrit(df_res, 0.975))
+            pval = 2.0 * stdtr(df_res, -np.abs(tval))
+            tq = float(stdtrit(df_res, 0.975))
         else:
             pval, tq = np.full_like(b_t, np.nan), np.nan
         # VIF (Design-Expert's: the diagonal of the inverse correlation matrix) needs the
@@ -618,7 +624,8 @@ class FitResult:
         Xt = design_matrix(coded, self.terms)
         return Xt @ self.coefficients["coded"].to_numpy()
 
-    def predict(self, points: Any, interval: str | None = None, alpha: float = 0.05, *, coded: bool = False) -> Any:
+    def predict(self, points: Any, interval: str | None = None, alpha: float = 0.05, *,
+                coded: bool = False) -> pd.DataFrame:
         """Predicted response in response units, optionally with a confidence or prediction
         interval; under a transform the prediction and the interval ends are back-transformed
         (ends ordered; ``predicted_transformed`` and ``se_fit`` stay on the model's scale).
@@ -637,7 +644,7 @@ class FitResult:
         return out
 
     def predict_model(self, points: Any, interval: str | None = None, alpha: float = 0.05, *,
-                      coded: bool = False) -> Any:
+                      coded: bool = False) -> pd.DataFrame:
         """Prediction on the model's scale (the transformed response under a transform),
         optionally with a confidence or prediction interval.
 
@@ -660,7 +667,7 @@ class FitResult:
         """
         import pandas as pd
 
-        from . import statistics as special  # the t and F tails without importing SciPy
+        from .statistics import stdtrit  # the t and F tails without importing SciPy
 
         if interval not in (None, "confidence", "prediction", "both"):
             raise ValueError(f"interval must be None, 'confidence', 'prediction' or 'both', not {interval!r}")
@@ -684,13 +691,32 @@ class FitResult:
         out = pd.DataFrame({"predicted": pred, "se_fit": se}, index=index)
         if interval:
             with np.errstate(invalid="ignore"):
-                tq = special.stdtrit(df, 1 - alpha / 2)
+                tq = stdtrit(df, 1 - alpha / 2)
             if interval in ("confidence", "both"):
                 out["ci_low"] = pred - tq * np.sqrt(var_mean)
                 out["ci_high"] = pred + tq * np.sqrt(var_mean)
             if interval in ("prediction", "both"):
                 out["pi_low"] = pred - tq * np.sqrt(var_new)
                 out["pi_high"] = pred + tq * np.sqrt(var_new)
+        return out
+
+    def coded_runs(self) -> pd.DataFrame:
+        """The coded settings of the runs fitted (columns = letters); ValueError for a fit of a
+        Dask frame, which keeps no per-run data."""
+        if self.coded is None:
+            raise ValueError("a fit of a Dask DataFrame keeps no per-run data (fit an in-memory table)")
+        return self.coded
+
+    @cached_property
+    def run_extent(self) -> dict[str, float]:
+        """``{letter: largest |coded setting| over the runs}`` of the numeric factors, at least 1
+        (the box; a CCD's axial runs reach beyond it); 1 for a Dask fit, which keeps no runs."""
+        out = {}
+        for f in self.space.factors:
+            if f.kind == "categoric":
+                continue
+            col = np.zeros(0) if self.coded is None else np.abs(self.coded[f.letter].to_numpy(dtype=float))
+            out[f.letter] = max(1.0, float(np.max(col, initial=0.0)))
         return out
 
     @cached_property
@@ -828,7 +854,7 @@ class FitResult:
         if self.block is not None:
             out["block_effects"] = {k: _f(v) for k, v in (self.block_effects or {}).items()}
         if self.mixed is not None:
-            out.update(self._mixed_dict())
+            out.update(self._mixed_dict(self.mixed))
         if self.mixed is not None:
             # a REML fit has no sums of squares: its "anova" is the Kenward-Roger tests in the
             # ANOVA's shape (one row per term, unused numbers null, den_df added), as "tests"
@@ -836,9 +862,9 @@ class FitResult:
                              "f": t["f"], "p": t["p"], "den_df": t["den_df"]} for t in out["tests"]]
         else:
             out["anova"] = [
-                {"source": r.source, "sum_sq": _f(r.sum_sq), "df": int(r.df), "mean_sq": _f(r.mean_sq), "f": _f(r.f),
-                 "p": _f(r.p)}
-                for r in self.anova.itertuples(index=False)
+                {"source": r["source"], "sum_sq": _f(r["sum_sq"]), "df": int(r["df"]), "mean_sq": _f(r["mean_sq"]),
+                 "f": _f(r["f"]), "p": _f(r["p"])}
+                for r in self.anova.to_dict(orient="records")
             ]
         out["statistics"] = {k: _f(v) for k, v in self.statistics.to_dict().items()}
         out["stationary_point"] = self.stationary_point.to_dict()
@@ -854,10 +880,9 @@ class FitResult:
             out["reduction"] = self.reduction.to_dict()
         return out
 
-    def _mixed_dict(self) -> dict:
+    def _mixed_dict(self, mm: MixedModel) -> dict:
         from .mixed import CI_METHOD
 
-        mm = self.mixed
         key = "whole_plot" if mm.kind == "whole_plot" else "random_block"
         vc = {k: {kk: _f(vv) for kk, vv in c.to_dict().items()} for k, c in mm.variance_components.items()}
         return {
@@ -906,9 +931,10 @@ def _f(v):
 
 def assemble(*, spec: ModelSpec, response: str, block: str | None, space: FactorSpace, terms: Sequence[Term],
              col_names: Sequence[str], ls: Regression, pe: PureError, bkeys: list | None, blevels: dict | None,
-             data: Any, coded: Any, y: Any, y_response: Any = None, input_notes: Sequence = (),
-             omitted_rows: Sequence[int] = (), omitted_data: Any = None, reduction: Any = None,
-             mixed: Any = None) -> FitResult:
+             data: pd.DataFrame | dd.DataFrame, coded: pd.DataFrame | None, y: np.ndarray | None,
+             y_response: np.ndarray | None = None, input_notes: Sequence = (), omitted_rows: Sequence[int] = (),
+             omitted_data: pd.DataFrame | None = None, reduction: Reduction | None = None,
+             mixed: MixedModel | None = None) -> FitResult:
     """The :class:`FitResult` of a factorised fit (both passes done) and its pure error; every
     statistic is derived from them on first use.
 

@@ -8,8 +8,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from ..present import ROUND_OFF, format_g, format_p, text_table
 from ..present import clean as _clean
 from .anova import TOTAL_ROWS
@@ -146,9 +144,8 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
             if f.kind == "categoric":
                 mags.append(1.0)
                 continue
-            runs = (np.abs(np.asarray(result.coded[f.letter], dtype=float)) * f.half_range + abs(f.center)
-                    if result.coded is not None else np.zeros(0))  # a Dask fit holds no runs
-            mags.append(max(abs(f.low), abs(f.high), float(np.max(runs, initial=0.0))))
+            # the box and the runs beyond it (a CCD's axial runs)
+            mags.append(max(abs(f.low), abs(f.high), result.run_extent[f.letter] * f.half_range + abs(f.center)))
     if result.fitted is not None:
         fitted = [abs(float(v)) for v in result.fitted if math.isfinite(float(v))]
         scale = max(fitted, default=0.0)
