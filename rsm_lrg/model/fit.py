@@ -177,7 +177,8 @@ def _fit_mixture(data: pd.DataFrame, response: str, components: Sequence[str] | 
                  chunk_rows: int) -> FitResult:
     """A Scheffé mixture fit (:mod:`rsm_lrg.model.mixture`)."""
     from ..factors import FactorSpace, MixtureComponent
-    from .mixture import MIXTURE_ORDERS, mixture_space
+    from .inputs import mixture_inputs
+    from .mixture import MIXTURE_ORDERS
 
     if not spec.mixture:
         raise SpecError("model", f"mixture components need a Scheffé model ({', '.join(MIXTURE_ORDERS)}), "
@@ -190,10 +191,12 @@ def _fit_mixture(data: pd.DataFrame, response: str, components: Sequence[str] | 
                                  "--component NAME)")
     else:
         given = None
-    if block is not None:
-        raise SpecError("block", "blocks in a mixture model are not available yet")
-    space = given if given is not None else mixture_space(data, components or (), response, process=factors)
-    inp = model_inputs(data, response, space, None, transform=spec.transform)
+    if given is not None:  # the space of a fitted mixture model
+        if block is not None:
+            raise SpecError("block", "blocks in a mixture model are not available yet")
+        inp = model_inputs(data, response, given, None, transform=spec.transform)
+    else:
+        inp = mixture_inputs(data, response, components or (), factors, block, transform=spec.transform)
     reduction = None
     if spec.reduce is not None:  # the linear blending terms always stay
         from dataclasses import replace
