@@ -324,36 +324,36 @@ class FitResult:
         if sol is not None:
             blocks = set(self.column_names[1:self.n_blocks])
             return {k: float(v) for k, v in sol.coefficients.items() if k not in blocks}
-        coded = dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist()))
-        if self.mixture:  # the Scheffé polynomial in real proportions (exact change of basis)
+        return self._to_actual(dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist())))
+
+    def _to_actual(self, coded: Mapping[str, float]) -> dict:
+        """``{monomial: coefficient}`` in actual units of coded coefficients ``{column: value}``:
+        the exact, linear change of basis (L-pseudo components to real proportions for a
+        Scheffé model, coded to actual factors otherwise)."""
+        if self.mixture:
             from .mixture import pseudo_to_actual
 
-            return pseudo_to_actual(coded, self.terms, self.space)
-        return actual_coefficients(coded, self.terms, self.space)
+            return pseudo_to_actual(dict(coded), self.terms, self.space)
+        return actual_coefficients(dict(coded), self.terms, self.space)
 
     @property
     def actual_std_errors(self) -> dict | None:
-        """``{term: standard error in actual units}`` (None for a Dask fit)."""
-        if self.mixture:  # the change of basis is linear in the coefficients: cov = M C M' sigma²
-            from .mixture import actual_covariance
-
-            names, cov = actual_covariance(self.terms, self.space, self.cov_unscaled[np.ix_(self.term_index,
-                                                                                           self.term_index)])
-            return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None) * self.sigma2).tolist()))
-        if self.mixed is not None:  # linear in the coefficients: cov = M Phi M' (M from unit coefficient vectors)
-            idx = self.term_index
-            cols = column_names(self.terms)
-            basis = [actual_coefficients(dict(zip(cols, e)), self.terms, self.space)
-                     for e in np.eye(len(cols)).tolist()]
-            names = list(basis[0])
-            M = np.array([[b.get(nm, 0.0) for b in basis] for nm in names])
-            cov = M @ self.mixed.cov[np.ix_(idx, idx)] @ M.T
-            return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None)).tolist()))
+        """``{term: standard error in actual units}``: those of the actual-units solve (OLS), else
+        the change of basis ``M`` (linear in the coefficients) applied to the coefficients'
+        covariance, ``M cov M'`` (mixture, REML; None for a Dask fit, whose actual-units
+        coefficients are not solved)."""
         sol = self.actual_solution
-        if sol is None:
+        if sol is not None:
+            blocks = set(self.column_names[1:self.n_blocks])
+            return {k: float(v) for k, v in sol.std_errors.items() if k not in blocks}
+        if self.coded is None:
             return None
-        blocks = set(self.column_names[1:self.n_blocks])
-        return {k: float(v) for k, v in sol.std_errors.items() if k not in blocks}
+        cols = column_names(self.terms)
+        basis = [self._to_actual(dict(zip(cols, e))) for e in np.eye(len(cols)).tolist()]
+        names = list(dict.fromkeys(k for b in basis for k in b))
+        M = np.array([[b.get(nm, 0.0) for b in basis] for nm in names])
+        cov = M @ self.interval_form.cov_se @ M.T
+        return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None)).tolist()))
 
     @cached_property
     def coefficients(self) -> pd.DataFrame:
@@ -363,36 +363,30 @@ class FitResult:
         from .statistics import stdtr, stdtrit  # the t and F tails without importing SciPy
 
         ls, tidx = self.least_squares, self.term_index
-        b_t, se, df_res = ls.params[tidx], ls.std_errors[tidx], ls.df_resid
+        b_t, se = ls.params[tidx], ls.std_errors[tidx]
+        # the one-df tests of the coefficients from the interval form: OLS t = b / se on n - p df;
+        # REML t = b / se_A (Kenward-Roger's adjusted covariance) on each coefficient's KR den df
+        form = self.interval_form
+        _, var_t, _, df = form.at(np.eye(len(tidx)))
+        se_t = np.sqrt(var_t) if form.kenward_roger else se
         with np.errstate(divide="ignore", invalid="ignore"):
-            tval = b_t / se
-        if self.mixed is not None:  # one-df Kenward-Roger tests: t = b / se_A, KR den df
-            _, var_a, _, kdf = self.interval_form.at(np.eye(len(tidx)))
-            se_a = np.sqrt(var_a)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                tval = b_t / se_a
-                pval = 2.0 * stdtr(kdf, -np.abs(tval))
-                tqv = stdtrit(kdf, 0.975)
-            cols = column_names(self.terms)
-            return pd.DataFrame(
-                {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tqv * se_a,
-                 "ci_high": b_t + tqv * se_a, "vif": np.full(b_t.size, np.nan),
-                 "actual": [self.actual_coefficients.get(nm, 0.0) for nm in cols], "den_df": kdf},
-                index=pd.Index(cols, name="term"))
-        if df_res > 0:
-            pval = 2.0 * stdtr(df_res, -np.abs(tval))
-            tq = float(stdtrit(df_res, 0.975))
-        else:
-            pval, tq = np.full_like(b_t, np.nan), np.nan
+            tval = b_t / se_t
+            pval = 2.0 * stdtr(df, -np.abs(tval))
+            tq = stdtrit(df, 0.975)
         # VIF (Design-Expert's: the diagonal of the inverse correlation matrix) needs the
-        # intercept to centre the columns; without one it is not defined (NaN)
-        vif = np.r_[np.nan, ls.vif(tidx[1:])] if self.intercept else np.full(b_t.size, np.nan)
+        # intercept to centre the columns; without one it is not defined (NaN); it is a property
+        # of X'X, so none for a GLS fit
+        vif = (np.r_[np.nan, ls.vif(tidx[1:])] if self.intercept and not form.kenward_roger
+               else np.full(b_t.size, np.nan))
         cols = column_names(self.terms)
         actual = self.actual_coefficients
-        return pd.DataFrame(
-            {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se,
-             "ci_high": b_t + tq * se, "vif": vif, "actual": [actual.get(nm, 0.0) for nm in cols]},
+        frame = pd.DataFrame(
+            {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se_t,
+             "ci_high": b_t + tq * se_t, "vif": vif, "actual": [actual.get(nm, 0.0) for nm in cols]},
             index=pd.Index(cols, name="term"))
+        if form.kenward_roger:
+            frame["den_df"] = df
+        return frame
 
     @cached_property
     def term_vif(self) -> dict:
