@@ -452,6 +452,22 @@ class MixedModel:
         return out
 
     @property
+    def fitted(self) -> np.ndarray:
+        """The fitted values a REML fit reports: the conditional ``X b + Z u`` (nlme's default)."""
+        return self.conditional_fitted
+
+    @property
+    def residuals(self) -> np.ndarray:
+        """The residuals a REML fit reports: the conditional ``y - X b - Z u``."""
+        return self.conditional_residuals
+
+    @property
+    def random_effect(self) -> dict:
+        """``{"whole_plot": COL}`` or ``{"random_block": COL}``: the keyword :func:`rsm_lrg.fit`
+        takes to refit the model."""
+        return {"whole_plot" if self.kind == "whole_plot" else "random_block": self.column}
+
+    @property
     def marginal_fitted(self) -> np.ndarray:
         """``X b`` (the population prediction, group effect 0) [response units]."""
         return self.X @ self.beta

@@ -145,21 +145,24 @@ class FitResult:
         return len(self.column_names) - n_columns(self.terms) + 1
 
     @property
+    def estimation(self) -> Regression | MixedModel:
+        """The engine's part of the fit, which answers for the kind: the regression core (least
+        squares) or the mixed model (REML). Fitted values, residuals, the interval form, the
+        separate tests and the random effect come from it."""
+        return self.least_squares if self.mixed is None else self.mixed
+
+    @property
     def fitted(self) -> np.ndarray | None:
         """ŷ on the model's scale (None for a Dask fit, which keeps no per-run arrays); for a
         REML fit the conditional ``X b + Z u`` (BLUPs u; nlme's default), so that
         ``y = fitted + residuals``; the marginal ``X b`` is ``mixed.marginal_fitted``."""
-        if self.mixed is not None:
-            return self.mixed.conditional_fitted
-        return self.least_squares.fitted
+        return self.estimation.fitted
 
     @property
     def residuals(self) -> np.ndarray | None:
         """e = y - ŷ on the model's scale (None for a Dask fit); for a REML fit the
         conditional residuals ``y - X b - Z u`` (the estimated within-group errors)."""
-        if self.mixed is not None:
-            return self.mixed.conditional_residuals
-        return self.least_squares.residuals
+        return self.estimation.residuals
 
     @property
     def hat(self) -> np.ndarray | None:
@@ -192,12 +195,9 @@ class FitResult:
     def tests(self) -> list:
         """The Kenward–Roger F tests of the model terms of a REML fit
         (:class:`~rsm_lrg.model.mixed.KRTest`, one per term, no intercept); empty for OLS."""
-        if self.mixed is None:
-            return []
-        lead = 1 if self.intercept else 0
-        groups = term_columns(self.model_terms, lead)
+        groups = term_columns(self.model_terms, 1 if self.intercept else 0)
         tidx = self.term_index
-        return self.mixed.tests([t.name for t in self.model_terms], [tidx[g] for g in groups])
+        return self.estimation.tests([t.name for t in self.model_terms], [tidx[g] for g in groups])
 
     @cached_property
     def _sums(self) -> dict[str, Any]:
@@ -719,12 +719,7 @@ class FitResult:
         contract, :class:`~rsm_lrg.model.prediction.IntervalForm`): OLS ``C σ²`` and ``n - p``
         df; REML the GLS ``Φ``, Kenward–Roger's ``Φ_A`` and a den df per point, a new run in a
         new whole plot or block."""
-        idx = self.term_index
-        if self.mixed is not None:
-            return self.mixed.interval_form(idx)
-        cov = np.asarray(self.cov_unscaled, dtype=float)[np.ix_(idx, idx)] * self.sigma2
-        return IntervalForm(cov_se=cov, cov_mean=cov, s2_residual=self.sigma2,
-                            df=float(self.df_resid) if self.df_resid > 0 else math.nan)
+        return self.estimation.interval_form(self.term_index)
 
     def kr_mean(self, points: Any, *, coded: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """For a REML fit: ``(x' Phi_A x, Kenward-Roger den df)`` of the predicted mean at each
@@ -773,9 +768,7 @@ class FitResult:
     def random_effect(self) -> dict:
         """``{"whole_plot": COL}`` or ``{"random_block": COL}`` of a REML fit (the keyword
         :func:`rsm_lrg.fit` takes to refit it), else empty."""
-        if self.mixed is None:
-            return {}
-        return {"whole_plot" if self.mixed.kind == "whole_plot" else "random_block": self.mixed.column}
+        return self.estimation.random_effect
 
     # -- faces -------------------------------------------------------------------------
     def summary(self) -> str:
