@@ -675,7 +675,7 @@ PARAMETER_OPTIONS = {
     "alpha_out": "--alpha-out", "alpha": "--alpha", "confidence": "--confidence", "bound": "--bound",
     "goal": "--goal", "radius": "--radius", "step": "--step", "setting": "--at", "weight": "--weight",
     "importance": "--importance", "limits": "--limits", "criterion": "--criterion", "effect_sd": "--effect",
-    "region": "--region", "observed": "--observed",
+    "region": "--region", "observed": "--observed", "held": "--bound",
 }
 
 
