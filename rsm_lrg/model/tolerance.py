@@ -70,7 +70,7 @@ from ..errors import ParameterError
 
 __all__ = [
     "TOLERANCE_PAIRS", "TOLERANCE_COLUMNS", "tolerance_factor", "tolerance_bounds", "PredictionVariance",
-    "prediction_variance", "add_tolerance_interval", "check_proportion",
+    "prediction_variance", "add_tolerance_interval", "check_proportion", "new_run_variance", "coefficient_covariance",
 ]
 
 #: The column pairs :func:`add_tolerance_interval` adds: the two-sided interval and the two
@@ -92,6 +92,12 @@ class FittedForTolerance(Protocol):
 
     @property
     def mixed(self) -> Any: ...
+
+    @property
+    def cov_unscaled(self) -> np.ndarray: ...
+
+    @property
+    def term_index(self) -> np.ndarray: ...
 
     def kr_mean(self, points: Any, *, coded: bool = False) -> tuple[np.ndarray, np.ndarray]: ...
 
@@ -181,6 +187,24 @@ class PredictionVariance(NamedTuple):
     df: np.ndarray
 
 
+def new_run_variance(fit: FittedForTolerance) -> float:
+    """The variance of one new run about the true mean [model-scale units²]: the residual mean
+    square σ̂² (OLS), or σ̂²_group + σ̂² (REML: a run in a new whole plot or block)."""
+    mm = fit.mixed
+    if mm is not None:
+        return float(mm.sigma2_group) + float(mm.sigma2)
+    return float(fit.sigma2)
+
+
+def coefficient_covariance(fit: FittedForTolerance) -> np.ndarray:
+    """The covariance of the model's coefficients (intercept and terms, in ``coefficients``
+    order) [model-scale units²]: ``σ̂² (X'X)⁻¹`` (OLS) or Kenward–Roger's ``Φ_A`` (REML)."""
+    idx = np.asarray(fit.term_index)
+    mm = fit.mixed
+    full = np.asarray(mm.cov_adjusted if mm is not None else fit.sigma2 * np.asarray(fit.cov_unscaled), dtype=float)
+    return full[np.ix_(idx, idx)]
+
+
 def prediction_variance(fit: FittedForTolerance, points: Any, se_fit: Sequence[float] | np.ndarray, *,
                         coded: bool = False) -> PredictionVariance:
     """The variances of the prediction at ``points`` on the model's scale (see the module
@@ -198,13 +222,12 @@ def prediction_variance(fit: FittedForTolerance, points: Any, se_fit: Sequence[f
         Whether ``points`` are coded.
     """
     se = np.asarray(se_fit, dtype=float)
-    mm = fit.mixed
-    if mm is not None:
+    if fit.mixed is not None:
         var_a, kdf = fit.kr_mean(points, coded=coded)
-        var_new = np.full(var_a.shape, float(mm.sigma2_group) + float(mm.sigma2))
+        var_new = np.full(var_a.shape, new_run_variance(fit))
         return PredictionVariance(np.asarray(var_a, dtype=float), var_new, np.asarray(kdf, dtype=float))
     df = float(fit.df_resid) if fit.df_resid > 0 else np.nan
-    return PredictionVariance(se**2, np.full(se.shape, float(fit.sigma2)), np.full(se.shape, df))
+    return PredictionVariance(se**2, np.full(se.shape, new_run_variance(fit)), np.full(se.shape, df))
 
 
 def add_tolerance_interval(fit: FittedForTolerance, out: Any, points: Any, proportion: Any, alpha: float, *,
