@@ -316,7 +316,8 @@ def _stats(y: np.ndarray, spec: tuple | None) -> dict:
         p = below + above + (y.size - n) / y.size
         caps = [(hi - mean) / (3 * sd)] if hi is not None else []
         caps += [(mean - lo) / (3 * sd)] if lo is not None else []
-        out.update(spec=[lo, hi], ppm_below=1e6 * below, ppm_above=1e6 * above, ppm=1e6 * p,
+        out.update(spec=[lo, hi], ppm_below=1e6 * below if lo is not None else None,
+                   ppm_above=1e6 * above if hi is not None else None, ppm=1e6 * p,
                    ppm_se=1e6 * math.sqrt(p * (1 - p) / y.size), cpk=float(min(caps)) if sd > 0 else None)
     return out
 
