@@ -38,7 +38,10 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["parse_factor_sd", "factor_covariance", "prediction_gradient", "back_slope", "propagation_of_error"]
+#: The largest factor SD accepted, in half ranges of the factor (the coded reach of a prediction).
+MAX_SD_HALF_RANGES = 1e6
+
+__all__ = ["MAX_SD_HALF_RANGES", "parse_factor_sd", "factor_covariance", "prediction_gradient", "back_slope", "propagation_of_error"]
 
 
 def parse_factor_sd(space: Any, items: Mapping[str, Any] | Sequence[str] | None) -> dict[str, float]:
@@ -72,6 +75,10 @@ def parse_factor_sd(space: Any, items: Mapping[str, Any] | Sequence[str] | None)
             raise ParameterError("factor_sd", f"factor_sd for {f.name!r}: {value!r} is not a number") from None
         if not (math.isfinite(sd) and sd >= 0.0):
             raise ParameterError("factor_sd", f"factor_sd for {f.name!r}: the SD must be a finite number >= 0, not {sd:g}")
+        if sd > MAX_SD_HALF_RANGES * f.half_range:
+            raise ParameterError("factor_sd", f"factor_sd for {f.name!r}: {sd:g} is more than {MAX_SD_HALF_RANGES:g} "
+                                              f"times the factor's half range ({f.half_range:g}); the model says "
+                                              "nothing that far out")
         if f.name in out:
             raise ParameterError("factor_sd", f"factor_sd for {f.name!r} is given more than once")
         out[f.name] = sd
