@@ -134,3 +134,26 @@ def test_mixture_blend_must_keep_the_total(capsys):
     line = error_line(capsys, main(["predict", etch, "--response", "erate", *comps, "--at", "x1=0.2", "x2=0.3",
                                     "x3=0.6"]))
     assert line.startswith("error: --at:")
+
+
+def test_reml_and_categoric_from_the_command_line(capsys):
+    """A split-plot REML fit (daewr cakeb): the TI uses the KR df and both variance components
+    (equal to the library); a categoric factor at a level in --points."""
+    cake = str(R / "mixed_cakeb.csv")
+    base = ["--response", "y", "--factor", "x1", "--factor", "x2", "--whole-plot", "Ovenrun"]
+    d = _json(capsys, ["predict", cake, *base, "--at", "x1=0.5", "x2=-0.5", "--tolerance", "0.9",
+                       "--factor-sd", "x1=0.1", "--json", "-"])
+    fit = rsm_lrg.fit(pd.read_csv(cake), "y", factors=["x1", "x2"], whole_plot="Ovenrun")
+    exp = fit.predict({"x1": 0.5, "x2": -0.5}, interval="both", tolerance=0.9).iloc[0]
+    got = d["predictions"]["y"][0]
+    assert got["ti_low"] == pytest.approx(float(exp.ti_low), rel=1e-13)
+    assert got["pi_high"] == pytest.approx(float(exp.pi_high), rel=1e-13)
+    assert got["poe"] == pytest.approx(float(propagation_of_error(fit, {"x1": 0.5, "x2": -0.5}, {"x1": 0.1})[0]),
+                                       rel=1e-13)
+    cat = str(R / "cat_bbd3x2.csv")
+    d = _json(capsys, ["predict", cat, "--response", "yield_pct", "--factor", "temp_c", "--factor", "time_min",
+                       "--factor", "conc_pct", "--factor", "supplier=cat", "--at", "temp_c=150", "time_min=30",
+                       "conc_pct=5", "supplier=south", "--tolerance", "0.95", "--draws", "1000", "--seed", "2",
+                       "--json", "-"])
+    assert d["points"][0]["supplier"] == "south"
+    assert d["simulation"][0]["responses"]["yield_pct"]["mean"] is not None
