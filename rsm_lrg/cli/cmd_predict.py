@@ -62,6 +62,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="simulate N runs at each setting (at most 1e7)")
     parser.add_argument("--seed", type=whole_number(0), default=None, metavar="S",
                         help="seed of the simulator (default: a fresh one, printed so that the run can be repeated)")
+    parser.add_argument("--workers", type=whole_number(1, 256), default=None, metavar="N",
+                        help="draw the simulator's runs in N local processes (the numbers do not depend on N)")
     parser.add_argument("--no-model-uncertainty", action="store_true",
                         help="the simulator takes the fitted coefficients and residual SD as known")
     add_factor_options(parser)
@@ -163,10 +165,10 @@ def run(args: argparse.Namespace) -> int:
     specs = [model_spec(response_options(args, i)) for i in range(len(responses))]  # bad options named first
     if args.at:
         _check_at(args.at)
-    if args.draws is None and (args.seed is not None or args.no_model_uncertainty):
+    if args.draws is None and (args.seed is not None or args.no_model_uncertainty or args.workers):
         from ..io import InputError
 
-        raise InputError("--seed and --no-model-uncertainty belong to the simulator: give --draws N too")
+        raise InputError("--seed, --workers and --no-model-uncertainty belong to the simulator: give --draws N too")
     if args.spec and args.draws is None:
         from ..io import InputError
 
@@ -194,10 +196,19 @@ def run(args: argparse.Namespace) -> int:
         import secrets
 
         seed = secrets.randbelow(2**32)  # printed with the result: the run can be repeated
-    with about_file(args.points or args.data):
-        report = predict_points(fits, points, confidence=args.confidence, tolerance=args.tolerance,
-                                factor_sd=args.factor_sd, spec=args.spec, draws=args.draws, seed=seed,
-                                model_uncertainty=not args.no_model_uncertainty)
+    from .processes import close_pool, process_pool
+
+    executor = process_pool(args.workers) if args.workers and args.workers > 1 and args.draws else None
+    ok = False
+    try:
+        with about_file(args.points or args.data):
+            report = predict_points(fits, points, confidence=args.confidence, tolerance=args.tolerance,
+                                    factor_sd=args.factor_sd, spec=args.spec, draws=args.draws, seed=seed,
+                                    model_uncertainty=not args.no_model_uncertainty, executor=executor)
+        ok = True
+    finally:
+        if executor is not None:
+            close_pool(executor, ok)
     print_notes(dict.fromkeys(str(n) for n in notes))
     print_summary_or_json(args, report, extra={"seed": seed} if args.draws is not None else None)
     return 0

@@ -29,7 +29,8 @@ Each rate has its Monte Carlo standard error √(p(1-p)/N).
 
 Reproducible: the draws come in fixed blocks of :data:`BLOCK` runs, block ``b`` from the
 generator of ``SeedSequence(seed).spawn`` child ``b``, so a seed gives bit-identical numbers
-however the blocks are scheduled.
+however the blocks are scheduled: in this process or on the workers of an ``executor`` (a
+process pool: ``predict --workers N``).
 """
 
 from __future__ import annotations
@@ -43,7 +44,7 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["simulate", "simulate_runs", "SimulationResult", "parse_specs", "MAX_DRAWS", "BLOCK", "QUANTILES"]
+__all__ = ["simulate", "simulate_runs", "simulate_blocks", "SimulationResult", "parse_specs", "MAX_DRAWS", "BLOCK", "QUANTILES"]
 
 #: Runs per block of draws (the unit of reproducibility).
 BLOCK = 1 << 16
@@ -325,7 +326,7 @@ def _stats(y: np.ndarray, spec: tuple | None) -> dict:
 def simulate(fits: Any, setting: Mapping[str, Any], *, draws: int, seed: Any = None,
              factor_sd: Mapping[str, Any] | Sequence[str] | None = None,
              spec: Mapping[str, Any] | Sequence[str] | None = None,
-             model_uncertainty: bool = True) -> SimulationResult:
+             model_uncertainty: bool = True, executor: Any = None) -> SimulationResult:
     """Simulate ``draws`` runs at ``setting`` through one or several fitted models (see the
     module docstring).
 
@@ -345,21 +346,57 @@ def simulate(fits: Any, setting: Mapping[str, Any], *, draws: int, seed: Any = N
         ``{response: (low, high)}`` or ``["Y=LOW:HIGH", ...]`` (either side may be None / empty).
     model_uncertainty : bool
         Draw the coefficients from their sampling distribution (default) or take them as known.
+    executor : concurrent.futures.Executor, optional
+        Where the blocks of runs are drawn (a process pool, a Dask client's executor); the
+        numbers are the same as without (each block has its own child of the seed).
 
     Returns
     -------
     SimulationResult
     """
     return simulate_runs(fits, setting, draws=draws, seed=seed, factor_sd=factor_sd, spec=spec,
-                         model_uncertainty=model_uncertainty)[0]
+                         model_uncertainty=model_uncertainty, executor=executor)[0]
+
+
+def simulate_blocks(fits: Mapping[str, Any], setting: Mapping[str, Any], sds: Mapping[str, float],
+                    model_uncertainty: bool, seeds: Sequence[np.random.SeedSequence],
+                    sizes: Sequence[int]) -> dict[str, np.ndarray]:
+    """The runs of consecutive blocks, block ``i`` of ``sizes[i]`` runs drawn from ``seeds[i]``
+    (the unit of work of :func:`simulate_runs`, in this process or a worker)
+    ``{response: ndarray}`` [response units]."""
+    import pandas as pd
+
+    from ..model.terms import design_matrix
+
+    first = next(iter(fits.values()))
+    space = first.space
+    base = pd.DataFrame({k: [setting[k]] for k in space.names})
+    plan = _Setting(space, setting, sds)
+    models = {r: _Response(f, base, model_uncertainty) for r, f in fits.items()}
+    rows = None if plan.noisy else {r: design_matrix(f.space.encode(base).to_numpy(dtype=float), f.terms)[0]
+                                    for r, f in fits.items()}
+    out: dict[str, list] = {r: [] for r in fits}
+    for child, size in zip(seeds, sizes):
+        rng = np.random.Generator(np.random.PCG64(child))
+        frame = plan.draw(rng, size) if plan.noisy else base
+        for r, m in models.items():
+            if rows is None:
+                out[r].append(m.draw(rng, frame, None))
+            else:
+                out[r].append(m.draw(rng, pd.DataFrame(index=range(size)), rows[r]))
+    return {r: np.concatenate(v) if v else np.empty(0) for r, v in out.items()}
+
+
+def _executor_width(executor: Any) -> int:
+    """The number of workers of a process pool (or a guess of 2 for another executor)."""
+    return int(getattr(executor, "_max_workers", 0) or 2)
 
 
 def simulate_runs(fits: Any, setting: Mapping[str, Any], *, draws: int, seed: Any = None,
                   factor_sd: Mapping[str, Any] | Sequence[str] | None = None,
                   spec: Mapping[str, Any] | Sequence[str] | None = None,
-                  model_uncertainty: bool = True) -> tuple[SimulationResult, dict[str, np.ndarray]]:
+                  model_uncertainty: bool = True, executor: Any = None) -> tuple[SimulationResult, dict[str, np.ndarray]]:
     """:func:`simulate`, also returning the simulated runs ``{response: ndarray}`` [response units]."""
-    from ..model.terms import design_matrix
     from .poe import parse_factor_sd
 
     n = _check_draws(draws)
@@ -380,22 +417,20 @@ def simulate_runs(fits: Any, setting: Mapping[str, Any], *, draws: int, seed: An
 
     base = pd.DataFrame({k: [setting[k]] for k in space.names})
     first.predict(base)  # a setting the models cannot predict at is refused here
-    plan = _Setting(space, setting, sds)
-    models = {r: _Response(f, base, model_uncertainty) for r, f in fits.items()}
-    rows = None if plan.noisy else {r: design_matrix(f.space.encode(base).to_numpy(dtype=float), f.terms)[0]
-                                    for r, f in fits.items()}
-    runs = {r: np.empty(n) for r in fits}
-    n_blocks = -(-n // BLOCK)
-    for b, child in enumerate(ss.spawn(n_blocks)):
-        start, stop = b * BLOCK, min(n, (b + 1) * BLOCK)
-        rng = np.random.Generator(np.random.PCG64(child))
-        frame = plan.draw(rng, stop - start) if plan.noisy else base
-        for r, m in models.items():
-            if plan.noisy:
-                runs[r][start:stop] = m.draw(rng, frame, None)
-            else:
-                assert rows is not None
-                runs[r][start:stop] = m.draw(rng, pd.DataFrame(index=range(stop - start)), rows[r])
+    _Setting(space, setting, sds)  # a setting outside the region is refused here, not in a worker
+    for f in fits.values():  # so is a model without residual df
+        _Response(f, base, model_uncertainty)
+    children = ss.spawn(-(-n // BLOCK))
+    sizes = [min(BLOCK, n - b * BLOCK) for b in range(len(children))]
+    if executor is None:
+        parts = [simulate_blocks(fits, setting, sds, model_uncertainty, children, sizes)]
+    else:  # contiguous groups of blocks, each block from its own child seed: the same runs
+        n_tasks = max(1, min(len(children), 4 * _executor_width(executor)))
+        cuts = np.linspace(0, len(children), n_tasks + 1).round().astype(int)
+        futures = [executor.submit(simulate_blocks, fits, setting, sds, model_uncertainty, children[a:b], sizes[a:b])
+                   for a, b in zip(cuts[:-1], cuts[1:]) if b > a]
+        parts = [f.result() for f in futures]
+    runs = {r: np.concatenate([p[r] for p in parts]) for r in fits}
     stats = {r: _stats(runs[r], specs.get(r)) for r in fits}
     ppm_any = ppm_any_se = None
     if specs:

@@ -157,3 +157,13 @@ def test_reml_and_categoric_from_the_command_line(capsys):
                        "--json", "-"])
     assert d["points"][0]["supplier"] == "south"
     assert d["simulation"][0]["responses"]["yield_pct"]["mean"] is not None
+
+
+def test_one_and_two_workers_give_the_same_numbers(capsys):
+    argv = ["predict", HELI, "--response", "ave", *FACTORS, *AT, "--draws", "140000", "--seed", "3",
+            "--factor-sd", "A=0.3", "--spec", "ave=365:385", "--json", "-"]
+    one = _json(capsys, argv)
+    two = _json(capsys, argv + ["--workers", "2"])
+    assert one == two
+    line = error_line(capsys, main(["predict", HELI, "--response", "ave", *FACTORS, *AT, "--workers", "2"]))
+    assert "--workers" in line

@@ -168,3 +168,15 @@ def test_bad_spec(linear, spec):
     with pytest.raises(ParameterError) as e:
         simulate(linear, {"a": 50, "b": 5, "c": 1}, draws=10, seed=1, spec=spec)
     assert e.value.parameter == "spec"
+
+
+def test_same_numbers_on_two_workers(linear):
+    """Blocks drawn in a pool of two processes give the runs drawn in this process, bit for bit."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    kw = dict(draws=5 * 65536 + 17, seed=9, factor_sd={"a": 1.0}, spec={"y": (9.0, 11.0)})
+    a, runs_a = simulate_runs(linear, {"a": 50, "b": 5, "c": 1}, **kw)
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        b, runs_b = simulate_runs(linear, {"a": 50, "b": 5, "c": 1}, executor=pool, **kw)
+    np.testing.assert_array_equal(runs_a["y"], runs_b["y"])
+    assert a.to_dict() == b.to_dict()
