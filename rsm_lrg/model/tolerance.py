@@ -41,9 +41,12 @@ for a decreasing transform), as the CI and PI are (:meth:`FitResult.predict`); a
 runs is invariant under a monotone transform, so the back-transformed interval keeps its
 meaning.
 
-Design-Expert prints a tolerance interval beside the CI and PI ("TI"); Stat-Ease's help
-states it as ``ŷ ± K s`` with a tabulated two-sided factor, and no public source we could find
-says which approximation the factor uses, so agreement with Design-Expert is not claimed.
+Design-Expert prints a tolerance interval beside the CI and PI ("TI"; Stat-Ease's help page
+"Interval Estimates" — statease.com/docs/latest/contents/analysis/interval-estimate-calculation —
+defines it as containing at least a proportion P of individual outcomes, with defaults P = 99 %
+and 1 - α = 95 %). We could not establish from a public source which tolerance factor it uses
+for a regression, so agreement with Design-Expert is not claimed; the reference here is R's
+``regtol.int``.
 
 References: Wallis, W. A. (1951), "Tolerance intervals for linear regression", *Proc. Second
 Berkeley Symp.*, 43–51; Young, D. S. (2010), "tolerance: An R package for estimating tolerance
