@@ -21,8 +21,9 @@ The search is over the numeric factors' box (``bounds``, ``constraints`` as for
 :func:`rsm_lrg.optimize.optimize`): the centre, the vertices (k <= 6) and a scrambled Sobol
 set are screened in one batch, the best few polished together by a batched compass search
 inside the box (:func:`compass_search`; derivative-free, as the objective has kinks where an
-interval end crosses a limit). Mixtures and categoric factors are not searched
-here yet (a ValueError says so).
+interval end crosses a limit). Categoric factors are held at each allowed combination of
+levels in turn (``bounds`` may hold one: ``stage=rms``) and the best combination wins.
+Mixtures are not searched here yet (a ValueError says so).
 """
 
 from __future__ import annotations
@@ -103,7 +104,8 @@ class RobustOptimum:
                                                     else "")
         lines = [head]
         for (L, c), (name, a) in zip(self.coded.items(), self.actual.items()):
-            lines.append(f"  {L}: {name} = {g(a)}   (coded {c:+.4f})")
+            lines.append(f"  {L}: {name} = {a}   (categoric)" if isinstance(a, str)
+                         else f"  {L}: {name} = {g(a)}   (coded {c:+.4f})")
         pc = f"{100 * self.confidence:g} %"
         for r, v in self.responses.items():
             what = v["goal"] + ("" if v["interval"] is None else f" on the {v['interval'].upper()}")
@@ -122,7 +124,7 @@ class RobustOptimum:
 
 
 class _Objective:
-    """The values the goals judge at coded points (numeric factors only)."""
+    """The values the goals judge at coded points (a categoric factor's coordinate is its level index)."""
 
     def __init__(self, fits, goals, intervals, sds, confidence, tolerance) -> None:
         self.fits, self.goals, self.intervals = fits, goals, intervals
@@ -202,16 +204,15 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
     from .desirability import individual_desirability, overall_desirability
     from .poe import parse_factor_sd
     from .region import feasible_mask, parse_constraints
-    from .single import parse_bounds
+    from .single import parse_bounds, split_bounds
 
     if not goals:
         raise ValueError("give at least one response goal")
     ivs = {r: parse_interval(v) for r, v in (intervals or {}).items()}
     first = fits[goals[0].response]
     space = first.space
-    if first.mixture or space.has_categoric:
-        raise ParameterError("interval", "optimising on an interval or on the POE is not yet available for mixtures "
-                                         "or categoric factors")
+    if first.mixture:
+        raise ParameterError("interval", "optimising on an interval or on the POE is not yet available for mixtures")
     if not 0.0 < float(confidence) < 1.0:
         raise ParameterError("confidence", f"confidence must lie strictly between 0 and 1, not {confidence!r}")
     sds = parse_factor_sd(space, factor_sd)
@@ -225,8 +226,13 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
     use_d = desirability if desirability is not None else (len(goals) > 1 or any(
         g.low is not None or g.high is not None for g in goals))
     k = len(space)
-    lo, hi, notes = parse_bounds(space, bounds)
+    numeric_bounds, held = split_bounds(space, bounds)
+    lo, hi, notes = parse_bounds(space, numeric_bounds)
     cons = parse_constraints(constraints, space)
+    cats = [j for j, f in enumerate(space.factors) if f.kind == "categoric"]
+    combos = [c for c in space.level_combinations() if all(c[n] in v for n, v in held.items())]
+    if not combos:
+        raise ParameterError("bound", "no level combination is allowed by the bounds")
 
     if use_d:  # limits: the observed range of the response (of the POE at the runs for a poe goal)
         runs = np.column_stack([first.coded[L].to_numpy(dtype=float) for L in space.letters])
@@ -269,19 +275,31 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
             val = np.where(feasible_mask(X, cons), val, np.inf)
         return val
 
-    starts = [np.clip(np.zeros(k), lo, hi), (lo + hi) / 2]
-    if k <= 6:
-        starts += [np.where(np.array(v) > 0, hi, lo) for v in itertools.product((0, 1), repeat=k)]
-    m = max(3, int(math.ceil(math.log2(max(n_sobol, 8)))))
-    starts += list(lo + qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m) * (hi - lo))
-    S = np.array(starts)
-    vals = f_many(S)
-    if not np.isfinite(vals).any():
+    best_x, best_v, n_starts = None, math.inf, 0
+    for combo in combos:  # categoric factors: each allowed combination of levels, held (lo = hi)
+        lo_c, hi_c = lo.copy(), hi.copy()
+        for j in cats:
+            f = space.factors[j]
+            lo_c[j] = hi_c[j] = float(f.index(combo[f.name]))
+        starts = [np.clip(np.zeros(k), lo_c, hi_c), (lo_c + hi_c) / 2]
+        if k - len(cats) <= 6:
+            starts += [np.where(np.array(v) > 0, hi_c, lo_c) for v in itertools.product((0, 1), repeat=k)
+                       if not any(v[j] for j in cats)]
+        m = max(3, int(math.ceil(math.log2(max(n_sobol, 8)))))
+        starts += list(lo_c + qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(m) * (hi_c - lo_c))
+        S = np.array(starts)
+        n_starts += len(S)
+        vals = f_many(S)
+        keep = [i for i in np.argsort(vals)[:n_polish] if np.isfinite(vals[i])]
+        if not keep:
+            continue
+        x, v = compass_search(f_many, S[keep], vals[keep], lo_c, hi_c)
+        if best_x is None or v < best_v:
+            best_x, best_v = x, v
+    if best_x is None:
         from .region import INFEASIBLE
 
         raise ValueError(INFEASIBLE)
-    keep = [i for i in np.argsort(vals)[:n_polish] if np.isfinite(vals[i])]
-    best_x, best_v = compass_search(f_many, S[keep], vals[keep], lo, hi)
     val, ds, t = score(best_x[None, :])
     responses = {}
     for i, g in enumerate(goals):
@@ -300,11 +318,12 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
     warns = list(notes)
     if use_d and D is not None and D <= 0:
         warns.append("no setting in the box meets every response's limits on the judged values (D = 0)")
-    return RobustOptimum(actual={f.name: float(f.decode(x)) for f, x in zip(space.factors, best_x)},
-                         coded={L: float(x) for L, x in zip(space.letters, best_x)}, responses=responses,
+    actual = {f.name: (f.levels[int(round(x))] if f.kind == "categoric" else float(f.decode(x)))
+              for f, x in zip(space.factors, best_x)}
+    return RobustOptimum(actual=actual, coded={L: float(x) for L, x in zip(space.letters, best_x)}, responses=responses,
                          desirability=D, confidence=float(confidence),
                          tolerance=float(tolerance) if any(v == "ti" for v in ivs.values()) else None,
-                         factor_sd=sds, n_starts=len(S), warnings=tuple(warns))
+                         factor_sd=sds, n_starts=n_starts, warnings=tuple(warns))
 
 
 def compass_search(f_many: Any, X0: np.ndarray, v0: np.ndarray, lo: np.ndarray, hi: np.ndarray, *,

@@ -87,6 +87,29 @@ def test_desirability_on_interval_ends():
     assert r.desirability >= D.max() - 1e-12
 
 
+def test_categoric_levels_are_searched():
+    """cat_bbd3x2 (three numeric factors and a supplier): the PI's lower end is maximised over
+    both suppliers (at least the best node of a 9³ grid at each level), or at the level held."""
+    d = pd.read_csv(ROOT / "tests" / "model" / "r" / "cat_bbd3x2.csv")
+    fit = rsm_lrg.fit(d, "yield_pct", factors=["temp_c", "time_min", "conc_pct", "supplier"])
+    g, _ = parse_robust_goal("yield_pct", "maximize")
+    r = optimize_robust({"yield_pct": fit}, [g], intervals={"yield_pct": "pi"})
+    lv = np.linspace(-1, 1, 9)
+    X = np.array(list(itertools.product(lv, repeat=3)))
+    nums = [f for f in fit.space.factors if f.kind != "categoric"]
+    best = {}
+    for level in ("north", "south"):
+        grid = pd.DataFrame({f.name: f.decode(X[:, j]) for j, f in enumerate(nums)})
+        grid["supplier"] = level
+        best[level] = float(fit.predict(grid, interval="both").pi_low.max())
+    assert r.responses["yield_pct"]["value"] >= max(best.values()) - 1e-12
+    assert r.actual["supplier"] == max(best, key=best.get)
+    other = min(best, key=best.get)
+    held = optimize_robust({"yield_pct": fit}, [g], intervals={"yield_pct": "pi"}, bounds=[f"supplier={other}"])
+    assert held.actual["supplier"] == other
+    assert held.responses["yield_pct"]["value"] >= best[other] - 1e-12
+
+
 def test_bad_requests(paper):
     g, _ = parse_robust_goal(Y, "poe")
     with pytest.raises(ParameterError) as e:
