@@ -23,7 +23,9 @@ set are screened in one batch, the best few polished together by a batched compa
 inside the box (:func:`compass_search`; derivative-free, as the objective has kinks where an
 interval end crosses a limit). Categoric factors are held at each allowed combination of
 levels in turn (``bounds`` may hold one: ``stage=rms``) and the best combination wins.
-Mixtures are not searched here yet (a ValueError says so).
+A mixture is searched on its L-pseudo components, the last one closing the blend (every
+component inside its bounds, the total kept); ``bounds`` and ``constraints`` are not yet taken
+for a mixture (a ValueError says so).
 """
 
 from __future__ import annotations
@@ -202,7 +204,7 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
     from scipy.stats import qmc
 
     from .desirability import individual_desirability, overall_desirability
-    from .poe import parse_factor_sd
+    from .poe import mixture_components, parse_factor_sd
     from .region import feasible_mask, parse_constraints
     from .single import parse_bounds, split_bounds
 
@@ -211,8 +213,9 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
     ivs = {r: parse_interval(v) for r, v in (intervals or {}).items()}
     first = fits[goals[0].response]
     space = first.space
-    if first.mixture:
-        raise ParameterError("interval", "optimising on an interval or on the POE is not yet available for mixtures")
+    if first.mixture and (bounds or constraints):
+        raise ParameterError("bound", "bounds and constraints are not yet taken by the interval/POE optimum of a "
+                                      "mixture (the components' own bounds are)")
     if not 0.0 < float(confidence) < 1.0:
         raise ParameterError("confidence", f"confidence must lie strictly between 0 and 1, not {confidence!r}")
     sds = parse_factor_sd(space, factor_sd)
@@ -268,9 +271,27 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
             val = np.abs(v - T) if w is None else np.maximum(np.abs(v - T), np.abs(w - T))
         return val, ds, t
 
+    comps = mixture_components(space) if first.mixture else []
+    if comps:  # L-pseudo components: each in [0, (U - L)/R], the last one the rest of the total
+        for j in comps:
+            f = space.factors[j]
+            lo[j], hi[j] = 0.0, min(1.0, (f.upper - f.lower) / f.pseudo_range)
+
+    def complete(X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The blend closed by its last component, and whether it lies inside the bounds."""
+        X = np.array(np.atleast_2d(X), dtype=float)
+        if not comps:
+            return X, np.ones(len(X), dtype=bool)
+        X[:, comps[-1]] = 1.0 - X[:, comps[:-1]].sum(axis=1)
+        last = X[:, comps[-1]]
+        return X, (last >= lo[comps[-1]] - 1e-12) & (last <= hi[comps[-1]] + 1e-12)
+
     def f_many(X: np.ndarray) -> np.ndarray:
-        val = score(X)[0]
-        val = np.where(np.isfinite(val), val, np.inf)
+        X, ok = complete(X)
+        val = np.full(len(X), np.inf)
+        if ok.any():
+            v = score(X[ok])[0]
+            val[ok] = np.where(np.isfinite(v), v, np.inf)
         if cons is not None:
             val = np.where(feasible_mask(X, cons), val, np.inf)
         return val
@@ -282,6 +303,10 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
             f = space.factors[j]
             lo_c[j] = hi_c[j] = float(f.index(combo[f.name]))
         starts = [np.clip(np.zeros(k), lo_c, hi_c), (lo_c + hi_c) / 2]
+        if comps:  # the centroid of the blends
+            c = np.clip(np.zeros(k), lo_c, hi_c)
+            c[comps] = 1.0 / len(comps)
+            starts.append(np.clip(c, lo_c, hi_c))
         if k - len(cats) <= 6:
             starts += [np.where(np.array(v) > 0, hi_c, lo_c) for v in itertools.product((0, 1), repeat=k)
                        if not any(v[j] for j in cats)]
@@ -300,6 +325,7 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
         from .region import INFEASIBLE
 
         raise ValueError(INFEASIBLE)
+    best_x = complete(best_x)[0][0]
     val, ds, t = score(best_x[None, :])
     responses = {}
     for i, g in enumerate(goals):

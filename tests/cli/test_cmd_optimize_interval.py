@@ -64,3 +64,16 @@ def test_plain_optimize_is_unchanged(capsys):
     assert main(["optimize", T4, "--response", Y, "--json", "-"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert "responses" not in d  # the classic optimum, not the interval optimiser
+
+
+def test_mixture_from_the_command_line(capsys):
+    etch = str(ROOT / "tests" / "model" / "r" / "mixture_etch.csv")
+    comps = ["--component", "x1", "--component", "x2", "--component", "x3", "--model", "mixture-quadratic"]
+    assert main(["optimize", etch, "--response", "erate", *comps, "--goal", "maximize", "--interval", "pi",
+                 "--json", "-"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert sum(d["actual"].values()) == pytest.approx(1.0, abs=1e-12)
+    assert d["responses"]["erate"]["optimised"] == "pi_low"
+    line = error_line(capsys, main(["optimize", etch, "--response", "erate", *comps, "--goal", "maximize",
+                                    "--interval", "pi", "--bound", "x1=0.1:0.5"]))
+    assert "--bound" in line

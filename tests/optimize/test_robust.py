@@ -126,5 +126,30 @@ def test_bad_requests(paper):
                        components=["x1", "x2", "x3"], model="mixture-quadratic")
     g, _ = parse_robust_goal("erate", "maximize")
     with pytest.raises(ParameterError) as e:
-        optimize_robust({"erate": etch}, [g], intervals={"erate": "ci"})
-    assert e.value.parameter == "interval"
+        optimize_robust({"erate": etch}, [g], intervals={"erate": "ci"}, bounds=["x1=0.2:0.5"])
+    assert e.value.parameter == "bound"
+
+
+@pytest.mark.parametrize("data", ["mixture_etch.csv", "mixture_etch_l.csv"])
+def test_mixture_on_the_simplex(data):
+    """The etch mixture (and its L-pseudo twin): the CI's lower end is maximised over the blends
+    (at least the best of a 0.01 simplex lattice inside the bounds), the blend keeps its total
+    and its bounds; the mean's optimum lies on an edge, the CI's inside."""
+    d = pd.read_csv(ROOT / "tests" / "model" / "r" / data)
+    fit = rsm_lrg.fit(d, "erate", components=["x1", "x2", "x3"], model="mixture-quadratic")
+    g, _ = parse_robust_goal("erate", "maximize")
+    r = optimize_robust({"erate": fit}, [g], intervals={"erate": "ci"})
+    comps = [f for f in fit.space.factors]
+    total, low = comps[0].total, [f.lower for f in comps]
+    step = np.arange(0, 101) / 100
+    a, b = np.meshgrid(step, step)
+    keep = a + b <= 1
+    P = np.column_stack([a[keep], b[keep], 1 - a[keep] - b[keep]])
+    R = total - sum(low)
+    grid = pd.DataFrame({f.name: low[j] + R * P[:, j] for j, f in enumerate(comps)})
+    inside = np.all([(grid[f.name] <= f.upper + 1e-12).to_numpy() for f in comps], axis=0)
+    best = float(fit.predict(grid[inside], interval="confidence").ci_low.max())
+    assert r.responses["erate"]["value"] >= best - 1e-9
+    assert sum(r.actual.values()) == pytest.approx(total, abs=1e-12)
+    assert all(f.lower - 1e-12 <= r.actual[f.name] <= f.upper + 1e-12 for f in comps)
+    assert min(r.actual.values()) > min(low) + 0.05
