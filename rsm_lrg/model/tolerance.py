@@ -85,22 +85,12 @@ TOLERANCE_COLUMNS: tuple[str, ...] = tuple(c for pair in TOLERANCE_PAIRS for c i
 
 
 class FittedForTolerance(Protocol):
-    """What the tolerance interval needs of a fit (a :class:`~rsm_lrg.model.result.FitResult`)."""
+    """What the tolerance interval needs of a fit (a :class:`~rsm_lrg.model.result.FitResult`):
+    its prediction contract (:class:`~rsm_lrg.model.prediction.IntervalForm`) and the
+    Kenward–Roger mean at points when the form's df depend on the point."""
 
     @property
-    def sigma2(self) -> float: ...
-
-    @property
-    def df_resid(self) -> int: ...
-
-    @property
-    def mixed(self) -> Any: ...
-
-    @property
-    def cov_unscaled(self) -> np.ndarray: ...
-
-    @property
-    def term_index(self) -> np.ndarray: ...
+    def interval_form(self) -> Any: ...
 
     def kr_mean(self, points: Any, *, coded: bool = False) -> tuple[np.ndarray, np.ndarray]: ...
 
@@ -191,27 +181,25 @@ class PredictionVariance(NamedTuple):
 
 
 def new_run_variance(fit: FittedForTolerance) -> float:
-    """The variance of one new run about the true mean [model-scale units²]: the residual mean
-    square σ̂² (OLS), or σ̂²_group + σ̂² (REML: a run in a new whole plot or block)."""
-    mm = fit.mixed
-    if mm is not None:
-        return float(mm.sigma2_group) + float(mm.sigma2)
-    return float(fit.sigma2)
+    """The variance of one new run about the true mean [model-scale units²]: the contract's
+    ``s2_new`` — the residual mean square σ̂² (OLS), σ̂²_group + σ̂² (REML: a run in a new whole
+    plot or block)."""
+    return float(fit.interval_form.s2_new)
 
 
 def coefficient_covariance(fit: FittedForTolerance) -> np.ndarray:
     """The covariance of the model's coefficients (intercept and terms, in ``coefficients``
-    order) [model-scale units²]: ``σ̂² (X'X)⁻¹`` (OLS) or Kenward–Roger's ``Φ_A`` (REML)."""
-    idx = np.asarray(fit.term_index)
-    mm = fit.mixed
-    full = np.asarray(mm.cov_adjusted if mm is not None else fit.sigma2 * np.asarray(fit.cov_unscaled), dtype=float)
-    return full[np.ix_(idx, idx)]
+    order) that the mean's interval uses [model-scale units²]: the contract's ``cov_mean``,
+    ``σ̂² (X'X)⁻¹`` (OLS) or Kenward–Roger's ``Φ_A`` (REML)."""
+    return np.asarray(fit.interval_form.cov_mean, dtype=float)
 
 
 def prediction_variance(fit: FittedForTolerance, points: Any, se_fit: Sequence[float] | np.ndarray, *,
                         coded: bool = False) -> PredictionVariance:
-    """The variances of the prediction at ``points`` on the model's scale (see the module
-    docstring): OLS ``(se_fit², σ̂², ν_res)``; REML ``(x'Φ_A x, σ̂²_group + σ̂², ν_KR(x))``.
+    """The variances of the prediction at ``points`` on the model's scale, from the fit's
+    prediction contract (see the module docstring): ``(se_fit², s2_new, df)`` when the
+    form's df are one number (OLS: ``se_fit² = x'Cx σ̂²``, ``s2_new = σ̂²``, ν = n - p), else
+    ``(x'Φ_A x, σ̂²_group + σ̂², ν_KR(x))`` per point (REML).
 
     Parameters
     ----------
@@ -224,13 +212,13 @@ def prediction_variance(fit: FittedForTolerance, points: Any, se_fit: Sequence[f
     coded : bool
         Whether ``points`` are coded.
     """
+    form = fit.interval_form
     se = np.asarray(se_fit, dtype=float)
-    if fit.mixed is not None:
-        var_a, kdf = fit.kr_mean(points, coded=coded)
-        var_new = np.full(var_a.shape, new_run_variance(fit))
-        return PredictionVariance(np.asarray(var_a, dtype=float), var_new, np.asarray(kdf, dtype=float))
-    df = float(fit.df_resid) if fit.df_resid > 0 else np.nan
-    return PredictionVariance(se**2, np.full(se.shape, new_run_variance(fit)), np.full(se.shape, df))
+    var_new = np.full(se.shape, float(form.s2_new))
+    if form.kenward_roger:  # the df (and the mean's covariance, Φ_A) depend on the point
+        var_mean, df = fit.kr_mean(points, coded=coded)
+        return PredictionVariance(np.asarray(var_mean, dtype=float), var_new, np.asarray(df, dtype=float))
+    return PredictionVariance(se**2, var_new, np.full(se.shape, float(form.df)))
 
 
 def add_tolerance_interval(fit: FittedForTolerance, out: Any, points: Any, proportion: Any, alpha: float, *,

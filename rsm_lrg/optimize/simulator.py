@@ -268,10 +268,8 @@ class _Response:
                              "run-to-run noise is unknown; nothing to simulate")
         self.model_uncertainty = model_uncertainty
         if model_uncertainty:
-            if fit.mixed is not None:
-                df = float(fit.kr_mean(setting_frame)[1][0])
-            else:
-                df = float(fit.df_resid)
+            form = fit.interval_form  # the prediction contract: one df, or Kenward-Roger's per point
+            df = float(fit.kr_mean(setting_frame)[1][0]) if form.kenward_roger else float(form.df)
             if not (math.isfinite(df) and df > 0):
                 raise ValueError(f"response {fit.response!r}: no degrees of freedom for the model's uncertainty")
             self.df = df
