@@ -19,6 +19,7 @@ from ._common import (
     add_reader_options,
     random_effect,
 )
+from .robust_optimize import add_robust_options, robust_requested, run_robust
 
 NAME = "optimize"
 HELP = "fit, then find the minimum, maximum or a target inside the factor box"
@@ -59,11 +60,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_block_option(parser, "optimum for the average block")
     add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
+    add_robust_options(parser)
     add_json(parser)
     add_force(parser)
 
 
 def run(args: argparse.Namespace) -> int:
+    if robust_requested(args):  # --interval, --factor-sd or --goal poe (rsm_lrg/cli/robust_optimize.py)
+        return run_robust(args)
     from ..model import fit
     from ..optimize import optimize, parse_goal
     from ._common import (

@@ -35,6 +35,7 @@ from .prediction import IntervalForm
 from .spec import ModelSpec, ReduceSpec
 from .statistics import FitStatistics, fit_statistics
 from .terms import Term, column_names, design_matrix, n_columns, term_columns
+from .tolerance import TOLERANCE_PAIRS, add_tolerance_interval
 from .transform import Transform
 
 if TYPE_CHECKING:
@@ -619,19 +620,23 @@ class FitResult:
         return Xt @ self.coefficients["coded"].to_numpy()
 
     def predict(self, points: Any, interval: str | None = None, alpha: float = 0.05, *,
-                coded: bool = False) -> pd.DataFrame:
+                coded: bool = False, tolerance: float | None = None) -> pd.DataFrame:
         """Predicted response in response units, optionally with a confidence or prediction
         interval; under a transform the prediction and the interval ends are back-transformed
         (ends ordered; ``predicted_transformed`` and ``se_fit`` stay on the model's scale).
-        See :meth:`predict_model` for the parameters.
+        See :meth:`predict_model` for the parameters. ``tolerance=P`` adds the tolerance
+        interval for a proportion P of runs with confidence ``1 - alpha``
+        (:mod:`rsm_lrg.model.tolerance`: ``ti_low``, ``ti_high`` and the one-sided bounds).
         """
         out = self.predict_model(points, interval=interval, alpha=alpha, coded=coded)
+        if tolerance is not None:
+            out = add_tolerance_interval(self, out, points, tolerance, alpha, coded=coded)
         tr = self.transform
         if tr.identity:
             return out
         out["predicted_transformed"] = out["predicted"]
         out["predicted"] = tr.inverse(out["predicted"].to_numpy())
-        for lo, hi in (("ci_low", "ci_high"), ("pi_low", "pi_high")):
+        for lo, hi in (("ci_low", "ci_high"), ("pi_low", "pi_high"), *TOLERANCE_PAIRS):
             if lo in out:
                 _, a, b = tr.back(out["predicted_transformed"].to_numpy(), out[lo].to_numpy(), out[hi].to_numpy())
                 out[lo], out[hi] = a, b
