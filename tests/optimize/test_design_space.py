@@ -140,3 +140,24 @@ def test_parse_spec(text, want):
 def test_parse_spec_refuses(text):
     with pytest.raises(ParameterError):
         parse_spec(text)
+
+
+def test_reml_fit_uses_its_kenward_roger_predictive():
+    """A split-plot REML fit: p at each node equals the t probability with the contract's
+    variance of a new run in a new whole plot and the Kenward–Roger df of that node (from
+    ``predict``'s PI and ``kr_mean``)."""
+    from pathlib import Path
+
+    from scipy import stats
+
+    d = pd.read_csv(Path(__file__).parents[1] / "model" / "r" / "mixed_sp_bal.csv")
+    fit = rsm_lrg.fit(d, "wear_um", factors=["temp_c", "preload_kn", "speed_m_s", "lube_ml"], whole_plot="whole_plot")
+    ds = design_space({"wear_um": fit}, {"wear_um": (48.0, 56.0)}, probability=0.5, grid=3)
+    for node in [(0, 0, 0, 0), (1, 2, 0, 1), (2, 1, 2, 2)]:
+        pt = pd.DataFrame({n: [float(ds.levels[j][node[j]])] for j, n in enumerate(ds.factors)})
+        out = fit.predict(pt, interval="prediction").iloc[0]
+        _, df = fit.kr_mean(pt)
+        t = stats.t(df[0])
+        s = (out["pi_high"] - out["predicted"]) / t.ppf(0.975)
+        want = t.cdf((56.0 - out["predicted"]) / s) - t.cdf((48.0 - out["predicted"]) / s)
+        assert ds.grid_probability[node] == pytest.approx(want, rel=1e-9, abs=1e-12)
