@@ -25,7 +25,7 @@ for the average block (block effect 0).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 from .actual import actual_coefficients, actual_equations
 from .anova import pure_error
@@ -35,15 +35,33 @@ from .result import COEF_COLUMNS, FitResult, assemble
 from .spec import ModelSpec, SpecError
 from .terms import check_model_size, model_terms
 
+if TYPE_CHECKING:
+    from .gp_result import GPResult
+
 __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual_equations", "COEF_COLUMNS",
            "model_inputs", "ModelInputs", "ModelSpec"]
 
 
+@overload
+def fit(data: Any, response: str, factors: Any = ..., block: str | None = ..., *, model: Literal["gp"],
+        terms: Any = ..., intercept: bool = ..., transform: Any = ..., transform_constant: float = ...,
+        reduce: Any = ..., chunk_rows: int = ..., components: Any = ..., whole_plot: str | None = ...,
+        random_block: str | None = ..., hard_to_change: Any = ..., kernel: str = ..., trend: str = ...,
+        nugget: Any = ..., length_scales: Any = ..., variance: Any = ..., seed: Any = ...) -> GPResult: ...
+@overload
+def fit(data: Any, response: str, factors: Any = ..., block: str | None = ..., model: Any = ..., *,
+        terms: Any = ..., intercept: bool = ..., transform: Any = ..., transform_constant: float = ...,
+        reduce: Any = ..., chunk_rows: int = ..., components: Any = ..., whole_plot: str | None = ...,
+        random_block: str | None = ..., hard_to_change: Any = ..., kernel: str = ..., trend: str = ...,
+        nugget: Any = ..., length_scales: Any = ..., variance: Any = ..., seed: Any = ...) -> FitResult: ...
 def fit(data: Any, response: str, factors: Any = None, block: str | None = None, model: Any = "quadratic", *,
         terms: Any = None, intercept: bool = True, transform: Any = None, transform_constant: float = 0.0,
         reduce: Any = None, chunk_rows: int = CHUNK_ROWS, components: Any = None, whole_plot: str | None = None,
-        random_block: str | None = None, hard_to_change: Any = None) -> FitResult:
-    """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
+        random_block: str | None = None, hard_to_change: Any = None, kernel: str = "matern52",
+        trend: str = "constant", nugget: Any = None, length_scales: Any = None, variance: Any = None,
+        seed: Any = 0) -> FitResult | GPResult:
+    """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5), or a
+    Gaussian process (``model="gp"``, :func:`rsm_lrg.model.gp.fit_gp`).
 
     Parameters
     ----------
@@ -109,10 +127,16 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
         plot; one that varies inside a whole plot raises ValueError naming the factor, the
         whole plot and its rows. Without it the notes list the factors found constant
         within every whole plot.
+    kernel, trend, nugget, length_scales, variance, seed
+        With ``model="gp"`` only: the Gaussian process's kernel (``"matern52"``,
+        ``"matern32"``, ``"gauss"``), trend (``"constant"``, ``"linear"``,
+        ``"quadratic"``), nugget (``None``, ``"estimate"`` or a value), fixed
+        hyper-parameters and the seed of the likelihood's starting points
+        (:func:`rsm_lrg.model.gp.fit_gp`).
 
     Returns
     -------
-    FitResult
+    FitResult, or GPResult for ``model="gp"``
 
     Raises
     ------
@@ -126,6 +150,13 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
     """
     import pandas as pd
 
+    if isinstance(model, str) and model.strip().lower() == "gp":  # the Gaussian-process engine
+        from .gp import fit_gp, refuse_options
+
+        refuse_options(block=block, terms=terms, intercept=intercept, transform=transform, reduce=reduce,
+                       components=components, whole_plot=whole_plot, random_block=random_block, dask=is_dask(data))
+        return fit_gp(data, response, factors, kernel=kernel, trend=trend, nugget=nugget,
+                      length_scales=length_scales, variance=variance, seed=seed)
     spec = ModelSpec.build(model, terms=terms, intercept=intercept, transform=transform,
                            transform_constant=transform_constant, reduce=reduce)
     if is_dask(data):  # fitted partition by partition, never collected
