@@ -52,7 +52,8 @@ from .gp_kernels import KERNELS, correlation, log_derivative_theta
 from .gp_result import GPResult
 from .gp_trend import TRENDS, trend_matrix, trend_size
 
-__all__ = ["fit_gp", "refuse_options", "estimate", "Estimate", "GP_STARTS", "THETA_BOUNDS", "NUGGET_RATIO_BOUNDS"]
+__all__ = ["fit_gp", "refuse_options", "estimate", "ProfileLikelihood", "Estimate", "GP_STARTS", "THETA_BOUNDS",
+           "NUGGET_RATIO_BOUNDS"]
 
 #: Number of starting points of the likelihood's maximisation (the first at half the range).
 GP_STARTS = 10
@@ -90,8 +91,9 @@ class Estimate:
     starts: int = 0
 
 
-class _Likelihood:
-    """Minus the profile log-likelihood and its gradient in the free parameters ``p``.
+class ProfileLikelihood:
+    """Minus the profile log-likelihood and its gradient in the free parameters ``p``
+    (calling it gives both; :meth:`unpack` maps ``p`` to the kernel's parameters).
 
     ``concentrated``: ``Sigma = sigma2 (R + g I)`` with ``sigma2`` profiled out; p = (log theta
     [free], log g [if estimated]). Otherwise ``Sigma = s R + t I``; p = (log theta [free],
@@ -203,7 +205,8 @@ def estimate(x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, *, length
 
     concentrated = variance is None and (nugget == "estimate" or nugget == 0.0)
     noise: float | str = nugget if not concentrated or nugget == "estimate" else 0.0
-    lik = _Likelihood(x, y, F, kernel, theta=length_scales, concentrated=concentrated, scale=variance, noise=noise)
+    lik = ProfileLikelihood(x, y, F, kernel, theta=length_scales, concentrated=concentrated, scale=variance,
+                            noise=noise)
     span = np.ptp(x, axis=0)
     span = np.where(span > 0, span, 2.0)
     lo: list[float] = []

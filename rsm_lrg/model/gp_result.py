@@ -191,8 +191,11 @@ class GPResult:
             if arr.ndim != 2 or arr.shape[1] != len(self.space):
                 raise ValueError(f"prediction points need {len(self.space)} columns (one per factor), "
                                  f"got {arr.shape[-1]}")
-        if not coded:
-            arr = np.asarray(self.space.encode(arr), dtype=float)
+        if not coded:  # unrounded, as the runs were coded (rsm_lrg.model.inputs.unrounded_coding)
+            lo = np.array([f.low for f in self.space.numeric])
+            hi = np.array([f.high for f in self.space.numeric])
+            with np.errstate(over="ignore", invalid="ignore"):
+                arr = ((arr - lo) - (hi - arr)) / (hi - lo)
         if not np.isfinite(arr).all():
             raise ValueError("prediction points must be finite numbers")
         return arr
