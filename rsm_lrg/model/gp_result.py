@@ -220,6 +220,12 @@ class GPResult:
             var[s:s + PREDICT_CHUNK] = self.variance - np.sum(v * v, axis=0) + np.sum(w * w, axis=0)
         return mean, np.maximum(var, 0.0)
 
+    def mean_sd(self, coded_points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Predicted mean and kriging standard deviation at an (m, k) array of coded settings,
+        as arrays (no checks, no DataFrame: the inner loop of an acquisition search)."""
+        mean, var = self._mean_var(np.atleast_2d(np.asarray(coded_points, dtype=float)))
+        return mean, np.sqrt(var)
+
     def predict(self, points: Any, interval: str | None = None, alpha: float = 0.05, *, coded: bool = False) -> Any:
         """Predicted response with the kriging standard deviation and, optionally, intervals.
 
@@ -302,6 +308,24 @@ class GPResult:
         cov = self.covariance(x, coded=True)
         L, _ = cholesky_jitter(0.5 * (cov + cov.T), self.variance)
         return mean[None, :] + rng.standard_normal((int(n), x.shape[0])) @ L.T
+
+    def with_runs(self, points: Any, values: Any, *, coded: bool = False) -> GPResult:
+        """The same GP (hyper-parameters held) conditioned on extra runs as well: ``values``
+        [response units] at ``points`` (as for :meth:`predict`). With the predicted means as
+        values this is the Kriging Believer of a batch (Ginsbourger, Le Riche & Carraro 2010)."""
+        from dataclasses import replace
+
+        from .gp_core import kriging_core
+
+        xn = self.coded_points(points, coded)
+        yn = np.atleast_1d(np.asarray(values, dtype=float))
+        if yn.shape != (xn.shape[0],) or not np.isfinite(yn).all():
+            raise ValueError(f"with_runs needs one finite value per point ({xn.shape[0]}), got {yn.shape}")
+        x = np.vstack([self.x, xn])
+        y = np.r_[self.y, yn]
+        F, _ = trend_matrix(x, self.trend, self.space.letters)
+        core = kriging_core(x, y, F, self.kernel, self.length_scales, self.variance, self.nugget)
+        return replace(self, x=x, y=y, core=core, estimated={k: False for k in self.estimated}, starts=0)
 
     # -- leave-one-out ---------------------------------------------------------------------
     @cached_property

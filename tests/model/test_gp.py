@@ -201,3 +201,16 @@ def test_too_few_runs_for_the_trend(branin):
     with pytest.raises(ParameterError, match="needs at least") as e:
         rsm_lrg.fit(branin.head(6), "y", factors=BRANIN, model="gp", trend="quadratic")
     assert e.value.parameter == "trend"
+
+
+def test_with_runs_believing_the_mean_keeps_the_mean(branin_fit):
+    # Kriging Believer (Ginsbourger et al. 2010): a run at its predicted mean leaves the mean
+    # surface as it was (hyper-parameters held) and takes the variance there to zero
+    at = pd.DataFrame({"x1": [1.0], "x2": [6.0]})
+    m = branin_fit.predict(at)["predicted"].to_numpy()
+    b = branin_fit.with_runs(at, m)
+    assert b.n == branin_fit.n + 1 and not any(b.estimated.values())
+    pts = pd.DataFrame({"x1": [-3.0, 4.0, 9.0], "x2": [2.0, 8.0, 14.0]})
+    np.testing.assert_allclose(b.predict(pts)["predicted"], branin_fit.predict(pts)["predicted"], rtol=1e-8)
+    assert b.predict(at)["se_fit"].iloc[0] < 1e-5 * np.sqrt(b.variance)
+    assert (b.predict(pts)["se_fit"] <= branin_fit.predict(pts)["se_fit"] + 1e-9).all()
