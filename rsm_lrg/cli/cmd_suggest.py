@@ -12,7 +12,7 @@ from ._common import (
     add_force,
     add_json,
 )
-from .gp_fit import add_gp_options
+from .gp_fit import add_gp_options, gp_keywords
 
 NAME = "suggest"
 HELP = "fit a Gaussian process and choose the next runs (expected improvement); write them as a design CSV"
@@ -63,8 +63,7 @@ def run(args: argparse.Namespace) -> int:
 
     data = read_input(args)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, model="gp", kernel=args.kernel or "matern52",
-                     trend=args.trend or "constant", nugget=args.nugget, seed=0 if args.seed is None else args.seed)
+        result = fit(data, args.response, factors=args.factor, model="gp", **gp_keywords(args))
         s = suggest(result, args.goal, args.runs, criterion=args.criterion, bounds=args.bound,
                     constraints=args.constraint, seed=0 if args.seed is None else args.seed)
     write_output(args.output, s.design.csv_text(), force=args.force)

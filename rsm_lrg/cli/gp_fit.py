@@ -8,7 +8,7 @@ import math
 
 from ..io import InputError, quote_user_value
 
-__all__ = ["GP_MODELS", "add_gp_options", "check_gp_options", "run_gp"]
+__all__ = ["GP_MODELS", "add_gp_options", "check_gp_options", "gp_keywords", "run_gp"]
 
 #: The ``--model`` value of a Gaussian process.
 GP_MODELS = ("gp",)
@@ -63,13 +63,22 @@ def _refuse(args: argparse.Namespace) -> None:
             raise InputError(f"{opt}: not available with --model gp (a Gaussian process)")
 
 
-def check_gp_options(args: argparse.Namespace) -> None:
-    """The GP options given without ``--model gp`` are an error naming the option."""
-    if getattr(args, "model", None) in GP_MODELS:
+def check_gp_options(args: argparse.Namespace, *, on: bool | None = None, flag: str = "--model gp") -> None:
+    """The GP options given without ``--model gp`` (``on`` false; default: ``args.model`` is
+    not ``gp``) are an error naming the option and ``flag``."""
+    if on is None:
+        on = getattr(args, "model", None) in GP_MODELS
+    if on:
         return
     for opt, attr in (("--kernel", "kernel"), ("--trend", "trend"), ("--nugget", "nugget"), ("--seed", "seed")):
         if getattr(args, attr, None) is not None:
-            raise InputError(f"{opt}: only with --model gp (a Gaussian process)")
+            raise InputError(f"{opt}: only with {flag} (a Gaussian process)")
+
+
+def gp_keywords(args: argparse.Namespace) -> dict:
+    """The ``kernel=``, ``trend=``, ``nugget=``, ``seed=`` keywords of ``rsm_lrg.fit`` from the options."""
+    return {"kernel": args.kernel or "matern52", "trend": args.trend or "constant", "nugget": args.nugget,
+            "seed": 0 if args.seed is None else args.seed}
 
 
 def run_gp(args: argparse.Namespace) -> int:
@@ -85,9 +94,7 @@ def run_gp(args: argparse.Namespace) -> int:
         raise InputError(f"{args.data}: a Gaussian process is fitted from one file, not several")
     data = read_input(args)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, model="gp", kernel=args.kernel or "matern52",
-                     trend=args.trend or "constant", nugget=args.nugget,
-                     seed=0 if args.seed is None else args.seed)
+        result = fit(data, args.response, factors=args.factor, model="gp", **gp_keywords(args))
         out = result.to_dict()
     if args.json and args.json != "-":
         dump_json(out, args.json, force=args.force)
