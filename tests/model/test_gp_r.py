@@ -1,7 +1,8 @@
 """The Gaussian process against R DiceKriging 1.6.0 (``tests/model/r/gp.R``, stored outputs
 ``gp_estimates_expected.csv`` and ``gp_predict_expected.csv``; the designs from
 ``make_gp.py``: Branin on 20 runs, the borehole function on 60, a noisy Hartmann-3 on 40,
-each with 100 new points, none tuned on).
+200 noise-free ``simulate`` runs of the paper's Table 3 box (response ``tcr_c_per_min``), each
+with 100 new points, none tuned on).
 
 * With the hyper-parameters fixed to ``km``'s estimates, the predictions and kriging
   standard deviations at the 100 new points equal ``predict.km(type="UK")`` to 1e-8
@@ -25,6 +26,7 @@ CASES = {  # case: (data set, kernel, trend, nugget estimated)
     "branin_gauss_quadratic": ("branin", "gauss", "quadratic", False),
     "borehole_matern32_linear": ("borehole", "matern32", "linear", False),
     "hartmann3_matern52_constant_nugget": ("hartmann3", "matern52", "constant", True),
+    "surrogate_matern52_linear": ("surrogate", "matern52", "linear", False),
 }
 #: Relative tolerance of the kriging sd. 1e-8, except on the Gaussian kernel with a quadratic
 #: trend, whose covariance matrix has condition number 2.8e7: at its worst point (sd 1e-4 of

@@ -2,7 +2,8 @@
 # and predict.km(type = "UK") predictions.
 #   Rscript tests/model/r/gp.R   (from the repository root or this folder)
 # R 4.2.2, DiceKriging 1.6.0 (CRAN source, R CMD INSTALL). Data: make_gp.py (Branin 20 runs,
-# borehole 60 runs, noisy Hartmann-3 40 runs, each with 100 new points).
+# borehole 60 runs, noisy Hartmann-3 40 runs, 200 noise-free virtual runs of the surrogate on the
+# Table 3 box, each with 100 new points).
 # The factors are coded as rsm-lrg codes them, x = ((v - low) - (high - v)) / (high - low)
 # with the box of gp_boxes.csv, so length-scales are in coded units. Trends: ~1 (constant),
 # ~. (linear), ~.^2 + squares (quadratic). Estimation: km's BFGS (L-BFGS-B with the analytic
@@ -19,7 +20,8 @@ cases <- list(
   list(name = "branin_gauss_quadratic", data = "branin", cov = "gauss", trend = "quadratic", nugget = FALSE),
   list(name = "borehole_matern32_linear", data = "borehole", cov = "matern3_2", trend = "linear", nugget = FALSE),
   list(name = "hartmann3_matern52_constant_nugget", data = "hartmann3", cov = "matern5_2", trend = "constant",
-       nugget = TRUE)
+       nugget = TRUE),
+  list(name = "surrogate_matern52_linear", data = "surrogate", cov = "matern5_2", trend = "linear", nugget = FALSE)
 )
 coded <- function(d, box) {
   X <- data.frame(row.names = seq_len(nrow(d)))
