@@ -353,8 +353,8 @@ def fit_gp(data: Any, response: str, factors: Any = None, *, kernel: str = "mate
         theta = np.array([_positive("length_scales", v) for v in vals])
     p = trend_size(k, trend)
     if n < p + 1:
-        raise ParameterError("trend", f"a {trend} trend in {k} factors has {p} coefficients and needs at least "
-                                      f"{p + 1} runs; the data hold {n}")
+        raise ParameterError("trend", f"a {trend} trend in {k} factor{'s' if k != 1 else ''} has {p} coefficients "
+                                      f"and needs at least {p + 1} runs; the data hold {n}")
     notes = list(inp.prep.notes)
     _, first, counts = np.unique(inp.settings, axis=0, return_index=True, return_counts=True)
     replicated = int(np.sum(counts > 1))

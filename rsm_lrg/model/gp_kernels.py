@@ -36,15 +36,6 @@ def _differences(x1: np.ndarray, x2: np.ndarray, j: int) -> np.ndarray:
     return x1[:, j][:, None] - x2[:, j][None, :]
 
 
-def _log_k(h: np.ndarray, theta: float, kernel: str) -> np.ndarray:
-    if kernel == "gauss":
-        return -0.5 * (h / theta) ** 2
-    a = _SCALE[kernel] * np.abs(h) / theta
-    if kernel == "matern52":
-        return np.log1p(a + a * a / 3.0) - a
-    return np.log1p(a) - a
-
-
 def correlation(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
     """The correlation matrix ``R[i, l] = prod_j k(x1[i, j] - x2[l, j]; theta_j)``.
 
@@ -60,10 +51,30 @@ def correlation(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) 
     -------
     (n1, n2) ndarray
     """
-    s = np.zeros((x1.shape[0], x2.shape[0]))
+    shape = (x1.shape[0], x2.shape[0])
+    total = np.zeros(shape)
+    if kernel == "gauss":  # exp(-sum_j h_j^2 / (2 theta_j^2))
+        for j in range(x1.shape[1]):
+            h = _differences(x1, x2, j)
+            h /= float(theta[j])
+            h *= h
+            total += h
+        total *= -0.5
+        return np.exp(total, out=total)
+    poly = np.ones(shape)  # prod_j p(a_j) exp(-sum_j a_j): no logarithm per element
     for j in range(x1.shape[1]):
-        s += _log_k(_differences(x1, x2, j), float(theta[j]), kernel)
-    return np.exp(s)
+        a = _differences(x1, x2, j)
+        np.abs(a, out=a)
+        a *= _SCALE[kernel] / float(theta[j])
+        total += a
+        if kernel == "matern52":
+            poly *= 1.0 + a * (1.0 + a / 3.0)
+        else:
+            poly *= 1.0 + a
+    total *= -1.0
+    np.exp(total, out=total)
+    total *= poly
+    return total
 
 
 def log_derivative_theta(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str, j: int) -> np.ndarray:
