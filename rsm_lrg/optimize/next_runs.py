@@ -19,7 +19,7 @@ chosen one at a time by the Kriging Believer (Ginsbourger, Le Riche & Carraro 20
 chosen setting joins the model with its predicted mean as response (hyper-parameters held),
 which shrinks the variance around it, and the next is chosen on that model. Each choice is a
 multistart search: the best points of a scrambled Sobol sample of the region start L-BFGS-B
-(SLSQP inside constraints; :mod:`rsm_lrg.optimize.region`).
+(SLSQP inside constraints, :mod:`rsm_lrg.optimize.region` giving the feasible starts).
 
 >>> import numpy as np, pandas as pd, rsm_lrg
 >>> rng = np.random.default_rng(0)
@@ -204,10 +204,11 @@ def suggest(fitted: Any, goal: Any = "minimize", runs: int = 1, *, criterion: st
     Suggestion
     """
     import pandas as pd
+    from scipy.optimize import minimize
     from scipy.stats import qmc
 
     from ..design.core import Design
-    from .region import feasible_mask, local_minima, parse_constraints, region_starts
+    from .region import feasible_mask, parse_constraints, region_starts
     from .single import parse_bounds
 
     if not isinstance(fitted, Emulator):
@@ -247,16 +248,16 @@ def suggest(fitted: Any, goal: Any = "minimize", runs: int = 1, *, criterion: st
         def objective(x: np.ndarray, score: Any = score) -> float:
             return -float(score(np.asarray(x)[None, :])[0])
 
-        if cons is None:  # L-BFGS-B on the box, to a tolerance far below any practical difference
-            from scipy.optimize import minimize
-
-            cands = list(starts)
-            for x0 in starts:
+        cands = list(starts)  # L-BFGS-B on the box, SLSQP inside constraints (their margins >= 0)
+        for x0 in starts:
+            if cons is None:
                 r = minimize(objective, x0, method="L-BFGS-B", bounds=list(zip(lo, hi)),
                              options={"ftol": 1e-10, "gtol": 1e-8, "maxiter": 200})
-                cands.append(np.clip(r.x, lo, hi))
-        else:
-            cands = local_minima(objective, starts, lo, hi, cons)
+            else:
+                ineq = {"type": "ineq", "fun": lambda x: cons.margin_coded(np.asarray(x)[None, :])[0]}
+                r = minimize(objective, x0, method="SLSQP", bounds=list(zip(lo, hi)), constraints=[ineq],
+                             options={"ftol": 1e-10, "maxiter": 200})
+            cands.append(np.clip(r.x, lo, hi))
         cands = [c for c in cands if cons is None or bool(feasible_mask(c[None, :], cons)[0])]
         if not cands:
             raise ValueError("no feasible setting found inside the bounds and the constraints")

@@ -63,7 +63,8 @@ def test_fixed_hyperparameters_equal_predict_km(case):
     assert r.log_likelihood == pytest.approx(float(e["loglik"]), abs=1e-9)
 
 
-@pytest.mark.parametrize("case", list(CASES))
+@pytest.mark.parametrize("case", [pytest.param(c, marks=pytest.mark.slow) if c.startswith("surrogate") else c
+                                  for c in CASES])
 def test_estimated_likelihood_at_least_km(case):
     runs, _, factors, kernel, trend, nugget, e, _ = _case(case)
     r = rsm_lrg.fit(runs, "y", factors=factors, model="gp", kernel=kernel, trend=trend,

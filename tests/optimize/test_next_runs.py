@@ -80,6 +80,7 @@ def test_variance_batch_spreads_out(branin_fit):
     assert d > 0.3  # believed runs remove the variance around them
 
 
+@pytest.mark.slow
 def test_bounds_and_constraints_are_kept(branin_fit):
     s = suggest(branin_fit, "target=50", runs=2, bounds=["x1=-5:2"], constraints=["x1 + x2 <= 10"], seed=3)
     t = s.table
