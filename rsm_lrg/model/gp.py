@@ -18,7 +18,8 @@ DiceKriging's concentrated log-likelihood (``logLik``). The free parameters are 
 log length-scales (and ``log g`` for an estimated nugget; ``log sigma2`` when a fixed nugget
 keeps the variance from being concentrated out), optimised by L-BFGS-B with the analytic
 gradient ``d log L / dp = (w' dA w / sigma2 - tr(A^-1 dA)) / 2``, ``w = A^-1 z``, from
-several seeded starting points; the best optimum is kept. Bounds: a length-scale between
+several seeded starting points (above :data:`MULTISTART_RUNS` runs searched on a random
+subsample, the best two then polished on every run); the best optimum is kept. Bounds: a length-scale between
 1e-3 and 10 times the factor's coded range in the data; ``g`` between 1e-10 and 10.
 
 The nugget: ``nugget="estimate"`` for noisy data; a number fixes it [response units²];
@@ -53,12 +54,15 @@ from .gp_result import GPResult
 from .gp_trend import TRENDS, trend_matrix, trend_size
 
 __all__ = ["fit_gp", "refuse_options", "estimate", "ProfileLikelihood", "Estimate", "GP_STARTS", "THETA_BOUNDS",
-           "NUGGET_RATIO_BOUNDS"]
+           "NUGGET_RATIO_BOUNDS", "MULTISTART_RUNS"]
 
 #: Number of starting points of the likelihood's maximisation (the first at half the range).
 GP_STARTS = 10
 #: Length-scale bounds as multiples of the factor's coded range in the data.
 THETA_BOUNDS = (1e-3, 10.0)
+#: Above this many runs the starting points are searched on a random subsample of this size
+#: and the best two are then polished on every run (each likelihood evaluation costs O(n³)).
+MULTISTART_RUNS = 300
 #: Bounds of the nugget-to-variance ratio ``g`` when the nugget is estimated.
 NUGGET_RATIO_BOUNDS = (1e-10, 10.0)
 
@@ -241,15 +245,19 @@ def estimate(x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, *, length
         rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
         pts = _starts(rng, np.array(box_lo), np.array(box_hi), np.array(first), max(1, int(starts)))
         bounds = list(zip(lo, hi))
-        best = None
-        for p0 in pts:
-            res = minimize(lik, p0, jac=True, method="L-BFGS-B", bounds=bounds,
-                           options={"maxiter": 500, "ftol": 1e-14, "gtol": 1e-10})
-            if best is None or res.fun < best.fun:
-                best = res
+        opts = {"maxiter": 500, "ftol": 1e-14, "gtol": 1e-10}
+        search = lik
+        if y.size > MULTISTART_RUNS:  # the starts on a random subsample; the best two polished on every run
+            idx = np.sort(rng.choice(y.size, MULTISTART_RUNS, replace=False))
+            search = ProfileLikelihood(x[idx], y[idx], F[idx], kernel, theta=length_scales, concentrated=concentrated,
+                                       scale=variance, noise=noise)
+        found = sorted((minimize(search, p0, jac=True, method="L-BFGS-B", bounds=bounds, options=opts) for p0 in pts),
+                       key=lambda r: r.fun)
+        if search is not lik:
+            found = sorted((minimize(lik, r.x, jac=True, method="L-BFGS-B", bounds=bounds, options=opts)
+                            for r in found[:2]), key=lambda r: r.fun)
         used = len(pts)
-        assert best is not None  # at least one start
-        p = np.asarray(best.x, dtype=float)
+        p = np.asarray(found[0].x, dtype=float)
     else:
         p = np.zeros(0)
     theta, a, b = lik.unpack(p)
@@ -371,6 +379,9 @@ def fit_gp(data: Any, response: str, factors: Any = None, *, kernel: str = "mate
         est = estimate(x, y, F, kernel, length_scales=theta, variance=var, nugget=nugget, seed=seed, starts=starts)
     except ValueError as exc:
         raise ParameterError("trend", str(exc)) from None
+    if est.starts and n > MULTISTART_RUNS:
+        notes.append(f"the likelihood's {est.starts} starting points were searched on a random subsample of "
+                     f"{MULTISTART_RUNS} runs and the best two polished on all {n}")
     if est.core.jitter:
         notes.append(f"the covariance matrix was singular to working precision: a jitter of {est.core.jitter:.0e} "
                      "times the process variance was added to its diagonal")

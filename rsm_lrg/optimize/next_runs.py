@@ -277,6 +277,11 @@ def suggest(fitted: Any, goal: Any = "minimize", runs: int = 1, *, criterion: st
     table = pd.DataFrame({**{c: actual[c].to_numpy() for c in actual.columns},
                           "predicted": p["predicted"].to_numpy(), "se_fit": p["se_fit"].to_numpy(),
                           "criterion": values})
+    for i in range(1, len(X)):
+        same = np.flatnonzero(np.max(np.abs(X[:i] - X[i]), axis=1) < 1e-9)
+        if same.size:
+            notes.append(f"setting {i + 1} repeats setting {int(same[0]) + 1}: a replicate (with noisy runs the "
+                         "believed run leaves variance, and so improvement, at that setting)")
     if fitted.nugget > 0 and criterion in ("ei", "pi"):
         notes.append("noisy runs (nugget > 0): the improvement is measured from the best predicted mean at the runs "
                      "(plug-in EI, Picheny et al. 2013)")

@@ -214,3 +214,25 @@ def test_with_runs_believing_the_mean_keeps_the_mean(branin_fit):
     np.testing.assert_allclose(b.predict(pts)["predicted"], branin_fit.predict(pts)["predicted"], rtol=1e-8)
     assert b.predict(at)["se_fit"].iloc[0] < 1e-5 * np.sqrt(b.variance)
     assert (b.predict(pts)["se_fit"] <= branin_fit.predict(pts)["se_fit"] + 1e-9).all()
+
+
+@pytest.mark.slow
+def test_many_runs_search_starts_on_a_subsample():
+    # above MULTISTART_RUNS runs the starts run on a subsample and the best two are polished on
+    # all runs: the result is a stationary point of the full likelihood, and the notes say so
+    from rsm_lrg.model.gp import MULTISTART_RUNS
+
+    rng = np.random.default_rng(3)
+    n = MULTISTART_RUNS + 20
+    d = pd.DataFrame({"a": rng.uniform(0, 1, n), "b": rng.uniform(0, 1, n)})
+    d["y"] = np.sin(6 * d.a) * np.cos(3 * d.b)
+    d["y"] += rng.normal(0, 0.05, n)
+    r = rsm_lrg.fit(d, "y", factors=["a=0:1", "b=0:1"], model="gp", kernel="matern52", nugget="estimate", seed=1)
+    assert any("subsample" in note for note in r.notes)
+    x = (d[["a", "b"]].to_numpy() - 0.5) * 2
+    lik = ProfileLikelihood(x, d["y"].to_numpy(), np.ones((n, 1)), "matern52", theta=None, concentrated=True,
+                            scale=None, noise="estimate")
+    p = np.r_[np.log(r.length_scales), np.log(r.nugget / r.variance)]
+    f, g = lik(p)
+    assert r.core.jitter == 0.0 and -f == pytest.approx(r.log_likelihood, abs=1e-8)
+    assert np.max(np.abs(g)) < 1e-3  # every parameter inside its bounds here
