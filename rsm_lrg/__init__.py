@@ -66,6 +66,7 @@ _register("rsm_lrg.model.evaluate", "evaluate_design", "compare_designs")
 _register("rsm_lrg.model.effects", "screening_effects", "EffectsResult")
 _register("rsm_lrg.optimize.confirm", "confirm")
 _register("rsm_lrg.optimize.desirability", "optimize_desirability", "ResponseGoal")
+_register("rsm_lrg.optimize.next_runs", "suggest", "Suggestion")
 _register("rsm_lrg.physics.chain", "physics_chain", "PhysicsResult")
 _register("rsm_lrg.physics.params", "LRGParams")
 

@@ -421,13 +421,13 @@ def print_summary_or_json(args: argparse.Namespace, result, *, extra: dict | Non
         print(text, end="" if text.endswith("\n") else "\n")
 
 
-def add_model_inputs(parser: argparse.ArgumentParser) -> None:
-    """DATA.csv, --response, --factor, --block and --model: the inputs of a fitted model."""
+def add_model_inputs(parser: argparse.ArgumentParser, orders=FIT_MODELS) -> None:
+    """DATA.csv, --response, --factor, --block and --model (one of ``orders``): the inputs of a fitted model."""
     add_data_response(parser)
     add_factor_options(parser)
     add_component_option(parser)
     add_block_option(parser)
-    add_model_option(parser, FIT_MODELS, default=None)
+    add_model_option(parser, orders, default=None)
 
 
 @contextmanager

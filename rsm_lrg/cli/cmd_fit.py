@@ -6,6 +6,7 @@ import argparse
 from contextlib import contextmanager
 
 from ._common import (
+    FIT_MODELS,
     about_file,
     add_boxcox_rule_option,
     add_force,
@@ -16,24 +17,27 @@ from ._common import (
     model_spec,
     print_notes,
 )
+from .gp_fit import GP_MODELS, add_gp_options, check_gp_options, run_gp
 
 NAME = "fit"
-HELP = "fit a response-surface model; print the ANOVA, statistics and equation"
+HELP = "fit a response-surface model (or a Gaussian process); print the ANOVA, statistics and equation"
 DESCRIPTION = (
     "Fit a linear, 2FI or quadratic model by least squares in coded units and print the "
     "Design-Expert style ANOVA (partial sums of squares, lack of fit, pure error), the fit "
     "statistics, the coefficients, the equation in coded and actual terms and the canonical "
-    "analysis. With --json - the JSON goes to standard output instead of the text."
+    "analysis. With --model gp a Gaussian process (kriging) is fitted instead: --kernel, --trend, "
+    "--nugget, --seed. With --json - the JSON goes to standard output instead of the text."
 )
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_model_inputs(parser)
+    add_model_inputs(parser, FIT_MODELS + GP_MODELS)
     add_random_effect_options(parser)
     add_model_refinements(parser)
     parser.add_argument("--diagnostics", action="store_true",
                         help="also print per-run diagnostics and the Box-Cox recommendation (JSON key 'diagnostics')")
     add_boxcox_rule_option(parser)
+    add_gp_options(parser)
     add_json(parser)
     parser.add_argument("--report", metavar="PATH", default=None, help="also write a self-contained HTML report")
     add_force(parser)
@@ -121,6 +125,9 @@ def _about_files(many, args: argparse.Namespace):
 
 def run(args: argparse.Namespace) -> int:
     _one_blas_thread(str(args.data))
+    check_gp_options(args)
+    if args.model in GP_MODELS:
+        return run_gp(args)
     from ..io import dump_json
     from ..model import fit
     from ._common import random_effect, read_input

@@ -46,22 +46,46 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
     parser.add_argument("--transform-constant", type=number(), default=0.0, metavar="K",
                         help="add K to the response before transforming (default 0)")
+    parser.add_argument("--gp", action="store_true",
+                        help="also fit a Gaussian process and compare its closed-form leave-one-out with the "
+                             "polynomials' PRESS (JSON key 'loo_comparison'); --kernel, --trend, --nugget, --seed")
+    from .gp_fit import add_gp_options
+
+    add_gp_options(parser)
     add_json(parser)
     add_force(parser)
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..io import InputError
     from ..model.data import prepare
     from ..model.summary import fit_summary
     from ._common import model_spec, read_input
+    from .gp_fit import check_gp_options, gp_keywords
 
     spec = model_spec(args, order="mixture-linear" if args.component else None)  # a bad --transform: named first
+    check_gp_options(args, on=args.gp, flag="--gp")
+    if args.gp:
+        for opt, attr in (("--component", "component"), ("--block", "block"), ("--transform", "transform")):
+            if getattr(args, attr, None):
+                raise InputError(f"--gp: not with {opt} (a Gaussian process takes numeric factors, no blocks or "
+                                 "transform)")
     data = read_input(args)
+    extra: dict = {}
     with about_file(args.data):
         s = fit_summary(data, args.response, factors=args.factor, block=args.block, alpha=args.alpha,
                         transform=spec.transform, components=args.component)
         names = args.factor if not args.component else list(args.component) + list(args.factor or [])
         notes = prepare(data, args.response, names, args.block).notes
+        if args.gp:
+            from ..model import fit
+            from ..model.loo_compare import compare_loo
+
+            cmp = compare_loo(s, fit(data, args.response, factors=args.factor, model="gp", **gp_keywords(args)))
+            extra["loo_comparison"] = cmp.to_dict()
     print_notes(notes)  # after the work: a failed command prints one error line only
-    print_summary_or_json(args, s)
+    print_summary_or_json(args, s, extra=extra)
+    if args.gp and args.json != "-":
+        print()
+        print(cmp.summary(), end="")
     return 0

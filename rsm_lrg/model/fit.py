@@ -25,7 +25,7 @@ for the average block (block effect 0).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 from .actual import actual_coefficients, actual_equations
 from .anova import pure_error
@@ -41,6 +41,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from ..factors import FactorSpace
+    from .gp_result import GPResult
     from .reduce import Reduction
     from .transform import Transform
 
@@ -48,12 +49,32 @@ __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual
            "model_inputs", "ModelInputs", "ModelSpec"]
 
 
+@overload
+def fit(  # type: ignore[overload-overlap]  # "gp" is also a str: the first match wins
+        data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = ..., block: str | None = ..., *,
+        model: Literal["gp"], terms: TermsArg = ..., intercept: bool = ..., transform: str | Transform | None = ...,
+        transform_constant: float = ..., reduce: ReduceArg = ..., chunk_rows: int = ...,
+        components: Sequence[str] | None = ..., whole_plot: str | None = ..., random_block: str | None = ...,
+        hard_to_change: str | Sequence[str] | None = ..., kernel: str = ..., trend: str = ...,
+        nugget: float | str | None = ..., length_scales: Sequence[float] | None = ..., variance: float | None = ...,
+        seed: int | None = ...) -> GPResult: ...
+@overload
+def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = ..., block: str | None = ...,
+        model: str | ModelSpec = ..., *, terms: TermsArg = ..., intercept: bool = ...,
+        transform: str | Transform | None = ..., transform_constant: float = ..., reduce: ReduceArg = ...,
+        chunk_rows: int = ..., components: Sequence[str] | None = ..., whole_plot: str | None = ...,
+        random_block: str | None = ..., hard_to_change: str | Sequence[str] | None = ..., kernel: str = ...,
+        trend: str = ..., nugget: float | str | None = ..., length_scales: Sequence[float] | None = ...,
+        variance: float | None = ..., seed: int | None = ...) -> FitResult: ...
 def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = None, block: str | None = None,
         model: str | ModelSpec = "quadratic", *, terms: TermsArg = None, intercept: bool = True,
         transform: str | Transform | None = None, transform_constant: float = 0.0, reduce: ReduceArg = None,
         chunk_rows: int = CHUNK_ROWS, components: Sequence[str] | None = None, whole_plot: str | None = None,
-        random_block: str | None = None, hard_to_change: str | Sequence[str] | None = None) -> FitResult:
-    """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
+        random_block: str | None = None, hard_to_change: str | Sequence[str] | None = None, kernel: str = "matern52",
+        trend: str = "constant", nugget: float | str | None = None, length_scales: Sequence[float] | None = None,
+        variance: float | None = None, seed: int | None = 0) -> FitResult | GPResult:
+    """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5), or a
+    Gaussian process (``model="gp"``, :func:`rsm_lrg.model.gp.fit_gp`).
 
     Parameters
     ----------
@@ -119,10 +140,16 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         plot; one that varies inside a whole plot raises ValueError naming the factor, the
         whole plot and its rows. Without it the notes list the factors found constant
         within every whole plot.
+    kernel, trend, nugget, length_scales, variance, seed
+        With ``model="gp"`` only: the Gaussian process's kernel (``"matern52"``,
+        ``"matern32"``, ``"gauss"``), trend (``"constant"``, ``"linear"``,
+        ``"quadratic"``), nugget (``None``, ``"estimate"`` or a value), fixed
+        hyper-parameters and the seed of the likelihood's starting points
+        (:func:`rsm_lrg.model.gp.fit_gp`).
 
     Returns
     -------
-    FitResult
+    FitResult, or GPResult for ``model="gp"``
 
     Raises
     ------
@@ -136,6 +163,13 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
     """
     import pandas as pd
 
+    if isinstance(model, str) and model.strip().lower() == "gp":  # the Gaussian-process engine
+        from .gp import fit_gp, refuse_options
+
+        refuse_options(block=block, terms=terms, intercept=intercept, transform=transform, reduce=reduce,
+                       components=components, whole_plot=whole_plot, random_block=random_block, dask=is_dask(data))
+        return fit_gp(data, response, factors, kernel=kernel, trend=trend, nugget=nugget,
+                      length_scales=length_scales, variance=variance, seed=seed)
     spec = ModelSpec.build(model, terms=terms, intercept=intercept, transform=transform,
                            transform_constant=transform_constant, reduce=reduce)
     if is_dask(data):  # fitted partition by partition, never collected; OLS only
