@@ -25,7 +25,7 @@ for the average block (block effect 0).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any, overload
 
 from .actual import actual_coefficients, actual_equations
 from .anova import pure_error
@@ -35,14 +35,31 @@ from .result import COEF_COLUMNS, FitResult, assemble
 from .spec import ModelSpec, SpecError
 from .terms import check_model_size, model_terms
 
+if TYPE_CHECKING:
+    from .glm_family import Family
+    from .glm_result import GLMResult
+
 __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual_equations", "COEF_COLUMNS",
            "model_inputs", "ModelInputs", "ModelSpec"]
 
 
+@overload
+def fit(data: Any, response: str, factors: Any = ..., block: str | None = ..., model: Any = ..., *,
+        terms: Any = ..., intercept: bool = ..., transform: Any = ..., transform_constant: float = ...,
+        reduce: Any = ..., chunk_rows: int = ..., components: Any = ..., whole_plot: str | None = ...,
+        random_block: str | None = ..., hard_to_change: Any = ..., family: None = ..., link: None = ...,
+        trials: None = ...) -> FitResult: ...
+@overload
+def fit(data: Any, response: str, factors: Any = ..., block: str | None = ..., model: Any = ..., *,
+        terms: Any = ..., intercept: bool = ..., transform: Any = ..., transform_constant: float = ...,
+        reduce: Any = ..., chunk_rows: int = ..., components: Any = ..., whole_plot: str | None = ...,
+        random_block: str | None = ..., hard_to_change: Any = ..., family: str | Family, link: str | None = ...,
+        trials: str | None = ...) -> GLMResult: ...
 def fit(data: Any, response: str, factors: Any = None, block: str | None = None, model: Any = "quadratic", *,
         terms: Any = None, intercept: bool = True, transform: Any = None, transform_constant: float = 0.0,
         reduce: Any = None, chunk_rows: int = CHUNK_ROWS, components: Any = None, whole_plot: str | None = None,
-        random_block: str | None = None, hard_to_change: Any = None) -> FitResult:
+        random_block: str | None = None, hard_to_change: Any = None, family: str | Family | None = None,
+        link: str | None = None, trials: str | None = None) -> FitResult | GLMResult:
     """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
 
     Parameters
@@ -109,10 +126,18 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
         plot; one that varies inside a whole plot raises ValueError naming the factor, the
         whole plot and its rows. Without it the notes list the factors found constant
         within every whole plot.
+    family : {"binomial", "poisson"}, optional
+        A generalised linear model of a 0/1 response, successes of ``trials``, or a count,
+        fitted by maximum likelihood (:func:`rsm_lrg.model.glm.fit_glm`; returns a
+        :class:`~rsm_lrg.model.glm_result.GLMResult`).
+    link : {"logit", "probit", "cloglog", "log"}, optional
+        With ``family``: the link (default logit for binomial, log for poisson).
+    trials : str, optional
+        With ``family="binomial"``: the column of trials; the response counts successes.
 
     Returns
     -------
-    FitResult
+    FitResult or GLMResult
 
     Raises
     ------
@@ -128,6 +153,11 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
 
     spec = ModelSpec.build(model, terms=terms, intercept=intercept, transform=transform,
                            transform_constant=transform_constant, reduce=reduce)
+    if family is not None or link is not None or trials is not None:  # a GLM (rsm_lrg.model.glm)
+        from .glm import fit_glm
+
+        return fit_glm(data, response, factors, spec=spec, family_name=family, link=link, trials=trials, block=block,
+                       components=components, random_effect=whole_plot or random_block)
     if is_dask(data):  # fitted partition by partition, never collected
         if components is not None or spec.mixture:
             raise SpecError("model", "a mixture model is fitted from one in-memory table, not several files")
