@@ -16,6 +16,7 @@ from ._common import (
     model_spec,
     print_notes,
 )
+from .glm_fit import add_glm_options, run_glm, wants_glm
 
 NAME = "fit"
 HELP = "fit a response-surface model; print the ANOVA, statistics and equation"
@@ -37,6 +38,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_json(parser)
     parser.add_argument("--report", metavar="PATH", default=None, help="also write a self-contained HTML report")
     add_force(parser)
+    add_glm_options(parser)
 
 
 def _write_report(result, path, force: bool) -> None:
@@ -125,6 +127,8 @@ def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ._common import random_effect, read_input
 
+    if wants_glm(args):  # --family: a generalised linear model (rsm_lrg.cli.glm_fit)
+        return run_glm(args)
     model_spec(args)  # a bad --model/--terms/--transform is named before any data is read
     many = _many_files(str(args.data), args)  # a directory or glob: fitted partition by partition (Dask)
     if many is not None:

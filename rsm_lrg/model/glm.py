@@ -243,13 +243,19 @@ def check_separation(X: np.ndarray, y: np.ndarray, m: np.ndarray, fam: Family, n
                   b_eq=None if A_eq is None else np.zeros(A_eq.shape[0]), bounds=[(-1.0, 1.0)] * p, method="highs")
     if res.status != 0 or -res.fun <= 1e-7 * max(1.0, n):
         return
-    margin = Xs @ res.x
-    exact = np.abs(margin) > 1e-7
+    bx = res.x
+    if fam.name == "binomial" and not (succ & fail).any():  # complete? every run strictly on its side
+        sign = np.where(succ, -1.0, 1.0)
+        strict = linprog(np.r_[np.zeros(p), -1.0], A_ub=np.c_[sign[:, None] * Xs, np.ones(n)], b_ub=np.zeros(n),
+                         bounds=[(-1.0, 1.0)] * p + [(0.0, 1.0)], method="highs")
+        if strict.status == 0 and strict.x[-1] > 1e-9:
+            bx = strict.x[:p]
+    margin = Xs @ bx
+    exact = np.abs(margin) > 1e-9 * max(1.0, float(np.abs(margin).max()))
     data_rows = [int(r) + 1 for r in (np.asarray(rows) if rows is not None else np.arange(n))[exact]]
     shown = ", ".join(str(r) for r in data_rows[:12]) + (f" and {len(data_rows) - 12} more" if len(data_rows) > 12
                                                            else "")
-    b = res.x / scale
-    used = [nm for nm, v in zip(names, b) if abs(v) * scale[list(names).index(nm)] > 1e-7]
+    used = [nm for nm, v in zip(names, bx) if abs(v) > 1e-9]
     combo = ", ".join(used)
     complete = bool(exact.all())
     if fam.name == "binomial":

@@ -450,7 +450,12 @@ class GLMResult:
         st = self.statistics
         lines = [f"Generalised linear model: {fam.label}, response {self.response}"
                  + (f" (successes of {self.trials_column})" if self.trials_column else "")
-                 + f", {self.n} runs, {self.n_params} coefficients ({self.model} model)", ""]
+                 + f", {self.n} runs, {self.n_params} coefficients ({self.model} model)"]
+        lines.append("Factors: " + "; ".join(
+            f"{f.letter} = {f.name} " + (f"[{f.low:g}, {f.high:g}]" if f.kind == "numeric" else
+                                         "(" + ", ".join(map(str, getattr(f, "levels", ()))) + ")")
+            for f in self.space.factors))
+        lines.append("")
         lines.append("Analysis of deviance (likelihood-ratio tests; each term dropped from the full model)")
         w = max([len("Source")] + [len(s) for s in self.anova["source"]])
         lines.append(f"{'Source':<{w}}  {'df':>4}  {'Chi-square':>12}  {'p-value':>9}  {'Resid. dev.':>12}")
