@@ -311,6 +311,61 @@ class GLMResult:
                          "goodness-of-fit p-values are left out).")
         return tuple(self.input_notes) + tuple(notes)
 
+    # -- what the optimisers read (rsm_lrg.optimize: the linear predictor and the goal) -----
+    @property
+    def sigma2(self) -> float:
+        """The dispersion: 1 (binomial, poisson)."""
+        return 1.0
+
+    @property
+    def mixture(self) -> bool:
+        """A GLM is not a mixture model."""
+        return False
+
+    @property
+    def transform(self) -> Any:
+        """The identity: the response is modelled through the link, not transformed (the
+        optimisers' notes read it)."""
+        from .transform import Transform
+
+        return Transform()
+
+    @cached_property
+    def stationary_point(self) -> Any:
+        """The stationary point of the linear predictor (second-order models; the optimisers
+        start a search there); ``coded`` is None for a model of another order. The inverse
+        links are increasing, so the probability (mean count) is extreme where the linear
+        predictor is."""
+        from .canonical import canonical_analysis
+
+        if self.space.has_categoric or any(t.order > 2 for t in self.terms):
+            return _NoPoint()
+        return canonical_analysis(dict(zip(self.column_names, self.params.tolist())), self.terms, self.space)
+
+    def goal_on_model_scale(self, goal: Any) -> tuple[str, float | None, str, float | None]:
+        """``(kind, target, kind on the link scale, target on the link scale)``: the inverse
+        link is increasing, so minimise and maximise keep their sense and a target T (a
+        probability strictly between 0 and 1, or a mean count above 0) becomes ``g(T)``."""
+        from .goals import parse_goal
+
+        kind, target = parse_goal(goal)
+        if target is None:
+            return kind, None, kind, None
+        binomial = self.family.name == "binomial"
+        if not ((0.0 < target < 1.0) if binomial else target > 0.0):
+            what = "a probability strictly between 0 and 1" if binomial else "a mean count above 0"
+            raise ParameterError("goal", f"goal target {target:g}: the {self.family.label} model predicts {what}")
+        return kind, target, kind, float(self.family.linkfun(np.array([target]))[0])
+
+    def optimize(self, goal: Any = "maximize", bounds: Any = None, **kwargs: Any) -> Any:
+        """The optimum of the probability (mean count) in the factor box; see
+        :func:`rsm_lrg.optimize.optimize` (provided by the optimize layer through
+        :mod:`rsm_lrg.registry`; the model does not import it). Its prediction interval is
+        empty (NaN), as :meth:`predict`'s."""
+        from ..registry import lookup
+
+        return lookup("FitResult.optimize")(self, goal=goal, bounds=bounds, **kwargs)
+
     # -- prediction ----------------------------------------------------------------------
     def coded_points(self, points: Any, coded: bool = False) -> np.ndarray:
         """Settings (a frame with the factor columns, a ``{name: values}`` mapping or an
@@ -486,6 +541,12 @@ class GLMResult:
 
     def __str__(self) -> str:
         return self.summary()
+
+
+class _NoPoint:
+    """No stationary point (a model beyond second order, or with categoric factors)."""
+
+    coded = None
 
 
 def _equation(coefs: Mapping[str, float]) -> str:
