@@ -157,9 +157,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(f"Data: {args.data}")
         if result.reduction is not None:
-            r = result.reduction.to_dict()
-            print(f"Backward elimination ({'p > ' + format(args.alpha_out, 'g') if r['criterion'] == 'p' else 'AICc'}, "
-                  f"hierarchy kept): removed {', '.join(r['removed']) or 'nothing'}")
+            print(result.reduction.describe())
         print(result.summary(), end="")
         if args.diagnostics:
             print()

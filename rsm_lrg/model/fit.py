@@ -178,10 +178,9 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
     if spec.reduce is not None:
         from dataclasses import replace
 
-        from .reduce import reduce_inputs
+        from .select import choose_terms
 
-        reduction = reduce_inputs(inp, model=spec.order, terms=spec.terms, intercept=spec.intercept,
-                                  alpha_out=spec.reduce.alpha_out, criterion=spec.reduce.criterion)
+        reduction = choose_terms(inp, spec.reduce, model=spec.order, terms=spec.terms, intercept=spec.intercept)
         spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept") or None)
         if spec.terms is None:  # every term removed: the mean-only model
             raise ValueError("backward elimination removed every term: no factor explains the response "
@@ -214,11 +213,11 @@ def _fit_mixture(data: Any, response: str, components: Any, factors: Any, block:
     if spec.reduce is not None:  # the linear blending terms always stay
         from dataclasses import replace
 
-        from .reduce import reduce_inputs
+        from .select import choose_terms
 
         try:
-            reduction = reduce_inputs(inp, model=spec.order, terms=spec.terms, intercept=False,
-                                      alpha_out=spec.reduce.alpha_out, criterion=spec.reduce.criterion, mixture=True)
+            reduction = choose_terms(inp, spec.reduce, model=spec.order, terms=spec.terms, intercept=False,
+                                     mixture=True)
         except ValueError as exc:
             if "term" in str(exc) and "mixture" in str(exc):
                 raise SpecError("terms", str(exc)) from None
