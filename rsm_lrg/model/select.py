@@ -35,14 +35,15 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
 from .reduce import Reduction, aicc, reduce_inputs, removable
 from .spec import ReduceSpec, SpecError
 
-__all__ = ["choose_terms", "Selection", "bic", "MAX_SUBSETS", "TOP_SUBSETS", "contains"]
+__all__ = ["choose_terms", "search", "Scorer", "LeastSquaresScorer", "Selection", "bic", "MAX_SUBSETS", "TOP_SUBSETS",
+           "contains"]
 
 #: Most sub-models that ``all-subsets`` compares (beyond: use stepwise).
 MAX_SUBSETS = 200_000
@@ -89,8 +90,9 @@ class Selection:
     hierarchy : bool
     start_model : str
     subsets : pandas.DataFrame or None
-        All-subsets: the best :data:`TOP_SUBSETS` models, ``rank, terms, n_coefficients, aicc,
-        bic, adj_r2`` (best first; ``n_coefficients`` counts the intercept and the blocks).
+        All-subsets: the best :data:`TOP_SUBSETS` models, ``rank, terms, aicc, bic`` and the
+        scorer's numbers (least squares: ``n_coefficients``, counting the intercept and the
+        blocks, and ``adj_r2``; a GLM: ``n_coefficients`` and ``deviance``), best first.
     n_compared : int
         Models whose criterion was computed.
     """
@@ -156,7 +158,6 @@ def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", term
     ValueError
         No term kept (nothing explains the response), and what the fit refuses.
     """
-    import pandas as pd
 
     from .inputs import chosen_terms
     from .least_squares import factorise
@@ -168,7 +169,7 @@ def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", term
     if mixture:
         raise SpecError("reduce", "a mixture model is reduced by backward elimination with hierarchy, by p or AICc "
                                   f"(not {reduce.method} by {reduce.criterion})")
-    method, crit = reduce.method, str(reduce.criterion)
+    method = reduce.method
     if not intercept and method != "backward":
         raise SpecError("reduce", f"{method} selection starts from (or keeps) the intercept: the model needs one")
     letters, cats = inp.space.letters, inp.space.categoric
@@ -186,30 +187,74 @@ def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", term
     lead = 1 if intercept else 0
     pool = [t for t in start if t.order > 0]
     col = {id(t): list(g) for t, g in zip(pool, term_columns(pool, lead + nb))}
-    order = {id(t): i for i, t in enumerate(pool)}
+    y = np.asarray(inp.y, dtype=float)
+    scorer = LeastSquaresScorer(full, col, lead + nb, n, float(np.sum((y - y.mean()) ** 2)))
+    return search(pool, reduce, scorer, intercept=intercept, start_model=model if terms is None else "custom")
 
-    def columns(ts: Sequence) -> list[int]:
-        return sorted([*range(lead + nb), *(c for t in ts for c in col[id(t)])])
 
-    def fitted(ts: Sequence) -> Any:
-        return full.submodel(columns(ts))
+class Scorer(Protocol):
+    """What a search asks of a family of fits (least squares, a GLM): each model is a list
+    of terms of the starting model (the intercept and blocks always in)."""
 
-    def value(ts: Sequence) -> float:
-        ls = fitted(ts)
-        return aicc(ls.ss_res, n, ls.p) if crit == "aicc" else bic(ls.ss_res, n, ls.p)
+    def criteria(self, ts: Sequence) -> tuple[float, float] | None:
+        """``(AICc, BIC)`` of the model, or None when it cannot be judged (too few runs)."""
 
-    def p_value(ts: Sequence, t: Any) -> float:
-        """Partial-F p-value of ``t`` in the model ``ts`` (``t`` among them)."""
+    def p_value(self, ts: Sequence, t: Any) -> float:
+        """The p-value of term ``t`` in the model ``ts`` (``t`` among them)."""
+
+    def extra(self, ts: Sequence) -> dict[str, float]:
+        """Further numbers of a model for the all-subsets list (and ``n_coefficients``)."""
+
+
+class LeastSquaresScorer:
+    """Least-squares sub-models of one factorisation (partial-F p-values, Gaussian AICc/BIC)."""
+
+    def __init__(self, full: Any, col: dict, fixed: int, n: int, ss_total: float) -> None:
+        self.full, self.col, self.fixed, self.n, self.ss_total = full, col, fixed, n, ss_total
+
+    def columns(self, ts: Sequence) -> list[int]:
+        return sorted([*range(self.fixed), *(c for t in ts for c in self.col[id(t)])])
+
+    def fitted(self, ts: Sequence) -> Any:
+        return self.full.submodel(self.columns(ts))
+
+    def criteria(self, ts: Sequence) -> tuple[float, float] | None:
+        ls = self.fitted(ts)
+        if self.n - ls.p - 2 <= 0:
+            return None
+        return aicc(ls.ss_res, self.n, ls.p), bic(ls.ss_res, self.n, ls.p)
+
+    def p_value(self, ts: Sequence, t: Any) -> float:
         from . import statistics as special
 
-        ls = fitted(ts)
+        ls = self.fitted(ts)
         if ls.df_resid <= 0:
             return math.nan
-        where = {c: i for i, c in enumerate(columns(ts))}
-        g = [where[c] for c in col[id(t)]]
+        where = {c: i for i, c in enumerate(self.columns(ts))}
+        g = [where[c] for c in self.col[id(t)]]
         with np.errstate(divide="ignore", invalid="ignore"):
             f = ls.partial_ss(g) / len(g) / ls.sigma2
         return float(special.fdtrc(len(g), ls.df_resid, f))
+
+    def extra(self, ts: Sequence) -> dict[str, float]:
+        ls = self.fitted(ts)
+        n = self.n
+        adj = 1.0 - (ls.ss_res / (n - ls.p)) / (self.ss_total / (n - 1)) if self.ss_total > 0 else math.nan
+        return {"n_coefficients": int(ls.p), "adj_r2": adj}
+
+
+def search(pool: list, reduce: ReduceSpec, scorer: Scorer, *, intercept: bool = True,
+           start_model: str = "quadratic") -> Selection:
+    """Forward, backward, stepwise or all-subsets over the terms ``pool`` of the starting
+    model (see the module docstring), the models judged by ``scorer``."""
+    import pandas as pd
+
+    method, crit = reduce.method, str(reduce.criterion)
+    order = {id(t): i for i, t in enumerate(pool)}
+
+    def value(ts: Sequence) -> float:
+        c = scorer.criteria(ts)
+        return math.inf if c is None else (c[0] if crit == "aicc" else c[1])
 
     def addable(current: list) -> list:
         out = [t for t in pool if all(t is not s for s in current)]
@@ -218,7 +263,7 @@ def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", term
         return out
 
     def droppable(current: list) -> list:
-        return [t for t in removable(current)] if reduce.hierarchy else list(current)
+        return list(removable(current)) if reduce.hierarchy else list(current)
 
     def sort(ts: Sequence) -> list:
         return sorted(ts, key=lambda t: order[id(t)])
@@ -232,16 +277,14 @@ def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", term
                       "criterion_after": after})
 
     if method == "all-subsets":
-        y = np.asarray(inp.y, dtype=float)
-        current, subsets, compared = _all_subsets(pool, reduce.hierarchy, fitted, n, crit,
-                                                  float(np.sum((y - y.mean()) ** 2)))
+        current, subsets, compared = _all_subsets(pool, reduce.hierarchy, scorer, crit)
     elif crit == "p":
         current = [] if method in ("forward", "stepwise") else list(pool)
         seen = {frozenset(id(t) for t in current)}
         while True:
             changed = False
             if method in ("forward", "stepwise"):
-                cand = [(p_value(sort([*current, t]), t), t) for t in addable(current)]
+                cand = [(scorer.p_value(sort([*current, t]), t), t) for t in addable(current)]
                 cand = [c for c in cand if math.isfinite(c[0])]
                 compared += len(cand)
                 if cand:
@@ -252,7 +295,7 @@ def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", term
                         changed = True
             if method in ("backward", "stepwise"):
                 while True:
-                    cand = [(p_value(current, t), t) for t in droppable(current)]
+                    cand = [(scorer.p_value(current, t), t) for t in droppable(current)]
                     cand = [c for c in cand if math.isfinite(c[0])]
                     compared += len(cand)
                     if not cand:
@@ -281,11 +324,9 @@ def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", term
                 moves += [("remove", t, [s for s in current if s is not t]) for t in droppable(current)]
             best = None
             for action, t, ts in moves:
-                if n - (len(columns(ts)) + 1) - 1 <= 0:
-                    continue
                 v = value(ts)
                 compared += 1
-                if best is None or v < best[0]:
+                if math.isfinite(v) and (best is None or v < best[0]):
                     best = (v, action, t, ts)
             if best is None or not best[0] < now:
                 break
@@ -299,20 +340,17 @@ def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", term
     removed = tuple(t.name for t in pool if all(t is not s for s in current))
     return Selection(kept=kept, removed=removed, steps=pd.DataFrame(steps, columns=STEP_COLUMNS), criterion=crit,
                      alpha_out=float(reduce.alpha_out), alpha_in=float(reduce.alpha_in), method=method,
-                     hierarchy=reduce.hierarchy, start_model=model if terms is None else "custom", subsets=subsets,
-                     n_compared=compared)
+                     hierarchy=reduce.hierarchy, start_model=start_model, subsets=subsets, n_compared=compared)
 
 
-def _all_subsets(pool: list, hierarchy: bool, fitted: Any, n: int, crit: str, ss_total: float
-                 ) -> tuple[list, Any, int]:
+def _all_subsets(pool: list, hierarchy: bool, scorer: Scorer, crit: str) -> tuple[list, Any, int]:
     """The best hierarchical sub-model of ``pool`` by ``crit`` (``aicc``/``bic``), the best
-    :data:`TOP_SUBSETS` as a frame, and the count compared (``ss_total``: the corrected total
-    sum of squares, for the adjusted R²)."""
+    :data:`TOP_SUBSETS` as a frame, and the count compared."""
     import pandas as pd
 
-    ranked = sorted(pool, key=lambda t: (t.order, 0))  # a contained term has a lower order: it comes first
+    ranked = sorted(pool, key=lambda t: t.order)  # a contained term has a lower order: it comes first
     inside = {id(t): [s for s in ranked if contains(s, t)] if hierarchy else [] for t in ranked}
-    found: list[tuple[float, float, float, float, int, list]] = []
+    found: list[tuple[float, float, float, list]] = []
     count = 0
 
     def visit(i: int, chosen: list) -> None:
@@ -322,12 +360,9 @@ def _all_subsets(pool: list, hierarchy: bool, fitted: Any, n: int, crit: str, ss
             if count > MAX_SUBSETS:
                 raise SpecError("reduce", f"all-subsets would compare more than {MAX_SUBSETS} models of the "
                                           f"{len(pool)} terms; start from a smaller model or use stepwise")
-            ls = fitted(chosen)
-            if n - ls.p - 2 <= 0:
-                return
-            a, b = aicc(ls.ss_res, n, ls.p), bic(ls.ss_res, n, ls.p)
-            adj = 1.0 - (ls.ss_res / (n - ls.p)) / (ss_total / (n - 1)) if ss_total > 0 else math.nan
-            found.append((a if crit == "aicc" else b, a, b, adj, int(ls.p), list(chosen)))
+            c = scorer.criteria(chosen)
+            if c is not None:
+                found.append((c[0] if crit == "aicc" else c[1], c[0], c[1], list(chosen)))
             return
         t = ranked[i]
         visit(i + 1, chosen)
@@ -338,8 +373,8 @@ def _all_subsets(pool: list, hierarchy: bool, fitted: Any, n: int, crit: str, ss
     found.sort(key=lambda z: z[0])
     position = {id(t): j for j, t in enumerate(pool)}
     rows = []
-    for r, (_, a, b, adj, p, ts) in enumerate(found[:TOP_SUBSETS], 1):
+    for r, (_, a, b, ts) in enumerate(found[:TOP_SUBSETS], 1):
         names = [t.name for t in sorted(ts, key=lambda t: position[id(t)])]
-        rows.append({"rank": r, "terms": " ".join(names), "n_coefficients": p, "aicc": a, "bic": b, "adj_r2": adj})
-    best = found[0][5] if found else []
-    return best, pd.DataFrame(rows, columns=["rank", "terms", "n_coefficients", "aicc", "bic", "adj_r2"]), count
+        rows.append({"rank": r, "terms": " ".join(names), "aicc": a, "bic": b, **scorer.extra(ts)})
+    best = found[0][3] if found else []
+    return best, pd.DataFrame(rows), count
