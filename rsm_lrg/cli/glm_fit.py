@@ -20,7 +20,7 @@ FAMILY_NAMES = ("binomial", "poisson")
 LINK_NAMES = ("logit", "probit", "cloglog", "log")
 
 #: fit's options that a GLM does not take yet (checked before any data is read).
-GLM_UNSUPPORTED = ("reduce", "transform", "diagnostics", "report", "block", "component", "whole_plot", "random_block",
+GLM_UNSUPPORTED = ("transform", "diagnostics", "report", "block", "component", "whole_plot", "random_block",
                    "hard_to_change")
 
 

@@ -31,6 +31,7 @@ expected (Fisher) information at the estimate, as R's ``summary.glm`` gives them
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -46,7 +47,7 @@ from .spec import ModelSpec, SpecError
 from .terms import Term, check_model_size, model_terms, term_columns
 
 __all__ = ["fit_glm", "glm_inputs", "irls", "IRLSFit", "check_separation", "SeparationError", "deviance_tables",
-           "MAX_ITERATIONS"]
+           "MAX_ITERATIONS", "GLMScorer", "select_glm_terms"]
 
 #: IRLS iterations before a fit is declared not converged.
 MAX_ITERATIONS = 100
@@ -398,8 +399,9 @@ def fit_glm(data: Any, response: str, factors: Any = None, *, spec: ModelSpec,
     factors : None, sequence or FactorSpace
         As for :func:`rsm_lrg.fit`.
     spec : ModelSpec
-        The model: an order or terms, with or without an intercept; no transform (the link
-        is the GLM's transform), no mixture model, no reduction.
+        The model: an order or terms, with or without an intercept, optionally with a
+        term selection (``reduce``: p-values are likelihood-ratio tests); no transform (the
+        link is the GLM's transform), no mixture model.
     family_name : {"binomial", "poisson"} or Family
     link : str, optional
         ``logit`` (default), ``probit``, ``cloglog`` (binomial); ``log`` (poisson).
@@ -439,11 +441,16 @@ def fit_glm(data: Any, response: str, factors: Any = None, *, spec: ModelSpec,
                                      "no transform")
     if spec.mixture:
         raise SpecError("model", "a mixture model with a binomial or poisson response is not available yet")
-    if spec.reduce is not None:
-        raise SpecError("reduce", "term reduction of a generalised linear model is not available yet")
     gi = glm_inputs(data, response, factors, fam, trials, intercept=spec.intercept)
     inp = gi.inputs
     terms = glm_terms(inp, spec)
+    reduction = None
+    if spec.reduce is not None:  # choose the terms (rsm_lrg.model.select), then fit the model chosen
+        from dataclasses import replace
+
+        reduction = select_glm_terms(inp, gi, fam, spec, terms)
+        spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept"), reduce=None)
+        terms = glm_terms(inp, spec)
     col_names = inp.column_names(terms)
     X = inp.rows(terms)
     n, p = X.shape
@@ -469,4 +476,65 @@ def fit_glm(data: Any, response: str, factors: Any = None, *, spec: ModelSpec,
                      log_likelihood=fam.log_likelihood(y, full.mu, m), iterations=full.iterations,
                      drop_table=drop, sequential_table=seq, data=prep.data, coded=inp.coded,
                      input_notes=tuple(prep.notes), omitted_rows=tuple(prep.omitted_rows),
-                     omitted_data=prep.omitted_data)
+                     omitted_data=prep.omitted_data, reduction=reduction,
+                     start_model=None if reduction is None else reduction.start_model)
+
+
+class GLMScorer:
+    """Sub-models of a GLM for the term searches of :mod:`rsm_lrg.model.select`: each one
+    fitted by :func:`irls` (cached); p-values are likelihood-ratio tests (the term dropped),
+    AICc and BIC from the log-likelihood with ``K = p`` (dispersion 1)."""
+
+    def __init__(self, X: np.ndarray, y: np.ndarray, m: np.ndarray, fam: Family, col: dict, fixed: int) -> None:
+        self.X, self.y, self.m, self.fam, self.col, self.fixed = X, y, m, fam, col, fixed
+        self.cache: dict[tuple, IRLSFit] = {}
+
+    def columns(self, ts: Sequence) -> list[int]:
+        return sorted([*range(self.fixed), *(c for t in ts for c in self.col[id(t)])])
+
+    def fit(self, ts: Sequence) -> IRLSFit:
+        key = tuple(self.columns(ts))
+        if key not in self.cache:
+            self.cache[key] = irls(self.X[:, list(key)], self.y, self.m, self.fam)
+        return self.cache[key]
+
+    def criteria(self, ts: Sequence) -> tuple[float, float] | None:
+        n, p = self.X.shape[0], len(self.columns(ts))
+        if n - p - 1 <= 0:
+            return None
+        ll = self.fam.log_likelihood(self.y, self.fit(ts).mu, self.m)
+        return -2.0 * ll + 2.0 * p + 2.0 * p * (p + 1) / (n - p - 1), -2.0 * ll + p * math.log(n)
+
+    def p_value(self, ts: Sequence, t: Any) -> float:
+        from scipy.special import chdtrc
+
+        chi = max(self.fit([s for s in ts if s is not t]).deviance - self.fit(ts).deviance, 0.0)
+        return float(chdtrc(len(self.col[id(t)]), chi))
+
+    def extra(self, ts: Sequence) -> dict[str, float]:
+        return {"n_coefficients": len(self.columns(ts)), "deviance": self.fit(ts).deviance}
+
+
+def select_glm_terms(inp: ModelInputs, gi: GLMInputs, fam: Family, spec: ModelSpec, terms: Sequence[Term]) -> Any:
+    """The terms of a GLM chosen as ``spec.reduce`` says (forward, backward, stepwise,
+    all-subsets; by likelihood-ratio p-values, AICc or BIC; hierarchy kept), from the
+    starting model ``terms`` (checked for aliasing and separation first)."""
+    from .least_squares import least_squares
+    from .select import search
+
+    assert spec.reduce is not None
+    if not spec.intercept and spec.reduce.method != "backward":
+        raise SpecError("reduce", f"{spec.reduce.method} selection starts from (or keeps) the intercept: the model "
+                                  "needs one")
+    X = inp.rows(terms)
+    names = inp.column_names(terms)
+    if X.shape[0] <= X.shape[1]:
+        raise ValueError(f"{X.shape[0]} runs cannot fit {X.shape[1]} coefficients; start from a smaller model")
+    least_squares(X, inp.y, names).require_full_rank("model to reduce")
+    y, m = np.asarray(inp.y, dtype=float), gi.trials
+    check_separation(X, y, m, fam, names, rows=gi.rows)
+    lead = 1 if spec.intercept else 0
+    pool = [t for t in terms if t.order > 0]
+    col = {id(t): list(g) for t, g in zip(pool, term_columns(pool, lead))}
+    return search(pool, spec.reduce, GLMScorer(X, y, m, fam, col, lead), intercept=spec.intercept,
+                  start_model=spec.order if spec.terms is None else "custom")

@@ -127,6 +127,10 @@ class GLMResult:
     input_notes : tuple of str
     omitted_rows : tuple of int
     omitted_data : pandas.DataFrame
+    reduction : Selection or None
+        The term selection that chose the terms (:mod:`rsm_lrg.model.select`).
+    start_model : str or None
+        The model the selection started from.
     """
 
     response: str
@@ -153,6 +157,8 @@ class GLMResult:
     input_notes: tuple = field(default=(), repr=False)
     omitted_rows: tuple = field(default=(), repr=False)
     omitted_data: Any = field(default=None, repr=False)
+    reduction: Any = field(default=None, repr=False)
+    start_model: str | None = field(default=None, repr=False)
 
     # -- the model -----------------------------------------------------------------------
     @property
@@ -161,7 +167,10 @@ class GLMResult:
 
     @property
     def model(self) -> str:
-        """The model's order, or ``"custom"`` for chosen terms."""
+        """The model's order, or ``"custom"`` for chosen terms (after a term selection: the
+        model it started from)."""
+        if self.start_model is not None:
+            return self.start_model
         return self.spec.order if self.spec.terms is None else "custom"
 
     @property
@@ -494,6 +503,8 @@ class GLMResult:
             "terms": [t.name for t in self.model_terms],
             "intercept": self.intercept,
         }
+        if self.reduction is not None:
+            out["reduction"] = self.reduction.to_dict()
         return out
 
     def summary(self) -> str:
@@ -506,6 +517,9 @@ class GLMResult:
         lines = [f"Generalised linear model: {fam.label}, response {self.response}"
                  + (f" (successes of {self.trials_column})" if self.trials_column else "")
                  + f", {self.n} runs, {self.n_params} coefficients ({self.model} model)"]
+        if self.reduction is not None:
+            lines.append(self.reduction.describe().replace("p >", "likelihood-ratio p >").replace("p <",
+                                                                                                  "likelihood-ratio p <"))
         lines.append("Factors: " + "; ".join(
             f"{f.letter} = {f.name} " + (f"[{f.low:g}, {f.high:g}]" if f.kind == "numeric" else
                                          "(" + ", ".join(map(str, getattr(f, "levels", ()))) + ")")

@@ -47,7 +47,6 @@ def test_fit_json_file_also_prints_text(tmp_path, capsys):
 
 @pytest.mark.parametrize("extra,needle", [
     (["--link", "log"], "--link"),
-    (["--reduce"], "--reduce"),
     (["--transform", "log"], "--transform"),
     (["--block", "sex"], "--block"),
 ])
@@ -91,3 +90,14 @@ def test_separation_exits_2_with_one_line(tmp_path, capsys):
     line = error_line(capsys, main(["fit", str(path), "--response", "pass", "--model", "linear", "--family",
                                     "binomial"]))
     assert "completely separated" in line and "rows 1, 2, 3, 4, 5, 6" in line
+
+
+def test_glm_term_selection(capsys):
+    assert main(["fit", WARP, "--response", "breaks", "--factor", "wool=cat:A,B", "--factor", "tension=cat:L,M,H",
+                 "--model", "2fi", "--family", "poisson", "--reduce", "stepwise", "--criterion", "bic",
+                 "--json", "-"]) == 0
+    js = json.loads(capsys.readouterr().out)
+    assert js["reduction"]["method"] == "stepwise" and js["reduction"]["kept"] == ["Intercept", "A", "B", "AB"]
+    assert main(["fit", WARP, "--response", "breaks", "--factor", "wool=cat:A,B", "--factor", "tension=cat:L,M,H",
+                 "--model", "2fi", "--family", "poisson", "--reduce"]) == 0
+    assert "Backward selection (likelihood-ratio p > 0.1, hierarchy kept)" in capsys.readouterr().out

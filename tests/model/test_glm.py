@@ -84,7 +84,6 @@ def test_no_separation_when_outcomes_overlap():
     ({"family": "binomial", "trials": "nope"}, "trials"), ({"family": "binomial", "trials": "numdead"}, "trials"),
     ({"family": "binomial", "trials": "n", "block": "sex"}, "block"),
     ({"family": "binomial", "trials": "n", "transform": "log"}, "transform"),
-    ({"family": "binomial", "trials": "n", "reduce": True}, "reduce"),
     ({"family": "binomial", "trials": "n", "whole_plot": "sex"}, "whole_plot"),
 ])
 def test_bad_options_name_their_parameter(kwargs, param):
