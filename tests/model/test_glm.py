@@ -227,3 +227,20 @@ def test_cli_choices_agree_with_the_families():
 def test_spec_errors_are_spec_errors():
     with pytest.raises(SpecError):
         rsm_lrg.fit(_budworm(), "numdead", factors=["ldose"], terms="A Z", family="binomial", trials="n")
+
+
+def test_no_intercept_model_equals_r():
+    # R 4.2.2: d <- read.csv("tests/model/r/glm_birthwt.csv"); X <- data.frame(A = d$age / 45, B = d$lwt / 250,
+    # low = d$low) (a model without an intercept codes x / max|x|); m <- glm(low ~ 0 + A + B + I(A^2),
+    # binomial("probit"), X), restarted from its own estimate as in glm.R; summary(m), deviance,
+    # null.deviance, drop1(m, test = "LRT"), anova(m, test = "LRT"), printed to 11-13 digits
+    r = rsm_lrg.fit(pd.read_csv(R / "glm_birthwt.csv"), "low", factors=["age", "lwt"], terms="A B A^2",
+                    intercept=False, family="binomial", link="probit")
+    np.testing.assert_allclose(r.params, [3.103324887590, -1.933847695403, -3.967389270055], rtol=1e-10)
+    np.testing.assert_allclose(r.coefficients["std_error"], [1.7822659076947, 0.8722560692351, 2.0388448758620],
+                               rtol=1e-10)
+    assert (r.deviance, r.null_deviance) == (pytest.approx(226.1320473861, rel=1e-11),
+                                             pytest.approx(262.0096342517, rel=1e-11))
+    np.testing.assert_allclose(r.anova["chi_square"][1:], [3.2386253822, 5.3289300564, 4.1504734500], rtol=1e-9)
+    np.testing.assert_allclose(r.sequential_anova["chi_square"], [29.8794738237, 1.8476395919, 4.1504734500],
+                               rtol=1e-9)
