@@ -244,3 +244,9 @@ def test_no_intercept_model_equals_r():
     np.testing.assert_allclose(r.anova["chi_square"][1:], [3.2386253822, 5.3289300564, 4.1504734500], rtol=1e-9)
     np.testing.assert_allclose(r.sequential_anova["chi_square"], [29.8794738237, 1.8476395919, 4.1504734500],
                                rtol=1e-9)
+
+
+def test_top_level_names():
+    assert rsm_lrg.GLMResult.__name__ == "GLMResult" and issubclass(rsm_lrg.SeparationError, ValueError)
+    assert isinstance(rsm_lrg.fit(_budworm(), "numdead", factors=["ldose"], model="linear", family="binomial",
+                                  trials="n"), rsm_lrg.GLMResult)
