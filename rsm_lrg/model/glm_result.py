@@ -556,6 +556,28 @@ class GLMResult:
     def __str__(self) -> str:
         return self.summary()
 
+    def to_frame(self) -> Any:
+        """Per-run table: the factor settings (actual and coded), the response as fitted
+        (proportion or count), the trials, the fitted mean, the linear predictor, the deviance
+        and Pearson residuals and the leverage ``h_ii`` of the weighted fit."""
+        import pandas as pd
+
+        df = pd.DataFrame({f.name: self.data[f.name].to_numpy(dtype=float if f.kind == "numeric" else object)
+                           for f in self.space.factors})
+        for L in self.space.letters:
+            df[f"coded_{L}"] = self.coded[L].to_numpy()
+        df[self.response] = self.y
+        df["trials"] = self.trials
+        df["fitted"] = self.mu
+        df["link"] = self.eta
+        df["deviance_residual"] = self.residuals
+        df["pearson_residual"] = self.pearson_residuals
+        X = design_matrix(self.coded[list(self.space.letters)].to_numpy(dtype=float), self.terms)
+        d = self.family.mu_eta(self.eta)
+        w = self.trials * d * d / self.family.variance(self.mu)
+        df["leverage"] = w * np.einsum("ij,jk,ik->i", X, self.cov, X)
+        return df
+
 
 class _NoPoint:
     """No stationary point (a model beyond second order, or with categoric factors)."""

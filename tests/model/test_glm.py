@@ -250,3 +250,14 @@ def test_top_level_names():
     assert rsm_lrg.GLMResult.__name__ == "GLMResult" and issubclass(rsm_lrg.SeparationError, ValueError)
     assert isinstance(rsm_lrg.fit(_budworm(), "numdead", factors=["ldose"], model="linear", family="binomial",
                                   trials="n"), rsm_lrg.GLMResult)
+
+
+def test_to_frame_per_run():
+    r = rsm_lrg.fit(_budworm(), "numdead", factors=["ldose", "sex=cat:F,M"], model="2fi", family="binomial",
+                    trials="n")
+    f = r.to_frame()
+    assert len(f) == 12 and {"fitted", "deviance_residual", "pearson_residual", "leverage"} <= set(f.columns)
+    assert (f.deviance_residual ** 2).sum() == pytest.approx(r.deviance, rel=1e-12)
+    assert (f.pearson_residual ** 2).sum() == pytest.approx(r.statistics["pearson_chi2"], rel=1e-12)
+    assert f.leverage.sum() == pytest.approx(r.n_params, rel=1e-10)  # the trace of the weighted hat matrix
+    np.testing.assert_allclose(f.fitted, r.predict(_budworm())["predicted"], rtol=1e-12)
