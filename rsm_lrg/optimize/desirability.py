@@ -341,6 +341,12 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
     missing = [n for n in names if n not in fits]
     if missing:
         raise ValueError(f"no fitted model for response(s) {', '.join(map(repr, missing))}")
+    from ..model.glm_result import GLMResult
+
+    glm = [n for n in names if isinstance(fits[n], GLMResult)]
+    if glm:  # its model scale is the link scale, which this search would read as the response
+        raise TypeError(f"response {glm[0]!r}: desirability with a generalised linear model (a probability or mean "
+                        "count) is not available yet; optimise it alone with rsm_lrg.optimize(result, goal)")
     first = fits[names[0]]
     space = first.space
     for n in names[1:]:

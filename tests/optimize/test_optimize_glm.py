@@ -83,3 +83,15 @@ def test_poisson_mean_count_minimum():
     x, m = _grid_optimum(res, 1.0)
     assert opt.predicted == pytest.approx(m, rel=1e-9)
     np.testing.assert_allclose([opt.coded["A"], opt.coded["B"]], x, atol=1e-5)
+
+
+def test_desirability_with_a_glm_is_refused_not_computed_on_the_link_scale():
+    from rsm_lrg.optimize.desirability import ResponseGoal, optimize_desirability
+
+    df = _logistic_quadratic()
+    df["cost"] = 3 + (df.temp - 200) / 50
+    g = rsm_lrg.fit(df, "pass", factors=["temp", "conc"], family="binomial")
+    o = rsm_lrg.fit(df, "cost", factors=["temp", "conc"], model="linear")
+    with pytest.raises(TypeError, match="response 'pass': desirability with a generalised linear model"):
+        optimize_desirability({"pass": g, "cost": o}, [ResponseGoal("pass", "maximize", low=0.5, high=0.9),
+                                                      ResponseGoal("cost", "minimize", low=2.0, high=4.0)])
