@@ -95,3 +95,12 @@ def test_desirability_with_a_glm_is_refused_not_computed_on_the_link_scale():
     with pytest.raises(TypeError, match="response 'pass': desirability with a generalised linear model"):
         optimize_desirability({"pass": g, "cost": o}, [ResponseGoal("pass", "maximize", low=0.5, high=0.9),
                                                       ResponseGoal("cost", "minimize", low=2.0, high=4.0)])
+
+
+def test_desirability_with_a_categoric_glm_is_refused_too():
+    from rsm_lrg.optimize.desirability import ResponseGoal, optimize_desirability
+
+    df = pd.read_csv(R / "glm_budworm.csv")
+    g = rsm_lrg.fit(df, "numdead", factors=["ldose", "sex=cat:F,M"], model="2fi", family="binomial", trials="n")
+    with pytest.raises(TypeError, match="response 'numdead'"):
+        optimize_desirability({"numdead": g}, [ResponseGoal("numdead", "maximize", low=0.2, high=0.8)])
