@@ -272,6 +272,9 @@ MODEL_ORDERS = ("linear", "2fi", "quadratic", "cubic")
 MIXTURE_MODEL_NAMES = ("mixture-linear", "mixture-quadratic", "special-cubic", "mixture-cubic")
 #: Every model a fitting command's ``--model`` takes.
 FIT_MODELS = MODEL_ORDERS + MIXTURE_MODEL_NAMES
+#: ``--reduce`` methods (those of :data:`rsm_lrg.model.spec.REDUCE_METHODS`, not imported here so that
+#: building the parser loads no NumPy; a test checks that they agree).
+REDUCE_METHOD_NAMES = ("backward", "forward", "stepwise", "all-subsets")
 
 
 def add_component_option(p: argparse.ArgumentParser) -> None:
@@ -586,18 +589,23 @@ def add_model_refinements(parser: argparse.ArgumentParser, *, per_response: bool
     given after a ``--response`` (declared with :class:`ResponseGroup`) applies to that
     response only; see :func:`response_options` and :func:`model_spec`."""
     kw: dict[str, Any] = {"action": PerResponseOption} if per_response else {}
-    flag: dict[str, Any] = {"action": PerResponseOption, "nargs": 0, "const": True, "default": False} \
-        if per_response else {"action": "store_true"}
     if model:
         parser.add_argument("--model", default=None, choices=list(FIT_MODELS),
                             help="model order (default quadratic; with --component and --terms the terms are the "
                                  "Scheffé model)", **kw)
     add_terms_options(parser, per_response=per_response)
-    parser.add_argument("--reduce", help="backward elimination keeping hierarchy", **flag)
+    reduce_kw: dict[str, Any] = dict(kw, nargs="?", const="backward", default=False, choices=list(REDUCE_METHOD_NAMES))
+    parser.add_argument("--reduce", metavar="backward|forward|stepwise|all-subsets",
+                        help="choose the terms, hierarchy kept: backward elimination (the default), forward or "
+                             "stepwise selection, or the best of all hierarchical subsets", **reduce_kw)
     parser.add_argument("--alpha-out", type=number(0, 1, above=True, below=True), default=0.1, metavar="A",
                         help="with --reduce and --criterion p: remove terms while p > A (default 0.1)", **kw)
-    parser.add_argument("--criterion", default="p", choices=["p", "aicc"],
-                        help="with --reduce: remove by p-value (default) or while AICc falls", **kw)
+    parser.add_argument("--alpha-in", type=number(0, 1, above=True, below=True), default=0.1, metavar="A",
+                        help="with --reduce forward|stepwise and --criterion p: add terms while p < A (default 0.1)",
+                        **kw)
+    parser.add_argument("--criterion", default=None, choices=["p", "aicc", "bic"],
+                        help="with --reduce: by p-value (default), or while AICc or BIC falls (all-subsets: the "
+                             "lowest AICc (default) or BIC)", **kw)
     parser.add_argument("--transform", default=None, metavar="log|log10|sqrt|inverse|power=L",
                         help="fit a transformed response (predictions and intervals back-transformed)", **kw)
     parser.add_argument("--transform-constant", type=number(), default=0.0, metavar="K",
@@ -686,8 +694,13 @@ def model_spec(opts: argparse.Namespace, *, order: str | None = None):
     is an InputError naming its option, before any data is read."""
     from ..model.spec import ModelSpec, SpecError
 
-    reduce = ({"criterion": getattr(opts, "criterion", "p"), "alpha_out": getattr(opts, "alpha_out", 0.1)}
-              if getattr(opts, "reduce", False) else None)
+    how = getattr(opts, "reduce", False)
+    reduce: dict[str, str | float] | None = None
+    if how:
+        reduce = {"alpha_out": getattr(opts, "alpha_out", 0.1), "method": how if isinstance(how, str) else "backward",
+                  "alpha_in": getattr(opts, "alpha_in", 0.1)}
+        if getattr(opts, "criterion", None) is not None:
+            reduce["criterion"] = opts.criterion
     if (order is None and getattr(opts, "model", None) is None and getattr(opts, "component", None)
             and getattr(opts, "terms", None) is not None):
         order = "mixture-quadratic"  # --terms names the Scheffé model; the order only starts a reduction

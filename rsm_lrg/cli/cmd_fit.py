@@ -17,6 +17,7 @@ from ._common import (
     model_spec,
     print_notes,
 )
+from .glm_fit import add_glm_options, run_glm, wants_glm
 from .gp_fit import GP_MODELS, add_gp_options, check_gp_options, run_gp
 
 NAME = "fit"
@@ -41,6 +42,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_json(parser)
     parser.add_argument("--report", metavar="PATH", default=None, help="also write a self-contained HTML report")
     add_force(parser)
+    add_glm_options(parser)
 
 
 def _write_report(result, path, force: bool) -> None:
@@ -132,6 +134,8 @@ def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ._common import random_effect, read_input
 
+    if wants_glm(args):  # --family: a generalised linear model (rsm_lrg.cli.glm_fit)
+        return run_glm(args)
     model_spec(args)  # a bad --model/--terms/--transform is named before any data is read
     many = _many_files(str(args.data), args)  # a directory or glob: fitted partition by partition (Dask)
     if many is not None:
@@ -160,9 +164,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(f"Data: {args.data}")
         if result.reduction is not None:
-            r = result.reduction.to_dict()
-            print(f"Backward elimination ({'p > ' + format(args.alpha_out, 'g') if r['criterion'] == 'p' else 'AICc'}, "
-                  f"hierarchy kept): removed {', '.join(r['removed']) or 'nothing'}")
+            print(result.reduction.describe())
         print(result.summary(), end="")
         if args.diagnostics:
             print()

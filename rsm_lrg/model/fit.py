@@ -41,8 +41,11 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from ..factors import FactorSpace
+    from .glm_family import Family
+    from .glm_result import GLMResult
     from .gp_result import GPResult
     from .reduce import Reduction
+    from .select import Selection
     from .transform import Transform
 
 __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual_equations", "COEF_COLUMNS",
@@ -57,7 +60,7 @@ def fit(  # type: ignore[overload-overlap]  # "gp" is also a str: the first matc
         components: Sequence[str] | None = ..., whole_plot: str | None = ..., random_block: str | None = ...,
         hard_to_change: str | Sequence[str] | None = ..., kernel: str = ..., trend: str = ...,
         nugget: float | str | None = ..., length_scales: Sequence[float] | None = ..., variance: float | None = ...,
-        seed: int | None = ...) -> GPResult: ...
+        seed: int | None = ..., family: None = ..., link: None = ..., trials: None = ...) -> GPResult: ...
 @overload
 def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = ..., block: str | None = ...,
         model: str | ModelSpec = ..., *, terms: TermsArg = ..., intercept: bool = ...,
@@ -65,16 +68,28 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         chunk_rows: int = ..., components: Sequence[str] | None = ..., whole_plot: str | None = ...,
         random_block: str | None = ..., hard_to_change: str | Sequence[str] | None = ..., kernel: str = ...,
         trend: str = ..., nugget: float | str | None = ..., length_scales: Sequence[float] | None = ...,
-        variance: float | None = ..., seed: int | None = ...) -> FitResult: ...
+        variance: float | None = ..., seed: int | None = ..., family: str | Family, link: str | None = ...,
+        trials: str | None = ...) -> GLMResult: ...
+@overload
+def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = ..., block: str | None = ...,
+        model: str | ModelSpec = ..., *, terms: TermsArg = ..., intercept: bool = ...,
+        transform: str | Transform | None = ..., transform_constant: float = ..., reduce: ReduceArg = ...,
+        chunk_rows: int = ..., components: Sequence[str] | None = ..., whole_plot: str | None = ...,
+        random_block: str | None = ..., hard_to_change: str | Sequence[str] | None = ..., kernel: str = ...,
+        trend: str = ..., nugget: float | str | None = ..., length_scales: Sequence[float] | None = ...,
+        variance: float | None = ..., seed: int | None = ..., family: None = ..., link: None = ...,
+        trials: None = ...) -> FitResult: ...
 def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = None, block: str | None = None,
         model: str | ModelSpec = "quadratic", *, terms: TermsArg = None, intercept: bool = True,
         transform: str | Transform | None = None, transform_constant: float = 0.0, reduce: ReduceArg = None,
         chunk_rows: int = CHUNK_ROWS, components: Sequence[str] | None = None, whole_plot: str | None = None,
         random_block: str | None = None, hard_to_change: str | Sequence[str] | None = None, kernel: str = "matern52",
         trend: str = "constant", nugget: float | str | None = None, length_scales: Sequence[float] | None = None,
-        variance: float | None = None, seed: int | None = 0) -> FitResult | GPResult:
-    """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5), or a
-    Gaussian process (``model="gp"``, :func:`rsm_lrg.model.gp.fit_gp`).
+        variance: float | None = None, seed: int | None = 0, family: str | Family | None = None,
+        link: str | None = None, trials: str | None = None) -> FitResult | GPResult | GLMResult:
+    """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5), a Gaussian
+    process (``model="gp"``, :func:`rsm_lrg.model.gp.fit_gp`) or a generalised linear model
+    (``family=``, :func:`rsm_lrg.model.glm.fit_glm`).
 
     Parameters
     ----------
@@ -146,10 +161,18 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         ``"quadratic"``), nugget (``None``, ``"estimate"`` or a value), fixed
         hyper-parameters and the seed of the likelihood's starting points
         (:func:`rsm_lrg.model.gp.fit_gp`).
+    family : {"binomial", "poisson"}, optional
+        A generalised linear model of a 0/1 response, successes of ``trials``, or a count,
+        fitted by maximum likelihood (:func:`rsm_lrg.model.glm.fit_glm`; returns a
+        :class:`~rsm_lrg.model.glm_result.GLMResult`).
+    link : {"logit", "probit", "cloglog", "log"}, optional
+        With ``family``: the link (default logit for binomial, log for poisson).
+    trials : str, optional
+        With ``family="binomial"``: the column of trials; the response counts successes.
 
     Returns
     -------
-    FitResult, or GPResult for ``model="gp"``
+    FitResult, or GPResult for ``model="gp"``, or GLMResult with ``family``
 
     Raises
     ------
@@ -172,6 +195,11 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
                       length_scales=length_scales, variance=variance, seed=seed)
     spec = ModelSpec.build(model, terms=terms, intercept=intercept, transform=transform,
                            transform_constant=transform_constant, reduce=reduce)
+    if family is not None or link is not None or trials is not None:  # a GLM (rsm_lrg.model.glm)
+        from .glm import fit_glm
+
+        return fit_glm(data, response, factors, spec=spec, family_name=family, link=link, trials=trials, block=block,
+                       components=components, random_effect=whole_plot or random_block)
     if is_dask(data):  # fitted partition by partition, never collected; OLS only
         for option, given in (("whole_plot", whole_plot), ("random_block", random_block),
                               ("hard_to_change", hard_to_change)):
@@ -195,10 +223,9 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
     if spec.reduce is not None:
         from dataclasses import replace
 
-        from .reduce import reduce_inputs
+        from .select import choose_terms
 
-        reduction = reduce_inputs(inp, model=spec.order, terms=spec.terms, intercept=spec.intercept,
-                                  alpha_out=spec.reduce.alpha_out, criterion=spec.reduce.criterion)
+        reduction = choose_terms(inp, spec.reduce, model=spec.order, terms=spec.terms, intercept=spec.intercept)
         spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept") or None)
         if spec.terms is None:  # every term removed: the mean-only model
             raise ValueError("backward elimination removed every term: no factor explains the response "
@@ -235,11 +262,11 @@ def _fit_mixture(data: pd.DataFrame, response: str, components: Sequence[str] | 
     if spec.reduce is not None:  # the linear blending terms always stay
         from dataclasses import replace
 
-        from .reduce import reduce_inputs
+        from .select import choose_terms
 
         try:
-            reduction = reduce_inputs(inp, model=spec.order, terms=spec.terms, intercept=False,
-                                      alpha_out=spec.reduce.alpha_out, criterion=spec.reduce.criterion, mixture=True)
+            reduction = choose_terms(inp, spec.reduce, model=spec.order, terms=spec.terms, intercept=False,
+                                     mixture=True)
         except ValueError as exc:
             if "term" in str(exc) and "mixture" in str(exc):
                 raise SpecError("terms", str(exc)) from None
@@ -266,7 +293,7 @@ def _spec_terms(inp: ModelInputs, spec: ModelSpec, block_df: int) -> tuple:
 
 
 def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: int = CHUNK_ROWS,
-               reduction: Reduction | None = None) -> FitResult:
+               reduction: Reduction | Selection | None = None) -> FitResult:
     """The fit of checked inputs (:func:`~rsm_lrg.model.inputs.model_inputs`) to ``spec``'s
     terms (its reduction, if any, already applied)."""
     space, y, hint, nb, n = inp.space, inp.y, inp.hint, inp.nb, inp.n

@@ -42,6 +42,11 @@ def reduce_mixed(refit: Callable[[ModelSpec], Any], spec: ModelSpec, space: Any)
     import pandas as pd
 
     assert spec.reduce is not None
+    if spec.reduce.method != "backward" or not spec.reduce.hierarchy:
+        from .spec import SpecError
+
+        raise SpecError("reduce", "a REML fit is reduced by hierarchical backward elimination on the Kenward-Roger "
+                                  f"p-values, not by {spec.reduce.method} selection")
     alpha_out = spec.reduce.alpha_out
     current = replace(spec, reduce=None)
     steps: list[dict[str, Any]] = []

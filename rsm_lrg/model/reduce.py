@@ -113,6 +113,11 @@ class Reduction:
     alpha_out: float = 0.1
     start_model: str = "quadratic"
 
+    def describe(self) -> str:
+        """One line: ``Backward elimination (p > 0.1, hierarchy kept): removed AB, A^2``."""
+        crit = f"p > {self.alpha_out:g}" if self.criterion == "p" else "AICc"
+        return f"Backward elimination ({crit}, hierarchy kept): removed {', '.join(self.removed) or 'nothing'}"
+
     def to_dict(self) -> dict:
         """``{"criterion", "alpha_out", "start_model", "kept", "removed", "steps"}``."""
         steps = [{k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in r.items()}

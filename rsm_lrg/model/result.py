@@ -44,6 +44,7 @@ if TYPE_CHECKING:
 
     from .mixed import MixedModel
     from .reduce import Reduction
+    from .select import Selection
 
 __all__ = ["FitResult", "assemble", "COEF_COLUMNS"]
 
@@ -129,7 +130,7 @@ class FitResult:
     input_notes: tuple = field(default=(), repr=False)
     omitted_rows: tuple = field(default=(), repr=False)
     omitted_data: pd.DataFrame | None = field(default=None, repr=False)
-    reduction: Reduction | None = field(default=None, repr=False)
+    reduction: Reduction | Selection | None = field(default=None, repr=False)
     mixed: MixedModel | None = field(default=None, repr=False)
 
     # -- what the regression core says ------------------------------------------------
@@ -925,7 +926,7 @@ def assemble(*, spec: ModelSpec, response: str, block: str | None, space: Factor
              col_names: Sequence[str], ls: Regression, pe: PureError, bkeys: list | None, blevels: dict | None,
              data: pd.DataFrame | dd.DataFrame, coded: pd.DataFrame | None, y: np.ndarray | None,
              y_response: np.ndarray | None = None, input_notes: Sequence = (), omitted_rows: Sequence[int] = (),
-             omitted_data: pd.DataFrame | None = None, reduction: Reduction | None = None,
+             omitted_data: pd.DataFrame | None = None, reduction: Reduction | Selection | None = None,
              mixed: MixedModel | None = None) -> FitResult:
     """The :class:`FitResult` of a factorised fit (both passes done) and its pure error; every
     statistic is derived from them on first use.

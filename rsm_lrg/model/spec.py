@@ -28,16 +28,17 @@ from ..terms import MODELS
 from .mixture import MIXTURE_MODELS, MIXTURE_ORDERS
 from .transform import Transform, parse_transform
 
-__all__ = ["ModelSpec", "ReduceSpec", "SpecError", "FactorsArg", "TermsArg", "ReduceArg"]
+__all__ = ["ModelSpec", "ReduceSpec", "SpecError", "FactorsArg", "TermsArg", "ReduceArg", "REDUCE_METHODS",
+           "REDUCE_CRITERIA"]
 
 #: The factors of a fit: inferred (None), names or ``"NAME=LOW:HIGH"`` / ``"NAME=cat..."``
 #: strings, or a :class:`~rsm_lrg.factors.FactorSpace`.
 FactorsArg: TypeAlias = "Sequence[str] | FactorSpace | None"
 #: A term list: ``"A B AB A^2"`` (space- or comma-separated) or a sequence of term names.
 TermsArg: TypeAlias = "str | Sequence[str] | None"
-#: A reduction: None/False (none), True (the defaults), ``{"criterion": ..., "alpha_out": ...}``
-#: or a :class:`ReduceSpec`.
-ReduceArg: TypeAlias = "bool | Mapping[str, str | float] | ReduceSpec | None"
+#: A reduction: None/False (none), True (the defaults), a method name (``"forward"``), a mapping
+#: ``{"method": ..., "criterion": ..., "alpha_out": ..., ...}`` or a :class:`ReduceSpec`.
+ReduceArg: TypeAlias = "bool | str | Mapping[str, str | float | bool] | ReduceSpec | None"
 
 
 class SpecError(ParameterError):
@@ -45,40 +46,77 @@ class SpecError(ParameterError):
     ``"transform"``, ``"reduce"``) so a command line can name its own option."""
 
 
+#: Ways of choosing the terms (:mod:`rsm_lrg.model.reduce`, :mod:`rsm_lrg.model.select`).
+REDUCE_METHODS = ("backward", "forward", "stepwise", "all-subsets")
+#: Criteria of the choice.
+REDUCE_CRITERIA = ("p", "aicc", "bic")
+
+
 @dataclass(frozen=True)
 class ReduceSpec:
-    """Backward elimination keeping hierarchy: remove by p-value while the largest removable
-    p exceeds ``alpha_out`` (``criterion="p"``), or while AICc falls (``"aicc"``)."""
+    """How the terms are chosen, hierarchy kept (unless ``hierarchy=False``).
 
-    criterion: str = "p"
+    ``method``: ``"backward"`` (the default: remove by p-value while the largest removable p
+    exceeds ``alpha_out``, ``criterion="p"``; or while AICc, ``"aicc"``, or BIC, ``"bic"``,
+    falls), ``"forward"`` (add while the smallest p is below ``alpha_in``, or while the
+    criterion falls), ``"stepwise"`` (forward, each addition followed by the removals
+    backward elimination would make), ``"all-subsets"`` (every hierarchical sub-model of
+    the starting model, the best by AICc or BIC; ``criterion`` defaults to ``"aicc"`` there
+    and ``"p"`` elsewhere). See :mod:`rsm_lrg.model.select`.
+    """
+
+    criterion: str | None = None
     alpha_out: float = 0.1
+    method: str = "backward"
+    alpha_in: float = 0.1
+    hierarchy: bool = True
 
     def __post_init__(self) -> None:
-        if self.criterion not in ("p", "aicc"):
-            raise SpecError("reduce", f"criterion must be 'p' or 'aicc', not {self.criterion!r}")
-        a = self.alpha_out
-        if isinstance(a, bool) or not isinstance(a, (int, float)) or not 0.0 < a < 1.0:
-            raise SpecError("reduce", f"alpha_out must lie between 0 and 1, not {a!r}")
+        if self.method not in REDUCE_METHODS:
+            raise SpecError("reduce", f"the reduction method must be one of {', '.join(REDUCE_METHODS)}, not "
+                                      f"{self.method!r}")
+        if self.criterion is None:
+            object.__setattr__(self, "criterion", "aicc" if self.method == "all-subsets" else "p")
+        if self.criterion not in REDUCE_CRITERIA:
+            raise SpecError("criterion", f"criterion must be 'p', 'aicc' or 'bic', not {self.criterion!r}")
+        if self.method == "all-subsets" and self.criterion == "p":
+            raise SpecError("criterion", "all-subsets ranks the models by AICc or BIC (criterion 'aicc' or 'bic'), "
+                                         "not by p-values")
+        for name in ("alpha_out", "alpha_in"):
+            a = getattr(self, name)
+            if isinstance(a, bool) or not isinstance(a, (int, float)) or not 0.0 < a < 1.0:
+                raise SpecError(name if name == "alpha_in" else "reduce",
+                                f"{name} must lie between 0 and 1, not {a!r}")
+        if self.method == "stepwise" and self.criterion == "p" and self.alpha_in > self.alpha_out:
+            raise SpecError("alpha_in", f"stepwise needs alpha_in <= alpha_out (a term entered at p < "
+                                        f"{self.alpha_in:g} must not leave at once at p > {self.alpha_out:g})")
 
     @classmethod
     def build(cls, value: ReduceArg) -> ReduceSpec | None:
-        """``None``/``False`` (no reduction), ``True`` (the defaults), a ReduceSpec, or a
-        mapping ``{"criterion": ..., "alpha_out": ...}``."""
+        """``None``/``False`` (no reduction), ``True`` (the defaults), a method name
+        (``"forward"``), a ReduceSpec, or a mapping ``{"method": ..., "criterion": ...,
+        "alpha_out": ..., "alpha_in": ..., "hierarchy": ...}``."""
         if value is None or value is False:
             return None
         if value is True:
             return cls()
         if isinstance(value, cls):
             return value
+        if isinstance(value, str):
+            return cls(method=value.strip().lower(), criterion=None)
         if isinstance(value, dict):
-            unknown = set(value) - {"criterion", "alpha_out"}
+            unknown = set(value) - {"criterion", "alpha_out", "method", "alpha_in", "hierarchy"}
             if unknown:
-                raise SpecError("reduce", f"reduce takes criterion and alpha_out, not {', '.join(sorted(unknown))}")
+                raise SpecError("reduce", f"reduce takes method, criterion, alpha_out, alpha_in and hierarchy, not "
+                                          f"{', '.join(sorted(unknown))}")
             return cls(**value)
-        raise SpecError("reduce", f"reduce must be True, a mapping or a ReduceSpec, not {value!r}")
+        raise SpecError("reduce", f"reduce must be True, a method name, a mapping or a ReduceSpec, not {value!r}")
 
     def to_dict(self) -> dict[str, Any]:
-        return {"criterion": self.criterion, "alpha_out": self.alpha_out}
+        out: dict[str, Any] = {"criterion": self.criterion, "alpha_out": self.alpha_out}
+        if self.method != "backward" or not self.hierarchy:
+            out.update(method=self.method, alpha_in=self.alpha_in, hierarchy=self.hierarchy)
+        return out
 
 
 @dataclass(frozen=True)

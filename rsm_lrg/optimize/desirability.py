@@ -278,6 +278,12 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     e.g. ``{"stage": "rms"}``) is searched over the numeric factors, and the combination with
     the highest overall desirability wins (its levels are in ``actual``).
     """
+    from ..model.glm_result import GLMResult
+
+    glm = [str(n) for n, f in (fits or {}).items() if isinstance(f, GLMResult)]
+    if glm:  # its model scale is the link scale, which the search would read as the response
+        raise TypeError(f"response {glm[0]!r}: desirability with a generalised linear model (a probability or mean "
+                        "count) is not available yet; optimise it alone with rsm_lrg.optimize(result, goal)")
     first = next(iter(fits.values()), None) if fits else None
     if first is not None and first.space.has_categoric:
         return _desirability_categoric(fits, goals, bounds, seed=seed, n_sobol=n_sobol, n_polish=n_polish,

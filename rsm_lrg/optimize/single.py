@@ -152,9 +152,10 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     -------
     OptimumResult
     """
+    from ..model.glm_result import GLMResult
     from ..model.result import FitResult
 
-    if not isinstance(fitted, (FitResult, LevelView)):  # a fit, or one at a level combination
+    if not isinstance(fitted, (FitResult, GLMResult, LevelView)):  # a fit, or one at a level combination
         raise TypeError(f"optimize() takes a fitted result (FitResult), not {type(fitted).__name__}: fit first, "
                         "e.g. rsm_lrg.optimize(rsm_lrg.fit(data, response), goal)")
     if not 0.0 < confidence < 1.0:
