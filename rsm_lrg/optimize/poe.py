@@ -87,9 +87,8 @@ def parse_factor_sd(space: Any, items: Mapping[str, Any] | Sequence[str] | None)
 
 def mixture_components(space: Any) -> list[int]:
     """Positions of the mixture components among the factors (empty without a mixture)."""
-    from ..factors import MixtureComponent
-
-    return [j for j, f in enumerate(space.factors) if isinstance(f, MixtureComponent)]
+    comps = {id(f) for f in space.components}  # the space says whether its region is a simplex
+    return [j for j, f in enumerate(space.factors) if id(f) in comps]
 
 
 def factor_covariance(space: Any, sds: Mapping[str, float]) -> np.ndarray:

@@ -213,7 +213,7 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
     ivs = {r: parse_interval(v) for r, v in (intervals or {}).items()}
     first = fits[goals[0].response]
     space = first.space
-    if first.mixture and (bounds or constraints):
+    if space.has_components and (bounds or constraints):
         raise ParameterError("bound", "bounds and constraints are not yet taken by the interval/POE optimum of a "
                                       "mixture (the components' own bounds are)")
     if not 0.0 < float(confidence) < 1.0:
@@ -271,7 +271,7 @@ def optimize_robust(fits: Mapping[str, Any], goals: Sequence[Any], *, poe: Seque
             val = np.abs(v - T) if w is None else np.maximum(np.abs(v - T), np.abs(w - T))
         return val, ds, t
 
-    comps = mixture_components(space) if first.mixture else []
+    comps = mixture_components(space)
     if comps:  # L-pseudo components: each in [0, (U - L)/R], the last one the rest of the total
         for j in comps:
             f = space.factors[j]
