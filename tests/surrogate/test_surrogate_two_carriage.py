@@ -52,3 +52,20 @@ def test_no_drive_heat_in_the_two_carriage_rig():
         simulate(ROWS, noise_sd=0, calibration=dict(CAL, drive_viscous_n_s_m=1.0))
     with pytest.raises(ValueError, match="heat_balance"):
         simulate(ROWS, noise_sd=0, calibration=dict(CAL, heat_balance=False))
+
+
+def test_the_calibration_reads_the_network_from_an_interpolant_equal_to_it():
+    # calibrate evaluates the same rows at many contact conductances (evaluate_rows(memo=True)): the
+    # network's outputs from a Chebyshev interpolant in ln g, against the network itself (memo=False)
+    from rsm_lrg.surrogate.design_input import read_design_arrays
+    from rsm_lrg.surrogate.runs import CONTACT_INTERP_W_K, evaluate_rows
+
+    p = LRGParams().with_overrides(heat_balance=True, two_carriage=True)
+    arr = read_design_arrays(ROWS, p)
+    for g in np.geomspace(*CONTACT_INTERP_W_K, 5):
+        cal = {"ball_contact_conductance_w_k": float(g), "viscous_friction_n_s_m": 2.0}
+        a = evaluate_rows(arr, params=p, calibration=cal, memo=True)
+        b = evaluate_rows(arr, params=p, calibration=cal, memo=False)
+        for k in ("tcr_c_per_min", "steady_rise_k", "temperature_rise_k"):
+            np.testing.assert_allclose(a[k], b[k], rtol=1e-10)
+    assert HERTZ_CONTACT_W_K / 3 > CONTACT_INTERP_W_K[0] and 3 * HERTZ_CONTACT_W_K < CONTACT_INTERP_W_K[1]

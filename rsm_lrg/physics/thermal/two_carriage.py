@@ -44,7 +44,8 @@ import numpy as np
 from .fixed_order import modal_sum, network_modes, solve_spd
 from .geometry import GuideGeometry
 
-__all__ = ["CarriageSetting", "TwoCarriageNetwork", "two_carriage_network", "cached_network", "STAGES"]
+__all__ = ["CarriageSetting", "TwoCarriageNetwork", "two_carriage_network", "cached_network", "STAGES",
+           "ContactInterpolant"]
 
 #: The two stages on the rail, in the order of their positions (RMS first).
 STAGES = ("rms", "rfcms")
@@ -342,3 +343,40 @@ def cached_network(values, rms: CarriageSetting, rfcms: CarriageSetting, *, dx_m
     """:func:`two_carriage_network` (its parts but the ball contacts are cached per parameters and
     settings: a calibration asks for the same rows many times)."""
     return two_carriage_network(values, rms, rfcms, dx_m=dx_m)
+
+
+class ContactInterpolant:
+    """Outputs of the network as smooth functions of the ball contacts' conductance g, for a
+    calibration that asks for the same rows at many g: a Chebyshev interpolant in ln g on
+    ``[g_lo, g_hi]`` [W/K] through ``n`` points of the first kind.
+
+    The network is linear in g (``K = K_0 + g·K_1``, :func:`two_carriage_network`), so each output
+    is a rational function of g whose poles lie at g < 0; in ln g they are at least π from the real
+    axis and the interpolant converges geometrically (1e-12 relative with 32 points over a factor
+    of 12, tested against the network). ``fn(g)`` returns the outputs (a 1-D array) at one g.
+
+    >>> f = ContactInterpolant(lambda g: np.array([1.0 / (1.0 + g)]), 0.1, 1.2)
+    >>> bool(abs(f(0.5)[0] - 1 / 1.5) < 1e-13)
+    True
+    """
+
+    def __init__(self, fn, g_lo: float, g_hi: float, n: int = 32):
+        if not (0 < g_lo < g_hi and n >= 2):
+            raise ValueError("ContactInterpolant needs 0 < g_lo < g_hi and n >= 2")
+        self.g_lo, self.g_hi = float(g_lo), float(g_hi)
+        self._a, self._b = math.log(self.g_lo), math.log(self.g_hi)
+        x = np.cos(np.pi * (np.arange(n) + 0.5) / n)
+        vals = np.array([np.asarray(fn(math.exp(0.5 * (self._a + self._b) + 0.5 * (self._b - self._a) * xi)), float)
+                         for xi in x])
+        self._coef = np.polynomial.chebyshev.chebfit(x, vals, n - 1)
+
+    def covers(self, g: float) -> bool:
+        """Whether ``g`` [W/K] lies in the interpolated range."""
+        return self.g_lo <= g <= self.g_hi
+
+    def __call__(self, g: float) -> np.ndarray:
+        if not self.covers(g):
+            raise ValueError(f"g = {g!r} W/K is outside the interpolated range [{self.g_lo}, {self.g_hi}]")
+        x = (2.0 * math.log(g) - self._a - self._b) / (self._b - self._a)
+        t = np.cos(np.arange(self._coef.shape[0]) * math.acos(min(1.0, max(-1.0, x))))  # T_k(x)
+        return np.asarray(t @ self._coef, float)
