@@ -15,7 +15,9 @@ DESCRIPTION = (
     "that of the drive, and the conductance of the ball contacts; --model v5-nodrive: no drive heat; "
     "--model v4: the earlier calibration, a share of Eq. 8's calories plus a drive heat; v4-coulomb, "
     "v3, v3-overconstraint, v2: earlier models; --select M1,M2: the candidate of smallest AICc, the "
-    "choice repeated inside every leave-one-out fold) "
+    "choice repeated inside every leave-one-out fold; --model v6 / v6-alone: both carriages on one rail "
+    "and base (Section 4.1), the other stage running or at rest, no drive heat, the ball contacts within "
+    "3x of their contact-mechanics estimate; the shipped file selects between them) "
     "by bounded least squares to the measured response of noise-free virtual runs; report R2, "
     "RMSE, standard errors and leave-one-out cross-validation next to the paper's quadratic's "
     "PRESS R2 (0.818), and write them with the data's "
@@ -28,8 +30,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("data", metavar="DATA.csv", help="measured runs: the design columns and the response")
     add_reader_options(p)
     p.add_argument("--response", required=True, metavar="COL", help="the measured column (e.g. tcr_c_per_min)")
-    p.add_argument("--model", default="v5", choices=("v4", "v5", "v5-nodrive", "v4-coulomb", "v3", "v3-overconstraint",
-                                                     "v2"),
+    p.add_argument("--model", default="v5", choices=("v4", "v5", "v5-nodrive", "v6", "v6-alone", "v4-coulomb", "v3",
+                                                     "v3-overconstraint", "v2"),
                    help="calibration model: the physics it fixes and its default parameters (default v5: one "
                         "heat balance in watts; v4: a share of Eq. 8's calories plus a drive heat; v2 reproduces "
                         "the earliest calibration)")

@@ -22,7 +22,7 @@ from . import convection, dynamics, heat, hinge, motion, wear
 from .params import LRGParams
 
 __all__ = ["PhysicsResult", "HingeRow", "physics_chain", "TABLE3_THICKNESSES_M", "PAPER_VALUES",
-           "PAPER_WEAR_RATIO", "TABLE3_BOX", "LeafYieldScan", "leaf_yield_scan"]
+           "PAPER_WEAR_RATIO", "TABLE3_BOX", "LeafYieldScan", "leaf_yield_scan", "FATIGUE_CRITERION"]
 
 #: Hinge thicknesses of Table 3 (low, centre, high) [m].
 TABLE3_THICKNESSES_M = (0.0001, 0.0003, 0.0005)
@@ -35,6 +35,11 @@ TABLE3_BOX = {"thickness_m": (1e-4, 5e-4), "stroke_m": (0.04, 0.06), "velocity_m
 YIELD_BEHAVIOUR = ("the model keeps the elastic beam-column law there and flags the rows (simulate: hinge_yields, "
                    "a warning on stderr); a real leaf would take a permanent set, so the rows' dynamics, heat and "
                    "wear are outside the model's validity")
+
+#: The fatigue criterion of :func:`.hinge.leaf_fatigue`.
+FATIGUE_CRITERION = ("modified Goodman at the leaf clamps, sigma_a/S_e + sigma_m/R_m >= 1 (Shigley, 10th ed., "
+                     "Eq. 6-41), sigma_a the bending and sigma_m the tension part of the beam-column clamp stress "
+                     "over the deflection's swing +-peak")
 
 #: RFCMS/RMS wear volume per unit time from the paper's FEM (Section 3.2).
 PAPER_WEAR_RATIO = 0.5893
@@ -104,6 +109,38 @@ class LeafYieldScan:
     max_at: dict
     region: dict | None
     by_thickness: tuple
+    fatigue_limit_pa: float = float("nan")
+    tensile_strength_pa: float = float("nan")
+    n_fatigue: int = 0
+    max_utilisation: float = float("nan")
+    fatigue_by_thickness: tuple = ()
+    fatigue_share: dict = field(default_factory=dict)
+    n_irregular: int = 0
+
+    def fatigue_dict(self) -> dict[str, Any]:
+        """Where a leaf would fail in fatigue (the ``leaf_fatigue`` key of ``physics --json``)."""
+        return {"fatigue_limit_pa": self.fatigue_limit_pa, "tensile_strength_pa": self.tensile_strength_pa,
+                "criterion": FATIGUE_CRITERION, "levels": self.levels, "n_points": self.n_points,
+                "n_fatigue": self.n_fatigue, "max_utilisation": self.max_utilisation,
+                "n_irregular": self.n_irregular,
+                "by_thickness": [{"thickness_m": t, "n_fatigue": k, "n_points": m, "max_amplitude_pa": sa}
+                                 for t, k, m, sa in self.fatigue_by_thickness],
+                "share": {k: [list(x) for x in v] for k, v in self.fatigue_share.items()}}
+
+    def fatigue_text(self) -> str:
+        lines = [f"leaf fatigue over the Table 3 box ({self.n_points} settings; {FATIGUE_CRITERION}, S_e = "
+                 f"{self.fatigue_limit_pa / 1e6:.0f} MPa, R_m = {self.tensile_strength_pa / 1e6:.0f} MPa): "
+                 f"{self.n_fatigue} settings fail, largest utilisation {self.max_utilisation:.2f}"]
+        for t, k, m, sa in self.fatigue_by_thickness:
+            lines.append(f"  {t * 1e3:.2f} mm leaf: {k} of {m} fail in fatigue, largest amplitude {sa / 1e6:.0f} MPa")
+        for name, unit in (("acceleration_m_s2", "m/s^2"), ("velocity_m_s", "m/s"), ("stroke_m", "m")):
+            if name in self.fatigue_share:
+                parts = ", ".join(f"{x:g} {unit} {k}/{m}" for x, k, m in self.fatigue_share[name])
+                lines.append(f"    by {name.split('_')[0]} (all thicknesses): {parts}")
+        if self.n_irregular:
+            lines.append(f"  {self.n_irregular} settings have no periodic state within the integrated cycles: their "
+                         "amplitude is that of the last cycles integrated (at most 40), not an envelope over 200 cycles")
+        return "\n".join(lines)
 
     def to_dict(self) -> dict[str, Any]:
         return {"box": {k: list(v) for k, v in TABLE3_BOX.items()}, "levels": self.levels,
@@ -153,9 +190,11 @@ def leaf_yield_scan(params: LRGParams | None = None, *, levels: int = 5) -> Leaf
     axes = [np.linspace(lo, hi, levels) for lo, hi in TABLE3_BOX.values()]
     y, s, v, a = (g.ravel() for g in np.meshgrid(*axes, indexing="ij"))
     beyond = np.zeros(y.size, dtype=bool)
+    irregular = np.zeros(y.size, dtype=bool)
     try:
-        pk = np.asarray(dynamics.cycle_metrics(s, v, a, params=p, method="auto", hinge_thickness_m=y)
-                        .peak_deflection_m, dtype=float)
+        cm = dynamics.cycle_metrics(s, v, a, params=p, method="auto", hinge_thickness_m=y)
+        pk = np.asarray(cm.peak_deflection_m, dtype=float)
+        irregular = np.asarray(cm.periodicity_error_m, float) > 1e-6 * np.asarray(cm.sliding_distance_m, float)
     except ValueError as exc:  # some rows leave the tabulated leaf law: find them, one row at a time
         if "leaf model" not in str(exc):
             raise
@@ -187,8 +226,20 @@ def leaf_yield_scan(params: LRGParams | None = None, *, levels: int = 5) -> Leaf
             region[f"share_by_{name}"] = [[float(x), int((ylds & thin & (col == x)).sum()),
                                            int((thin & (col == x)).sum())] for x in ax]
     by = tuple((float(t), int(ylds[y == t].sum()), int((y == t).sum()), float(st[y == t].max())) for t in axes[0])
+    sa, _, util = (np.asarray(x, float) for x in hinge.leaf_fatigue(
+        p.hinge_modulus_pa, y, p.hinge_length_m, pk, p.hinge_fatigue_limit_pa, p.hinge_tensile_strength_pa))
+    if not p.hinge_membrane:  # no tension: the bending stress of Eq. 1's leaf, fully reversed
+        sa = np.asarray(hinge.hinge_bending_stress(p.hinge_modulus_pa, y, p.hinge_length_m, pk), float)
+        util = sa / p.hinge_fatigue_limit_pa
+    fails = (util >= 1.0) | beyond
+    fby = tuple((float(t), int(fails[y == t].sum()), int((y == t).sum()), float(sa[y == t].max())) for t in axes[0])
+    share = {name: [(float(x), int((fails & (col == x)).sum()), int((col == x).sum())) for x in ax]
+             for name, col, ax in (("stroke_m", s, axes[1]), ("velocity_m_s", v, axes[2]),
+                                   ("acceleration_m_s2", a, axes[3]))}
     return LeafYieldScan(levels, int(y.size), int(ylds.sum()), int(beyond.sum()), float(p.viscous_friction_n_s_m),
-                         float(p.hinge_yield_pa), float(st[k]), max_at, region, by)
+                         float(p.hinge_yield_pa), float(st[k]), max_at, region, by, float(p.hinge_fatigue_limit_pa),
+                         float(p.hinge_tensile_strength_pa), int(fails.sum()), float(util.max()), fby, share,
+                         int(irregular.sum()))
 
 
 @dataclass(frozen=True)
@@ -212,6 +263,7 @@ class PhysicsResult:
     params: LRGParams = field(repr=False)
     details: dict[str, Any] = field(default_factory=dict, repr=False)
     leaf_yield: LeafYieldScan | None = None
+    rig: Any = None
 
     def to_dict(self, extended: bool = False) -> dict[str, Any]:
         out = {
@@ -223,6 +275,8 @@ class PhysicsResult:
             "thermal": {k: self.thermal.get(k) for k in _THERMAL_KEYS},
             "wear": {"rfcms_over_rms": self.rfcms_over_rms},
             "leaf_yield": None if self.leaf_yield is None else self.leaf_yield.to_dict(),
+            "leaf_fatigue": None if self.leaf_yield is None else self.leaf_yield.fatigue_dict(),
+            "rig": None if self.rig is None else self.rig.to_dict(),
         }
         if extended:
             out["details"] = dict(self.details)
@@ -289,6 +343,9 @@ class PhysicsResult:
                          f"hinge_yield_pa = {self.params.hinge_yield_pa:.4g} Pa); its dynamics are not elastic")
         if self.leaf_yield is not None:
             lines.append(self.leaf_yield.to_text())
+            lines.append(self.leaf_yield.fatigue_text())
+        if self.rig is not None:
+            lines.append(self.rig.to_text())
         lines.append("heat_w follows Eq. 8 as written (divided by J = 4.184)" if self.params.heat_in_calories
                      else "heat_w is the friction power in W (heat_in_calories = false)")
         return "\n".join(lines)
@@ -336,7 +393,8 @@ def _check_geometry(p: LRGParams) -> None:
 
 
 def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
-                  thicknesses=TABLE3_THICKNESSES_M, yield_scan: bool = True, **overrides) -> PhysicsResult:
+                  thicknesses=TABLE3_THICKNESSES_M, yield_scan: bool = True, rig: bool = True,
+                  **overrides) -> PhysicsResult:
     """Run the chain for ``params`` (default: the shipped defaults) with ``overrides``.
 
     Parameters
@@ -347,8 +405,12 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
     thicknesses : sequence of float
         Hinge thicknesses for the ``hinge`` rows [m] (Table 3).
     yield_scan : bool
-        Scan the Table 3 box for leaves past yield (:func:`leaf_yield_scan`, 625 settings);
-        ``False``: ``leaf_yield`` is ``None``.
+        Scan the Table 3 box for leaves past yield and for fatigue (:func:`leaf_yield_scan`, 625
+        settings); ``False``: ``leaf_yield`` is ``None``.
+    rig : bool
+        Both stages on one rail at the 81 settings of Table 3 (:func:`.rig.rig_report`: carriage
+        and working-stage rises, contact conductance, heat balance; needs ``thermal``); ``False``
+        or ``thermal=False``: ``rig`` is ``None``.
     **overrides
         Any parameter by name (``mu_k=0.01``).
 
@@ -429,4 +491,9 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
     if not thermal:
         details["thermal_skipped"] = True
     scan = leaf_yield_scan(p) if yield_scan else None
-    return PhysicsResult(load, fmax, q, phi, re, pr, hs, hf, tuple(rows), th, ratio, p, details, scan)
+    rig_rep = None
+    if rig and thermal:
+        from .rig import rig_report
+
+        rig_rep = rig_report(p)
+    return PhysicsResult(load, fmax, q, phi, re, pr, hs, hf, tuple(rows), th, ratio, p, details, scan, rig_rep)

@@ -11,7 +11,18 @@ import numpy as np
 __all__ = [
     "reynolds", "prandtl", "nusselt_parallel_plate", "nusselt_normal_plate",
     "heat_transfer_coefficient", "h_side", "h_front", "coefficients",
+    "nusselt_cross_flow", "relative_air_speed", "moving_coefficients", "MovingConvection",
+    "PARALLEL_PLATE_RE_MAX", "NORMAL_PLATE_RE_RANGE",
 ]
+
+#: Laminar flat plate (Eq. 11): the boundary layer stays laminar below Re_x = 5e5
+#: (Incropera et al., 6th ed., Section 7.2, Eq. 7.23; Pr >= 0.6).
+PARALLEL_PLATE_RE_MAX = 5e5
+
+#: Range of Reynolds numbers on which Eq. 12's constants were fitted: Hilpert's vertical plate in
+#: cross flow, C = 0.228, m = 0.731 for 4e3 <= Re <= 1.5e4 (Incropera et al., 6th ed., Table 7.3).
+#: The paper uses it at Re = 290, outside that range.
+NORMAL_PLATE_RE_RANGE = (4e3, 1.5e4)
 
 
 def reynolds(velocity, length, kinematic_viscosity):
@@ -129,3 +140,84 @@ def coefficients(values) -> tuple[float, float]:
     """
     args = tuple(values[k] for k in AIR_PARAMETERS)
     return float(h_side(*args)), float(h_front(*args))
+
+
+def nusselt_cross_flow(re, pr):
+    """Mean Nusselt number of a bluff body in cross flow by Churchill & Bernstein (1977),
+    ``Nu = 0.3 + 0.62·Re^(1/2)·Pr^(1/3) / (1 + (0.4/Pr)^(2/3))^(1/4) · (1 + (Re/282000)^(5/8))^(4/5)``:
+    the front faces of a moving body at the Reynolds numbers of the rig (about 300-800), where
+    Eq. 12 is outside the range it was fitted on (:data:`NORMAL_PLATE_RE_RANGE`).
+
+    Valid for Re·Pr >= 0.2 (all Re of laminar and turbulent cross flow). It is the correlation of
+    a circular cylinder of diameter L_c; a flat front face is a bluff body of the same size, which
+    is the approximation made here.
+
+    Examples
+    --------
+    >>> round(float(nusselt_cross_flow(290.32, 0.7031)), 2)
+    8.63
+
+    References
+    ----------
+    Churchill & Bernstein (1977), *J. Heat Transfer* 99, 300-306; Incropera et al., 6th ed.,
+    Eq. 7.54.
+    """
+    re = np.asarray(re, dtype=float)
+    pr = np.asarray(pr, dtype=float)
+    return 0.3 + (0.62 * np.sqrt(re) * np.cbrt(pr) / (1.0 + (0.4 / pr) ** (2.0 / 3.0)) ** 0.25
+                  * (1.0 + (re / 282000.0) ** 0.625) ** 0.8)
+
+
+def relative_air_speed(ambient_air_speed, mean_square_speed):
+    """Air speed [m/s] a reciprocating body sees, ``sqrt(ω² + <v²>)``: the room's air speed ω
+    (the paper's 0.3 m/s) and the body's root-mean-square speed over its cycle added in
+    quadrature (ASSUMPTION: the two are uncorrelated; the rms weights the fast part of the stroke,
+    which dominates the heat transfer). A body at rest sees ω.
+
+    >>> round(float(relative_air_speed(0.3, 0.4 ** 2)), 3)
+    0.5
+    """
+    return np.sqrt(np.asarray(ambient_air_speed, dtype=float) ** 2 + np.asarray(mean_square_speed, dtype=float))
+
+
+class MovingConvection(tuple):
+    """``(h_side, h_front, re, pr)`` of a body in air of the given speed (:func:`moving_coefficients`)."""
+
+    __slots__ = ()
+
+    @property
+    def h_side(self) -> float:
+        return float(self[0])
+
+    @property
+    def h_front(self) -> float:
+        return float(self[1])
+
+    @property
+    def reynolds(self) -> float:
+        return float(self[2])
+
+
+def moving_coefficients(values, air_speed: float) -> MovingConvection:
+    """h of the top and side faces (Eq. 11, laminar flat plate, inside its range Re < 5e5) and of
+    the front faces (Churchill-Bernstein, :func:`nusselt_cross_flow`, instead of Eq. 12 outside its
+    range) [W/(m²·K)] for air of speed ``air_speed`` [m/s] and the air of ``values`` (Eq. 10:
+    ``h = Nu·λ/L_c``); returns them with Re and Pr.
+
+    Raises ``ValueError`` where Re is outside Eq. 11's laminar range or Re·Pr < 0.2.
+
+    >>> from rsm_lrg.physics.params import LRGParams
+    >>> m = moving_coefficients(LRGParams().to_dict(), 0.3)
+    >>> round(m.h_side, 2), round(m.h_front, 2), round(m.reynolds, 1)
+    (8.82, 15.14, 290.3)
+    """
+    _, lc, nu, eta, lam, cp = (float(values[k]) for k in AIR_PARAMETERS)
+    u = float(air_speed)
+    re = float(reynolds(u, lc, nu))
+    pr = float(prandtl(cp, eta, lam))
+    if not (re < PARALLEL_PLATE_RE_MAX and re * pr >= 0.2):
+        raise ValueError(f"Re = {re:.4g} is outside the convection correlations' range (laminar flat plate "
+                         f"Re < {PARALLEL_PLATE_RE_MAX:g}, Churchill-Bernstein Re Pr >= 0.2)")
+    hs = float(heat_transfer_coefficient(nusselt_parallel_plate(re, pr), lam, lc))
+    hf = float(heat_transfer_coefficient(nusselt_cross_flow(re, pr), lam, lc))
+    return MovingConvection((hs, hf, re, pr))

@@ -72,7 +72,7 @@ _OPEN_UNIT = {"frame_mass_fraction"}
 _NONNEG = {"dwell_s", "jerk_time_s", "hinge_damping_ratio", "preload_n", "viscous_friction_n_s_m", "drive_heat_w",
            "overconstraint_misfit_m"}
 _INTS = {"hinge_count", "ball_rows", "balls_per_row"}
-_BOOLS = {"heat_in_calories", "hinge_membrane", "heat_balance"}
+_BOOLS = {"heat_in_calories", "hinge_membrane", "heat_balance", "two_carriage", "other_stage_running"}
 
 #: Physical range of every numeric parameter, inclusive, in its unit: what a linear rolling
 #: guide on a motion stage of this kind (and its air, steel and test) can physically be.
@@ -86,7 +86,9 @@ PHYSICAL_RANGES: dict[str, tuple[float, float]] = {
     "hinge_count": (1, 100), "hinge_thickness_m": (1e-6, 0.05), "hinge_width_m": (1e-4, 1.0),
     "hinge_length_m": (1e-4, 1.0), "hinge_modulus_pa": (1e6, 1.2e12), "hinge_damping_ratio": (0.0, 10.0),
     "frame_mass_fraction": (0.0, 1.0), "carriage_mass_kg": (1e-3, 1e3),
-    "hinge_yield_pa": (1e6, 1e10), "hinge_conductivity_w_mk": (0.01, 5000.0),
+    "hinge_yield_pa": (1e6, 1e10), "hinge_tensile_strength_pa": (1e6, 1e10), "hinge_fatigue_limit_pa": (1e6, 1e10),
+    "carriage_spacing_m": (1e-3, 2.0), "guide_modulus_pa": (1e9, 1.2e12), "guide_poisson": (0.0, 0.5),
+    "ball_modulus_pa": (1e9, 1.2e12), "ball_poisson": (0.0, 0.5), "ball_conductivity_w_mk": (0.01, 5000.0), "hinge_conductivity_w_mk": (0.01, 5000.0),
     "drive_heat_w": (0.0, 1e3), "stage_loss_conductance_w_k": (1e-4, 1e3), "overconstraint_misfit_m": (0.0, 1e-3),
     "ball_contact_conductance_w_k": (1e-4, 1e4), "joint_conductance_w_m2k": (1.0, 1e7),
     "base_heat_capacity_j_k": (1e-3, 1e9), "base_loss_conductance_w_k": (1e-4, 1e4),
@@ -154,6 +156,8 @@ class LRGParams:
     hinge_damping_ratio: float = _d("hinge_damping_ratio")
     hinge_membrane: bool = _d("hinge_membrane")
     hinge_yield_pa: float = _d("hinge_yield_pa")
+    hinge_tensile_strength_pa: float = _d("hinge_tensile_strength_pa")
+    hinge_fatigue_limit_pa: float = _d("hinge_fatigue_limit_pa")
     hinge_conductivity_w_mk: float = _d("hinge_conductivity_w_mk")
     drive_heat_w: float = _d("drive_heat_w")
     stage_loss_conductance_w_k: float = _d("stage_loss_conductance_w_k")
@@ -163,6 +167,10 @@ class LRGParams:
     # one heat balance in watts (the rig's bodies)
     heat_balance: bool = _d("heat_balance")
     ball_contact_conductance_w_k: float = _d("ball_contact_conductance_w_k")
+    # both carriages on one rail (Section 4.1; calibration model v6)
+    two_carriage: bool = _d("two_carriage")
+    other_stage_running: bool = _d("other_stage_running")
+    carriage_spacing_m: float = _d("carriage_spacing_m")
     joint_conductance_w_m2k: float = _d("joint_conductance_w_m2k")
     base_heat_capacity_j_k: float = _d("base_heat_capacity_j_k")
     base_loss_conductance_w_k: float = _d("base_loss_conductance_w_k")
@@ -209,6 +217,11 @@ class LRGParams:
     guide_conductivity_w_mk: float = _d("guide_conductivity_w_mk")
     guide_specific_heat_j_kgk: float = _d("guide_specific_heat_j_kgk")
     ball_density_kg_m3: float = _d("ball_density_kg_m3")
+    guide_modulus_pa: float = _d("guide_modulus_pa")
+    guide_poisson: float = _d("guide_poisson")
+    ball_modulus_pa: float = _d("ball_modulus_pa")
+    ball_poisson: float = _d("ball_poisson")
+    ball_conductivity_w_mk: float = _d("ball_conductivity_w_mk")
     stage_density_kg_m3: float = _d("stage_density_kg_m3")
     stage_conductivity_w_mk: float = _d("stage_conductivity_w_mk")
     stage_specific_heat_j_kgk: float = _d("stage_specific_heat_j_kgk")

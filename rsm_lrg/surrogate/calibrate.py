@@ -109,6 +109,21 @@ BALL_CONTACT = ParameterSpec(
     "30 times it (the perfect contact of the paper's FEM gives about 20)")
 
 
+#: The ball contacts' conductance of one side from contact mechanics at the default parameters
+#: (:func:`rsm_lrg.physics.contact.ball_contact_conductance`: Hertz ellipse of a 3.41 N ball
+#: load, Yovanovich constriction on both sides of each of the 72 contacts) [W/K]; a test checks
+#: it against the physics.
+HERTZ_CONTACT_W_K = 0.3504
+
+BALL_CONTACT_HERTZ = ParameterSpec(
+    "ball_contact_conductance_w_k", HERTZ_CONTACT_W_K / 3.0, 3.0 * HERTZ_CONTACT_W_K, HERTZ_CONTACT_W_K, "W/K",
+    "conductance of the ball contacts of one side (ball centre to raceway body, all 72 contacts; the heat "
+    "released at a contact splits between ball and raceway by their constriction conductances): held within "
+    "3x of the contact-mechanics estimate 0.350 W/K (Hertz ellipse a = 0.115 mm, b = 0.018 mm under 3.41 N; "
+    "Yovanovich's K(e)/(2 pi lambda a) on both sides of each contact), since grease menisci and the "
+    "roughness can raise it and a thin lubricant film lower it")
+
+
 @dataclass(frozen=True)
 class CalibrationModel:
     """A calibration model: the physics it fixes and the parameters it calibrates."""
@@ -148,6 +163,17 @@ MODELS = {
     "v5-nodrive": CalibrationModel(
         "v5-nodrive", (("heat_balance", True),), (VISCOUS, BALL_CONTACT),
         "as v5 without a drive heat (the paper's Section 2.2: motor heat not considered): friction heat alone"),
+    "v6": CalibrationModel(
+        "v6", (("heat_balance", True), ("two_carriage", True), ("other_stage_running", True)),
+        (VISCOUS, BALL_CONTACT_HERTZ),
+        "the rig of Section 4.1: both carriages (RMS and RFCMS) on one rail and base, run together by the "
+        "link span (Section 4.1), each carriage's friction power at its ball contacts (Hertz/Yovanovich "
+        "conductance, fitted within 3x of the estimate), no drive heat (Section 2.2)"),
+    "v6-alone": CalibrationModel(
+        "v6-alone", (("heat_balance", True), ("two_carriage", True), ("other_stage_running", False)),
+        (VISCOUS, BALL_CONTACT_HERTZ),
+        "as v6 with the other stage at rest during the test (contrary to Section 4.1; the comparison "
+        "candidate of the mechanism choice)"),
     "v4-coulomb": CalibrationModel(
         "v4-coulomb", (), (DEFAULT_PARAMETERS[0], VISCOUS, DRIVE_FRICTION),
         "as v4, with the drive element's Coulomb friction, F_d <|v|>, instead of its viscous friction"),
@@ -790,7 +816,7 @@ _RUN_KEYS = ("observed", "predicted", "loo_predicted", "loo_model_index")
 
 
 #: LRGParams switches (true/false): fixed by a calibration model, never a calibrated number.
-_SWITCHES = ("hinge_membrane", "heat_in_calories", "heat_balance")
+_SWITCHES = ("hinge_membrane", "heat_in_calories", "heat_balance", "two_carriage", "other_stage_running")
 
 
 def documented_bounds(name: str) -> tuple[float, float, str]:

@@ -143,6 +143,71 @@ def _rig_rise_rows(values: dict, dur: np.ndarray, y: np.ndarray, rigid: bool):
     return unit[:, 0], unit[:, 1], steady[:, 0], steady[:, 1]
 
 
+#: Range of the ball contacts' conductance [W/K] over which a calibration reads the two-carriage
+#: network from an interpolant in ln g (:class:`rsm_lrg.physics.thermal.two_carriage.ContactInterpolant`):
+#: it holds the bounds of calibration model v6 (a third to three times the contact-mechanics
+#: estimate 0.350 W/K).
+CONTACT_INTERP_W_K = (0.1, 1.2)
+
+#: Parameters that do not enter the two-carriage network (the interpolants are shared across them).
+_NOT_NETWORK = frozenset(("ball_contact_conductance_w_k", "viscous_friction_n_s_m", "mu_s", "mu_k",
+                          "hinge_damping_ratio", "hinge_yield_pa", "hinge_fatigue_limit_pa",
+                          "hinge_tensile_strength_pa", "wear_coefficient", "hardness_hb", "hinge_modulus_pa",
+                          "hinge_membrane", "preload_n", "gravity_m_s2", "overconstraint_misfit_m"))
+
+_INTERP: dict = {}
+_INTERP_SIZE = 4096
+
+
+def _network_items(values: dict) -> tuple:
+    """The (name, value) pairs of ``values`` that enter the two-carriage network (a cache key)."""
+    return tuple(sorted((k, x) for k, x in values.items() if k not in _NOT_NETWORK))
+
+
+def _two_carriage_row(values: dict, dur: float, y: float, s: float, msq: float, rigid: bool,
+                      interpolate: bool = False, items: tuple | None = None):
+    """:func:`_two_carriage_exact`, or (``interpolate``, for a calibration that asks for the same
+    rows at many contact conductances) its Chebyshev interpolant in ln g over
+    :data:`CONTACT_INTERP_W_K`, built once per row and network parameters (equal to the network to
+    about 1e-12 relative; outside the range the network itself). ``items``: the precomputed
+    :func:`_network_items` of ``values``."""
+    g = float(values["ball_contact_conductance_w_k"])
+    if not (interpolate and CONTACT_INTERP_W_K[0] <= g <= CONTACT_INTERP_W_K[1]):
+        return _two_carriage_exact(values, dur, y, s, msq, rigid)
+    from ..physics.thermal.two_carriage import ContactInterpolant
+
+    key = (_network_items(values) if items is None else items, dur, y, s, msq, rigid)
+    f = _INTERP.get(key)
+    if f is None:
+        f = ContactInterpolant(lambda gg: np.array(_two_carriage_exact(
+            dict(values, ball_contact_conductance_w_k=gg), dur, y, s, msq, rigid)), *CONTACT_INTERP_W_K)
+        if len(_INTERP) >= _INTERP_SIZE:
+            _INTERP.pop(next(iter(_INTERP)))
+        _INTERP[key] = f
+    return tuple(float(x) for x in f(g))
+
+
+def _two_carriage_exact(values: dict, dur: float, y: float, s: float, msq: float, rigid: bool):
+    """Both carriages on one rail (:mod:`rsm_lrg.physics.thermal.two_carriage`, model v6): the
+    working carriage's rise per watt [K/W] at the duration ``dur`` [min] (linear between whole
+    minutes, as :func:`_rise_at`) of its own friction power and of the other stage's, and the two
+    steady rises per watt. Both stages run the same stroke ``s`` [m] and speed (``msq`` = <v²>
+    [m²/s²]; one link span drives both, Section 4.1); the RFCMS has leaves of thickness ``y`` [m]."""
+    from ..physics.thermal.two_carriage import CarriageSetting, cached_network
+
+    run = CarriageSetting(float(y), float(s), float(msq))
+    net = cached_network(values, run, run)
+    me, other = ("rms", "rfcms") if rigid else ("rfcms", "rms")
+    lo, hi = math.floor(dur), math.ceil(dur)
+    w = dur - lo if hi > lo else 0.0
+    node = f"{me}.carriage"
+    r_self = net.response(np.array([lo, hi], float) * 60.0, node, me)
+    r_other = net.response(np.array([lo, hi], float) * 60.0, node, other)
+    i = net.node(node)
+    return (float(r_self[0] + w * (r_self[1] - r_self[0])), float(r_other[0] + w * (r_other[1] - r_other[0])),
+            float(net.steady_rise(me)[i]), float(net.steady_rise(other)[i]))
+
+
 def _lagged_rise_at(values: dict, dur: np.ndarray, tau: np.ndarray, unit: np.ndarray, q: np.ndarray):
     """Unit rise [K/W] at the durations ``dur`` [min] of a heat that arrives through the lag
     ``tau`` [s] (the drive heat behind the working stage's heat capacity), read like
@@ -180,7 +245,7 @@ def _cycle_metrics(s, v, a, rigid, p, cols, memo=False):
 
     key = None
     if memo and s.size <= _MEMO_MAX_ROWS:  # calibration repeats the same rows: memoise
-        pk = p.with_overrides(**{k: getattr(_BASE, k) for k in _NOT_DYNAMICS})  # heat-only fields
+        pk = tuple((k, x) for k, x in p.to_dict().items() if k not in _NOT_DYNAMICS)  # without heat-only fields
         key = (pk, s.tobytes(), v.tobytes(), a.tobytes(), rigid.tobytes(),
                tuple((k, np.asarray(x, float).tobytes()) for k, x in sorted(cols.items())))
         hit = _MEMO.get(key)
@@ -207,23 +272,11 @@ _MAX_STEPS = 10_000
 _NOT_DYNAMICS = ("drive_heat_w", "stage_loss_conductance_w_k", "hinge_yield_pa", "hinge_conductivity_w_mk",
                  "stage_specific_heat_j_kgk", "heat_balance", "ball_contact_conductance_w_k",
                  "joint_conductance_w_m2k", "base_heat_capacity_j_k", "base_loss_conductance_w_k",
-                 "hinge_density_kg_m3", "hinge_specific_heat_j_kgk")
+                 "hinge_density_kg_m3", "hinge_specific_heat_j_kgk", "two_carriage", "other_stage_running",
+                 "carriage_spacing_m", "hinge_fatigue_limit_pa", "hinge_tensile_strength_pa", "guide_modulus_pa",
+                 "guide_poisson", "ball_modulus_pa", "ball_poisson", "ball_conductivity_w_mk")
 
 
-class _Base:
-    """The default parameters, built once on first use (not at import)."""
-
-    _p = None
-
-    def __getattr__(self, name):
-        if _Base._p is None:
-            from ..physics.params import LRGParams
-
-            _Base._p = LRGParams()
-        return getattr(_Base._p, name)
-
-
-_BASE = _Base()
 
 #: Memo of the dynamics of small batches (calibration evaluates the same rows many times,
 #: with only the heat and thermal parameters changing).
@@ -348,7 +401,33 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
         uniq, inv = np.zeros((1, 0)), np.zeros(n, dtype=int)
     lag_end = np.empty(n)
     steady_drive = np.empty(n)
-    if balance:  # each row its own rig network (rig_responses), grouped by stage kind and per-row parameters
+    two = bool(p.two_carriage)
+    if two:  # both carriages on one rail (model v6): the other stage's friction heat, no drive heat
+        if not balance:
+            raise ValueError("two_carriage = true needs heat_balance = true (one heat balance in watts)")
+        if np.any(p_drive != 0):
+            raise ValueError("the two-carriage rig has no drive heat (no loss model of the drive with its own "
+                             "evidence; Section 2.2): set drive_heat_w, drive_friction_n and drive_viscous_n_s_m to 0")
+        q_drive = np.zeros(n)  # from here on: the other stage's friction power [W]
+        q = q_fric
+        if bool(p.other_stage_running):
+            o_slide, o_T, o_visc, _ = _cycle_metrics(s, v, a, ~rigid, p, dyn_cols, memo=memo)
+            o_load = dynamics.carriage_load(dict(hv, overconstraint_misfit_m=np.where(
+                ~rigid, 0.0, np.asarray(hv["overconstraint_misfit_m"], float))))
+            q_drive = np.broadcast_to((col("mu_k") * o_load * o_slide + o_visc) / o_T, (n,)).astype(float)
+        from ..physics import motion
+
+        msq = np.broadcast_to(motion.mean_square_speed(s, v, a, col("dwell_s"), col("jerk_time_s")), (n,))
+        base2 = p.to_dict()
+        items0 = _network_items(base2) if not pcols else None
+        for i in range(n):
+            vals = dict(base2, **{k: float(np.broadcast_to(x, (n,))[i]) for k, x in pcols.items()})
+            try:
+                unit_end[i], lag_end[i], steady[i], steady_drive[i] = _two_carriage_row(
+                    vals, float(dur[i]), float(y[i]), float(s[i]), float(msq[i]), bool(rigid[i]), memo, items0)
+            except ValueError as exc:
+                raise ValueError(f"row {row_start + i + 1}: {exc}") from None
+    if balance and not two:  # each row its own rig network (rig_responses), grouped by stage kind and per-row parameters
         from ..physics.thermal.fixed_order import RowError
 
         names_b = sorted(pcols)

@@ -17,7 +17,7 @@ def test_table_and_json_to_stdout():
     assert out.returncode == 0, out.stderr
     d = json.loads(out.stdout)
     assert list(d) == ["normal_load_n", "f_mu_max_n", "heat_w", "heat_source_w_m3", "reynolds", "prandtl",
-                       "h_side_w_m2k", "h_front_w_m2k", "hinge", "thermal", "wear", "leaf_yield"]
+                       "h_side_w_m2k", "h_front_w_m2k", "hinge", "thermal", "wear", "leaf_yield", "leaf_fatigue", "rig"]
     assert list(d["thermal"]) == ["steady_rise_k_fv", "steady_rise_k_network", "time_to_95_percent_h", "tcr_c_per_min"]
     assert list(d["wear"]) == ["rfcms_over_rms"]
     assert abs(d["normal_load_n"] - 173.65) < 0.005   # paper Section 2.1

@@ -8,7 +8,7 @@ from rsm_lrg.physics.chain import TABLE3_THICKNESSES_M, physics_chain
 from rsm_lrg.physics.params import LRGParams
 
 TOP = ["normal_load_n", "f_mu_max_n", "heat_w", "heat_source_w_m3", "reynolds", "prandtl",
-       "h_side_w_m2k", "h_front_w_m2k", "hinge", "thermal", "wear", "leaf_yield"]
+       "h_side_w_m2k", "h_front_w_m2k", "hinge", "thermal", "wear", "leaf_yield", "leaf_fatigue", "rig"]
 THERMAL = ["steady_rise_k_fv", "steady_rise_k_network", "time_to_95_percent_h", "tcr_c_per_min"]
 
 

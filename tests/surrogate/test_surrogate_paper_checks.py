@@ -48,15 +48,18 @@ def test_stored_figures_are_what_the_surrogate_gives_now(cal, table4_runs):
 
 
 def test_calibrated_fit_to_table4_reached_figures(cal):
-    # Figures reached with three calibrated parameters (Table 4, 27 runs, noise-free; model v5,
-    # one heat balance in watts, chosen by AICc over v5-nodrive, issue 24): R2 0.882, leave-one-out
-    # R2 0.853 with every fold recalibrated from scratch and the model chosen inside every fold.
+    # Figures reached with two calibrated parameters (Table 4, 27 runs, noise-free; issue 34: both
+    # carriages on one rail and base, no drive heat, the ball contacts within 3x of contact mechanics;
+    # v6-alone, the other stage at rest, chosen by AICc over v6 in every fold): R2 0.576, leave-one-out
+    # R2 0.536 with every fold recalibrated from scratch and the model chosen inside every fold.
     # Pinned here so they cannot silently get worse.
-    assert cal.model == "v5" and cal.selected_from == ("v5", "v5-nodrive")
+    assert cal.model == "v6-alone" and cal.selected_from == ("v6", "v6-alone")
     assert len(cal.loo_models) == cal.n == 27
-    assert cal.r2 >= 0.88
-    assert cal.loo_r2 >= 0.85
-    assert "heat_partition" not in cal.parameter_values() and cal.parameter_values()["heat_balance"] is True
+    assert cal.r2 >= 0.575
+    assert cal.loo_r2 >= 0.535
+    v = cal.parameter_values()
+    assert v["two_carriage"] is True and v["heat_balance"] is True
+    assert not any(k.startswith("drive_") for k in v)
 
 
 @pytest.mark.slow
@@ -81,15 +84,15 @@ def test_a_loo_fold_is_a_calibration_from_scratch(cal, fold):
 
 @pytest.mark.slow
 def test_the_readme_calibrate_command_reproduces_the_shipped_file(cal, tmp_path):
-    # issue 24 "Done when": the README's `rsm-lrg calibrate data/table4.csv --response
-    # tcr_c_per_min --select v5,v5-nodrive -o data/calibration.toml --force` regenerates the
+    # issue 24 "Done when" (issue 34: the candidates v6, v6-alone): the README's `rsm-lrg calibrate
+    # data/table4.csv --response tcr_c_per_min --select v6,v6-alone -o data/calibration.toml --force` regenerates the
     # shipped file (here written elsewhere; every number compared, to what another CPU's
     # last bits can move through the least squares)
     from rsm_lrg.cli import main
 
     out = tmp_path / "calibration.toml"
     assert main(["calibrate", str(data_path("table4.csv")), "--response", "tcr_c_per_min", "--select",
-                 "v5,v5-nodrive", "-o", str(out), "--no-progress"]) == 0
+                 "v6,v6-alone", "-o", str(out), "--no-progress"]) == 0
     new = load_calibration(out)
     assert (new.model, new.selected_from, new.loo_models, new.data_sha256) == (
         cal.model, cal.selected_from, cal.loo_models, cal.data_sha256)
@@ -101,18 +104,24 @@ def test_the_readme_calibrate_command_reproduces_the_shipped_file(cal, tmp_path)
     np.testing.assert_allclose(new.predicted, cal.predicted, rtol=1e-6)
 
 
+@pytest.mark.xfail(strict=True, reason="issue 34: without the drive heat (which the paper rules out, Section 2.2) the "
+                   "friction heat of the two-carriage rig has no thickness effect; leave-one-out R2 0.536")
 def test_calibrated_fit_to_table4_issue_target_loo(cal):
     # issue 4 "Done when": leave-one-out R2 >= 0.75 against Table 4; issue 15: >= 0.84, above
     # the paper's own quadratic (Eq. 19 refitted: PRESS R2 0.818, DIGEST Section 5)
     assert cal.loo_r2 >= 0.84
 
 
+@pytest.mark.xfail(strict=True, reason="issue 34: without the drive heat the physics fits Table 4 with R2 0.576")
 def test_calibrated_fit_to_table4_issue_target_r2(cal):
     # issue 4 "Done when": R2 >= 0.85; issue 15: R2 >= 0.86 (no longer an expected failure:
     # the drive's friction heat conducted through the leaves gives the thickness effect)
     assert cal.r2 >= 0.86
 
 
+@pytest.mark.xfail(strict=True, reason="issue 34: the ball contacts' conductance runs to its bound, three times the "
+                   "Hertz/Yovanovich estimate (freed, to 20 W/K): the data want the friction heat out of the carriage "
+                   "faster than contact mechanics allows")
 def test_calibrated_parameters_are_inside_their_bounds_with_standard_errors(cal):
     # issue 15 "Done when": at most 3 parameters, none at a bound, each with a standard error
     import math
@@ -127,6 +136,18 @@ def test_calibrated_parameters_are_inside_their_bounds_with_standard_errors(cal)
     nodes = np.linspace(cv.lower, cv.upper, 13)
     assert np.min(np.abs(nodes - cv.value)) > 1e-3 * (cv.upper - cv.lower)
     assert cv.ci_method == "profile likelihood" and cv.ci_low < cv.value < cv.ci_high
+
+
+def test_the_block_friction_is_off_its_bounds_and_off_the_grid(cal):
+    # issue 34 (priority 4): no fitted parameter on a grid node; c_v inside its bounds with a
+    # profile-likelihood interval around it (the contact conductance is at its 3x bound: xfail above)
+    cv = next(p for p in cal.parameters if p.name == "viscous_friction_n_s_m")
+    assert not cv.at_bound and cv.lower < cv.value < cv.upper
+    nodes = np.linspace(cv.lower, cv.upper, 13)
+    assert np.min(np.abs(nodes - cv.value)) > 1e-3 * (cv.upper - cv.lower)
+    assert cv.ci_method == "profile likelihood" and cv.ci_low < cv.value < cv.ci_high
+    g = next(p for p in cal.parameters if p.name == "ball_contact_conductance_w_k")
+    assert g.upper == pytest.approx(3 * 0.3504) and g.value <= g.upper
 
 
 def test_earlier_calibration_stays_loadable():
@@ -168,6 +189,11 @@ def _fig9(**columns):
     return out[out.stage == "rfcms"].reset_index(), out[out.stage == "rms"].reset_index()
 
 
+@pytest.mark.xfail(strict=True, reason="issue 34, said plainly: with the friction heat alone (no drive heat, Section "
+                   "2.2) both guides slide the same within a few tenths of a percent and the RMS's working stage, "
+                   "bolted to its carriage, draws more heat away than the RFCMS's behind its leaves: the model puts "
+                   "the RFCMS carriage 11 % warmer (0.0300 against 0.0269 degC/min at 0.075 m); the ordering v5 gave "
+                   "rested on the drive heat")
 def test_fig9_rms_hotter_than_rfcms():
     # Fig. 9 (measured): the RMS's TCR above the RFCMS's at every stroke
     rf, rms = _fig9()
@@ -195,8 +221,9 @@ def test_fig9_with_jerk_limited_strokes():
     # RMS is both hotter (Fig. 9, measured) and wears more (Section 3.2, FEM) at every stroke.
     # Same shipped calibration, noise-free; both stages run the same profile.
     rf, rms = _fig9(jerk_time_s=0.01)
-    assert (rms.tcr_c_per_min > rf.tcr_c_per_min).all()
     assert (rms.wear_volume_m3_per_h > rf.wear_volume_m3_per_h).all()
+    # issue 34: the temperature ordering no longer holds (the friction heat alone, see the xfail above)
+    assert (rms.tcr_c_per_min < rf.tcr_c_per_min).all()
     np.testing.assert_allclose(rf.cycle_time_s, [0.42, 0.36, 0.28], rtol=1e-12)   # 2 (s/v + v/a + t_j)
     np.testing.assert_allclose(rms.cycle_time_s, rf.cycle_time_s, rtol=0)
 
@@ -221,6 +248,10 @@ def virtual_study():
 
 
 @pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="issue 34: without the drive heat the model's thickness effect is negative "
+                   "(coded A -0.0012 on Table 4's settings against the paper's +0.0037), so the virtual study's "
+                   "minimum is at the thick leaf (A = +1); velocity is still the strongest factor and A and D "
+                   "significant")
 def test_virtual_box_behnken_study_finds_what_the_paper_found(virtual_study):
     res, an = virtual_study
     F = an.loc[["A", "B", "C", "D"], "f"]
