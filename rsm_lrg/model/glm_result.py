@@ -417,6 +417,14 @@ class GLMResult:
         """The predicted probability (mean count) at coded settings (n x k)."""
         return self.family.linkinv(self.predict_link(coded)[0])
 
+    def predictive(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The prediction contract's predictive distribution of a new run: a GLM's new run is a
+        0/1 outcome or a whole count, not a Student t about the mean, so it has none here
+        (``ParameterError`` naming ``family``; the probability or rate itself is ``predict``)."""
+        raise ParameterError("family", f"a {self.family.name} GLM has no continuous predictive distribution of a new "
+                                       "run: its probability or rate is the prediction (predict); a design space "
+                                       "or a specification on it is not available yet")
+
     def predict(self, points: Any, interval: str | None = None, alpha: float = 0.05, *, coded: bool = False) -> Any:
         """The predicted probability of a success (binomial) or mean count (poisson).
 

@@ -36,6 +36,7 @@ from ..io import float_column
 from .gp_core import KrigingCore, cholesky_jitter
 from .gp_kernels import DICEKRIGING_NAMES, correlation, log_derivative_x
 from .gp_trend import trend_gradient, trend_matrix
+from .transform import Transform
 
 __all__ = ["GPResult", "LeaveOneOut", "PREDICT_CHUNK"]
 
@@ -219,6 +220,18 @@ class GPResult:
             w = solve_triangular(c.r_f, u, lower=False, trans="T", check_finite=False)
             var[s:s + PREDICT_CHUNK] = self.variance - np.sum(v * v, axis=0) + np.sum(w * w, axis=0)
         return mean, np.maximum(var, 0.0)
+
+    @property
+    def transform(self) -> Transform:
+        """The response transform: none (a GP is fitted to the response as measured)."""
+        return Transform()
+
+    def predictive(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The prediction contract's predictive distribution of a new run at coded settings
+        (m x k): ``(mean, variance, df)`` — the kriging mean, its variance plus the nugget, and
+        infinite df (normal) [response units, units², -]."""
+        mean, var = self._mean_var(np.atleast_2d(np.asarray(coded, dtype=float)))
+        return mean, var + self.nugget, np.full(mean.shape, np.inf)
 
     def mean_sd(self, coded_points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Predicted mean and kriging standard deviation at an (m, k) array of coded settings,

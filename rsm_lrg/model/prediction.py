@@ -186,6 +186,11 @@ class FittedModel(Protocol):
         """The prediction on the model's scale at coded settings (n x k)."""
         ...
 
+    def predictive(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(mean, variance, df)`` of a new run at coded settings, on the model's scale: the
+        posterior predictive Student t (df infinite: normal)."""
+        ...
+
     def goal_on_model_scale(self, goal: Any) -> tuple[str, float | None, str, float | None]:
         """A goal on the response's scale, mapped onto the model's."""
         ...

@@ -727,6 +727,14 @@ class FitResult:
         new whole plot or block."""
         return self.estimation.interval_form(self.term_index)
 
+    def predictive(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The prediction contract's predictive distribution of a new run at coded settings
+        (n x k), on the model's scale: ``(mean, variance of a new run, df)`` — ``x b``,
+        ``var_mean + s2_new`` and the t quantile's df of the interval form (average block)."""
+        X = design_matrix(np.atleast_2d(np.asarray(coded, dtype=float)), self.terms)
+        _, _, var_new, df = self.interval_form.at(X)
+        return X @ self.coefficients["coded"].to_numpy(dtype=float), var_new, df
+
     def kr_mean(self, points: Any, *, coded: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """For a REML fit: ``(x' Phi_A x, Kenward-Roger den df)`` of the predicted mean at each
         point (points as for :meth:`predict`) [model-scale units², -]."""

@@ -9,7 +9,8 @@ probability of the fitted model (the prediction contract's interval form,
 
     p_r(x) = T_ν((U' - ŷ(x)) / s(x)) - T_ν((L' - ŷ(x)) / s(x)),   s(x)² = var_mean(x) + s2_new
 
-on the model's scale (``L'``, ``U'`` the limits transformed as the response is; a limit outside
+(the contract's :meth:`~rsm_lrg.model.prediction.FittedModel.predictive`; a Gaussian process:
+the kriging mean, its variance plus the nugget, normal) on the model's scale (``L'``, ``U'`` the limits transformed as the response is; a limit outside
 the transform's domain is open), ``T_ν`` Student's t distribution with the fit's degrees of
 freedom (OLS n − p; REML the Kenward–Roger df of ``x``). For a linear model with normal errors
 and the usual non-informative prior this *is* the predictive probability: it counts the
@@ -42,7 +43,6 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..factors import finite_float
-from ..terms import design_matrix
 
 __all__ = ["DesignSpace", "design_space", "parse_spec", "MAX_GRID_NODES"]
 
@@ -194,9 +194,7 @@ def _response_probability(fit: Any, coded: np.ndarray, limits: tuple[float, floa
     specification (module docstring)."""
     from scipy.special import stdtr
 
-    X = design_matrix(coded, fit.terms)
-    yhat = X @ fit.coefficients["coded"].to_numpy(dtype=float)
-    _, _, var_new, df = fit.interval_form.at(X)
+    yhat, var_new, df = fit.predictive(coded)
     s = np.sqrt(var_new)
     lo, hi = limits
     with np.errstate(divide="ignore", invalid="ignore"):

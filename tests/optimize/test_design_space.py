@@ -161,3 +161,18 @@ def test_reml_fit_uses_its_kenward_roger_predictive():
         s = (out["pi_high"] - out["predicted"]) / t.ppf(0.975)
         want = t.cdf((56.0 - out["predicted"]) / s) - t.cdf((48.0 - out["predicted"]) / s)
         assert ds.grid_probability[node] == pytest.approx(want, rel=1e-9, abs=1e-12)
+
+
+def test_a_gaussian_process_answers_through_the_contract(t4):
+    """A GP fit: p is the normal probability of the kriging mean and its variance plus the
+    nugget (the contract's ``predictive``), at every grid node."""
+    from scipy.stats import norm
+
+    gp = rsm_lrg.fit(t4, Y, factors=T4, model="gp")
+    ds = design_space({Y: gp}, {Y: (0.025, 0.035)}, probability=0.5, grid=3)
+    mesh = np.stack(np.meshgrid(*ds.levels, indexing="ij"), axis=-1).reshape(-1, 4)
+    coded = (mesh - [f.center for f in gp.space.factors]) / [f.half_range for f in gp.space.factors]
+    mean, sd = gp.mean_sd(coded)
+    s = np.sqrt(sd ** 2 + gp.nugget)
+    want = norm.cdf((0.035 - mean) / s) - norm.cdf((0.025 - mean) / s)
+    np.testing.assert_allclose(ds.grid_probability.ravel(), want, rtol=1e-9, atol=1e-12)
