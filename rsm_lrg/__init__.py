@@ -39,6 +39,7 @@ _LAZY = {
     "load_table5": "rsm_lrg.datasets",
     "load_equation19": "rsm_lrg.datasets",
     "load_mixture_etch": "rsm_lrg.datasets",
+    "load_cake_split_plot": "rsm_lrg.datasets",
     "read_table": "rsm_lrg.io",
 }
 

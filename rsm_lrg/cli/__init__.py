@@ -52,7 +52,7 @@ __all__ = ["main", "build_parser", "UsageError"]
 #: Order in which commands are listed in ``--help`` (others follow alphabetically).
 ORDER = [
     "design", "simulate", "fit", "optimize", "physics", "report", "reproduce",
-    "calibrate", "fit-summary", "ridge", "confirm", "evaluate",
+    "calibrate", "fit-summary", "ridge", "confirm", "evaluate", "datasets",
 ]
 
 

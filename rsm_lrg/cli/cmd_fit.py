@@ -23,7 +23,9 @@ from .gp_fit import GP_MODELS, add_gp_options, check_gp_options, run_gp
 NAME = "fit"
 HELP = "fit a response-surface model (or a Gaussian process); print the ANOVA, statistics and equation"
 DESCRIPTION = (
-    "Fit a linear, 2FI or quadratic model by least squares in coded units and print the "
+    "Fit a model in coded units (--model linear, 2fi, quadratic or cubic; a Scheffe mixture model "
+    "with --component: mixture-linear, mixture-quadratic, special-cubic or mixture-cubic; any term "
+    "list with --terms), by least squares or, with --whole-plot/--random-block, by REML, and print the "
     "Design-Expert style ANOVA (partial sums of squares, lack of fit, pure error), the fit "
     "statistics, the coefficients, the equation in coded and actual terms and the canonical "
     "analysis. With --model gp a Gaussian process (kriging) is fitted instead: --kernel, --trend, "

@@ -53,6 +53,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                                  "--response order; default: "
                                  "minimize: at most the observed median, maximize: at least the median, else the "
                                  "observed range; either end may be left empty: :0.03)")
+    parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
+                        help="as on optimize: tighter limits for a factor in actual units, or NAME=LEVEL[,LEVEL...] "
+                             "for a categoric factor (repeatable); the optima, the overlay's shading and the setting "
+                             "deepest inside every limit stay inside them")
+    parser.add_argument("--constraint", action="append", default=None, metavar="EXPR",
+                        help="as on optimize: an inequality on the factors in actual units, e.g. "
+                             "\"velocity_m_s**2/acceleration_m_s2 <= stroke_m\" (repeatable); the optima, the overlay's "
+                             "shading and the setting deepest inside every limit stay inside it")
     parser.add_argument("--hold", default="center", choices=["center", "optimum"],
                         help="where the factors off a surface's axes are held, and where the profiler starts "
                              "(default center)")
@@ -74,6 +82,35 @@ def _limits(text, response: str):
     if not sep or out is None:
         raise ValueError(f"--limits {text!r} (response {response!r}): expected LOW:HIGH")
     return out
+
+
+def _region(space, constraints, bounds):
+    """The page's region (:func:`rsm_lrg.report.region.region_data`) of ``--constraint`` and
+    the numeric ``--bound`` options, each error naming its option."""
+    from ..factors import parse_factor_spec
+    from ..report.region import region_data
+
+    numeric = {}
+    for text in bounds or []:
+        if "=" in text and ":" not in text.split("=", 1)[1]:  # NAME=LEVEL[,LEVEL]: a categoric factor held
+            continue
+        try:
+            name, lo, hi = parse_factor_spec(text)
+        except ValueError as exc:
+            raise ValueError(f"--bound: {exc}") from None
+        if lo is None or hi is None:
+            raise ValueError(f"--bound: bound {text!r}: expected NAME=LOW:HIGH")
+        try:
+            f = space[name]
+        except KeyError:
+            raise ValueError(f"--bound: bound for {name!r}: no such factor (factors: {', '.join(space.names)})") from None
+        if not float(lo) < float(hi):
+            raise ValueError(f"--bound: bound for {f.name!r}: LOW must be below HIGH (got {lo:g} >= {hi:g})")
+        numeric[f.name] = (lo, hi)
+    try:
+        return region_data(space, constraints, numeric)
+    except ValueError as exc:
+        raise ValueError(f"--constraint: {exc}") from None
 
 
 def run(args: argparse.Namespace) -> int:
@@ -118,7 +155,13 @@ def run(args: argparse.Namespace) -> int:
         # the optima are found here (the optimise layer); the report only presents them
         from ..optimize.study import report_optima
 
-        optima = report_optima(fits, dict(zip(responses, goals)), dict(zip(responses, limits)))
+        region = _region(fits[responses[0]].space, args.constraint, args.bound)
+        optima = report_optima(fits, dict(zip(responses, goals)), dict(zip(responses, limits)),
+                               bounds=args.bound, constraints=args.constraint)
+        for r in responses:  # inside a region, a missing optimum is an error that names the option
+            if r in optima.missing and (args.constraint or args.bound):
+                raise ValueError(f"{'--constraint' if args.constraint else '--bound'}: no optimum of {r}: "
+                                 f"{optima.missing[r]}")
         if args.static and n == 1 and fits[responses[0]].transform.identity:
             from ..report import write_report
 
@@ -132,7 +175,7 @@ def run(args: argparse.Namespace) -> int:
 
             path = write_interactive_report(fits, out, force=args.force, title=args.title, goals=goals,
                                             limits=limits, source_name=str(args.data), start=args.hold,
-                                            static=args.static, optima=optima)
+                                            static=args.static, optima=optima, region=region)
     print_notes(notes)  # the report shows them too
     print(f"wrote {path}")
     return 0

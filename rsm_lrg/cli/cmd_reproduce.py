@@ -13,8 +13,10 @@ DESCRIPTION = (
     "the thermal transient (Fig. 5), the stage comparison (Fig. 9), the response surface "
     "(Eq. 19, Table 5), the optimum and the confirmation run. Prints quantity, paper value, "
     "toolkit value, relative difference, tolerance and verdict, and writes "
-    "DIR/paper-reproduction.html. Exit status 0 only when no checked row is outside its "
-    "tolerance; rows that cannot match yet say why."
+    "DIR/paper-reproduction.html. Exit status 0 when no row FAILs (outside its tolerance with no "
+    "known reason), 1 when one does; a 'not yet' row (outside its tolerance, or not computable, "
+    "for the documented reason the row states) does not change the exit status, and the "
+    "verdict line counts those rows."
 )
 
 

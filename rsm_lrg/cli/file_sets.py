@@ -376,7 +376,8 @@ def read_file_set(path: str, files: list[str], *, sep: str | None = None, decima
     try:
         import dask.dataframe as dd
     except ImportError as exc:
-        raise InputError(f"{show_path(path)}: fitting several files needs dask[dataframe] ({exc})") from None
+        raise InputError(f"{show_path(path)}: fitting several files needs Dask, which a plain install does not "
+                         f"include: pip install 'rsm-lrg[parallel]' ({exc})") from None
     meta = _read_part(first, kind, ref, None, sep, decimal)
     if kind == "csv" and len(set(map(str, meta.columns))) != len(meta.columns):
         raise InputError(f"{show_path(first)}: a column appears more than once in the header")

@@ -35,6 +35,9 @@ class FactorChoice:
     notes : tuple of str
         Sentences for the user: which columns are the factors (when inferred) and which
         columns are left out.
+    blend_total : float or None
+        When the factors were inferred and every numeric factor column is a non-negative
+        share of one constant row total (a mixture design's components): that total.
     """
 
     space: FactorSpace
@@ -43,6 +46,7 @@ class FactorChoice:
     unused: tuple = ()
     text_columns: tuple = ()
     notes: tuple = ()
+    blend_total: float | None = None
 
     @property
     def inferred(self) -> bool:
@@ -54,6 +58,10 @@ class FactorChoice:
         if not self.inferred:
             return ""
         listed = name_list([f"{f.letter} {f.name}" for f in self.space.factors])
+        if self.blend_total is not None:  # said first: the error line is cut at 300 characters
+            comps = " ".join(f"--component {f.name}" for f in self.space.factors)
+            return (f"; the factors {listed} sum to {self.blend_total:g} on every row, as mixture components do: "
+                    f"give {comps} and a mixture --model")
         return f"; the factors were taken to be {listed}: if that is wrong, name them with --factor NAME"
 
 
@@ -123,4 +131,27 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
         notes.append(Note(f"Text column{'s' if len(text) > 1 else ''} left out (not a factor, response or block): "
                           f"{name_list(text)}.", COLUMNS_LEFT_OUT))
     return FactorChoice(space=space, how=how, coded_columns=tuple(coded_used), unused=tuple(unused),
-                        text_columns=tuple(text), notes=tuple(notes))
+                        text_columns=tuple(text), notes=tuple(notes),
+                        blend_total=_blend_total(data, space) if how != "given" else None)
+
+
+def _blend_total(data, space: FactorSpace) -> float | None:
+    """The constant row total of the factor columns when they look like a mixture's components
+    (two or more numeric columns, no negative value, every row summing to the same positive
+    total within 1e-6 of it), else None."""
+    import numpy as np
+
+    names = [f.name for f in space.factors]
+    if len(names) < 2 or any(f.kind != "numeric" for f in space.factors) or len(data) == 0:
+        return None
+    try:
+        x = data[names].to_numpy(dtype=float)
+    except (TypeError, ValueError):
+        return None
+    if not np.isfinite(x).all() or (x < 0).any():
+        return None
+    sums = x.sum(axis=1)
+    total = float(sums[0])
+    if total <= 0 or not np.all(np.abs(sums - total) <= 1e-6 * total):
+        return None
+    return total

@@ -79,7 +79,8 @@ def parse_bounds(space, bounds, *, allow_extrapolation: bool = False):
             msg = (f"bound for {f.name!r} ({a:g}..{b:g}) reaches outside the design range "
                    f"{f.low:g}..{f.high:g}")
             if not allow_extrapolation:
-                raise ValueError(msg + "; optimise inside the range (or allow extrapolation)")
+                raise ValueError(msg + "; give a bound inside the design range (in Python, "
+                                 "allow_extrapolation=True searches outside it)")
             notes.append(msg + ": the optimum may be an extrapolation")
         i = space.names.index(f.name)
         lo[i], hi[i] = f.encode(a), f.encode(b)

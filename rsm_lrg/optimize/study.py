@@ -37,11 +37,13 @@ class ReportOptima:
 
 
 def report_optima(fits: Mapping[str, Any], goals: Mapping[str, Any], limits: Mapping[str, Any] | None = None, *,
-                  desirability: bool = True) -> ReportOptima:
+                  desirability: bool = True, bounds=None, constraints=None) -> ReportOptima:
     """The optima of ``fits`` (``{response: FitResult}``) for ``goals`` (``{response: goal or
     None}``; goals on the response's own scale), and with several responses the desirability
     optimum within ``limits`` (``{response: (low, high) or None}``, default the observed
-    range). A failure is recorded as a reason, never raised."""
+    range). ``bounds`` and ``constraints`` (as for :func:`rsm_lrg.optimize`: ``["NAME=LOW:HIGH"]``,
+    inequalities in actual units) keep every optimum inside the region. A failure is recorded as
+    a reason, never raised."""
     from .desirability import optimize_desirability, parse_response_goal
     from .single import optimize
 
@@ -52,7 +54,7 @@ def report_optima(fits: Mapping[str, Any], goals: Mapping[str, Any], limits: Map
             missing[name] = "no goal given"
             continue
         try:
-            single[name] = optimize(fit, goal=goal)
+            single[name] = optimize(fit, goal=goal, bounds=bounds, constraints=constraints)
         except (ValueError, NotImplementedError, TypeError) as exc:
             missing[name] = str(exc)
     desir, why = None, ""
@@ -64,7 +66,7 @@ def report_optima(fits: Mapping[str, Any], goals: Mapping[str, Any], limits: Map
                 lo, hi = (limits or {}).get(name) or (None, None)
                 specs.append(dataclasses.replace(g, **({"low": lo} if lo is not None else {}),
                                                  **({"high": hi} if hi is not None else {})))
-            desir = optimize_desirability(dict(fits), specs)
+            desir = optimize_desirability(dict(fits), specs, bounds=bounds, constraints=constraints)
         except (ValueError, NotImplementedError, TypeError) as exc:
             why = str(exc)
     return ReportOptima(single=single, missing=missing, desirability=desir, desirability_missing=why)

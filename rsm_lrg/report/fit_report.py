@@ -199,7 +199,15 @@ def data_table(result, runs_label: str) -> dict:
             rows.append((row_no, [row_no] + row))
     rows.sort(key=lambda t: t[0])
     n_left = len(result.omitted_rows)
-    caption = f"{len(d)} runs as read, with the coded factor settings (−1 low, 0 centre, +1 high)."
+    if getattr(result, "mixture", False):  # coded components are L-pseudo proportions, 0 ... 1
+        from ..factors import MixtureComponent
+
+        process = not all(isinstance(f, MixtureComponent) for f in result.space.factors)
+        caption = (f"{len(d)} runs as read, with the components as L-pseudo proportions (0 at a component's lower "
+                   f"bound, 1 when it makes up the whole blend above the lower bounds)"
+                   + (" and the process factors coded (−1 low, 0 centre, +1 high)." if process else "."))
+    else:
+        caption = f"{len(d)} runs as read, with the coded factor settings (−1 low, 0 centre, +1 high)."
     if n_left:
         caption += (f" {n_left} row{'s' if n_left > 1 else ''} without a response "
                     f"{'are' if n_left > 1 else 'is'} shown as \"not run\" and left out of the fit.")

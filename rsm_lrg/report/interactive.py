@@ -435,14 +435,16 @@ def _start(data: dict, start: str) -> None:
 
 def interactive_context(results, *, goals=None, limits=None, labels=None, title: str | None = None,
                         source_name: str | None = None, confidence: float = 0.95, tables: bool = True,
-                        start: str = "center", static: bool = False, optima=None) -> dict:
+                        start: str = "center", static: bool = False, optima=None, region=None) -> dict:
     """Everything the interactive page shows (plain values), the scripts not included;
-    ``optima`` as for :func:`interactive_html`."""
+    ``optima`` and ``region`` as for :func:`interactive_html`."""
     from .fit_report import data_table, run_numbers
 
     specs = _as_specs(results, goals, limits, labels)
     optima = _optima(specs, optima)  # found once for the page and the response sections
     data, notes = page_data(specs, confidence=confidence, optima=optima)
+    if region:
+        data["region"] = region
     _start(data, start)
     names = [m["response"] for m in data["models"]]
     first = specs[0].result
@@ -452,6 +454,8 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
     summary = [("Responses", ", ".join(names)), ("Data", source_name or "a DataFrame"),
                ("Runs", str(first.n)),
                ("Factors", ", ".join(f"{f.letter} = {f.name}" for f in space.factors))]
+    if region:
+        summary.append(("Region (optima, overlay and deepest setting keep to it)", "; ".join(region["text"])))
     for m in data["models"]:
         summary.append((f"Model of {m['response']}", f"{m['model']}, {len(m['b'])} coefficients, "
                                                      f"{m['df_text']}"
@@ -495,7 +499,7 @@ def _effects_rows(mixture: dict) -> list[dict]:
 
 def interactive_html(results, *, goals=None, limits=None, labels=None, title: str | None = None,
                      source_name: str | None = None, confidence: float = 0.95, tables: bool = True,
-                     start: str = "center", static: bool = False, optima=None) -> str:
+                     start: str = "center", static: bool = False, optima=None, region=None) -> str:
     """The interactive report of one or several fitted responses (a string).
 
     Parameters
@@ -526,11 +530,20 @@ def interactive_html(results, *, goals=None, limits=None, labels=None, title: st
     optima : rsm_lrg.optimize.study.ReportOptima, optional
         The optima to show, computed by the caller (``rsm-lrg report`` does); when not given
         they are found by :func:`rsm_lrg.optimize.study.report_optima` from ``goals``.
+    region : dict, optional
+        The region the page keeps to (:func:`rsm_lrg.report.region.region_data`: ``report
+        --constraint/--bound``): "deepest inside every limit" and the overlay's shading stay
+        inside it; pass ``optima`` found inside it too.
+
+    Returns
+    -------
+    str
+        The page (HTML).
     """
     ctx = interactive_context(results, goals=goals, limits=limits, labels=labels, title=title,
                               source_name=source_name, confidence=confidence, tables=tables, start=start,
                               optima=optima,
-                              static=static)
+                              static=static, region=region)
     return _render(ctx)
 
 

@@ -14,6 +14,32 @@
   /* the free numeric factors (a mixture's components are not free: they move together, see rebalance) */
   var NUMERIC = CONTROLS.filter(function (c) { return c.kind === "numeric" && !c.component; });
   var MIX = DATA.mixture || null;
+  /* report --constraint/--bound: inequalities lhs <= rhs in actual units, as expression trees
+     (rsm_lrg/report/region.py); a setting outside them is never "inside every limit" */
+  var REGION = DATA.region || null;
+  var FUNCS = {sqrt: Math.sqrt, exp: Math.exp, log: Math.log, log10: Math.log10, abs: Math.abs};
+  function evalTree(t, s) {
+    if (typeof t === "number") return t;
+    if (t.f !== undefined) return s[t.f];
+    if (t.call !== undefined) {
+      var xs = t.args.map(function (a) { return evalTree(a, s); });
+      if (t.call === "min") return Math.min.apply(null, xs);
+      if (t.call === "max") return Math.max.apply(null, xs);
+      return FUNCS[t.call](xs[0]);
+    }
+    var a = evalTree(t.a, s);
+    if (t.op === "neg") return -a;
+    var b = evalTree(t.b, s);
+    return t.op === "+" ? a + b : t.op === "-" ? a - b : t.op === "*" ? a * b : t.op === "/" ? a / b : Math.pow(a, b);
+  }
+  function inStudyRegion(s) {
+    if (!REGION) return true;
+    for (var i = 0; i < REGION.constraints.length; i++) {
+      var c = REGION.constraints[i], lo = evalTree(c.lhs, s), hi = evalTree(c.rhs, s);
+      if (!(hi - lo >= -1e-9 * Math.max(1, Math.abs(lo), Math.abs(hi)))) return false;
+    }
+    return true;
+  }
 
   function esc(s) {  /* Plotly reads <b>, <a href>, ... in labels: make user text plain */
     return String(s).replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;");
@@ -535,10 +561,16 @@
     return out;
   }
 
+  var STACK_BELOW_PX = 600, profileStacked = null;
   function drawProfiles(s) {
     var el = document.getElementById("profile-plot");
     if (!el) return;
-    var R = MODELS.length, K = CONTROLS.length, traces = [], layout = {
+    /* a narrow screen stacks the panels, one per row (each with its own axis titles) */
+    var R = MODELS.length, K = CONTROLS.length, traces = [], stacked = el.clientWidth < STACK_BELOW_PX;
+    profileStacked = stacked;
+    var layout = stacked ? {
+      grid: {rows: R * K, columns: 1, pattern: "independent", ygap: 0.35},
+      showlegend: false, margin: {l: 60, r: 10, t: 10, b: 50}, height: 250 * R * K + 60, shapes: []} : {
       grid: {rows: R, columns: K, pattern: "independent", xgap: 0.2, ygap: 0.2},
       showlegend: false, margin: {l: 60, r: 10, t: 20, b: 50}, height: Math.max(300, 220 * R + 60), shapes: []};
     MODELS.forEach(function (m, r) {
@@ -582,8 +614,8 @@
                               y0: 0, y1: 1, line: {color: "#a11d1d", width: 1, dash: "dot"}});
         }
         var ax = n === 1 ? "" : n;
-        layout["xaxis" + ax] = axis(r === R - 1 ? esc(c.letter + ": " + c.name) : "");
-        layout["yaxis" + ax] = axis(k === 0 ? esc(m.response) : "");
+        layout["xaxis" + ax] = axis(stacked || r === R - 1 ? esc(c.letter + ": " + c.name) : "");
+        layout["yaxis" + ax] = axis(stacked || k === 0 ? esc(m.response) : "");
       });
     });
     Plotly.react(el, traces, layout, CONFIG);
@@ -605,6 +637,7 @@
     return [limitValue(lo), limitValue(hi)];
   }
   function inside(s) {
+    if (!inStudyRegion(s)) return false;
     for (var i = 0; i < MODELS.length; i++) {
       var lim = limitsOf(MODELS[i]), y = predictValue(MODELS[i], s);
       if (!isFinite(y)) return false;
@@ -624,8 +657,10 @@
     return isFinite(w) && w > 0 ? w : 1.0;
   }
   /* The smallest margin of the predictions to their limits, each in units of its response's
-     observed range: >= 0 exactly where inside() holds, < 0 outside, +Infinity with no limit set. */
-  function margin(s) {
+     observed range: >= 0 exactly where inside() holds, < 0 outside, +Infinity with no limit set;
+     -Infinity outside the --constraint/--bound region, so no search or shading leaves it. */
+  function margin(s) { return inStudyRegion(s) ? limitMargin(s) : -Infinity; }
+  function limitMargin(s) {
     var worst = Infinity;
     for (var i = 0; i < MODELS.length; i++) {
       var m = MODELS[i], lim = limitsOf(m), y = predictValue(m, s), sc = scaleOf(m);
@@ -694,7 +729,7 @@
      1e-3 of each range; the best three of all those climbed on to 1e-9; null when no limit is set */
   function deepest(current) {
     var lc = levelCombos(current), found = [], rand = rng(12345);
-    if (margin(current) === Infinity) return null;  /* no limit set */
+    if (limitMargin(current) === Infinity) return null;  /* no limit set */
     lc.combos.forEach(function (base) {
       var starts = [];
       for (var i = 0; i <= 256; i++) {
@@ -720,6 +755,7 @@
     var out = document.getElementById("deepest-readout");
     var b = deepest(setting());
     if (b === null) { out.textContent = "Set at least one limit first."; return null; }
+    if (b.margin === -Infinity) { out.textContent = "No setting inside the --constraint/--bound region was found."; return null; }
     jumpTo(b.setting);
     var pct = fmt(100 * Math.abs(b.margin), 3) + " % of its observed range";
     out.textContent = (b.margin >= 0
@@ -874,6 +910,14 @@
     Object.keys(FIGS).forEach(function (id) { var el = document.getElementById(id); if (el) io.observe(el); });
   }
   window.addEventListener("beforeprint", drawAll);
+  /* a turned phone or a resized window: the profiler's panels are laid out again when they
+     change between side by side and stacked */
+  window.addEventListener("resize", function () {
+    var el = document.getElementById("profile-plot");
+    if (el && hasPlotly && profileStacked !== null && (el.clientWidth < STACK_BELOW_PX) !== profileStacked) {
+      drawFig("profile-plot", setting());
+    }
+  });
   function update() {
     var s = setting();
     CONTROLS.forEach(function (c) { if (txt[c.name] && document.activeElement !== txt[c.name]) txt[c.name].value = c.kind === "numeric" ? fmt(s[c.name], 6, "ascii") : String(s[c.name]); });
@@ -901,9 +945,13 @@
   Object.keys(txt).forEach(function (name) {
     txt[name].addEventListener("change", function () {
       var v = parseFloat(txt[name].value), c = control(name);
-      if (isComponent(name)) { if (isFinite(v)) moveComponent(name, v); else update(); return; }
-      if (isFinite(v)) { ctl[name].value = String(Math.min(c.high, Math.max(c.low, v))); }
-      update();
+      if (isComponent(name)) { if (isFinite(v)) moveComponent(name, v); else update(); }
+      else {
+        if (isFinite(v)) { ctl[name].value = String(Math.min(c.high, Math.max(c.low, v))); }
+        update();
+      }
+      /* the box shows the value used (a 5 typed into a 0.4 ... 0.6 box becomes 0.6), focused or not */
+      txt[name].value = fmt(setting()[name], 6, "ascii");
     });
   });
   function jumpTo(set) {
