@@ -731,21 +731,19 @@ def _shipped_file(p: Path) -> str | None:
     return None
 
 
+def _kind_of(mode: int) -> str:
+    """What a file mode says a file is, for a message: ``"a regular file"``, ``"a directory"`` ..."""
+    import stat
+
+    for test, word in ((stat.S_ISREG, "a regular file"), (stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a pipe"),
+                       (stat.S_ISSOCK, "a socket"), (stat.S_ISCHR, "a device"), (stat.S_ISBLK, "a block device")):
+        if test(mode):
+            return word
+    return "a special file"
+
+
 def _stream_name(fd: int) -> str:
     return {0: "standard input", 1: "standard output", 2: "standard error"}.get(fd, f"descriptor {fd}")
-
-
-def _real_target(p: Path) -> Path:
-    """The file an output path writes: ``p`` itself, or the regular file a symbolic link
-    leads to (written through the link, which stays)."""
-    if os.path.islink(p):
-        try:
-            real = Path(os.path.realpath(p))
-        except (OSError, ValueError):
-            return p
-        if real.is_file():
-            return real
-    return p
 
 
 def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), option: str | None = None,
@@ -757,9 +755,11 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     to one: never replaced, ``--force`` or not); it already exists (without ``force``); it is
     one of ``inputs`` or of the files the command has read (same file, through links too,
     whatever ``force``); its directory does not exist, is not a directory or is not writable.
-    A path naming an open descriptor (``/dev/stdout``, :func:`output_stream`) is written
-    through it and passes when the descriptor is open. A symbolic link to a regular file is
-    written through (the file it leads to is replaced with ``force``; the link stays).
+    A path naming an open descriptor (``/dev/stdout``, :func:`output_stream`) passes when the
+    descriptor is open and is standard output (written as ``-`` is) or a terminal, a device or
+    a pipe (written through). A symbolic link at ``path`` (to a regular file, or dangling) is
+    an existing file: with ``force`` the link itself is replaced, atomically; the file it
+    leads to is never written.
     Nothing is left behind: with ``probe`` a temporary file is created in the directory and
     removed, to be sure it can be written.
     """
@@ -787,9 +787,12 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     fd = output_stream(p)
     if fd is not None:
         try:
-            os.fstat(fd)
+            mode = os.fstat(fd).st_mode
         except OSError:
             raise InputError(f"{head}: it names {_stream_name(fd)}, which is closed") from None
+        if fd != 1 and not (stat.S_ISCHR(mode) or stat.S_ISFIFO(mode)):
+            raise InputError(f"{head}: it names {_stream_name(fd)}, which is open on {_kind_of(mode)}; only a "
+                             f"terminal, a device or a pipe is written through (give the file's own name)")
         return p
     try:
         st = os.stat(p)
@@ -809,8 +812,7 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
             raise InputError(f"{head}: it is not a regular file but {kind}{link}; it is never replaced")
         if not force:
             raise InputError(f"{head}: it already exists; use --force to overwrite it")
-    real = _real_target(p)
-    parent = real.parent if str(real.parent) else Path(".")
+    parent = p.parent if str(p.parent) else Path(".")
     if not parent.exists():
         raise InputError(f"{head}: the directory {_show(parent)} does not exist")
     if not parent.is_dir():
@@ -861,7 +863,7 @@ def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO
         else:
             _write_stream(fd, raw, p, None)
         return p
-    target = _real_target(p)
+    target = p  # the named path itself: a symbolic link there is replaced, never written through
     parent = target.parent if str(target.parent) else Path(".")
     tmp = None
     try:
@@ -914,7 +916,7 @@ def _take_mode(tmp: str, target: Path) -> None:
     import stat
 
     try:
-        st = os.stat(target)
+        st = os.lstat(target)  # a symbolic link replaced gives nothing of the file it led to
     except OSError:
         st = None
     if st is not None and stat.S_ISREG(st.st_mode):
@@ -928,7 +930,7 @@ def _owner_of(target: Path) -> tuple[int, int] | None:
     import stat
 
     try:
-        st = os.stat(target)
+        st = os.lstat(target)
     except OSError:
         return None
     if not stat.S_ISREG(st.st_mode) or not hasattr(os, "getuid") or (st.st_uid, st.st_gid) == (os.getuid(),

@@ -188,6 +188,30 @@ def planned_outputs(args: argparse.Namespace, module=None) -> list[tuple[str, st
     return checked
 
 
+def claim_standard_output(args: argparse.Namespace, outputs: list[tuple[str, str]]) -> bool:
+    """Make an output that names standard output (``/dev/stdout``, ``/dev/fd/1``, a link to
+    one: :func:`rsm_lrg.io.output_stream`) behave exactly as ``-``: ``--json /dev/stdout``
+    becomes ``--json -``; for any other output (``-o``, ``--report``) the command's printed
+    text must go to standard error, so that standard output holds the data alone (returns
+    True). Two outputs that both name standard output are an error naming them."""
+    from ..io import output_stream
+
+    claims = [(label, path) for label, path in outputs if output_stream(path) == 1]
+    if getattr(args, "json", None) == "-":
+        claims.insert(0, ("--json", "-"))
+    if len(claims) > 1:
+        (first, a), (second, b) = claims[:2]
+        raise InputError(f"cannot write {second} {show_path(b)}: {first} {show_path(a)} writes standard output "
+                         f"already; give one of them a file name")
+    if not claims:
+        return False
+    label, path = claims[0]
+    if path != "-" and getattr(args, "json", None) is not None and "--json" in label.split("/"):
+        args.json = "-"  # written, and the summary left out, as for --json -
+        return False
+    return path != "-"
+
+
 def check_standard_output(inputs) -> None:
     """Refuse to run when standard output is one of the input files (``rsm-lrg fit runs.csv ...
     >> runs.csv``): what the command prints would be appended to its own input (as ``cat``
