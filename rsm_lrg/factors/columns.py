@@ -21,7 +21,7 @@ from .spec import given_items
 from .values import name_list, quote_value
 
 __all__ = ["BOOKKEEPING", "CODED_COLUMN_PREFIX", "PAIR_RTOL", "DESIGN_CODED", "COLUMNS_LEFT_OUT", "Note",
-           "is_bookkeeping", "design_factors", "infer_items"]
+           "is_bookkeeping", "design_factors", "infer_items", "constant_number"]
 
 #: Column names that are never factors (case-insensitive).
 BOOKKEEPING = frozenset({"run", "order", "std", "std_order", "run_order"})
@@ -192,6 +192,19 @@ def _check_text_columns(data, exclude) -> None:
             float_column(data, c)  # raises "column 'c', row i: holds 'text', not a finite number"
 
 
+def constant_number(col) -> float | None:
+    """The one value of a numeric column that holds the same finite number on every row, else
+    None (a column with an empty or non-finite cell is not constant: its fit says which row)."""
+    v = np.asarray(col, dtype=float)
+    if v.size == 0 or not np.isfinite(v).all() or not (v == v[0]).all():
+        return None
+    return float(v[0])
+
+
+def _constant_number(col) -> bool:
+    return constant_number(col) is not None
+
+
 def _is_number_column(col) -> bool:
     import pandas as pd
 
@@ -256,9 +269,12 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
             if c not in exclude and not is_bookkeeping(c) and str(c).lower() != "block"
             and pd.api.types.is_numeric_dtype(data[c]) and not pd.api.types.is_bool_dtype(data[c])
         ]
-        items: list[Any] = [("numeric", n, None, None) for n in names]  # column names, never specs
+        constant = [n for n in names if _constant_number(data[n])]  # left out with a note (choose_factors)
+        items: list[Any] = [("numeric", n, None, None) for n in names if n not in constant]  # names, never specs
         if not items:
-            raise ValueError("no numeric factor columns found in the data")
+            raise ValueError("no numeric factor columns found in the data" + (
+                f" (every numeric column is constant: {name_list([quote_value(str(c)) for c in constant])}; a factor needs at "
+                "least two levels)" if constant else ""))
     else:
         how = "given"
         items = given_items(factors)
