@@ -35,7 +35,7 @@ from typing import Any, BinaryIO
 __all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "open_input", "check_output",
            "output_transaction", "output_stream", "register_input", "committing", "read_table", "read_table_as",
            "read_stdin_bytes", "read_toml", "check_nesting", "toml_value", "write_output", "dump_json", "to_jsonable",
-           "numeric_column", "float_column",
+           "numeric_column", "float_column", "check_number_kinds",
            "is_empty_cell", "cell_error", "COMMA_NUMBER"]
 
 
@@ -410,12 +410,47 @@ def cell_error(name: str, row: int, raw) -> ValueError:
     return ValueError(f"{where}: holds {quote_user_value(raw)}, not a finite number")
 
 
+def check_number_kinds(col, name: str) -> None:
+    """Refuse a column that holds truth values or complex numbers where numbers are read:
+    ``True`` is no 1.0 (a spreadsheet's TRUE cell, an object column holding ``True``) and a
+    complex number has no place on a factor's axis (its imaginary part would be dropped). A
+    ValueError naming the column and the first such row (1-based).
+
+    >>> import pandas as pd
+    >>> check_number_kinds(pd.Series([0.5, True], dtype=object), "y")
+    Traceback (most recent call last):
+    ...
+    ValueError: column 'y', row 2: holds True, a truth value, not a number
+    """
+    import numpy as np
+    import pandas as pd
+
+    where = f"column {quote_user_value(name)}"
+    if pd.api.types.is_bool_dtype(col.dtype):
+        raise ValueError(f"{where}, row 1: holds {bool(col.iloc[0])!r}, a truth value, not a number" if len(col)
+                         else f"{where}: holds truth values, not numbers")
+    if pd.api.types.is_complex_dtype(col.dtype):
+        raise ValueError(f"{where}: holds complex numbers; a factor or a response is a real number")
+    if col.dtype != object:
+        return
+    for i, v in enumerate(col.tolist()):
+        if isinstance(v, (bool, np.bool_)):
+            raise ValueError(f"{where}, row {i + 1}: holds {bool(v)!r}, a truth value, not a number")
+        if isinstance(v, (complex, np.complexfloating)):
+            raise ValueError(f"{where}, row {i + 1}: holds the complex number {quote_user_value(v)}; a factor or a "
+                             "response is a real number")
+
+
 def float_column(data, name: str):
-    """The column ``name`` as floats, or a ValueError naming the first bad row (1-based)."""
+    """The column ``name`` as floats, or a ValueError naming the first bad row (1-based):
+    an empty cell, text, a truth value or a complex number (:func:`check_number_kinds`)."""
     import numpy as np
     import pandas as pd
 
     col = data[name]
+    if isinstance(col, pd.DataFrame):  # a name given to several columns
+        raise ValueError(f"column {quote_user_value(name)} appears {col.shape[1]} times in the data; rename all but one")
+    check_number_kinds(col, name)
     num = pd.to_numeric(col, errors="coerce")
     bad = num.isna() | ~np.isfinite(num.to_numpy(dtype=float, na_value=np.nan))
     if bad.any():

@@ -34,7 +34,8 @@ if TYPE_CHECKING:
 __all__ = ["TableError", "ReadAs", "SEPARATORS", "DECIMALS", "FORMATS", "detect_format", "detect_separator",
            "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes",
            "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_parquet_chunks", "keep_coded_text",
-           "LEADING_ZERO", "check_control_characters", "CONTROL_CHARACTERS"]
+           "LEADING_ZERO", "check_control_characters", "CONTROL_CHARACTERS",
+           "column_name_problem", "check_column_names"]
 
 #: CSV separators read (given with ``sep=`` / ``--sep`` or detected), in the order tried.
 SEPARATORS = (",", ";", "\t", "|")
@@ -346,6 +347,53 @@ def check_columns(header: list[Any], df: pd.DataFrame) -> None:
         raise TableError("has a header but no data rows")
 
 
+def column_name_problem(name: Any) -> str | None:
+    """Why ``name`` cannot name a column, or None: one rule for every command that reads a
+    column (the readers) or writes one (``design``): no control character at all (tab and line
+    breaks included: a name is printed on one line, and in a CSV header).
+
+    >>> column_name_problem("stroke_m") is None
+    True
+    >>> column_name_problem("a" + chr(10) + "b")[:38]
+    "the column name 'a\\\\nb' holds a control"
+    """
+    m = _NAME_CONTROL.search(str(name))
+    if m:
+        return f"the column name {_quote(name)} holds a control character ({m.group()!r}); rename the column"
+    return None
+
+
+_NAME_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f]")
+
+
+def check_column_names(names: Any) -> None:
+    """Refuse column names that cannot be told apart or printed: one holding a control character
+    (:func:`column_name_problem`), one given twice, or two that are the same text once
+    normalised (Unicode NFC: ``é`` written as one code point or as ``e`` and a combining accent;
+    a name typed in an option would match either): :class:`TableError` naming them.
+
+    >>> try:
+    ...     check_column_names(["caf" + chr(0xE9), "cafe" + chr(0x301)])
+    ... except TableError as exc:
+    ...     print(str(exc)[-92:])
+    are the same text in Unicode NFC (one is written with combining accents); rename one of them
+    """
+    import unicodedata
+
+    seen: dict[str, Any] = {}
+    for c in names:
+        problem = column_name_problem(c)
+        if problem:
+            raise TableError(problem)
+        key = unicodedata.normalize("NFC", str(c))
+        if key in seen:
+            if str(seen[key]) == str(c):
+                raise TableError(f"column {_quote(c)} appears more than once")
+            raise TableError(f"the column names {_quote(seen[key])} and {_quote(c)} are the same text in Unicode NFC "
+                             "(one is written with combining accents); rename one of them")
+        seen[key] = c
+
+
 #: Control characters (C0 but tab, line feed and carriage return; DEL; C1): never in a name or
 #: a cell of a table, and printed to a terminal they are commands (``ESC [ 31 m``, ``ESC ] 0 ;``
 #: retitles the window): a table holding one is refused, naming the column and the row.
@@ -366,12 +414,7 @@ def check_control_characters(df: pd.DataFrame) -> None:
     """
     import pandas as pd
 
-    names = re.compile("[\x00-\x1f\x7f-\x9f]")
-    for c in df.columns:
-        m = names.search(str(c))
-        if m:
-            raise TableError(f"the column name {_quote(c)} holds a control character ({m.group()!r}); "
-                             "rename the column")
+    check_column_names(df.columns)
     cells = re.compile(CONTROL_CHARACTERS)
     for c in df.columns:
         col = df[c]

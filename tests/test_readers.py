@@ -248,3 +248,12 @@ def test_pieces_refuse_what_the_whole_refuses(tmp_path):
     p.write_text("a;a\n1;2\n")
     with open(p, "rb") as fh, pytest.raises(TableError, match="'a' appears more than once"):
         csv_chunks(fh)
+
+
+def test_two_column_names_alike_once_normalised_are_refused(tmp_path):
+    # issue 36: a constraint on the decomposed 'é' was applied to the other column, the composed
+    # 'é'; two names that are the same text in Unicode NFC are ambiguous: refused by name
+    p = tmp_path / "nfc.csv"
+    p.write_bytes("caf\u00e9,cafe\u0301,y\n1,2,3\n2,3,4\n3,1,5\n".encode())
+    with pytest.raises(InputError, match="the column names 'caf.' and 'cafe.' are the same text in Unicode NFC"):
+        read_table(p)

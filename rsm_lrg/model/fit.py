@@ -280,6 +280,7 @@ def _random_column(data: Any, response: str, whole_plot: str | None, random_bloc
     import numpy as np
 
     from ..factors import quote_value
+    from ..factors.columns import check_label_column
     from .data import columns_text, empty_cells
 
     if whole_plot is not None and random_block is not None:
@@ -297,6 +298,7 @@ def _random_column(data: Any, response: str, whole_plot: str | None, random_bloc
     empty = np.asarray(empty_cells(data[col]), dtype=bool)
     if empty.any():
         raise ValueError(f"{what} column {quote_value(col)}, row {int(empty.argmax()) + 1}: is empty")
+    check_label_column(data, col)  # a list in a cell is no whole plot
     levels = data[col].unique()
     if len(levels) < 2:
         unit = "whole plots" if kind == "whole_plot" else "blocks"
