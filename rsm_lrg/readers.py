@@ -35,7 +35,7 @@ __all__ = ["TableError", "ReadAs", "SEPARATORS", "DECIMALS", "FORMATS", "detect_
            "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes",
            "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_parquet_chunks", "keep_coded_text",
            "LEADING_ZERO", "check_control_characters", "CONTROL_CHARACTERS",
-           "column_name_problem", "check_column_names"]
+           "column_name_problem", "check_column_names", "row_of_line"]
 
 #: CSV separators read (given with ``sep=`` / ``--sep`` or detected), in the order tried.
 SEPARATORS = (",", ";", "\t", "|")
@@ -158,12 +158,22 @@ def decode_text(raw: bytes) -> str:
             raise TableError("is not valid UTF-16 text (it starts with a UTF-16 byte-order mark)") from None
     if b"\x00" in raw:
         line = raw.count(b"\n", 0, raw.index(b"\x00")) + 1
-        raise TableError(f"is not a CSV text file (it contains NUL bytes, line {line})")
+        raise TableError(f"is not a CSV text file (it contains NUL bytes, {row_of_line(line)})")
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         line = raw.count(b"\n", 0, exc.start) + 1
-        raise TableError(f"is not a UTF-8 CSV text file (line {line}); save it as CSV UTF-8") from None
+        raise TableError(f"is not a UTF-8 CSV text file ({row_of_line(line)}); save it as CSV UTF-8") from None
+
+
+def row_of_line(line: int) -> str:
+    """Where the 1-based ``line`` of a CSV text is, in the words of every other reader error:
+    the header, or the 1-based data row (line 2 is row 1).
+
+    >>> row_of_line(1), row_of_line(202)
+    ('in the header', 'row 201')
+    """
+    return "in the header" if line <= 1 else f"row {line - 1}"
 
 
 def _field_counts(lines: list[str], sep: str) -> list[int]:
@@ -645,7 +655,7 @@ def csv_chunks(fh: Any, *, sep: str | None = None, decimal: str = ".",
         text = head.decode("utf-8-sig", errors="strict" if len(head) < (1 << 20) else "ignore")
     except UnicodeDecodeError as exc:
         line = head.count(b"\n", 0, exc.start) + 1
-        raise TableError(f"is not a UTF-8 CSV text file (line {line}); save it as CSV UTF-8") from None
+        raise TableError(f"is not a UTF-8 CSV text file ({row_of_line(line)}); save it as CSV UTF-8") from None
     if len(head) == (1 << 20):
         text = text[: text.rfind("\n") + 1] or text  # whole lines only
     detected = sep is None

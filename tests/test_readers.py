@@ -150,7 +150,7 @@ def test_bad_binary_variants(tmp_path, table4):
         "text.parquet": (b"a,b\n1,2\n", r"text\.parquet: is not a Parquet file"),
         "old.xls": (b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1" + b"\0" * 100, r"old\.xls: is an old-style Excel \.xls"),
         "book.csv": (x.read_bytes(), r"book\.csv: is a zip archive \(an Excel workbook\?\), not a \.csv file"),
-        "latin1.csv": ("a;b\n1;2\n\u00b0C;3\n".encode("latin-1"), r"latin1\.csv: is not a UTF-8 CSV text file \(line 3\)"),
+        "latin1.csv": ("a;b\n1;2\n\u00b0C;3\n".encode("latin-1"), r"latin1\.csv: is not a UTF-8 CSV text file \(row 2\)"),
     }
     for name, (raw, message) in cases.items():
         p = tmp_path / name

@@ -8,7 +8,7 @@ import os
 from contextlib import contextmanager
 from typing import Any
 
-from ..io import InputError, check_output, quote_user_value, show_path
+from ..io import STDIN_NAME, InputError, check_output, quote_user_value, show_path
 
 
 def whole_number(minimum: int | None = None, maximum: int | None = None):
@@ -462,7 +462,7 @@ def about_file(path):
         option = option_of_message(msg)
         if option:  # the library checked an option's value after the data were read
             raise InputError(f"{option}: {msg}") from None
-        raise InputError(f"{path}: {msg}") from None
+        raise InputError(f"{STDIN_NAME if str(path) == '-' else path}: {msg}") from None
 
 
 @contextmanager

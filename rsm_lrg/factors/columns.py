@@ -285,6 +285,10 @@ def _categoric_levels(data, name: str, levels) -> tuple:
                              f"levels given for categoric factor {quote_value(name)} ({name_list(list(levels))})")
         if key not in seen:
             seen.append(key)
+    missing = [lv for lv in (levels or ()) if lv not in seen]
+    if missing:  # its effect could not be estimated: say so by name, not as an aliased model term
+        raise ValueError(f"categoric factor {quote_value(name)}: the level {quote_value(missing[0])} is given but no "
+                         f"row holds it (levels in the data: {name_list(seen)}); give only levels the data hold")
     if levels is None:
         if len(seen) < 2:
             raise ValueError(f"categoric factor column {quote_value(name)} has only one level; a factor needs at "

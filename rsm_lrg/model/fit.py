@@ -154,8 +154,9 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
                                   alpha_out=spec.reduce.alpha_out, criterion=spec.reduce.criterion)
         spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept") or None)
         if spec.terms is None:  # every term removed: the mean-only model
-            raise ValueError("backward elimination removed every term: no factor explains the response "
-                             f"(alpha_out {reduction.alpha_out:g})")
+            raise SpecError("alpha_out" if reduction.criterion == "p" else "criterion",
+                            "backward elimination removed every term: no factor explains the response "
+                            + (f"(alpha_out {reduction.alpha_out:g})" if reduction.criterion == "p" else "(AICc)"))
     return fit_inputs(inp, response, spec, chunk_rows=chunk_rows, reduction=reduction)
 
 
@@ -401,14 +402,15 @@ def _fit_mixed(data: Any, response: str, factors: Any, block: str | None, spec: 
         from .mixed_reduce import reduce_mixed
 
         if spec.reduce.criterion != "p":
-            raise SpecError("reduce", "a REML fit is reduced by the Kenward-Roger p-values (criterion 'p'), "
-                                      f"not {spec.reduce.criterion!r}")
+            raise SpecError("criterion", "a REML fit is reduced by the Kenward-Roger p-values (criterion 'p'), "
+                                         f"not {spec.reduce.criterion!r}")
         reduction = reduce_mixed(lambda sp: _fit_mixed_inputs(inp, response, sp, labels, col, kind, what), spec,
                                  inp.space)
         spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept") or None)
         if spec.terms is None:
-            raise ValueError("backward elimination removed every term: no factor explains the response "
-                             f"(alpha_out {reduction.alpha_out:g})")
+            raise SpecError("alpha_out" if reduction.criterion == "p" else "criterion",
+                            "backward elimination removed every term: no factor explains the response "
+                            + (f"(alpha_out {reduction.alpha_out:g})" if reduction.criterion == "p" else "(AICc)"))
     return _fit_mixed_inputs(inp, response, spec, labels, col, kind, what, reduction=reduction)
 
 
