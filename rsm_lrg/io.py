@@ -220,7 +220,10 @@ def read_stdin_bytes(limit: int = MAX_TABLE_BYTES) -> bytes:
         terminal = False
     if terminal:
         raise InputError("- names standard input, but nothing is piped in (cat runs.csv | rsm-lrg ... -)")
-    raw = stream.read(limit + 1)
+    try:
+        raw = stream.read(limit + 1)
+    except OSError as exc:  # opened write-only (0>file), a descriptor that cannot be read
+        raise InputError(f"{STDIN_NAME}: cannot be read ({exc.strerror or type(exc).__name__})") from None
     if len(raw) > limit:
         raise InputError(f"{STDIN_NAME}: is larger than the limit of {_mib(limit)} {_HELD}")
     return raw
@@ -280,7 +283,11 @@ def read_table_as(path, *, sep: str | None = None, decimal: str = ".", sheet: st
             df, how = readers.parse_xlsx(raw, sheet=sheet, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
         elif kind == "parquet":
             df, how = readers.parse_parquet(raw, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
-        elif raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # UTF-16: the limits are checked on the table read
+        elif raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # UTF-16: the limits are checked on its text too
+            try:
+                _check_table_shape(p, raw.decode("utf-16").encode("utf-8"))
+            except UnicodeDecodeError:
+                pass  # parse_csv says it is not valid UTF-16
             df, how = readers.parse_csv(raw, sep=sep, decimal=decimal)
             if len(df) > MAX_ROWS or df.shape[1] > MAX_COLUMNS:
                 raise readers.TableError(f"has {len(df)} rows and {df.shape[1]} columns, more than the limits of "

@@ -229,13 +229,6 @@ def _check_text_columns(data, exclude) -> None:
                 raise ValueError(f"column {quote_value(str(c))} is a pandas Categorical of numbers: convert it to "
                                  f"numbers (.astype(float)) or name it as a categoric factor ('{c}=cat')")
             continue
-        cells = col.tolist()
-        if any(isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
-               and not is_empty_cell(v) for v in cells):
-            text = next(((i, v) for i, v in enumerate(cells) if isinstance(v, str) and not is_empty_cell(v)), None)
-            where = f" (row {text[0] + 1} holds the text {quote_value(text[1])})" if text else ""
-            raise ValueError(f"column {quote_value(str(c))} holds numbers as Python objects{where}: convert it to "
-                             "numbers (pandas.to_numeric) or name the factors")
         commas = np.flatnonzero(col.astype("string").str.match(COMMA_NUMBER.pattern).fillna(False).to_numpy(bool))
         if commas.size:
             i = int(commas[0])
@@ -243,6 +236,13 @@ def _check_text_columns(data, exclude) -> None:
         num = pd.to_numeric(col, errors="coerce")
         if num.notna().sum() >= max(1, data.shape[0] // 2):
             float_column(data, c)  # raises "column 'c', row i: holds 'text', not a finite number"
+        cells = col.tolist()
+        if any(isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+               and not is_empty_cell(v) for v in cells):  # every cell a number, some held as text
+            text = next(((i, v) for i, v in enumerate(cells) if isinstance(v, str) and not is_empty_cell(v)), None)
+            where = f" (row {text[0] + 1} holds the text {quote_value(text[1])})" if text else ""
+            raise ValueError(f"column {quote_value(str(c))} holds numbers as Python objects{where}: convert it to "
+                             "numbers (pandas.to_numeric) or name the factors")
 
 
 def constant_number(col) -> float | None:
