@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import errno
 import importlib
 import os
 import signal
@@ -410,12 +411,35 @@ def _failed(exc: Exception, args, debug: bool) -> int:
         print(_error_line(f"{where + ': ' if where else ''}{what}"
                           f" ({type(exc).__name__}{': ' + detail if detail else ''})"), file=sys.stderr)
         return 2
-    except Exception as exc:  # an internal fault
+    except OSError as exc:
+        if exc.errno not in _SYSTEM_LIMITS:
+            return _internal(exc, debug)
         if debug:
             import traceback
 
             traceback.print_exc()
-        msg = str(exc).strip()
-        print(_error_line(f"internal error ({type(exc).__name__}: {msg[:150]}); rerun with --debug for details"),
+        print(_error_line("a system limit was reached "
+                          f"({exc.strerror or type(exc).__name__}: {_SYSTEM_LIMITS[exc.errno]}); no output written"),
               file=sys.stderr)
-        return 1
+        return 2
+    except Exception as exc:
+        return _internal(exc, debug)
+
+
+#: The resource limits of the system or of the process (``ulimit``), by errno: met, they end a
+#: command with one line and exit 2 (the transaction has removed its files), not an internal error.
+_SYSTEM_LIMITS = {errno.EMFILE: "the open-file limit, ulimit -n", errno.ENFILE: "the system's open-file table",
+                  errno.EFBIG: "the file-size limit, ulimit -f", errno.ENOSPC: "the disk is full",
+                  errno.EDQUOT: "the disk quota", errno.ENOMEM: "memory", errno.EAGAIN: "the process limit, ulimit -u"}
+
+
+def _internal(exc: BaseException, debug: bool) -> int:
+    """An internal fault: one line naming the exception, exit 1."""
+    if debug:
+        import traceback
+
+        traceback.print_exc()
+    msg = str(exc).strip()
+    print(_error_line(f"internal error ({type(exc).__name__}: {msg[:150]}); rerun with --debug for details"),
+          file=sys.stderr)
+    return 1

@@ -366,3 +366,30 @@ def test_sigterm_to_the_parent_alone_ends_the_workers_and_the_parent(tmp_path):
         assert not any(is_alive(p) for p in kids + child_pids(proc.pid)), (delay, kids)
         assert not out.exists()
     assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []
+
+
+def _limit(resource_name: str, value: int):
+    import resource
+
+    def pre():
+        which = getattr(resource, resource_name)
+        resource.setrlimit(which, (value, value))
+    return pre
+
+
+@pytest.mark.parametrize(("argv", "limit", "said"), [
+    (["design", "box-behnken", "--factor", "a=1:2", "--factor", "b=1:2", "--factor", "c=1:2", "--seed", "1", "-o",
+      "d.xlsx"], ("RLIMIT_FSIZE", 2048), "File too large"),
+    (["simulate", "small.csv", "--seed", "1", "--workers", "2", "--no-progress", "-o", "o.csv"],
+     ("RLIMIT_NOFILE", 10), "Too many open files"),
+], ids=["file-size", "open-files"])
+def test_a_resource_limit_is_one_line_and_no_output(argv, limit, said, tmp_path):
+    # issue 36: `ulimit -f` ended `design -o d.xlsx` with OSError (exit 1), `ulimit -n 16`
+    # `simulate --workers` likewise; now exit 2, one line naming the limit, nothing left behind
+    pd.read_csv(data_path("table4.csv"))[FACTORS].to_csv(tmp_path / "small.csv", index=False)
+    proc = subprocess.run([sys.executable, "-m", "rsm_lrg", *argv], cwd=tmp_path, env=cli_env(), capture_output=True,
+                          text=True, timeout=300, preexec_fn=_limit(*limit))
+    assert proc.returncode == 2, proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: a system limit was reached") and said in lines[0], lines
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["small.csv"]
