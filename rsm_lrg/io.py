@@ -35,7 +35,7 @@ from typing import Any, BinaryIO
 __all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "open_input", "check_output",
            "output_transaction", "output_stream", "register_input", "committing", "read_table", "read_table_as",
            "read_stdin_bytes", "read_toml", "check_nesting", "toml_value", "write_output", "dump_json", "to_jsonable",
-           "numeric_column", "float_column",
+           "numeric_column", "float_column", "check_number_kinds",
            "is_empty_cell", "cell_error", "COMMA_NUMBER"]
 
 
@@ -220,7 +220,10 @@ def read_stdin_bytes(limit: int = MAX_TABLE_BYTES) -> bytes:
         terminal = False
     if terminal:
         raise InputError("- names standard input, but nothing is piped in (cat runs.csv | rsm-lrg ... -)")
-    raw = stream.read(limit + 1)
+    try:
+        raw = stream.read(limit + 1)
+    except OSError as exc:  # opened write-only (0>file), a descriptor that cannot be read
+        raise InputError(f"{STDIN_NAME}: cannot be read ({exc.strerror or type(exc).__name__})") from None
     if len(raw) > limit:
         raise InputError(f"{STDIN_NAME}: is larger than the limit of {_mib(limit)} {_HELD}")
     return raw
@@ -280,7 +283,11 @@ def read_table_as(path, *, sep: str | None = None, decimal: str = ".", sheet: st
             df, how = readers.parse_xlsx(raw, sheet=sheet, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
         elif kind == "parquet":
             df, how = readers.parse_parquet(raw, max_rows=MAX_ROWS, max_columns=MAX_COLUMNS)
-        elif raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # UTF-16: the limits are checked on the table read
+        elif raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # UTF-16: the limits are checked on its text too
+            try:
+                _check_table_shape(p, raw.decode("utf-16").encode("utf-8"))
+            except UnicodeDecodeError:
+                pass  # parse_csv says it is not valid UTF-16
             df, how = readers.parse_csv(raw, sep=sep, decimal=decimal)
             if len(df) > MAX_ROWS or df.shape[1] > MAX_COLUMNS:
                 raise readers.TableError(f"has {len(df)} rows and {df.shape[1]} columns, more than the limits of "
@@ -410,12 +417,47 @@ def cell_error(name: str, row: int, raw) -> ValueError:
     return ValueError(f"{where}: holds {quote_user_value(raw)}, not a finite number")
 
 
+def check_number_kinds(col, name: str) -> None:
+    """Refuse a column that holds truth values or complex numbers where numbers are read:
+    ``True`` is no 1.0 (a spreadsheet's TRUE cell, an object column holding ``True``) and a
+    complex number has no place on a factor's axis (its imaginary part would be dropped). A
+    ValueError naming the column and the first such row (1-based).
+
+    >>> import pandas as pd
+    >>> check_number_kinds(pd.Series([0.5, True], dtype=object), "y")
+    Traceback (most recent call last):
+    ...
+    ValueError: column 'y', row 2: holds True, a truth value, not a number
+    """
+    import numpy as np
+    import pandas as pd
+
+    where = f"column {quote_user_value(name)}"
+    if pd.api.types.is_bool_dtype(col.dtype):
+        raise ValueError(f"{where}, row 1: holds {bool(col.iloc[0])!r}, a truth value, not a number" if len(col)
+                         else f"{where}: holds truth values, not numbers")
+    if pd.api.types.is_complex_dtype(col.dtype):
+        raise ValueError(f"{where}: holds complex numbers; a factor or a response is a real number")
+    if col.dtype != object:
+        return
+    for i, v in enumerate(col.tolist()):
+        if isinstance(v, (bool, np.bool_)):
+            raise ValueError(f"{where}, row {i + 1}: holds {bool(v)!r}, a truth value, not a number")
+        if isinstance(v, (complex, np.complexfloating)):
+            raise ValueError(f"{where}, row {i + 1}: holds the complex number {quote_user_value(v)}; a factor or a "
+                             "response is a real number")
+
+
 def float_column(data, name: str):
-    """The column ``name`` as floats, or a ValueError naming the first bad row (1-based)."""
+    """The column ``name`` as floats, or a ValueError naming the first bad row (1-based):
+    an empty cell, text, a truth value or a complex number (:func:`check_number_kinds`)."""
     import numpy as np
     import pandas as pd
 
     col = data[name]
+    if isinstance(col, pd.DataFrame):  # a name given to several columns
+        raise ValueError(f"column {quote_user_value(name)} appears {col.shape[1]} times in the data; rename all but one")
+    check_number_kinds(col, name)
     num = pd.to_numeric(col, errors="coerce")
     bad = num.isna() | ~np.isfinite(num.to_numpy(dtype=float, na_value=np.nan))
     if bad.any():
@@ -731,21 +773,19 @@ def _shipped_file(p: Path) -> str | None:
     return None
 
 
+def _kind_of(mode: int) -> str:
+    """What a file mode says a file is, for a message: ``"a regular file"``, ``"a directory"`` ..."""
+    import stat
+
+    for test, word in ((stat.S_ISREG, "a regular file"), (stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a pipe"),
+                       (stat.S_ISSOCK, "a socket"), (stat.S_ISCHR, "a device"), (stat.S_ISBLK, "a block device")):
+        if test(mode):
+            return word
+    return "a special file"
+
+
 def _stream_name(fd: int) -> str:
     return {0: "standard input", 1: "standard output", 2: "standard error"}.get(fd, f"descriptor {fd}")
-
-
-def _real_target(p: Path) -> Path:
-    """The file an output path writes: ``p`` itself, or the regular file a symbolic link
-    leads to (written through the link, which stays)."""
-    if os.path.islink(p):
-        try:
-            real = Path(os.path.realpath(p))
-        except (OSError, ValueError):
-            return p
-        if real.is_file():
-            return real
-    return p
 
 
 def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), option: str | None = None,
@@ -757,9 +797,11 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     to one: never replaced, ``--force`` or not); it already exists (without ``force``); it is
     one of ``inputs`` or of the files the command has read (same file, through links too,
     whatever ``force``); its directory does not exist, is not a directory or is not writable.
-    A path naming an open descriptor (``/dev/stdout``, :func:`output_stream`) is written
-    through it and passes when the descriptor is open. A symbolic link to a regular file is
-    written through (the file it leads to is replaced with ``force``; the link stays).
+    A path naming an open descriptor (``/dev/stdout``, :func:`output_stream`) passes when the
+    descriptor is open and is standard output (written as ``-`` is) or a terminal, a device or
+    a pipe (written through). A symbolic link at ``path`` (to a regular file, or dangling) is
+    an existing file: with ``force`` the link itself is replaced, atomically; the file it
+    leads to is never written.
     Nothing is left behind: with ``probe`` a temporary file is created in the directory and
     removed, to be sure it can be written.
     """
@@ -787,9 +829,12 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
     fd = output_stream(p)
     if fd is not None:
         try:
-            os.fstat(fd)
+            mode = os.fstat(fd).st_mode
         except OSError:
             raise InputError(f"{head}: it names {_stream_name(fd)}, which is closed") from None
+        if fd != 1 and not (stat.S_ISCHR(mode) or stat.S_ISFIFO(mode)):
+            raise InputError(f"{head}: it names {_stream_name(fd)}, which is open on {_kind_of(mode)}; only a "
+                             f"terminal, a device or a pipe is written through (give the file's own name)")
         return p
     try:
         st = os.stat(p)
@@ -809,8 +854,7 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
             raise InputError(f"{head}: it is not a regular file but {kind}{link}; it is never replaced")
         if not force:
             raise InputError(f"{head}: it already exists; use --force to overwrite it")
-    real = _real_target(p)
-    parent = real.parent if str(real.parent) else Path(".")
+    parent = p.parent if str(p.parent) else Path(".")
     if not parent.exists():
         raise InputError(f"{head}: the directory {_show(parent)} does not exist")
     if not parent.is_dir():
@@ -861,7 +905,7 @@ def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO
         else:
             _write_stream(fd, raw, p, None)
         return p
-    target = _real_target(p)
+    target = p  # the named path itself: a symbolic link there is replaced, never written through
     parent = target.parent if str(target.parent) else Path(".")
     tmp = None
     try:
@@ -914,7 +958,7 @@ def _take_mode(tmp: str, target: Path) -> None:
     import stat
 
     try:
-        st = os.stat(target)
+        st = os.lstat(target)  # a symbolic link replaced gives nothing of the file it led to
     except OSError:
         st = None
     if st is not None and stat.S_ISREG(st.st_mode):
@@ -928,7 +972,7 @@ def _owner_of(target: Path) -> tuple[int, int] | None:
     import stat
 
     try:
-        st = os.stat(target)
+        st = os.lstat(target)
     except OSError:
         return None
     if not stat.S_ISREG(st.st_mode) or not hasattr(os, "getuid") or (st.st_uid, st.st_gid) == (os.getuid(),

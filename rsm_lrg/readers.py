@@ -34,7 +34,8 @@ if TYPE_CHECKING:
 __all__ = ["TableError", "ReadAs", "SEPARATORS", "DECIMALS", "FORMATS", "detect_format", "detect_separator",
            "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes",
            "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_parquet_chunks", "keep_coded_text",
-           "LEADING_ZERO", "check_control_characters", "CONTROL_CHARACTERS"]
+           "LEADING_ZERO", "check_control_characters", "CONTROL_CHARACTERS",
+           "column_name_problem", "check_column_names", "row_of_line"]
 
 #: CSV separators read (given with ``sep=`` / ``--sep`` or detected), in the order tried.
 SEPARATORS = (",", ";", "\t", "|")
@@ -72,6 +73,9 @@ class ReadAs:
         True when the separator was detected rather than given.
     sheet : str or None
         The workbook sheet read.
+    converted : tuple of str
+        What was read otherwise than it was stored, each said in a phrase (numbers stored as
+        text in a workbook, decimal columns of a Parquet file).
     """
 
     format: str
@@ -79,11 +83,12 @@ class ReadAs:
     decimal: str | None = None
     sep_detected: bool = False
     sheet: str | None = None
+    converted: tuple[str, ...] = ()
 
     @property
     def plain(self) -> bool:
         """True for the plain comma-separated CSV with decimal points (nothing worth stating)."""
-        return self.format == "csv" and self.sep == "," and self.decimal == "."
+        return self.format == "csv" and self.sep == "," and self.decimal == "." and not self.converted
 
     def describe(self) -> str:
         """One phrase: ``CSV, separator ';' (detected), decimal ','``; ``sheet 'Runs' of an
@@ -94,10 +99,11 @@ class ReadAs:
         >>> ReadAs("xlsx", sheet="Runs").describe()
         "sheet 'Runs' of an Excel workbook"
         """
+        said = "".join(f"; {c}" for c in self.converted)
         if self.format == "xlsx":
-            return f"sheet {self.sheet!r} of an Excel workbook"
+            return f"sheet {self.sheet!r} of an Excel workbook{said}"
         if self.format == "parquet":
-            return "a Parquet file"
+            return f"a Parquet file{said}"
         how = " (detected)" if self.sep_detected else ""
         return f"CSV, separator {separator_name(self.sep or ',')}{how}, decimal {self.decimal!r}"
 
@@ -157,12 +163,22 @@ def decode_text(raw: bytes) -> str:
             raise TableError("is not valid UTF-16 text (it starts with a UTF-16 byte-order mark)") from None
     if b"\x00" in raw:
         line = raw.count(b"\n", 0, raw.index(b"\x00")) + 1
-        raise TableError(f"is not a CSV text file (it contains NUL bytes, line {line})")
+        raise TableError(f"is not a CSV text file (it contains NUL bytes, {row_of_line(line)})")
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         line = raw.count(b"\n", 0, exc.start) + 1
-        raise TableError(f"is not a UTF-8 CSV text file (line {line}); save it as CSV UTF-8") from None
+        raise TableError(f"is not a UTF-8 CSV text file ({row_of_line(line)}); save it as CSV UTF-8") from None
+
+
+def row_of_line(line: int) -> str:
+    """Where the 1-based ``line`` of a CSV text is, in the words of every other reader error:
+    the header, or the 1-based data row (line 2 is row 1).
+
+    >>> row_of_line(1), row_of_line(202)
+    ('in the header', 'row 201')
+    """
+    return "in the header" if line <= 1 else f"row {line - 1}"
 
 
 def _field_counts(lines: list[str], sep: str) -> list[int]:
@@ -346,6 +362,53 @@ def check_columns(header: list[Any], df: pd.DataFrame) -> None:
         raise TableError("has a header but no data rows")
 
 
+def column_name_problem(name: Any) -> str | None:
+    """Why ``name`` cannot name a column, or None: one rule for every command that reads a
+    column (the readers) or writes one (``design``): no control character at all (tab and line
+    breaks included: a name is printed on one line, and in a CSV header).
+
+    >>> column_name_problem("stroke_m") is None
+    True
+    >>> column_name_problem("a" + chr(10) + "b")[:38]
+    "the column name 'a\\\\nb' holds a control"
+    """
+    m = _NAME_CONTROL.search(str(name))
+    if m:
+        return f"the column name {_quote(name)} holds a control character ({m.group()!r}); rename the column"
+    return None
+
+
+_NAME_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f]")
+
+
+def check_column_names(names: Any) -> None:
+    """Refuse column names that cannot be told apart or printed: one holding a control character
+    (:func:`column_name_problem`), one given twice, or two that are the same text once
+    normalised (Unicode NFC: ``é`` written as one code point or as ``e`` and a combining accent;
+    a name typed in an option would match either): :class:`TableError` naming them.
+
+    >>> try:
+    ...     check_column_names(["caf" + chr(0xE9), "cafe" + chr(0x301)])
+    ... except TableError as exc:
+    ...     print(str(exc)[-92:])
+    are the same text in Unicode NFC (one is written with combining accents); rename one of them
+    """
+    import unicodedata
+
+    seen: dict[str, Any] = {}
+    for c in names:
+        problem = column_name_problem(c)
+        if problem:
+            raise TableError(problem)
+        key = unicodedata.normalize("NFC", str(c))
+        if key in seen:
+            if str(seen[key]) == str(c):
+                raise TableError(f"column {_quote(c)} appears more than once")
+            raise TableError(f"the column names {_quote(seen[key])} and {_quote(c)} are the same text in Unicode NFC "
+                             "(one is written with combining accents); rename one of them")
+        seen[key] = c
+
+
 #: Control characters (C0 but tab, line feed and carriage return; DEL; C1): never in a name or
 #: a cell of a table, and printed to a terminal they are commands (``ESC [ 31 m``, ``ESC ] 0 ;``
 #: retitles the window): a table holding one is refused, naming the column and the row.
@@ -366,12 +429,7 @@ def check_control_characters(df: pd.DataFrame) -> None:
     """
     import pandas as pd
 
-    names = re.compile("[\x00-\x1f\x7f-\x9f]")
-    for c in df.columns:
-        m = names.search(str(c))
-        if m:
-            raise TableError(f"the column name {_quote(c)} holds a control character ({m.group()!r}); "
-                             "rename the column")
+    check_column_names(df.columns)
     cells = re.compile(CONTROL_CHARACTERS)
     for c in df.columns:
         col = df[c]
@@ -390,7 +448,8 @@ def check_control_characters(df: pd.DataFrame) -> None:
 # --- Excel ----------------------------------------------------------------------------------
 
 def parse_xlsx(raw: bytes, *, sheet: str | None = None, max_rows: int | None = None,
-               max_columns: int | None = None) -> tuple[pd.DataFrame, ReadAs]:
+               max_columns: int | None = None, max_bytes: int | None = None,
+               max_cells: int | None = None) -> tuple[pd.DataFrame, ReadAs]:
     """Read one sheet of an ``.xlsx`` workbook: its first row the header, one run per row below.
 
     Parameters
@@ -401,9 +460,16 @@ def parse_xlsx(raw: bytes, *, sheet: str | None = None, max_rows: int | None = N
         The sheet's name; needed when the workbook has more than one.
     max_rows, max_columns : int, optional
         Limits: a sheet past them is refused (nothing past them is read).
+    max_bytes, max_cells : int, optional
+        The most bytes the workbook may unpack to, checked from its zip directory before any
+        part is parsed (default :data:`MAX_UNPACKED_BYTES`), and the most cells the sheet may
+        hold, counted as it is read (default :data:`MAX_CELLS`).
 
     Fully empty rows, and columns empty from the header down, are not part of the table (as
-    blank lines in a CSV file). A formula cell is read as the value Excel stored with it.
+    blank lines in a CSV file). A formula cell is read as the value Excel stored with it. A
+    cell holding TRUE or FALSE is an error naming it; a column of numbers stored as text is
+    read as numbers and said in ``ReadAs.converted``. A damaged workbook (truncated, corrupt
+    XML, entity expansion), a chart sheet, or one past a limit is a :class:`TableError`.
     """
     import pandas as pd
 
@@ -411,6 +477,7 @@ def parse_xlsx(raw: bytes, *, sheet: str | None = None, max_rows: int | None = N
         import openpyxl  # type: ignore[import-untyped]
     except ImportError as exc:  # a declared dependency; the message says what to install
         raise TableError(f"reading an Excel workbook needs openpyxl (pip install openpyxl: {exc})") from None
+    _check_unpacked_size(raw, MAX_UNPACKED_BYTES if max_bytes is None else max_bytes)
     try:
         book = openpyxl.load_workbook(io.BytesIO(raw), read_only=True, data_only=True)
     except Exception as exc:  # zipfile.BadZipFile, KeyError, lxml/xml errors: a broken workbook
@@ -424,7 +491,17 @@ def parse_xlsx(raw: bytes, *, sheet: str | None = None, max_rows: int | None = N
             sheet = names[0]
         elif sheet not in names:
             raise TableError(f"no sheet {_quote(sheet)} in the workbook (sheets: {shown})")
-        rows = _sheet_rows(book[sheet], max_rows, max_columns)
+        ws = book[sheet]
+        if not hasattr(ws, "iter_rows"):
+            raise TableError(f"sheet {_quote(sheet)} is a chart sheet, not a table of runs; choose a worksheet with "
+                             "--sheet NAME")
+        try:
+            rows = _sheet_rows(ws, max_rows, max_columns, sheet, MAX_CELLS if max_cells is None else max_cells)
+        except TableError:
+            raise
+        except Exception as exc:  # the sheet's XML, parsed as it is read: truncated, corrupt, entity expansion
+            raise TableError(f"is not a readable Excel workbook (sheet {_quote(sheet)}: {type(exc).__name__}: "
+                             f"{str(exc)[:80]})") from None
     finally:
         book.close()
     if not rows:
@@ -445,10 +522,58 @@ def parse_xlsx(raw: bytes, *, sheet: str | None = None, max_rows: int | None = N
     _check_formula_values(raw, sheet, df)
     check_columns(names_out, df)
     df = df.infer_objects()
+    converted = _numbers_stored_as_text(df)
     if df.shape[1] < 2:
         raise TableError(f"sheet {_quote(sheet)} has a single column {_quote(names_out[0])}; expected one column "
                          "per factor and response")
-    return df, ReadAs("xlsx", sheet=sheet)
+    return df, ReadAs("xlsx", sheet=sheet, converted=converted)
+
+
+#: The most bytes a workbook may unpack to (its XML parts, as the zip's directory declares them;
+#: Python's zip reader never gives more than declared): past it the workbook is refused before
+#: any part is parsed, so a small file that unpacks to gigabytes cannot exhaust memory or time.
+MAX_UNPACKED_BYTES = 400 * 1024 * 1024
+#: The most cells a sheet may hold (rows times columns read, empty cells in a row included).
+MAX_CELLS = 20_000_000
+
+
+def _check_unpacked_size(raw: bytes, limit: int) -> None:
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(io.BytesIO(raw)) as z:
+            total = sum(max(0, i.file_size) for i in z.infolist())
+    except (zipfile.BadZipFile, OSError, ValueError, EOFError) as exc:
+        raise TableError(f"is not a readable Excel workbook ({type(exc).__name__}: {str(exc)[:80]})") from None
+    if total > limit:
+        raise TableError(f"unpacks to {total / 2**20:,.1f} MiB, more than the limit of {limit / 2**20:,.1f} MiB for "
+                         "a workbook (the bound on bytes, checked before reading)")
+
+
+def _numbers_stored_as_text(df: pd.DataFrame) -> tuple[str, ...]:
+    """Convert, in place, each column whose every filled cell is a number or a number stored
+    as text (a workbook's "number stored as text" cells), with at least one such text, to
+    numbers; a column of whole numbers with a leading zero (``01``: codes) stays text, as in a
+    CSV file. Returns one phrase per column converted."""
+    import pandas as pd
+
+    said = []
+    for c in df.columns:
+        col = df[c]
+        if not (col.dtype == object or pd.api.types.is_string_dtype(col.dtype)):
+            continue
+        cells = col.tolist()
+        texts = [v for v in cells if isinstance(v, str) and v.strip()]
+        if not texts or any(re.match(LEADING_ZERO, t) for t in texts):
+            continue
+        num = pd.to_numeric(col.map(lambda v: v.strip() if isinstance(v, str) else v), errors="coerce")
+        filled = [not (v is None or (isinstance(v, str) and not v.strip()) or (isinstance(v, float) and v != v))
+                  for v in cells]
+        if all(ok is False or pd.notna(x) for ok, x in zip(filled, num.tolist())):
+            df[c] = num.astype(float)
+            said.append(f"column {_quote(c)} holds {len(texts)} number{'s' if len(texts) > 1 else ''} stored as "
+                        "text, read as numbers")
+    return tuple(said)
 
 
 def _column_letter(j: int) -> str:
@@ -460,8 +585,10 @@ def _column_letter(j: int) -> str:
     return out
 
 
-def _sheet_rows(ws: Any, max_rows: int | None, max_columns: int | None) -> list[list[Any]]:
+def _sheet_rows(ws: Any, max_rows: int | None, max_columns: int | None, sheet: str = "",
+                max_cells: int = 0) -> list[list[Any]]:
     rows: list[list[Any]] = []
+    cells = 0
     for i, row in enumerate(ws.iter_rows(values_only=True)):
         values = list(row)
         while values and values[-1] is None:
@@ -470,6 +597,16 @@ def _sheet_rows(ws: Any, max_rows: int | None, max_columns: int | None) -> list[
             raise TableError(f"row {i + 1} of the sheet has {len(values)} columns, more than the limit of {max_columns}")
         if max_rows is not None and i > max_rows:
             raise TableError(f"the sheet has more than {max_rows} data rows, the limit for a table held in memory")
+        cells += len(values)
+        if max_cells and cells > max_cells:
+            raise TableError(f"the sheet has more than {max_cells:,} cells (by row {i + 1}), the limit for a table "
+                             "held in memory (the bound on cells)")
+        for j, v in enumerate(values):
+            if isinstance(v, bool):  # TRUE is no 1.0, nor a level by accident
+                name = rows[0][j] if rows and j < len(rows[0]) else None
+                col = f" (column {_quote(name)}, row {i})" if i and name is not None else ""
+                raise TableError(f"sheet {_quote(sheet)}, cell {_column_letter(j)}{i + 1}{col}: holds "
+                                 f"{str(v).upper()}, a truth value; write a number (or a level as text)")
         rows.append(values)
     while rows and not rows[-1]:
         rows.pop()
@@ -498,11 +635,13 @@ def _check_formula_values(raw: bytes, sheet: str, df: pd.DataFrame) -> None:
 
 # --- Parquet --------------------------------------------------------------------------------
 
-def parse_parquet(raw: bytes, *, max_rows: int | None = None,
-                  max_columns: int | None = None) -> tuple[pd.DataFrame, ReadAs]:
+def parse_parquet(raw: bytes, *, max_rows: int | None = None, max_columns: int | None = None,
+                  max_bytes: int | None = None) -> tuple[pd.DataFrame, ReadAs]:
     """Read a single Parquet file (every row group) into a DataFrame; its index, if any was
     stored, becomes columns. Limits as for :func:`parse_xlsx` (checked from the file's
-    metadata before the data are read)."""
+    metadata before the data are read: ``max_bytes`` bounds the bytes its row groups unpack
+    to). A decimal column is read as floating-point numbers and said in ``ReadAs.converted``."""
+    limit = MAX_UNPACKED_BYTES if max_bytes is None else max_bytes
     import pandas as pd
 
     try:
@@ -516,6 +655,11 @@ def parse_parquet(raw: bytes, *, max_rows: int | None = None,
                              "memory; fit a folder of Parquet files instead (read partition by partition with Dask)")
         if max_columns is not None and meta.num_columns > max_columns:
             raise TableError(f"has {meta.num_columns} columns, more than the limit of {max_columns}")
+        unpacked = sum(meta.row_group(i).total_byte_size for i in range(meta.num_row_groups))
+        if unpacked > limit:
+            raise TableError(f"unpacks to {unpacked / 2**20:,.1f} MiB, more than the limit of "
+                             f"{limit / 2**20:,.1f} MiB for a table held in memory (the bound on bytes, "
+                             "checked from the file's metadata before reading); fit a folder of Parquet files instead")
         df = pq.read_table(io.BytesIO(raw)).to_pandas()
     except TableError:
         raise
@@ -528,7 +672,27 @@ def parse_parquet(raw: bytes, *, max_rows: int | None = None,
     df.columns = names
     if df.shape[1] < 2:
         raise TableError(f"has a single column {_quote(names[0])}; expected one column per factor and response")
-    return df, ReadAs("parquet")
+    return df, ReadAs("parquet", converted=_decimal_columns(df))
+
+
+def _decimal_columns(df: pd.DataFrame) -> tuple[str, ...]:
+    """Convert, in place, each column of exact decimals (a Parquet ``decimal`` column, read as
+    Python ``Decimal`` objects) to floating-point numbers, which is what a fit computes with;
+    returns one phrase per column converted."""
+    import decimal
+
+    import pandas as pd
+
+    said = []
+    for c in df.columns:
+        col = df[c]
+        if col.dtype != object:
+            continue
+        vals = [v for v in col.tolist() if v is not None]
+        if vals and all(isinstance(v, decimal.Decimal) for v in vals):
+            df[c] = pd.to_numeric(col.map(lambda v: None if v is None else float(v)), errors="coerce").astype(float)
+            said.append(f"column {_quote(c)} holds decimals, read as floating-point numbers")
+    return tuple(said)
 
 
 def xlsx_bytes(frame: pd.DataFrame, sheet: str = "Design") -> bytes:
@@ -602,7 +766,7 @@ def csv_chunks(fh: Any, *, sep: str | None = None, decimal: str = ".",
         text = head.decode("utf-8-sig", errors="strict" if len(head) < (1 << 20) else "ignore")
     except UnicodeDecodeError as exc:
         line = head.count(b"\n", 0, exc.start) + 1
-        raise TableError(f"is not a UTF-8 CSV text file (line {line}); save it as CSV UTF-8") from None
+        raise TableError(f"is not a UTF-8 CSV text file ({row_of_line(line)}); save it as CSV UTF-8") from None
     if len(head) == (1 << 20):
         text = text[: text.rfind("\n") + 1] or text  # whole lines only
     detected = sep is None

@@ -189,3 +189,23 @@ def test_design_and_data_factor_items_agree():
     items = ["stage=cat:rfcms,rms", "v=0.4:0.6"]
     assert as_factor_space(items) == choose_factors(df, items).space == FactorSpace.from_specs(items)
     assert as_factor_space({"v": (0.4, 0.6)}) == FactorSpace.from_ranges({"v": (0.4, 0.6)})
+
+
+def test_an_inferred_constant_numeric_column_is_left_out_with_a_note():
+    # issue 36: a Table 4 file with one more numeric column holding 7 on every row was refused
+    # ("factor column 'stroke_m.1' is constant"); inferred, it is left out and said; named, refused
+    import pandas as pd
+
+    from rsm_lrg.datasets import data_path
+    from rsm_lrg.factors import choose_factors
+
+    d = pd.read_csv(data_path("table4.csv"))
+    d["stroke_m.1"] = 7.0
+    choice = choose_factors(d, exclude=["tcr_c_per_min"])
+    assert list(choice.space.names) == ["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]
+    assert any("Constant numeric column" in str(n) and "'stroke_m.1' (7 on every row)" in str(n) for n in choice.notes)
+    with pytest.raises(ValueError, match="'stroke_m.1' is constant"):
+        choose_factors(d, ["thickness_m", "stroke_m.1"], exclude=["tcr_c_per_min"])
+    only = pd.DataFrame({"a": [1.0, 1.0, 1.0], "y": [1.0, 2.0, 3.0]})
+    with pytest.raises(ValueError, match="every numeric column is constant: 'a'"):
+        choose_factors(only, exclude=["y"])

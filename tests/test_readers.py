@@ -150,7 +150,7 @@ def test_bad_binary_variants(tmp_path, table4):
         "text.parquet": (b"a,b\n1,2\n", r"text\.parquet: is not a Parquet file"),
         "old.xls": (b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1" + b"\0" * 100, r"old\.xls: is an old-style Excel \.xls"),
         "book.csv": (x.read_bytes(), r"book\.csv: is a zip archive \(an Excel workbook\?\), not a \.csv file"),
-        "latin1.csv": ("a;b\n1;2\n\u00b0C;3\n".encode("latin-1"), r"latin1\.csv: is not a UTF-8 CSV text file \(line 3\)"),
+        "latin1.csv": ("a;b\n1;2\n\u00b0C;3\n".encode("latin-1"), r"latin1\.csv: is not a UTF-8 CSV text file \(row 2\)"),
     }
     for name, (raw, message) in cases.items():
         p = tmp_path / name
@@ -248,3 +248,146 @@ def test_pieces_refuse_what_the_whole_refuses(tmp_path):
     p.write_text("a;a\n1;2\n")
     with open(p, "rb") as fh, pytest.raises(TableError, match="'a' appears more than once"):
         csv_chunks(fh)
+
+
+def test_two_column_names_alike_once_normalised_are_refused(tmp_path):
+    # issue 36: a constraint on the decomposed 'é' was applied to the other column, the composed
+    # 'é'; two names that are the same text in Unicode NFC are ambiguous: refused by name
+    p = tmp_path / "nfc.csv"
+    p.write_bytes("caf\u00e9,cafe\u0301,y\n1,2,3\n2,3,4\n3,1,5\n".encode())
+    with pytest.raises(InputError, match="the column names 'caf.' and 'cafe.' are the same text in Unicode NFC"):
+        read_table(p)
+
+
+# --- issue 36: workbooks and Parquet files that lied or crashed ---------------------------------
+
+def _table4_xlsx() -> bytes:
+    from rsm_lrg.readers import xlsx_bytes
+
+    return xlsx_bytes(pd.read_csv(data_path("table4.csv")), "Runs")
+
+
+def _with_sheet_xml(raw: bytes, change) -> bytes:
+    zin = zipfile.ZipFile(io.BytesIO(raw))
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zout:
+        for item in zin.infolist():
+            data = zin.read(item.filename)
+            zout.writestr(item, change(data) if item.filename == "xl/worksheets/sheet1.xml" else data)
+    return out.getvalue()
+
+
+def _body(xml: bytes) -> bytes:
+    return xml.split(b"?>", 1)[-1]
+
+
+_LAUGHS = (b'<?xml version="1.0"?><!DOCTYPE z [<!ENTITY a "aaaaaaaaaa">'
+           + b"".join(f'<!ENTITY {chr(98 + k)} "{("&" + chr(97 + k) + ";") * 10}">'.encode() for k in range(8))
+           + b"]>")
+
+
+@pytest.mark.parametrize(("kind", "change", "words"), [
+    ("truncated sheet", lambda x: x[: len(x) // 2], ["not a readable Excel workbook", "sheet 'Runs'"]),
+    ("entity expansion", lambda x: _LAUGHS + _body(x).replace(b"<v>1</v>", b"<v>&i;</v>", 1),
+     ["not a readable Excel workbook", "sheet 'Runs'"]),
+    ("external entity", lambda x: b'<?xml version="1.0"?><!DOCTYPE z [<!ENTITY e SYSTEM "file:///etc/hostname">]>'
+     + _body(x).replace(b"<v>1</v>", b"<v>&e;</v>", 1), ["not a readable Excel workbook"]),
+])
+def test_a_damaged_workbook_is_one_error(kind, change, words):
+    with pytest.raises(TableError) as info:
+        rsm_lrg.readers.parse_xlsx(_with_sheet_xml(_table4_xlsx(), change))
+    for w in words:
+        assert w in str(info.value), (kind, str(info.value))
+
+
+def test_a_truncated_workbook_through_the_command_line_is_exit_2(tmp_path, capsys):
+    from rsm_lrg.cli import main
+
+    raw = _with_sheet_xml(_table4_xlsx(), lambda x: x[: len(x) // 2])
+    (tmp_path / "t.xlsx").write_bytes(raw)
+    for argv in (["fit", str(tmp_path / "t.xlsx"), "--response", "tcr_c_per_min"], ["evaluate", str(tmp_path / "t.xlsx")]):
+        assert main(argv) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and "t.xlsx: is not a readable Excel workbook" in err[0], err
+
+
+def test_a_chart_sheet_is_refused_by_name():
+    import openpyxl
+    from openpyxl.chart import BarChart, Reference
+
+    book = openpyxl.load_workbook(io.BytesIO(_table4_xlsx()))
+    chart = BarChart()
+    chart.add_data(Reference(book["Runs"], min_col=6, min_row=1, max_row=28), titles_from_data=True)
+    book.create_chartsheet("Plot").add_chart(chart)
+    buf = io.BytesIO()
+    book.save(buf)
+    with pytest.raises(TableError, match="sheet 'Plot' is a chart sheet"):
+        rsm_lrg.readers.parse_xlsx(buf.getvalue(), sheet="Plot")
+    assert rsm_lrg.readers.parse_xlsx(buf.getvalue(), sheet="Runs")[0].shape == (27, 6)
+
+
+def _edited(cells: dict) -> bytes:
+    import openpyxl
+
+    book = openpyxl.load_workbook(io.BytesIO(_table4_xlsx()))
+    ws = book["Runs"]
+    for ref, value in cells.items():
+        if ref.endswith(":text"):
+            col = int(ref.split(":")[0])
+            for (c,) in ws.iter_rows(min_row=2, min_col=col, max_col=col):
+                c.value = str(c.value)
+        else:
+            ws[ref] = value
+    buf = io.BytesIO()
+    book.save(buf)
+    return buf.getvalue()
+
+
+def test_numbers_stored_as_text_are_read_as_numbers_and_said():
+    # issue 36: stroke_m held as text (Excel's green triangle) was silently left out of the factors
+    df, how = rsm_lrg.readers.parse_xlsx(_edited({"3:text": None}))
+    ref = pd.read_csv(data_path("table4.csv"))
+    assert df["stroke_m"].dtype == float and np.array_equal(df["stroke_m"].to_numpy(), ref["stroke_m"].to_numpy())
+    assert how.converted == ("column 'stroke_m' holds 27 numbers stored as text, read as numbers",)
+    assert "stored as text, read as numbers" in how.describe()
+
+
+@pytest.mark.parametrize("ref", ["F5", "C3"])
+def test_a_true_cell_is_an_error_naming_it(ref):
+    # issue 36: TRUE in the response was fitted as 1.0, in a named factor it stretched the range
+    with pytest.raises(TableError, match=rf"cell {ref} \(column '\w+', row {int(ref[1:]) - 1}\): holds TRUE"):
+        rsm_lrg.readers.parse_xlsx(_edited({ref: True}))
+
+
+def test_bounds_on_bytes_and_cells_are_checked_before_reading():
+    raw = _table4_xlsx()
+    with pytest.raises(TableError, match="unpacks to .* MiB, more than the limit of 0.0 MiB"):
+        rsm_lrg.readers.parse_xlsx(raw, max_bytes=1000)
+    with pytest.raises(TableError, match=r"more than 100 cells .* \(the bound on cells\)"):
+        rsm_lrg.readers.parse_xlsx(raw, max_cells=100)
+
+
+def test_a_decimal_parquet_column_is_read_as_numbers():
+    import decimal
+
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    ref = pd.read_csv(data_path("table4.csv"))
+    table = pa.Table.from_pandas(ref, preserve_index=False)
+    dec = pa.array([decimal.Decimal(repr(v)) for v in ref["stroke_m"]], type=pa.decimal128(12, 6))
+    table = table.set_column(table.schema.get_field_index("stroke_m"), "stroke_m", dec)
+    buf = io.BytesIO()
+    pq.write_table(table, buf)
+    df, how = rsm_lrg.readers.parse_parquet(buf.getvalue())
+    assert df["stroke_m"].dtype == float and np.allclose(df["stroke_m"], ref["stroke_m"], rtol=0, atol=1e-12)
+    assert how.converted == ("column 'stroke_m' holds decimals, read as floating-point numbers",)
+    with pytest.raises(TableError, match="unpacks to .* more than the limit"):
+        rsm_lrg.readers.parse_parquet(buf.getvalue(), max_bytes=100)
+
+
+def test_a_utf16_header_of_too_many_columns_is_refused_before_parsing(tmp_path):
+    text = "\ufeff" + ",".join(f"c{i}" for i in range(3000)) + "\n" + ",".join("1" for _ in range(3000)) + "\n"
+    (tmp_path / "wide.csv").write_bytes(text.encode("utf-16-le"))
+    with pytest.raises(InputError, match="the header has 3000 columns, more than the limit of 1000"):
+        read_table(tmp_path / "wide.csv")

@@ -39,12 +39,15 @@ warnings are shown as one ``warning:`` line each after a success and not after a
 from __future__ import annotations
 
 import argparse
+import contextlib
+import errno
 import importlib
 import os
+import signal
 import sys
 import warnings
 
-from ._common import check_option_specs, input_paths, mark_outputs, planned_outputs
+from ._common import check_option_specs, claim_standard_output, input_paths, mark_outputs, planned_outputs
 from .processes import Terminated, handle_signals, pending_signal, stop_children
 
 __all__ = ["main", "build_parser", "UsageError"]
@@ -269,10 +272,26 @@ def main(argv: list[str] | None = None) -> int:
     sys.stdout = guard
     try:
         with handle_signals():  # SIGTERM and SIGHUP unwind the command like an error
-            return _main(argv)
+            status = _main(argv)
     finally:
         if sys.stdout is guard:
             sys.stdout = guard.stream
+    signalled = pending_signal()
+    if argv is None and signalled is not None and status == 128 + signalled:
+        _leave(status)
+    return status
+
+
+def _leave(status: int) -> None:
+    """End the program at once after a signal, its line printed, its children reaped and its
+    files removed: no thread a library left behind (a process pool's manager waiting on workers
+    that are gone) may hold the interpreter's exit, which joins such threads without a limit."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError, AttributeError):
+            pass
+    os._exit(status)
 
 
 #: Commands that choose their BLAS thread count themselves (``fit`` keeps the threads for a
@@ -314,11 +333,17 @@ def _main(argv: list[str] | None) -> int:
         # first one written; then all outputs are renamed into place together at the end
         check_option_specs(args)
         outputs = planned_outputs(args, getattr(args, "_module", None))
+        # an output to /dev/stdout is written as '-' is: the data alone, the printed text on stderr
+        printed = contextlib.redirect_stdout(sys.stderr) if claim_standard_output(args, outputs) \
+            else contextlib.nullcontext()
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("default")
             with output_transaction(inputs=input_paths(args), labels={path: label for label, path in outputs}):
-                status = args._run(args)
+                with printed:
+                    status = args._run(args)
                 sys.stdout.flush()  # text that cannot be written fails the command before its files appear
+                if pending_signal() is not None:  # its exception was swallowed on the way: still no output
+                    raise Terminated(pending_signal() or 0)
         late = pending_signal()  # a signal that came while the outputs were placed: they are whole
         if late is not None:
             print(f"error: terminated by {Terminated(late).name} after its outputs were written", file=sys.stderr)
@@ -333,13 +358,33 @@ def _main(argv: list[str] | None) -> int:
     except SystemExit as exc:  # --help, --version
         return int(exc.code or 0) if isinstance(exc.code, int) else 0
     except KeyboardInterrupt:
-        stop_children()
-        print("error: interrupted", file=sys.stderr)
-        return 130
+        return _stopped(signal.SIGINT)
     except Terminated as exc:  # the outputs were discarded on the way out; no worker is left
-        stop_children()
-        print(f"error: terminated by {exc.name}; no output written", file=sys.stderr)
-        return 128 + exc.signum
+        return _stopped(exc.signum)
+    except Exception as exc:
+        signalled = pending_signal()
+        if signalled is not None and not isinstance(exc, UsageError):
+            # the signal's own exception met a library that swallowed it, and the command then
+            # failed for want of its workers (killed by the handler): it is the signal that ended it
+            return _stopped(signalled)
+        return _failed(exc, args, debug)
+
+
+def _stopped(signum: int) -> int:
+    """After SIGINT, SIGTERM or SIGHUP: every child process killed and reaped, one line, and
+    ``128 + signal``."""
+    stop_children()
+    if signum == signal.SIGINT:
+        print("error: interrupted", file=sys.stderr)
+    else:
+        print(f"error: terminated by {Terminated(signum).name}; no output written", file=sys.stderr)
+    return 128 + signum
+
+
+def _failed(exc: Exception, args, debug: bool) -> int:
+    """The exit status and the one ``error:`` line of a command that raised ``exc``."""
+    try:
+        raise exc
     except BrokenPipeError:
         return 0
     except (UsageError, ValueError, TypeError, FileNotFoundError, KeyError) as exc:
@@ -367,12 +412,35 @@ def _main(argv: list[str] | None) -> int:
         print(_error_line(f"{where + ': ' if where else ''}{what}"
                           f" ({type(exc).__name__}{': ' + detail if detail else ''})"), file=sys.stderr)
         return 2
-    except Exception as exc:  # an internal fault
+    except OSError as exc:
+        if exc.errno not in _SYSTEM_LIMITS:
+            return _internal(exc, debug)
         if debug:
             import traceback
 
             traceback.print_exc()
-        msg = str(exc).strip()
-        print(_error_line(f"internal error ({type(exc).__name__}: {msg[:150]}); rerun with --debug for details"),
+        print(_error_line("a system limit was reached "
+                          f"({exc.strerror or type(exc).__name__}: {_SYSTEM_LIMITS[exc.errno]}); no output written"),
               file=sys.stderr)
-        return 1
+        return 2
+    except Exception as exc:
+        return _internal(exc, debug)
+
+
+#: The resource limits of the system or of the process (``ulimit``), by errno: met, they end a
+#: command with one line and exit 2 (the transaction has removed its files), not an internal error.
+_SYSTEM_LIMITS = {errno.EMFILE: "the open-file limit, ulimit -n", errno.ENFILE: "the system's open-file table",
+                  errno.EFBIG: "the file-size limit, ulimit -f", errno.ENOSPC: "the disk is full",
+                  errno.EDQUOT: "the disk quota", errno.ENOMEM: "memory", errno.EAGAIN: "the process limit, ulimit -u"}
+
+
+def _internal(exc: BaseException, debug: bool) -> int:
+    """An internal fault: one line naming the exception, exit 1."""
+    if debug:
+        import traceback
+
+        traceback.print_exc()
+    msg = str(exc).strip()
+    print(_error_line(f"internal error ({type(exc).__name__}: {msg[:150]}); rerun with --debug for details"),
+          file=sys.stderr)
+    return 1

@@ -12,7 +12,7 @@ import os
 from contextlib import contextmanager
 from typing import Any
 
-from ..io import InputError, check_output, quote_user_value, show_path
+from ..io import STDIN_NAME, InputError, check_output, quote_user_value, show_path
 
 
 def whole_number(minimum: int | None = None, maximum: int | None = None):
@@ -190,6 +190,30 @@ def planned_outputs(args: argparse.Namespace, module=None) -> list[tuple[str, st
                                  f"{other_label} names the same file")
         checked.append((label, str(p)))
     return checked
+
+
+def claim_standard_output(args: argparse.Namespace, outputs: list[tuple[str, str]]) -> bool:
+    """Make an output that names standard output (``/dev/stdout``, ``/dev/fd/1``, a link to
+    one: :func:`rsm_lrg.io.output_stream`) behave exactly as ``-``: ``--json /dev/stdout``
+    becomes ``--json -``; for any other output (``-o``, ``--report``) the command's printed
+    text must go to standard error, so that standard output holds the data alone (returns
+    True). Two outputs that both name standard output are an error naming them."""
+    from ..io import output_stream
+
+    claims = [(label, path) for label, path in outputs if output_stream(path) == 1]
+    if getattr(args, "json", None) == "-":
+        claims.insert(0, ("--json", "-"))
+    if len(claims) > 1:
+        (first, a), (second, b) = claims[:2]
+        raise InputError(f"cannot write {second} {show_path(b)}: {first} {show_path(a)} writes standard output "
+                         f"already; give one of them a file name")
+    if not claims:
+        return False
+    label, path = claims[0]
+    if path != "-" and getattr(args, "json", None) is not None and "--json" in label.split("/"):
+        args.json = "-"  # written, and the summary left out, as for --json -
+        return False
+    return path != "-"
 
 
 def check_standard_output(inputs) -> None:
@@ -449,7 +473,7 @@ def about_file(path):
         option = option_of_message(msg)
         if option:  # the library checked an option's value after the data were read
             raise InputError(f"{option}: {msg}") from None
-        raise InputError(f"{path}: {msg}") from None
+        raise InputError(f"{STDIN_NAME if str(path) == '-' else path}: {msg}") from None
 
 
 @contextmanager

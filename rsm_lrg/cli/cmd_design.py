@@ -123,9 +123,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                          "crossed with each process main effect when --factor is given)")
     op.add_argument("--runs", type=whole_number(1), default=None, metavar="N",
                     help="total runs (default: model terms + 5 lack-of-fit points + 5 replicates)")
-    op.add_argument("--lof-points", "--lack-of-fit", dest="lof_points", type=whole_number(0), default=None,
+    op.add_argument("--lof-points", "--lack-of-fit", dest="lof_points", type=whole_number(0, MAX_DESIGN_RUNS),
+                    default=None,
                     metavar="L", help="lack-of-fit points spread by distance (default 5 without --runs, else 0)")
-    op.add_argument("--replicates", type=whole_number(0), default=None, metavar="R",
+    op.add_argument("--replicates", type=whole_number(0, MAX_DESIGN_RUNS), default=None, metavar="R",
                     help="replicated model points (default 5 without --runs, else 0)")
     op.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
                     help="random starts of the exchange (default by model size)")
@@ -335,6 +336,10 @@ def _mixture_parsers(sub) -> None:
                             "every point of the two-level full factorial in the process factors")
         _order_and_output(p)
 
+
+#: Most runs any design kind writes (a full factorial's limit): --replicates and --lof-points past it
+#: are refused by name before any work (10**19 replicates once blamed --runs).
+MAX_DESIGN_RUNS = 100_000
 
 #: Most centre runs per block: replicates of one point, far beyond any experiment.
 MAX_CENTER = 1000

@@ -25,7 +25,8 @@ import time
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["Terminated", "handle_signals", "pending_signal", "process_pool", "close_pool", "stop_children", "connect_scheduler",
+__all__ = ["Terminated", "handle_signals", "pending_signal", "process_pool", "close_pool", "stop_children",
+           "child_processes", "kill_children", "connect_scheduler",
            "scheduler_lost", "pool_lost", "DEFAULT_SCHEDULER_TIMEOUT"]
 
 #: Seconds a Dask scheduler has to answer (``--scheduler-timeout``).
@@ -67,6 +68,10 @@ def _raise(signum: int, frame: Any) -> None:
             _PENDING.append(signum)
         return
     _PENDING.append(signum)
+    # the workers go at once, whatever the exception raised here meets on its way out (a library
+    # that swallows it, a finalizer that runs it): a pool whose workers are gone fails at once,
+    # so no wait on them can last, and main() still reports the signal (pending_signal())
+    kill_children()
     if signum == signal.SIGINT:
         raise KeyboardInterrupt
     raise Terminated(signum)
@@ -96,14 +101,31 @@ def handle_signals() -> Iterator[None]:
             old[sig] = signal.signal(sig, _raise)
         except (OSError, ValueError):
             pass
+    hook = sys.unraisablehook
+    sys.unraisablehook = _quiet_signal_exceptions(hook)
     try:
         yield
     finally:
+        sys.unraisablehook = hook
         for sig, handler in old.items():
             try:
                 signal.signal(sig, handler)
             except (OSError, ValueError, TypeError):
                 pass
+
+
+def _quiet_signal_exceptions(hook: Any) -> Any:
+    """An ``unraisablehook`` that says nothing of the exception a signal raised where Python
+    cannot raise it (an at-fork callback, a finalizer: "Exception ignored in ..."): the signal
+    is recorded (:func:`pending_signal`), its workers are gone and ``main`` reports it in its
+    one line. Anything else goes to ``hook``."""
+
+    def quiet(unraisable: Any) -> None:
+        if isinstance(unraisable.exc_value, (Terminated, KeyboardInterrupt)) and _PENDING:
+            return
+        hook(unraisable)
+
+    return quiet
 
 
 def _die_with_parent(parent: int) -> None:
@@ -133,17 +155,60 @@ def process_pool(workers: int):
     return ProcessPoolExecutor(max_workers=workers, initializer=_die_with_parent, initargs=(os.getpid(),))
 
 
-def stop_children(timeout: float = 5.0) -> None:
-    """Kill every worker process this process started (``multiprocessing``) and reap them."""
+def child_processes() -> list[int]:
+    """The process ids of this process's children (Linux ``/proc``: every child, also one forked
+    by a pool that a signal interrupted before it could record it); [] where ``/proc`` has none."""
+    pids: list[int] = []
+    try:
+        tasks = os.listdir(f"/proc/{os.getpid()}/task")
+    except OSError:
+        return pids
+    for tid in tasks:
+        try:
+            with open(f"/proc/{os.getpid()}/task/{tid}/children", encoding="ascii") as fh:
+                pids.extend(int(x) for x in fh.read().split())
+        except (OSError, ValueError):
+            continue
+    return sorted(set(pids))
+
+
+def kill_children() -> list[int]:
+    """Send SIGKILL to every child process of this one (:func:`child_processes` and those
+    ``multiprocessing`` knows); they are reaped by :func:`stop_children`. Returns their ids."""
     import multiprocessing
 
+    pids = set(child_processes())
+    with contextlib.suppress(Exception):
+        pids.update(p.pid for p in multiprocessing.active_children() if p.pid)
+    for pid in pids:
+        with contextlib.suppress(OSError):
+            os.kill(pid, signal.SIGKILL)
+    return sorted(pids)
+
+
+def stop_children(timeout: float = 5.0) -> None:
+    """Kill every child process of this one (the workers of a pool, and any other) and reap
+    them, waiting at most ``timeout`` seconds in all."""
+    import multiprocessing
+
+    end = time.monotonic() + timeout
     children = multiprocessing.active_children()
     for p in children:
         with contextlib.suppress(Exception):
             p.kill()
+    others = [pid for pid in kill_children() if pid not in {p.pid for p in children}]
     for p in children:
         with contextlib.suppress(Exception):
-            p.join(timeout)
+            p.join(max(0.0, end - time.monotonic()))
+    for pid in others:  # children multiprocessing does not know of: reaped here
+        while True:
+            try:
+                done, _ = os.waitpid(pid, os.WNOHANG)
+            except ChildProcessError:
+                break
+            if done or time.monotonic() >= end:
+                break
+            time.sleep(0.01)
 
 
 def close_pool(executor, ok: bool) -> None:

@@ -224,7 +224,16 @@ def _total(total: Any) -> float:
         raise ValueError(f"total must be a number, not {total!r}") from None
     if not (math.isfinite(t) and t > 0):
         raise ValueError(f"total must be a finite number > 0 (got {total!r})")
+    if t < MIN_TOTAL or t > MAX_TOTAL:  # shares of a tiny total lose their digits (subnormal floats)
+        raise ValueError(f"total must lie between {MIN_TOTAL:g} and {MAX_TOTAL:g}, so that every share of a blend "
+                         f"keeps its digits (got {t:g})")
     return t
+
+
+#: The range of a mixture's total: a blend's shares (the total times fractions such as 1/12) must
+#: stay normal floats, and their sums finite.
+MIN_TOTAL = 1e-290
+MAX_TOTAL = 1e290
 
 
 def _names(components: Any, minimum: int = 2) -> list[str]:

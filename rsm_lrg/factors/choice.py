@@ -8,7 +8,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from .columns import COLUMNS_LEFT_OUT, Note, infer_items, is_bookkeeping
+from .columns import COLUMNS_LEFT_OUT, Note, constant_number, infer_items, is_bookkeeping
 from .space import FactorSpace, inferred_space
 from .values import name_list, quote_value
 
@@ -120,6 +120,13 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
                          f"are the numbers, written {name_list(list(f.levels))} (whole numbers without .0, others "
                          "to 15 digits); codes that differ only in their text (1.0 and 1) are one level.")
     numeric_unused = [c for c in unused if c not in text]
+    constant = {c: constant_number(data[c]) for c in numeric_unused} if how == "numeric" else {}
+    constant = {c: v for c, v in constant.items() if v is not None}
+    if constant:
+        shown = name_list([f"{quote_value(str(c))} ({v:g} on every row)" for c, v in constant.items()])
+        notes.append(Note(f"Constant numeric column{'s' if len(constant) > 1 else ''} left out (a factor needs at "
+                          f"least two levels): {shown}.", COLUMNS_LEFT_OUT))
+        numeric_unused = [c for c in numeric_unused if c not in constant]
     if numeric_unused:
         notes.append(Note(f"Numeric column{'s' if len(numeric_unused) > 1 else ''} left out (not a factor, response "
                           f"or block): {name_list(numeric_unused)}.", COLUMNS_LEFT_OUT))

@@ -21,7 +21,8 @@ from .spec import given_items
 from .values import name_list, quote_value
 
 __all__ = ["BOOKKEEPING", "CODED_COLUMN_PREFIX", "PAIR_RTOL", "DESIGN_CODED", "COLUMNS_LEFT_OUT", "Note",
-           "is_bookkeeping", "design_factors", "infer_items"]
+           "is_bookkeeping", "design_factors", "infer_items", "constant_number",
+           "check_frame", "check_label_column"]
 
 #: Column names that are never factors (case-insensitive).
 BOOKKEEPING = frozenset({"run", "order", "std", "std_order", "run_order"})
@@ -174,15 +175,60 @@ def _design_categoric(data, cc, cols: list, last: int, exclude: set, used: set) 
                      "column holding the same levels; name the factors with --factor NAME")
 
 
+def check_frame(data, labels=()) -> None:
+    """A DataFrame given to a fit, checked before anything is taken from it: at least one row;
+    column names that can be told apart (none twice, none alike once Unicode-normalised, no
+    control character: :func:`rsm_lrg.readers.check_column_names`, the readers' own rule); the
+    ``labels`` columns (block, whole plot) holding one label per cell (not a list, a dict, a
+    set or an array). A ValueError naming the column (and the row).
+
+    >>> import pandas as pd
+    >>> check_frame(pd.DataFrame({"a": [], "y": []}))
+    Traceback (most recent call last):
+    ...
+    ValueError: the data have no rows (an empty DataFrame): there is nothing to fit
+    """
+    from ..readers import TableError, check_column_names
+
+    try:
+        check_column_names(list(data.columns))
+    except TableError as exc:
+        raise ValueError(str(exc)) from None
+    if data.shape[0] == 0:
+        raise ValueError("the data have no rows (an empty DataFrame): there is nothing to fit")
+    for name in labels:
+        if name in data.columns:
+            check_label_column(data, name)
+
+
+def check_label_column(data, name: str) -> None:
+    """Every cell of the label column ``name`` (a block, a whole plot) is one label: a list, a
+    dict, a set or an array (unhashable: no label) is a ValueError naming the row."""
+    for i, v in enumerate(data[name].tolist()):
+        try:
+            hash(v)
+        except TypeError:
+            raise ValueError(f"column {quote_value(str(name))}, row {i + 1}: holds a {type(v).__name__}, not a label "
+                             "(a number or a text)") from None
+
+
 def _check_text_columns(data, exclude) -> None:
     """A text column that holds numbers is a typo or a locale problem (``1,234``), not a
-    label: a ValueError names the column and the row."""
+    label: a ValueError names the column and the row. Nor is a column of numbers that pandas
+    does not hold as numbers (Python objects with a number among them, a ``Categorical`` of
+    numbers) left out as text without a word: refused, naming it."""
     import pandas as pd
 
     for c in data.columns:
         if c in exclude or is_bookkeeping(c) or pd.api.types.is_numeric_dtype(data[c]):
             continue
         col = data[c]
+        if isinstance(col.dtype, pd.CategoricalDtype):
+            cats = pd.Series(col.cat.categories)
+            if len(cats) and pd.api.types.is_numeric_dtype(cats):
+                raise ValueError(f"column {quote_value(str(c))} is a pandas Categorical of numbers: convert it to "
+                                 f"numbers (.astype(float)) or name it as a categoric factor ('{c}=cat')")
+            continue
         commas = np.flatnonzero(col.astype("string").str.match(COMMA_NUMBER.pattern).fillna(False).to_numpy(bool))
         if commas.size:
             i = int(commas[0])
@@ -190,6 +236,28 @@ def _check_text_columns(data, exclude) -> None:
         num = pd.to_numeric(col, errors="coerce")
         if num.notna().sum() >= max(1, data.shape[0] // 2):
             float_column(data, c)  # raises "column 'c', row i: holds 'text', not a finite number"
+        cells = col.tolist()
+        if any(isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+               and not is_empty_cell(v) for v in cells):  # every cell a number, some held as text
+            text = next(((i, v) for i, v in enumerate(cells) if isinstance(v, str) and not is_empty_cell(v)), None)
+            where = f" (row {text[0] + 1} holds the text {quote_value(text[1])})" if text else ""
+            raise ValueError(f"column {quote_value(str(c))} holds numbers as Python objects{where}: convert it to "
+                             "numbers (pandas.to_numeric) or name the factors")
+
+
+def constant_number(col) -> float | None:
+    """The one value of a numeric column that holds the same finite number on every row, else
+    None (a column with an empty or non-finite cell is not constant: its fit says which row)."""
+    if np.iscomplexobj(col):
+        return None  # refused by its fit, naming it
+    v = np.asarray(col, dtype=float)
+    if v.size == 0 or not np.isfinite(v).all() or not (v == v[0]).all():
+        return None
+    return float(v[0])
+
+
+def _constant_number(col) -> bool:
+    return constant_number(col) is not None
 
 
 def _is_number_column(col) -> bool:
@@ -217,6 +285,10 @@ def _categoric_levels(data, name: str, levels) -> tuple:
                              f"levels given for categoric factor {quote_value(name)} ({name_list(list(levels))})")
         if key not in seen:
             seen.append(key)
+    missing = [lv for lv in (levels or ()) if lv not in seen]
+    if missing:  # its effect could not be estimated: say so by name, not as an aliased model term
+        raise ValueError(f"categoric factor {quote_value(name)}: the level {quote_value(missing[0])} is given but no "
+                         f"row holds it (levels in the data: {name_list(seen)}); give only levels the data hold")
     if levels is None:
         if len(seen) < 2:
             raise ValueError(f"categoric factor column {quote_value(name)} has only one level; a factor needs at "
@@ -256,9 +328,12 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
             if c not in exclude and not is_bookkeeping(c) and str(c).lower() != "block"
             and pd.api.types.is_numeric_dtype(data[c]) and not pd.api.types.is_bool_dtype(data[c])
         ]
-        items: list[Any] = [("numeric", n, None, None) for n in names]  # column names, never specs
+        constant = [n for n in names if _constant_number(data[n])]  # left out with a note (choose_factors)
+        items: list[Any] = [("numeric", n, None, None) for n in names if n not in constant]  # names, never specs
         if not items:
-            raise ValueError("no numeric factor columns found in the data")
+            raise ValueError("no numeric factor columns found in the data" + (
+                f" (every numeric column is constant: {name_list([quote_value(str(c)) for c in constant])}; a factor needs at "
+                "least two levels)" if constant else ""))
     else:
         how = "given"
         items = given_items(factors)

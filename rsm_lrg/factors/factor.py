@@ -17,6 +17,7 @@ from typing import Any, ClassVar, Literal, Protocol, runtime_checkable
 
 import numpy as np
 
+from ..readers import column_name_problem
 from .values import finite_float, quote_value
 
 __all__ = ["CODED_DECIMALS", "RESERVED_FACTOR_NAMES", "FactorLike", "Factor", "CategoricFactor", "letters_for",
@@ -55,13 +56,17 @@ def check_factor_name(name: Any) -> str:
     A factor may not be named like a column a design CSV writes for itself
     (``std_order``, ``run_order``, ``block``, ``coded_A``, ...) or like a bookkeeping
     column (``run``, ``order``, ``std``): such a factor would be written and then not read
-    back as a factor.
+    back as a factor. Nor may it hold a control character
+    (:func:`rsm_lrg.readers.column_name_problem`, the rule of every reader).
 
     >>> check_factor_name("stroke_m")
     'stroke_m'
     """
     if not isinstance(name, str) or not name.strip():
         raise ValueError("a factor needs a non-empty name")
+    problem = column_name_problem(name)  # the readers' own rule: a design writes what the others read
+    if problem:
+        raise ValueError(problem)
     low = name.strip().lower()
     if low in RESERVED_FACTOR_NAMES or low.startswith("coded_"):
         raise ValueError(

@@ -28,8 +28,9 @@ from typing import Any
 import numpy as np
 
 from ..factors import FactorChoice, FactorSpace, choose_factors, quote_value
+from ..factors.columns import check_frame
 from ..factors.space import encode_column
-from ..io import cell_error, float_column
+from ..io import cell_error, check_number_kinds, float_column
 
 __all__ = ["PreparedData", "prepare", "response_values"]
 
@@ -98,6 +99,7 @@ def response_values(data, response: str) -> tuple[np.ndarray, np.ndarray]:
     import pandas as pd
 
     col = data[response]
+    check_number_kinds(col, response)  # True is no 1.0, a complex number no response
     empty = _empty_cells(col)
     num = pd.to_numeric(col.where(~empty) if empty.any() else col, errors="coerce").to_numpy(dtype=float,
                                                                                                  na_value=np.nan)
@@ -153,6 +155,7 @@ def prepare(data, response: str, factors=None, block: str | None = None) -> Prep
 
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
+    check_frame(data, [response] + ([block] if block is not None else []))
     check_response_block(data, response, block)
     exclude = [response] + ([block] if block is not None else [])
     choice = choose_factors(data, factors, exclude=exclude)

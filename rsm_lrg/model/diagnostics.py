@@ -143,9 +143,25 @@ def box_cox_ss(X, y, lambdas, *, fit=None) -> np.ndarray:
     gm = float(np.exp(lny.mean()))
     lams = np.atleast_1d(np.asarray(lambdas, dtype=float))
     Z = np.empty((y.size, lams.size))
+    if _has_constant(X):
+        # scale-free (the profile, and so λ, must not depend on the response's unit): with u = y / ẏ,
+        # (y^λ - 1) / (λ ẏ^(λ-1)) = ẏ (u^λ - 1) / λ + a constant, which the intercept takes; u is
+        # near 1 whatever the unit, so u^λ neither overflows nor cancels against the 1 (y = 1e8 y0
+        # once moved λ̂ from -2.78 to -1.91)
+        lnu = lny - lny.mean()
+        for j, lam in enumerate(lams):
+            Z[:, j] = lnu if abs(lam) < 1e-12 else np.expm1(lam * lnu) / lam
+        return gm * gm * ls.residual_ss_of(X, Z)
     for j, lam in enumerate(lams):
         Z[:, j] = gm * lny if abs(lam) < 1e-12 else (np.exp(lam * lny) - 1.0) / (lam * gm ** (lam - 1.0))
     return ls.residual_ss_of(X, Z)
+
+
+def _has_constant(X: np.ndarray) -> bool:
+    """True when a column of ``X`` is a non-zero constant (the model has an intercept)."""
+    if X.shape[0] == 0:
+        return False
+    return bool(np.any(np.all(X == X[0], axis=0) & (X[0] != 0)))
 
 
 #: The Box–Cox rules of :func:`box_cox`.

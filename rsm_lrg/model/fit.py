@@ -228,8 +228,9 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         reduction = choose_terms(inp, spec.reduce, model=spec.order, terms=spec.terms, intercept=spec.intercept)
         spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept") or None)
         if spec.terms is None:  # every term removed: the mean-only model
-            raise ValueError("backward elimination removed every term: no factor explains the response "
-                             f"(alpha_out {reduction.alpha_out:g})")
+            raise SpecError("alpha_out" if reduction.criterion == "p" else "criterion",
+                            "backward elimination removed every term: no factor explains the response "
+                            + (f"(alpha_out {reduction.alpha_out:g})" if reduction.criterion == "p" else "(AICc)"))
     return fit_inputs(inp, response, spec, chunk_rows=chunk_rows, reduction=reduction)
 
 
@@ -358,6 +359,7 @@ def _random_column(data: pd.DataFrame, response: str, whole_plot: str | None, ra
     import numpy as np
 
     from ..factors import quote_value
+    from ..factors.columns import check_label_column
     from .data import columns_text, empty_cells
 
     if whole_plot is not None and random_block is not None:
@@ -375,6 +377,7 @@ def _random_column(data: pd.DataFrame, response: str, whole_plot: str | None, ra
     empty = np.asarray(empty_cells(data[col]), dtype=bool)
     if empty.any():
         raise ValueError(f"{what} column {quote_value(col)}, row {int(empty.argmax()) + 1}: is empty")
+    check_label_column(data, col)  # a list in a cell is no whole plot
     levels = data[col].unique()
     if len(levels) < 2:
         unit = "whole plots" if kind == "whole_plot" else "blocks"
@@ -478,14 +481,15 @@ def _fit_mixed(data: pd.DataFrame | dd.DataFrame, response: str, factors: Factor
         from .mixed_reduce import reduce_mixed
 
         if spec.reduce.criterion != "p":
-            raise SpecError("reduce", "a REML fit is reduced by the Kenward-Roger p-values (criterion 'p'), "
-                                      f"not {spec.reduce.criterion!r}")
+            raise SpecError("criterion", "a REML fit is reduced by the Kenward-Roger p-values (criterion 'p'), "
+                                         f"not {spec.reduce.criterion!r}")
         reduction = reduce_mixed(lambda sp: _fit_mixed_inputs(inp, response, sp, labels, col, kind, what), spec,
                                  inp.space)
         spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept") or None)
         if spec.terms is None:
-            raise ValueError("backward elimination removed every term: no factor explains the response "
-                             f"(alpha_out {reduction.alpha_out:g})")
+            raise SpecError("alpha_out" if reduction.criterion == "p" else "criterion",
+                            "backward elimination removed every term: no factor explains the response "
+                            + (f"(alpha_out {reduction.alpha_out:g})" if reduction.criterion == "p" else "(AICc)"))
     return _fit_mixed_inputs(inp, response, spec, labels, col, kind, what, reduction=reduction)
 
 

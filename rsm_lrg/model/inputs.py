@@ -271,6 +271,11 @@ def model_inputs(data: Any, response: str, factors: Any = None, block: str | Non
         y = tr.forward(y)
     check_magnitudes(space, y, response)
     if np.all(y == y[0]):
+        if not tr.identity and not np.all(y_response == y_response[0]):  # the transform's doing, not the data's
+            from .spec import SpecError
+
+            raise SpecError("transform", f"maps every value of response {response!r} to {y[0]:.6g} (the transformed "
+                                         "values do not differ in double precision); choose another transform")
         raise ValueError(f"response {response!r} is constant (all {y[0]:.6g}): nothing to model")
     if block is not None:
         bcodes, bkeys, blevels = block_codes(data, block)

@@ -614,6 +614,17 @@ class FitResult:
             i = int(bad[0])
             raise ValueError(f"prediction point {i + 1}: the components sum to {f0.lower_sum + sums[i] * f0.pseudo_range:.12g}, "
                              f"not the total {f0.total:.12g} (tolerance {SUM_RTOL:g} of the total)")
+        tol = SUM_RTOL * f0.total
+        for j in comps:  # a share below zero or above the total is no blend (the sum alone passes 2 - 1 + 0)
+            f = self.space.factors[j]
+            assert isinstance(f, MixtureComponent)
+            share = f.lower + x[:, j] * f.pseudo_range
+            out = np.flatnonzero(~((share >= -tol) & (share <= f.total + tol)))
+            if out.size:
+                i = int(out[0])
+                where = "negative" if share[i] < 0 else f"above the total {f.total:.12g}"
+                raise ValueError(f"prediction point {i + 1}: component {f.name!r} is {where} ({share[i]:.12g}); a "
+                                 "blend's shares lie between 0 and the total")
 
     def predict_coded(self, coded: np.ndarray) -> np.ndarray:
         """ŷ at coded settings (n x k array), average block [response units]."""

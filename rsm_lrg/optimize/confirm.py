@@ -225,7 +225,7 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
     var, df = result.interval_form.mean_of_new_runs(design_matrix(x, result.terms), n)
     se = math.sqrt(float(var[0]))
     t = float(stdtrit(float(df[0]), 1 - (1 - confidence) / 2))
-    mean = float(obs.mean())
+    mean = float(np.sum(obs / n))  # no overflow on the way: the mean of 1e308 and 1e308 is 1e308
     tinfo = {}
     if not tr.identity:  # interval on the transformed scale, ends back-transformed
         tr.check(obs, "observed")
@@ -245,13 +245,21 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
         yhat = float(pr["predicted"])
         lo, hi = yhat - t * se, yhat + t * se
         inside = bool(lo <= mean <= hi)
-    rel = 100.0 * (mean - yhat) / yhat if yhat != 0 else math.nan
+    with np.errstate(over="ignore"):
+        rel = float(100.0 * ((np.float64(mean) - yhat) / yhat)) if yhat != 0 else math.nan
+    if math.isinf(rel):  # a number the report would print as "+inf %"
+        raise ParameterError("observed", f"the run mean {mean:.6g} is beyond any relative error from the prediction "
+                                         f"{yhat:.6g} (over 1e308 %): check the observed values and their units")
     rel_ref = None
     if reference is not None:
         reference = float(reference)
         if reference == 0 or not math.isfinite(reference):
             raise ValueError("reference must be a finite non-zero number")
-        rel_ref = 100.0 * (mean - reference) / reference
+        with np.errstate(over="ignore"):
+            rel_ref = float(100.0 * ((np.float64(mean) - reference) / reference))
+        if math.isinf(rel_ref):
+            raise ParameterError("observed", f"the run mean {mean:.6g} is beyond any relative error from the "
+                                             f"reference {reference:.6g} (over 1e308 %)")
     extra = bool(np.any(np.abs(x[:, space.numeric_index]) > 1 + 1e-9))
     warns = ("the settings lie outside the design range: the prediction is an extrapolation",) if extra else ()
     return ConfirmationResult(

@@ -72,3 +72,15 @@ def test_negative_values_in_any_number_form(capsys, tmp_path):
     assert main(base + ["--reference=-0.1", "--observed", "-0.25", "-0.1"]) == 0
     assert got == json.loads(capsys.readouterr().out)
     assert got["observed"] == [-0.25, -0.1] and got["reference"] == -0.1
+
+
+def test_confirm_refuses_a_blend_outside_the_simplex(capsys):
+    # issue 36: `--at x1=2 x2=-1 x3=0` (a negative share, one above the total) was accepted
+    from rsm_lrg.datasets import data_path
+
+    argv = ["confirm", str(data_path("mixture_etch.csv")), "--response", "erate", "--component", "x1", "--component",
+            "x2", "--component", "x3", "--model", "mixture-quadratic", "--observed", "500", "--at"]
+    assert main(argv + ["x1=2", "x2=-1", "x3=0"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--at" in err[0] and "'x1' is above the total" in err[0], err
+    assert main(argv + ["x1=0.5", "x2=0.5", "x3=0"]) == 0

@@ -173,3 +173,20 @@ def test_constraint_beginning_with_a_minus_is_a_value(tmp_path, capsys):
     d = pd.read_csv(out)
     assert len(d) == 8 and bool(((-d["A"] + d["B"]) <= 1 + 1e-12).all())
     assert "constraints: -A+B <= 1" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("name", ["a\nb", "a\tb", "a\x1b[31mb", "a\x85b"])
+def test_design_refuses_a_name_its_other_commands_refuse(name, tmp_path, capsys):
+    # issue 36: `design box-behnken --factor 'a<newline>b=0:1'` wrote a design whose column name
+    # `evaluate` and `fit` then refused; the one rule (rsm_lrg.readers.column_name_problem) now
+    # refuses it at design, with the same message
+    out = tmp_path / "d.csv"
+    assert main(["design", "box-behnken", "--factor", f"{name}=0:1", "--factor", "b=0:1", "--factor", "c=0:1",
+                 "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "holds a control character" in err[0] and "rename the column" in err[0], err
+    assert not out.exists()
+    bad = tmp_path / "bad.csv"
+    bad.write_text(f'"{name}",b,y\n1,2,3\n2,3,4\n3,1,5\n')
+    assert main(["evaluate", str(bad)]) == 2
+    assert err[0].split("error: ", 1)[1] in capsys.readouterr().err

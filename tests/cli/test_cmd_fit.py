@@ -197,3 +197,34 @@ def test_optimize_names_its_inferred_factors_and_runs_left_out(tmp_path, capsys)
     assert "tcr_c_per_min: 1 run without a response left out of the fit (not run): row 4" in err
     assert "wear: 1 run without a response left out of the fit (not run): row 6" in err
     assert "operator" in err
+
+
+def _table4_with_stage(tmp_path):
+    import pandas as pd
+
+    d = pd.read_csv(TABLE4)
+    d["stage"] = ["rfcms" if i % 2 else "rms" for i in range(len(d))]
+    p = tmp_path / "t4s.csv"
+    d.to_csv(p, index=False)
+    return str(p)
+
+
+def test_messages_name_the_option_or_the_level_at_fault(tmp_path, capsys):
+    # issue 36: each of these named the wrong thing (the response, aliasing, --alpha-out)
+    cake = str(data_path("cake_split_plot.csv"))
+    cases = [
+        (["fit", TABLE4, "--response", "tcr_c_per_min", "--reduce", "--alpha-out", "1e-300"],
+         ["--alpha-out", "removed every term"]),
+        (["fit", TABLE4, "--response", "tcr_c_per_min", "--transform", "power=1e-320"],
+         ["--transform", "maps every value"]),
+        (["fit", cake, "--response", "y", "--whole-plot", "Ovenrun", "--reduce", "--criterion", "aicc"],
+         ["--criterion", "Kenward-Roger"]),
+        (["fit", _table4_with_stage(tmp_path), "--response", "tcr_c_per_min", "--factor", "thickness_m", "--factor",
+          "stroke_m", "--factor", "stage=cat:rfcms,rms,zzz", "--terms", "A B C"], ["'stage'", "'zzz'", "no row"]),
+    ]
+    for argv, words in cases:
+        assert main(argv) == 2, argv
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith("error:"), err
+        for w in words:
+            assert w in err[0], (w, err[0])

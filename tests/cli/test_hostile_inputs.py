@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from _cli_process import one_error_line, run_cli
 
 from rsm_lrg.cli import main
 from rsm_lrg.cli.file_sets import expand_data_path, skipped_reason
@@ -138,8 +139,8 @@ def _bad_nul(d):
 def _bad_nul_deep(d):
     text = TABLE4.read_bytes()
     (d / "p1.csv").write_bytes(text[:200] + b"\0" + text[200:])
-    line = text[:200].count(b"\n") + 1
-    return "p1.csv", f"NUL bytes, line {line}"
+    row = text[:200].count(b"\n")  # the data row, as every other reader error counts (issue 36)
+    return "p1.csv", f"NUL bytes, row {row})"
 
 
 def _bad_text_cell(d):
@@ -260,3 +261,20 @@ def test_a_sub_directory_is_skipped_with_a_note(tmp_path, capsys):
     shutil.copy(TABLE4, d / "more.csv" / "p9.csv")
     got, err = _fit_json(capsys, d)
     assert got["n"] == 54 and "sub-directory" in err and "more.csv" in err
+
+
+def test_errors_on_standard_input_name_it_as_stdin(tmp_path):
+    # issue 36: an error in what came on standard input named '-'; the others name the file
+    proc = run_cli(["fit", "-", "--response", "b"], tmp_path, input="a,b\n1,x\n2,y\n", capture_output=True)
+    assert proc.returncode == 2
+    one_error_line(proc.stderr, "<stdin>: column 'b', row 1")
+
+
+def test_a_nul_byte_is_named_by_its_data_row(tmp_path):
+    # issue 36: the NUL-byte error said "line 21" where every other reader error says "row 20"
+    lines = TABLE4.read_text().splitlines()
+    lines[20] += "\0"
+    (tmp_path / "nul.csv").write_text("\n".join(lines) + "\n")
+    proc = run_cli(["fit", "nul.csv", "--response", RESPONSE], tmp_path, capture_output=True)
+    assert proc.returncode == 2
+    one_error_line(proc.stderr, "nul.csv", "NUL bytes, row 20)")

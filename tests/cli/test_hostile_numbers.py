@@ -158,3 +158,27 @@ def test_a_design_built_through_the_api_with_an_overflowing_range_is_not_written
     with pytest.raises(ValueError, match=r"overflowed number for factor 'a' in run \d+"):
         design.to_csv(tmp_path / "d.csv")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_numbers_at_the_edge_name_their_option(tmp_path, capsys):
+    # issue 36: `confirm --observed 1e308 1e308` reported a null mean and "+inf %";
+    # `design optimal --replicates 10**19` blamed --runs; `simplex-lattice --total 1e-320`
+    # wrote runs that summed to the total only within 5e-4
+    at = ["--at", "thickness_m=0.0003", "stroke_m=0.04", "velocity_m_s=0.5", "acceleration_m_s2=5"]
+    cases = [
+        (["confirm", str(TABLE4), "--response", RESPONSE, *at, "--observed", "1e308", "1e308"],
+         ["--observed", "1e+308", "relative error"]),
+        (["design", "optimal", "--factor", "a=0:1", "--factor", "b=0:1", "--model", "quadratic", "--replicates",
+          str(10**19), "-o", str(tmp_path / "o.csv")], ["--replicates"]),
+        (["design", "simplex-lattice", "--degree", "2", "--component", "a", "--component", "b", "--component", "c",
+          "--total", "1e-320", "-o", str(tmp_path / "s.csv")], ["--total", "keeps its digits"]),
+    ]
+    for argv, words in cases:
+        assert main(argv) == 2, argv
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith("error:"), err
+        for w in words:
+            assert w in err[0], (w, err[0])
+    assert list(tmp_path.iterdir()) == []
+    assert main(["confirm", str(TABLE4), "--response", RESPONSE, *at, "--observed", "1e300", "1e300", "--json", "-"]) == 0
+    assert '"mean": 1e+300' in capsys.readouterr().out

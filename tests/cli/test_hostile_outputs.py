@@ -1,6 +1,7 @@
-"""Output paths under attack (issue 26 item 1): a path that is not a regular file is written
-through as a stream (an open descriptor: ``/dev/stdout``) or refused, never replaced;
-``--force`` replaces regular files only; the all-or-nothing commit of several outputs keeps a
+"""Output paths under attack (issues 26 and 36): a path that is not a regular file is written
+as a stream (standard output exactly as ``-``; another open descriptor on a terminal, device
+or pipe) or refused, never replaced; ``--force`` replaces the named path only (a symbolic link
+itself, never the file it leads to); the all-or-nothing commit of several outputs keeps a
 real backup when a hard link is refused and puts every file back when it fails; every file a
 glob or a directory matches is an input no output may name; a closed standard output is an
 ordinary condition.
@@ -10,6 +11,7 @@ Cases that need root (a private mount namespace, dropped capabilities) skip with
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import socket
@@ -88,8 +90,8 @@ echo "rc=$?" >&2
     assert proc.stderr.count("rc=0") == 2, proc.stderr
     assert "stdout-is-a-link" in proc.stderr and "stdout-still-a-link" in proc.stderr, proc.stderr
     res = (tmp_path / "res.json").read_text()
-    assert res.startswith("Data: ") and '"response": "tcr_c_per_min"' in res
-    assert "std_order,run_order" in (tmp_path / "d.csv").read_text()
+    assert json.loads(res)["response"] == "tcr_c_per_min"  # the JSON alone, as with --json - (issue 36)
+    assert (tmp_path / "d.csv").read_text().startswith("std_order,run_order")
 
 
 def _fifo(tmp_path):
@@ -140,17 +142,80 @@ def test_a_special_file_is_never_replaced(cmd, kind, force, tmp_path, capsys):
     assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []
 
 
-def test_force_through_a_link_to_a_regular_file_replaces_the_file_and_keeps_the_link(tmp_path, capsys):
-    real = tmp_path / "real.csv"
-    real.write_text("old\n")
-    link = tmp_path / "link.csv"
-    link.symlink_to(real.name)
-    assert main([*DESIGN, "-o", str(link)]) == 2  # without --force: it exists
+def _victim_inside(tmp_path):
+    return tmp_path / "victim.txt"
+
+
+def _victim_outside(tmp_path):
+    other = tmp_path.parent / f"{tmp_path.name}-elsewhere"
+    other.mkdir(exist_ok=True)
+    return other / "victim.txt"
+
+
+@pytest.mark.parametrize("where", ["inside", "outside", "relative"])
+@pytest.mark.parametrize("cmd", ["design", "fit"])
+def test_force_replaces_a_link_never_the_file_it_leads_to(cmd, where, tmp_path, monkeypatch, capsys):
+    # issue 36: `fit ... --json link.json --force`, link.json -> victim.txt, rewrote victim.txt;
+    # --force replaces the named path (the link itself, atomically), never the file it leads to
+    monkeypatch.chdir(tmp_path)
+    victim = _victim_outside(tmp_path) if where == "outside" else _victim_inside(tmp_path)
+    victim.write_text("precious\n")
+    os.chmod(victim, 0o600)
+    link = tmp_path / "out" / "link.json"
+    link.parent.mkdir()
+    link.symlink_to(os.path.relpath(victim, link.parent) if where == "relative" else victim)
+    argv = [*DESIGN, "-o", str(link)] if cmd == "design" else \
+        ["fit", str(TABLE4), "--response", RESPONSE, "--json", str(link)]
+    assert main(argv) == 2  # without --force: the link is an existing file
     one_error_line(capsys.readouterr().err, "already exists")
-    assert real.read_text() == "old\n"
-    assert main([*DESIGN, "-o", str(link), "--force"]) == 0
+    assert main(argv + ["--force"]) == 0, capsys.readouterr().err
     capsys.readouterr()
-    assert link.is_symlink() and real.read_text().startswith("std_order,")
+    assert victim.read_text() == "precious\n" and stat.S_IMODE(victim.stat().st_mode) == 0o600
+    assert not link.is_symlink() and link.is_file()
+    assert link.read_text().startswith("std_order," if cmd == "design" else "{")
+    assert sorted(p.name for p in link.parent.iterdir()) == ["link.json"]
+
+
+@pytest.mark.parametrize("force", [False, True])
+def test_force_replaces_a_dangling_link(force, tmp_path, capsys):
+    link = tmp_path / "d.csv"
+    link.symlink_to(tmp_path / "nowhere" / "gone.csv")
+    rc = main([*DESIGN, "-o", str(link), *(["--force"] if force else [])])
+    err = capsys.readouterr().err
+    if not force:
+        assert rc == 2
+        one_error_line(err, "already exists", "symbolic link")
+        assert link.is_symlink()
+    else:
+        assert rc == 0, err
+        assert not link.is_symlink() and link.read_text().startswith("std_order,")
+    assert not (tmp_path / "nowhere").exists()
+
+
+@pytest.mark.parametrize("force", [False, True])
+def test_a_link_to_a_directory_is_refused(force, tmp_path, capsys):
+    target = tmp_path / "dir"
+    target.mkdir()
+    (target / "keep.txt").write_text("kept\n")
+    link = tmp_path / "d.csv"
+    link.symlink_to(target)
+    assert main([*DESIGN, "-o", str(link), *(["--force"] if force else [])]) == 2
+    one_error_line(capsys.readouterr().err, "-o", "directory")
+    assert link.is_symlink() and sorted(p.name for p in target.iterdir()) == ["keep.txt"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d.csv", "dir"]
+
+
+def test_a_failed_commit_puts_back_a_link_it_replaced(tmp_path):
+    victim = tmp_path / "victim.txt"
+    victim.write_text("precious\n")
+    a, b = tmp_path / "a.json", tmp_path / "b.json"
+    a.symlink_to(victim.name)
+    with pytest.raises(InputError, match="b.json"):
+        with output_transaction():
+            write_output(a, "new a\n", force=True)
+            write_output(b, "new b\n", force=True)
+            b.mkdir()
+    assert a.is_symlink() and os.readlink(a) == "victim.txt" and victim.read_text() == "precious\n"
 
 
 def test_a_failed_commit_puts_back_every_file_it_replaced(tmp_path):
@@ -233,7 +298,7 @@ def test_closed_standard_output_is_ordinary(tmp_path):
                 preexec_fn=_closed(1))
     assert proc.returncode == 0 and "error" not in proc.stderr  # the notes still go to stderr
     proc = run_cli([*DESIGN, "-o", "/dev/stdout"], tmp_path, stderr=subprocess.PIPE, preexec_fn=_closed(1))
-    assert proc.returncode == 0 and proc.stderr == ""
+    assert proc.returncode == 0 and "error" not in proc.stderr  # the summary goes to stderr, as with '-'
     # with standard error closed too, an error is still exit 2 and nothing lands in a file
     proc = run_cli(["fit", "missing.csv", "--response", RESPONSE, "--json", "j2.json"], tmp_path,
                 preexec_fn=_closed(1, 2))
@@ -251,5 +316,58 @@ def test_a_full_standard_output_fails_cleanly(json_to, tmp_path):
         proc = run_cli(["fit", TABLE4, "--response", RESPONSE, "--json", dest, "--report", "r.html"], tmp_path,
                     stdout=full, stderr=subprocess.PIPE)
     assert proc.returncode == 2, proc.stderr
-    one_error_line(proc.stderr, "standard output", "No space left")
+    err = "".join(line for line in proc.stderr.splitlines(True) if not line.startswith("note: "))  # as with '-'
+    one_error_line(err, "standard output", "No space left")
     assert list(tmp_path.iterdir()) == []
+
+
+def _design_bytes(tmp_path) -> bytes:
+    ref = tmp_path / "ref.csv"
+    assert main([*DESIGN, "-o", str(ref)]) == 0
+    data = ref.read_bytes()
+    ref.unlink()
+    return data
+
+
+@pytest.mark.parametrize("stdout_is", ["file", "pipe"])
+def test_dev_stdout_is_written_as_dash(stdout_is, tmp_path, capsys):
+    # issue 36: `fit --json /dev/stdout --force > res.json` held the text summary, and
+    # `design -o /dev/stdout > d.csv` the design's summary: now the data alone goes to
+    # standard output, the summary to standard error, exactly as '-' does
+    expected_csv = _design_bytes(tmp_path)
+    capsys.readouterr()
+    runs = {"fit": ["fit", TABLE4, "--response", RESPONSE, "--json", "/dev/stdout", "--force"],
+            "fit-dash": ["fit", TABLE4, "--response", RESPONSE, "--json", "-"],
+            "design": [*DESIGN, "-o", "/dev/stdout", "--force"],
+            "design-fd": [*DESIGN, "-o", "/dev/fd/1"]}
+    got = {}
+    for name, argv in runs.items():
+        if stdout_is == "file":
+            with open(tmp_path / f"{name}.out", "w") as out:
+                proc = run_cli(argv, tmp_path, stdout=out, stderr=subprocess.PIPE)
+            got[name] = (tmp_path / f"{name}.out").read_bytes()
+        else:
+            proc = subprocess.run([sys.executable, "-m", "rsm_lrg", *map(str, argv)], cwd=tmp_path, env=cli_env(),
+                                  capture_output=True, timeout=300)
+            got[name] = proc.stdout
+        assert proc.returncode == 0, proc.stderr
+    assert json.loads(got["fit"]) == json.loads(got["fit-dash"])
+    assert got["design"] == expected_csv and got["design-fd"] == expected_csv
+
+
+def test_standard_output_named_twice_is_refused(tmp_path, capsys):
+    assert main(["fit", str(TABLE4), "--response", RESPONSE, "--json", "-", "--report", "/dev/stdout"]) == 2
+    one_error_line(capsys.readouterr().err, "--report", "--json", "standard output")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_descriptor_on_a_regular_file_is_not_written_through(tmp_path):
+    # /dev/stderr (or /dev/fd/N) open on a regular file is no terminal, device or pipe:
+    # refused, and the file is left as it was; a pipe is written through
+    with open(tmp_path / "err.txt", "w") as err:
+        proc = run_cli([*DESIGN, "-o", "/dev/stderr"], tmp_path, stdout=subprocess.PIPE, stderr=err)
+    assert proc.returncode == 2
+    one_error_line((tmp_path / "err.txt").read_text(), "/dev/stderr", "regular file")
+    proc = run_cli([*DESIGN, "-o", "/dev/stderr"], tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert proc.returncode == 0 and "std_order,run_order" in proc.stderr, proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["err.txt"]

@@ -301,3 +301,95 @@ def test_a_signal_during_the_commit_lets_it_finish(tmp_path):
         os.close(w)
     assert (tmp_path / "a.csv").read_text() == "a\n"
     assert sum(drained) == filled + 7
+
+
+def test_a_signal_whose_exception_is_swallowed_still_stops_the_workers(tmp_path):
+    # issue 36: the exception a signal raises can meet code that swallows it (a finalizer, a
+    # library's `except BaseException`); the workers must still go at once, so that no wait on
+    # them lasts, and the signal is still known to main()
+    script = tmp_path / "swallow.py"
+    script.write_text(
+        "import os, signal, time\n"
+        "from concurrent.futures.process import BrokenProcessPool\n"
+        "from rsm_lrg.cli.processes import close_pool, handle_signals, pending_signal, process_pool\n"
+        "with handle_signals():\n"
+        "    ex = process_pool(2)\n"
+        "    fut = ex.submit(time.sleep, 120)\n"
+        "    time.sleep(1.0)\n"
+        "    try:\n"
+        "        os.kill(os.getpid(), signal.SIGTERM)\n"
+        "        time.sleep(1.0)\n"
+        "    except BaseException:\n"
+        "        pass  # swallowed\n"
+        "    t0 = time.monotonic()\n"
+        "    try:\n"
+        "        fut.result(timeout=30)\n"
+        "    except BrokenProcessPool:\n"
+        "        print('broken', round(time.monotonic() - t0, 1), pending_signal() == signal.SIGTERM)\n"
+        "    close_pool(ex, False)\n")
+    proc = subprocess.run([sys.executable, str(script)], env=cli_env(), capture_output=True, text=True, timeout=120)
+    words = proc.stdout.split()
+    assert words[:1] == ["broken"] and float(words[1]) < 5 and words[2] == "True", proc.stdout + proc.stderr[-800:]
+
+
+@pytest.mark.slow
+def test_sigterm_to_the_parent_alone_ends_the_workers_and_the_parent(tmp_path):
+    # issue 36: `simulate --workers 2`, then `kill -TERM <parent>` (not the group) at moments
+    # right after the workers start: the parent once printed its line and never exited; now it
+    # ends within 5 s with exit 143, one line, no worker left (checked through /proc), no output
+    d = pd.read_csv(data_path("table4.csv"))[FACTORS]
+    design = tmp_path / "d.csv"
+    pd.concat([d] * 40, ignore_index=True).to_csv(design, index=False)
+    for k, delay in enumerate((0.0, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.3)):
+        out = tmp_path / f"o{k}.csv"
+        proc = subprocess.Popen([sys.executable, "-m", "rsm_lrg", "simulate", str(design), "--seed", "1", "--workers",
+                                 "2", "--no-progress", "-o", str(out)], cwd=tmp_path, env=cli_env(), text=True,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        end = time.monotonic() + 60
+        while not child_pids(proc.pid) and proc.poll() is None and time.monotonic() < end:
+            time.sleep(0.001)
+        time.sleep(delay)
+        kids = child_pids(proc.pid)
+        proc.send_signal(signal.SIGTERM)
+        sent = time.monotonic()
+        try:
+            _, err = proc.communicate(timeout=5)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            pytest.fail(f"delay {delay}: the parent did not end within 5 s of SIGTERM")
+        took = time.monotonic() - sent
+        if proc.returncode == 0:  # finished before the signal came
+            continue
+        assert proc.returncode == 143 and took < 5, (delay, proc.returncode, err)
+        lines = err.splitlines()
+        assert len(lines) == 1 and lines[0].startswith("error: terminated by SIGTERM"), (delay, err)
+        assert not any(is_alive(p) for p in kids + child_pids(proc.pid)), (delay, kids)
+        assert not out.exists()
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []
+
+
+def _limit(resource_name: str, value: int):
+    import resource
+
+    def pre():
+        which = getattr(resource, resource_name)
+        resource.setrlimit(which, (value, value))
+    return pre
+
+
+@pytest.mark.parametrize(("argv", "limit", "said"), [
+    (["design", "box-behnken", "--factor", "a=1:2", "--factor", "b=1:2", "--factor", "c=1:2", "--seed", "1", "-o",
+      "d.xlsx"], ("RLIMIT_FSIZE", 2048), "File too large"),
+    (["simulate", "small.csv", "--seed", "1", "--workers", "2", "--no-progress", "-o", "o.csv"],
+     ("RLIMIT_NOFILE", 10), "Too many open files"),
+], ids=["file-size", "open-files"])
+def test_a_resource_limit_is_one_line_and_no_output(argv, limit, said, tmp_path):
+    # issue 36: `ulimit -f` ended `design -o d.xlsx` with OSError (exit 1), `ulimit -n 16`
+    # `simulate --workers` likewise; now exit 2, one line naming the limit, nothing left behind
+    pd.read_csv(data_path("table4.csv"))[FACTORS].to_csv(tmp_path / "small.csv", index=False)
+    proc = subprocess.run([sys.executable, "-m", "rsm_lrg", *argv], cwd=tmp_path, env=cli_env(), capture_output=True,
+                          text=True, timeout=300, preexec_fn=_limit(*limit))
+    assert proc.returncode == 2, proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: a system limit was reached") and said in lines[0], lines
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["small.csv"]

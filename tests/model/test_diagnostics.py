@@ -178,3 +178,14 @@ def test_box_cox_of_a_transformed_fit_is_of_the_measured_response():
     shifted = rsm_lrg.fit(df.assign(y=df["tcr_c_per_min"] - 0.01).drop(columns="tcr_c_per_min"), "y", transform="log", transform_constant=0.01)
     assert box_cox(shifted).lambda_best == pytest.approx(a.lambda_best, rel=1e-6)  # (y - 0.01) + 0.01 rounds
     assert (a.current, b.current) == (1.0, 0.0)  # the λ each model was fitted on
+
+
+@pytest.mark.parametrize("unit", [1e-12, 1e-3, 60.0, 1e6, 1e8, 1e12])
+def test_box_cox_lambda_does_not_depend_on_the_response_unit(unit):
+    # issue 36: Table 4's response in other units moved λ̂ (-2.779 to -1.915 at 1e8) and its
+    # interval; the profile is now taken of y / ẏ (geometric-mean scaling), scale-free
+    d = rsm_lrg.load_table4()
+    ref = rsm_lrg.fit(d, "tcr_c_per_min").diagnostics().box_cox
+    got = rsm_lrg.fit(d.assign(tcr_c_per_min=d["tcr_c_per_min"] * unit), "tcr_c_per_min").diagnostics().box_cox
+    assert got.lambda_best == pytest.approx(ref.lambda_best, abs=1e-6)
+    assert got.ci[1] == pytest.approx(ref.ci[1], abs=1e-6)

@@ -27,8 +27,9 @@ def test_aliased_terms_are_named():
 def test_constant_factor():
     df = table4().copy()
     df["const"] = 1.0
-    with pytest.raises(ValueError, match="'const' is constant"):
-        rsm_lrg.fit(df, "tcr_c_per_min")
+    # inferred factors: a constant column is left out and said (issue 36); named, it is refused
+    res = rsm_lrg.fit(df, "tcr_c_per_min")
+    assert "const" not in res.space.names and any("'const' (1 on every row)" in str(n) for n in res.input_notes)
     with pytest.raises(ValueError, match="'const' is constant"):
         rsm_lrg.fit(df, "tcr_c_per_min", factors=["thickness_m", "const=0:2"], model="linear")
 
@@ -84,3 +85,57 @@ def test_result_is_frozen():
     r = rsm_lrg.fit(table4(), "tcr_c_per_min")
     with pytest.raises(dataclasses.FrozenInstanceError):
         r.model = "linear"
+
+
+def _frame(kind):
+    import pandas as pd
+
+    d = table4().copy()
+    if kind == "object-with-a-numeric-string":
+        d["stroke_m"] = d["stroke_m"].astype(object)
+        d.loc[3, "stroke_m"] = str(d.loc[3, "stroke_m"])
+    elif kind == "categorical-of-numbers":
+        d["stroke_m"] = pd.Categorical(d["stroke_m"])
+    elif kind == "response-true":
+        d["tcr_c_per_min"] = d["tcr_c_per_min"].astype(object)
+        d.loc[2, "tcr_c_per_min"] = True
+    elif kind == "complex-factor":
+        d["stroke_m"] = d["stroke_m"].astype(complex)
+    elif kind == "duplicate-factor-name":
+        d.columns = ["order", "thickness_m", "thickness_m", "velocity_m_s", "acceleration_m_s2", "tcr_c_per_min"]
+    elif kind == "duplicate-response-name":
+        d.columns = ["order", "thickness_m", "tcr_c_per_min", "velocity_m_s", "acceleration_m_s2", "tcr_c_per_min"]
+    elif kind == "nfc-alike-names":
+        d = d.assign(**{"caf\u00e9": 1.0 + d.index % 2, "cafe\u0301": 2.0 + d.index % 3})
+    elif kind == "empty":
+        d = d.iloc[0:0]
+    return d
+
+
+@pytest.mark.parametrize(("kind", "words"), [
+    ("object-with-a-numeric-string", ["'stroke_m'", "row 4", "Python objects"]),
+    ("categorical-of-numbers", ["'stroke_m'", "Categorical"]),
+    ("response-true", ["'tcr_c_per_min', row 3", "truth value"]),
+    ("complex-factor", ["'stroke_m'", "complex"]),
+    ("duplicate-factor-name", ["'thickness_m'", "more than once"]),
+    ("duplicate-response-name", ["'tcr_c_per_min'", "more than once"]),
+    ("nfc-alike-names", ["caf", "Unicode NFC"]),
+    ("empty", ["no rows"]),
+])
+def test_the_pandas_api_refuses_what_it_once_dropped_or_guessed(kind, words):
+    # issue 36: each of these fitted silently without a factor, fitted True as 1, dropped an
+    # imaginary part, or ended in AttributeError / "constant (nan)"; now a ValueError naming it
+    from rsm_lrg.model.summary import fit_summary
+
+    for call in (lambda d: rsm_lrg.fit(d, "tcr_c_per_min"), lambda d: fit_summary(d, "tcr_c_per_min")):
+        with pytest.raises(ValueError) as info:
+            call(_frame(kind))
+        for w in words:
+            assert w in str(info.value), (kind, str(info.value))
+
+
+def test_a_whole_plot_column_of_lists_is_refused_by_row():
+    d = table4().copy()
+    d["wp"] = [[i % 3] for i in range(len(d))]
+    with pytest.raises(ValueError, match=r"column 'wp', row 1: holds a list, not a label"):
+        rsm_lrg.fit(d, "tcr_c_per_min", whole_plot="wp")

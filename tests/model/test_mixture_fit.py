@@ -287,3 +287,16 @@ def test_result_reduce_refits_on_its_own_components():
     direct = rsm_lrg.fit(d, "y", reduce=True, **kw)
     assert list(r.coefficients.index) == list(direct.coefficients.index)
     np.testing.assert_allclose(r.coefficients["coded"], direct.coefficients["coded"], rtol=1e-12)
+
+
+def test_predict_refuses_a_blend_with_a_negative_share_or_one_above_the_total():
+    # issue 36: 2 - 1 + 0 sums to the total 1, and predict returned numbers for it
+    from rsm_lrg.datasets import data_path
+
+    res = rsm_lrg.fit(pd.read_csv(data_path("mixture_etch.csv")), "erate", components=["x1", "x2", "x3"],
+                      model="mixture-quadratic")
+    assert np.isfinite(res.predict(pd.DataFrame({"x1": [0.5], "x2": [0.5], "x3": [0.0]}))["predicted"]).all()
+    with pytest.raises(ValueError, match=r"component 'x1' is above the total 1 \(2\)"):
+        res.predict(pd.DataFrame({"x1": [2.0], "x2": [-1.0], "x3": [0.0]}))
+    with pytest.raises(ValueError, match=r"prediction point 2: component 'x2' is negative \(-0.5\)"):
+        res.predict(pd.DataFrame({"x1": [0.2, 0.8], "x2": [0.3, -0.5], "x3": [0.5, 0.7]}))

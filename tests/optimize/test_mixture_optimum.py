@@ -99,7 +99,10 @@ def _full(u, T):
 
 
 def _predict(fit, X):
-    return fit.predict(pd.DataFrame(np.atleast_2d(X), columns=fit.space.names))["predicted"].to_numpy()
+    # the polynomial itself, also where SLSQP steps a little outside the simplex (FitResult.predict
+    # refuses a blend with a share below 0 or above the total: issue 36)
+    coded = np.asarray(fit.space.encode(pd.DataFrame(np.atleast_2d(X), columns=fit.space.names)), dtype=float)
+    return fit.predict_coded(coded)
 
 
 def _quadratic_in_u(fit, T):
