@@ -199,7 +199,7 @@ def data_table(result, runs_label: str) -> dict:
             rows.append((row_no, [row_no] + row))
     rows.sort(key=lambda t: t[0])
     n_left = len(result.omitted_rows)
-    if getattr(result, "mixture", False):  # coded components are L-pseudo proportions, 0 ... 1
+    if result.space.has_components:  # coded components are L-pseudo proportions, 0 ... 1
         from ..factors import MixtureComponent
 
         process = not all(isinstance(f, MixtureComponent) for f in result.space.factors)
