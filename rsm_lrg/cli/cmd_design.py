@@ -401,13 +401,12 @@ def run(args) -> int:
 #: values could overflow (issue 26).
 MAX_ALPHA = 1000.0
 
-#: The option of each design function's parameter that an error names (by its ``parameter``,
-#: :class:`rsm_lrg.errors.ParameterError`), where it is not ``--`` and the parameter's name.
+#: The option of a design function's parameter that an error names (by its ``parameter``,
+#: :class:`rsm_lrg.errors.ParameterError`) where it is not ``--`` and the parameter's name
+#: (``hard_to_change`` -> ``--hard-to-change``) nor in :data:`._common.PARAMETER_OPTIONS`.
 _DESIGN_OPTIONS = {
-    "factors": "--factor", "process": "--factor", "constraints": "--constraint", "components": "--component",
-    "bounds": "--component", "generators": "--generator", "hard_to_change": "--hard-to-change",
-    "whole_plots": "--whole-plots", "variance_ratio": "--variance-ratio", "center_whole_plots": "--center-whole-plots",
-    "lof_points": "--lof-points", "fold": "--fold",
+    "factors": "--factor", "process": "--factor", "components": "--component", "bounds": "--component",
+    "generators": "--generator",
 }
 
 #: Kinds handled by :func:`_new_kind` (added with issue 13).
