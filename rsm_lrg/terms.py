@@ -34,6 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .errors import ParameterError
+
 __all__ = ["Term", "MODELS", "model_terms", "n_model_terms", "check_model_size", "design_matrix",
            "block_contrasts", "model_matrix", "column_names", "term_columns", "n_columns",
            "design_gradient", "term_name", "parse_term", "effect_codes", "MIXTURE_ORDERS", "scheffe_names"]
@@ -107,7 +109,7 @@ def n_model_terms(k: int, model: str = "quadratic", categoric: Categoric | None 
     from math import comb
 
     if model not in MODELS:
-        raise ValueError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
+        raise ParameterError("model", f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
     k = int(k)
     if not categoric:
         return {"linear": 1 + k, "2fi": 1 + k + comb(k, 2), "quadratic": comb(k + 2, 2),
@@ -317,7 +319,7 @@ def model_terms(letters: Sequence[str], model: str = "quadratic", categoric: Cat
         ``{factor index: level names}`` of the categoric factors.
     """
     if model not in MODELS:
-        raise ValueError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
+        raise ParameterError("model", f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
     k = len(letters)
     if k < 1:
         raise ValueError("a model needs at least one factor")
@@ -347,10 +349,10 @@ def parse_term(name: str, letters: Sequence[str], categoric: Categoric | None = 
             powers[letters.index(m.group(1))] += int(m.group(2) or 1)
             pos = m.end()
         if pos != len(name) or not any(powers):
-            raise ValueError(f"cannot read model term {name!r} (factors {', '.join(letters)})")
+            raise ParameterError("terms", f"cannot read model term {name!r} (factors {', '.join(letters)})")
         bad = [letters[i] for i in cats if powers[i] > 1]
         if bad:
-            raise ValueError(f"model term {name!r}: {bad[0]} is a categoric factor and has no powers")
+            raise ParameterError("terms", f"model term {name!r}: {bad[0]} is a categoric factor and has no powers")
     return _term(powers, letters, cats)
 
 
@@ -361,18 +363,18 @@ def _parse_diff_term(name: str, letters: list[str], cats: dict) -> Term:
     pat = "|".join(sorted(map(re.escape, letters), key=len, reverse=True))
     m = re.fullmatch(rf"({pat})({pat})\(({pat})-({pat})\)((?:{pat})*)", name)
     if m is None:
-        raise ValueError(f"cannot read model term {name!r} (factors {', '.join(letters)}; a full-cubic term is "
+        raise ParameterError("terms", f"cannot read model term {name!r} (factors {', '.join(letters)}; a full-cubic term is "
                          "written AB(A-B))")
     i, j = letters.index(m.group(1)), letters.index(m.group(2))
     if (m.group(3), m.group(4)) != (m.group(1), m.group(2)) or not i < j:
-        raise ValueError(f"model term {name!r}: a full-cubic term is XY(X-Y) with X before Y "
+        raise ParameterError("terms", f"model term {name!r}: a full-cubic term is XY(X-Y) with X before Y "
                          f"(e.g. {letters[min(i, j)]}{letters[max(i, j)]}({letters[min(i, j)]}-{letters[max(i, j)]}))")
     rest = parse_term(m.group(5), letters).powers if m.group(5) else (0,) * len(letters)
     if rest[i] or rest[j]:
-        raise ValueError(f"model term {name!r}: {letters[i]} and {letters[j]} appear once, before the bracket")
+        raise ParameterError("terms", f"model term {name!r}: {letters[i]} and {letters[j]} appear once, before the bracket")
     powers = tuple(p + (f in (i, j)) for f, p in enumerate(rest))
     if any(powers[f] for f in cats):
-        raise ValueError(f"model term {name!r}: a full-cubic term takes numeric factors only")
+        raise ParameterError("terms", f"model term {name!r}: a full-cubic term takes numeric factors only")
     return Term(powers, term_name(powers, letters, (i, j)), (), (), (i, j))
 
 

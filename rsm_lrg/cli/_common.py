@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+from collections.abc import Mapping
 from contextlib import contextmanager
 from typing import Any
 
@@ -253,7 +254,7 @@ def plot_format(path: str | None) -> str | None:
         return None
     fmt = path.rsplit(".", 1)[-1].lower() if "." in path else ""
     if fmt not in ("png", "svg"):
-        raise ValueError(f"--plot: {path!r} must end in .png or .svg")
+        raise InputError(f"--plot: {path!r} must end in .png or .svg")
     return fmt
 
 
@@ -459,71 +460,40 @@ def add_model_inputs(parser: argparse.ArgumentParser, orders=FIT_MODELS) -> None
 
 @contextmanager
 def about_file(path):
-    """Re-raise a ValueError from the library as InputError prefixed with the file name."""
+    """Re-raise a ValueError from the library as InputError: one that says which parameter it
+    concerns (:class:`rsm_lrg.errors.ParameterError`) names that parameter's option (see
+    :func:`option_error`), any other is prefixed with the file name."""
+    from ..errors import ParameterError
+
     try:
         yield
     except InputError:
         raise
+    except ParameterError as exc:  # the library checked an option's value (perhaps after the data were read)
+        raise option_error(exc) from None
     except ValueError as exc:
-        msg = str(exc)
-        if getattr(exc, "parameter", None):  # the error says which parameter it concerns
-            raise option_error(exc) from None
-        if msg.startswith("-"):  # it names the option at fault, not the file
-            raise InputError(msg) from None
-        option = option_of_message(msg)
-        if option:  # the library checked an option's value after the data were read
-            raise InputError(f"{option}: {msg}") from None
-        raise InputError(f"{STDIN_NAME if str(path) == '-' else path}: {msg}") from None
+        raise InputError(f"{STDIN_NAME if str(path) == '-' else path}: {exc}") from None
 
 
 @contextmanager
 def about_response(response: str, several: bool):
     """With ``several`` responses, a ValueError from one response's fit names that response
-    (``response 'y2': the quadratic model cannot be estimated ...``) unless it already does
-    or is about an option; :func:`about_file` then puts the file name in front."""
+    (``response 'y2': the quadratic model cannot be estimated ...``) unless it is about an
+    option (an :class:`~rsm_lrg.io.InputError` or a :class:`~rsm_lrg.errors.ParameterError`)
+    or names the response already; :func:`about_file` then puts the file name in front."""
+    from ..errors import ParameterError
+
     if not several:
         yield
         return
     try:
         yield
-    except InputError:
+    except (InputError, ParameterError):
         raise
     except ValueError as exc:
-        msg = str(exc)
-        if msg.startswith("-") or getattr(exc, "parameter", None) or option_of_message(msg) \
-                or quote_user_value(response) in msg:
+        if quote_user_value(response) in str(exc):
             raise
-        raise ValueError(f"response {quote_user_value(response)}: {msg}") from None
-
-
-#: Library messages about an option's value begin with the parameter's name: the option that
-#: gives it (so that ``alpha_out must lie ...`` reads ``--alpha-out: alpha_out must lie ...``).
-OPTION_MESSAGES = {
-    "alpha_out": "--alpha-out", "alpha": "--alpha", "confidence": "--confidence", "bound": "--bound",
-    "goal": "--goal", "transform": "--transform", "radius": "--radius", "step": "--step",
-    "setting": "--at", "no setting": "--at", "weight": "--weight", "importance": "--importance",
-    "limits": "--limits", "criterion": "--criterion", "effect_sd": "--effect", "region": "--region",
-    "duration_min": "--duration-min", "noise_sd": "--noise-sd", "seed": "--seed", "center": "--center",
-    "blocks": "--blocks", "levels": "--levels", "observed": "--observed", "give at least one observed": "--observed",
-    "unknown calibration parameter": "--parameter", "calibrate at most": "--parameter",
-    "a calibration parameter": "--parameter", "unknown model": "--model",
-}
-
-
-def option_of_message(msg: str) -> str | None:
-    """The option a library message is about (see :data:`OPTION_MESSAGES`), or None.
-
-    >>> option_of_message("alpha_out must lie between 0 and 1, not 2")
-    '--alpha-out'
-    >>> option_of_message("response 'y': not numeric") is None
-    True
-    """
-    import re
-
-    for key in sorted(OPTION_MESSAGES, key=len, reverse=True):
-        if re.match(re.escape(key) + r"(?![\w])", msg):
-            return OPTION_MESSAGES[key]
-    return None
+        raise ValueError(f"response {quote_user_value(response)}: {exc}") from None
 
 
 def check_option_specs(args: argparse.Namespace) -> None:
@@ -707,7 +677,8 @@ PARAMETER_OPTIONS = {
     "alpha_out": "--alpha-out", "alpha": "--alpha", "confidence": "--confidence", "bound": "--bound",
     "goal": "--goal", "radius": "--radius", "step": "--step", "setting": "--at", "weight": "--weight",
     "importance": "--importance", "limits": "--limits", "criterion": "--criterion", "effect_sd": "--effect",
-    "region": "--region", "observed": "--observed", "held": "--bound",
+    "region": "--region", "observed": "--observed", "held": "--bound", "parameters": "--parameter",
+    "constraints": "--constraint",
 }
 
 
@@ -779,12 +750,44 @@ def check_terms_option(terms: Any) -> None:
                              "coefficients would take for ever)")
 
 
-def option_error(exc: Exception, opts: argparse.Namespace | None = None) -> InputError:
-    """An InputError naming the option of an error that says which parameter it concerns
-    (:class:`rsm_lrg.errors.ParameterError`, e.g. a model specification's), with the value
-    given when ``opts`` has it."""
-    param = str(getattr(exc, "parameter", ""))
-    flag = PARAMETER_OPTIONS.get(param, "--" + param.replace("_", "-"))
+def option_error(exc: Exception, opts: argparse.Namespace | None = None, *,
+                 options: Mapping[str, str] | None = None, default: str | None = None) -> InputError:
+    """An InputError naming the option of an error that says which parameter it concerns.
+
+    Parameters
+    ----------
+    exc : Exception
+        The library's error; its ``parameter`` attribute (:class:`rsm_lrg.errors.ParameterError`)
+        alone chooses the option, never its message.
+    opts : argparse.Namespace, optional
+        The parsed options: the value given is shown after the option when it is text.
+    options : mapping, optional
+        The command's own options of library parameters, before :data:`PARAMETER_OPTIONS`
+        (where a parameter means another option in this command, e.g. ``runs`` -> ``--runs``).
+    default : str, optional
+        The option of an error without a parameter (``--factor``); without it such an error
+        keeps its bare message.
+
+    Returns
+    -------
+    InputError
+        ``--option [VALUE]: message``.
+
+    Examples
+    --------
+    >>> from rsm_lrg.errors import ParameterError
+    >>> str(option_error(ParameterError("alpha_out", "alpha_out must lie between 0 and 1, not 2")))
+    '--alpha-out: alpha_out must lie between 0 and 1, not 2'
+    >>> str(option_error(ParameterError("runs", "at most 10000 runs"), options={"runs": "--runs"}))
+    '--runs: at most 10000 runs'
+    >>> str(option_error(ValueError("no such factor"), default="--factor"))
+    '--factor: no such factor'
+    """
+    param = getattr(exc, "parameter", None)
+    if param is None:
+        return InputError(f"{default}: {exc}" if default else str(exc))
+    param = str(param)
+    flag = (options or {}).get(param) or PARAMETER_OPTIONS.get(param, "--" + param.replace("_", "-"))
     value = getattr(opts, flag[2:].replace("-", "_"), None) if opts is not None else None
     shown = f" {quote_user_value(value)}" if isinstance(value, str) else ""
     return InputError(f"{flag}{shown}: {exc}")

@@ -8,7 +8,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._common import add_force, add_reader_options, whole_number
+from ._common import add_force, add_reader_options, option_error, whole_number
 
 NAME = "design"
 HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, split-plot, split-plot-ccd, "
@@ -263,12 +263,10 @@ def _split_plot_ccd(args: argparse.Namespace) -> Any:
         return split_plot_ccd(space, args.hard_to_change, alpha=args.alpha,
                               center_whole_plots=args.center_whole_plots, seed=args.seed,
                               randomize=not args.no_randomize)
+    except InputError:
+        raise
     except ValueError as exc:
-        msg = str(exc)
-        opts = {"hard_to_change: ": "--hard-to-change", "alpha: ": "--alpha",
-                "center_whole_plots: ": "--center-whole-plots", "factor: ": "--factor"}
-        opt = next((o for w, o in opts.items() if msg.startswith(w)), "--factor")
-        raise InputError(f"{opt}: {msg.split(': ', 1)[1] if msg.startswith(tuple(opts)) else msg}") from None
+        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
 
 
 def _split_plot(args: argparse.Namespace) -> Any:
@@ -283,20 +281,10 @@ def _split_plot(args: argparse.Namespace) -> Any:
         return split_plot(space, args.hard_to_change, args.whole_plots, args.runs, model=args.model,
                           criterion=args.criterion, variance_ratio=args.variance_ratio, constraints=cons,
                           seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
+    except InputError:
+        raise
     except ValueError as exc:
-        msg = str(exc)
-        opts = {"hard_to_change: ": "--hard-to-change", "whole_plots: ": "--whole-plots", "runs: ": "--runs",
-                "variance_ratio: ": "--variance-ratio", "starts: ": "--starts"}
-        opt = next((o for w, o in opts.items() if msg.startswith(w)), None)
-        if opt is not None:
-            msg = msg.split(": ", 1)[1]
-        elif msg.startswith("constraint"):
-            opt = "--constraint"
-        elif "is searched for here" in msg:
-            opt = "--model"
-        else:
-            opt = "--factor"
-        raise InputError(f"{opt}: {msg}") from None
+        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
 
 
 def _mixture_parsers(sub) -> None:
@@ -346,23 +334,23 @@ MAX_CENTER = 1000
 
 
 def _center(text: str, pair: bool):
-    from ..io import quote_user_value
+    from ..io import InputError, quote_user_value
 
     parts = [t.strip() for t in str(text).split(",")]
     want = f"a whole number{' or CUBE,STAR' if pair else ''}"
     try:
         vals = [int(t) for t in parts]
     except ValueError:
-        raise ValueError(f"--center: expected {want}, got {quote_user_value(text)}") from None
+        raise InputError(f"--center: expected {want}, got {quote_user_value(text)}") from None
     if any(v < 0 for v in vals):
-        raise ValueError(f"--center: the number of centre points must not be negative (got {quote_user_value(text)})")
+        raise InputError(f"--center: the number of centre points must not be negative (got {quote_user_value(text)})")
     if any(v > MAX_CENTER for v in vals):
-        raise ValueError(f"--center: at most {MAX_CENTER} centre points (got {quote_user_value(text)})")
+        raise InputError(f"--center: at most {MAX_CENTER} centre points (got {quote_user_value(text)})")
     if len(vals) == 1:
         return vals[0]
     if pair and len(vals) == 2:
         return tuple(vals)
-    raise ValueError(f"--center: expected {want}, got {quote_user_value(text)}")
+    raise InputError(f"--center: expected {want}, got {quote_user_value(text)}")
 
 
 def run(args) -> int:
@@ -421,6 +409,14 @@ def run(args) -> int:
 #: values could overflow (issue 26).
 MAX_ALPHA = 1000.0
 
+#: The option of a design function's parameter that an error names (by its ``parameter``,
+#: :class:`rsm_lrg.errors.ParameterError`) where it is not ``--`` and the parameter's name
+#: (``hard_to_change`` -> ``--hard-to-change``) nor in :data:`._common.PARAMETER_OPTIONS`.
+_DESIGN_OPTIONS = {
+    "factors": "--factor", "process": "--factor", "components": "--component", "bounds": "--component",
+    "generators": "--generator",
+}
+
 #: Kinds handled by :func:`_new_kind` (added with issue 13).
 _NEW_KINDS = ("optimal", "definitive-screening", "fractional-factorial", "plackett-burman", "latin-hypercube",
               "sobol")
@@ -472,6 +468,8 @@ def _mixture(args):
     if not (math.isfinite(total) and 0 < total <= 1e15):
         raise InputError(f"--total: expected a finite number > 0 and at most 1e15, got {quote_user_value(args.total)}")
     process = getattr(args, "factor", None)
+    if process:
+        _space(args)  # a bad process factor is named (--factor) before the design is built
     randomize = not args.no_randomize and not process  # a crossed design is randomised once crossed
     try:
         if args.kind == "optimal":
@@ -498,14 +496,7 @@ def _mixture(args):
     except InputError:
         raise
     except (TypeError, ValueError) as exc:
-        msg = str(exc)
-        opt = ("--constraint" if msg.startswith("constraint") else "--degree" if msg.startswith("degree")
-               else "--total" if msg.startswith("total") else "--factor" if msg.startswith("factor")
-               else "--model" if msg.startswith("model") else "--runs" if msg.startswith("runs")
-               else "--component")
-        for word in ("constraint: ", "component: ", "runs: ", "model: "):
-            msg = msg[len(word):] if msg.startswith(word) else msg
-        raise InputError(f"{opt}: {msg}") from None
+        raise option_error(exc, options=_DESIGN_OPTIONS, default="--component") from None
 
 
 def _space(args):
@@ -550,16 +541,7 @@ def _new_kind(args):
                            lof_points=args.lof_points, replicates=args.replicates, constraints=cons,
                            seed=args.seed, starts=args.starts, randomize=randomize)
         except ValueError as exc:
-            msg = str(exc)
-            if msg.startswith("constraint"):
-                opt = "--constraint"
-            elif "an optimal design is searched for" in msg:
-                opt = "--model"
-            elif "runs" in msg or "model points" in msg:
-                opt = "--runs"
-            else:
-                opt = "--factor"
-            raise InputError(f"{opt}: {msg}") from None
+            raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
     try:
         if args.kind == "definitive-screening":
             from ..design.screening import definitive_screening
@@ -572,16 +554,8 @@ def _new_kind(args):
                 return fractional_factorial(space, resolution=args.resolution, generators=args.generator,
                                             center=args.center, seed=args.seed, randomize=randomize)
             except ValueError as exc:
-                msg = str(exc)
-                if msg.startswith(("a fractional", "a two-level")):
-                    opt = "--factor"
-                elif msg.startswith("center"):
-                    opt = "--center"
-                else:
-                    opt = "--generator" if args.generator is not None else "--resolution"
-                for word in ("generators: ", "resolution: "):
-                    msg = msg[len(word):] if msg.startswith(word) else msg
-                raise InputError(f"{opt}: {msg}") from None
+                raise option_error(exc, options=_DESIGN_OPTIONS,
+                                   default="--generator" if args.generator is not None else "--resolution") from None
         if args.kind == "plackett-burman":
             from ..design.screening import plackett_burman
 
@@ -596,12 +570,7 @@ def _new_kind(args):
     except InputError:
         raise
     except ValueError as exc:
-        msg = str(exc)
-        opt = ("--runs" if msg.startswith("runs") else "--center" if msg.startswith("center")
-               else "--constraint" if msg.startswith("constraint") else "--factor")
-        if msg.startswith("runs: "):
-            msg = msg[len("runs: "):]
-        raise InputError(f"{opt}: {msg}") from None
+        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
 
 
 def _augment(args, out) -> int:
@@ -644,11 +613,10 @@ def _augment(args, out) -> int:
         aug = augment(design, args.method, model=args.model, criterion=args.criterion, runs=args.runs,
                       alpha=alpha, center=args.center, fold=args.fold, new_block=args.new_block,
                       constraints=cons, seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
+    except InputError:
+        raise
     except ValueError as exc:
-        msg = str(exc)
-        opt = {"constraint": "--constraint", "fold": "--fold", "alpha": "--alpha", "runs": "--runs"}
-        name = next((v for k, v in opt.items() if msg.startswith(k) or f" {k}" in msg[:40]), "--method")
-        raise InputError(f"{name}: {msg}") from None
+        raise option_error(exc, options=_DESIGN_OPTIONS, default="--method") from None
     new = aug.to_frame()
     new = new[new["std_order"] > design.n_runs]
     old = df.copy()

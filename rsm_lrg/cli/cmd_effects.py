@@ -69,15 +69,15 @@ def _check_terms(terms) -> None:
 
 @contextmanager
 def _about_terms(terms):
-    """A term the fit cannot read is the option's fault: ``--term: cannot read model term ...``."""
+    """A term the fit cannot read (a :class:`~rsm_lrg.errors.ParameterError` for ``terms``) is
+    the option's fault: ``--term: cannot read model term ...``."""
+    from ..errors import ParameterError
     from ..io import InputError
 
     try:
         yield
-    except InputError:
-        raise
-    except ValueError as exc:
-        if terms and "model term" in str(exc):
+    except ParameterError as exc:
+        if terms and exc.parameter == "terms":
             raise InputError(f"--term: {exc}") from None
         raise
 

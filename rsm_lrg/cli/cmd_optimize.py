@@ -99,17 +99,20 @@ def run(args: argparse.Namespace) -> int:
 
 @contextlib.contextmanager
 def _constraint_errors(constraints):
-    """A ValueError about the constraints (a bad expression, an empty region, no feasible
-    setting inside the bounds) gets the option's name in front: ``--constraint: ...``."""
-    from ..optimize.region import INFEASIBLE
+    """An error about the constraints (a bad expression, an empty region, no feasible
+    setting inside the bounds: a :class:`~rsm_lrg.errors.ParameterError` for ``constraints``)
+    gets the option's name in front: ``--constraint: ...``."""
+    from ..errors import ParameterError
+    from ..io import InputError
 
     try:
         yield
-    except ValueError as exc:
-        text = str(exc)
-        if constraints and (text.startswith(("constraint ", "constraints ", "constraint:")) or text == INFEASIBLE):
-            raise ValueError(f"--constraint: {text}") from None
-        raise
+    except ParameterError as exc:
+        if exc.parameter != "constraints":
+            raise
+        if constraints:
+            raise InputError(f"--constraint: {exc}") from None
+        raise ValueError(str(exc)) from None  # no feasible setting inside the bounds: the data's fit
 
 
 def _multi(args) -> int:

@@ -80,7 +80,9 @@ def _limits(text, response: str):
     except ValueError:
         out = None
     if not sep or out is None:
-        raise ValueError(f"--limits {text!r} (response {response!r}): expected LOW:HIGH")
+        from ..io import InputError
+
+        raise InputError(f"--limits {text!r} (response {response!r}): expected LOW:HIGH")
     return out
 
 
@@ -167,7 +169,7 @@ def run(args: argparse.Namespace) -> int:
 
             best = optima.single.get(responses[0])
             if best is None:  # the one-response report needs its optimum: say why there is none
-                raise ValueError(f"--goal {goals[0]}: {optima.missing.get(responses[0], 'no optimum')}")
+                raise InputError(f"--goal {goals[0]}: {optima.missing.get(responses[0], 'no optimum')}")
             path = write_report(fits[responses[0]], out, force=args.force, title=args.title,
                                 source_name=str(args.data), goal=goals[0], hold=args.hold, optimum=best)
         else:

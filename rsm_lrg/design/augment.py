@@ -52,6 +52,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from .core import Design, resolve_seed
 
 __all__ = ["augment", "METHODS"]
@@ -108,7 +109,7 @@ def augment(
     if not isinstance(design, Design):
         raise TypeError("design must be a Design (read one with rsm_lrg.design.read_design)")
     if method not in METHODS:
-        raise ValueError(f"method must be one of {', '.join(METHODS)} (got {method!r})")
+        raise ParameterError("method", f"method must be one of {', '.join(METHODS)} (got {method!r})")
     space = design.factors
     n0 = design.n_runs
     order0 = np.argsort(design.run_order, kind="stable")
@@ -136,12 +137,12 @@ def augment(
         if runs is None:
             runs = max(p - n0, 4, p // 2)
         if isinstance(runs, (bool, np.bool_)) or int(runs) != runs or runs < 1:
-            raise ValueError(f"runs to add must be a whole number >= 1 (got {runs!r})")
+            raise ParameterError("runs", f"runs to add must be a whole number >= 1 (got {runs!r})")
         runs = int(runs)
         if n0 + runs > MAX_RUNS:
-            raise ValueError(f"at most {MAX_RUNS} runs in all (got {n0} + {runs} to add)")
+            raise ParameterError("runs", f"at most {MAX_RUNS} runs in all (got {n0} + {runs} to add)")
         if n0 + runs < p:
-            raise ValueError(f"{n0} runs + {runs} added cannot fit the {model} model's {p} terms; add at least "
+            raise ParameterError("runs", f"{n0} runs + {runs} added cannot fit the {model} model's {p} terms; add at least "
                              f"{p - n0} runs")
         if constraints is not None and not isinstance(constraints, Constraints):
             constraints = Constraints.parse(constraints, space)
@@ -152,7 +153,7 @@ def augment(
         block_aware = len(labels) > 1
         old_p, search_crit = p, crit
         if block_aware and n0 + runs < p + len(labels) - 1:
-            raise ValueError(f"{n0} runs + {runs} added cannot fit the {model} model's {p} terms and "
+            raise ParameterError("runs", f"{n0} runs + {runs} added cannot fit the {model} model's {p} terms and "
                              f"{len(labels) - 1} block effects; add at least {p + len(labels) - 1 - n0} runs")
         if block_aware:  # the block contrasts as one more (held) coordinate and term
             codes = np.searchsorted(labels, b_old).astype(float)
@@ -197,7 +198,7 @@ def augment(
             raise ValueError("the design is not a two-level factorial with centre points (a run has a numeric "
                              "setting other than -1, 0 or +1); use method='optimal'")
         if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
-            raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
+            raise ParameterError("center", f"center must be a whole number >= 0 (got {center!r})")
         n_combos = 1
         for f in space.factors:
             if f.kind == "categoric":  # the positions not in num
@@ -210,7 +211,7 @@ def augment(
             else:
                 a = ccd_alpha(kn, alpha, (int(np.sum(~fact)), int(center)), new_block)
         if not (np.isfinite(a) and a > 0):
-            raise ValueError(f"alpha must be a finite number > 0 (got {alpha!r})")
+            raise ParameterError("alpha", f"alpha must be a finite number > 0 (got {alpha!r})")
         star = []  # star and centre points, repeated at every level combination (the crossed layout)
         for j in num:
             for sgn in (-1.0, 1.0):
@@ -230,9 +231,9 @@ def augment(
                 try:
                     f = space[name]
                 except KeyError:
-                    raise ValueError(f"fold: {name!r} is not a factor of the design") from None
+                    raise ParameterError("fold", f"{name!r} is not a factor of the design") from None
                 if f.kind != "numeric":
-                    raise ValueError(f"fold: {name!r} is categoric; only numeric factors are folded")
+                    raise ParameterError("fold", f"{name!r} is categoric; only numeric factors are folded")
                 cols.append(space.factors.index(f))
         keep = ~np.all(old[:, num] == 0.0, axis=1)
         new = old[keep].copy()

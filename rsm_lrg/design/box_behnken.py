@@ -62,6 +62,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from .core import Design, as_factor_space, check_center, cross_categoric, numeric_part
 
 __all__ = ["box_behnken", "BBD_SETS", "BBD_BLOCKS", "BBD_HALF_FRACTION", "bbd_edge_runs", "two_level_factorial"]
@@ -233,7 +234,7 @@ def _check_blocks(blocks: Any, k: int) -> int:
     if blocks is None:
         return 1
     if isinstance(blocks, (bool, np.bool_)) or int(blocks) != blocks:
-        raise ValueError(f"blocks must be a whole number (got {blocks!r})")
+        raise ParameterError("blocks", f"blocks must be a whole number (got {blocks!r})")
     nb = int(blocks)
     if nb == 1:
         return 1

@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from .core import Design, as_factor_space, check_center, cross_categoric, numeric_part
 
 __all__ = ["central_composite", "ccd_alpha"]
@@ -84,16 +85,17 @@ def ccd_alpha(k: int, alpha: Any = "rotatable", center: tuple[int, int] = (0, 0)
         try:
             alpha = float(word)
         except ValueError:
-            raise ValueError(
+            raise ParameterError(
+                "alpha",
                 f"alpha must be 'rotatable', 'orthogonal', 'face', 'practical' or a positive number "
                 f"(got {alpha!r})"
             ) from None
     try:
         a = float(alpha)
     except (TypeError, ValueError):
-        raise ValueError(f"alpha must be a positive number (got {alpha!r})") from None
+        raise ParameterError("alpha", f"alpha must be a positive number (got {alpha!r})") from None
     if not (math.isfinite(a) and a > 0):
-        raise ValueError(f"alpha must be a positive number (got {alpha!r})")
+        raise ParameterError("alpha", f"alpha must be a positive number (got {alpha!r})")
     return a
 
 
@@ -109,7 +111,7 @@ def _alpha_rule(alpha: Any) -> str:
 def _centers(center: Any, blocked: bool) -> tuple[int, int]:
     if isinstance(center, (tuple, list)):
         if len(center) != 2:
-            raise ValueError("center must be one number or a pair (cube centre runs, star centre runs)")
+            raise ParameterError("center", "center must be one number or a pair (cube centre runs, star centre runs)")
         return check_center(center[0]), check_center(center[1])
     c = check_center(center)
     return (c, c) if blocked else (c, 0)
@@ -160,7 +162,7 @@ def central_composite(
     if not 2 <= k <= _MAX_K:
         raise ValueError(f"a central composite design needs 2 to {_MAX_K} factors (got {k})")
     if not isinstance(face, str) or face.strip().lower() not in _FACES:
-        raise ValueError(f"face must be 'circumscribed', 'inscribed' or 'faced' (got {face!r})")
+        raise ParameterError("face", f"face must be 'circumscribed', 'inscribed' or 'faced' (got {face!r})")
     face_n = _FACES[face.strip().lower()]
     nb = 1 if blocks is None else blocks
     if isinstance(nb, (bool, np.bool_)) or nb not in (1, 2):

@@ -65,6 +65,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..factors import FactorSpace
 
 __all__ = ["Constraint", "Constraints", "FUNCTIONS"]
@@ -233,34 +234,34 @@ class Constraints:
     @staticmethod
     def _parse_one(expr: Any, names: Mapping[str, int]) -> list[Constraint]:
         if not isinstance(expr, str) or not expr.strip():
-            raise ValueError("constraint: empty expression; expected e.g. '0.5*A + B <= 1.2'")
+            raise ParameterError("constraints", "empty expression; expected e.g. '0.5*A + B <= 1.2'")
         if len(expr) > MAX_LENGTH:
-            raise ValueError(f"constraint {_quote(expr)}: longer than {MAX_LENGTH} characters")
+            raise ParameterError("constraints", f"constraint {_quote(expr)}: longer than {MAX_LENGTH} characters")
         text = expr.strip()
         try:
             tree = ast.parse(text, mode="eval")
         except (SyntaxError, ValueError, MemoryError, RecursionError):
-            raise ValueError(f"constraint {_quote(expr)}: not a valid expression; expected e.g. "
+            raise ParameterError("constraints", f"constraint {_quote(expr)}: not a valid expression; expected e.g. "
                              "'0.5*A + B <= 1.2'") from None
         node = tree.body
         if not isinstance(node, ast.Compare):
-            raise ValueError(f"constraint {_quote(expr)}: needs a comparison <= or >= (e.g. 'A + B <= 1')")
+            raise ParameterError("constraints", f"constraint {_quote(expr)}: needs a comparison <= or >= (e.g. 'A + B <= 1')")
         for op in node.ops:
             if type(op) not in _CMP:
-                raise ValueError(f"constraint {_quote(expr)}: only <=, >=, <, > are allowed (not "
+                raise ParameterError("constraints", f"constraint {_quote(expr)}: only <=, >=, <, > are allowed (not "
                                  f"{type(op).__name__}); an equality leaves no region to design in")
         try:
             parts = [_compile(n, names, expr) for n in [node.left, *node.comparators]]
         except _Bad as exc:
-            raise ValueError(f"constraint {_quote(expr)}: {exc}") from None
+            raise ParameterError("constraints", f"constraint {_quote(expr)}: {exc}") from None
         except RecursionError:
-            raise ValueError(f"constraint {_quote(expr)}: nested too deeply") from None
+            raise ParameterError("constraints", f"constraint {_quote(expr)}: nested too deeply") from None
         out = []
         srcs = [ast.get_source_segment(text, n) or "?" for n in [node.left, *node.comparators]]
         for i, op in enumerate(node.ops):
             (fa, da, ua), (fb, db, ub) = parts[i], parts[i + 1]
             if not (ua | ub):
-                raise ValueError(f"constraint {_quote(expr)}: no factor in {srcs[i]} {_CMP[type(op)]} "
+                raise ParameterError("constraints", f"constraint {_quote(expr)}: no factor in {srcs[i]} {_CMP[type(op)]} "
                                  f"{srcs[i + 1]}")
             link = f"{srcs[i]} {_CMP[type(op)]} {srcs[i + 1]}"
             if _CMP[type(op)] == "<=":
@@ -372,7 +373,7 @@ class Constraints:
         k = len(self.space)
         if not self.is_linear:
             bad = next(c.text for c in self.items if not c.is_linear)
-            raise ValueError(f"constraint {_quote(bad)} is not linear")
+            raise ParameterError("constraints", f"constraint {_quote(bad)} is not linear")
         A = np.zeros((len(self.items), k))
         b = np.zeros(len(self.items))
         for i, c in enumerate(self.items):
@@ -427,7 +428,7 @@ class Constraints:
         M = self.margin_coded(P)
         alone = [c.text for i, c in enumerate(self.items) if not np.any(np.nan_to_num(M[:, i], nan=-1.0) >= 0)]
         if alone:
-            raise ValueError(f"constraint {_quote(alone[0])}: no setting inside the factor ranges satisfies it "
+            raise ParameterError("constraints", f"constraint {_quote(alone[0])}: no setting inside the factor ranges satisfies it "
                              "(the constrained region is empty)")
-        raise ValueError(f"constraints {'; '.join(_quote(c.text) for c in self.items)}: no setting inside the "
+        raise ParameterError("constraints", f"constraints {'; '.join(_quote(c.text) for c in self.items)}: no setting inside the "
                          "factor ranges satisfies all of them together (the constrained region is empty)")

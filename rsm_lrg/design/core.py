@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..factors import CategoricFactor, Factor, FactorSpace, letters_for, level_text
 from ..factors.columns import BOOKKEEPING, design_factors
 from ..factors.spec import given_items
@@ -144,7 +145,7 @@ def resolve_seed(seed: Any) -> tuple[np.random.Generator, int | None]:
     if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
         raise TypeError(f"seed must be an integer or a numpy.random.Generator, not {type(seed).__name__}")
     if seed < 0:
-        raise ValueError(f"seed must not be negative (got {seed})")
+        raise ParameterError("seed", f"seed must not be negative (got {seed})")
     return np.random.default_rng(int(seed)), int(seed)
 
 
@@ -807,7 +808,7 @@ def check_center(center: Any) -> int:
     except (TypeError, ValueError):
         raise TypeError(f"center must be a whole number of centre runs, not {center!r}") from None
     if c != center:
-        raise ValueError(f"center must be a whole number of centre runs (got {center!r})")
+        raise ParameterError("center", f"center must be a whole number of centre runs (got {center!r})")
     if c < 0:
-        raise ValueError(f"the number of centre points must not be negative (got {c})")
+        raise ParameterError("center", f"the number of centre points must not be negative (got {c})")
     return c

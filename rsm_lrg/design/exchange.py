@@ -16,6 +16,7 @@ from typing import Any, cast
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..terms import design_matrix, n_columns
 
 __all__ = ["CRITERIA", "GRID", "MAX_RUNS", "MAX_COLUMNS", "MAX_STARTS", "check_criterion", "check_columns",
@@ -47,14 +48,14 @@ FEDOROV_PAIRS = 2 ** 15
 def check_criterion(c: Any) -> str:
     """``c`` as one of :data:`CRITERIA` (upper case), or a ValueError."""
     if not isinstance(c, str) or c.strip().upper() not in CRITERIA:
-        raise ValueError(f"criterion must be one of {', '.join(CRITERIA)} (got {c!r})")
+        raise ParameterError("criterion", f"criterion must be one of {', '.join(CRITERIA)} (got {c!r})")
     return c.strip().upper()
 
 
 def check_columns(p: int, model: str, k: int) -> None:
     """ValueError when the model is beyond :data:`MAX_COLUMNS` columns."""
     if p > MAX_COLUMNS:
-        raise ValueError(f"the {model} model in {k} factors has {p} coefficients, beyond the {MAX_COLUMNS} an optimal "
+        raise ParameterError("model", f"the {model} model in {k} factors has {p} coefficients, beyond the {MAX_COLUMNS} an optimal "
                          "design is searched for here; choose a smaller model (e.g. 2fi or quadratic)")
 
 
@@ -109,12 +110,12 @@ def moment_matrix(space, terms, constraints=None, n_sample: int = 2 ** 14, seed:
     return (G.T @ G / G.shape[0]) * C
 
 
-def thin_region_error(constraints) -> ValueError:
+def thin_region_error(constraints) -> ParameterError:
     """The error for a constrained region that holds no point of the search (empty, or too
     thin to design in: ``x + y <= 0`` on ``x, y >= 0`` is one corner)."""
     texts = "; ".join(repr(c.text) for c in getattr(constraints, "items", ()))
-    return ValueError(f"constraints {texts}: no point of the search satisfies them (the constrained region is "
-                      "empty or too thin to design in, e.g. a single point or a line)")
+    return ParameterError("constraints", f"constraints {texts}: no point of the search satisfies them (the "
+                          "constrained region is empty or too thin to design in, e.g. a single point or a line)")
 
 
 def information_criterion(M: np.ndarray, crit: str, W: np.ndarray | None) -> Any:

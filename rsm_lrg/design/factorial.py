@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from .core import Design, as_factor_space, check_center, cross_categoric, numeric_part
 
 __all__ = ["full_factorial"]
@@ -50,7 +51,7 @@ def full_factorial(
     if k < 1:
         raise ValueError("a factorial design needs at least one numeric factor")
     if isinstance(levels, (bool, np.bool_)) or int(levels) != levels or levels < 2:
-        raise ValueError(f"levels must be a whole number of at least 2 (got {levels!r})")
+        raise ParameterError("levels", f"levels must be a whole number of at least 2 (got {levels!r})")
     levels = int(levels)
     center = check_center(center)
     if levels ** k + center > MAX_RUNS:

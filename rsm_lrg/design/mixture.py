@@ -51,6 +51,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..factors import Factor, FactorSpace, letters_for
 from ..factors.factor import check_factor_name
 from .core import CODED_PREFIX, Design, as_factor_space, randomized_run_order, seeded_options
@@ -217,16 +218,16 @@ class MixtureDesign(Design):
 # -- helpers -------------------------------------------------------------------------------
 def _total(total: Any) -> float:
     if isinstance(total, (bool, np.bool_)):
-        raise TypeError("total must be a number")
+        raise ParameterError("total", "total must be a number")
     try:
         t = float(total)
     except (TypeError, ValueError):
-        raise ValueError(f"total must be a number, not {total!r}") from None
+        raise ParameterError("total", f"total must be a number, not {total!r}") from None
     if not (math.isfinite(t) and t > 0):
-        raise ValueError(f"total must be a finite number > 0 (got {total!r})")
+        raise ParameterError("total", f"total must be a finite number > 0 (got {total!r})")
     if t < MIN_TOTAL or t > MAX_TOTAL:  # shares of a tiny total lose their digits (subnormal floats)
-        raise ValueError(f"total must lie between {MIN_TOTAL:g} and {MAX_TOTAL:g}, so that every share of a blend "
-                         f"keeps its digits (got {t:g})")
+        raise ParameterError("total", f"total must lie between {MIN_TOTAL:g} and {MAX_TOTAL:g}, so that every share "
+                                      f"of a blend keeps its digits (got {t:g})")
     return t
 
 
@@ -249,13 +250,13 @@ def _names(components: Any, minimum: int = 2) -> list[str]:
         if not isinstance(n, str):
             raise TypeError(f"component names must be strings, not {type(n).__name__}")
         if not n.strip():
-            raise ValueError("component: an empty name")
+            raise ParameterError("components", "an empty name")
         if "=" in n:
-            raise ValueError(f"component {n!r}: a lattice or centroid design takes bare names "
+            raise ParameterError("components", f"component {n!r}: a lattice or centroid design takes bare names "
                              "(bounds belong to an extreme-vertices design)")
         check_factor_name(n)
         if n in out:
-            raise ValueError(f"component {n!r} is given twice")
+            raise ParameterError("components", f"component {n!r} is given twice")
         out.append(n)
     if len(out) < minimum:
         raise ValueError(f"a mixture needs at least {minimum} components (got {len(out)})")
@@ -286,7 +287,7 @@ def finish_mixture(kind: str, names: list[str], props_std: np.ndarray, types_std
     for a mixture-process design. ``props_std``: the real proportions, standard order."""
     n, q = props_std.shape
     if n > MAX_RUNS:
-        raise ValueError(f"runs: the design would have {n} runs; at most {MAX_RUNS} are written")
+        raise ParameterError("runs", f"the design would have {n} runs; at most {MAX_RUNS} are written")
     r = total - math.fsum(lows.tolist())
     proc = list(process.factors) if process is not None else []
     letters = letters_for(q + len(proc))
@@ -358,15 +359,15 @@ def simplex_lattice(components: Sequence[str], degree: int, center: bool = False
     """
     names = _names(components)
     if isinstance(degree, (bool, np.bool_)) or not isinstance(degree, (int, np.integer)):
-        raise TypeError(f"degree must be a whole number, not {degree!r}")
+        raise ParameterError("degree", f"degree must be a whole number, not {degree!r}")
     m = int(degree)
     if m < 1:
-        raise ValueError(f"degree must be at least 1 (got {m})")
+        raise ParameterError("degree", f"degree must be at least 1 (got {m})")
     t = _total(total)
     q = len(names)
     size = lattice_size(q, m)
     if size > MAX_RUNS:
-        raise ValueError(f"runs: the {{{q}, {m}}} lattice has {size} points; at most {MAX_RUNS} are written")
+        raise ParameterError("runs", f"the {{{q}, {m}}} lattice has {size} points; at most {MAX_RUNS} are written")
     comps = _compositions(q, m)
     rows = [[_scaled(t, v, m) for v in c] for c in comps]
     types = ["vertex" if max(c) == m else "centroid" if q * min(c) == m and len(set(c)) == 1 else "lattice"
@@ -406,7 +407,7 @@ def simplex_centroid(components: Sequence[str], center: bool = False, axial: boo
     t = _total(total)
     q = len(names)
     if 2 ** q - 1 > MAX_RUNS:
-        raise ValueError(f"runs: a simplex-centroid design in {q} components has {2 ** q - 1} runs; "
+        raise ParameterError("runs", f"a simplex-centroid design in {q} components has {2 ** q - 1} runs; "
                          f"at most {MAX_RUNS} are written")
     rows: list[list[float]] = []
     types: list[str] = []
@@ -436,25 +437,25 @@ def _bounds(bounds: Any, t: float) -> tuple[list[str], np.ndarray, np.ndarray]:
     hi: list[float] = []
     for name, pair in items:
         if not isinstance(name, str) or not name.strip():
-            raise ValueError(f"component: an empty or non-text name ({name!r})")
+            raise ParameterError("bounds", f"an empty or non-text name ({name!r})")
         check_factor_name(name)
         if name in names:
-            raise ValueError(f"component {name!r} is given twice")
+            raise ParameterError("bounds", f"component {name!r} is given twice")
         try:
             a, b = (float(v) for v in pair)
         except (TypeError, ValueError):
-            raise ValueError(f"component {name!r}: bounds must be two numbers LOW, HIGH (got {pair!r})") from None
+            raise ParameterError("bounds", f"component {name!r}: bounds must be two numbers LOW, HIGH (got {pair!r})") from None
         if not (math.isfinite(a) and math.isfinite(b)):
-            raise ValueError(f"component {name!r}: bounds must be finite (got {a!r}, {b!r})")
+            raise ParameterError("bounds", f"component {name!r}: bounds must be finite (got {a!r}, {b!r})")
         if a < 0:
-            raise ValueError(f"component {name!r}: LOW {a:g} is negative; a proportion is at least 0")
+            raise ParameterError("bounds", f"component {name!r}: LOW {a:g} is negative; a proportion is at least 0")
         if a > b:
-            raise ValueError(f"component {name!r}: LOW {a:g} is above HIGH {b:g}")
+            raise ParameterError("bounds", f"component {name!r}: LOW {a:g} is above HIGH {b:g}")
         if a == b:
-            raise ValueError(f"component {name!r}: LOW equals HIGH ({a:g}); a fixed component is not a "
+            raise ParameterError("bounds", f"component {name!r}: LOW equals HIGH ({a:g}); a fixed component is not a "
                              "mixture variable (take it out and lower the total)")
         if a >= t:
-            raise ValueError(f"component {name!r}: LOW {a:g} is not below the total {t:g}")
+            raise ParameterError("bounds", f"component {name!r}: LOW {a:g} is not below the total {t:g}")
         names.append(name)
         lo.append(a)
         hi.append(b)
@@ -466,10 +467,10 @@ def _bounds(bounds: Any, t: float) -> tuple[list[str], np.ndarray, np.ndarray]:
     sl, su = math.fsum(lo), math.fsum(hi)
     tol = SUM_RTOL * t
     if sl > t + tol:
-        raise ValueError("component bounds: the lower bounds sum to "
+        raise ParameterError("bounds", "component bounds: the lower bounds sum to "
                          f"{sl:.12g} > total {t:g} (" + ", ".join(f"{n} {v:g}" for n, v in zip(names, lo)) + ")")
     if su < t - tol:
-        raise ValueError("component bounds: the upper bounds sum to "
+        raise ParameterError("bounds", "component bounds: the upper bounds sum to "
                          f"{su:.12g} < total {t:g} (" + ", ".join(f"{n} {v:g}" for n, v in zip(names, hi)) + ")")
     return names, L, U
 
@@ -485,22 +486,22 @@ def _linear_constraints(constraints: Any, names: list[str], L: np.ndarray, U: np
     if isinstance(constraints, Constraints):
         cons = constraints
         if cons.space.names != names:
-            raise ValueError("constraints: built on other factors than the components")
+            raise ParameterError("constraints", "built on other factors than the components")
     else:
         space = FactorSpace.from_ranges([(n, float(a), float(b)) for n, a, b in zip(names, L, U)])
         cons = Constraints.parse(constraints, space, check_empty=False)
     for c in cons.items:
         if not c.is_linear:
-            raise ValueError(f"constraint {c.text!r} is not linear in the proportions; extreme vertices "
+            raise ParameterError("constraints", f"constraint {c.text!r} is not linear in the proportions; extreme vertices "
                              "need linear constraints")
     if not len(cons):
         return np.zeros((0, q)), np.zeros(0), []
     A, b = cons.linear_system(coded=False)
     for j, c in enumerate(cons.items):
         if not np.all(np.isfinite(A[j])) or not math.isfinite(float(b[j])):
-            raise ValueError(f"constraint {c.text!r}: its coefficients are not finite")
+            raise ParameterError("constraints", f"constraint {c.text!r}: its coefficients are not finite")
         if not np.any(A[j] != 0):
-            raise ValueError(f"constraint {c.text!r} holds no component")
+            raise ParameterError("constraints", f"constraint {c.text!r} holds no component")
     return A, b, cons.expressions
 
 
@@ -531,7 +532,7 @@ def _vertices(G: np.ndarray, h: np.ndarray, t: float, L: np.ndarray, U: np.ndarr
     m, q = G.shape
     choices = math.comb(m, q - 1)
     if choices > MAX_PLANE_CHOICES:
-        raise ValueError(f"constraint: {m} constraint planes in {q} components give {choices} choices of "
+        raise ParameterError("constraints", f"{m} constraint planes in {q} components give {choices} choices of "
                          f"{q - 1} planes to try; at most {MAX_PLANE_CHOICES}")
     scale = np.abs(G) @ np.maximum(np.abs(L), np.abs(U)) + np.abs(h)
     found: list[np.ndarray] = []
@@ -627,13 +628,13 @@ def _region(bounds: Any, constraints: Any, t: float) -> _Region:
     V = _vertices(G, h, t, L, U)
     if not len(V):
         which = f" and the constraints {'; '.join(texts)}" if texts else ""
-        raise ValueError(f"constraint: the region of the bounds{which} is empty: no blend summing to {t:g} "
+        raise ParameterError("constraints", f"the region of the bounds{which} is empty: no blend summing to {t:g} "
                          "satisfies them all")
     act = _active(V, G, h, L, U)
     rank = _affine_rank(V, 1e-9 * t)
     if rank < q - 1:
         tight = [labels[j] for j in range(len(labels)) if act[:, j].all()]
-        raise ValueError(f"constraint: the region has no interior (dimension {rank}, a mixture of {q} "
+        raise ParameterError("constraints", f"the region has no interior (dimension {rank}, a mixture of {q} "
                          f"components needs {q - 1}): every blend in it has {'; '.join(tight) or 'a fixed proportion'}")
     return _Region(names, L, U, t, texts, G, h, V, act)
 
@@ -825,10 +826,10 @@ def process_space(factors: Any, components: Sequence[str]) -> FactorSpace:
     space = as_factor_space(factors)
     for f in space.factors:
         if f.kind != "numeric":
-            raise ValueError(f"factor {f.name!r} is categoric; a mixture-process design takes numeric process "
+            raise ParameterError("factors", f"factor {f.name!r} is categoric; a mixture-process design takes numeric process "
                              "factors")
         if f.name in components:
-            raise ValueError(f"factor {f.name!r} is also a component")
+            raise ParameterError("factors", f"factor {f.name!r} is also a component")
     return space
 
 
@@ -854,12 +855,12 @@ def cross_process(design: MixtureDesign, factors: Any, *, seed: Any = None, rand
         raise TypeError("design must be a MixtureDesign")
     q = design.n_components
     if q < design.n_factors:
-        raise ValueError("factor: the design already has process factors")
+        raise ParameterError("factors", "the design already has process factors")
     names = list(design.factors.names)
     space = process_space(factors, names)
     k = len(space)
     if len(design.std_order) * 2 ** k > MAX_RUNS:
-        raise ValueError(f"runs: {len(design.std_order)} blends at 2^{k} process points are "
+        raise ParameterError("runs", f"{len(design.std_order)} blends at 2^{k} process points are "
                          f"{len(design.std_order) * 2 ** k} runs; at most {MAX_RUNS} are written")
     pts = np.array(list(itertools.product([-1.0, 1.0], repeat=k)))[:, ::-1]
     order = np.argsort(design.std_order, kind="stable")

@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..factors import Factor, FactorSpace, letters_for
 from ..terms import MIXTURE_ORDERS, Term, design_matrix, parse_term, scheffe_names
 from .core import resolve_seed
@@ -67,7 +68,7 @@ def _moments(terms: Sequence[Term], cs: CandidateSet, r: float, k: int, seed: in
             break
     Z = np.vstack(kept)[:N_MOMENT]
     if len(Z) < 256:
-        raise ValueError("constraint: too few points of the region were found for the I criterion's moments; "
+        raise ParameterError("constraints", "too few points of the region were found for the I criterion's moments; "
                          "use --criterion D")
     if k:
         Z = np.hstack([Z, rng.uniform(-1.0, 1.0, size=(len(Z), k))])
@@ -119,7 +120,7 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
     """
     crit = check_criterion(criterion)
     if model not in MIXTURE_ORDERS:
-        raise ValueError(f"model: a mixture design needs a Scheffé model ({', '.join(MIXTURE_ORDERS)}), not {model!r}")
+        raise ParameterError("model", f"a mixture design needs a Scheffé model ({', '.join(MIXTURE_ORDERS)}), not {model!r}")
     cs = candidate_blends(bounds, constraints, total)
     names, cands, ctypes, lows, t = cs.names, cs.points, cs.types, cs.lows, cs.total
     q = len(names)
@@ -131,15 +132,15 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
     try:
         check_columns(p, model, q + k)
     except ValueError as exc:
-        raise ValueError(f"model: {exc}") from None
+        raise ParameterError("model", f"{exc}") from None
     runs, n_lof, n_rep = run_budget(p, runs, lof_points, replicates, starts)
     n_model = runs - n_lof - n_rep
     what = f"the {model} model in {q} components" + (f" and {k} process factor{'s' * (k > 1)}" if k else "")
     if n_model < p:
-        raise ValueError(f"runs: {runs} runs leave {n_model} model points after {n_lof} lack-of-fit points and "
+        raise ParameterError("runs", f"{runs} runs leave {n_model} model points after {n_lof} lack-of-fit points and "
                          f"{n_rep} replicates; {what} needs at least {p} (one per term)")
     if runs > MAX_RUNS:
-        raise ValueError(f"runs: at most {MAX_RUNS} runs (got {runs})")
+        raise ParameterError("runs", f"at most {MAX_RUNS} runs (got {runs})")
     r = t - float(np.sum(lows))
     # candidates: blends (L-pseudo) x process levels
     zc = (cands - lows[None, :]) / r
@@ -147,11 +148,11 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
     pool = np.hstack([np.repeat(zc, len(levels), axis=0), np.tile(levels, (len(zc), 1))])
     blend_of = np.repeat(np.arange(len(zc)), len(levels))
     if len(pool) > MAX_CANDIDATES:
-        raise ValueError(f"component: the region gives {len(pool)} candidate points; at most {MAX_CANDIDATES} are "
+        raise ParameterError("bounds", f"the region gives {len(pool)} candidate points; at most {MAX_CANDIDATES} are "
                          "searched (fewer components or process factors)")
     Fc = design_matrix(pool, terms)
     if np.linalg.matrix_rank(Fc) < p:
-        raise ValueError(f"model: the candidate blends of this region cannot support {what} "
+        raise ParameterError("model", f"the candidate blends of this region cannot support {what} "
                          f"({np.linalg.matrix_rank(Fc)} of {p} terms estimable)")
     space = FactorSpace(tuple(Factor(nm, float(lo) - r, float(lo) + r, L) for nm, lo, L in zip(names, lows, letters))
                         + (() if proc is None else tuple(replace(f, letter=L) for f, L in zip(proc.factors, letters[q:]))))

@@ -40,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..terms import model_terms, n_columns
 from .core import Design, as_factor_space, resolve_seed
 
@@ -88,7 +89,7 @@ def run_budget(p: int, runs: Any, lof_points: Any, replicates: Any, starts: Any 
     with ``runs`` none of either unless asked for."""
     for name, given in (("runs", runs), ("lof_points", lof_points), ("replicates", replicates), ("starts", starts)):
         if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 0):
-            raise ValueError(f"{name} must be a whole number >= 0 (got {given!r})")
+            raise ParameterError(name, f"{name} must be a whole number >= 0 (got {given!r})")
     if runs is None:
         n_lof = 5 if lof_points is None else int(lof_points)
         n_rep = 5 if replicates is None else int(replicates)
@@ -162,13 +163,13 @@ def optimal(
     runs, L, R = run_budget(p, runs, lof_points, replicates, starts)
     n_model = runs - L - R
     if n_model < 0:
-        raise ValueError(f"{L} lack-of-fit points and {R} replicates are more than the {runs} runs; the {model} "
+        raise ParameterError("runs", f"{L} lack-of-fit points and {R} replicates are more than the {runs} runs; the {model} "
                          f"model in {len(space)} factors needs at least {p} model points besides them")
     if n_model < p:
-        raise ValueError(f"{runs} runs leave {n_model} model points after {L} lack-of-fit points and {R} replicates; "
+        raise ParameterError("runs", f"{runs} runs leave {n_model} model points after {L} lack-of-fit points and {R} replicates; "
                          f"the {model} model in {len(space)} factors needs at least {p} (one per coefficient)")
     if runs > MAX_RUNS:
-        raise ValueError(f"at most {MAX_RUNS} runs (got {runs})")
+        raise ParameterError("runs", f"at most {MAX_RUNS} runs (got {runs})")
     rng, used_seed = resolve_seed(seed)
     W = moment_matrix(space, terms, constraints) if crit == "I" else None
     pool = candidate_pool(space, constraints, seed=int(rng.integers(2 ** 31)))

@@ -30,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from .core import Design, as_factor_space, numeric_part
 
 __all__ = ["conference_matrix", "conference_order", "definitive_screening", "fractional_factorial",
@@ -189,7 +190,7 @@ def definitive_screening(factors: Any, center: int | None = None, seed: Any = No
     if center is None:
         center = 2 if cats else 1
     if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
-        raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
+        raise ParameterError("center", f"center must be a whole number >= 0 (got {center!r})")
     center = int(center)
     n = conference_order(m)
     C = conference_matrix(n)[:, :m].astype(float)
@@ -313,7 +314,7 @@ def _fraction_by_resolution(k: int, resolution: int) -> tuple[int, list[int], st
     while True:
         q += 1
         if 2 ** q > MAX_FRACTION_RUNS:
-            raise ValueError(f"resolution: no {k}-factor fraction of resolution {resolution} with at most "
+            raise ParameterError("resolution", f"no {k}-factor fraction of resolution {resolution} with at most "
                              f"{MAX_FRACTION_RUNS} runs is built here; give --generator")
         cands = [m for m in range(1, 2 ** q) if bin(m).count("1") >= max(2, resolution - 1)]
         if resolution == 4:
@@ -366,13 +367,13 @@ def fractional_factorial(factors: Any, resolution: int | None = None, generators
     space = as_factor_space(factors)
     _, k = numeric_part(space)
     if space.has_categoric:
-        raise ValueError("a two-level fractional factorial here takes numeric factors only")
+        raise ParameterError("factors", "a two-level fractional factorial here takes numeric factors only")
     if k < 3:
-        raise ValueError(f"a fractional factorial needs at least 3 factors (got {k})")
+        raise ParameterError("factors", f"a fractional factorial needs at least 3 factors (got {k})")
     if (resolution is None) == (generators is None):
         raise ValueError("give either a resolution or generators")
     if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
-        raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
+        raise ParameterError("center", f"center must be a whole number >= 0 (got {center!r})")
     letters = space.letters
     source = None
     if generators is not None:
@@ -380,12 +381,12 @@ def fractional_factorial(factors: Any, resolution: int | None = None, generators
     else:
         assert resolution is not None  # exactly one of resolution and generators (checked above)
         if isinstance(resolution, (bool, np.bool_)) or int(resolution) != resolution or resolution < 3:
-            raise ValueError(f"resolution must be a whole number >= 3 (got {resolution!r})")
+            raise ParameterError("resolution", f"resolution must be a whole number >= 3 (got {resolution!r})")
         q, gens, source = _fraction_by_resolution(k, int(resolution))
         signs = [1.0] * len(gens)
     if 2 ** q > MAX_FRACTION_RUNS:
         what = "generators" if generators is not None else "resolution"
-        raise ValueError(f"{what}: 2^{q} = {2 ** q} runs is more than this generator makes ({MAX_FRACTION_RUNS})")
+        raise ParameterError(what, f"2^{q} = {2 ** q} runs is more than this generator makes ({MAX_FRACTION_RUNS})")
     X = _fraction_runs(q, gens) * np.array([1.0] * q + list(signs))
     res = _fraction_resolution(q, gens)
     if resolution is not None and res is not None and res < resolution:  # never a lower resolution silently
@@ -419,18 +420,18 @@ def _parse_generators(gen: str, letters: list[str]) -> tuple[int, list[int], lis
     spaced = re.sub(r"\s*=\s*", "=", text.replace(",", " "))
     toks = spaced.split()
     if not toks:
-        raise ValueError("generators: empty; give one word per factor ('A B C ABC') or the added ones ('D=ABC')")
+        raise ParameterError("generators", "empty; give one word per factor ('A B C ABC') or the added ones ('D=ABC')")
     pattern = re.compile("|".join(re.escape(L) for L in sorted(upper, key=len, reverse=True)))
 
     def split(word: str, tok: str) -> list[int]:
         w = word.upper()
         if not w:
-            raise ValueError(f"generators {text!r}: {tok!r} has an empty word")
+            raise ParameterError("generators", f"generators {text!r}: {tok!r} has an empty word")
         pos, out = 0, []
         while pos < len(w):
             m = pattern.match(w, pos)
             if not m:
-                raise ValueError(f"generators {text!r}: {w[pos]!r} in {tok!r} is not a factor letter "
+                raise ParameterError("generators", f"generators {text!r}: {w[pos]!r} in {tok!r} is not a factor letter "
                                  f"({', '.join(letters)})")
             out.append(upper.index(m.group()))
             pos = m.end()
@@ -441,17 +442,17 @@ def _parse_generators(gen: str, letters: list[str]) -> tuple[int, list[int], lis
         for t in toks:
             name, eq, word = t.partition("=")
             if not eq or not name or not word:
-                raise ValueError(f"generators {text!r}: {t!r} is not of the form D=ABC")
+                raise ParameterError("generators", f"generators {text!r}: {t!r} is not of the form D=ABC")
             who = split(name, t)
             if len(who) != 1:
-                raise ValueError(f"generators {text!r}: {name!r} in {t!r} is not one factor letter")
+                raise ParameterError("generators", f"generators {text!r}: {name!r} in {t!r} is not one factor letter")
             if who[0] in words:
-                raise ValueError(f"generators {text!r}: factor {letters[who[0]]} has two generators")
+                raise ParameterError("generators", f"generators {text!r}: factor {letters[who[0]]} has two generators")
             words[who[0]] = (split(word.lstrip("+-"), t), -1.0 if word.startswith("-") else 1.0)
         basic = [i for i in range(k) if i not in words]
     else:
         if len(toks) != k:
-            raise ValueError(f"generators {text!r}: expected {k} words (one per factor), got {len(toks)}")
+            raise ParameterError("generators", f"generators {text!r}: expected {k} words (one per factor), got {len(toks)}")
         basic = []
         for i, t in enumerate(toks):
             idx, sign = split(t.lstrip("+-"), t), (-1.0 if t.startswith("-") else 1.0)
@@ -461,27 +462,27 @@ def _parse_generators(gen: str, letters: list[str]) -> tuple[int, list[int], lis
                 words[i] = (idx, sign)
     q = len(basic)
     if basic != list(range(q)):
-        raise ValueError(f"generators {text!r}: the basic factors (whose word is their own letter) must be the "
+        raise ParameterError("generators", f"generators {text!r}: the basic factors (whose word is their own letter) must be the "
                          f"first ones ({', '.join(letters[:q])}) and the generated ones follow")
     if q < 2:
-        raise ValueError(f"generators {text!r}: at least two basic factors are needed")
+        raise ParameterError("generators", f"generators {text!r}: at least two basic factors are needed")
     gens, signs = [], []
     for i in range(q, k):
         idx, sign = words[i]
         bad = [j for j in idx if j >= q]
         if bad:
-            raise ValueError(f"generators {text!r}: the word of {letters[i]} uses {letters[bad[0]]}, which is not a "
+            raise ParameterError("generators", f"generators {text!r}: the word of {letters[i]} uses {letters[bad[0]]}, which is not a "
                              f"basic factor ({', '.join(letters[:q])})")
         if len(set(idx)) != len(idx):
-            raise ValueError(f"generators {text!r}: the word of {letters[i]} repeats a letter")
+            raise ParameterError("generators", f"generators {text!r}: the word of {letters[i]} repeats a letter")
         if len(idx) < 2:
-            raise ValueError(f"generators {text!r}: {letters[i]} = {'-' if sign < 0 else ''}{letters[idx[0]]} "
+            raise ParameterError("generators", f"generators {text!r}: {letters[i]} = {'-' if sign < 0 else ''}{letters[idx[0]]} "
                              "confounds two main effects (resolution II)")
         gens.append(sum(1 << j for j in idx))
         signs.append(sign)
     res = _fraction_resolution(q, gens)
     if res is not None and res < 3:
-        raise ValueError(f"generators {text!r}: two factors get the same column (main effects confounded, "
+        raise ParameterError("generators", f"generators {text!r}: two factors get the same column (main effects confounded, "
                          "resolution II)")
     return q, gens, signs
 
@@ -564,7 +565,7 @@ def plackett_burman(factors: Any, center: int = 0, seed: Any = None, randomize: 
     if k < 2:
         raise ValueError(f"a Plackett-Burman design needs at least 2 factors (got {k})")
     if isinstance(center, (bool, np.bool_)) or int(center) != center or center < 0:
-        raise ValueError(f"center must be a whole number >= 0 (got {center!r})")
+        raise ParameterError("center", f"center must be a whole number >= 0 (got {center!r})")
     n = 4 * (k // 4 + 1)
     if n > MAX_PB_RUNS:
         raise ValueError(f"a Plackett-Burman design of {k} factors needs {n} runs, more than this generator "

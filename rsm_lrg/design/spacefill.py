@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from .core import Design, as_factor_space, resolve_seed
 
 __all__ = ["latin_hypercube", "sobol"]
@@ -44,7 +45,7 @@ def _prepare(factors, runs, constraints):
 
     space = as_factor_space(factors)
     if isinstance(runs, (bool, np.bool_)) or int(runs) != runs or not 2 <= runs <= MAX_RUNS:
-        raise ValueError(f"runs must be a whole number from 2 to {MAX_RUNS} (got {runs!r})")
+        raise ParameterError("runs", f"runs must be a whole number from 2 to {MAX_RUNS} (got {runs!r})")
     if not space.numeric_index:
         raise ValueError("a space-filling design needs at least one numeric factor")
     if constraints is not None and not isinstance(constraints, Constraints):
@@ -88,9 +89,9 @@ def latin_hypercube(factors: Any, runs: int, criterion: str = "discrepancy", con
 
     space, n, cons = _prepare(factors, runs, constraints)
     if criterion not in ("discrepancy", "maximin"):
-        raise ValueError(f"criterion must be 'discrepancy' or 'maximin' (got {criterion!r})")
+        raise ParameterError("criterion", f"criterion must be 'discrepancy' or 'maximin' (got {criterion!r})")
     if criterion == "maximin" and n > MAX_MAXIMIN:
-        raise ValueError(f"runs: the maximin criterion compares every pair of runs; at most {MAX_MAXIMIN} runs "
+        raise ParameterError("runs", f"the maximin criterion compares every pair of runs; at most {MAX_MAXIMIN} runs "
                          f"(got {n}); use criterion='discrepancy'")
     rng, used = resolve_seed(seed)
     d = len(space.numeric_index)

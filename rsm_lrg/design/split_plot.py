@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..factors import FactorSpace
 from ..terms import Term, design_matrix, model_terms, n_columns
 from .core import Design, as_factor_space, resolve_seed, seeded_options
@@ -68,9 +69,9 @@ def check_variance_ratio(eta: Any) -> float:
     try:
         v = float(eta)
     except (TypeError, ValueError):
-        raise ValueError(f"variance_ratio: expected a finite number >= 0, got {eta!r}") from None
+        raise ParameterError("variance_ratio", f"expected a finite number >= 0, got {eta!r}") from None
     if isinstance(eta, (bool, np.bool_)) or not (math.isfinite(v) and v >= 0.0):
-        raise ValueError(f"variance_ratio: expected a finite number >= 0 (sigma^2 whole plot / sigma^2), got {eta!r}")
+        raise ParameterError("variance_ratio", f"expected a finite number >= 0 (sigma^2 whole plot / sigma^2), got {eta!r}")
     return v
 
 
@@ -281,13 +282,13 @@ def hard_to_change_indices(names: Sequence[str], hard_to_change: str | Sequence[
     option."""
     hard_names = [hard_to_change] if isinstance(hard_to_change, str) else list(hard_to_change or [])
     if not hard_names:
-        raise ValueError("hard_to_change: name at least one hard-to-change factor")
+        raise ParameterError("hard_to_change", "name at least one hard-to-change factor")
     hard: list[int] = []
     for h in hard_names:
         if h not in names:
-            raise ValueError(f"hard_to_change: {h!r} is not among the factors ({', '.join(names)})")
+            raise ParameterError("hard_to_change", f"{h!r} is not among the factors ({', '.join(names)})")
         if names.index(h) in hard:
-            raise ValueError(f"hard_to_change: {h!r} is given twice")
+            raise ParameterError("hard_to_change", f"{h!r} is given twice")
         hard.append(names.index(h))
     return hard
 
@@ -360,7 +361,7 @@ def split_plot(
     hard = hard_to_change_indices(names, hard_to_change)
     for name, given in (("whole_plots", whole_plots), ("runs", runs), ("starts", starts)):
         if given is not None and (isinstance(given, (bool, np.bool_)) or int(given) != given or given < 1):
-            raise ValueError(f"{name}: must be a whole number >= 1 (got {given!r})")
+            raise ParameterError(name, f"must be a whole number >= 1 (got {given!r})")
     W_plots, n = int(whole_plots), int(runs)
     terms = model_terms(space.letters, model, space.categoric or None)
     p = n_columns(terms)
@@ -368,15 +369,15 @@ def split_plot(
     wp_cols = n_columns(whole_plot_terms(terms, hard))
     hard_text = ", ".join(names[i] for i in sorted(hard))
     if W_plots < wp_cols + 1:
-        raise ValueError(f"whole_plots: {W_plots} whole plots cannot estimate the intercept and the {wp_cols} "
+        raise ParameterError("whole_plots", f"{W_plots} whole plots cannot estimate the intercept and the {wp_cols} "
                          f"whole-plot column(s) of the {model} model in {hard_text}; need at least {wp_cols + 1}")
     if n > MAX_RUNS:
-        raise ValueError(f"runs: at most {MAX_RUNS} runs (got {n})")
+        raise ParameterError("runs", f"at most {MAX_RUNS} runs (got {n})")
     if n < p:
-        raise ValueError(f"runs: {n} runs cannot estimate the {p} coefficients of the {model} model in "
+        raise ParameterError("runs", f"{n} runs cannot estimate the {p} coefficients of the {model} model in "
                          f"{len(space)} factors")
     if n < W_plots:
-        raise ValueError(f"runs: {n} runs cannot fill {W_plots} whole plots (at least one run each)")
+        raise ParameterError("runs", f"{n} runs cannot fill {W_plots} whole plots (at least one run each)")
     if constraints is not None and not isinstance(constraints, Constraints):
         constraints = Constraints.parse(constraints, space)
     sizes = plot_sizes(n, W_plots)
@@ -399,7 +400,7 @@ def split_plot(
     M = gls_information(X, search.plot, eta)
     value = reported_value(M, n, crit, Wm)
     if reported_value(M, n, "D") == 0.0:
-        raise ValueError(f"runs: no split-plot design of {n} runs in {W_plots} whole plots was found that estimates "
+        raise ParameterError("runs", f"no split-plot design of {n} runs in {W_plots} whole plots was found that estimates "
                          f"the {model} model; add runs or whole plots")
     options: dict[str, Any] = {
         "criterion": crit,
@@ -444,7 +445,7 @@ def equivalent_alpha(k_wp: int, k_sp: int, alpha: float | None = None) -> tuple[
         return a, a
     a_w = float(alpha)
     if not (math.isfinite(a_w) and a_w * a_w > k_wp):
-        raise ValueError(f"alpha: the whole-plot star distance must exceed sqrt({k_wp}) = {math.sqrt(k_wp):.4g} for "
+        raise ParameterError("alpha", f"the whole-plot star distance must exceed sqrt({k_wp}) = {math.sqrt(k_wp):.4g} for "
                          f"equivalent estimation (got {alpha!r})")
     return a_w, math.sqrt(2.0 ** (k_sp - 1) * a_w * a_w / (a_w * a_w - k_wp))
 
@@ -508,16 +509,16 @@ def split_plot_ccd(
     space = as_factor_space(factors)
     names = space.names
     if space.categoric:
-        raise ValueError("factor: a split-plot central composite design takes numeric factors only")
+        raise ParameterError("factors", "a split-plot central composite design takes numeric factors only")
     hard = hard_to_change_indices(names, hard_to_change)
     easy = [i for i in range(len(names)) if i not in hard]
     kw, ks = len(hard), len(easy)
     if not 1 <= ks <= _MAX_CCD_K or kw > _MAX_CCD_K:
-        raise ValueError(f"hard_to_change: a split-plot central composite design needs 1 to {_MAX_CCD_K} hard-to-change "
+        raise ParameterError("hard_to_change", f"a split-plot central composite design needs 1 to {_MAX_CCD_K} hard-to-change "
                          f"and 1 to {_MAX_CCD_K} other factors (got {kw} and {ks})")
     K = center_whole_plots
     if isinstance(K, (bool, np.bool_)) or int(K) != K or K < 1:
-        raise ValueError(f"center_whole_plots: must be a whole number >= 1 (got {K!r})")
+        raise ParameterError("center_whole_plots", f"must be a whole number >= 1 (got {K!r})")
     K = int(K)
     a_w, a_s = equivalent_alpha(kw, ks, alpha)
 

@@ -38,6 +38,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from .least_squares import CHUNK_ROWS, Accumulator
 
 __all__ = ["fit_dask"]
@@ -352,7 +353,7 @@ def fit_dask(ddf, response: str, factors=None, block: str | None = None, model: 
     names = column_names(terms)
     if bkeys and nb > 1:
         if not intercept:
-            raise ValueError("blocks need a model with an intercept (block effects sum to zero about it)")
+            raise ParameterError("block", "blocks need a model with an intercept (block effects sum to zero about it)")
         names = ["Intercept"] + [f"Block[{k}]" for k in bkeys[:-1]] + names[1:]
     p = len(names)
     if n < p:

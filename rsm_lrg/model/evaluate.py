@@ -543,18 +543,18 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     potential_terms = None
     if potential is not None:
         if potential not in POTENTIAL:
-            raise ValueError(f"potential must be one of {', '.join(POTENTIAL)} (got {potential!r})")
+            raise ParameterError("potential", f"potential must be one of {', '.join(POTENTIAL)} (got {potential!r})")
         n_all = n_model_terms(k, potential, cats)
         if n_all > MAX_ALIAS_COLUMNS:  # a map of thousands of columns helps nobody (and is slow)
             if not auto:
-                raise ValueError(f"potential {potential!r}: the alias map would have {n_all} columns, beyond the "
+                raise ParameterError("potential", f"potential {potential!r}: the alias map would have {n_all} columns, beyond the "
                                  f"{MAX_ALIAS_COLUMNS} shown; choose a smaller potential model")
             potential = None
         else:
             have = {t.name for t in terms}
             potential_terms = [t for t in model_terms(letters, potential, cats) if t.name not in have]
             if not potential_terms:
-                raise ValueError(f"potential {potential!r} adds no term to the {model} model; choose a bigger model")
+                raise ParameterError("potential", f"potential {potential!r} adds no term to the {model} model; choose a bigger model")
     nb, codes = 1, None
     if blocks is not None and len(set(np.asarray(blocks).tolist())) > 1:
         levels = sorted(set(np.asarray(blocks).tolist()))

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..factors import FactorSpace, quote_value
 from ..io import float_column
 from .data import prepare
@@ -169,7 +170,7 @@ class ModelInputs:
         names = column_names(terms)
         if self.bkeys and len(self.bkeys) > 1:  # self.nb > 1
             if not terms or terms[0].order != 0:
-                raise ValueError("blocks need a model with an intercept (block effects sum to zero about it)")
+                raise ParameterError("block", "blocks need a model with an intercept (block effects sum to zero about it)")
             return ["Intercept"] + [f"Block[{k}]" for k in self.bkeys[:-1]] + names[1:]
         return names
 

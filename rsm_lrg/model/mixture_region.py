@@ -259,14 +259,14 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
         cons = Constraints.parse([str(t) for t in texts], space, check_empty=False)
         for c in cons.items:
             if not c.is_linear:
-                raise ValueError(f"constraint {c.text!r} is not linear; the region of a mixture is cut by linear "
+                raise ParameterError("constraints", f"constraint {c.text!r} is not linear; the region of a mixture is cut by linear "
                                  "constraints on the components (and process factors)")
         Ac, bc = cons.linear_system(coded=True)
         if not (np.all(np.isfinite(Ac)) and np.all(np.isfinite(bc))):
-            raise ValueError("constraint: its coefficients are not finite")
+            raise ParameterError("constraints", "constraint: its coefficients are not finite")
         for i, c in enumerate(cons.items):
             if not np.any(Ac[i]):
-                raise ValueError(f"constraint {c.text!r} holds no factor")
+                raise ParameterError("constraints", f"constraint {c.text!r} holds no factor")
             G_rows.append(Ac[i])
             h.append(float(bc[i]))
             rows.append(c.text)
@@ -275,11 +275,12 @@ def mixture_region(space: FactorSpace, bounds: Mapping[str, Any] | Sequence[str]
     try:
         V = region.vertices()
     except ValueError as exc:  # named as the constraints' fault when there are any, else the bounds'
-        raise (ValueError(f"constraints and bounds leave no blend summing to the total {T:g} (the region is empty)")
+        raise (ParameterError("constraints",
+                              f"constraints and bounds leave no blend summing to the total {T:g} (the region is empty)")
                if texts
                else ParameterError("bound", str(exc))) from None
     free = np.linalg.matrix_rank(V[1:] - V[0], tol=1e-9) if len(V) > 1 else 0
     if free < k - 1:
-        raise ValueError(f"constraints and bounds leave the region no interior (dimension {free} where {k - 1} is needed): the bounds and "
+        raise ParameterError("constraints", f"constraints and bounds leave the region no interior (dimension {free} where {k - 1} is needed): the bounds and "
                          "constraints pin some blend or setting")
     return region

@@ -121,7 +121,7 @@ class Transform:
         if np.any(lost):  # the power is at fault, not the cell: name the option's value
             i = int(np.flatnonzero(lost)[0])
             how = "overflows" if not np.isfinite(z[i]) else "underflows"
-            raise ValueError(f"transform {self.label}: the transformed response {how} (column {column!r}, "
+            raise ParameterError("transform", f"transform {self.label}: the transformed response {how} (column {column!r}, "
                              f"row {i + 1}: {float(np.asarray(y, float)[i]):g} becomes {float(z[i]):g}); "
                              "choose a power nearer 0")
 
@@ -170,16 +170,16 @@ def parse_transform(spec: Any, constant: float = 0.0) -> Transform:
     if s.startswith("power"):
         rest = s[len("power"):].strip()
         if not rest.startswith("="):
-            raise ValueError(f"transform {spec!r}: a power needs a value, e.g. power=0.5")
+            raise ParameterError("transform", f"transform {spec!r}: a power needs a value, e.g. power=0.5")
         try:
             lam = float(rest[1:])
         except ValueError:
-            raise ValueError(f"transform {spec!r}: the power {rest[1:].strip()!r} is not a number") from None
+            raise ParameterError("transform", f"transform {spec!r}: the power {rest[1:].strip()!r} is not a number") from None
         if not math.isfinite(lam):
-            raise ValueError(f"transform {spec!r}: the power must be finite")
+            raise ParameterError("transform", f"transform {spec!r}: the power must be finite")
         if lam == 1.0:
             return Transform("none", 1.0, float(constant))
         if lam == 0.0:
             return Transform("log", 0.0, float(constant))
         return Transform("power", lam, float(constant))
-    raise ValueError(f"transform must be none, log, log10, sqrt, inverse or power=LAMBDA, not {spec!r}")
+    raise ParameterError("transform", f"transform must be none, log, log10, sqrt, inverse or power=LAMBDA, not {spec!r}")

@@ -53,7 +53,7 @@ def _check_reach(f, value: float) -> None:
     with np.errstate(over="ignore", invalid="ignore"):
         reach = abs((np.float64(value) - f.center) / f.half_range)
     if not (np.isfinite(reach) and reach <= MAX_CODED_REACH):
-        raise ValueError(f"setting for {f.name!r}: {value:g} lies too far outside the factor's range "
+        raise ParameterError("setting", f"setting for {f.name!r}: {value:g} lies too far outside the factor's range "
                          f"{f.low:g} .. {f.high:g} to predict at (more than {MAX_CODED_REACH:g} half-ranges "
                          "from its centre)")
 
@@ -254,7 +254,7 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
     if reference is not None:
         reference = float(reference)
         if reference == 0 or not math.isfinite(reference):
-            raise ValueError("reference must be a finite non-zero number")
+            raise ParameterError("reference", "reference must be a finite non-zero number")
         with np.errstate(over="ignore"):
             rel_ref = float(100.0 * ((np.float64(mean) - reference) / reference))
         if math.isinf(rel_ref):

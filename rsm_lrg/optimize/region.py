@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["constraint_texts", "parse_constraints", "region_starts", "local_minima", "feasible_only", "is_feasible"]
 
 #: Message when no candidate satisfies the constraints.
@@ -99,5 +101,5 @@ def feasible_only(candidates, cons) -> list:
         return list(candidates)
     kept = [c for c in candidates if is_feasible(c, cons)]
     if not kept:
-        raise ValueError(INFEASIBLE)
+        raise ParameterError("constraints", INFEASIBLE)
     return kept

@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from . import convection, dynamics, heat, hinge, motion, wear
 from .params import LRGParams
 
@@ -186,7 +187,7 @@ def leaf_yield_scan(params: LRGParams | None = None, *, levels: int = 5) -> Leaf
     """
     p = params or LRGParams()
     if not (isinstance(levels, int) and 2 <= levels <= 21):
-        raise ValueError(f"levels must be a whole number in [2, 21], got {levels!r}")
+        raise ParameterError("levels", f"levels must be a whole number in [2, 21], got {levels!r}")
     axes = [np.linspace(lo, hi, levels) for lo, hi in TABLE3_BOX.values()]
     y, s, v, a = (g.ravel() for g in np.meshgrid(*axes, indexing="ij"))
     beyond = np.zeros(y.size, dtype=bool)

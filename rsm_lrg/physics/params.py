@@ -420,22 +420,22 @@ def parse_assignments(items: Iterable[str]) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for item in items:
         if "=" not in item:
-            from ..io import quote_user_value
+            from ..io import InputError, quote_user_value
 
-            raise ValueError(f"--param {quote_user_value(item, 60)}: expected NAME=VALUE")
+            raise InputError(f"--param {quote_user_value(item, 60)}: expected NAME=VALUE")
         name, _, text = item.partition("=")
         name, text = name.strip(), text.strip()
         if name in out:  # the later one would silently win
-            from ..io import quote_user_value
+            from ..io import InputError, quote_user_value
 
-            raise ValueError(f"--param {quote_user_value(item, 60)}: {name} is given more than once")
+            raise InputError(f"--param {quote_user_value(item, 60)}: {name} is given more than once")
         try:
             _check_names({name: None})
             out[name] = _coerce(name, text)
         except ValueError as exc:
-            from ..io import quote_user_value
+            from ..io import InputError, quote_user_value
 
-            raise ValueError(f"--param {quote_user_value(item, 60)}: {exc}") from None
+            raise InputError(f"--param {quote_user_value(item, 60)}: {exc}") from None
     return out
 
 

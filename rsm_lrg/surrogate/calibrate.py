@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..present import format_g
 
 __all__ = [
@@ -327,10 +328,10 @@ def _specs(parameters, model: str = DEFAULT_MODEL) -> tuple:
         elif isinstance(p, str) and p in by_name:
             out.append(by_name[p])
         else:
-            raise ValueError(f"unknown calibration parameter {p!r}; one of {', '.join(by_name)} "
+            raise ParameterError("parameters", f"unknown calibration parameter {p!r}; one of {', '.join(by_name)} "
                              f"(or a ParameterSpec)")
     if not 1 <= len(out) <= 3:
-        raise ValueError(f"calibrate at most three parameters (got {len(out)})")
+        raise ParameterError("parameters", f"calibrate at most three parameters (got {len(out)})")
     names = [s.name for s in out]
     if len(set(names)) != len(names):
         twice = next(n for n in names if names.count(n) > 1)
@@ -350,7 +351,7 @@ def _specs(parameters, model: str = DEFAULT_MODEL) -> tuple:
         elif s.name in ("drive_friction_n", "drive_viscous_n_s_m"):
             plo, phi = 0.0, 1e4
         elif s.name not in param_names():
-            raise ValueError(f"unknown calibration parameter {s.name!r}")
+            raise ParameterError("parameters", f"unknown calibration parameter {s.name!r}")
         else:
             continue
         if s.lower < plo or s.upper > phi:
@@ -429,7 +430,7 @@ def calibrate(data, response: str = "tcr_c_per_min", *, parameters=None, params=
     if select is not None:
         models = [str(m) for m in select]
         if not models or len(set(models)) != len(models):
-            raise ValueError("select needs one or more different calibration models")
+            raise ParameterError("select", "select needs one or more different calibration models")
         parameters = None
     else:
         models = [model]

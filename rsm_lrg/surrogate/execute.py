@@ -17,6 +17,7 @@ from concurrent.futures import Executor, as_completed
 
 import numpy as np
 
+from ..errors import ParameterError
 from .design_input import EXTRA_OUTPUT_COLUMNS, OUTPUT_COLUMNS, read_design_arrays
 from .noise import resolve_seed
 from .progress import progress_bar
@@ -118,7 +119,7 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
 
     noise_sd = _check_nonneg("noise_sd", noise_sd)
     if noise_sd > MAX_NOISE_SD:
-        raise ValueError(f"noise_sd must be at most {MAX_NOISE_SD:g} degC (the SD of one thermocouple "
+        raise ParameterError("noise_sd", f"noise_sd must be at most {MAX_NOISE_SD:g} degC (the SD of one thermocouple "
                          f"reading), got {noise_sd:g}")
     duration_min = _check_nonneg("duration_min", duration_min)
     duration_min = check_duration(duration_min)
@@ -208,7 +209,7 @@ def _check_nonneg(name, x) -> float:
     except (TypeError, ValueError):
         raise TypeError(f"{name} must be a number, not {x!r}") from None
     if not math.isfinite(v) or v < 0:
-        raise ValueError(f"{name} must be a finite number >= 0, got {x!r}")
+        raise ParameterError(name, f"{name} must be a finite number >= 0, got {x!r}")
     return v
 
 

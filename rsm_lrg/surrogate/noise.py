@@ -29,6 +29,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["seed_key", "philox4x64", "uniforms", "reading_noise", "resolve_seed"]
 
 _M0 = np.uint64(0xD2E7470EE14C6C93)
@@ -55,7 +57,7 @@ def resolve_seed(seed) -> int:
         raise TypeError(f"seed must be an integer, a numpy Generator or None, not {seed!r}")
     if isinstance(seed, (int, np.integer)):
         if seed < 0:
-            raise ValueError(f"seed must be a non-negative integer, got {seed}")
+            raise ParameterError("seed", f"seed must be a non-negative integer, got {seed}")
         return int(seed)
     raise TypeError(f"seed must be an integer, a numpy Generator or None, not {type(seed).__name__}")
 

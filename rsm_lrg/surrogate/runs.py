@@ -35,6 +35,8 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = ["evaluate_rows", "SURROGATE_PARAMETERS", "thermal_unit_response", "MAX_DURATION_MIN",
            "check_duration"]
 
@@ -50,9 +52,9 @@ def check_duration(value, name: str = "duration_min") -> float:
     try:
         v = float(value)
     except (TypeError, ValueError, OverflowError):
-        raise ValueError(f"{name} must be a number of minutes, got {value!r}") from None
+        raise ParameterError(name, f"{name} must be a number of minutes, got {value!r}") from None
     if isinstance(value, bool) or not (1.0 <= v <= MAX_DURATION_MIN):
-        raise ValueError(f"{name} must lie in [1, {MAX_DURATION_MIN:g}] min (a test has at least two readings "
+        raise ParameterError(name, f"{name} must lie in [1, {MAX_DURATION_MIN:g}] min (a test has at least two readings "
                          f"one minute apart and lasts at most {MAX_DURATION_MIN / 1440:.0f} days), got {v:g}")
     return v
 

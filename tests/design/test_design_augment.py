@@ -6,6 +6,7 @@ import pytest
 from rsm_lrg.design import full_factorial
 from rsm_lrg.design.augment import augment
 from rsm_lrg.design.screening import alias_matrix, fractional_factorial
+from rsm_lrg.errors import ParameterError
 from rsm_lrg.terms import design_matrix, model_terms
 
 CUBE = ["a=0:1", "b=10:20", "c=-1:1"]
@@ -68,8 +69,9 @@ def test_foldover_clears_main_effects_of_2fi_aliases():
 
 def test_augment_errors():
     d = _base()
-    with pytest.raises(ValueError, match="fold"):
+    with pytest.raises(ParameterError, match="'Z' is not a factor of the design") as info:
         augment(d, "foldover", fold=["Z"])
+    assert info.value.parameter == "fold"
     with pytest.raises(ValueError, match="method"):
         augment(d, "magic")
     bbd = full_factorial(CUBE, levels=3, randomize=False)

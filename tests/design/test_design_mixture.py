@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 import rsm_lrg
 from rsm_lrg.design import MixtureDesign, extreme_vertices, read_design, simplex_centroid, simplex_lattice
 from rsm_lrg.design.mixture import lattice_size
+from rsm_lrg.errors import ParameterError
 
 DATA = Path(__file__).parent / "data"
 FLARE = {"magnesium": (0.40, 0.60), "sodium_nitrate": (0.10, 0.50), "strontium_nitrate": (0.10, 0.50),
@@ -291,8 +292,9 @@ def test_errors_name_the_component():
         simplex_centroid(["a"])
     with pytest.raises(ValueError, match="degree must be at least 1"):
         simplex_lattice(["a", "b"], 0)
-    with pytest.raises(ValueError, match="runs:"):
+    with pytest.raises(ParameterError, match="lattice has 92378 points") as info:
         simplex_lattice([f"x{i}" for i in range(10)], 10)
+    assert info.value.parameter == "runs"
 
 
 def test_run_order_seed_and_csv(tmp_path):

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 
 from rsm_lrg.design import Design, criterion_value, read_design, split_plot
 from rsm_lrg.design.split_plot import gls_criteria, gls_information, plot_sizes
+from rsm_lrg.errors import ParameterError
 from rsm_lrg.terms import model_terms
 
 FOUR = ["T=150:250", "P=1:3", "v=0.1:0.5", "a=1:5"]
@@ -181,21 +182,23 @@ def test_property_whole_plots_and_criterion(k_hard, plots, per, eta, seed):
     assert d.options["criterion_value"] == pytest.approx(np.linalg.det(M) ** (1 / 4) / d.n_runs, rel=1e-9)
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(hard_to_change=["Q"]), "hard_to_change: 'Q' is not among"),
-    (dict(hard_to_change=[]), "hard_to_change: name at least one"),
-    (dict(whole_plots=5), "whole_plots: 5 whole plots cannot estimate"),
-    (dict(runs=14), "runs: 14 runs cannot estimate the 15"),
-    (dict(runs=32, whole_plots=33), "runs: 32 runs cannot fill 33"),
-    (dict(variance_ratio=-1.0), "variance_ratio"),
-    (dict(variance_ratio=math.inf), "variance_ratio"),
-    (dict(variance_ratio=math.nan), "variance_ratio"),
+@pytest.mark.parametrize("kwargs, parameter, match", [
+    (dict(hard_to_change=["Q"]), "hard_to_change", "^'Q' is not among"),
+    (dict(hard_to_change=[]), "hard_to_change", "^name at least one"),
+    (dict(whole_plots=5), "whole_plots", "^5 whole plots cannot estimate"),
+    (dict(runs=14), "runs", "^14 runs cannot estimate the 15"),
+    (dict(runs=32, whole_plots=33), "runs", "^32 runs cannot fill 33"),
+    (dict(variance_ratio=-1.0), "variance_ratio", "finite number >= 0"),
+    (dict(variance_ratio=math.inf), "variance_ratio", "finite number >= 0"),
+    (dict(variance_ratio=math.nan), "variance_ratio", "finite number >= 0"),
 ])
-def test_errors(kwargs, match):
+def test_errors(kwargs, parameter, match):
+    """A bad argument is a ParameterError naming it (the CLI shows its option in front)."""
     args = dict(factors=FOUR, hard_to_change=["T", "P"], whole_plots=8, runs=32, seed=1, starts=1)
     args.update(kwargs)
-    with pytest.raises(ValueError, match=match):
+    with pytest.raises(ParameterError, match=match) as info:
         split_plot(**args)
+    assert info.value.parameter == parameter
 
 
 def test_design_rejects_bad_whole_plot_labels():

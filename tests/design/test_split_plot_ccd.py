@@ -13,6 +13,7 @@ from _design_helpers import quadratic_columns
 import rsm_lrg
 from rsm_lrg.design import read_design
 from rsm_lrg.design.split_plot import equivalent_alpha, split_plot_ccd
+from rsm_lrg.errors import ParameterError
 
 
 def _factors(kw: int, ks: int) -> tuple[list[str], list[str]]:
@@ -117,13 +118,15 @@ def test_reml_fit_equals_ols_fit_on_the_design(tmp_path):
     assert names[:2] == hard
 
 
-@pytest.mark.parametrize("kw, match", [
-    ({"hard_to_change": []}, "name at least one"),
-    ({"hard_to_change": ["zz"]}, "'zz' is not among the factors"),
-    ({"hard_to_change": ["w0", "s0"]}, "1 to 5 hard-to-change and 1 to 5 other factors"),
-    ({"hard_to_change": ["w0"], "alpha": 1.0}, r"must exceed sqrt\(1\)"),
-    ({"hard_to_change": ["w0"], "center_whole_plots": 0}, "center_whole_plots"),
+@pytest.mark.parametrize("kw, parameter, match", [
+    ({"hard_to_change": []}, "hard_to_change", "name at least one"),
+    ({"hard_to_change": ["zz"]}, "hard_to_change", "'zz' is not among the factors"),
+    ({"hard_to_change": ["w0", "s0"]}, "hard_to_change", "1 to 5 hard-to-change and 1 to 5 other factors"),
+    ({"hard_to_change": ["w0"], "alpha": 1.0}, "alpha", r"must exceed sqrt\(1\)"),
+    ({"hard_to_change": ["w0"], "center_whole_plots": 0}, "center_whole_plots", "must be a whole number >= 1"),
 ])
-def test_refusals(kw, match):
-    with pytest.raises(ValueError, match=match):
+def test_refusals(kw, parameter, match):
+    """A bad argument is a ParameterError naming it (the CLI puts the option in front)."""
+    with pytest.raises(ParameterError, match=match) as info:
         split_plot_ccd(["w0=0:1", "s0=0:1"], **kw)
+    assert info.value.parameter == parameter

@@ -13,6 +13,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from ...errors import ParameterError
 from .fv import FVSystem, time_to_fraction
 from .geometry import GuideGeometry, voxelise
 from .network import ThermalNetwork
@@ -161,7 +162,7 @@ def thermal_summary(
     if not (math.isfinite(horizon_h) and horizon_h > 0):
         raise ValueError(f"horizon_h must be positive [h], got {horizon_h!r}.")
     if not (math.isfinite(duration_min) and 0 < duration_min <= horizon_h * 60):
-        raise ValueError(f"duration_min must be in (0, horizon_h*60] min, got {duration_min!r}.")
+        raise ParameterError("duration_min", f"duration_min must be in (0, horizon_h*60] min, got {duration_min!r}.")
     geometry = GuideGeometry().with_(**geometry_overrides)
     h_rail = h_side_w_m2k if h_rail_w_m2k is None else float(h_rail_w_m2k)
     model = voxelise(geometry, h_side_w_m2k, h_front_w_m2k, h_rail_w_m2k=h_rail,
