@@ -1,4 +1,5 @@
-"""The ``rsm-lrg`` command line: argument parsing only.
+"""The ``rsm-lrg`` command line: argument parsing, and the contract every command keeps (option
+checks, atomic outputs, signals, exit status); the work is the library's.
 
 Each sub-command lives in a module ``rsm_lrg/cli/cmd_<name>.py`` that defines
 

@@ -1,4 +1,8 @@
-"""Small helpers shared by the command modules (no heavy imports here)."""
+"""Pieces shared by the command modules (no heavy imports here), by concern: argparse option
+types and builders (finite numbers, factor and bound specs, per-response options and groups),
+input reading and the naming of the file, column or option at fault in an error, the model
+options as a specification (:func:`model_spec`, :func:`random_effect`), output paths and the
+outputs a command plans, and the one-line summaries and notes a command prints."""
 
 from __future__ import annotations
 
@@ -641,7 +645,7 @@ PARAMETER_OPTIONS = {
     "alpha_out": "--alpha-out", "alpha": "--alpha", "confidence": "--confidence", "bound": "--bound",
     "goal": "--goal", "radius": "--radius", "step": "--step", "setting": "--at", "weight": "--weight",
     "importance": "--importance", "limits": "--limits", "criterion": "--criterion", "effect_sd": "--effect",
-    "region": "--region", "observed": "--observed", "parameters": "--parameter",
+    "region": "--region", "observed": "--observed", "held": "--bound", "parameters": "--parameter",
     "constraints": "--constraint",
 }
 

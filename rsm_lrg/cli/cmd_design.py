@@ -1,4 +1,7 @@
-"""``rsm-lrg design``: write a design CSV (Box-Behnken, central composite, full factorial)."""
+"""``rsm-lrg design``: write a design CSV, one sub-command per kind: Box-Behnken, central
+composite, full factorial, optimal (D, I, A; on a box, a constrained region or a mixture),
+augment, definitive screening, fractional factorial, Plackett-Burman, Latin hypercube, Sobol,
+split-plot, split-plot CCD, simplex-lattice, simplex-centroid and extreme vertices."""
 
 from __future__ import annotations
 

@@ -110,15 +110,15 @@ def run(args: argparse.Namespace) -> int:
             letters = [f.letter for f in first.space.factors]
             if args.model == "full":
                 terms = _full_terms(letters)
-                n = len(first.y)
+                n = first.n
                 if n < len(terms) + 1:
                     raise ValueError(f"{n} runs cannot fit the full model (every interaction of {len(letters)} "
                                      f"factors: {len(terms)} effects and the intercept); the default --model "
                                      "saturated fits the effects these runs estimate and names their aliases")
             else:
                 n_blocks = len(first.block_levels or {}) or 1
-                found = largest_estimable_model(first.coded[letters].to_numpy(dtype=float), letters,
-                                                max_terms=len(first.y) - n_blocks)
+                found = largest_estimable_model(first.coded_runs()[letters].to_numpy(dtype=float), letters,
+                                                max_terms=first.n - n_blocks)
                 terms, aliases = list(found.terms), found.aliases
         result = fit(data, args.response, factors=args.factor, block=args.block, model=model, terms=terms,
                      intercept=not args.no_intercept)

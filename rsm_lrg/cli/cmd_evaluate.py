@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-from typing import Any
 
 from ._common import (
     about_file,
@@ -101,46 +100,8 @@ def _load(path, exclude, args):
     return Design(space, "custom", coded, np.arange(1, n + 1), np.arange(1, n + 1), whole_plots=plots)
 
 
-def _gls(design: Any, args: argparse.Namespace) -> dict | None:
-    """The GLS criteria of a split-plot design (:func:`rsm_lrg.design.split_plot.gls_criteria`)
-    for the evaluated model, or None for a design without whole plots."""
-    if design.whole_plots is None:
-        return None
-    from ..design.split_plot import gls_criteria
-
-    if design.blocks is not None:
-        raise ValueError("a design with both blocks and whole plots is not evaluated under GLS here; "
-                         "drop the block column or the whole-plot column")
-    space = design.factors
-    terms = None
-    if args.terms is not None:
-        from ..model.inputs import chosen_terms
-        from ..model.spec import ModelSpec
-
-        intercept = not args.no_intercept
-        terms = list(chosen_terms(list(ModelSpec.build(args.model, terms=args.terms, intercept=intercept).terms or ()),
-                                  space.letters, space.categoric, intercept=intercept))
-    eta = 1.0 if args.variance_ratio is None else args.variance_ratio
-    return gls_criteria(design, terms=terms, model=args.model, variance_ratio=eta)
-
-
-def gls_lines(g: dict) -> list[str]:
-    """The GLS criteria of a split-plot design for people (:func:`_gls`)."""
-    from ..present import format_g
-
-    lo, hi = g["plot_sizes"]
-    size = f"{lo} runs each" if lo == hi else f"{lo} to {hi} runs"
-    eta = format_g(g["variance_ratio"], 6, trim=True)
-    return ["", f"Split-plot design: {g['whole_plots']} whole plots ({size}). The figures above treat the runs as "
-                "independent (OLS, X'X);",
-            f"under generalised least squares with V = I + η J per whole plot, η = σ²_wp/σ² = {eta} (--variance-ratio):",
-            f"  D-efficiency det(X'V⁻¹X)^(1/p)/n {100 * g['d_efficiency']:.1f} %, A-efficiency "
-            f"{100 * g['a_efficiency']:.1f} %, I (average prediction variance over the cube) "
-            f"{format_g(g['i_average'])} σ²"]
-
-
 def run(args: argparse.Namespace) -> int:
-    from ..io import InputError, dump_json, write_output
+    from ..io import dump_json, write_output
     from ..model.evaluate import DesignComparison, DesignEvaluation, compare_designs, evaluate_design
 
     fmt = plot_format(args.plot)
@@ -149,15 +110,11 @@ def run(args: argparse.Namespace) -> int:
     if len(set(paths)) != len(paths):
         raise ValueError("each DESIGN.csv may be given once")
     designs = []
-    gls = []
     for path in paths:
         with about_file(path):
             designs.append(_load(path, args.exclude, args))
-            gls.append(_gls(designs[-1], args))
-    if args.variance_ratio is not None and all(g is None for g in gls):
-        raise InputError("--variance-ratio: the design has no whole plots (no whole_plot column; name the "
-                         "whole-plot column with --whole-plot COL)")
-    opts = dict(region=args.region, alpha=args.alpha, effect_sd=args.effect, potential=potential)
+    opts = dict(region=args.region, alpha=args.alpha, effect_sd=args.effect, potential=potential,
+                variance_ratio=args.variance_ratio)
     result: DesignEvaluation | DesignComparison
     if len(paths) == 1:
         with about_file(paths[0]):
@@ -174,9 +131,7 @@ def run(args: argparse.Namespace) -> int:
 
         figure = figure_bytes(_fds_figure(evs, paths), fmt)
         write_output(args.plot, figure, force=args.force)
-    payload = result.to_dict()
-    if any(g is not None for g in gls):  # the whole-plot structure: GLS criteria beside the OLS ones
-        payload["split_plot"] = gls[0] if len(paths) == 1 else dict(zip(paths, gls))
+    payload = result.to_dict()  # with the GLS criteria of a split-plot design beside the OLS ones
     if args.json and args.json != "-":
         dump_json(payload, args.json, force=args.force)
     if args.json == "-":
@@ -184,12 +139,6 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(f"Design: {paths[0]}" if len(paths) == 1 else "Designs: " + ", ".join(paths))
         print(result.summary(), end="")
-        for path, g in zip(paths, gls):
-            if g is not None:
-                lines = gls_lines(g)
-                if len(paths) > 1:
-                    lines[1] = f"{path}: " + lines[1]
-                print("\n".join(lines))
     return 0
 
 

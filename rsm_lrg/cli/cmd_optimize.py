@@ -18,8 +18,8 @@ from ._common import (
     add_random_effect_options,
     add_reader_options,
     random_effect,
-    random_effect_columns,
 )
+from .robust_optimize import add_robust_options, robust_requested, run_robust
 
 NAME = "optimize"
 HELP = "fit, then find the minimum, maximum or a target inside the factor box"
@@ -60,11 +60,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_block_option(parser, "optimum for the average block")
     add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
+    add_robust_options(parser)
     add_json(parser)
     add_force(parser)
 
 
 def run(args: argparse.Namespace) -> int:
+    if robust_requested(args):  # --interval, --factor-sd or --goal poe (rsm_lrg/cli/robust_optimize.py)
+        return run_robust(args)
     from ..model import fit
     from ..optimize import optimize, parse_goal
     from ._common import (
@@ -114,10 +117,8 @@ def _constraint_errors(constraints):
 
 def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
-    from ..model import fit
     from ..optimize.desirability import optimize_desirability, parse_response_goal
     from ._common import (
-        about_response,
         check_distinct_responses,
         model_spec,
         per_response_values,
@@ -137,30 +138,11 @@ def _multi(args) -> int:
              for r, g, w, i, lim in zip(args.response, goals, weights, imps, limits)]
     data = read_input(args)
     with about_file(args.data):
-        from ..factors import COLUMNS_LEFT_OUT, choose_factors
+        from .responses import fit_responses
 
-        # one factor space for every response (no response is a factor of another); a mixture's
-        # components (and process factors) are named, each fit codes them on its own rows
-        choice = None if args.component else choose_factors(
-            data, args.factor, exclude=list(args.response) + ([args.block] if args.block else [])
-            + random_effect_columns(args))
-        notes = list(choice.notes) if choice is not None else []
-        fits = {}
-        models = {}
-        for i, r in enumerate(args.response):
-            opts = response_options(args, i)
-            with about_response(r, n > 1):
-                if choice is None:
-                    fits[r] = fit(data, r, factors=args.factor, block=args.block, model=model_spec(opts),
-                                  components=args.component, **random_effect(args))
-                else:
-                    fits[r] = fit(data, r, factors=choice.space, block=args.block, model=model_spec(opts),
-                                  **random_effect(args))
-            models[r] = fits[r].label
-            # the choice's notes cover the columns; each fit adds its runs left out
-            fit_notes = fits[r].input_notes
-            notes += [f"{r}: {n}" for n in fit_notes
-                      if (choice is None or n not in choice.notes) and getattr(n, "kind", "") != COLUMNS_LEFT_OUT]
+        fits, notes = fit_responses(args, data, args.response,
+                                    [model_spec(response_options(args, i)) for i in range(n)])
+        models = {r: f.label for r, f in fits.items()}
         with _constraint_errors(args.constraint):
             best = optimize_desirability(fits, specs, bounds=args.bound, constraints=args.constraint)
     print_notes(notes)

@@ -16,8 +16,6 @@ from ._common import (
     add_random_effect_options,
     add_reader_options,
     print_notes,
-    random_effect,
-    random_effect_columns,
 )
 
 NAME = "report"
@@ -85,7 +83,6 @@ def run(args: argparse.Namespace) -> int:
 
     from ..io import InputError, check_output
     from ._common import (
-        about_response,
         check_distinct_responses,
         model_spec,
         per_response_values,
@@ -115,26 +112,11 @@ def run(args: argparse.Namespace) -> int:
         except ImportError as exc:
             raise InputError(str(exc)) from None
     specs = [model_spec(response_options(args, i)) for i in range(n)]  # bad model options named first
-    from ..model import fit
-
     data = read_input(args)
     with about_file(args.data):
-        from ..factors import COLUMNS_LEFT_OUT, choose_factors
+        from .responses import fit_responses
 
-        factors = args.factor
-        notes = []
-        if n > 1 and not args.component:  # one factor space for every response (no response is a factor of another)
-            choice = choose_factors(data, args.factor, exclude=responses + ([args.block] if args.block else [])
-                                    + random_effect_columns(args))
-            factors, notes = choice.space, list(choice.notes)
-        fits = {}
-        for i, r in enumerate(responses):
-            with about_response(r, n > 1):
-                fits[r] = fit(data, r, factors=factors, block=args.block, model=specs[i], components=args.component,
-                              **random_effect(args))
-            fit_notes = fits[r].input_notes
-            notes += [(f"{r}: {x}" if n > 1 else x) for x in fit_notes
-                      if x not in notes and (n == 1 or getattr(x, "kind", "") != COLUMNS_LEFT_OUT)]
+        fits, notes = fit_responses(args, data, responses, specs)
         # the optima are found here (the optimise layer); the report only presents them
         from ..optimize.study import report_optima
 

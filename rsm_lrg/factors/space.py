@@ -12,6 +12,7 @@ import numpy as np
 
 from ..io import float_column, is_empty_cell
 from .columns import infer_items
+from .component import MixtureComponent
 from .factor import CategoricFactor, Factor, letters_for, level_text
 from .spec import spec_with_levels
 from .values import name_list, quote_value
@@ -151,6 +152,17 @@ class FactorSpace:
     @property
     def has_categoric(self) -> bool:
         return any(f.kind == "categoric" for f in self.factors)
+
+    @property
+    def components(self) -> list:
+        """The mixture components (:class:`~rsm_lrg.factors.component.MixtureComponent`), first
+        in the space; empty when the region is a box (no mixture)."""
+        return [f for f in self.factors if isinstance(f, MixtureComponent)]
+
+    @property
+    def has_components(self) -> bool:
+        """Whether the region is (part) a simplex: the space holds mixture components."""
+        return bool(self.components)
 
     def level_combinations(self) -> list[dict]:
         """Every combination of the categoric factors' levels, ``[{name: level}, ...]``

@@ -122,11 +122,11 @@ def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None
 def f_test(ms: float, df: int, ms_den: float, df_den: int) -> tuple[float, float]:
     """``F = ms / ms_den`` and its upper tail ``P(F(df, df_den) > F)`` (``scipy.special.fdtrc``);
     NaN where a mean square or the degrees of freedom are missing."""
-    from . import statistics as special  # the t and F tails without importing SciPy
+    from .statistics import fdtrc  # the t and F tails without importing SciPy
 
     if df > 0 and df_den > 0 and ms_den > 0 and ms == ms:
         f = ms / ms_den
-        return float(f), float(special.fdtrc(df, df_den, f))
+        return float(f), float(fdtrc(df, df_den, f))
     return np.nan, np.nan
 
 

@@ -353,7 +353,7 @@ def diagnostics(result, *, alpha: float = 0.05, boxcox_rule: str = "likelihood")
     table["flagged"] = table[["flag_outlier", "flag_leverage", "flag_cooks", "flag_dffits"]].any(axis=1)
     note = ""
     bc = None
-    mixed = getattr(result, "mixed", None)
+    mixed = result.mixed
     if mixed is not None:  # REML: both residuals; the leverages and studentized ones are the whitened model's
         at = list(table.columns).index("residual") + 1
         table.insert(at, "marginal_residual", mixed.marginal_residuals)

@@ -154,6 +154,7 @@ class DesignEvaluation:
     alias_matrix: Any = field(default=None, repr=False)
     correlation: Any = field(default=None, repr=False)
     fds_curve: Any = field(default=None, repr=False)
+    split_plot: dict | None = None
 
     @property
     def estimable(self) -> bool:
@@ -177,7 +178,8 @@ class DesignEvaluation:
                 "i_average": f(self.i_average), "spv_average": f(self.n * self.i_average),
                 "potential": self.potential,
                 "alias_matrix": _frame_dict(self.alias_matrix, f),
-                "correlation": _frame_dict(self.correlation, f)}
+                "correlation": _frame_dict(self.correlation, f),
+                **({"split_plot": self.split_plot} if self.split_plot is not None else {})}
 
     def not_estimable_message(self) -> str:
         """One sentence naming the aliased terms (empty when the model is estimable)."""
@@ -219,7 +221,27 @@ class DesignEvaluation:
                     f"G {100 * self.g_efficiency:.1f} %; I (average prediction variance over the {self.region}) "
                     f"{format_g(self.i_average)} σ², average SPV {format_g(self.n * self.i_average)}"]
         out += self._alias_lines()
+        out += self.split_plot_lines()
         return "\n".join(out) + "\n"
+
+    def split_plot_lines(self, name: str | None = None) -> list[str]:
+        """The GLS criteria of a split-plot design for people (none without whole plots);
+        ``name`` (a design's name) begins the first sentence."""
+        from ..present import format_g
+
+        g = self.split_plot
+        if g is None:
+            return []
+        lo, hi = g["plot_sizes"]
+        size = f"{lo} runs each" if lo == hi else f"{lo} to {hi} runs"
+        eta = format_g(g["variance_ratio"], 6, trim=True)
+        return ["", (f"{name}: " if name else "") + f"Split-plot design: {g['whole_plots']} whole plots ({size}). The "
+                "figures above treat the runs as independent (OLS, X'X);",
+                f"under generalised least squares with V = I + η J per whole plot, η = σ²_wp/σ² = {eta} "
+                "(--variance-ratio):",
+                f"  D-efficiency det(X'V⁻¹X)^(1/p)/n {100 * g['d_efficiency']:.1f} %, A-efficiency "
+                f"{100 * g['a_efficiency']:.1f} %, I (average prediction variance over the cube) "
+                f"{format_g(g['i_average'])} σ²"]
 
     def _alias_lines(self, tol: float = 1e-9, most: int = 12) -> list[str]:
         """The alias matrix's non-zero entries per model term and the largest correlations."""
@@ -424,7 +446,8 @@ def _max_variance_ball(E: np.ndarray, Ct: np.ndarray, k: int, radius: float, sam
 
 def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", alpha: float = 0.05,
                     effect_sd: float = 2.0, n_region: int = 4096, seed: int = 0,
-                    potential: str | None = "auto", terms=None, intercept: bool = True) -> DesignEvaluation:
+                    potential: str | None = "auto", terms=None, intercept: bool = True,
+                    variance_ratio: float | None = None) -> DesignEvaluation:
     """Evaluate a design for a model before any data (see the module docstring).
 
     ``terms`` (a list of term names, or ``"A B AB A^2"``) evaluates that model instead of
@@ -449,10 +472,16 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         Model whose extra terms are the potential terms of the alias map (``"auto"``: the
         next bigger model, :data:`POTENTIAL`, when the map has at most
         :data:`MAX_ALIAS_COLUMNS` columns; ``None``: no alias map).
+    variance_ratio : float, optional
+        For a split-plot design (a :class:`~rsm_lrg.design.Design` with whole plots):
+        ``η = σ²_wp / σ²`` of the GLS criteria (default 1); the evaluation's ``split_plot``
+        holds them (:func:`rsm_lrg.design.split_plot.gls_criteria`) beside the OLS figures.
+        Refused for a design without whole plots.
     """
     import pandas as pd
     from scipy import special
 
+    from ..design.split_plot import gls_criteria
     from ..factors import letters_for
     from .anova import pure_error
     from .least_squares import least_squares
@@ -478,6 +507,14 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         if coded.ndim != 2:
             raise ValueError("coded settings must be an (n, k) array")
         letters = letters_for(coded.shape[1])
+    plots = getattr(design, "whole_plots", None)
+    if variance_ratio is not None and plots is None:
+        raise ParameterError("variance_ratio", "the design has no whole plots (no whole_plot column; name the "
+                                               "whole-plot column with --whole-plot COL)")
+    if plots is not None and blocks is not None:
+        raise ValueError("a design with both blocks and whole plots is not evaluated under GLS here; "
+                         "drop the block column or the whole-plot column")
+    given_terms = terms is not None
     if region not in ("cube", "sphere"):
         raise ParameterError("region", f"region must be 'cube' or 'sphere', not {region!r}")
     if not 0 < alpha < 1:
@@ -619,6 +656,9 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         rank=rank, n_distinct=n_distinct,
         d_efficiency=d_eff, a_efficiency=a_eff, i_average=i_avg,
         potential=potential, alias_matrix=alias, correlation=corr, fds_curve=fds_curve,
+        split_plot=None if plots is None else gls_criteria(
+            design, terms=list(terms) if given_terms else None, model=model,
+            variance_ratio=1.0 if variance_ratio is None else variance_ratio),
     )
 
 
@@ -694,9 +734,12 @@ class DesignComparison:
             r = {"design": str(name)}
             r.update({c: (int(v) if c in ("runs", "parameters") else f(v)) for c, v in row.items()})
             rows.append(r)
-        return {"model": self.evaluations[0].model, "region": self.evaluations[0].region,
-                "designs": list(self.names), "criteria": rows,
-                "evaluations": [e.to_dict() for e in self.evaluations]}
+        out = {"model": self.evaluations[0].model, "region": self.evaluations[0].region,
+               "designs": list(self.names), "criteria": rows,
+               "evaluations": [e.to_dict() for e in self.evaluations]}
+        if any(e.split_plot is not None for e in self.evaluations):  # GLS criteria per design
+            out["split_plot"] = {n: e.split_plot for n, e in zip(self.names, self.evaluations)}
+        return out
 
     def summary(self) -> str:
         from ..present import format_g, text_table
@@ -718,6 +761,8 @@ class DesignComparison:
         rows = [[f"{x:.1f}"] + [format_g(e.fds["variance"].iat[i], 4) for e in self.evaluations]
                 for i, x in enumerate(fr)]
         out.append(text_table(["Fraction"] + [str(n) for n in self.names], rows))
+        for n, e in zip(self.names, self.evaluations):
+            out += e.split_plot_lines(str(n))
         return "\n".join(out) + "\n"
 
     def __str__(self) -> str:
@@ -760,12 +805,17 @@ def compare_designs(designs, model: str = "quadratic", *, names=None, region: st
         return np.asarray(d).shape[1], []
 
     k0 = shape(designs[0])
+    eta = kwargs.pop("variance_ratio", None)
+    with_plots = [getattr(d, "whole_plots", None) is not None for d in designs]
+    if eta is not None and not any(with_plots):
+        raise ParameterError("variance_ratio", "the designs have no whole plots (no whole_plot column; name the "
+                                               "whole-plot column with --whole-plot COL)")
     evs = []
-    for name, d in zip(names, designs):
+    for name, d, plots in zip(names, designs, with_plots):
         if shape(d) != k0:
             raise ValueError(f"{name}: has {shape(d)[0]} factors (categoric {shape(d)[1] or 'none'}), {names[0]} has "
                              f"{k0[0]} (categoric {k0[1] or 'none'}); compare designs for the same factors")
-        e = evaluate_design(d, model, region=region, **kwargs)
+        e = evaluate_design(d, model, region=region, variance_ratio=eta if plots else None, **kwargs)
         if not e.estimable:
             raise ValueError(f"{name}: {e.not_estimable_message()}")
         evs.append(e)

@@ -25,24 +25,34 @@ for the average block (block effect 0).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .actual import actual_coefficients, actual_equations
 from .anova import pure_error
 from .inputs import ModelInputs, chosen_terms, is_dask, model_inputs
 from .least_squares import CHUNK_ROWS, factorise
 from .result import COEF_COLUMNS, FitResult, assemble
-from .spec import ModelSpec, SpecError
+from .spec import FactorsArg, ModelSpec, ReduceArg, SpecError, TermsArg
 from .terms import check_model_size, model_terms
+
+if TYPE_CHECKING:
+    import dask.dataframe as dd
+    import numpy as np
+    import pandas as pd
+
+    from ..factors import FactorSpace
+    from .reduce import Reduction
+    from .transform import Transform
 
 __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual_equations", "COEF_COLUMNS",
            "model_inputs", "ModelInputs", "ModelSpec"]
 
 
-def fit(data: Any, response: str, factors: Any = None, block: str | None = None, model: Any = "quadratic", *,
-        terms: Any = None, intercept: bool = True, transform: Any = None, transform_constant: float = 0.0,
-        reduce: Any = None, chunk_rows: int = CHUNK_ROWS, components: Any = None, whole_plot: str | None = None,
-        random_block: str | None = None, hard_to_change: Any = None) -> FitResult:
+def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = None, block: str | None = None,
+        model: str | ModelSpec = "quadratic", *, terms: TermsArg = None, intercept: bool = True,
+        transform: str | Transform | None = None, transform_constant: float = 0.0, reduce: ReduceArg = None,
+        chunk_rows: int = CHUNK_ROWS, components: Sequence[str] | None = None, whole_plot: str | None = None,
+        random_block: str | None = None, hard_to_change: str | Sequence[str] | None = None) -> FitResult:
     """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5).
 
     Parameters
@@ -162,11 +172,13 @@ def fit(data: Any, response: str, factors: Any = None, block: str | None = None,
     return fit_inputs(inp, response, spec, chunk_rows=chunk_rows, reduction=reduction)
 
 
-def _fit_mixture(data: Any, response: str, components: Any, factors: Any, block: str | None, spec: ModelSpec,
+def _fit_mixture(data: pd.DataFrame, response: str, components: Sequence[str] | None, factors: FactorsArg,
+                 block: str | None, spec: ModelSpec,
                  chunk_rows: int) -> FitResult:
     """A Scheffé mixture fit (:mod:`rsm_lrg.model.mixture`)."""
     from ..factors import FactorSpace, MixtureComponent
-    from .mixture import MIXTURE_ORDERS, mixture_space
+    from .inputs import mixture_inputs
+    from .mixture import MIXTURE_ORDERS
 
     if not spec.mixture:
         raise SpecError("model", f"mixture components need a Scheffé model ({', '.join(MIXTURE_ORDERS)}), "
@@ -179,10 +191,12 @@ def _fit_mixture(data: Any, response: str, components: Any, factors: Any, block:
                                  "--component NAME)")
     else:
         given = None
-    if block is not None:
-        raise SpecError("block", "blocks in a mixture model are not available yet")
-    space = given if given is not None else mixture_space(data, components, response, process=factors)
-    inp = model_inputs(data, response, space, None, transform=spec.transform)
+    if given is not None:  # the space of a fitted mixture model
+        if block is not None:
+            raise SpecError("block", "blocks in a mixture model are not available yet")
+        inp = model_inputs(data, response, given, None, transform=spec.transform)
+    else:
+        inp = mixture_inputs(data, response, components or (), factors, block, transform=spec.transform)
     reduction = None
     if spec.reduce is not None:  # the linear blending terms always stay
         from dataclasses import replace
@@ -218,7 +232,7 @@ def _spec_terms(inp: ModelInputs, spec: ModelSpec, block_df: int) -> tuple:
 
 
 def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: int = CHUNK_ROWS,
-               reduction: Any = None) -> FitResult:
+               reduction: Reduction | None = None) -> FitResult:
     """The fit of checked inputs (:func:`~rsm_lrg.model.inputs.model_inputs`) to ``spec``'s
     terms (its reduction, if any, already applied)."""
     space, y, hint, nb, n = inp.space, inp.y, inp.hint, inp.nb, inp.n
@@ -250,7 +264,7 @@ def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: 
                     omitted_data=prep.omitted_data, reduction=reduction)
 
 
-def _mixture_terms(spec: ModelSpec, space: Any, n: int, settings: Any, hint: str) -> tuple:
+def _mixture_terms(spec: ModelSpec, space: FactorSpace, n: int, settings: np.ndarray, hint: str) -> tuple:
     """The Scheffé terms of a mixture spec, checked: products of distinct components, every
     linear blending term, no more terms than distinct blends."""
     import numpy as np
@@ -276,7 +290,7 @@ def _mixture_terms(spec: ModelSpec, space: Any, n: int, settings: Any, hint: str
     return terms
 
 
-def _random_column(data: Any, response: str, whole_plot: str | None, random_block: str | None,
+def _random_column(data: pd.DataFrame, response: str, whole_plot: str | None, random_block: str | None,
                    block: str | None) -> tuple[str, str, str]:
     """``(column, kind, what)`` of the random intercept, checked on every row (exists, not the
     response or the block, no empty cell)."""
@@ -308,7 +322,7 @@ def _random_column(data: Any, response: str, whole_plot: str | None, random_bloc
     return col, kind, what
 
 
-def _hard_names(hard_to_change: Any, whole_plot: str | None) -> list[str] | None:
+def _hard_names(hard_to_change: str | Sequence[str] | None, whole_plot: str | None) -> list[str] | None:
     """The ``hard_to_change`` names as a list (None when not given), checked: only with a
     whole-plot column, no name twice."""
     if hard_to_change is None:
@@ -337,7 +351,7 @@ def _row_ranges(rows: Sequence[int], most: int = 4) -> str:
     return ("row " if len(rows) == 1 else "rows ") + ", ".join(text) + (", ..." if len(spans) > most else "")
 
 
-def _check_hard_to_change(data: Any, col: str, hard: list[str] | None, factor_names: Sequence[str],
+def _check_hard_to_change(data: pd.DataFrame, col: str, hard: list[str] | None, factor_names: Sequence[str],
                           response: str) -> str:
     """Check that each hard-to-change factor is constant within every whole plot (ValueError
     naming the factor, the whole plot and its rows); return the note saying which factors are
@@ -378,8 +392,9 @@ def _check_hard_to_change(data: Any, col: str, hard: list[str] | None, factor_na
             if const else "No factor is constant within every whole plot (every factor varies inside some whole plot).")
 
 
-def _fit_mixed(data: Any, response: str, factors: Any, block: str | None, spec: ModelSpec, whole_plot: str | None,
-               random_block: str | None, components: Any, hard: list[str] | None = None) -> FitResult:
+def _fit_mixed(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg, block: str | None,
+               spec: ModelSpec, whole_plot: str | None, random_block: str | None,
+               components: Sequence[str] | None, hard: list[str] | None = None) -> FitResult:
     """A REML fit with one random intercept (:mod:`rsm_lrg.model.mixed`), the reduction (if
     asked) by Kenward–Roger p-values."""
     import pandas as pd
@@ -414,7 +429,7 @@ def _fit_mixed(data: Any, response: str, factors: Any, block: str | None, spec: 
 
 
 def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: list, col: str, kind: str, what: str,
-                      reduction: Any = None) -> FitResult:
+                      reduction: Reduction | None = None) -> FitResult:
     """The REML fit of checked inputs to ``spec``'s terms (estimability checked first)."""
     import numpy as np
 
@@ -463,7 +478,8 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
                     omitted_data=prep.omitted_data, reduction=reduction, mixed=mm)
 
 
-def fit_transformed(data: Any, response: str, transform: Any, *, constant: float = 0.0, **fit_kwargs: Any) -> FitResult:
+def fit_transformed(data: pd.DataFrame | dd.DataFrame, response: str, transform: str | Transform, *,
+                    constant: float = 0.0, **fit_kwargs: Any) -> FitResult:
     """Fit ``g(response + constant)``: the same as ``fit(data, response, transform=transform,
     transform_constant=constant, ...)`` (kept for older code; returns a :class:`FitResult`)."""
     return fit(data, response, transform=transform, transform_constant=constant, **fit_kwargs)

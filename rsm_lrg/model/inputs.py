@@ -220,6 +220,22 @@ def is_dask(data) -> bool:
     return type(data).__module__.split(".")[0] == "dask" and hasattr(data, "map_partitions")
 
 
+def mixture_inputs(data: Any, response: str, components: Sequence[str] | str, factors: Any = None,
+                   block: str | None = None, transform: Transform | None = None) -> ModelInputs:
+    """The checked inputs of a Scheffé mixture fit (:func:`rsm_lrg.fit` with ``components``
+    and the mixture fit summary read them so): the components as L-pseudo components and the
+    process factors ``factors`` (:func:`rsm_lrg.model.mixture.mixture_space`), then
+    :func:`model_inputs`. Blocks are refused (``ParameterError`` naming ``block``)."""
+    from ..errors import ParameterError
+    from .mixture import mixture_space
+
+    if block is not None:
+        raise ParameterError("block", "blocks in a mixture model are not available yet")
+    comps = [components] if isinstance(components, str) else list(components)
+    space = mixture_space(data, comps, response, process=factors)
+    return model_inputs(data, response, space, None, transform=transform)
+
+
 def model_inputs(data: Any, response: str, factors: Any = None, block: str | None = None,
                  transform: Transform | None = None, *, origin: bool = False) -> ModelInputs:
     """Check the data and code the factors as every fit does (see :func:`rsm_lrg.model.fit.fit`

@@ -45,6 +45,7 @@ from functools import cached_property
 import numpy as np
 
 from ..present import format_g
+from .prediction import IntervalForm
 
 __all__ = ["Regression", "Accumulator", "PassSums", "least_squares", "factorise", "partial_ss", "ALIAS_TOL", "CHUNK_ROWS"]
 
@@ -404,6 +405,23 @@ class Regression:
     def sigma2(self) -> float:
         """Residual mean square (NaN without residual degrees of freedom) [response units^2]."""
         return self.ss_res / self.df_resid if self.df_resid > 0 else math.nan
+
+    def interval_form(self, columns: np.ndarray) -> IntervalForm:
+        """The prediction contract's :class:`~rsm_lrg.model.prediction.IntervalForm` of the
+        model columns ``columns`` (OLS): ``C σ²`` for ``se_fit`` and the mean, ``σ²`` for a new
+        run, ``n - p`` df (NaN without residual df)."""
+        cov = np.asarray(self.cov_unscaled, dtype=float)[np.ix_(columns, columns)] * self.sigma2
+        return IntervalForm(cov_se=cov, cov_mean=cov, s2_residual=self.sigma2,
+                            df=float(self.df_resid) if self.df_resid > 0 else math.nan)
+
+    def tests(self, names: Sequence[str], groups: Sequence[Sequence[int]]) -> list:
+        """Separate F tests of a GLS fit's terms: none for least squares, whose ANOVA holds them."""
+        return []
+
+    @property
+    def random_effect(self) -> dict:
+        """The random effect that refits the model (:meth:`rsm_lrg.model.mixed.MixedModel.random_effect`): none."""
+        return {}
 
     @property
     def std_errors(self) -> np.ndarray:

@@ -42,8 +42,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import statistics as special
 from .prediction import IntervalForm
+from .statistics import fdtrc, stdtrit
 
 if TYPE_CHECKING:
     from .least_squares import Regression
@@ -349,7 +349,7 @@ def kr_test(parts: _KRParts, L: np.ndarray, beta: np.ndarray) -> tuple[float, fl
     Lb = L @ beta
     wald = float(Lb @ np.linalg.solve(L @ parts.phi_a @ L.T, Lb))
     F = float(scale * wald / q)
-    p = float(special.fdtrc(q, df2, F)) if df2 > 0 and math.isfinite(df2) and F >= 0 else math.nan
+    p = float(fdtrc(q, df2, F)) if df2 > 0 and math.isfinite(df2) and F >= 0 else math.nan
     return F, float(df2), p, q
 
 
@@ -434,15 +434,15 @@ class MixedModel:
         and ``W``."""
         ix = np.ix_(columns, columns)
         phi = self.parts.phi
-        return IntervalForm(cov_se=phi[ix], cov_mean=self.parts.phi_a[ix], s2_new=self.sigma2_group + self.sigma2,
-                            df=math.nan, kr_phi_p_phi=tuple((phi @ P @ phi)[ix] for P in self.parts.P),
+        return IntervalForm(cov_se=phi[ix], cov_mean=self.parts.phi_a[ix], s2_residual=self.sigma2,
+                            s2_group=self.sigma2_group, df=math.nan, kr_phi_p_phi=tuple((phi @ P @ phi)[ix] for P in self.parts.P),
                             kr_w=self.parts.W)
 
     @property
     def variance_components(self) -> dict:
         """``{kind: VarianceComponent, "residual": VarianceComponent}`` with Wald intervals on
         the log scale (:data:`CI_METHOD`; none for a component at zero)."""
-        z = float(special.stdtrit(math.inf, 0.975))
+        z = float(stdtrit(math.inf, 0.975))
         W = self.parts.W
         out = {}
         for i, (nm, v) in enumerate(zip([self.kind, "residual"], [self.sigma2_group, self.sigma2])):
@@ -450,6 +450,22 @@ class MixedModel:
             lo, hi = (v * math.exp(-z * se_log), v * math.exp(z * se_log)) if math.isfinite(se_log) else (math.nan,) * 2
             out[nm] = VarianceComponent(nm, float(v), float(lo), float(hi))
         return out
+
+    @property
+    def fitted(self) -> np.ndarray:
+        """The fitted values a REML fit reports: the conditional ``X b + Z u`` (nlme's default)."""
+        return self.conditional_fitted
+
+    @property
+    def residuals(self) -> np.ndarray:
+        """The residuals a REML fit reports: the conditional ``y - X b - Z u``."""
+        return self.conditional_residuals
+
+    @property
+    def random_effect(self) -> dict:
+        """``{"whole_plot": COL}`` or ``{"random_block": COL}``: the keyword :func:`rsm_lrg.fit`
+        takes to refit the model."""
+        return {"whole_plot" if self.kind == "whole_plot" else "random_block": self.column}
 
     @property
     def marginal_fitted(self) -> np.ndarray:

@@ -30,7 +30,7 @@ from ..io import cell_error
 from .terms import MIXTURE_ORDERS, Term, scheffe_names, term_name
 
 __all__ = ["MIXTURE_MODELS", "MIXTURE_ORDERS", "SUM_RTOL", "scheffe_names", "mixture_space", "check_mixture_terms",
-           "pseudo_to_actual", "actual_covariance", "mixture_sums"]
+           "pseudo_to_actual", "mixture_sums"]
 
 #: Every mixture model name a command accepts.
 MIXTURE_MODELS = tuple(MIXTURE_ORDERS)
@@ -276,17 +276,6 @@ def _scheffe_basis(m: tuple[int, ...], T: float) -> dict[tuple[tuple[int, ...], 
             v[r] += 1
             add(_scheffe_basis(tuple(v), T), -1.0)
     return out
-
-
-def actual_covariance(terms: Sequence[Term], space: FactorSpace, cov: np.ndarray) -> tuple[list[str], np.ndarray]:
-    """The real-proportion term names and ``M C M'``, with ``M`` the matrix of the linear map
-    :func:`pseudo_to_actual` (column j: the expansion of the j-th coded term alone) and
-    ``C`` the unscaled covariance of the coded coefficients (times σ²: the covariance of the
-    real-proportion coefficients)."""
-    cols = [pseudo_to_actual({t.name: (1.0 if t is s else 0.0) for t in terms}, terms, space) for s in terms]
-    names = list(dict.fromkeys(k for c in cols for k in c))
-    M = np.array([[c.get(k, 0.0) for c in cols] for k in names])
-    return names, M @ np.asarray(cov, dtype=float) @ M.T
 
 
 def mixture_sums(ls: Any, terms: Sequence[Term]) -> dict[str, Any]:

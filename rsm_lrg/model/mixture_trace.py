@@ -184,7 +184,7 @@ def mixture_trace(fit: Any, reference: Mapping[str, float] | None = None, direct
     """
     from .terms import design_gradient
 
-    if not getattr(fit, "mixture", False):
+    if not fit.space.has_components:
         raise ValueError("a trace needs a mixture fit (components and a Scheffé model)")
     direction = str(direction).lower()
     if direction not in DIRECTIONS:

@@ -56,9 +56,12 @@ class IntervalForm:
     cov_mean : (p, p) ndarray
         Covariance used for the confidence interval of the mean: ``C σ²`` or Kenward–Roger's
         ``Φ_A`` [model-scale units²].
-    s2_new : float
-        Variance of one new run beyond the mean's: ``σ²`` (OLS) or ``σ²_g + σ²`` (a new run
-        in a new whole plot or block) [model-scale units²].
+    s2_residual : float
+        Variance of a run about its group's mean, ``σ²`` [model-scale units²].
+    s2_group : float
+        Variance of a new whole plot's or block's effect, ``σ²_g`` (0 for OLS; REML: may be
+        estimated at 0) [model-scale units²]. A new run varies by ``s2_new = σ²_g + σ²``
+        beyond the mean.
     df : float
         Degrees of freedom of the t quantile when they do not depend on ``x`` (OLS:
         ``n - p``; NaN without residual df); ignored when ``kr_w`` is given.
@@ -70,10 +73,16 @@ class IntervalForm:
 
     cov_se: np.ndarray = field(repr=False)
     cov_mean: np.ndarray = field(repr=False)
-    s2_new: float
+    s2_residual: float
     df: float
+    s2_group: float = 0.0
     kr_phi_p_phi: tuple = field(default=(), repr=False)
     kr_w: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def s2_new(self) -> float:
+        """Variance of one new run beyond the mean's, ``σ²_g + σ²`` [model-scale units²]."""
+        return self.s2_group + self.s2_residual
 
     @property
     def kenward_roger(self) -> bool:
@@ -103,6 +112,13 @@ class IntervalForm:
                 df = np.where(A2 > 0, 2.0 / A2, math.inf)
             df = np.where(se2 > 0, df, math.nan)
         return np.sqrt(np.maximum(se2, 0.0)), var_mean, var_mean + self.s2_new, df
+
+    def mean_of_new_runs(self, X: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """``(variance, df)`` of the mean of ``n`` new runs at each row of ``X``, made in one new
+        whole plot or block, about the prediction: ``var_mean + σ²_g + σ²/n`` (the
+        confirmation interval of :func:`rsm_lrg.optimize.confirm.confirm`) [units², -]."""
+        _, var_mean, _, df = self.at(X)
+        return var_mean + self.s2_group + self.s2_residual / int(n), df
 
     def to_dict(self) -> dict:
         """Plain JSON-safe data for a page's script (``cov_se``, ``cov_mean``, ``s2_new``,

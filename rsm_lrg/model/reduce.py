@@ -76,7 +76,7 @@ def _term_p_values(ls, groups: Sequence[Sequence[int]]) -> list[float]:
     """Partial-F p-value of each group of columns of a fit (a term: its columns jointly,
     ``F = (SS_S / |S|) / MS_res`` with ``SS_S = b_S' (C_SS)^-1 b_S`` as in the ANOVA;
     ``fdtrc``)."""
-    from . import statistics as special  # the t and F tails without importing SciPy
+    from .statistics import fdtrc  # the t and F tails without importing SciPy
 
     df = ls.df_resid
     if df <= 0:
@@ -85,7 +85,7 @@ def _term_p_values(ls, groups: Sequence[Sequence[int]]) -> list[float]:
     for g in groups:
         with np.errstate(divide="ignore", invalid="ignore"):
             f = ls.partial_ss(list(g)) / len(g) / ls.sigma2
-        out.append(float(special.fdtrc(len(g), df, f)))
+        out.append(float(fdtrc(len(g), df, f)))
     return out
 
 

@@ -17,7 +17,7 @@ import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -35,7 +35,15 @@ from .prediction import IntervalForm
 from .spec import ModelSpec, ReduceSpec
 from .statistics import FitStatistics, fit_statistics
 from .terms import Term, column_names, design_matrix, n_columns, term_columns
+from .tolerance import TOLERANCE_PAIRS, add_tolerance_interval
 from .transform import Transform
+
+if TYPE_CHECKING:
+    import dask.dataframe as dd
+    import pandas as pd
+
+    from .mixed import MixedModel
+    from .reduce import Reduction
 
 __all__ = ["FitResult", "assemble", "COEF_COLUMNS"]
 
@@ -112,17 +120,17 @@ class FitResult:
     least_squares: Regression = field(repr=False)
     raw_pure_error: PureError = field(repr=False)
     column_names: tuple = field(repr=False)
-    data: Any = field(repr=False)
-    coded: Any = field(repr=False)
-    y: Any = field(repr=False)
-    y_response: Any = field(default=None, repr=False)
+    data: pd.DataFrame | dd.DataFrame = field(repr=False)
+    coded: pd.DataFrame | None = field(repr=False)
+    y: np.ndarray | None = field(repr=False)
+    y_response: np.ndarray | None = field(default=None, repr=False)
     block_keys: tuple | None = field(default=None, repr=False)
     block_levels: dict | None = field(default=None, repr=False)
     input_notes: tuple = field(default=(), repr=False)
     omitted_rows: tuple = field(default=(), repr=False)
-    omitted_data: Any = field(default=None, repr=False)
-    reduction: Any = field(default=None, repr=False)
-    mixed: Any = field(default=None, repr=False)
+    omitted_data: pd.DataFrame | None = field(default=None, repr=False)
+    reduction: Reduction | None = field(default=None, repr=False)
+    mixed: MixedModel | None = field(default=None, repr=False)
 
     # -- what the regression core says ------------------------------------------------
     @property
@@ -138,21 +146,24 @@ class FitResult:
         return len(self.column_names) - n_columns(self.terms) + 1
 
     @property
+    def estimation(self) -> Regression | MixedModel:
+        """The engine's part of the fit, which answers for the kind: the regression core (least
+        squares) or the mixed model (REML). Fitted values, residuals, the interval form, the
+        separate tests and the random effect come from it."""
+        return self.least_squares if self.mixed is None else self.mixed
+
+    @property
     def fitted(self) -> np.ndarray | None:
         """ŷ on the model's scale (None for a Dask fit, which keeps no per-run arrays); for a
         REML fit the conditional ``X b + Z u`` (BLUPs u; nlme's default), so that
         ``y = fitted + residuals``; the marginal ``X b`` is ``mixed.marginal_fitted``."""
-        if self.mixed is not None:
-            return self.mixed.conditional_fitted
-        return self.least_squares.fitted
+        return self.estimation.fitted
 
     @property
     def residuals(self) -> np.ndarray | None:
         """e = y - ŷ on the model's scale (None for a Dask fit); for a REML fit the
         conditional residuals ``y - X b - Z u`` (the estimated within-group errors)."""
-        if self.mixed is not None:
-            return self.mixed.conditional_residuals
-        return self.least_squares.residuals
+        return self.estimation.residuals
 
     @property
     def hat(self) -> np.ndarray | None:
@@ -185,12 +196,9 @@ class FitResult:
     def tests(self) -> list:
         """The Kenward–Roger F tests of the model terms of a REML fit
         (:class:`~rsm_lrg.model.mixed.KRTest`, one per term, no intercept); empty for OLS."""
-        if self.mixed is None:
-            return []
-        lead = 1 if self.intercept else 0
-        groups = term_columns(self.model_terms, lead)
+        groups = term_columns(self.model_terms, 1 if self.intercept else 0)
         tidx = self.term_index
-        return self.mixed.tests([t.name for t in self.model_terms], [tidx[g] for g in groups])
+        return self.estimation.tests([t.name for t in self.model_terms], [tidx[g] for g in groups])
 
     @cached_property
     def _sums(self) -> dict[str, Any]:
@@ -209,7 +217,7 @@ class FitResult:
                 "groups": groups, "term_ss": [ls.partial_ss(tidx[g]) for g in groups]}
 
     @cached_property
-    def anova(self) -> Any:
+    def anova(self) -> pd.DataFrame:
         """The Design-Expert ANOVA (Table 5 layout): columns ``source, sum_sq, df, mean_sq, f, p``.
 
         For a REML fit, one row per term with the Kenward–Roger test (``df`` its numerator df,
@@ -245,7 +253,7 @@ class FitResult:
         ls, nb = self.least_squares, self.n_blocks
         notes = []
         if self.mixed is not None:
-            return tuple(self.input_notes) + self._mixed_notes()
+            return tuple(self.input_notes) + self._mixed_notes(self.mixed)
         if self.raw_pure_error.df == 0:
             notes.append("No lack-of-fit test: no factor setting is replicated"
                          + (" (once the block effects are removed)" if nb > 1 else "") + ", so there is no pure error.")
@@ -258,10 +266,9 @@ class FitResult:
                          "and standard errors measure round-off, not noise.")
         return tuple(self.input_notes) + tuple(notes)
 
-    def _mixed_notes(self) -> tuple:
+    def _mixed_notes(self, mm: MixedModel) -> tuple:
         from .mixed import CI_METHOD
 
-        mm = self.mixed
         what = "whole plot" if mm.kind == "whole_plot" else "block"
         notes = [f"REML fit with a random intercept per {what} ({mm.column!r}, {mm.n_groups} {what}s): coefficients "
                  "and standard errors are generalised least squares at the REML variance ratio; F tests use the "
@@ -318,75 +325,69 @@ class FitResult:
         if sol is not None:
             blocks = set(self.column_names[1:self.n_blocks])
             return {k: float(v) for k, v in sol.coefficients.items() if k not in blocks}
-        coded = dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist()))
-        if self.mixture:  # the Scheffé polynomial in real proportions (exact change of basis)
+        return self._to_actual(dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist())))
+
+    def _to_actual(self, coded: Mapping[str, float]) -> dict:
+        """``{monomial: coefficient}`` in actual units of coded coefficients ``{column: value}``:
+        the exact, linear change of basis (L-pseudo components to real proportions for a
+        Scheffé model, coded to actual factors otherwise)."""
+        if self.mixture:
             from .mixture import pseudo_to_actual
 
-            return pseudo_to_actual(coded, self.terms, self.space)
-        return actual_coefficients(coded, self.terms, self.space)
+            return pseudo_to_actual(dict(coded), self.terms, self.space)
+        return actual_coefficients(dict(coded), self.terms, self.space)
 
     @property
     def actual_std_errors(self) -> dict | None:
-        """``{term: standard error in actual units}`` (None for a Dask fit)."""
-        if self.mixture:  # the change of basis is linear in the coefficients: cov = M C M' sigma²
-            from .mixture import actual_covariance
-
-            names, cov = actual_covariance(self.terms, self.space, self.cov_unscaled[np.ix_(self.term_index,
-                                                                                           self.term_index)])
-            return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None) * self.sigma2).tolist()))
-        if self.mixed is not None:  # linear in the coefficients: cov = M Phi M' (M from unit coefficient vectors)
-            idx = self.term_index
-            cols = column_names(self.terms)
-            basis = [actual_coefficients(dict(zip(cols, e)), self.terms, self.space)
-                     for e in np.eye(len(cols)).tolist()]
-            names = list(basis[0])
-            M = np.array([[b.get(nm, 0.0) for b in basis] for nm in names])
-            cov = M @ self.mixed.cov[np.ix_(idx, idx)] @ M.T
-            return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None)).tolist()))
+        """``{term: standard error in actual units}``: those of the actual-units solve (OLS), else
+        the change of basis ``M`` (linear in the coefficients) applied to the coefficients'
+        covariance, ``M cov M'`` (mixture, REML; None for a Dask fit, whose actual-units
+        coefficients are not solved)."""
         sol = self.actual_solution
-        if sol is None:
+        if sol is not None:
+            blocks = set(self.column_names[1:self.n_blocks])
+            return {k: float(v) for k, v in sol.std_errors.items() if k not in blocks}
+        if self.coded is None:
             return None
-        blocks = set(self.column_names[1:self.n_blocks])
-        return {k: float(v) for k, v in sol.std_errors.items() if k not in blocks}
+        cols = column_names(self.terms)
+        basis = [self._to_actual(dict(zip(cols, e))) for e in np.eye(len(cols)).tolist()]
+        names = list(dict.fromkeys(k for b in basis for k in b))
+        M = np.array([[b.get(nm, 0.0) for b in basis] for nm in names])
+        cov = M @ self.interval_form.cov_se @ M.T
+        return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None)).tolist()))
 
     @cached_property
-    def coefficients(self) -> Any:
+    def coefficients(self) -> pd.DataFrame:
         """Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``."""
         import pandas as pd
 
-        from . import statistics as special  # the t and F tails without importing SciPy
+        from .statistics import stdtr, stdtrit  # the t and F tails without importing SciPy
 
         ls, tidx = self.least_squares, self.term_index
-        b_t, se, df_res = ls.params[tidx], ls.std_errors[tidx], ls.df_resid
+        b_t, se = ls.params[tidx], ls.std_errors[tidx]
+        # the one-df tests of the coefficients from the interval form: OLS t = b / se on n - p df;
+        # REML t = b / se_A (Kenward-Roger's adjusted covariance) on each coefficient's KR den df
+        form = self.interval_form
+        _, var_t, _, df = form.at(np.eye(len(tidx)))
+        se_t = np.sqrt(var_t) if form.kenward_roger else se
         with np.errstate(divide="ignore", invalid="ignore"):
-            tval = b_t / se
-        if self.mixed is not None:  # one-df Kenward-Roger tests: t = b / se_A, KR den df
-            _, var_a, _, kdf = self.interval_form.at(np.eye(len(tidx)))
-            se_a = np.sqrt(var_a)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                tval = b_t / se_a
-                pval = 2.0 * special.stdtr(kdf, -np.abs(tval))
-                tqv = special.stdtrit(kdf, 0.975)
-            cols = column_names(self.terms)
-            return pd.DataFrame(
-                {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tqv * se_a,
-                 "ci_high": b_t + tqv * se_a, "vif": np.full(b_t.size, np.nan),
-                 "actual": [self.actual_coefficients.get(nm, 0.0) for nm in cols], "den_df": kdf},
-                index=pd.Index(cols, name="term"))
-        if df_res > 0:
-            pval = 2.0 * special.stdtr(df_res, -np.abs(tval))
-            tq = float(special.stdtrit(df_res, 0.975))
-        else:
-            pval, tq = np.full_like(b_t, np.nan), np.nan
+            tval = b_t / se_t
+            pval = 2.0 * stdtr(df, -np.abs(tval))
+            tq = stdtrit(df, 0.975)
         # VIF (Design-Expert's: the diagonal of the inverse correlation matrix) needs the
-        # intercept to centre the columns; without one it is not defined (NaN)
-        vif = np.r_[np.nan, ls.vif(tidx[1:])] if self.intercept else np.full(b_t.size, np.nan)
+        # intercept to centre the columns; without one it is not defined (NaN); it is a property
+        # of X'X, so none for a GLS fit
+        vif = (np.r_[np.nan, ls.vif(tidx[1:])] if self.intercept and not form.kenward_roger
+               else np.full(b_t.size, np.nan))
         cols = column_names(self.terms)
         actual = self.actual_coefficients
-        return pd.DataFrame(
-            {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se,
-             "ci_high": b_t + tq * se, "vif": vif, "actual": [actual.get(nm, 0.0) for nm in cols]},
+        frame = pd.DataFrame(
+            {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se_t,
+             "ci_high": b_t + tq * se_t, "vif": vif, "actual": [actual.get(nm, 0.0) for nm in cols]},
             index=pd.Index(cols, name="term"))
+        if form.kenward_roger:
+            frame["den_df"] = df
+        return frame
 
     @cached_property
     def term_vif(self) -> dict:
@@ -618,26 +619,31 @@ class FitResult:
         Xt = design_matrix(coded, self.terms)
         return Xt @ self.coefficients["coded"].to_numpy()
 
-    def predict(self, points: Any, interval: str | None = None, alpha: float = 0.05, *, coded: bool = False) -> Any:
+    def predict(self, points: Any, interval: str | None = None, alpha: float = 0.05, *,
+                coded: bool = False, tolerance: float | None = None) -> pd.DataFrame:
         """Predicted response in response units, optionally with a confidence or prediction
         interval; under a transform the prediction and the interval ends are back-transformed
         (ends ordered; ``predicted_transformed`` and ``se_fit`` stay on the model's scale).
-        See :meth:`predict_model` for the parameters.
+        See :meth:`predict_model` for the parameters. ``tolerance=P`` adds the tolerance
+        interval for a proportion P of runs with confidence ``1 - alpha``
+        (:mod:`rsm_lrg.model.tolerance`: ``ti_low``, ``ti_high`` and the one-sided bounds).
         """
         out = self.predict_model(points, interval=interval, alpha=alpha, coded=coded)
+        if tolerance is not None:
+            out = add_tolerance_interval(self, out, points, tolerance, alpha, coded=coded)
         tr = self.transform
         if tr.identity:
             return out
         out["predicted_transformed"] = out["predicted"]
         out["predicted"] = tr.inverse(out["predicted"].to_numpy())
-        for lo, hi in (("ci_low", "ci_high"), ("pi_low", "pi_high")):
+        for lo, hi in (("ci_low", "ci_high"), ("pi_low", "pi_high"), *TOLERANCE_PAIRS):
             if lo in out:
                 _, a, b = tr.back(out["predicted_transformed"].to_numpy(), out[lo].to_numpy(), out[hi].to_numpy())
                 out[lo], out[hi] = a, b
         return out
 
     def predict_model(self, points: Any, interval: str | None = None, alpha: float = 0.05, *,
-                      coded: bool = False) -> Any:
+                      coded: bool = False) -> pd.DataFrame:
         """Prediction on the model's scale (the transformed response under a transform),
         optionally with a confidence or prediction interval.
 
@@ -660,7 +666,7 @@ class FitResult:
         """
         import pandas as pd
 
-        from . import statistics as special  # the t and F tails without importing SciPy
+        from .statistics import stdtrit  # the t and F tails without importing SciPy
 
         if interval not in (None, "confidence", "prediction", "both"):
             raise ValueError(f"interval must be None, 'confidence', 'prediction' or 'both', not {interval!r}")
@@ -684,7 +690,7 @@ class FitResult:
         out = pd.DataFrame({"predicted": pred, "se_fit": se}, index=index)
         if interval:
             with np.errstate(invalid="ignore"):
-                tq = special.stdtrit(df, 1 - alpha / 2)
+                tq = stdtrit(df, 1 - alpha / 2)
             if interval in ("confidence", "both"):
                 out["ci_low"] = pred - tq * np.sqrt(var_mean)
                 out["ci_high"] = pred + tq * np.sqrt(var_mean)
@@ -693,18 +699,32 @@ class FitResult:
                 out["pi_high"] = pred + tq * np.sqrt(var_new)
         return out
 
+    def coded_runs(self) -> pd.DataFrame:
+        """The coded settings of the runs fitted (columns = letters); ValueError for a fit of a
+        Dask frame, which keeps no per-run data."""
+        if self.coded is None:
+            raise ValueError("a fit of a Dask DataFrame keeps no per-run data (fit an in-memory table)")
+        return self.coded
+
+    @cached_property
+    def run_extent(self) -> dict[str, float]:
+        """``{letter: largest |coded setting| over the runs}`` of the numeric factors, at least 1
+        (the box; a CCD's axial runs reach beyond it); 1 for a Dask fit, which keeps no runs."""
+        out = {}
+        for f in self.space.factors:
+            if f.kind == "categoric":
+                continue
+            col = np.zeros(0) if self.coded is None else np.abs(self.coded[f.letter].to_numpy(dtype=float))
+            out[f.letter] = max(1.0, float(np.max(col, initial=0.0)))
+        return out
+
     @cached_property
     def interval_form(self) -> IntervalForm:
         """How the uncertainty of a prediction follows from the model row (the prediction
         contract, :class:`~rsm_lrg.model.prediction.IntervalForm`): OLS ``C σ²`` and ``n - p``
         df; REML the GLS ``Φ``, Kenward–Roger's ``Φ_A`` and a den df per point, a new run in a
         new whole plot or block."""
-        idx = self.term_index
-        if self.mixed is not None:
-            return self.mixed.interval_form(idx)
-        cov = np.asarray(self.cov_unscaled, dtype=float)[np.ix_(idx, idx)] * self.sigma2
-        return IntervalForm(cov_se=cov, cov_mean=cov, s2_new=self.sigma2,
-                            df=float(self.df_resid) if self.df_resid > 0 else math.nan)
+        return self.estimation.interval_form(self.term_index)
 
     def kr_mean(self, points: Any, *, coded: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """For a REML fit: ``(x' Phi_A x, Kenward-Roger den df)`` of the predicted mean at each
@@ -753,9 +773,7 @@ class FitResult:
     def random_effect(self) -> dict:
         """``{"whole_plot": COL}`` or ``{"random_block": COL}`` of a REML fit (the keyword
         :func:`rsm_lrg.fit` takes to refit it), else empty."""
-        if self.mixed is None:
-            return {}
-        return {"whole_plot" if self.mixed.kind == "whole_plot" else "random_block": self.mixed.column}
+        return self.estimation.random_effect
 
     # -- faces -------------------------------------------------------------------------
     def summary(self) -> str:
@@ -828,7 +846,7 @@ class FitResult:
         if self.block is not None:
             out["block_effects"] = {k: _f(v) for k, v in (self.block_effects or {}).items()}
         if self.mixed is not None:
-            out.update(self._mixed_dict())
+            out.update(self._mixed_dict(self.mixed))
         if self.mixed is not None:
             # a REML fit has no sums of squares: its "anova" is the Kenward-Roger tests in the
             # ANOVA's shape (one row per term, unused numbers null, den_df added), as "tests"
@@ -836,9 +854,9 @@ class FitResult:
                              "f": t["f"], "p": t["p"], "den_df": t["den_df"]} for t in out["tests"]]
         else:
             out["anova"] = [
-                {"source": r.source, "sum_sq": _f(r.sum_sq), "df": int(r.df), "mean_sq": _f(r.mean_sq), "f": _f(r.f),
-                 "p": _f(r.p)}
-                for r in self.anova.itertuples(index=False)
+                {"source": r["source"], "sum_sq": _f(r["sum_sq"]), "df": int(r["df"]), "mean_sq": _f(r["mean_sq"]),
+                 "f": _f(r["f"]), "p": _f(r["p"])}
+                for r in self.anova.to_dict(orient="records")
             ]
         out["statistics"] = {k: _f(v) for k, v in self.statistics.to_dict().items()}
         out["stationary_point"] = self.stationary_point.to_dict()
@@ -854,10 +872,9 @@ class FitResult:
             out["reduction"] = self.reduction.to_dict()
         return out
 
-    def _mixed_dict(self) -> dict:
+    def _mixed_dict(self, mm: MixedModel) -> dict:
         from .mixed import CI_METHOD
 
-        mm = self.mixed
         key = "whole_plot" if mm.kind == "whole_plot" else "random_block"
         vc = {k: {kk: _f(vv) for kk, vv in c.to_dict().items()} for k, c in mm.variance_components.items()}
         return {
@@ -906,9 +923,10 @@ def _f(v):
 
 def assemble(*, spec: ModelSpec, response: str, block: str | None, space: FactorSpace, terms: Sequence[Term],
              col_names: Sequence[str], ls: Regression, pe: PureError, bkeys: list | None, blevels: dict | None,
-             data: Any, coded: Any, y: Any, y_response: Any = None, input_notes: Sequence = (),
-             omitted_rows: Sequence[int] = (), omitted_data: Any = None, reduction: Any = None,
-             mixed: Any = None) -> FitResult:
+             data: pd.DataFrame | dd.DataFrame, coded: pd.DataFrame | None, y: np.ndarray | None,
+             y_response: np.ndarray | None = None, input_notes: Sequence = (), omitted_rows: Sequence[int] = (),
+             omitted_data: pd.DataFrame | None = None, reduction: Reduction | None = None,
+             mixed: MixedModel | None = None) -> FitResult:
     """The :class:`FitResult` of a factorised fit (both passes done) and its pure error; every
     statistic is derived from them on first use.
 

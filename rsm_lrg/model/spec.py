@@ -18,16 +18,26 @@ reduced by hierarchical backward elimination (:class:`ReduceSpec`,
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, TypeAlias
 
 from ..errors import ParameterError
+from ..factors import FactorSpace
 from ..terms import MODELS
 from .mixture import MIXTURE_MODELS, MIXTURE_ORDERS
 from .transform import Transform, parse_transform
 
-__all__ = ["ModelSpec", "ReduceSpec", "SpecError"]
+__all__ = ["ModelSpec", "ReduceSpec", "SpecError", "FactorsArg", "TermsArg", "ReduceArg"]
+
+#: The factors of a fit: inferred (None), names or ``"NAME=LOW:HIGH"`` / ``"NAME=cat..."``
+#: strings, or a :class:`~rsm_lrg.factors.FactorSpace`.
+FactorsArg: TypeAlias = "Sequence[str] | FactorSpace | None"
+#: A term list: ``"A B AB A^2"`` (space- or comma-separated) or a sequence of term names.
+TermsArg: TypeAlias = "str | Sequence[str] | None"
+#: A reduction: None/False (none), True (the defaults), ``{"criterion": ..., "alpha_out": ...}``
+#: or a :class:`ReduceSpec`.
+ReduceArg: TypeAlias = "bool | Mapping[str, str | float] | ReduceSpec | None"
 
 
 class SpecError(ParameterError):
@@ -51,7 +61,7 @@ class ReduceSpec:
             raise SpecError("reduce", f"alpha_out must lie between 0 and 1, not {a!r}")
 
     @classmethod
-    def build(cls, value: Any) -> ReduceSpec | None:
+    def build(cls, value: ReduceArg) -> ReduceSpec | None:
         """``None``/``False`` (no reduction), ``True`` (the defaults), a ReduceSpec, or a
         mapping ``{"criterion": ..., "alpha_out": ...}``."""
         if value is None or value is False:
@@ -113,8 +123,9 @@ class ModelSpec:
                                      "(--terms \"A B ...\" with --no-intercept)")
 
     @classmethod
-    def build(cls, model: Any = "quadratic", *, terms: Any = None, intercept: bool = True, transform: Any = None,
-              transform_constant: float = 0.0, reduce: Any = None) -> ModelSpec:
+    def build(cls, model: str | ModelSpec | None = "quadratic", *, terms: TermsArg = None, intercept: bool = True,
+              transform: str | Transform | None = None, transform_constant: float = 0.0,
+              reduce: ReduceArg = None) -> ModelSpec:
         """The specification from the keyword arguments of :func:`rsm_lrg.fit` (a ModelSpec
         given as ``model`` is returned as it is when nothing else is given)."""
         if isinstance(model, ModelSpec):

@@ -14,6 +14,8 @@ The t and F tails of the tests (:func:`stdtr`, :func:`stdtrit`, :func:`fdtrc`, :
 with ``scipy.special``'s names and arguments) are computed here from the regularised incomplete
 beta function :func:`betainc`, so that a fit does not import SciPy (a fifth of a second of
 start-up); they agree with ``scipy.special`` to 1e-12 relative (tests/model/test_least_squares_tails.py).
+The modules of a fit import them by name (``from .statistics import stdtrit``); the name
+``special`` is kept for ``scipy.special`` itself.
 """
 
 from __future__ import annotations

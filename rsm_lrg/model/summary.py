@@ -343,15 +343,11 @@ def _mixture_models(data: Any, response: str, components: Any, factors: Any, blo
     with more terms than distinct blends (settings, with process factors) are not fitted
     (a note says so)."""
     from ..factors import MixtureComponent
-    from .inputs import chosen_terms, model_inputs
-    from .mixture import mixture_space, scheffe_names
+    from .inputs import chosen_terms, mixture_inputs
+    from .mixture import scheffe_names
 
-    if block is not None:
-        raise ParameterError("block", "blocks in a mixture model are not available yet")
-    if isinstance(components, str):
-        components = [components]
-    space = mixture_space(data, list(components), response, process=factors)
-    inp = model_inputs(data, response, space, None, transform=transform)
+    inp = mixture_inputs(data, response, components, factors, block, transform=transform)
+    space = inp.space
     q = sum(isinstance(f, MixtureComponent) for f in space.factors)
     letters = space.letters
     blends = int(np.unique(np.asarray(inp.settings, dtype=float), axis=0).shape[0])

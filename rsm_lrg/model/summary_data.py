@@ -79,14 +79,14 @@ def summary_data(result: Any) -> SummaryData:
              "mixture-linear": "Scheffé linear mixture", "mixture-quadratic": "Scheffé quadratic mixture",
              "special-cubic": "Scheffé special cubic mixture",
              "mixture-cubic": "Scheffé full cubic mixture"}.get(result.model)
-    mixture = bool(getattr(result, "mixture", False))
+    mixture = result.space.has_components
     if mixture and named and any(not hasattr(f, "pseudo_range") for f in result.space.factors):
         named += " crossed with the linear process"
     title = ("ANOVA for the " + (f"{named} model" if named else "model of the terms chosen")
              + (" (Linear Mixture sequential, other terms partial sum of squares - Type III; about the mean)"
                 if mixture else " (partial sum of squares - Type III)")
              + ("" if result.intercept or mixture else "; no intercept: the model row and total are uncorrected"))
-    if getattr(result, "mixed", None) is not None:
+    if result.mixed is not None:
         title = "Fixed effects of the REML fit: Kenward-Roger F tests (no sums of squares)"
     anova = result.anova
     rows = {r.source: r for r in anova.itertuples(index=False)}
@@ -120,7 +120,7 @@ def summary_data(result: Any) -> SummaryData:
         ("Std. Dev.", s.std_dev, "√(residual mean square) [response units]"),
         ("Mean", s.mean, "mean response [response units]"),
         ("C.V. %", s.cv_percent, "100 · Std. Dev. / Mean"),
-        ("R²", s.r2, "" if result.intercept or getattr(result, "mixture", False) else "uncorrected (no intercept)"),
+        ("R²", s.r2, "" if result.intercept or result.space.has_components else "uncorrected (no intercept)"),
         ("Adjusted R²", s.adj_r2, ""),
         ("Predicted R²", s.pred_r2, "from PRESS"),
         ("PRESS", s.press, "prediction error sum of squares"),

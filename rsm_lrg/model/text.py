@@ -8,8 +8,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from ..present import ROUND_OFF, format_g, format_p, text_table
 from ..present import clean as _clean
 from .anova import TOTAL_ROWS
@@ -131,7 +129,7 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
     if units == "coded":
         values, mags = coded, [1.0] * len(letters)
     else:
-        if getattr(result, "mixture", False):  # the Scheffé polynomial in real proportions
+        if result.space.has_components:  # the Scheffé polynomial in real proportions
             from .mixture import pseudo_to_actual
 
             values = pseudo_to_actual(coded, result.terms, result.space)
@@ -146,9 +144,8 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
             if f.kind == "categoric":
                 mags.append(1.0)
                 continue
-            runs = (np.abs(np.asarray(result.coded[f.letter], dtype=float)) * f.half_range + abs(f.center)
-                    if result.coded is not None else np.zeros(0))  # a Dask fit holds no runs
-            mags.append(max(abs(f.low), abs(f.high), float(np.max(runs, initial=0.0))))
+            # the box and the runs beyond it (a CCD's axial runs)
+            mags.append(max(abs(f.low), abs(f.high), result.run_extent[f.letter] * f.half_range + abs(f.center)))
     if result.fitted is not None:
         fitted = [abs(float(v)) for v in result.fitted if math.isfinite(float(v))]
         scale = max(fitted, default=0.0)
@@ -212,7 +209,7 @@ def format_summary(result) -> str:
     sp = result.space
     out.append(f"Response: {result.response}   runs: {result.n}   model: {result.model}"
                + (f"   blocks: {result.block} ({len(result.block_effects)})" if result.block else ""))
-    mixture = bool(getattr(result, "mixture", False))
+    mixture = result.space.has_components
     if mixture:
         f0 = sp.factors[0]
         out.append(f"Mixture components (total {format_g(getattr(f0, 'total', 1.0), 6)}; coded as L-pseudo components "
@@ -232,7 +229,7 @@ def format_summary(result) -> str:
             out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6, trim=True)} .. {format_g(f.high, 6, trim=True)}")
     out.append("")
     sd = summary_data(result)  # the one summary every face renders
-    if getattr(result, "mixed", None) is not None:
+    if result.mixed is not None:
         out.extend(format_mixed(result))
         out.extend(sd.anova_notes)
         out.append("")

@@ -3,9 +3,12 @@
 Every function here takes fitted results (:class:`rsm_lrg.model.FitResult` or a
 transformed fit), never data: fit first (``rsm_lrg.fit``), then optimise.
 
-``single`` holds the single-response optimiser, :func:`optimize` and
-:class:`OptimumResult`; ``desirability`` the several-response optimiser; ``confirm`` the
-confirmation-run check.
+``single`` holds the single-response optimiser and :func:`optimize`; ``result``
+:class:`OptimumResult`; ``region`` the factor box, categoric levels and constraints searched;
+``mixture`` the optimum over the constrained simplex (crossed with the process factors);
+``desirability`` the several-response optimiser; ``confirm`` the confirmation-run check;
+``study`` the several-response fit loop the commands share. Each asks the fitted models the
+questions of the prediction contract (:mod:`rsm_lrg.model.prediction`).
 
 ``rsm_lrg.optimize`` is always this package (see ``rsm_lrg/__init__.py``), and the package is
 callable: ``rsm_lrg.optimize(result, goal="minimize")`` is

@@ -37,6 +37,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..factors import finite_float
+from ..terms import design_matrix
 
 __all__ = ["confirm", "ConfirmationResult", "parse_settings"]
 
@@ -219,15 +220,11 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
     x = np.asarray(space.encode(x_act), dtype=float)
     tr = result.transform
     pr = result.predict(x, coded=True).iloc[0]
-    q_sigma2 = float(pr["se_fit"]) ** 2  # σ² x'(X'X)⁻¹x (on the scale of the fit)
     n = int(obs.size)
-    se = math.sqrt(result.sigma2 / n + q_sigma2)
-    t = float(stdtrit(result.df_resid, 1 - (1 - confidence) / 2))
-    mixed = getattr(result, "mixed", None)
-    if mixed is not None:  # REML: the n runs in one new whole plot (block): x'Φ_A x + s2_group + s2/n, KR df
-        var_a, kdf = result.kr_mean(x, coded=True)
-        se = math.sqrt(float(var_a[0]) + mixed.sigma2_group + mixed.sigma2 / n)
-        t = float(stdtrit(float(kdf[0]), 1 - (1 - confidence) / 2))
+    # the mean of n new runs (in one new whole plot or block): var_mean + s2_group + s2/n, the fit's df
+    var, df = result.interval_form.mean_of_new_runs(design_matrix(x, result.terms), n)
+    se = math.sqrt(float(var[0]))
+    t = float(stdtrit(float(df[0]), 1 - (1 - confidence) / 2))
     mean = float(obs.mean())
     tinfo = {}
     if not tr.identity:  # interval on the transformed scale, ends back-transformed

@@ -351,7 +351,7 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
 
     goals = [g.with_limits(float(np.nanmin(observed(fits[g.response]))), float(np.nanmax(observed(fits[g.response]))))
              for g in goals]
-    mixture = bool(getattr(first, "mixture", False))
+    mixture = first.space.has_components
     if mixture:  # the constrained simplex (rsm_lrg.optimize.mixture)
         from ..model.mixture_region import mixture_region
 

@@ -160,7 +160,7 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     if not 0.0 < confidence < 1.0:
         raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
     exprs = _constraint_texts(constraints)
-    if getattr(fitted, "mixture", False):  # the constrained simplex (rsm_lrg.optimize.mixture)
+    if fitted.space.has_components:  # the constrained simplex (rsm_lrg.optimize.mixture)
         from .mixture import optimize_mixture
 
         return optimize_mixture(fitted, goal, bounds, confidence=confidence, constraints=exprs)

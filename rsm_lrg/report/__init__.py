@@ -1,4 +1,6 @@
-"""The report layer: text, HTML and figures of result objects; it computes nothing of its own.
+"""The report layer: text, HTML and figures of result objects. Its only computation is what it
+asks the layers below for: the optima the interactive page offers (:mod:`rsm_lrg.optimize`)
+and the numbers of the fitted models (the prediction contract's interval form).
 
 ``plots`` (matplotlib figures from arrays, as ``data:`` URIs), ``html`` (the Jinja2
 environment, autoescaping on, with the number formats of :mod:`rsm_lrg.present` as

@@ -270,7 +270,7 @@ def surface_figures(result, hold: str, optimum) -> tuple[list[dict], str]:
     (``hold="center"``) or at the optimum (``hold="optimum"``); every figure says so in its
     caption and on the figure. The optimum's star is drawn only on slices that contain it.
     """
-    if getattr(result, "mixture", False):  # components are not free: a ternary contour and the trace instead
+    if result.space.has_components:  # components are not free: a ternary contour and the trace instead
         return mixture_figures(result, optimum)
     from . import plots as P
 
@@ -477,7 +477,7 @@ def table_sections(result, source_name: str | None, optimum) -> dict:
         ("Model F-value, p-value",
          next((f"{fmt_f(r['f'])}, {fmt_p(r['p'])}" for r in anova_rows if r["source"] == "Model"), "—")),
     ]
-    mixed = getattr(result, "mixed", None)
+    mixed = result.mixed
     caption = (f"ANOVA for the {result.model} model of {result.response} "
                "(partial sums of squares, Type III), laid out like Table 5.")
     if mixed is not None:  # REML: no sums of squares; Kenward-Roger tests and the variance components
@@ -585,7 +585,7 @@ def notebook_html(result, *, source_name: str | None = None) -> str:
     ctx = table_sections(result, source_name, None)
     ctx["title"] = f"{result.model.capitalize()} fit of {result.response}: {result.n} runs, {len(result.space)} factors"
     ctx["mixture_effects"] = []
-    if getattr(result, "mixture", False):  # the effects along the Cox direction (rsm_lrg.model.mixture_trace)
+    if result.space.has_components:  # the effects along the Cox direction (rsm_lrg.model.mixture_trace)
         from ..model.mixture_trace import mixture_trace
 
         tr = mixture_trace(result)

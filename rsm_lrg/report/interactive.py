@@ -358,7 +358,7 @@ def mixture_data(specs) -> dict | None:
     (:func:`rsm_lrg.model.mixture_trace.mixture_trace`). Ordered things are arrays of
     records, never objects keyed by a name."""
     first = specs[0].result
-    if not getattr(first, "mixture", False):
+    if not first.space.has_components:
         return None
     from ..model.mixture_region import mixture_region
     from ..model.mixture_trace import mixture_trace

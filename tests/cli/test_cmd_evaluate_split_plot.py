@@ -135,3 +135,19 @@ def test_comparison_reports_each_designs_gls(design, tmp_path, capsys):
     assert main(["evaluate", str(design), str(other), "--potential", "none"]) == 0
     text = capsys.readouterr().out
     assert f"{design}: Split-plot design" in text and f"{other}: Split-plot design" in text
+
+
+def test_library_returns_what_the_command_prints(design, capsys):
+    """Design evaluation is in one place: ``evaluate_design`` of the split-plot design holds
+    the GLS criteria the command prints (JSON and text), and refuses a variance ratio for a
+    design without whole plots by naming it."""
+    import rsm_lrg
+    from rsm_lrg.errors import ParameterError
+
+    out = _json(capsys, ["evaluate", str(design), "--potential", "none", "--variance-ratio", "2.5"])
+    ev = rsm_lrg.evaluate_design(rsm_lrg.read_design(design), "quadratic", potential=None, variance_ratio=2.5)
+    assert ev.to_dict()["split_plot"] == out["split_plot"]
+    assert "Split-plot design: 8 whole plots (4 runs each)" in ev.summary()
+    with pytest.raises(ParameterError) as info:
+        rsm_lrg.evaluate_design(np.zeros((4, 2)) + [[-1, -1], [1, -1], [-1, 1], [1, 1]], "linear", variance_ratio=1.0)
+    assert info.value.parameter == "variance_ratio"

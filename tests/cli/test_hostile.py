@@ -39,6 +39,8 @@ COMMANDS = {
     "fit-summary": (["fit-summary", "{IN}", "--response", RESPONSE], ["--json"]),
     "ridge": (["ridge", "{IN}", "--response", RESPONSE], ["--json"]),
     "confirm": (["confirm", "{IN}", "--response", RESPONSE, *AT, "--observed", "0.024"], ["--json"]),
+    "predict": (["predict", "{IN}", "--response", RESPONSE, *AT, "--tolerance", "0.99", "--factor-sd",
+                 "velocity_m_s=0.01", "--draws", "1000", "--seed", "1"], ["--json"]),
     "evaluate": (["evaluate", "{IN}", "--exclude", RESPONSE], ["--json"]),
     "simulate": (["simulate", "{IN}", "--seed", "1", "--no-progress"], ["-o"]),
     "calibrate": (["calibrate", "{IN}", "--response", RESPONSE, "--no-loo"], ["-o", "--json"]),
@@ -47,7 +49,7 @@ COMMANDS = {
 TABLE_COMMANDS = [c for c in COMMANDS if c != "physics"]
 # the commands whose run on hostile but readable data stays quick (the surrogate ones
 # compute for long on valid data, so they only meet inputs that fail while reading)
-FAST = ["fit", "optimize", "fit-summary", "ridge", "confirm", "evaluate"]
+FAST = ["fit", "optimize", "fit-summary", "ridge", "confirm", "predict", "evaluate"]
 
 
 def _sha(p: Path) -> str:
