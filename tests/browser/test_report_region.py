@@ -2,7 +2,9 @@
 every jump of the page (each optimum, the desirability optimum, "deepest inside every limit")
 and the overlay's shading stay inside the region. Without ``--constraint`` the same page jumps
 outside it (the defect the issue reports: v = 1, a = 5, s = 0.02 where v²/a = 0.2 > s), so
-these checks can fail."""
+these checks can fail. The control page (no ``--constraint``) maximises a second response that
+grows outside the region, v²/a - s itself (since the two-carriage physics of issue 34 the
+optima of κ and wear happen to lie inside; the control must not rest on that)."""
 
 from __future__ import annotations
 
@@ -41,7 +43,16 @@ def guide(tmp_path_factory):
            "--goal", "minimize", "--goal", "minimize"]
     pages = {"inside": tmp / "inside.html", "free": tmp / "free.html", "bound": tmp / "bound.html"}
     assert main(["report", str(runs), *two, "--constraint", CONSTRAINT, "-o", str(pages["inside"])]) == 0
-    assert main(["report", str(runs), *two, "-o", str(pages["free"])]) == 0
+    import pandas as pd
+
+    free_runs = tmp / "guide_runs_excess.csv"
+    d = pd.read_csv(runs)
+    d["excess_m"] = d["velocity_m_s"] ** 2 / d["acceleration_m_s2"] - d["stroke_m"]
+    d.to_csv(free_runs, index=False)
+    assert main(["report", str(free_runs), "--response", "tcr_c_per_min", "--response", "excess_m",
+                 "--factor", "thickness_m", "--factor", "stroke_m", "--factor", "velocity_m_s",
+                 "--factor", "acceleration_m_s2", "--goal", "minimize", "--goal", "maximize",
+                 "-o", str(pages["free"])]) == 0
     assert main(["report", str(runs), "--response", "tcr_c_per_min", "--goal", "maximize", "--constraint", CONSTRAINT,
                  "--bound", "velocity_m_s=0.2:0.7", "-o", str(pages["bound"])]) == 0
     return pages
