@@ -1,7 +1,10 @@
 """The stage study of the README (issue 12): a Box–Behnken design crossed with the stage type
 (rfcms, rms), virtual runs on the surrogate, a fit in which the stage is a categoric factor.
-The paper's comparative test (Fig. 9) finds the RMS above the RFCMS in κ: the fitted stage
-effect must be significant with the RMS level higher, and the optimum on the RFCMS."""
+The paper's comparative test (Fig. 9) finds the RMS above the RFCMS in κ; the surrogate's
+two-carriage physics without a drive heat (issue 34) finds the opposite — the RMS's bolted
+stage draws heat away — and says so (``reproduce`` marks Fig. 9's ordering "not yet"). The
+fitted stage effect must be significant with the sign the physics gives (the RFCMS higher),
+and the optimum on the RMS."""
 
 import json
 
@@ -25,8 +28,8 @@ def test_stage_study(tmp_path, capsys):
     assert stage == {"letter": "E", "name": "stage", "kind": "categoric", "levels": ["rfcms", "rms"]}
     row = next(r for r in d["anova"] if r["source"] == "E")
     assert row["df"] == 1 and row["p"] < 0.05
-    assert d["coefficients"]["coded"]["E[rfcms]"] < 0  # rfcms below the mean, so rms above it
+    assert d["coefficients"]["coded"]["E[rfcms]"] > 0  # rfcms above the mean: the physics' sign, not the paper's
     assert main(["optimize", str(runs), "--response", "tcr_c_per_min", "--json", str(opt_json)]) == 0
     o = json.loads(opt_json.read_text())
-    assert o["actual"]["stage"] == "rfcms"
+    assert o["actual"]["stage"] == "rms"
     assert {r["level"]["stage"] for r in o["by_level"]} == {"rfcms", "rms"}
