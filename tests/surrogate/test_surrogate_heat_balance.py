@@ -52,20 +52,21 @@ def test_rise_is_friction_and_drive_heat_through_one_network():
     assert per_w[2] > per_w[1] > per_w[0] > 0
 
 
+@pytest.mark.xfail(strict=True, reason="issue 34: with both carriages on one rail and the other stage running "
+                   "(Section 4.1), an RMS row's κ depends on the RFCMS's leaf thickness through the shared rail "
+                   "and base, so a thickness column now changes RMS rows (by about 1e-6 °C/min)")
 def test_rms_rows_share_one_network_whatever_their_thickness():
     # the RMS has no leaves: a thickness column on its rows changes nothing and builds no
     # network per row (2,000,000 streamed RMS rows with random thicknesses built one network
     # per row: hours instead of a minute)
-    from rsm_lrg.physics.thermal import network
-
     rng = np.random.default_rng(3)
     n = 300
     d = pd.DataFrame({"thickness_m": rng.uniform(1e-4, 5e-4, n), "stroke_m": rng.uniform(0.04, 0.06, n),
                       "velocity_m_s": rng.uniform(0.4, 0.6, n), "acceleration_m_s2": rng.uniform(20, 40, n),
                       "stage": "rms"})
-    network._rig_chain.cache_clear()
+    # (the shipped two-carriage calibration, issue 34, no longer goes through the one-carriage
+    # network's rig cache that this test once counted; the property itself is checked below)
     with_y = simulate(d, noise_sd=0, seed=1, progress=False)
-    assert network._rig_chain.cache_info().currsize == 1  # one rig: the RMS's
     without_y = simulate(d.assign(thickness_m=np.nan), noise_sd=0, seed=1, progress=False)
     np.testing.assert_array_equal(with_y.tcr_c_per_min.to_numpy(), without_y.tcr_c_per_min.to_numpy())
     p = LRGParams().to_dict()
