@@ -90,6 +90,7 @@ def _region(space, constraints, bounds):
     """The page's region (:func:`rsm_lrg.report.region.region_data`) of ``--constraint`` and
     the numeric ``--bound`` options, each error naming its option."""
     from ..factors import parse_factor_spec
+    from ..io import InputError
     from ..report.region import region_data
 
     numeric = {}
@@ -99,20 +100,20 @@ def _region(space, constraints, bounds):
         try:
             name, lo, hi = parse_factor_spec(text)
         except ValueError as exc:
-            raise ValueError(f"--bound: {exc}") from None
+            raise InputError(f"--bound: {exc}") from None
         if lo is None or hi is None:
-            raise ValueError(f"--bound: bound {text!r}: expected NAME=LOW:HIGH")
+            raise InputError(f"--bound: bound {text!r}: expected NAME=LOW:HIGH")
         try:
             f = space[name]
         except KeyError:
-            raise ValueError(f"--bound: bound for {name!r}: no such factor (factors: {', '.join(space.names)})") from None
+            raise InputError(f"--bound: bound for {name!r}: no such factor (factors: {', '.join(space.names)})") from None
         if not float(lo) < float(hi):
-            raise ValueError(f"--bound: bound for {f.name!r}: LOW must be below HIGH (got {lo:g} >= {hi:g})")
+            raise InputError(f"--bound: bound for {f.name!r}: LOW must be below HIGH (got {lo:g} >= {hi:g})")
         numeric[f.name] = (lo, hi)
     try:
         return region_data(space, constraints, numeric)
     except ValueError as exc:
-        raise ValueError(f"--constraint: {exc}") from None
+        raise InputError(f"--constraint: {exc}") from None
 
 
 def run(args: argparse.Namespace) -> int:
@@ -162,7 +163,7 @@ def run(args: argparse.Namespace) -> int:
                                bounds=args.bound, constraints=args.constraint)
         for r in responses:  # inside a region, a missing optimum is an error that names the option
             if r in optima.missing and (args.constraint or args.bound):
-                raise ValueError(f"{'--constraint' if args.constraint else '--bound'}: no optimum of {r}: "
+                raise InputError(f"{'--constraint' if args.constraint else '--bound'}: no optimum of {r}: "
                                  f"{optima.missing[r]}")
         if args.static and n == 1 and fits[responses[0]].transform.identity:
             from ..report import write_report

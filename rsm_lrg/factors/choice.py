@@ -62,7 +62,7 @@ class FactorChoice:
             comps = " ".join(f"--component {f.name}" for f in self.space.factors)
             return (f"; the factors {listed} sum to {self.blend_total:g} on every row, as mixture components do: "
                     f"give {comps} and a mixture --model")
-        return f"; the factors were taken to be {listed}: if that is wrong, name them with --factor NAME"
+        return f"; factors inferred: {listed} (if wrong, name them with --factor NAME)"
 
 
 def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) -> FactorChoice:

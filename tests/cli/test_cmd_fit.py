@@ -68,7 +68,8 @@ def _bad_cases(tmp_path):
         (["fit", TABLE4, "--response", "tcr_c_per_min", "--factor", "nope"], "'nope'"),
         (["fit", _write(tmp_path, "text.csv", "\n".join(text_row)), "--response", "tcr_c_per_min"], "'velocity_m_s', row 5"),
         (["fit", _write(tmp_path, "inf.csv", "\n".join(inf_row)), "--response", "tcr_c_per_min"], "row 3"),
-        (["fit", _write(tmp_path, "const.csv", const), "--response", "tcr_c_per_min"], "constant"),
+        (["fit", _write(tmp_path, "const.csv", const), "--response", "tcr_c_per_min", "--factor", "thickness_m",
+          "--factor", "const"], "'const' is constant"),  # named: an error (inferred, it is left out with a note)
         (["fit", _write(tmp_path, "few.csv", "\n".join(t4[:11])), "--response", "tcr_c_per_min"], "10 runs cannot fit 15 terms"),
         (["fit", TABLE4, "--response", "tcr_c_per_min", "--factor", "stroke_m=0.06:0.04"], "LOW must be below HIGH"),
     ]

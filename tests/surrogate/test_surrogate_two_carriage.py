@@ -69,3 +69,17 @@ def test_the_calibration_reads_the_network_from_an_interpolant_equal_to_it():
         for k in ("tcr_c_per_min", "steady_rise_k", "temperature_rise_k"):
             np.testing.assert_allclose(a[k], b[k], rtol=1e-10)
     assert HERTZ_CONTACT_W_K / 3 > CONTACT_INTERP_W_K[0] and 3 * HERTZ_CONTACT_W_K < CONTACT_INTERP_W_K[1]
+
+
+def test_replicated_rows_share_one_solution_equal_to_each_alone():
+    # a design repeating settings (in any order) gives every row what that row gives alone, and the
+    # first bad row by position is named even when its settings sort after another bad row's
+    rows = ROWS.iloc[[3, 0, 2, 0, 1, 3, 2]].reset_index(drop=True)
+    out = simulate(rows, noise_sd=0, calibration=CAL)
+    for i in range(len(rows)):
+        one = simulate(rows.iloc[[i]].reset_index(drop=True), noise_sd=0, calibration=CAL)
+        assert out.tcr_c_per_min[i] == one.tcr_c_per_min[0] and out.steady_rise_k[i] == one.steady_rise_k[0]
+    bad = ROWS.copy()
+    bad["carriage_spacing_m"] = [0.2, 0.01, 0.001, 0.2]  # rows 2 and 3 collide; row 3 sorts first (y)
+    with pytest.raises(ValueError, match=r"^row 2: the two carriages collide"):
+        simulate(bad, noise_sd=0, calibration=CAL)
