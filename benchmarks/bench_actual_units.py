@@ -3,9 +3,9 @@
 For n runs of a full quadratic in k factors (actual values around 1e3 +- 1, a continuous
 response) it times, in one process and alternating:
 
-* the anchor: :func:`rsm_lrg.model.least_squares.least_squares` of the coded model matrix
+* the anchor: :func:`rsm_lrg.model.engines.least_squares.least_squares` of the coded model matrix
   (both passes, in chunks of 32768 rows; the matrix built beforehand, not timed);
-* :func:`rsm_lrg.model.actual_units.solve_actual` on the actual values (its own two passes,
+* :func:`rsm_lrg.model.readings.actual_units.solve_actual` on the actual values (its own two passes,
   building the double-double model matrix chunk by chunk), with and without
   ``decimal_inputs``.
 
@@ -23,8 +23,8 @@ import time
 
 import numpy as np
 
-from rsm_lrg.model.actual_units import solve_actual
-from rsm_lrg.model.least_squares import least_squares
+from rsm_lrg.model.engines.least_squares import least_squares
+from rsm_lrg.model.readings.actual_units import solve_actual
 from rsm_lrg.terms import design_matrix, model_terms
 
 

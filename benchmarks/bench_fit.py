@@ -96,7 +96,7 @@ def _terms_api():
     try:
         from rsm_lrg.terms import design_matrix, model_terms
     except ImportError:  # before the terms moved to the base layer
-        from rsm_lrg.model.terms import design_matrix, model_terms
+        from rsm_lrg.model.build.terms import design_matrix, model_terms
     return design_matrix, model_terms
 
 

@@ -291,20 +291,20 @@ def add_factor_options(p: argparse.ArgumentParser) -> None:
     )
 
 
-#: The model orders a command can fit (rsm_lrg.model.terms).
+#: The model orders a command can fit (rsm_lrg.model.build.terms).
 MODEL_ORDERS = ("linear", "2fi", "quadratic", "cubic")
-#: The Scheffé mixture models (with ``--component``; rsm_lrg.model.mixture).
+#: The Scheffé mixture models (with ``--component``; rsm_lrg.model.build.mixture).
 MIXTURE_MODEL_NAMES = ("mixture-linear", "mixture-quadratic", "special-cubic", "mixture-cubic")
 #: Every model a fitting command's ``--model`` takes.
 FIT_MODELS = MODEL_ORDERS + MIXTURE_MODEL_NAMES
-#: ``--reduce`` methods (those of :data:`rsm_lrg.model.spec.REDUCE_METHODS`, not imported here so that
+#: ``--reduce`` methods (those of :data:`rsm_lrg.model.build.spec.REDUCE_METHODS`, not imported here so that
 #: building the parser loads no NumPy; a test checks that they agree).
 REDUCE_METHOD_NAMES = ("backward", "forward", "stepwise", "all-subsets")
 
 
 def add_component_option(p: argparse.ArgumentParser) -> None:
     """``--component NAME[=LOW:HIGH]`` (repeatable): mixture components, fitted by a Scheffé
-    ``--model`` on L-pseudo components (rsm_lrg.model.mixture)."""
+    ``--model`` on L-pseudo components (rsm_lrg.model.build.mixture)."""
     p.add_argument(
         "--component", action="append", metavar="NAME[=LOW:HIGH]", default=None,
         help="a mixture component column (repeatable; with --model "
@@ -342,7 +342,7 @@ def add_block_option(p: argparse.ArgumentParser, role: str = "effects sum to zer
 
 def add_random_effect_options(p: argparse.ArgumentParser) -> None:
     """``--whole-plot COL`` and ``--random-block COL``: a random intercept, fitted by REML with
-    Kenward-Roger tests (:mod:`rsm_lrg.model.mixed`)."""
+    Kenward-Roger tests (:mod:`rsm_lrg.model.engines.mixed`)."""
     g = p.add_mutually_exclusive_group()
     g.add_argument("--whole-plot", metavar="COL", default=None,
                    help="whole-plot column of a split-plot experiment: a random intercept per whole plot, fitted by "
@@ -683,11 +683,11 @@ PARAMETER_OPTIONS = {
 
 
 def model_spec(opts: argparse.Namespace, *, order: str | None = None):
-    """The :class:`~rsm_lrg.model.spec.ModelSpec` of a command's model options (``--model``,
+    """The :class:`~rsm_lrg.model.build.spec.ModelSpec` of a command's model options (``--model``,
     ``--terms``, ``--no-intercept``, ``--transform``, ``--transform-constant``, ``--reduce``,
     ``--alpha-out``, ``--criterion``; those a command lacks take their defaults). A bad value
     is an InputError naming its option, before any data is read."""
-    from ..model.spec import ModelSpec, SpecError
+    from ..model.build.spec import ModelSpec, SpecError
 
     how = getattr(opts, "reduce", False)
     reduce: dict[str, str | float] | None = None

@@ -92,7 +92,7 @@ def _full_terms(letters) -> list[str]:
 def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, write_output
     from ..model import fit
-    from ..model.effects import largest_estimable_model, screening_effects
+    from ..model.readings.effects import largest_estimable_model, screening_effects
     from ._common import read_input
 
     fmt = plot_format(args.plot)

@@ -58,8 +58,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..io import InputError
-    from ..model.data import prepare
-    from ..model.summary import fit_summary
+    from ..model.build.data import prepare
+    from ..model.choice.summary import fit_summary
     from ._common import model_spec, read_input
     from .gp_fit import check_gp_options, gp_keywords
 
@@ -79,7 +79,7 @@ def run(args: argparse.Namespace) -> int:
         notes = prepare(data, args.response, names, args.block).notes
         if args.gp:
             from ..model import fit
-            from ..model.loo_compare import compare_loo
+            from ..model.choice.loo_compare import compare_loo
 
             cmp = compare_loo(s, fit(data, args.response, factors=args.factor, model="gp", **gp_keywords(args)))
             extra["loo_comparison"] = cmp.to_dict()

@@ -49,7 +49,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..model import fit
-    from ..model.ridge import radii, ridge
+    from ..model.readings.ridge import radii, ridge
     from ._common import model_spec, read_input
 
     radii(0.0 if args.radius is None else args.radius, args.step)  # bad numbers fail before any work

@@ -1,5 +1,5 @@
 """``rsm-lrg fit --family binomial|poisson [--link L] [--trials COL]``: a generalised linear
-model of a pass/fail or count response (:mod:`rsm_lrg.model.glm`), for ``cmd_fit``.
+model of a pass/fail or count response (:mod:`rsm_lrg.model.pipelines.glm`), for ``cmd_fit``.
 
 The options are added by :func:`add_glm_options`; :func:`wants_glm` says whether they were
 given and :func:`run_glm` makes the one library call and writes the text or the JSON
@@ -14,7 +14,7 @@ from ..io import InputError
 
 __all__ = ["add_glm_options", "wants_glm", "run_glm", "GLM_UNSUPPORTED", "FAMILY_NAMES", "LINK_NAMES"]
 
-#: ``--family`` and ``--link`` choices: those of :mod:`rsm_lrg.model.glm_family` (not imported
+#: ``--family`` and ``--link`` choices: those of :mod:`rsm_lrg.model.engines.glm_family` (not imported
 #: here, so that building the parser loads no NumPy; a test checks that they agree).
 FAMILY_NAMES = ("binomial", "poisson")
 LINK_NAMES = ("logit", "probit", "cloglog", "log")

@@ -245,7 +245,7 @@ class DesignEvaluation:
 
     def _alias_lines(self, tol: float = 1e-9, most: int = 12) -> list[str]:
         """The alias matrix's non-zero entries per model term and the largest correlations."""
-        from .text import format_g
+        from .faces.text import format_g
 
         if self.alias_matrix is None or self.potential is None:
             return []
@@ -483,9 +483,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
 
     from ..design.split_plot import gls_criteria
     from ..factors import letters_for
-    from .anova import pure_error
-    from .least_squares import least_squares
-    from .terms import (
+    from .build.terms import (
         MAX_TERMS,
         check_model_size,
         column_names,
@@ -494,6 +492,8 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         model_terms,
         n_model_terms,
     )
+    from .engines.least_squares import least_squares
+    from .readings.anova import pure_error
 
     blocks, cats, levels_of = None, {}, {}
     if hasattr(design, "coded_runs"):
@@ -532,8 +532,8 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     if terms is None:
         terms = model_terms(letters, model, cats)
     else:
-        from .inputs import chosen_terms
-        from .spec import ModelSpec
+        from .build.inputs import chosen_terms
+        from .build.spec import ModelSpec
 
         terms = list(chosen_terms(list(ModelSpec.build(model, terms=terms, intercept=intercept).terms or ()),
                                   letters, cats, intercept=intercept))
@@ -684,7 +684,7 @@ def _alias_map(coded, terms, potential_terms, X, tidx, names):
     """Alias matrix (model columns x potential columns) and the correlation map."""
     import pandas as pd
 
-    from .terms import column_names, design_matrix
+    from .build.terms import column_names, design_matrix
 
     X2 = design_matrix(coded, potential_terms)
     pnames = column_names(potential_terms)

@@ -1,11 +1,11 @@
 """Fitting a response-surface model: :func:`fit`, which returns the one result type
-:class:`~rsm_lrg.model.result.FitResult`.
+:class:`~rsm_lrg.model.results.result.FitResult`.
 
-The model (a :class:`~rsm_lrg.model.spec.ModelSpec`: an order — linear, 2FI, quadratic as
+The model (a :class:`~rsm_lrg.model.build.spec.ModelSpec`: an order — linear, 2FI, quadratic as
 the paper's Eq. 19, cubic — or any list of terms, with or without an intercept, on the
 response or a transform of it, optionally reduced) is fitted by ordinary least squares on
 the coded model matrix, in coded units ``x = (actual - centre) / half_range``, by the
-regression core :mod:`rsm_lrg.model.least_squares`: a Householder QR factorisation of the
+regression core :mod:`rsm_lrg.model.engines.least_squares`: a Householder QR factorisation of the
 column-scaled matrix with the response centred (so a response of 1e9 + small variation
 loses no accuracy), accumulated over chunks of rows, and a second pass for the hat
 diagonal. Everything else — the Design-Expert ANOVA (Table 5), PRESS, VIF, intervals — is
@@ -27,13 +27,13 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, Literal, overload
 
-from .actual import actual_coefficients, actual_equations
-from .anova import pure_error
-from .inputs import ModelInputs, chosen_terms, is_dask, model_inputs
-from .least_squares import CHUNK_ROWS, factorise
-from .result import COEF_COLUMNS, FitResult, assemble
-from .spec import FactorsArg, ModelSpec, ReduceArg, SpecError, TermsArg
-from .terms import check_model_size, model_terms
+from .build.inputs import ModelInputs, chosen_terms, is_dask, model_inputs
+from .build.spec import FactorsArg, ModelSpec, ReduceArg, SpecError, TermsArg
+from .build.terms import check_model_size, model_terms
+from .engines.least_squares import CHUNK_ROWS, factorise
+from .readings.actual import actual_coefficients, actual_equations
+from .readings.anova import pure_error
+from .results.result import COEF_COLUMNS, FitResult, assemble
 
 if TYPE_CHECKING:
     import dask.dataframe as dd
@@ -41,12 +41,12 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from ..factors import FactorSpace
-    from .glm_family import Family
-    from .glm_result import GLMResult
-    from .gp_result import GPResult
-    from .reduce import Reduction
-    from .select import Selection
-    from .transform import Transform
+    from .build.transform import Transform
+    from .choice.reduce import Reduction
+    from .choice.select import Selection
+    from .engines.glm_family import Family
+    from .results.glm_result import GLMResult
+    from .results.gp_result import GPResult
 
 __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual_equations", "COEF_COLUMNS",
            "model_inputs", "ModelInputs", "ModelSpec"]
@@ -88,14 +88,14 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         variance: float | None = None, seed: int | None = 0, family: str | Family | None = None,
         link: str | None = None, trials: str | None = None) -> FitResult | GPResult | GLMResult:
     """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5), a Gaussian
-    process (``model="gp"``, :func:`rsm_lrg.model.gp.fit_gp`) or a generalised linear model
-    (``family=``, :func:`rsm_lrg.model.glm.fit_glm`).
+    process (``model="gp"``, :func:`rsm_lrg.model.pipelines.gp.fit_gp`) or a generalised linear model
+    (``family=``, :func:`rsm_lrg.model.pipelines.glm.fit_glm`).
 
     Parameters
     ----------
     data : pandas.DataFrame or dask.dataframe.DataFrame
         One row per run. A Dask DataFrame is fitted partition by partition without being
-        collected (:mod:`rsm_lrg.model.dask_fit`; the result holds no per-run arrays).
+        collected (:mod:`rsm_lrg.model.pipelines.dask_fit`; the result holds no per-run arrays).
     response : str
         Response column (e.g. ``"tcr_c_per_min"`` [°C/min]).
     factors : None, sequence or FactorSpace
@@ -129,21 +129,21 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
     transform_constant : float
         The constant k added before transforming (default 0).
     reduce : bool, mapping or ReduceSpec, optional
-        Backward elimination keeping hierarchy (:mod:`rsm_lrg.model.reduce`) before the
+        Backward elimination keeping hierarchy (:mod:`rsm_lrg.model.choice.reduce`) before the
         final fit: ``True`` (p-value, alpha 0.1) or ``{"criterion": "aicc"}``; the result's
         ``reduction`` lists the steps.
     chunk_rows : int
         Rows of the model matrix built and factorised at a time (the full n x p matrix is
-        never held; :mod:`rsm_lrg.model.least_squares`).
+        never held; :mod:`rsm_lrg.model.engines.least_squares`).
     components : sequence of str, optional
         Mixture components (names or ``"NAME=LOW:HIGH"``), with ``model`` a Scheffé model
         (``"mixture-linear"``, ``"mixture-quadratic"``, ``"special-cubic"``) or Scheffé
         ``terms``: fitted without an intercept on L-pseudo-components, the ANOVA and R²
-        about the mean (:mod:`rsm_lrg.model.mixture`). Every row must sum to the same
+        about the mean (:mod:`rsm_lrg.model.build.mixture`). Every row must sum to the same
         total within 1e-6 relative.
     whole_plot : str, optional
         Whole-plot column of a split-plot experiment: the model gets a random intercept per
-        whole plot and is fitted by REML (:mod:`rsm_lrg.model.mixed`); the result's
+        whole plot and is fitted by REML (:mod:`rsm_lrg.model.engines.mixed`); the result's
         ``mixed`` holds the variance components and Kenward–Roger tests, its coefficients
         and standard errors are the GLS ones. ``reduce`` then eliminates by the
         Kenward–Roger p-values (hierarchy kept).
@@ -160,11 +160,11 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         ``"matern32"``, ``"gauss"``), trend (``"constant"``, ``"linear"``,
         ``"quadratic"``), nugget (``None``, ``"estimate"`` or a value), fixed
         hyper-parameters and the seed of the likelihood's starting points
-        (:func:`rsm_lrg.model.gp.fit_gp`).
+        (:func:`rsm_lrg.model.pipelines.gp.fit_gp`).
     family : {"binomial", "poisson"}, optional
         A generalised linear model of a 0/1 response, successes of ``trials``, or a count,
-        fitted by maximum likelihood (:func:`rsm_lrg.model.glm.fit_glm`; returns a
-        :class:`~rsm_lrg.model.glm_result.GLMResult`).
+        fitted by maximum likelihood (:func:`rsm_lrg.model.pipelines.glm.fit_glm`; returns a
+        :class:`~rsm_lrg.model.results.glm_result.GLMResult`).
     link : {"logit", "probit", "cloglog", "log"}, optional
         With ``family``: the link (default logit for binomial, log for poisson).
     trials : str, optional
@@ -181,13 +181,13 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         response, numbers beyond 1e±100 (response) or 1e±50 (factors), fewer runs than
         model terms (counted before any term is built), aliased terms (naming them), a
         response outside the transform's domain (naming the row). A bad specification is
-        a :class:`~rsm_lrg.model.spec.SpecError` (a ValueError whose ``option`` names the
+        a :class:`~rsm_lrg.model.build.spec.SpecError` (a ValueError whose ``option`` names the
         argument).
     """
     import pandas as pd
 
     if isinstance(model, str) and model.strip().lower() == "gp":  # the Gaussian-process engine
-        from .gp import fit_gp, refuse_options
+        from .pipelines.gp import fit_gp, refuse_options
 
         refuse_options(block=block, terms=terms, intercept=intercept, transform=transform, reduce=reduce,
                        components=components, whole_plot=whole_plot, random_block=random_block, dask=is_dask(data))
@@ -195,8 +195,8 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
                       length_scales=length_scales, variance=variance, seed=seed)
     spec = ModelSpec.build(model, terms=terms, intercept=intercept, transform=transform,
                            transform_constant=transform_constant, reduce=reduce)
-    if family is not None or link is not None or trials is not None:  # a GLM (rsm_lrg.model.glm)
-        from .glm import fit_glm
+    if family is not None or link is not None or trials is not None:  # a GLM (rsm_lrg.model.pipelines.glm)
+        from .pipelines.glm import fit_glm
 
         return fit_glm(data, response, factors, spec=spec, family_name=family, link=link, trials=trials, block=block,
                        components=components, random_effect=whole_plot or random_block)
@@ -208,7 +208,7 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
                                         "in-memory table, not from a Dask DataFrame (call .compute() first)")
         if components is not None or spec.mixture:
             raise SpecError("model", "a mixture model is fitted from one in-memory table, not several files")
-        from .dask_fit import fit_dask
+        from .pipelines.dask_fit import fit_dask
 
         return fit_dask(data, response, factors=factors, block=block, spec=spec, chunk_rows=chunk_rows)
     hard = _hard_names(hard_to_change, whole_plot)
@@ -223,7 +223,7 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
     if spec.reduce is not None:
         from dataclasses import replace
 
-        from .select import choose_terms
+        from .choice.select import choose_terms
 
         reduction = choose_terms(inp, spec.reduce, model=spec.order, terms=spec.terms, intercept=spec.intercept)
         spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept") or None)
@@ -237,10 +237,10 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
 def _fit_mixture(data: pd.DataFrame, response: str, components: Sequence[str] | None, factors: FactorsArg,
                  block: str | None, spec: ModelSpec,
                  chunk_rows: int) -> FitResult:
-    """A Scheffé mixture fit (:mod:`rsm_lrg.model.mixture`)."""
+    """A Scheffé mixture fit (:mod:`rsm_lrg.model.build.mixture`)."""
     from ..factors import FactorSpace, MixtureComponent
-    from .inputs import mixture_inputs
-    from .mixture import MIXTURE_ORDERS
+    from .build.inputs import mixture_inputs
+    from .build.mixture import MIXTURE_ORDERS
 
     if not spec.mixture:
         raise SpecError("model", f"mixture components need a Scheffé model ({', '.join(MIXTURE_ORDERS)}), "
@@ -263,7 +263,7 @@ def _fit_mixture(data: pd.DataFrame, response: str, components: Sequence[str] | 
     if spec.reduce is not None:  # the linear blending terms always stay
         from dataclasses import replace
 
-        from .select import choose_terms
+        from .choice.select import choose_terms
 
         try:
             reduction = choose_terms(inp, spec.reduce, model=spec.order, terms=spec.terms, intercept=False,
@@ -295,7 +295,7 @@ def _spec_terms(inp: ModelInputs, spec: ModelSpec, block_df: int) -> tuple:
 
 def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: int = CHUNK_ROWS,
                reduction: Reduction | Selection | None = None) -> FitResult:
-    """The fit of checked inputs (:func:`~rsm_lrg.model.inputs.model_inputs`) to ``spec``'s
+    """The fit of checked inputs (:func:`~rsm_lrg.model.build.inputs.model_inputs`) to ``spec``'s
     terms (its reduction, if any, already applied)."""
     space, y, hint, nb, n = inp.space, inp.y, inp.hint, inp.nb, inp.n
     model = spec.order
@@ -332,7 +332,7 @@ def _mixture_terms(spec: ModelSpec, space: FactorSpace, n: int, settings: np.nda
     import numpy as np
 
     from ..factors import MixtureComponent
-    from .mixture import check_mixture_terms, scheffe_names
+    from .build.mixture import check_mixture_terms, scheffe_names
 
     q = sum(isinstance(f, MixtureComponent) for f in space.factors)
     letters = space.letters
@@ -360,7 +360,7 @@ def _random_column(data: pd.DataFrame, response: str, whole_plot: str | None, ra
 
     from ..factors import quote_value
     from ..factors.columns import check_label_column
-    from .data import columns_text, empty_cells
+    from .build.data import columns_text, empty_cells
 
     if whole_plot is not None and random_block is not None:
         raise SpecError("random_block", "give a whole-plot column or a random block column, not both")
@@ -459,7 +459,7 @@ def _check_hard_to_change(data: pd.DataFrame, col: str, hard: list[str] | None, 
 def _fit_mixed(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg, block: str | None,
                spec: ModelSpec, whole_plot: str | None, random_block: str | None,
                components: Sequence[str] | None, hard: list[str] | None = None) -> FitResult:
-    """A REML fit with one random intercept (:mod:`rsm_lrg.model.mixed`), the reduction (if
+    """A REML fit with one random intercept (:mod:`rsm_lrg.model.engines.mixed`), the reduction (if
     asked) by Kenward–Roger p-values."""
     import pandas as pd
 
@@ -478,7 +478,7 @@ def _fit_mixed(data: pd.DataFrame | dd.DataFrame, response: str, factors: Factor
     inp = replace(inp, block=None, bcodes=None, bkeys=None, blevels=None)
     reduction = None
     if spec.reduce is not None:
-        from .mixed_reduce import reduce_mixed
+        from .choice.mixed_reduce import reduce_mixed
 
         if spec.reduce.criterion != "p":
             raise SpecError("criterion", "a REML fit is reduced by the Kenward-Roger p-values (criterion 'p'), "
@@ -498,7 +498,7 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
     """The REML fit of checked inputs to ``spec``'s terms (estimability checked first)."""
     import numpy as np
 
-    from .mixed import fit_reml, group_codes
+    from .engines.mixed import fit_reml, group_codes
 
     space, y, hint, n = inp.space, inp.y, inp.hint, inp.n
     model = spec.order
@@ -531,7 +531,7 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
         raise ValueError(f"{col!r}: {where} and the model needs more: {n} runs in {G} {unit} leave no degree of "
                          f"freedom for the residual variance within {unit} after the {rank_within} within-{unit[:-1]} "
                          "model columns")
-    from .least_squares import least_squares
+    from .engines.least_squares import least_squares
 
     least_squares(X, y, col_names).require_full_rank(f"{model} model" if spec.terms is None else "model")
     mm, ls = fit_reml(X, y, codes, glabels, col_names, column=col, kind=kind)

@@ -8,7 +8,7 @@ transformed fit), never data: fit first (``rsm_lrg.fit``), then optimise.
 ``mixture`` the optimum over the constrained simplex (crossed with the process factors);
 ``desirability`` the several-response optimiser; ``confirm`` the confirmation-run check;
 ``study`` the several-response fit loop the commands share. Each asks the fitted models the
-questions of the prediction contract (:mod:`rsm_lrg.model.prediction`).
+questions of the prediction contract (:mod:`rsm_lrg.model.contract.prediction`).
 
 ``rsm_lrg.optimize`` is always this package (see ``rsm_lrg/__init__.py``), and the package is
 callable: ``rsm_lrg.optimize(result, goal="minimize")`` is

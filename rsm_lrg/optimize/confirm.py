@@ -8,13 +8,13 @@ Myers, Montgomery & Anderson-Cook, Eq. 2.40 generalised to a mean of n runs):
     ŷ ± t(1 - α/2, ν) · √( σ² (1/n + x'(X'X)⁻¹x) ),
 
 with σ² the residual mean square on ν df. For a REML fit (split-plot whole plots or random
-blocks, :mod:`rsm_lrg.model.mixed`) the n runs are taken to be made in one new whole plot
+blocks, :mod:`rsm_lrg.model.engines.mixed`) the n runs are taken to be made in one new whole plot
 (block): ``√( x'Φ_A x + σ²_wp + σ²/n )`` with Kenward–Roger's adjusted covariance ``Φ_A``
 and ν its den df for the mean at ``x``. The run mean is **inside** when it lies in that
 interval. The relative error is ``100 · (ȳ - ŷ) / ŷ`` [%] against the exact prediction,
 and against a ``reference`` value when given (a published, rounded prediction).
 
-**Transformed response** (a :class:`~rsm_lrg.model.result.FitResult` fitted to
+**Transformed response** (a :class:`~rsm_lrg.model.results.result.FitResult` fitted to
 ``z = g(y + k)``): as Design-Expert does, the interval is computed on the transformed scale,
 ``ẑ ± t · √(σ_z² (1/n + x'(X'X)⁻¹x))``, and its ends are back-transformed (swapped for a
 decreasing transform); the prediction shown is ``g⁻¹(ẑ)`` (the median on the original scale).

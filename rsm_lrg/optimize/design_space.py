@@ -5,11 +5,11 @@ JMP's Design Space Profiler).
 For each response ``r`` with specification ``[L_r, U_r]`` (either side may be open) the
 probability that a new run at the setting ``x`` is inside it is the posterior predictive
 probability of the fitted model (the prediction contract's interval form,
-:mod:`rsm_lrg.model.prediction`)::
+:mod:`rsm_lrg.model.contract.prediction`)::
 
     p_r(x) = T_ν((U' - ŷ(x)) / s(x)) - T_ν((L' - ŷ(x)) / s(x)),   s(x)² = var_mean(x) + s2_new
 
-(the contract's :meth:`~rsm_lrg.model.prediction.FittedModel.predictive`; a Gaussian process:
+(the contract's :meth:`~rsm_lrg.model.contract.prediction.FittedModel.predictive`; a Gaussian process:
 the kriging mean, its variance plus the nugget, normal) on the model's scale (``L'``, ``U'`` the limits transformed as the response is; a limit outside
 the transform's domain is open), ``T_ν`` Student's t distribution with the fit's degrees of
 freedom (OLS n − p; REML the Kenward–Roger df of ``x``). For a linear model with normal errors

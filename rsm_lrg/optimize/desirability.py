@@ -278,7 +278,7 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
     e.g. ``{"stage": "rms"}``) is searched over the numeric factors, and the combination with
     the highest overall desirability wins (its levels are in ``actual``).
     """
-    from ..model.glm_result import GLMResult
+    from ..model.results.glm_result import GLMResult
 
     glm = [str(n) for n, f in (fits or {}).items() if isinstance(f, GLMResult)]
     if glm:  # its model scale is the link scale, which the search would read as the response
@@ -334,7 +334,7 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
     from scipy import optimize as so
     from scipy.stats import qmc
 
-    from ..model.terms import design_matrix
+    from ..model.build.terms import design_matrix
     from .region import feasible_mask, feasible_only, is_feasible, local_minima, parse_constraints, region_starts
     from .single import optimize as single_optimize
     from .single import parse_bounds
@@ -359,7 +359,7 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
              for g in goals]
     mixture = first.space.has_components
     if mixture:  # the constrained simplex (rsm_lrg.optimize.mixture)
-        from ..model.mixture_region import mixture_region
+        from ..model.build.mixture_region import mixture_region
 
         region = mixture_region(space, bounds, constraints)
         lo, hi, notes, cons = -np.ones(len(space)), np.ones(len(space)), [], None
@@ -375,7 +375,7 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
         inverses.append(None if tr.identity else tr.inverse)
         beta = f.coefficients["coded"].to_numpy(dtype=float)
         if all(t.order <= 2 for t in f.terms):
-            from ..model.canonical import quadratic_parts
+            from ..model.readings.canonical import quadratic_parts
 
             polys.append(("q", quadratic_parts(dict(zip(f.coefficients.index, beta)), f.terms, k)))
         else:

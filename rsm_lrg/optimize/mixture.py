@@ -1,6 +1,6 @@
 """The optimum of a fitted mixture model over the constrained simplex (and the process box).
 
-The region (:func:`rsm_lrg.model.mixture_region.mixture_region`) is the polytope
+The region (:func:`rsm_lrg.model.build.mixture_region.mixture_region`) is the polytope
 ``sum z = 1, G x <= h`` in coded units (L-pseudo components, coded process factors). Two
 routes find the global optimum:
 
@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..model.mixture_region import MixtureRegion, mixture_region
+from ..model.build.mixture_region import MixtureRegion, mixture_region
 
 __all__ = ["optimize_mixture", "kkt_faces", "region_starts", "polish", "face_newton", "desirability_search",
            "limits_of", "SEED"]
@@ -46,8 +46,8 @@ SEED = 20240
 def kkt_faces(b: np.ndarray, B: np.ndarray, region: MixtureRegion, sign: float) -> np.ndarray | None:
     """The global minimum of ``sign * (b'x + x'Bx)`` over ``region`` by enumerating its faces
     (see the module docstring); ``None`` when the region has too many faces
-    (:data:`rsm_lrg.model.mixture_region.MAX_ACTIVE_SETS`)."""
-    from ..model.mixture_region import MAX_ACTIVE_SETS
+    (:data:`rsm_lrg.model.build.mixture_region.MAX_ACTIVE_SETS`)."""
+    from ..model.build.mixture_region import MAX_ACTIVE_SETS
 
     if region.n_faces() > MAX_ACTIVE_SETS:
         return None
@@ -219,8 +219,8 @@ def optimize_mixture(fitted: Any, goal: Any = "minimize", bounds: Any = None, *,
     """
     from scipy import optimize as so
 
-    from ..model.canonical import quadratic_parts
-    from ..model.terms import design_gradient, design_matrix
+    from ..model.build.terms import design_gradient, design_matrix
+    from ..model.readings.canonical import quadratic_parts
     from .result import OptimumResult, optimum_notes
 
     if not 0.0 < confidence < 1.0:

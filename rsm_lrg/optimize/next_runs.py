@@ -38,7 +38,7 @@ from typing import Any, Protocol, runtime_checkable
 import numpy as np
 
 from ..errors import ParameterError
-from ..model.goals import parse_goal
+from ..model.build.goals import parse_goal
 
 __all__ = ["suggest", "Suggestion", "CRITERIA", "LCB_KAPPA", "criterion_values"]
 

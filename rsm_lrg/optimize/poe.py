@@ -12,7 +12,7 @@ Design-Expert's first-order propagation of error is
 This module prints exactly that first-order quantity (no second-order term: Design-Expert's
 documentation of POE states the first-order formula, and we found no public source that it
 adds a curvature term, so none is claimed). ``g`` is computed analytically: the term
-derivatives of the coded model (:func:`rsm_lrg.model.terms.design_gradient`), divided by each
+derivatives of the coded model (:func:`rsm_lrg.model.build.terms.design_gradient`), divided by each
 factor's half range (actual units per coded unit), times the slope ``dy/dη`` of the
 back-transform at the prediction.
 
@@ -140,7 +140,7 @@ def prediction_gradient(fit: Any, points: Any) -> tuple[np.ndarray, np.ndarray]:
     """``(η, dη/dx)`` at each point: the model-scale prediction and its gradient with respect
     to the factors in actual units (n x k; zero along a categoric factor) [model-scale units,
     model-scale units per actual unit]."""
-    from ..model.terms import design_gradient, design_matrix
+    from ..model.build.terms import design_gradient, design_matrix
 
     x = _coded(fit, points)
     beta = fit.coefficients["coded"].to_numpy(dtype=float)
@@ -168,7 +168,7 @@ def propagation_of_error(fit: Any, points: Any, factor_sd: Mapping[str, Any] | S
         ``√(g'Σg + σ²)`` per point, with ``g`` the gradient of the back-transformed prediction
         in actual units.
     """
-    from ..model.tolerance import new_run_variance
+    from ..model.contract.tolerance import new_run_variance
 
     sds = parse_factor_sd(fit.space, factor_sd)
     cov = factor_covariance(fit.space, sds)

@@ -4,7 +4,7 @@ simulator: what ``rsm-lrg predict`` prints.
 For each setting and each response (one fitted model per response, one factor space): the
 back-transformed prediction, the confidence interval for the mean, the prediction interval for
 one run and, with ``tolerance=P``, the tolerance interval for a proportion P of runs
-(:mod:`rsm_lrg.model.tolerance`: two-sided and one-sided bounds), all at confidence C; with
+(:mod:`rsm_lrg.model.contract.tolerance`: two-sided and one-sided bounds), all at confidence C; with
 ``factor_sd`` the propagation of error (:mod:`rsm_lrg.optimize.poe`); with ``draws`` the
 simulated runs (:mod:`rsm_lrg.optimize.simulator`), per setting from its own block of the seed.
 """

@@ -258,7 +258,7 @@ class _Response:
     """One response's model: what a block of runs needs."""
 
     def __init__(self, fit: Any, setting_frame: Any, model_uncertainty: bool) -> None:
-        from ..model.tolerance import coefficient_covariance, new_run_variance
+        from ..model.contract.tolerance import coefficient_covariance, new_run_variance
 
         self.fit = fit
         self.beta = fit.coefficients["coded"].to_numpy(dtype=float)
@@ -278,7 +278,7 @@ class _Response:
     def draw(self, rng: np.random.Generator, frame: Any, x_row: np.ndarray | None) -> np.ndarray:
         """Responses (response units) of the runs ``frame``; ``x_row`` is the one model row when
         the factors do not vary."""
-        from ..model.terms import design_matrix
+        from ..model.build.terms import design_matrix
 
         n = len(frame)
         if x_row is None:
@@ -364,7 +364,7 @@ def simulate_blocks(fits: Mapping[str, Any], setting: Mapping[str, Any], sds: Ma
     ``{response: ndarray}`` [response units]."""
     import pandas as pd
 
-    from ..model.terms import design_matrix
+    from ..model.build.terms import design_matrix
 
     first = next(iter(fits.values()))
     space = first.space

@@ -31,8 +31,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..model.goals import parse_goal
-from ..model.levels import LevelView  # the optimisers' view of a fit at one level combination
+from ..model.build.goals import parse_goal
+from ..model.readings.levels import LevelView  # the optimisers' view of a fit at one level combination
 from .result import OptimumResult, optimum_notes
 
 __all__ = ["optimize", "OptimumResult", "parse_goal", "parse_bounds"]
@@ -153,8 +153,8 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     -------
     OptimumResult
     """
-    from ..model.glm_result import GLMResult
-    from ..model.result import FitResult
+    from ..model.results.glm_result import GLMResult
+    from ..model.results.result import FitResult
 
     if not isinstance(fitted, (FitResult, GLMResult, LevelView)):  # a fit, or one at a level combination
         raise TypeError(f"optimize() takes a fitted result (FitResult), not {type(fitted).__name__}: fit first, "
@@ -184,8 +184,8 @@ def _optimize_numeric(fitted, goal, bounds, *, confidence: float, allow_extrapol
     """:func:`optimize` for a fit (or a :class:`LevelView`) whose factors are all numeric."""
     from scipy import optimize as so
 
-    from ..model.canonical import quadratic_parts
-    from ..model.terms import design_gradient, design_matrix
+    from ..model.build.terms import design_gradient, design_matrix
+    from ..model.readings.canonical import quadratic_parts
     from .region import feasible_only, is_feasible, local_minima, parse_constraints, region_starts
 
     # the goal as asked (response units) and on the model's scale (a transform maps it)

@@ -23,8 +23,8 @@ from typing import Any
 
 import numpy as np
 
-from ..model.anova import TOTAL_ROWS
-from ..model.summary_data import summary_data
+from ..model.faces.summary_data import summary_data
+from ..model.readings.anova import TOTAL_ROWS
 from ..present import ROUND_OFF, clean
 from .html import SIGNIFICANCE_NOTE, fmt_f, fmt_num, fmt_p, render_page, significance
 
@@ -68,11 +68,11 @@ def _equation_terms(result, units: str, labels: list[str], sep: str = "") -> lis
     each item on one line).
 
     Which terms appear and with how many digits is the model's one rule for every equation
-    writer (:func:`rsm_lrg.model.text.equation_terms`: round-off coded terms are 0, every
+    writer (:func:`rsm_lrg.model.faces.text.equation_terms`: round-off coded terms are 0, every
     actual-units coefficient not exactly zero is kept, with the digits that reproduce the
     predictions); numbers are written in the page's format (``0.00075``, ``4.16667 × 10⁻⁵``).
     """
-    from ..model.text import equation_terms
+    from ..model.faces.text import equation_terms
     from ..present import format_number
 
     out: list[str] = []
@@ -149,7 +149,7 @@ def _pretty_term(name: str) -> str:
 
 
 def _anova_notes(result, rows) -> list[str]:
-    """Design-Expert's sentences under the ANOVA (:func:`rsm_lrg.model.summary_data.summary_data`,
+    """Design-Expert's sentences under the ANOVA (:func:`rsm_lrg.model.faces.summary_data.summary_data`,
     the same as the text face's), powers shown as superscripts, and the legend of the marks."""
     notes = [_pretty_term(n) for n in summary_data(result).anova_notes]
     notes.append("Significance classes (** and * marks): " + SIGNIFICANCE_NOTE)
@@ -364,9 +364,9 @@ def mixture_figures(result, optimum) -> tuple[list[dict], str]:
     """A mixture fit's static figures: the ternary contour of the first three components (a
     slice through the region's centroid for more than three, said on the figure and in the
     caption; process factors at their centre) and the trace plot along the Cox direction
-    from the region's centroid (:mod:`rsm_lrg.model.mixture_trace`)."""
+    from the region's centroid (:mod:`rsm_lrg.model.readings.mixture_trace`)."""
     from ..factors import MixtureComponent
-    from ..model.mixture_trace import mixture_trace, ternary_slice
+    from ..model.readings.mixture_trace import mixture_trace, ternary_slice
     from . import plots as P
 
     space = result.space
@@ -593,8 +593,8 @@ def notebook_html(result, *, source_name: str | None = None) -> str:
     ctx = table_sections(result, source_name, None)
     ctx["title"] = f"{result.model.capitalize()} fit of {result.response}: {result.n} runs, {len(result.space)} factors"
     ctx["mixture_effects"] = []
-    if result.space.has_components:  # the effects along the Cox direction (rsm_lrg.model.mixture_trace)
-        from ..model.mixture_trace import mixture_trace
+    if result.space.has_components:  # the effects along the Cox direction (rsm_lrg.model.readings.mixture_trace)
+        from ..model.readings.mixture_trace import mixture_trace
 
         tr = mixture_trace(result)
         letter = {f.name: f.letter for f in result.space.factors}

@@ -2,7 +2,7 @@
 3-D surfaces of one or several fitted responses, in one self-contained HTML page.
 
 The page carries the fitted models themselves as data (per response: the model terms, the
-coded coefficients b and the fit's interval form, :class:`rsm_lrg.model.prediction.IntervalForm`),
+coded coefficients b and the fit's interval form, :class:`rsm_lrg.model.contract.prediction.IntervalForm`),
 and a small script computes, at the setting of the factor controls, exactly what
 :meth:`rsm_lrg.model.FitResult.predict` computes with ``interval="both"``, whatever the kind
 of model (OLS, blocked, categoric, mixture, transformed, REML whole plot or random block)::
@@ -14,7 +14,7 @@ of model (OLS, blocked, categoric, mixture, transformed, REML whole plot or rand
 with ``t`` the quantile at the fit's residual df (OLS, embedded) or at the Kenward–Roger df
 of ``x`` (REML: the page computes ``2 / A₂(x)`` and the quantile itself)
 (back-transformed, interval ends sorted, for a fit of a transformed response, as
-:meth:`rsm_lrg.model.result.FitResult.predict` does). The figures are drawn with Plotly
+:meth:`rsm_lrg.model.results.result.FitResult.predict` does). The figures are drawn with Plotly
 (plotly.js from the ``plotly`` Python package, inlined so the page works offline); the page's
 Content-Security-Policy allows its two scripts by their SHA-256 hash and nothing else: no
 network, no other script, no ``eval``. Every piece of user text (column names, levels, file
@@ -86,7 +86,7 @@ def model_data(result, confidence: float = 0.95) -> dict:
         levels], ...]``, ``combos``: level indices of each column, ``diff``: ``[i, j]`` for a
         Scheffé full-cubic term, whose column is also multiplied by ``x_i - x_j``), ``b`` (coded
         coefficients), ``interval`` (the fit's
-        :class:`~rsm_lrg.model.prediction.IntervalForm` as data: the covariances of ``se_fit``
+        :class:`~rsm_lrg.model.contract.prediction.IntervalForm` as data: the covariances of ``se_fit``
         and of the mean without block rows/columns, the variance of a new run, the df, and for
         a REML fit the Kenward–Roger parts from which the page computes the df of each
         point), ``df_text``, ``t`` (the quantile at a constant df; None for Kenward–Roger),
@@ -355,13 +355,13 @@ def mixture_data(specs) -> dict | None:
     range it takes in the region (:func:`rsm_lrg.optimize.mixture.limits_of`), the region's
     rows ``G x <= h`` in coded units, the reference blend (the region's centroid), each run's
     blend, and per response the trace along the Cox direction from the reference
-    (:func:`rsm_lrg.model.mixture_trace.mixture_trace`). Ordered things are arrays of
+    (:func:`rsm_lrg.model.readings.mixture_trace.mixture_trace`). Ordered things are arrays of
     records, never objects keyed by a name."""
     first = specs[0].result
     if not first.space.has_components:
         return None
-    from ..model.mixture_region import mixture_region
-    from ..model.mixture_trace import mixture_trace
+    from ..model.build.mixture_region import mixture_region
+    from ..model.readings.mixture_trace import mixture_trace
     from ..optimize.mixture import limits_of
 
     region = mixture_region(first.space)

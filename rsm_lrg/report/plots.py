@@ -333,7 +333,7 @@ def half_normal_plot(abs_effects, scores, labels, *, me: float | None = None, sm
     ----------
     abs_effects, scores : array_like
         ``|effect|`` of each term and its half-normal score, both from the model layer
-        (:func:`rsm_lrg.model.effects.screening_effects`) [response units, -].
+        (:func:`rsm_lrg.model.readings.effects.screening_effects`) [response units, -].
     labels : sequence of str
         Term names; the effects beyond ``me`` are labelled on the plot.
     me, sme : float, optional

@@ -176,13 +176,13 @@ def _two_carriage_row(values: dict, dur: float, y: float, s: float, msq: float, 
     :func:`_network_items` of ``values``."""
     g = float(values["ball_contact_conductance_w_k"])
     if not (interpolate and CONTACT_INTERP_W_K[0] <= g <= CONTACT_INTERP_W_K[1]):
-        key = (_network_items(values) if items is None else items, g, dur, y, s, msq, rigid)
-        hit = _ROWS.get(key)
+        row_key = (_network_items(values) if items is None else items, g, dur, y, s, msq, rigid)
+        hit = _ROWS.get(row_key)
         if hit is None:  # a design's repeated settings, across its batches
             hit = _two_carriage_exact(values, dur, y, s, msq, rigid)
             if len(_ROWS) >= _INTERP_SIZE:
                 _ROWS.pop(next(iter(_ROWS)))
-            _ROWS[key] = hit
+            _ROWS[row_key] = hit
         return hit
     from ..physics.thermal.two_carriage import ContactInterpolant
 

@@ -21,7 +21,7 @@ import pandas as pd
 import pytest
 
 import rsm_lrg
-from rsm_lrg.model.mixture_trace import mixture_trace
+from rsm_lrg.model.readings.mixture_trace import mixture_trace
 from rsm_lrg.report.interactive import write_interactive_report
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
@@ -197,7 +197,7 @@ def test_ternary_contour_and_trace_carry_the_model(chromium, mixture_pages, whic
         want = fit.predict(blends[fit.space.names])["predicted"].to_numpy()
         np.testing.assert_allclose(Z[pick[:, 0], pick[:, 1]], want, rtol=RTOL, atol=0)
         # a cell is drawn exactly where its blend lies in the region of the bounds (and constraints)
-        from rsm_lrg.model.mixture_region import mixture_region
+        from rsm_lrg.model.build.mixture_region import mixture_region
 
         region = mixture_region(fit.space)
         h3 = np.sqrt(3) / 2

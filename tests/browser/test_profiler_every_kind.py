@@ -2,7 +2,7 @@
 (issue 31): OLS, transformed, blocked, categoric, mixture, mixture–process, REML whole plot,
 REML random block (positive and zero variance component).
 
-The page reads the fit's interval form (:class:`rsm_lrg.model.prediction.IntervalForm`) and
+The page reads the fit's interval form (:class:`rsm_lrg.model.contract.prediction.IntervalForm`) and
 nothing else about its kind: for a REML fit it computes the Kenward–Roger df of each point and
 the t quantile itself. At 50 random settings per kind, the page's prediction, CI and PI equal
 ``predict(..., interval="both")`` to 1e-9 relative (Chromium); and at the optimum the page,

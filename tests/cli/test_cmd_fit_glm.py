@@ -1,6 +1,6 @@
 """``fit --family binomial|poisson [--link L] [--trials COL]`` on the command line (issue 35,
 item 1): the text and the JSON, and bad input exiting 2 with one line naming the option or the
-cell. The numbers themselves are checked against R in ``tests/model/test_glm_r.py``."""
+cell. The numbers themselves are checked against R in ``tests/model/pipelines/test_glm_r.py``."""
 
 import json
 from pathlib import Path

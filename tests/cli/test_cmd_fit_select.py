@@ -1,6 +1,6 @@
 """``fit --reduce forward|backward|stepwise|all-subsets --criterion p|aicc|bic [--alpha-in A]``
 (issue 35, item 5) on the command line; the choices themselves are checked in
-``tests/model/test_select.py``."""
+``tests/model/choice/test_select.py``."""
 
 import json
 

@@ -26,7 +26,7 @@ MIX = ["fit-summary", "data/mixture_etch.csv", "--response", "erate", "--compone
 
 
 def test_mixture_fit_summary(capsys):
-    # the Scheffé sequence (figures checked against R in tests/model/test_mixture_fit_summary.py)
+    # the Scheffé sequence (figures checked against R in tests/model/choice/test_mixture_fit_summary.py)
     assert main(MIX + ["--json", "-"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["suggested"] == "special-cubic" and d["n"] == 14

@@ -125,7 +125,7 @@ def test_random_designs_on_large_offsets_match_exact(n, offset_exp, seed, block)
 def test_fit_summary_on_a_large_offset():
     # fit-summary centres the response too: y and y + 1e9 give the same sequential and
     # lack-of-fit sums of squares (to the 1e-7 rounding of y + 1e9 itself, ~1e-6 relative here)
-    from rsm_lrg.model.summary import fit_summary
+    from rsm_lrg.model.choice.summary import fit_summary
 
     d = _bbd_offset(5, 0.0)
     a = fit_summary(d, "y")

@@ -12,8 +12,8 @@ import pandas as pd
 import pytest
 
 import rsm_lrg
-from rsm_lrg.model.anova import pure_error
-from rsm_lrg.model.summary import fit_summary
+from rsm_lrg.model.choice.summary import fit_summary
+from rsm_lrg.model.readings.anova import pure_error
 
 R_DIR = Path(__file__).parent / "r"
 CASES = {

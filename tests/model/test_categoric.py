@@ -103,7 +103,7 @@ def test_reduce_removes_a_multi_df_term_whole(res):
 
 
 def test_fit_summary_with_categoric(ccd):
-    from rsm_lrg.model.summary import fit_summary
+    from rsm_lrg.model.choice.summary import fit_summary
 
     s = fit_summary(ccd, "wear_um", factors=["speed_m_s", "load_n", "lubricant"])
     seq = s.sequential.set_index("source")

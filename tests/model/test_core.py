@@ -1,4 +1,4 @@
-"""The regression core (rsm_lrg.model.least_squares) against independent routes.
+"""The regression core (rsm_lrg.model.engines.least_squares) against independent routes.
 
 References and tolerances:
 * statsmodels 0.15 OLS of the same matrix (params, normalized_cov_params, ssr, hat
@@ -20,8 +20,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import rsm_lrg
-from rsm_lrg.model.least_squares import Accumulator, least_squares
-from rsm_lrg.model.terms import design_matrix, model_terms
+from rsm_lrg.model.build.terms import design_matrix, model_terms
+from rsm_lrg.model.engines.least_squares import Accumulator, least_squares
 
 R_DIR = Path(__file__).parent / "r"
 
@@ -212,7 +212,7 @@ def test_fit_summary_sequential_ss_from_one_factorisation_match_statsmodels_anov
     import statsmodels.api as sm
     from statsmodels.stats.anova import anova_lm
 
-    from rsm_lrg.model.summary import fit_summary
+    from rsm_lrg.model.choice.summary import fit_summary
 
     d = rsm_lrg.load_table4()
     s = fit_summary(d, "tcr_c_per_min", orders=("linear", "2fi", "quadratic"))
@@ -232,7 +232,7 @@ def test_core_against_r_rsm_on_a_ccd_with_replicates():
     # r/make_data.py): coefficients, the sequential SS of rsm's summary (FO, TWI, PQ = the fit
     # summary's Linear, 2FI, Quadratic rows), residual / lack of fit / pure error SS, PRESS, the hat
     # diagonal and the VIF, all to 1e-9 relative.
-    from rsm_lrg.model.summary import fit_summary
+    from rsm_lrg.model.choice.summary import fit_summary
 
     d = pd.read_csv(R_DIR / "core_ccd4.csv")
     ref = pd.read_csv(R_DIR / "core_expected.csv")

@@ -125,7 +125,7 @@ def _frame(kind):
 def test_the_pandas_api_refuses_what_it_once_dropped_or_guessed(kind, words):
     # issue 36: each of these fitted silently without a factor, fitted True as 1, dropped an
     # imaginary part, or ended in AttributeError / "constant (nan)"; now a ValueError naming it
-    from rsm_lrg.model.summary import fit_summary
+    from rsm_lrg.model.choice.summary import fit_summary
 
     for call in (lambda d: rsm_lrg.fit(d, "tcr_c_per_min"), lambda d: fit_summary(d, "tcr_c_per_min")):
         with pytest.raises(ValueError) as info:

@@ -10,8 +10,8 @@ from statsmodels.stats.outliers_influence import variance_inflation_factor
 
 import rsm_lrg
 from rsm_lrg.design import read_design
+from rsm_lrg.model.build.terms import design_matrix, model_terms
 from rsm_lrg.model.evaluate import evaluate_design
-from rsm_lrg.model.terms import design_matrix, model_terms
 
 
 def test_paper_bbd_spv_at_centre_is_n_over_n0():

@@ -20,8 +20,8 @@ import pandas as pd
 import pytest
 
 import rsm_lrg
-from rsm_lrg.model.mixture import pseudo_to_actual
-from rsm_lrg.model.spec import SpecError
+from rsm_lrg.model.build.mixture import pseudo_to_actual
+from rsm_lrg.model.build.spec import SpecError
 from rsm_lrg.terms import design_gradient, design_matrix, parse_term
 
 HERE = Path(__file__).parent / "r"
@@ -166,7 +166,7 @@ def test_refusals():
 
 def test_backward_elimination_keeps_ab_while_its_cubic_term_stays():
     """AB(A-B) holds AB: AB may leave only after it (hierarchy), and the linear terms stay."""
-    from rsm_lrg.model.reduce import removable
+    from rsm_lrg.model.choice.reduce import removable
 
     terms = [parse_term(n, "ABC") for n in ["A", "B", "C", "AB", "AC", "AB(A-B)"]]
     assert [t.name for t in removable(terms)] == ["AC", "AB(A-B)"]

@@ -1,4 +1,4 @@
-"""Scheffé mixture fits (rsm_lrg.model.mixture) against R's ``lm`` on published data.
+"""Scheffé mixture fits (rsm_lrg.model.build.mixture) against R's ``lm`` on published data.
 
 Data: the plasma etch-rate mixture experiment of Myers & Montgomery, *Response Surface
 Methodology* (2002), Table 12.4, as shipped in R mixexp's ``etch`` data set (three components,
@@ -19,8 +19,8 @@ import pandas as pd
 import pytest
 
 import rsm_lrg
-from rsm_lrg.model.mixture import pseudo_to_actual
-from rsm_lrg.model.spec import SpecError
+from rsm_lrg.model.build.mixture import pseudo_to_actual
+from rsm_lrg.model.build.spec import SpecError
 
 HERE = Path(__file__).parent / "r"
 SETS = {"etch": ("mixture_etch.csv", ["x1", "x2", "x3"]),
@@ -230,7 +230,7 @@ def test_backward_elimination_keeps_the_blending_terms():
     each step removed a term whose p exceeded 0.1, and every term that could still leave
     (hierarchy kept) has p <= 0.1 in the final ANOVA; the final fit equals the fit of the
     kept terms."""
-    from rsm_lrg.model.reduce import removable
+    from rsm_lrg.model.choice.reduce import removable
 
     d = pd.read_csv(HERE / "mixture_fishp.csv")
     kw = {"components": ["x1", "x2", "x3"], "factors": ["z1", "z2", "z3"], "model": "mixture-quadratic"}

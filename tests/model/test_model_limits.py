@@ -11,10 +11,10 @@ import pandas as pd
 import pytest
 
 import rsm_lrg
+from rsm_lrg.model.build.terms import MODELS, check_model_size, model_terms, n_model_terms
+from rsm_lrg.model.choice.reduce import reduce_terms
+from rsm_lrg.model.choice.summary import fit_summary
 from rsm_lrg.model.evaluate import evaluate_design
-from rsm_lrg.model.reduce import reduce_terms
-from rsm_lrg.model.summary import fit_summary
-from rsm_lrg.model.terms import MODELS, check_model_size, model_terms, n_model_terms
 
 
 def grid3(y=None, seed=0):

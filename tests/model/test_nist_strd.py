@@ -26,7 +26,12 @@ from _exact import exact_lstsq, exact_normal, gauss_jordan
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from rsm_lrg.model.actual_units import is_closed_under_shift, shiftable_factors, solve_actual, solve_actual_chunks
+from rsm_lrg.model.readings.actual_units import (
+    is_closed_under_shift,
+    shiftable_factors,
+    solve_actual,
+    solve_actual_chunks,
+)
 from rsm_lrg.terms import Term, parse_term
 
 HERE = Path(__file__).parent

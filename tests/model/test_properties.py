@@ -115,7 +115,7 @@ def test_random_designs_match_independent_routes(case):
     act = r.actual_coefficients
     xa = df[[s.split("=")[0] for s in specs]].to_numpy()
     pred_actual = np.zeros(n)
-    from rsm_lrg.model.terms import parse_term
+    from rsm_lrg.model.build.terms import parse_term
 
     for nm, c in act.items():
         t = parse_term(nm, r.space.letters)

@@ -13,7 +13,7 @@ import pandas as pd
 import pytest
 
 import rsm_lrg
-from rsm_lrg.model.ridge import ridge
+from rsm_lrg.model.readings.ridge import ridge
 
 HERE = Path(__file__).parent / "r"
 FACTORS = ["A", "R", "W", "L"]

@@ -104,8 +104,8 @@ def test_r_threshold_rule():
     # R rsm canonical(threshold=): eigenvalues below the threshold count as zero and the
     # stationary point is restricted to the remaining eigen-directions.
     from rsm_lrg.factors import FactorSpace
-    from rsm_lrg.model.canonical import canonical_analysis
-    from rsm_lrg.model.terms import model_terms
+    from rsm_lrg.model.build.terms import model_terms
+    from rsm_lrg.model.readings.canonical import canonical_analysis
 
     space = FactorSpace.from_ranges({"u": (-1, 1), "v": (-1, 1)})
     terms = model_terms(space.letters, "quadratic")

@@ -119,7 +119,7 @@ def test_inverse_transform_swaps_the_interval_ends():
 def test_reduced_model_confirmation_equals_the_refit_on_kept_terms():
     # the reduced model (backward elimination) is the same as fitting its kept terms by hand
     df = _montgomery_11_2()
-    from rsm_lrg.model.reduce import reduce_terms
+    from rsm_lrg.model.choice.reduce import reduce_terms
 
     red = reduce_terms(df, "y", factors=["x1=-1:1", "x2=-1:1"], alpha_out=0.1)
     assert "AB" in red.removed  # Montgomery Example 11.2: the interaction is not significant

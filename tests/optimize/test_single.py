@@ -93,7 +93,7 @@ def _quad_fit(k, seed):
     """A fit whose coefficients are a random quadratic (exact data, no noise)."""
     rng = np.random.default_rng(seed)
     pts = np.array(list(itertools.product((-1.0, 0.0, 1.0), repeat=k)))
-    from rsm_lrg.model.terms import design_matrix, model_terms
+    from rsm_lrg.model.build.terms import design_matrix, model_terms
 
     letters = [chr(65 + i) for i in range(k)]
     terms = model_terms(letters, "quadratic")

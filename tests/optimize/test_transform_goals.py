@@ -16,7 +16,7 @@ import pytest
 
 import rsm_lrg
 from rsm_lrg.cli import main
-from rsm_lrg.model.terms import design_matrix
+from rsm_lrg.model.build.terms import design_matrix
 
 TRANSFORMS = ["log", "log10", "sqrt", "inverse", "power=-0.5"]
 GOALS = ["maximize", "minimize", "target=0.03"]

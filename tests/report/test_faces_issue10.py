@@ -15,7 +15,7 @@ import struct
 import pytest
 
 import rsm_lrg
-from rsm_lrg.model.canonical import StationaryPoint
+from rsm_lrg.model.readings.canonical import StationaryPoint
 from rsm_lrg.paper.reproduction import Reproduction, Row
 from rsm_lrg.report import report_context
 from rsm_lrg.report.html import render_page

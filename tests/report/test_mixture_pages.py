@@ -1,6 +1,6 @@
 """The report of a mixture fit (static page, interactive page data, notebook fragment): the
-ternary contour and the trace plot are there, with the numbers of rsm_lrg.model.mixture_trace
-and rsm_lrg.model.mixture_region (Myers & Montgomery's plasma-etch blends, ``r/mixture_etch*.csv``).
+ternary contour and the trace plot are there, with the numbers of rsm_lrg.model.readings.mixture_trace
+and rsm_lrg.model.build.mixture_region (Myers & Montgomery's plasma-etch blends, ``r/mixture_etch*.csv``).
 The browser side (sliders, figures drawn) is tests/browser/test_mixture_browser.py."""
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ import pandas as pd
 import pytest
 
 import rsm_lrg
-from rsm_lrg.model.mixture_region import mixture_region
-from rsm_lrg.model.mixture_trace import mixture_trace
+from rsm_lrg.model.build.mixture_region import mixture_region
+from rsm_lrg.model.readings.mixture_trace import mixture_trace
 from rsm_lrg.report.interactive import interactive_html
 
 R = Path(__file__).parents[1] / "model" / "r"

@@ -234,7 +234,7 @@
     return t;
   }
   /* setting: {factor name: actual value or level}; returns predicted, se, ci, pi, computed as
-   * FitResult.predict computes them from the model's interval form (rsm_lrg.model.prediction):
+   * FitResult.predict computes them from the model's interval form (rsm_lrg.model.contract.prediction):
    * se² = x'·cov_se·x, var_mean = x'·cov_mean·x, var_new = var_mean + s2_new, and the t
    * quantile at the fit's df (OLS: embedded) or at the Kenward-Roger df of x (REML) */
   function predict(m, setting) {

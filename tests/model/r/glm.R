@@ -1,4 +1,4 @@
-# Generalised linear models as R's glm computes them: reference for tests/model/test_glm_r.py.
+# Generalised linear models as R's glm computes them: reference for tests/model/pipelines/test_glm_r.py.
 #
 # Published data sets (none used to tune the Python code):
 #   glm_mtcars.csv     datasets::mtcars (Henderson & Velleman 1981): am (0/1) ~ hp + wt (logit only: the

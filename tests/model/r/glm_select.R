@@ -1,5 +1,5 @@
 # Forward, backward and stepwise selection of a GLM by BIC as R's step() makes it: reference for
-# tests/model/test_glm_select.py. step(k = log(n)) on a glm uses deviance + k * edf, which differs
+# tests/model/pipelines/test_glm_select.py. step(k = log(n)) on a glm uses deviance + k * edf, which differs
 # from -2 logLik + p log(n) by a constant, and keeps marginality (the hierarchy rsm-lrg keeps).
 # Data: MASS::birthwt (low ~ age, lwt, ptl, ftv; binomial logit), pscl::bioChemists (art ~ ment,
 # phd, kid5; poisson log), datasets::warpbreaks (breaks ~ wool * tension; poisson log, categoric).

@@ -1,4 +1,4 @@
-# Gaussian-process (kriging) reference for tests/model/test_gp_r.py: DiceKriging::km fits
+# Gaussian-process (kriging) reference for tests/model/pipelines/test_gp_r.py: DiceKriging::km fits
 # and predict.km(type = "UK") predictions.
 #   Rscript tests/model/r/gp.R   (from the repository root or this folder)
 # R 4.2.2, DiceKriging 1.6.0 (CRAN source, R CMD INSTALL). Data: make_gp.py (Branin 20 runs,

@@ -1,5 +1,5 @@
 # REML fits with one random intercept (split-plot whole plots, random blocks) and their
-# Kenward-Roger F tests: reference for tests/model/test_mixed_r.py.
+# Kenward-Roger F tests: reference for tests/model/engines/test_mixed_r.py.
 #   R_LIBS=/tmp/rlib Rscript tests/model/r/mixed.R   (from the repository root or this folder)
 # R 4.2.2, nlme 3.1-162, lme4 1.1-31, pbkrtest 0.5.2 (Debian r-cran-* packages).
 # Estimates, standard errors and variance components: nlme::lme(..., method = "REML") with

@@ -1,6 +1,6 @@
 # REML fits whose random-intercept variance is estimated at zero (the boundary), and their
 # Kenward-Roger F tests with the zero component kept in the computation, as pbkrtest keeps it:
-# reference for tests/model/test_mixed_boundary.py.
+# reference for tests/model/engines/test_mixed_boundary.py.
 #   Rscript tests/model/r/mixed_boundary.R   (from the repository root or this folder)
 # R 4.2.2, lme4 1.1-31, pbkrtest 0.5.2, lmerTest 3.1-3 (Debian r-cran-* packages).
 # Data:

@@ -1,5 +1,5 @@
 # The mixture fit summary (rsm_lrg.fit_summary(..., components=...)) checked against R's lm and
-# anova (tests/model/test_mixture_fit_summary.py). Nested Scheffé models on L-pseudo-components
+# anova (tests/model/choice/test_mixture_fit_summary.py). Nested Scheffé models on L-pseudo-components
 # (x' = (x - min x) / (T - sum min), T the median row sum, as rsm_lrg codes a bare component name):
 # mean, linear, quadratic, special cubic, full cubic. Each sequential row is anova(previous, this):
 # the extra sum of squares, F against the residual of the larger model (Design-Expert's layout);

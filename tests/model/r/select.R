@@ -1,5 +1,5 @@
 # Forward, backward and stepwise selection by BIC as R's step() makes it: reference for
-# tests/model/test_select.py. step(k = log(n)) respects marginality (an interaction enters after
+# tests/model/choice/test_select.py. step(k = log(n)) respects marginality (an interaction enters after
 # its main effects and leaves before them), which is the hierarchy rsm-lrg keeps, so on a 2FI
 # model both search the same models by the same criterion (BIC up to a constant).
 # Data: datasets::mtcars (mpg ~ wt, hp, qsec, disp), datasets::swiss (Fertility ~ Agriculture,

@@ -1,6 +1,6 @@
 # Regression tolerance intervals checked against R's tolerance::regtol.int (version 3.0.0,
-# CRAN; tests/model/test_tolerance_r.py). Three data sets already in this folder, none used to
-# develop rsm_lrg.model.tolerance:
+# CRAN; tests/model/contract/test_tolerance_r.py). Three data sets already in this folder, none used to
+# develop rsm_lrg.model.contract.tolerance:
 #   heli         heli.csv, response `ave`, full quadratic in A, R, W, L (block column unused);
 #   scales       lm_scales.csv, response log(y) (rsm-lrg: --transform log), full quadratic in
 #                thickness_m, freq_hz, temp_c (factors of very different magnitudes);

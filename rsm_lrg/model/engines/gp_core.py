@@ -1,0 +1,106 @@
+"""The linear algebra of universal kriging at given hyper-parameters (the engine's core;
+:mod:`rsm_lrg.model.pipelines.gp` estimates the hyper-parameters, :mod:`rsm_lrg.model.results.gp_result`
+predicts from this factorisation).
+
+The covariance of the runs is ``Sigma = sigma2 R + tau2 I`` (``R`` the kernel's correlation
+matrix, :mod:`rsm_lrg.model.engines.gp_kernels`; ``tau2`` the nugget). It is factorised once by
+Cholesky, ``Sigma = L L'``; when the factorisation fails (a matrix singular to working
+precision) ``jitter * sigma2`` is added to the diagonal, ``jitter`` the smallest of
+1e-12, 1e-11, ..., 1e-4 that succeeds, and the result says so. The trend coefficients are
+the generalised least-squares ones, from a QR factorisation of ``L^-1 F``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import solve_triangular
+
+from .gp_kernels import correlation
+
+__all__ = ["KrigingCore", "kriging_core", "cholesky_jitter", "JITTERS"]
+
+#: Relative jitters tried, in order, when a Cholesky factorisation fails.
+JITTERS = (0.0,) + tuple(10.0 ** e for e in range(-12, -3))
+
+
+def cholesky_jitter(m: np.ndarray, scale: float) -> tuple[np.ndarray, float]:
+    """Lower Cholesky factor of ``m + jitter * scale * I`` and the relative ``jitter`` used
+    (0 when ``m`` itself factorises); LinAlgError when none of :data:`JITTERS` suffices."""
+    n = m.shape[0]
+    for jit in JITTERS:
+        try:
+            a = m if jit == 0.0 else m + (jit * scale) * np.eye(n)
+            return np.linalg.cholesky(a), jit
+        except np.linalg.LinAlgError:
+            continue
+    raise np.linalg.LinAlgError("the covariance matrix is not positive definite even with a jitter of 1e-4")
+
+
+@dataclass(frozen=True)
+class KrigingCore:
+    """Universal kriging at fixed hyper-parameters.
+
+    Attributes
+    ----------
+    chol : (n, n) ndarray
+        Lower Cholesky factor ``L`` of ``Sigma`` (+ jitter).
+    jitter : float
+        Relative jitter added to the diagonal (``jitter * sigma2``); 0 when none.
+    beta : (p,) ndarray
+        GLS trend coefficients.
+    alpha : (n,) ndarray
+        ``Sigma^-1 (y - F beta)``.
+    ft : (n, p) ndarray
+        ``L^-1 F``.
+    r_f : (p, p) ndarray
+        Upper-triangular factor of ``ft`` (``F' Sigma^-1 F = r_f' r_f``).
+    quad : float
+        ``(y - F beta)' Sigma^-1 (y - F beta)``.
+    logdet : float
+        ``log det Sigma``.
+    """
+
+    chol: np.ndarray
+    jitter: float
+    beta: np.ndarray
+    alpha: np.ndarray
+    ft: np.ndarray
+    r_f: np.ndarray
+    quad: float
+    logdet: float
+
+    @property
+    def log_likelihood(self) -> float:
+        """``-(n log 2 pi + log det Sigma + quad) / 2``: at the maximum-likelihood variance
+        this is the concentrated log-likelihood (DiceKriging's ``logLik``)."""
+        n = self.alpha.size
+        return float(-0.5 * (n * np.log(2.0 * np.pi) + self.logdet + self.quad))
+
+
+def gls(chol: np.ndarray, F: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``beta``, ``ft = L^-1 F``, ``r_f`` and the whitened residual ``L^-1 (y - F beta)``;
+    ValueError when the trend's columns are aliased on these runs."""
+    ft = solve_triangular(chol, F, lower=True, check_finite=False)
+    yt = solve_triangular(chol, y, lower=True, check_finite=False)
+    q, r_f = np.linalg.qr(ft)
+    d = np.abs(np.diag(r_f))
+    if d.size and not d.min() > 1e-10 * max(d.max(), 1e-300):
+        raise ValueError("the trend's columns are aliased on these runs (too few distinct settings for this trend)")
+    beta = solve_triangular(r_f, q.T @ yt, lower=False, check_finite=False)
+    return beta, ft, r_f, yt - ft @ beta
+
+
+def kriging_core(x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, theta: np.ndarray, variance: float,
+                 nugget: float) -> KrigingCore:
+    """Factorise ``Sigma = variance R + nugget I`` at the runs ``x`` [coded] and solve the
+    GLS trend (see the module docstring)."""
+    R = correlation(x, x, theta, kernel)
+    sigma = variance * R
+    sigma[np.diag_indices_from(sigma)] += nugget
+    chol, jit = cholesky_jitter(sigma, variance)
+    beta, ft, r_f, z = gls(chol, F, y)
+    alpha = solve_triangular(chol, z, lower=True, trans="T", check_finite=False)
+    return KrigingCore(chol=chol, jitter=jit, beta=beta, alpha=alpha, ft=ft, r_f=r_f, quad=float(z @ z),
+                       logdet=float(2.0 * np.sum(np.log(np.diag(chol)))))

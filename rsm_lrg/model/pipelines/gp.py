@@ -1,0 +1,408 @@
+"""The Gaussian-process (kriging) engine: :func:`fit_gp`, behind ``rsm_lrg.fit(..., model="gp")``.
+
+The response is modelled as ``y(x) = f(x)' beta + Z(x) + e`` on the coded factors ``x``:
+``f`` a trend (:mod:`rsm_lrg.model.engines.gp_trend`: constant, linear or quadratic, its
+coefficients by generalised least squares), ``Z`` a zero-mean Gaussian process of variance
+``sigma2`` whose correlation is an anisotropic tensor-product kernel with one length-scale
+per factor (:mod:`rsm_lrg.model.engines.gp_kernels`, parameterised as R ``DiceKriging`` does), and
+``e`` a white noise of variance ``tau2``, the nugget (Sacks, Welch, Mitchell & Wynn 1989;
+Santner, Williams & Notz 2018; Roustant, Ginsbourger & Deville 2012).
+
+Estimation (:func:`estimate`) maximises the likelihood, the trend coefficients profiled out
+(GLS) and, when the nugget is zero or estimated and the variance is not given, the
+variance too: ``sigma2 = z' A^-1 z / n`` with ``A = R + g I``, ``g = tau2 / sigma2``, and
+
+    log L = -(n log(2 pi sigma2) + log det A + n) / 2,
+
+DiceKriging's concentrated log-likelihood (``logLik``). The free parameters are the
+log length-scales (and ``log g`` for an estimated nugget; ``log sigma2`` when a fixed nugget
+keeps the variance from being concentrated out), optimised by L-BFGS-B with the analytic
+gradient ``d log L / dp = (w' dA w / sigma2 - tr(A^-1 dA)) / 2``, ``w = A^-1 z``, from
+several seeded starting points (above :data:`MULTISTART_RUNS` runs searched on a random
+subsample, the best two then polished on every run); the best optimum is kept. Bounds: a length-scale between
+1e-3 and 10 times the factor's coded range in the data; ``g`` between 1e-10 and 10.
+
+The nugget: ``nugget="estimate"`` for noisy data; a number fixes it [response units²];
+``None`` (the default) estimates it when the data hold runs at the same setting (a
+deterministic simulator cannot give two answers there) and otherwise fixes it at zero, so
+that the model interpolates the runs. A Cholesky factorisation that fails adds a jitter
+(:mod:`rsm_lrg.model.engines.gp_core`); the notes say so, and the result reports the condition
+number of the correlation matrix.
+
+>>> import numpy as np, pandas as pd
+>>> rng = np.random.default_rng(1)
+>>> df = pd.DataFrame({"a": rng.uniform(0, 1, 12), "b": rng.uniform(0, 1, 12)})
+>>> df["y"] = np.sin(5 * df.a) + df.b ** 2
+>>> r = fit_gp(df, "y", kernel="gauss", seed=3)
+>>> bool(np.allclose(r.predict(df[["a", "b"]])["predicted"], df.y, atol=1e-6))
+True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from scipy.linalg import cho_solve, solve_triangular
+
+from ...errors import ParameterError
+from ..engines.gp_core import KrigingCore, cholesky_jitter, gls, kriging_core
+from ..engines.gp_kernels import KERNELS, correlation, log_derivative_theta
+from ..engines.gp_trend import TRENDS, trend_matrix, trend_size
+from ..results.gp_result import GPResult
+
+__all__ = ["fit_gp", "refuse_options", "estimate", "ProfileLikelihood", "Estimate", "GP_STARTS", "THETA_BOUNDS",
+           "NUGGET_RATIO_BOUNDS", "MULTISTART_RUNS"]
+
+#: Number of starting points of the likelihood's maximisation (the first at half the range).
+GP_STARTS = 10
+#: Length-scale bounds as multiples of the factor's coded range in the data.
+THETA_BOUNDS = (1e-3, 10.0)
+#: Above this many runs the starting points are searched on a random subsample of this size
+#: and the best two are then polished on every run (each likelihood evaluation costs O(n³)).
+MULTISTART_RUNS = 300
+#: Bounds of the nugget-to-variance ratio ``g`` when the nugget is estimated.
+NUGGET_RATIO_BOUNDS = (1e-10, 10.0)
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """Hyper-parameters at the maximum of the likelihood (or as given).
+
+    Attributes
+    ----------
+    theta : (k,) ndarray
+        Length-scales [coded units].
+    variance : float
+        Process variance ``sigma2`` [response units²].
+    nugget : float
+        ``tau2`` [response units²].
+    core : KrigingCore
+        The factorisation at these values.
+    estimated : dict
+        Which of ``length_scales``, ``variance``, ``nugget`` were estimated.
+    starts : int
+        Starting points used (0 when nothing was optimised).
+    """
+
+    theta: np.ndarray
+    variance: float
+    nugget: float
+    core: KrigingCore
+    estimated: dict = field(default_factory=dict)
+    starts: int = 0
+
+
+class ProfileLikelihood:
+    """Minus the profile log-likelihood and its gradient in the free parameters ``p``
+    (calling it gives both; :meth:`unpack` maps ``p`` to the kernel's parameters).
+
+    ``concentrated``: ``Sigma = sigma2 (R + g I)`` with ``sigma2`` profiled out; p = (log theta
+    [free], log g [if estimated]). Otherwise ``Sigma = s R + t I``; p = (log theta [free],
+    log s [if free], log t [if estimated])."""
+
+    def __init__(self, x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, *, theta: np.ndarray | None,
+                 concentrated: bool, scale: float | None, noise: float | str) -> None:
+        self.x, self.y, self.F, self.kernel = x, y, F, kernel
+        self.theta = theta
+        self.concentrated = concentrated
+        self.scale = scale  # sigma2 when fixed (not concentrated)
+        self.noise = noise  # g or tau2 fixed, or "estimate"
+        self.k = x.shape[1]
+
+    def unpack(self, p: np.ndarray) -> tuple[np.ndarray, float, float]:
+        """``(theta, a, b)`` of ``M = a R + b I``."""
+        i = 0
+        if self.theta is None:
+            theta = np.exp(p[:self.k])
+            i = self.k
+        else:
+            theta = self.theta
+        if self.concentrated:
+            a = 1.0
+        elif self.scale is None:
+            a = float(np.exp(p[i]))
+            i += 1
+        else:
+            a = self.scale
+        b = float(np.exp(p[i])) if self.noise == "estimate" else float(self.noise)
+        return theta, a, b
+
+    def __call__(self, p: np.ndarray) -> tuple[float, np.ndarray]:
+        theta, a, b = self.unpack(p)
+        x, n = self.x, self.y.size
+        R = correlation(x, x, theta, self.kernel)
+        m = a * R
+        m[np.diag_indices_from(m)] += b
+        try:
+            chol, _ = cholesky_jitter(m, a)
+            beta, ft, r_f, z = gls(chol, self.F, self.y)
+        except (np.linalg.LinAlgError, ValueError):
+            return 1e300, np.zeros_like(p)
+        quad = float(z @ z)
+        logdet = 2.0 * float(np.sum(np.log(np.diag(chol))))
+        if self.concentrated:
+            s2 = max(quad / n, 1e-300)
+            ll = -0.5 * (n * np.log(2.0 * np.pi * s2) + logdet + n)
+            kappa = 1.0 / s2
+        else:
+            ll = -0.5 * (n * np.log(2.0 * np.pi) + logdet + quad)
+            kappa = 1.0
+        w = solve_triangular(chol, z, lower=True, trans="T", check_finite=False)
+        minv = cho_solve((chol, True), np.eye(n), check_finite=False)
+        G = (kappa * np.outer(w, w) - minv) * R  # so that dL/dp = sum(G * dM/dp elementwise(R-free)) / 2
+        grad: list[float] = []
+        if self.theta is None:
+            for j in range(self.k):
+                grad.append(0.5 * a * float(np.sum(G * log_derivative_theta(x, x, theta, self.kernel, j))))
+        if not self.concentrated and self.scale is None:
+            grad.append(0.5 * a * float(np.sum(G)))
+        if self.noise == "estimate":
+            grad.append(0.5 * b * (kappa * float(w @ w) - float(np.trace(minv))))
+        return -float(ll), -np.asarray(grad)
+
+
+def _starts(rng: np.random.Generator, lo: np.ndarray, hi: np.ndarray, first: np.ndarray, n: int) -> np.ndarray:
+    """``first`` and ``n - 1`` points of a Latin hypercube in the box ``[lo, hi]``."""
+    out = [first]
+    m = n - 1
+    if m > 0:
+        u = (np.argsort(rng.random((m, lo.size)), axis=0) + rng.random((m, lo.size))) / m
+        out += list(lo + u * (hi - lo))
+    return np.array(out)
+
+
+def estimate(x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, *, length_scales: np.ndarray | None = None,
+             variance: float | None = None, nugget: float | str = 0.0, seed: Any = 0,
+             starts: int = GP_STARTS) -> Estimate:
+    """Maximum-likelihood hyper-parameters of a GP (see the module docstring); the ones given
+    are held fixed.
+
+    Parameters
+    ----------
+    x : (n, k) ndarray
+        Coded settings.
+    y : (n,) ndarray
+        Responses.
+    F : (n, p) ndarray
+        Trend matrix.
+    kernel : str
+        One of :data:`~rsm_lrg.model.engines.gp_kernels.KERNELS`.
+    length_scales : (k,) ndarray, optional
+        Fixed length-scales [coded units].
+    variance : float, optional
+        Fixed process variance [response units²].
+    nugget : float or "estimate"
+        Fixed nugget [response units²] or ``"estimate"``.
+    seed : int or numpy.random.Generator
+        Seed of the starting points.
+    starts : int
+        Number of starting points.
+
+    Returns
+    -------
+    Estimate
+    """
+    from scipy.optimize import minimize
+
+    concentrated = variance is None and (nugget == "estimate" or nugget == 0.0)
+    noise: float | str = nugget if not concentrated or nugget == "estimate" else 0.0
+    lik = ProfileLikelihood(x, y, F, kernel, theta=length_scales, concentrated=concentrated, scale=variance,
+                            noise=noise)
+    span = np.ptp(x, axis=0)
+    span = np.where(span > 0, span, 2.0)
+    lo: list[float] = []
+    hi: list[float] = []
+    first: list[float] = []
+    box_lo: list[float] = []
+    box_hi: list[float] = []
+    if length_scales is None:
+        lo += list(np.log(THETA_BOUNDS[0] * span))
+        hi += list(np.log(THETA_BOUNDS[1] * span))
+        first += list(np.log(0.5 * span))
+        box_lo += list(np.log(0.05 * span))
+        box_hi += list(np.log(2.0 * span))
+    vy = float(np.var(y)) if np.var(y) > 0 else 1.0
+    if not concentrated and variance is None:
+        lo.append(np.log(vy * 1e-6))
+        hi.append(np.log(vy * 1e6))
+        first.append(np.log(vy))
+        box_lo.append(np.log(vy * 0.1))
+        box_hi.append(np.log(vy * 10.0))
+    if nugget == "estimate":
+        base = 1.0 if concentrated else (variance if variance is not None else vy)
+        lo.append(np.log(NUGGET_RATIO_BOUNDS[0] * base))
+        hi.append(np.log(NUGGET_RATIO_BOUNDS[1] * base))
+        first.append(np.log(1e-2 * base))
+        box_lo.append(np.log(1e-4 * base))
+        box_hi.append(np.log(0.5 * base))
+    estimated = {"length_scales": length_scales is None, "variance": variance is None,
+                 "nugget": nugget == "estimate"}
+    used = 0
+    if lo:
+        rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+        pts = _starts(rng, np.array(box_lo), np.array(box_hi), np.array(first), max(1, int(starts)))
+        bounds = list(zip(lo, hi))
+        opts = {"maxiter": 500, "ftol": 1e-14, "gtol": 1e-10}
+        search = lik
+        if y.size > MULTISTART_RUNS:  # the starts on a random subsample; the best two polished on every run
+            idx = np.sort(rng.choice(y.size, MULTISTART_RUNS, replace=False))
+            search = ProfileLikelihood(x[idx], y[idx], F[idx], kernel, theta=length_scales, concentrated=concentrated,
+                                       scale=variance, noise=noise)
+        found = sorted((minimize(search, p0, jac=True, method="L-BFGS-B", bounds=bounds, options=opts) for p0 in pts),
+                       key=lambda r: r.fun)
+        if search is not lik:
+            found = sorted((minimize(lik, r.x, jac=True, method="L-BFGS-B", bounds=bounds, options=opts)
+                            for r in found[:2]), key=lambda r: r.fun)
+        used = len(pts)
+        p = np.asarray(found[0].x, dtype=float)
+    else:
+        p = np.zeros(0)
+    theta, a, b = lik.unpack(p)
+    if concentrated:  # sigma2 = z' A^-1 z / n at the optimum
+        core = kriging_core(x, y, F, kernel, theta, 1.0, b)
+        s2 = core.quad / y.size
+        sigma2, tau2 = s2, b * s2
+    else:
+        sigma2, tau2 = a, b
+    core = kriging_core(x, y, F, kernel, theta, sigma2, tau2)
+    return Estimate(theta=np.asarray(theta, dtype=float), variance=float(sigma2), nugget=float(tau2), core=core,
+                    estimated=estimated, starts=used)
+
+
+def _check_choice(name: str, value: Any, allowed: Sequence[str]) -> str:
+    if not isinstance(value, str) or value.strip().lower() not in allowed:
+        raise ParameterError(name, f"{name} must be one of {', '.join(allowed)}, not {value!r}")
+    return value.strip().lower()
+
+
+def _positive(name: str, value: Any, *, zero: bool = False) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(name, f"{name} must be a number, not {value!r}") from None
+    if isinstance(value, bool) or not np.isfinite(v) or v < 0 or (v == 0 and not zero):
+        what = "a finite number >= 0" if zero else "a finite positive number"
+        raise ParameterError(name, f"{name} must be {what}, not {value!r}")
+    return v
+
+
+def fit_gp(data: Any, response: str, factors: Any = None, *, kernel: str = "matern52", trend: str = "constant",
+           nugget: Any = None, length_scales: Any = None, variance: Any = None, seed: Any = 0,
+           starts: int = GP_STARTS) -> GPResult:
+    """Fit a Gaussian-process emulator (kriging) on the coded factors.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        One row per run.
+    response : str
+        Response column.
+    factors : None, sequence or FactorSpace
+        As for :func:`rsm_lrg.fit` (numeric factors only).
+    kernel : {"matern52", "matern32", "gauss"}
+        Correlation kernel (tensor product, one length-scale per factor).
+    trend : {"constant", "linear", "quadratic"}
+        Trend, by generalised least squares.
+    nugget : None, "estimate" or float
+        ``None``: estimated when runs share a setting, else 0 (interpolation); ``"estimate"``;
+        or a fixed value [response units²].
+    length_scales : sequence of float, optional
+        Fixed length-scales, one per factor [coded units].
+    variance : float, optional
+        Fixed process variance [response units²].
+    seed : int or numpy.random.Generator
+        Seed of the likelihood's starting points (the same seed gives the same fit).
+    starts : int
+        Number of starting points (default :data:`GP_STARTS`).
+
+    Returns
+    -------
+    GPResult
+
+    Raises
+    ------
+    ParameterError
+        A bad kernel, trend, nugget, length-scale or variance (``parameter`` names it);
+        categoric factors (``"factors"``); too few runs for the trend (``"trend"``).
+    ValueError
+        Data errors as for :func:`rsm_lrg.fit`.
+    """
+    from ...factors import MixtureComponent
+    from ..build.inputs import model_inputs
+
+    kernel = _check_choice("kernel", kernel, KERNELS)
+    trend = _check_choice("trend", trend, TRENDS)
+    if isinstance(starts, bool) or not isinstance(starts, (int, np.integer)) or starts < 1:
+        raise ParameterError("starts", f"starts must be a positive whole number, not {starts!r}")
+    if nugget is not None and not (isinstance(nugget, str) and nugget.strip().lower() == "estimate"):
+        nugget = _positive("nugget", nugget, zero=True)
+    elif isinstance(nugget, str):
+        nugget = "estimate"
+    var = None if variance is None else _positive("variance", variance)
+    inp = model_inputs(data, response, factors)
+    space = inp.space
+    if space.has_categoric:
+        name = next(iter(space.categoric))
+        raise ParameterError("factors", f"factor {name!r} is categoric; a Gaussian process in rsm-lrg takes numeric "
+                                        "factors only (fit one GP per level, or a polynomial model)")
+    if any(isinstance(f, MixtureComponent) for f in space.factors):
+        raise ParameterError("model", "a Gaussian process for mixtures is not available yet")
+    x, y = inp.x, inp.y
+    n, k = x.shape
+    theta = None
+    if length_scales is not None:
+        vals = np.atleast_1d(np.asarray(length_scales, dtype=object))
+        if vals.ndim != 1 or vals.size != k:
+            raise ParameterError("length_scales", f"length_scales needs {k} values (one per factor), "
+                                                  f"got {vals.size}")
+        theta = np.array([_positive("length_scales", v) for v in vals])
+    p = trend_size(k, trend)
+    if n < p + 1:
+        raise ParameterError("trend", f"a {trend} trend in {k} factor{'s' if k != 1 else ''} has {p} coefficients "
+                                      f"and needs at least {p + 1} runs; the data hold {n}")
+    notes = list(inp.prep.notes)
+    _, first, counts = np.unique(inp.settings, axis=0, return_index=True, return_counts=True)
+    replicated = int(np.sum(counts > 1))
+    if nugget is None:
+        nugget = "estimate" if replicated else 0.0
+        notes.append(f"nugget estimated: {replicated} setting(s) hold more than one run (noise)" if replicated else
+                     "nugget fixed at 0 (no two runs share a setting: the model interpolates the runs, as for a "
+                     "deterministic simulator); give nugget='estimate' (--nugget estimate) for noisy data")
+    elif nugget == 0.0 and replicated:
+        raise ParameterError("nugget", f"a nugget of 0 interpolates the runs, but {replicated} setting(s) hold more "
+                                       "than one run; estimate the nugget (--nugget estimate) or give a value")
+    F, names = trend_matrix(x, trend, space.letters)
+    try:
+        est = estimate(x, y, F, kernel, length_scales=theta, variance=var, nugget=nugget, seed=seed, starts=starts)
+    except ValueError as exc:
+        raise ParameterError("trend", str(exc)) from None
+    if est.starts and n > MULTISTART_RUNS:
+        notes.append(f"the likelihood's {est.starts} starting points were searched on a random subsample of "
+                     f"{MULTISTART_RUNS} runs and the best two polished on all {n}")
+    if est.core.jitter:
+        notes.append(f"the covariance matrix was singular to working precision: a jitter of {est.core.jitter:.0e} "
+                     "times the process variance was added to its diagonal")
+    return GPResult(response=response, space=space, kernel=kernel, trend=trend, x=x, y=y, trend_names=names,
+                    length_scales=est.theta, variance=est.variance, nugget=est.nugget, core=est.core,
+                    estimated=est.estimated, starts=est.starts, seed=seed if isinstance(seed, int) else None,
+                    notes=tuple(notes), omitted_rows=tuple(inp.prep.omitted_rows))
+
+
+def refuse_options(*, block: Any, terms: Any, intercept: bool, transform: Any, reduce: Any, components: Any,
+                   whole_plot: Any, random_block: Any, dask: bool) -> None:
+    """ParameterError naming the first option of :func:`rsm_lrg.fit` that a Gaussian process
+    does not take (blocks, terms, transforms, reduction, mixtures, random effects, Dask)."""
+    given = [("block", block is not None, "blocks"), ("terms", terms is not None, "a list of terms"),
+             ("intercept", not intercept, "a model without an intercept"),
+             ("transform", transform is not None, "a response transform"),
+             ("reduce", reduce not in (None, False), "backward elimination"),
+             ("components", components is not None, "mixture components"),
+             ("whole_plot", whole_plot is not None, "a whole-plot random effect"),
+             ("random_block", random_block is not None, "a random block effect"),
+             ("data", dask, "a Dask DataFrame (several files)")]
+    for name, on, what in given:
+        if on:
+            raise ParameterError(name, f"a Gaussian process (model 'gp') does not take {what}")
