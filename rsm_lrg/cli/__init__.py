@@ -13,9 +13,9 @@ Modules are found by name, so adding a command touches no shared file. Nothing h
 ``rsm-lrg --help`` fast.
 
 Before a command runs, :func:`main` checks its option values (finite numbers and ranges in the
-argparse types of ``_common``; ``--factor``/``--bound`` specs; an empty file name) and every
-output it will write (``_common.planned_outputs``: the values of ``-o/--output``, ``--json``,
-``--report`` and options marked by ``_common.output_option``, or what the command's optional
+argparse types of ``options``; ``--factor``/``--bound`` specs; an empty file name) and every
+output it will write (``paths.planned_outputs``: the values of ``-o/--output``, ``--json``,
+``--report`` and options marked by ``paths.output_option``, or what the command's optional
 ``outputs(args) -> [(option, path)]`` returns): not empty, not a directory or device, absent
 unless ``--force``, never one of the input files (also through links, ``--force`` or not), no
 two the same, the directory writable. The command then runs inside
@@ -47,8 +47,9 @@ import signal
 import sys
 import warnings
 
-from ._common import check_option_specs, claim_standard_output, input_paths, mark_outputs, planned_outputs
+from .paths import claim_standard_output, input_paths, mark_outputs, planned_outputs
 from .processes import Terminated, handle_signals, pending_signal, stop_children
+from .specs import check_option_specs
 
 __all__ = ["main", "build_parser", "UsageError"]
 
@@ -119,7 +120,7 @@ def _chosen_command(argv: list[str]) -> str:
 def _accept_negative_values(p: argparse.ArgumentParser) -> None:
     """Values that begin with '-' (``--observed -2.5e-1``, ``--constraint "-A+B<=1"``) for
     ``p`` and the sub-commands under it (``design optimal``, ...)."""
-    from ._common import accept_negative_values
+    from .options import accept_negative_values
 
     accept_negative_values(p)
     for action in p._actions:
@@ -348,7 +349,7 @@ def _main(argv: list[str] | None) -> int:
         if late is not None:
             print(f"error: terminated by {Terminated(late).name} after its outputs were written", file=sys.stderr)
             return 128 + late
-        for note in getattr(args, "notes_at_end", None) or ():  # what was read (_common.read_input)
+        for note in getattr(args, "notes_at_end", None) or ():  # what was read (paths.read_input)
             print(f"note: {note}", file=sys.stderr)
         # a library warning is one line after a success; after an error only the error line shows
         for msg in dict.fromkeys(" ".join(str(w.message).split()) for w in caught

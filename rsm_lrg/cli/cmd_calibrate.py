@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import about_file, add_force, add_json, add_reader_options
+from .errors import about_file
+from .options import add_force, add_json, add_reader_options
 
 NAME = "calibrate"
 HELP = "fit the surrogate's unknown parameters to measured runs"
@@ -48,7 +49,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="candidate models (comma-separated, e.g. v5,v5-nodrive): each is calibrated and the one "
                         "of smallest AICc kept; leave-one-out repeats the choice inside every fold (--model and "
                         "--parameter are then not used)")
-    from ._common import number
+    from .options import number
 
     p.add_argument("--duration-min", type=number(1), default=50.0, metavar="M",
                    help="test duration of the measured runs [min] (default 50)")
@@ -74,7 +75,7 @@ def run(args) -> int:
     from ..io import InputError, check_output, dump_json, write_output
     from ..surrogate.calibrate import calibrate, calibration_toml, file_sha256
     from ..surrogate.runs import check_duration
-    from ._common import read_input
+    from .paths import read_input
 
     if args.output:
         check_output(args.output, force=args.force, option="-o/--output")

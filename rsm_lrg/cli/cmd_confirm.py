@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import (
+from .errors import about_file
+from .options import (
     FIT_MODELS,
-    about_file,
     add_block_option,
     add_component_option,
     add_data_response,
@@ -32,7 +32,7 @@ DESCRIPTION = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_data_response(parser)
-    from ._common import number, probability
+    from .options import number, probability
 
     parser.add_argument("--at", action="extend", nargs="+", required=True, metavar="NAME=VALUE",
                         help="a factor setting in actual units, one for every factor: --at A=1 --at B=2 "
@@ -76,7 +76,8 @@ def _check_at(settings) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ..optimize.confirm import confirm
-    from ._common import model_spec, print_notes, print_summary_or_json, random_effect, read_input
+    from .paths import print_notes, print_summary_or_json, read_input
+    from .specs import model_spec, random_effect
 
     _check_at(args.at)
     spec = model_spec(args)

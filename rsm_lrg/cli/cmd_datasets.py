@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import add_force
+from .options import add_force
 
 NAME = "datasets"
 HELP = "list the shipped data (Table 4, Table 3, the mixture and split-plot examples) or write one"

@@ -8,7 +8,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._common import add_force, add_reader_options, option_error, whole_number
+from .errors import option_error
+from .options import add_force, add_reader_options, whole_number
 
 NAME = "design"
 HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, split-plot, split-plot-ccd, "
@@ -205,7 +206,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _split_plot_parser(sub: Any) -> None:
     """``split-plot`` (issue 23): hard-to-change factors held constant within whole plots."""
-    from ._common import number
+    from .options import number
 
     sp = sub.add_parser("split-plot", help="optimal split-plot design (hard-to-change factors in whole plots)",
                         description="Optimal split-plot design (Goos & Vandebroek 2003, 2004): the hard-to-change "
@@ -233,7 +234,7 @@ def _split_plot_parser(sub: Any) -> None:
 
 def _split_plot_ccd_parser(sub: Any) -> None:
     """``split-plot-ccd``: the equivalent-estimation split-plot central composite design."""
-    from ._common import number
+    from .options import number
 
     sc = sub.add_parser("split-plot-ccd", help="split-plot central composite design (OLS = GLS estimates)",
                         description="Equivalent-estimation split-plot central composite design (after Vining, "
@@ -411,7 +412,7 @@ MAX_ALPHA = 1000.0
 
 #: The option of a design function's parameter that an error names (by its ``parameter``,
 #: :class:`rsm_lrg.errors.ParameterError`) where it is not ``--`` and the parameter's name
-#: (``hard_to_change`` -> ``--hard-to-change``) nor in :data:`._common.PARAMETER_OPTIONS`.
+#: (``hard_to_change`` -> ``--hard-to-change``) nor in :data:`.errors.PARAMETER_OPTIONS`.
 _DESIGN_OPTIONS = {
     "factors": "--factor", "process": "--factor", "components": "--component", "bounds": "--component",
     "generators": "--generator",
@@ -584,7 +585,7 @@ def _augment(args, out) -> int:
     from ..design.augment import augment
     from ..design.core import BLOCK_COLUMN
     from ..io import InputError, quote_user_value
-    from ._common import read_input
+    from .paths import read_input
 
     src = Path(args.design)
     if src.exists() and out.exists() and src.resolve() == out.resolve():

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import (
+from .errors import about_file
+from .options import (
     ResponseGroup,
-    about_file,
     add_block_option,
     add_factor_options,
     add_force,
@@ -81,16 +81,11 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import ParameterError
     from ..io import InputError, quote_user_value
     from ..optimize.design_space import design_space, parse_spec
-    from ._common import (
-        check_distinct_responses,
-        model_spec,
-        option_error,
-        print_notes,
-        print_summary_or_json,
-        read_input,
-        response_options,
-    )
+    from .errors import option_error
+    from .options import check_distinct_responses, response_options
+    from .paths import print_notes, print_summary_or_json, read_input
     from .responses import fit_responses
+    from .specs import model_spec
 
     args.component = None  # the design space of a mixture is not available yet (the fit loop asks)
     responses = list(args.response)

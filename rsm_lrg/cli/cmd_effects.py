@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 from contextlib import contextmanager
 
-from ._common import (
-    about_file,
+from .errors import about_file
+from .options import (
     add_block_option,
     add_data_response,
     add_factor_options,
@@ -14,8 +14,8 @@ from ._common import (
     add_json,
     add_plot_option,
     plot_format,
-    print_notes,
 )
+from .paths import print_notes
 
 NAME = "effects"
 HELP = "effects of a two-level or screening design: Lenth's PSE, ME, SME and the half-normal plot"
@@ -38,7 +38,7 @@ MODELS = ("saturated", "linear", "2fi", "full")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    from ._common import probability
+    from .options import probability
 
     add_data_response(parser)
     add_factor_options(parser)
@@ -48,7 +48,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "linear: main effects; 2fi: + two-factor interactions; full: every interaction")
     parser.add_argument("--term", action="append", default=None, metavar="TERM",
                         help="fit only these terms (repeatable, e.g. --term A --term AB); overrides --model")
-    from ._common import add_terms_options
+    from .options import add_terms_options
 
     add_terms_options(parser)
     parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
@@ -93,12 +93,12 @@ def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, write_output
     from ..model import fit
     from ..model.readings.effects import largest_estimable_model, screening_effects
-    from ._common import read_input
+    from .paths import read_input
 
     fmt = plot_format(args.plot)
     _check_terms(args.term)
     data = read_input(args)
-    from ._common import model_spec
+    from .specs import model_spec
 
     given = model_spec(args, order="2fi").terms if args.terms is not None else ()  # a bad --terms named first
     terms = (args.term or []) + list(given or ()) or None  # --term and --terms together

@@ -4,15 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import (
-    about_file,
-    add_force,
-    add_json,
-    add_model_option,
-    add_plot_option,
-    add_reader_options,
-    plot_format,
-)
+from .errors import about_file
+from .options import add_force, add_json, add_model_option, add_plot_option, add_reader_options, plot_format
 
 NAME = "evaluate"
 HELP = ("evaluate a design for a model before any data: VIF, leverage, prediction variance, FDS, power, "
@@ -41,12 +34,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the design; two or more are compared side by side")
     add_reader_options(parser)
     add_model_option(parser, what="model to evaluate")
-    from ._common import add_terms_options
+    from .options import add_terms_options
 
     add_terms_options(parser)
     parser.add_argument("--region", default="cube", choices=["cube", "sphere"],
                         help="region for the prediction variance (default: the coded cube)")
-    from ._common import number, probability
+    from .options import number, probability
 
     parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
                         help="level of the power test (default 0.05)")
@@ -70,7 +63,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def _load(path, exclude, args):
     from ..design.core import Design, design_of_frame
     from ..factors import FactorSpace
-    from ._common import read_input
+    from .paths import read_input
 
     df = read_input(args, path)
     for col in exclude or []:  # nothing is guessed: a column that is not there is an error

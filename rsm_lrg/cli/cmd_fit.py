@@ -5,20 +5,20 @@ from __future__ import annotations
 import argparse
 from contextlib import contextmanager
 
-from ._common import (
+from .errors import about_file
+from .glm_fit import add_glm_options, run_glm, wants_glm
+from .gp_fit import GP_MODELS, add_gp_options, check_gp_options, run_gp
+from .options import (
     FIT_MODELS,
-    about_file,
     add_boxcox_rule_option,
     add_force,
     add_json,
     add_model_inputs,
     add_model_refinements,
     add_random_effect_options,
-    model_spec,
-    print_notes,
 )
-from .glm_fit import add_glm_options, run_glm, wants_glm
-from .gp_fit import GP_MODELS, add_gp_options, check_gp_options, run_gp
+from .paths import print_notes
+from .specs import model_spec
 
 NAME = "fit"
 HELP = "fit a response-surface model (or a Gaussian process); print the ANOVA, statistics and equation"
@@ -134,7 +134,8 @@ def run(args: argparse.Namespace) -> int:
         return run_gp(args)
     from ..io import dump_json
     from ..model import fit
-    from ._common import random_effect, read_input
+    from .paths import read_input
+    from .specs import random_effect
 
     if wants_glm(args):  # --family: a generalised linear model (rsm_lrg.cli.glm_fit)
         return run_glm(args)

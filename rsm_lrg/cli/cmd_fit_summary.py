@@ -4,17 +4,9 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import (
-    about_file,
-    add_block_option,
-    add_component_option,
-    add_data_response,
-    add_factor_options,
-    add_force,
-    add_json,
-    print_notes,
-    print_summary_or_json,
-)
+from .errors import about_file
+from .options import add_block_option, add_component_option, add_data_response, add_factor_options, add_force, add_json
+from .paths import print_notes, print_summary_or_json
 
 NAME = "fit-summary"
 HELP = "compare linear, 2FI, quadratic and cubic models; suggest one"
@@ -36,13 +28,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_component_option(parser)
     add_block_option(parser, "entered first")
-    from ._common import probability
+    from .options import probability
 
     parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
                         help="significance level for the suggestion (default 0.05)")
     parser.add_argument("--transform", default=None, metavar="log|log10|sqrt|inverse|power=L",
                         help="compare the models of a transformed response (as 'fit --transform')")
-    from ._common import number
+    from .options import number
 
     parser.add_argument("--transform-constant", type=number(), default=0.0, metavar="K",
                         help="add K to the response before transforming (default 0)")
@@ -60,8 +52,9 @@ def run(args: argparse.Namespace) -> int:
     from ..io import InputError
     from ..model.build.data import prepare
     from ..model.choice.summary import fit_summary
-    from ._common import model_spec, read_input
     from .gp_fit import check_gp_options, gp_keywords
+    from .paths import read_input
+    from .specs import model_spec
 
     spec = model_spec(args, order="mixture-linear" if args.component else None)  # a bad --transform: named first
     check_gp_options(args, on=args.gp, flag="--gp")

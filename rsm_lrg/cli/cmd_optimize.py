@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 import contextlib
 
-from ._common import (
+from .errors import about_file
+from .options import (
     ResponseGroup,
-    about_file,
     add_block_option,
     add_component_option,
     add_factor_options,
@@ -17,9 +17,9 @@ from ._common import (
     add_model_refinements,
     add_random_effect_options,
     add_reader_options,
-    random_effect,
 )
 from .robust_optimize import add_robust_options, robust_requested, run_robust
+from .specs import random_effect
 
 NAME = "optimize"
 HELP = "fit, then find the minimum, maximum or a target inside the factor box"
@@ -70,14 +70,9 @@ def run(args: argparse.Namespace) -> int:
         return run_robust(args)
     from ..model import fit
     from ..optimize import optimize, parse_goal
-    from ._common import (
-        model_spec,
-        per_response_values,
-        print_notes,
-        print_summary_or_json,
-        read_input,
-        response_options,
-    )
+    from .options import per_response_values, response_options
+    from .paths import print_notes, print_summary_or_json, read_input
+    from .specs import model_spec
 
     responses = args.response
     specs = [model_spec(response_options(args, i)) for i in range(len(responses))]  # bad options named first
@@ -118,15 +113,9 @@ def _constraint_errors(constraints):
 def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
     from ..optimize.desirability import optimize_desirability, parse_response_goal
-    from ._common import (
-        check_distinct_responses,
-        model_spec,
-        per_response_values,
-        print_notes,
-        print_summary_or_json,
-        read_input,
-        response_options,
-    )
+    from .options import check_distinct_responses, per_response_values, response_options
+    from .paths import print_notes, print_summary_or_json, read_input
+    from .specs import model_spec
 
     n = len(args.response)
     check_distinct_responses(args.response)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import add_force, add_json
+from .options import add_force, add_json
 
 NAME = "physics"
 HELP = "the paper's physics chain (load, heat, convection, hinges, thermal, wear) for given parameters"

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import (
+from .errors import about_file
+from .options import (
     ResponseGroup,
-    about_file,
     add_block_option,
     add_component_option,
     add_factor_options,
@@ -122,7 +122,7 @@ def _points(args, space, fit):
 
     from ..io import InputError
     from ..optimize.confirm import parse_settings
-    from ._common import read_input
+    from .paths import read_input
 
     if args.at:
         try:
@@ -149,16 +149,10 @@ def _points(args, space, fit):
 def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ..optimize.prediction import predict_points
-    from ._common import (
-        about_response,
-        check_distinct_responses,
-        model_spec,
-        print_notes,
-        print_summary_or_json,
-        random_effect,
-        read_input,
-        response_options,
-    )
+    from .errors import about_response
+    from .options import check_distinct_responses, response_options
+    from .paths import print_notes, print_summary_or_json, read_input
+    from .specs import model_spec, random_effect
 
     responses = list(args.response)
     check_distinct_responses(responses)

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import (
+from .errors import about_file
+from .options import (
     ResponseGroup,
-    about_file,
     add_block_option,
     add_component_option,
     add_factor_options,
@@ -15,8 +15,8 @@ from ._common import (
     add_model_refinements,
     add_random_effect_options,
     add_reader_options,
-    print_notes,
 )
+from .paths import print_notes
 
 NAME = "report"
 HELP = "fit one or several responses and write a self-contained HTML report (profiler, overlay, ANOVA, diagnostics)"
@@ -120,13 +120,9 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..io import InputError, check_output
-    from ._common import (
-        check_distinct_responses,
-        model_spec,
-        per_response_values,
-        read_input,
-        response_options,
-    )
+    from .options import check_distinct_responses, per_response_values, response_options
+    from .paths import read_input
+    from .specs import model_spec
 
     out = Path(args.output)
     check_output(out, force=args.force, option="-o/--output")  # before the fit and the figures

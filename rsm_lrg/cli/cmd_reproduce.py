@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import add_force, add_json
+from .options import add_force, add_json
 
 NAME = "reproduce"
 HELP = "reproduce the paper from the embedded data; print paper vs toolkit and write an HTML page"

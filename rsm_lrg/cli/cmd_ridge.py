@@ -4,18 +4,17 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import (
+from .errors import about_file
+from .options import (
     MODEL_ORDERS,
-    about_file,
     add_block_option,
     add_data_response,
     add_factor_options,
     add_force,
     add_json,
     add_model_option,
-    print_notes,
-    print_summary_or_json,
 )
+from .paths import print_notes, print_summary_or_json
 
 NAME = "ridge"
 HELP = "ridge analysis (second order) or path of steepest ascent/descent (first order)"
@@ -32,7 +31,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_data_response(parser)
     parser.add_argument("--goal", default="maximize", choices=["maximize", "minimize"],
                         help="ascent (maximize, default) or descent (minimize)")
-    from ._common import number
+    from .options import number
 
     parser.add_argument("--radius", type=number(0, 1e6), default=None, metavar="R",
                         help="largest distance from the centre in coded units (default: the farthest design point)")
@@ -40,7 +39,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_factor_options(parser)
     add_block_option(parser, "path for the average block")
     add_model_option(parser, MODEL_ORDERS[:3])
-    from ._common import add_terms_options
+    from .options import add_terms_options
 
     add_terms_options(parser)
     add_json(parser)
@@ -50,7 +49,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ..model.readings.ridge import radii, ridge
-    from ._common import model_spec, read_input
+    from .paths import read_input
+    from .specs import model_spec
 
     radii(0.0 if args.radius is None else args.radius, args.step)  # bad numbers fail before any work
     spec = model_spec(args)

@@ -7,7 +7,8 @@ from collections.abc import Iterable
 from contextlib import contextmanager
 from typing import Any, BinaryIO
 
-from ._common import about_file, add_force, add_reader_options, number, whole_number
+from .errors import about_file
+from .options import add_force, add_reader_options, number, whole_number
 
 NAME = "simulate"
 HELP = "virtual runs of the physics surrogate, one row per design row"
@@ -213,7 +214,7 @@ def run(args) -> int:
     from ..surrogate.execute import DEFAULT_NOISE_SD, MAX_NOISE_SD, simulate
     from ..surrogate.noise import resolve_seed
     from ..surrogate.runs import check_duration
-    from ._common import read_input
+    from .paths import read_input
 
     out_path = Path(args.output)
     check_output(out_path, force=args.force, option="-o/--output")

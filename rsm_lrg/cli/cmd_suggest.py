@@ -5,14 +5,9 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import (
-    about_file,
-    add_data_response,
-    add_factor_options,
-    add_force,
-    add_json,
-)
+from .errors import about_file
 from .gp_fit import add_gp_options, gp_keywords
+from .options import add_data_response, add_factor_options, add_force, add_json
 
 NAME = "suggest"
 HELP = "fit a Gaussian process and choose the next runs (expected improvement); write them as a design CSV"
@@ -59,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, write_output
     from ..model import fit
     from ..optimize.next_runs import suggest
-    from ._common import print_notes, read_input
+    from .paths import print_notes, read_input
 
     data = read_input(args)
     with about_file(args.data):

@@ -45,7 +45,9 @@ def run_glm(args: argparse.Namespace) -> int:
     """Fit the GLM of the command's options and print it (text or JSON)."""
     from ..io import dump_json
     from ..model import fit
-    from ._common import about_file, model_spec, print_notes, read_input
+    from .errors import about_file
+    from .paths import print_notes, read_input
+    from .specs import model_spec
 
     if args.family is None:
         raise InputError(f"--{'link' if args.link is not None else 'trials'}: give --family binomial or --family "

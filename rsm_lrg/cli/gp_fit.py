@@ -85,7 +85,8 @@ def run_gp(args: argparse.Namespace) -> int:
     """Fit the GP and print its summary, or its JSON with ``--json``."""
     from ..io import dump_json
     from ..model import fit
-    from ._common import about_file, print_notes, read_input
+    from .errors import about_file
+    from .paths import print_notes, read_input
 
     _refuse(args)
     from .file_sets import expand_data_path

@@ -8,7 +8,8 @@ import argparse
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from ._common import about_response, random_effect, random_effect_columns
+from .errors import about_response
+from .specs import random_effect, random_effect_columns
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -29,7 +30,7 @@ def fit_responses(args: argparse.Namespace, data: pd.DataFrame, responses: Seque
     is fitted on the same space; a mixture's components (and process factors) are named, and
     each fit codes them on its own rows. The notes are the choice's, then each fit's own (runs
     left out), prefixed by the response when there are several. An error inside a fit names
-    its response (:func:`~rsm_lrg.cli._common.about_response`).
+    its response (:func:`~rsm_lrg.cli.errors.about_response`).
     """
     from ..factors import COLUMNS_LEFT_OUT, choose_factors
     from ..model import fit

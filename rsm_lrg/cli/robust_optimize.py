@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import ResponseValue, probability
+from .options import ResponseValue, probability
 
 __all__ = ["add_robust_options", "robust_requested", "run_robust"]
 
@@ -41,19 +41,10 @@ def run_robust(args: argparse.Namespace) -> int:
     from ..io import InputError
     from ..model import fit
     from ..optimize.robust import optimize_robust, parse_interval, parse_robust_goal
-    from ._common import (
-        about_file,
-        about_response,
-        check_distinct_responses,
-        model_spec,
-        per_response_values,
-        print_notes,
-        print_summary_or_json,
-        random_effect,
-        random_effect_columns,
-        read_input,
-        response_options,
-    )
+    from .errors import about_file, about_response
+    from .options import check_distinct_responses, per_response_values, response_options
+    from .paths import print_notes, print_summary_or_json, read_input
+    from .specs import model_spec, random_effect, random_effect_columns
 
     responses = list(args.response)
     n = len(responses)

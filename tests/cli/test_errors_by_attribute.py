@@ -23,7 +23,7 @@ CLI = Path(__file__).resolve().parents[2] / "rsm_lrg" / "cli"
 #: ``(file, function)`` where a library message is still read, for another purpose than
 #: choosing an option: a multi-response fit's error that names its response already is not
 #: named twice; on the many-file path an empty-cell error is located in its file.
-READS_MESSAGE_NOT_OPTION = frozenset({("_common.py", "about_response"), ("cmd_fit.py", "_about_files")})
+READS_MESSAGE_NOT_OPTION = frozenset({("errors.py", "about_response"), ("cmd_fit.py", "_about_files")})
 
 
 def _message_tests(path: Path) -> list[str]:

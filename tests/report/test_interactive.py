@@ -153,7 +153,7 @@ def test_cli_two_responses_with_their_own_options(tmp_path, capsys):
     data().to_csv(src, index=False)
     out = tmp_path / "r.html"
     # a --limits right after a --response is that response's; the two --goal listed together
-    # after the last --response are taken in --response order (cli._common.per_response_values)
+    # after the last --response are taken in --response order (cli.options.per_response_values)
     rc = main(["report", str(src), "--response", "tcr_c_per_min", "--reduce", "--limits", ":0.03",
                "--response", "wear_volume_m3_per_h", "--transform", "log", "--goal", "minimize", "--goal", "minimize",
                "--hold", "optimum", "-o", str(out)])

@@ -228,6 +228,6 @@ def test_methods_not_available_for_mixtures_and_reml():
 
 
 def test_cli_choices_agree():
-    from rsm_lrg.cli._common import REDUCE_METHOD_NAMES
+    from rsm_lrg.cli.options import REDUCE_METHOD_NAMES
 
     assert REDUCE_METHOD_NAMES == REDUCE_METHODS
