@@ -5,7 +5,7 @@ fit summary, backward elimination and the Dask fit; and the chosen term list of 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -19,7 +19,7 @@ from .data import CHUNK_ROWS
 from .terms import Term, column_names, model_matrix, model_terms, n_columns, parse_term
 from .transform import Transform
 
-__all__ = ["ModelInputs", "model_inputs", "block_codes", "chosen_terms", "check_magnitudes", "model_rows",
+__all__ = ["coded_points", "ModelInputs", "model_inputs", "block_codes", "chosen_terms", "check_magnitudes", "model_rows",
            "is_dask", "origin_coding", "unrounded_coding", "MAX_MAGNITUDE", "MAX_FACTOR_MAGNITUDE"]
 
 
@@ -198,6 +198,66 @@ def unrounded_coding(space: FactorSpace, data: Any, coded: np.ndarray) -> np.nda
         if f.kind == "numeric":
             v = float_column(data, f.name).to_numpy(dtype=float)
             x[:, j] = ((v - f.low) - (f.high - v)) / (f.high - f.low)
+    return x
+
+
+def coded_points(space: FactorSpace, points: Any, coded: bool = False) -> np.ndarray:
+    """Prediction points as an (m, k) array of coded settings, for every kind of fit.
+
+    Parameters
+    ----------
+    space : FactorSpace
+        The fit's factors.
+    points : DataFrame, Series, mapping or array-like
+        A frame (or one row) with the factor columns (their names; their letters when
+        ``coded``), a ``{name: values}`` mapping, or an (m, k) array in factor order.
+    coded : bool
+        ``points`` are coded settings already (letters as column names).
+
+    Returns
+    -------
+    numpy.ndarray
+        (m, k) coded settings: numeric factors coded unrounded as the runs were
+        (:func:`unrounded_coding`), categoric factors as level indices, mixture components
+        as L-pseudo components.
+
+    Raises
+    ------
+    ValueError
+        A factor column missing, the wrong number of columns, a level not in the fit, or a
+        value that is not a finite number.
+    """
+    import pandas as pd
+
+    if isinstance(points, Mapping):
+        points = pd.DataFrame({k: np.atleast_1d(np.asarray(v, dtype=object if space.has_categoric else float))
+                               for k, v in points.items()})
+    if isinstance(points, pd.Series):
+        points = points.to_frame().T
+    if isinstance(points, pd.DataFrame):
+        cols = space.letters if coded else space.names
+        missing = [c for c in cols if c not in points.columns]
+        if missing:
+            raise ValueError(f"prediction points lack the factor column(s) {', '.join(map(repr, missing))}")
+        if coded:
+            x = np.column_stack([float_column(points, c).to_numpy(dtype=float) for c in cols])
+        else:
+            with np.errstate(over="ignore", invalid="ignore"):
+                x = unrounded_coding(space, points, space.encode(points[cols]).to_numpy(dtype=float))
+    else:
+        arr = np.asarray(points, dtype=object if space.has_categoric and not coded else float)
+        if arr.ndim == 1:
+            arr = arr[None, :]
+        if arr.ndim != 2 or arr.shape[1] != len(space):
+            raise ValueError(f"prediction points need {len(space)} columns (one per factor), got {arr.shape[-1]}")
+        if coded:
+            x = np.asarray(arr, dtype=float)
+        else:
+            frame = pd.DataFrame({f.name: arr[:, j] for j, f in enumerate(space.factors)})
+            with np.errstate(over="ignore", invalid="ignore"):
+                x = unrounded_coding(space, frame, np.asarray(space.encode(arr), dtype=float))
+    if not np.isfinite(x).all():
+        raise ValueError("prediction points must be finite numbers")
     return x
 
 

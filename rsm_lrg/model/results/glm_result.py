@@ -29,8 +29,7 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...factors import FactorSpace
-from ...io import float_column
-from ..build.inputs import MAX_FACTOR_MAGNITUDE
+from ..build.inputs import MAX_FACTOR_MAGNITUDE, coded_points
 from ..build.spec import ModelSpec
 from ..build.terms import column_names, design_matrix
 from ..engines.glm_family import Family
@@ -378,33 +377,9 @@ class GLMResult:
     # -- prediction ----------------------------------------------------------------------
     def coded_points(self, points: Any, coded: bool = False) -> np.ndarray:
         """Settings (a frame with the factor columns, a ``{name: values}`` mapping or an
-        (n, k) array in factor order; actual units unless ``coded``) as coded values."""
-        import pandas as pd
-
-        if isinstance(points, Mapping):
-            points = pd.DataFrame({k: np.atleast_1d(np.asarray(v, dtype=object if self.space.has_categoric
-                                                                else float)) for k, v in points.items()})
-        if isinstance(points, pd.Series):
-            points = points.to_frame().T
-        if isinstance(points, pd.DataFrame):
-            cols = self.space.letters if coded else self.space.names
-            missing = [c for c in cols if c not in points.columns]
-            if missing:
-                raise ValueError(f"prediction points lack the factor column(s) {', '.join(map(repr, missing))}")
-            if coded:
-                return np.column_stack([float_column(points, c).to_numpy() for c in cols])
-            return self.space.encode(points[cols]).to_numpy(dtype=float)
-        arr = np.asarray(points, dtype=object if self.space.has_categoric and not coded else float)
-        if arr.ndim == 1:
-            arr = arr[None, :]
-        if arr.shape[-1] != len(self.space):
-            raise ValueError(f"prediction points need {len(self.space)} columns (one per factor), got {arr.shape[-1]}")
-        if not coded:
-            arr = self.space.encode(arr)
-        x = np.asarray(arr, dtype=float)
-        if not np.isfinite(x).all():
-            raise ValueError("prediction points must be finite numbers")
-        return x
+        (n, k) array in factor order; actual units unless ``coded``) as coded values
+        (:func:`rsm_lrg.model.build.inputs.coded_points`)."""
+        return coded_points(self.space, points, coded)
 
     def predict_link(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(eta, se_eta)``: the linear predictor and its standard error at coded settings."""

@@ -22,7 +22,6 @@ F beta)`` needs no refit.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
@@ -32,7 +31,7 @@ from scipy.linalg import cho_solve, solve_triangular
 
 from ...errors import ParameterError
 from ...factors import FactorSpace
-from ...io import float_column
+from ..build.inputs import coded_points
 from ..build.transform import Transform
 from ..engines.gp_core import KrigingCore, cholesky_jitter
 from ..engines.gp_kernels import DICEKRIGING_NAMES, correlation, log_derivative_x
@@ -172,34 +171,9 @@ class GPResult:
 
     # -- points ----------------------------------------------------------------------------
     def coded_points(self, points: Any, coded: bool = False) -> np.ndarray:
-        """Points as an (m, k) array of coded settings; ``points`` as for :meth:`predict`."""
-        import pandas as pd
-
-        if isinstance(points, Mapping):
-            points = pd.DataFrame({k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in points.items()})
-        if isinstance(points, pd.Series):
-            points = points.to_frame().T
-        if isinstance(points, pd.DataFrame):
-            cols = self.space.letters if coded else self.space.names
-            missing = [c for c in cols if c not in points.columns]
-            if missing:
-                raise ValueError(f"prediction points lack the factor column(s) {', '.join(map(repr, missing))}")
-            arr = np.column_stack([float_column(points, c).to_numpy(dtype=float) for c in cols])
-        else:
-            arr = np.asarray(points, dtype=float)
-            if arr.ndim == 1:
-                arr = arr[None, :]
-            if arr.ndim != 2 or arr.shape[1] != len(self.space):
-                raise ValueError(f"prediction points need {len(self.space)} columns (one per factor), "
-                                 f"got {arr.shape[-1]}")
-        if not coded:  # unrounded, as the runs were coded (rsm_lrg.model.build.inputs.unrounded_coding)
-            lo = np.array([f.low for f in self.space.numeric])
-            hi = np.array([f.high for f in self.space.numeric])
-            with np.errstate(over="ignore", invalid="ignore"):
-                arr = ((arr - lo) - (hi - arr)) / (hi - lo)
-        if not np.isfinite(arr).all():
-            raise ValueError("prediction points must be finite numbers")
-        return arr
+        """Points as an (m, k) array of coded settings; ``points`` as for :meth:`predict`
+        (:func:`rsm_lrg.model.build.inputs.coded_points`)."""
+        return coded_points(self.space, points, coded)
 
     # -- prediction ------------------------------------------------------------------------
     def _cross(self, x: np.ndarray) -> np.ndarray:

@@ -26,7 +26,7 @@ from ...factors import FactorSpace
 from ...io import float_column
 from ...present import clean_anova
 from ..build.goals import parse_goal
-from ..build.inputs import MAX_FACTOR_MAGNITUDE, block_codes, model_rows, unrounded_coding
+from ..build.inputs import MAX_FACTOR_MAGNITUDE, block_codes, coded_points, model_rows, unrounded_coding
 from ..build.spec import ModelSpec, ReduceSpec
 from ..build.terms import Term, column_names, design_matrix, n_columns, term_columns
 from ..build.transform import Transform
@@ -571,34 +571,6 @@ class FitResult:
         return canonical_analysis(coefs, self.terms, self.space, threshold=threshold, level=level)
 
     # -- prediction ------------------------------------------------------------------
-    def _coded_points(self, points, coded: bool) -> np.ndarray:
-        import pandas as pd
-
-        if isinstance(points, Mapping):
-            vals = {k: np.atleast_1d(np.asarray(v, dtype=object if self.space.has_categoric else float))
-                    for k, v in points.items()}
-            points = pd.DataFrame(vals)
-        if isinstance(points, pd.Series):
-            points = points.to_frame().T
-        if isinstance(points, pd.DataFrame):
-            cols = self.space.letters if coded else self.space.names
-            missing = [c for c in cols if c not in points.columns]
-            if missing:
-                raise ValueError(f"prediction points lack the factor column(s) {', '.join(map(repr, missing))}")
-            if coded:
-                return np.column_stack([float_column(points, c).to_numpy() for c in cols])
-            return self.space.encode(points[cols]).to_numpy(dtype=float)
-        arr = np.asarray(points, dtype=object if self.space.has_categoric and not coded else float)
-        if arr.ndim == 1:
-            arr = arr[None, :]
-        if arr.shape[-1] != len(self.space):
-            raise ValueError(f"prediction points need {len(self.space)} columns (one per factor), got {arr.shape[-1]}")
-        if not coded:
-            arr = self.space.encode(arr)
-        if not np.isfinite(arr).all():
-            raise ValueError("prediction points must be finite numbers")
-        return arr
-
     def _check_blends(self, x: np.ndarray) -> None:
         """ValueError naming the first point whose components do not sum to the total (the
         L-pseudo components sum to one; tolerance :data:`~rsm_lrg.model.build.mixture.SUM_RTOL`)."""
@@ -686,7 +658,7 @@ class FitResult:
             raise ParameterError("alpha", f"alpha must lie between 0 and 1, not {alpha!r}")
         index = points.index if isinstance(points, pd.DataFrame) else None
         with np.errstate(over="ignore"):  # a far point codes to a huge number or inf: refused below
-            x = self._coded_points(points, coded)
+            x = coded_points(self.space, points, coded)
         far = ~(np.abs(x) <= MAX_FACTOR_MAGNITUDE)
         if far.any():  # a polynomial there overflows (and says nothing): refuse with the factor named
             i, j = np.argwhere(far)[0]
@@ -751,7 +723,7 @@ class FitResult:
         point (points as for :meth:`predict`) [model-scale units², -]."""
         if self.mixed is None:
             raise ValueError("kr_mean needs a REML fit (whole_plot= or random_block=)")
-        _, var_mean, _, df = self.interval_form.at(design_matrix(self._coded_points(points, coded), self.terms))
+        _, var_mean, _, df = self.interval_form.at(design_matrix(coded_points(self.space, points, coded), self.terms))
         return var_mean, df
 
     # -- optimisation ------------------------------------------------------------------
