@@ -245,6 +245,13 @@ def read_table(path, *, sep: str | None = None, decimal: str = ".", sheet: str |
     sheet : str, optional
         The workbook sheet; needed when the workbook has several.
 
+    Returns
+    -------
+    pandas.DataFrame
+        The table, one column per header cell, numbers as numbers.
+
+    Notes
+    -----
     Checks: the file exists and is a file, is not empty, has a header row and at least one
     data row, no duplicated or blank column names, and is within the limits
     (:data:`MAX_TABLE_BYTES`, :data:`MAX_ROWS`, :data:`MAX_COLUMNS`). What was read (format,

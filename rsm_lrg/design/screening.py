@@ -355,6 +355,13 @@ def fractional_factorial(factors: Any, resolution: int | None = None, generators
     center : int
         Centre runs added.
 
+    Returns
+    -------
+    Design
+        The fraction in coded and actual units, ``kind="fractional-factorial"``.
+
+    Notes
+    -----
     The runs are in Yates standard order (the first basic factor changing fastest).
     ``options`` records the generators (``"D = ABC"``), the ``resolution`` (``None`` for
     a full factorial) and the alias groups of main effects and two-factor interactions

@@ -105,6 +105,8 @@ class FitResult:
         whitened model; the ANOVA holds the Kenward–Roger tests (no sums of squares) and
         PRESS, R² and lack of fit are not computed (NaN / none).
 
+    Notes
+    -----
     Derived (cached): ``coefficients`` (columns ``coded, std_error, t, p, ci_low, ci_high,
     vif, actual``), ``anova`` (Table 5 layout), ``statistics``, ``stationary_point``,
     ``fitted``, ``residuals``, ``hat``, ``cov_unscaled``, ``sigma2``, ``df_resid``,

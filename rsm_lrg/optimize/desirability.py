@@ -274,6 +274,14 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
         first, the best polished by SLSQP with the constraints, the winner by Nelder–Mead
         inside the region; a region with no feasible setting is a ``ValueError``.
 
+    Returns
+    -------
+    DesirabilityResult
+        The best setting (coded and actual), each response's prediction and individual
+        desirability, and the overall desirability (their weighted geometric mean, 0 to 1).
+
+    Notes
+    -----
     With categoric factors every combination of their levels (those allowed by ``bounds``,
     e.g. ``{"stage": "rms"}``) is searched over the numeric factors, and the combination with
     the highest overall desirability wins (its levels are in ``actual``).

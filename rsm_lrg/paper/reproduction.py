@@ -84,7 +84,7 @@ class Row:
     paper_value, toolkit_value : float or None
         The numbers, when there are numbers.
     rel_diff : float or None
-        (toolkit − paper) / |paper|.
+        (toolkit − paper) / abs(paper).
     tolerance : str
         The tolerance, in words or numbers.
     verdict : str
