@@ -154,13 +154,12 @@ def missing_sections(obj: Any, *, is_property: bool = False) -> list[str]:
     if is_property:
         return []
     found = sections(doc)
-    target = obj
-    if inspect.isclass(obj):
-        if "__init__" not in vars(obj) and not hasattr(obj, "__dataclass_fields__"):
+    if inspect.isclass(obj):  # its constructor's parameters, if it defines one (a Protocol does not)
+        if getattr(obj, "_is_protocol", False) or ("__init__" not in vars(obj)
+                                                    and not hasattr(obj, "__dataclass_fields__")):
             return []
-        target = obj
     try:
-        sig = inspect.signature(target)
+        sig = inspect.signature(obj)
     except (TypeError, ValueError):
         return []
     missing = []

@@ -20,10 +20,9 @@ import sys
 import time
 from pathlib import Path
 
+import rsm_api
 from sphinx.errors import ExtensionError
 from sphinx.util import logging
-
-import rsm_api
 
 LOG = logging.getLogger(__name__)
 DOCS = Path(__file__).resolve().parents[1]

@@ -564,6 +564,21 @@ def plackett_burman(factors: Any, center: int = 0, seed: Any = None, randomize: 
     normalised Hadamard matrix of order N (:func:`hadamard_matrix`; N = 4, 16, 28, 32, 36,
     ...); the factors take the first k columns. Every column is balanced and orthogonal to
     the others (``X'X = N I``). N = 92 (89 to 91 factors) is not built.
+
+    Parameters
+    ----------
+    factors : FactorSpace, mapping or list
+        As for :func:`~rsm_lrg.design.box_behnken` (numeric factors, two levels each).
+    center : int, default 0
+        Centre runs added.
+    seed, randomize
+        As for :func:`~rsm_lrg.design.box_behnken`.
+
+    Returns
+    -------
+    Design
+        The runs in coded and actual units, in run order (:meth:`~rsm_lrg.design.Design.to_frame`
+        gives the design CSV layout).
     """
     space = as_factor_space(factors)
     if space.has_categoric:

@@ -59,7 +59,13 @@ class StationaryPoint:
     letters: tuple = ()
 
     def to_dict(self) -> dict:
-        """The ``stationary_point`` object of the fit JSON (INTERFACE.md), plus extras."""
+        """The ``stationary_point`` object of the fit JSON (INTERFACE.md), plus extras.
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data.
+        """
         vec = None
         if self.eigenvectors is not None:
             vec = {L: [float(v) for v in row] for L, row in zip(self.letters, self.eigenvectors)}

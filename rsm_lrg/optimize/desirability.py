@@ -97,6 +97,18 @@ class ResponseGoal:
                              f"{self.low:g}..{self.high:g}")
 
     def with_limits(self, low: float, high: float) -> ResponseGoal:
+        """The goal with its missing limits filled in.
+
+        Parameters
+        ----------
+        low, high : float
+            Limits to use where the goal has none [response units] (a target stays inside them).
+
+        Returns
+        -------
+        ResponseGoal
+            A copy with both limits.
+        """
         lo = self.low if self.low is not None else low
         hi = self.high if self.high is not None else high
         if self.goal == "target" and self.target is not None:  # keep the target inside the limits
@@ -107,6 +119,13 @@ class ResponseGoal:
         return ResponseGoal(self.response, self.goal, float(lo), float(hi), self.target, self.weight, self.importance)
 
     def to_dict(self) -> dict:
+        """The goal as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return {"response": self.response, "goal": self.goal, "low": self.low, "high": self.high,
                 "target": self.target, "weight": list(self.weight), "importance": self.importance}
 
