@@ -310,8 +310,7 @@ class Constraints:
 
     @property
     def expressions(self) -> list[str]:
-        """The inequalities as text, as given.
-        """
+        """The inequalities as text, as given."""
         return [c.text for c in self.items]
 
     def to_list(self) -> list[dict]:

@@ -74,6 +74,13 @@ def as_factor_space(factors: Any) -> FactorSpace:
         ``(name, low, high)`` tuples or :class:`Factor` / :class:`CategoricFactor`
         objects. Letters go to the numeric factors first, then the categoric ones.
 
+    Returns
+    -------
+    FactorSpace
+        The factors.
+
+    Notes
+    -----
     >>> as_factor_space(["x=0:10", "y=1:2"]).names
     ['x', 'y']
     >>> sp = as_factor_space(["stage=cat:rfcms,rms", "v=0.4:0.6"])
@@ -299,8 +306,7 @@ class Design:
 
     @property
     def n_factors(self) -> int:
-        """The number of factors.
-        """
+        """The number of factors."""
         return len(self.factors)
 
     @property

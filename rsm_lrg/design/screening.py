@@ -115,6 +115,16 @@ def conference_matrix(n: int) -> np.ndarray:
     >>> C = conference_matrix(6)
     >>> (C.T @ C).tolist()[0]
     [5, 0, 0, 0, 0, 0]
+
+    Parameters
+    ----------
+    n : int
+        The order.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, n)
+        The matrix (integers 0, ±1).
     """
     n = int(n)
     if n < 2 or n % 2:
@@ -616,6 +626,22 @@ def alias_matrix(coded: np.ndarray, letters, model: str = "linear", potential: s
 
     Returns ``(A, fitted term names, potential term names)``; ``model`` are the fitted terms,
     ``potential`` the bigger model whose extra terms may bias them.
+
+    Parameters
+    ----------
+    coded : numpy.ndarray, shape (n, k)
+        The runs in coded units.
+    letters : sequence of str
+        The factors' letters.
+    model : str, default "linear"
+        The fitted model.
+    potential : str, default "2fi"
+        The model whose extra terms may be active.
+
+    Returns
+    -------
+    tuple
+        ``(A, fitted term names, potential term names)``, ``A`` of shape (p1, p2).
     """
     from ..terms import column_names, design_matrix, model_terms
 

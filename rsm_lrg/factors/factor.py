@@ -34,6 +34,16 @@ def letters_for(k: int) -> list[str]:
     ['A', 'B', 'C', 'D']
     >>> letters_for(10)[-2:]
     ['J', 'K']
+
+    Parameters
+    ----------
+    k : int
+        The number of factors.
+
+    Returns
+    -------
+    list of str
+        k letters.
     """
     if k < 0:
         raise ValueError("the number of factors must not be negative")
@@ -61,6 +71,16 @@ def check_factor_name(name: Any) -> str:
 
     >>> check_factor_name("stroke_m")
     'stroke_m'
+
+    Parameters
+    ----------
+    name : object
+        The proposed name.
+
+    Returns
+    -------
+    str
+        ``name``, checked.
     """
     if not isinstance(name, str) or not name.strip():
         raise ValueError("a factor needs a non-empty name")
@@ -94,16 +114,54 @@ class FactorLike(Protocol):
     kind: ClassVar[str]
 
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """The data column."""
+        ...
 
     @property
-    def letter(self) -> str: ...
+    def letter(self) -> str:
+        """The letter in model terms (A, B, ...)."""
+        ...
 
-    def encode(self, x: Any) -> Any: ...
+    def encode(self, x: Any) -> Any:
+        """Actual value(s) to coded value(s).
 
-    def decode(self, c: Any) -> Any: ...
+        Parameters
+        ----------
+        x : object or array_like
+            Actual value(s): numbers in the factor's units, or levels.
 
-    def to_dict(self) -> dict: ...
+        Returns
+        -------
+        object
+            The coded value(s).
+        """
+        ...
+
+    def decode(self, c: Any) -> Any:
+        """Coded value(s) to actual value(s).
+
+        Parameters
+        ----------
+        c : object or array_like
+            Coded value(s).
+
+        Returns
+        -------
+        object
+            The actual value(s): numbers in the factor's units, or levels.
+        """
+        ...
+
+    def to_dict(self) -> dict:
+        """The factor as in the fit JSON's ``factors`` list.
+
+        Returns
+        -------
+        dict
+            ``{"letter", "name", "kind", ...}``.
+        """
+        ...
 
 
 #: The widest factor range [actual units] that coding can handle: LOW, HIGH and HIGH - LOW at
@@ -216,6 +274,16 @@ def level_text(value: Any) -> str:
 
     >>> level_text("rms"), level_text(2), level_text(2.0), level_text(0.1)
     ('rms', '2', '2', '0.1')
+
+    Parameters
+    ----------
+    value : object
+        The level.
+
+    Returns
+    -------
+    str
+        The level as written.
     """
     if isinstance(value, str):
         return value
@@ -270,8 +338,7 @@ class CategoricFactor:
 
     @property
     def n_levels(self) -> int:
-        """The number of levels.
-        """
+        """The number of levels."""
         return len(self.levels)
 
     def index(self, value: Any) -> int:

@@ -166,14 +166,12 @@ class FactorSpace:
 
     @property
     def names(self) -> list[str]:
-        """The factors' names (data columns), in letter order.
-        """
+        """The factors' names (data columns), in letter order."""
         return [f.name for f in self.factors]
 
     @property
     def letters(self) -> list[str]:
-        """The factors' letters (A, B, ...), in order.
-        """
+        """The factors' letters (A, B, ...), in order."""
         return [f.letter for f in self.factors]
 
     @property
@@ -203,8 +201,7 @@ class FactorSpace:
 
     @property
     def has_categoric(self) -> bool:
-        """Whether any factor is categoric.
-        """
+        """Whether any factor is categoric."""
         return any(f.kind == "categoric" for f in self.factors)
 
     @property
@@ -299,7 +296,20 @@ class FactorSpace:
         return [f.to_dict() for f in self.factors]
 
 def encode_column(data, f) -> np.ndarray:
-    """One factor column of a frame coded; errors name the column and the 1-based row."""
+    """One factor column of a frame coded; errors name the column and the 1-based row.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The table.
+    f : FactorLike
+        The factor.
+
+    Returns
+    -------
+    numpy.ndarray
+        The coded column(s).
+    """
     if f.kind == "numeric":
         return f.encode(float_column(data, f.name).to_numpy())
     col = data[f.name]
@@ -318,7 +328,18 @@ def encode_column(data, f) -> np.ndarray:
 
 def design_space(found: list) -> FactorSpace:
     """The factor space of :func:`design_factors`' pairs, letters in coded-column order
-    (``(name, low, high)`` numeric, ``(name, levels)`` categoric)."""
+    (``(name, low, high)`` numeric, ``(name, levels)`` categoric).
+
+    Parameters
+    ----------
+    found : list
+        :func:`design_factors`' pairs.
+
+    Returns
+    -------
+    FactorSpace
+        The design's factors.
+    """
     letters = letters_for(len(found))
     factors: list[Any] = [CategoricFactor(it[0], it[1], L) if len(it) == 2 else Factor(it[0], it[1], it[2], L)
                           for it, L in zip(found, letters)]
@@ -328,5 +349,18 @@ def design_space(found: list) -> FactorSpace:
 def inferred_space(how: str, items: list) -> FactorSpace:
     """The factor space of :func:`~rsm_lrg.factors.columns.infer_items`' items: a design's
     factors in coded-column order (:func:`design_space`), else numeric factors first
-    (:meth:`FactorSpace.from_items`)."""
+    (:meth:`FactorSpace.from_items`).
+
+    Parameters
+    ----------
+    how : str
+        How the items were found (``"design"`` or otherwise).
+    items : list
+        The items.
+
+    Returns
+    -------
+    FactorSpace
+        The factors.
+    """
     return design_space(items) if how == "design" else FactorSpace.from_items(items)

@@ -169,6 +169,11 @@ def canonical_analysis(coefs: Mapping[str, float], terms, space, *, threshold: f
         With categoric factors: the level of each (``{"stage": "rms"}``) at which the
         surface in the numeric factors is analysed; by default the first level of each
         (the note says which).
+
+    Returns
+    -------
+    StationaryPoint
+        The stationary point, the eigenvalues and the kind.
     """
     if space.has_categoric:
         return _canonical_at_levels(coefs, terms, space, threshold=threshold, rel_tol=rel_tol, level=level)

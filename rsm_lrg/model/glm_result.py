@@ -163,8 +163,7 @@ class GLMResult:
     # -- the model -----------------------------------------------------------------------
     @property
     def intercept(self) -> bool:
-        """Whether the model has an intercept.
-        """
+        """Whether the model has an intercept."""
         return bool(self.spec.intercept)
 
     @property
@@ -182,14 +181,12 @@ class GLMResult:
 
     @property
     def term_names(self) -> list[str]:
-        """The model's column names, in column order.
-        """
+        """The model's column names, in column order."""
         return list(self.column_names)
 
     @property
     def factors(self) -> list[str]:
-        """The factors' names, in letter order.
-        """
+        """The factors' names, in letter order."""
         return list(self.space.names)
 
     @property
@@ -199,20 +196,17 @@ class GLMResult:
 
     @property
     def n_params(self) -> int:
-        """The number of coefficients p.
-        """
+        """The number of coefficients p."""
         return int(self.params.size)
 
     @property
     def df_resid(self) -> int:
-        """Residual degrees of freedom, n - p.
-        """
+        """Residual degrees of freedom, n - p."""
         return self.n - self.n_params
 
     @property
     def df_null(self) -> int:
-        """Degrees of freedom of the null model, n - 1 (n without an intercept).
-        """
+        """Degrees of freedom of the null model, n - 1 (n without an intercept)."""
         return self.n - (1 if self.intercept else 0)
 
     @property

@@ -185,8 +185,7 @@ class FitResult:
 
     @property
     def df_resid(self) -> int:
-        """Residual degrees of freedom, n - p.
-        """
+        """Residual degrees of freedom, n - p."""
         return int(self.least_squares.df_resid)
 
     @cached_property
@@ -534,8 +533,7 @@ class FitResult:
 
     @property
     def term_names(self) -> list[str]:
-        """The model's column names (``Intercept``, ``A``, ``AB``, ``A^2`` ...), in column order.
-        """
+        """The model's column names (``Intercept``, ``A``, ``AB``, ``A^2`` ...), in column order."""
         return [t.name for t in self.terms]
 
     @property

@@ -234,7 +234,20 @@ class Transform:
 
 def parse_transform(spec: Any, constant: float = 0.0) -> Transform:
     """A :class:`Transform` from ``"log"``, ``"sqrt"``, ``"inverse"``, ``"log10"``, ``"none"``
-    or ``"power=λ"`` (also a Transform, returned as is)."""
+    or ``"power=λ"`` (also a Transform, returned as is).
+
+    Parameters
+    ----------
+    spec : str or Transform
+        The transform.
+    constant : float, default 0.0
+        k added to the response before transforming [response units].
+
+    Returns
+    -------
+    Transform
+        The transform.
+    """
     if isinstance(spec, Transform):
         return spec
     if spec is None:
