@@ -23,7 +23,8 @@ extensions = [
     "rsm_docs",
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
-exclude_patterns = ["_build", "HELPERS.md", "analysis", "screenshots", "examples", "_generated/gallery/_work"]
+exclude_patterns = ["_build", "HELPERS.md", "analysis", "screenshots", "examples", "_generated/gallery/_work",
+                    "_generated/intro.md"]  # intro.md: included by index.rst
 root_doc = "index"
 
 autodoc_member_order = "bysource"

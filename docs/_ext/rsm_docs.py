@@ -45,7 +45,8 @@ GUIDE = [
     ("paper", "The paper reproduction and its physics", ["Physics", "Known gaps"]),
     ("surrogate", "The surrogate: virtual runs and calibration", ["Virtual runs and calibration",
                                                                   "Surrogate calibration"]),
-    ("development", "Layout, tests and licence", ["Layout", "Tests and benchmarks", "License"]),
+    ("development", "Layout, documentation, tests and licence", ["Layout", "Documentation", "Tests and benchmarks",
+                                                        "License"]),
 ]
 
 FENCE = re.compile(r"^```")
