@@ -21,6 +21,7 @@ sys.path.insert(0, str(DOCS / "_ext"))
 
 import rsm_api  # noqa: E402
 
+
 def gaps() -> set[str]:
     """Every missing docstring or section of a public name, as ``"qualified.name: what"``."""
     out = set()

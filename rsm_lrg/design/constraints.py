@@ -497,7 +497,7 @@ class Constraints:
         Parameters
         ----------
         n : int, default 4096
-            About how many Sobol' points.
+            Sobol' points: the power of two at or above n.
         seed : int, default 0
             Seed of the scrambled Sobol' sequence.
 
