@@ -106,24 +106,47 @@ def load_table4():
 
     >>> load_table4().shape
     (27, 6)
+
+    Returns
+    -------
+    pandas.DataFrame
+        Table 4: the 27 runs (factor columns in SI units, response ``tcr_c_per_min`` [°C/min]).
     """
     return _csv("table4.csv")
 
 
 def load_table3():
-    """Table 3: factor letters, names, units and the low/centre/high levels."""
+    """Table 3: factor letters, names, units and the low/centre/high levels.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Table 3: the factors' levels (one row per factor).
+    """
     return _csv("table3_levels.csv")
 
 
 def load_table5():
-    """Table 5: the paper's ANOVA as printed (p values kept as text, e.g. ``<0.0001``)."""
+    """Table 5: the paper's ANOVA as printed (p values kept as text, e.g. ``<0.0001``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Table 5: the paper's ANOVA, p values as printed (text).
+    """
     import pandas as pd
 
     return pd.read_csv(data_path("table5_anova.csv"), dtype={"p_value": str})
 
 
 def load_equation19():
-    """Eq. 19: the coded quadratic coefficients of κ, as a Series indexed by term."""
+    """Eq. 19: the coded quadratic coefficients of κ, as a Series indexed by term.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Eq. 19's coded coefficients, one row per term.
+    """
     return _csv("equation19_coded.csv").set_index("term")["coefficient"]
 
 
@@ -135,6 +158,11 @@ def load_mixture_etch():
 
     >>> load_mixture_etch().shape
     (14, 4)
+
+    Returns
+    -------
+    pandas.DataFrame
+        The 14 blends (``x1``, ``x2``, ``x3``, proportions) and ``erate`` [Å/min].
     """
     return _csv("mixture_etch.csv")
 
@@ -147,5 +175,10 @@ def load_cake_split_plot():
 
     >>> load_cake_split_plot().shape[0]
     11
+
+    Returns
+    -------
+    pandas.DataFrame
+        The 11 cakes: ``Ovenrun``, ``x1``, ``x2`` (coded) and ``y``.
     """
     return _csv("cake_split_plot.csv")

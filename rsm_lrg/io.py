@@ -245,6 +245,13 @@ def read_table(path, *, sep: str | None = None, decimal: str = ".", sheet: str |
     sheet : str, optional
         The workbook sheet; needed when the workbook has several.
 
+    Returns
+    -------
+    pandas.DataFrame
+        The table, one column per header cell, numbers as numbers.
+
+    Notes
+    -----
     Checks: the file exists and is a file, is not empty, has a header row and at least one
     data row, no duplicated or blank column names, and is within the limits
     (:data:`MAX_TABLE_BYTES`, :data:`MAX_ROWS`, :data:`MAX_COLUMNS`). What was read (format,
@@ -401,13 +408,39 @@ COMMA_NUMBER = re.compile(r"^\s*[+-]?(\d{1,3}(,\d{3})+(\.\d*)?|\d*,\d+)\s*$")
 
 
 def is_empty_cell(raw) -> bool:
-    """An empty cell: None, NaN, blank text, pandas' NA or NaT."""
+    """An empty cell: None, NaN, blank text, pandas' NA or NaT.
+
+    Parameters
+    ----------
+    raw : object
+        The cell.
+
+    Returns
+    -------
+    bool
+        Whether it is empty.
+    """
     return raw is None or (isinstance(raw, float) and math.isnan(raw)) or str(raw).strip() == "" \
         or type(raw).__name__ in ("NAType", "NaTType")
 
 
 def cell_error(name: str, row: int, raw) -> ValueError:
-    """The error for one bad cell (row is 1-based): empty, a comma number, or not a number."""
+    """The error for one bad cell (row is 1-based): empty, a comma number, or not a number.
+
+    Parameters
+    ----------
+    name : str
+        The column.
+    row : int
+        The row, 1-based.
+    raw : object
+        The cell as read.
+
+    Returns
+    -------
+    ValueError
+        The error (to raise).
+    """
     where = f"column {quote_user_value(name)}, row {row}"
     if is_empty_cell(raw):
         return ValueError(f"{where}: is empty")
@@ -450,7 +483,20 @@ def check_number_kinds(col, name: str) -> None:
 
 def float_column(data, name: str):
     """The column ``name`` as floats, or a ValueError naming the first bad row (1-based):
-    an empty cell, text, a truth value or a complex number (:func:`check_number_kinds`)."""
+    an empty cell, text, a truth value or a complex number (:func:`check_number_kinds`).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The table.
+    name : str
+        The column.
+
+    Returns
+    -------
+    numpy.ndarray
+        The column as floats.
+    """
     import numpy as np
     import pandas as pd
 

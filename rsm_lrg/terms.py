@@ -256,7 +256,13 @@ class Term:
 
     def level_combinations(self) -> list[tuple[int, ...]]:
         """Level indices (one per categoric factor in ``cat``) of its columns, in column order
-        (the first factor's level changing slowest)."""
+        (the first factor's level changing slowest).
+
+        Returns
+        -------
+        list of tuple of int
+            One tuple of level indices per column.
+        """
         return list(itertools.product(*[range(len(lv) - 1) for _, lv in self.cat]))
 
     @property
@@ -317,6 +323,11 @@ def model_terms(letters: Sequence[str], model: str = "quadratic", categoric: Cat
         the 2FI model and up, their squares in none.
     categoric : mapping, optional
         ``{factor index: level names}`` of the categoric factors.
+
+    Returns
+    -------
+    list of Term
+        The terms.
     """
     if model not in MODELS:
         raise ParameterError("model", f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
@@ -332,6 +343,20 @@ def parse_term(name: str, letters: Sequence[str], categoric: Categoric | None = 
 
     >>> parse_term("A^2B", "ABC").powers
     (2, 1, 0)
+
+    Parameters
+    ----------
+    name : str
+        The term's name.
+    letters : sequence of str
+        The factors' letters.
+    categoric : optional
+        The categoric factors' levels.
+
+    Returns
+    -------
+    Term
+        The term.
     """
     import re
 
@@ -425,6 +450,18 @@ def design_matrix(coded: np.ndarray, terms: Sequence[Term]) -> np.ndarray:
     with categoric factors has one column per combination of their effect codes
     (:func:`effect_codes`) times its numeric monomial. Built column by column into a
     Fortran-ordered array, each power of each factor computed once.
+
+    Parameters
+    ----------
+    coded : numpy.ndarray, shape (n, k)
+        Settings in coded units.
+    terms : sequence of Term
+        The model's terms.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``X``, one column per term (more for a categoric term).
     """
     x = np.asarray(coded, dtype=float)
     if x.ndim == 1:

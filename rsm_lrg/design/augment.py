@@ -105,6 +105,12 @@ def augment(
         ``optimal``: every added run satisfies them.
     seed, starts, randomize
         Search starts and run order of the added runs.
+
+    Returns
+    -------
+    Design
+        The original runs first and untouched, then the added runs (a new block with
+        ``new_block=True``).
     """
     if not isinstance(design, Design):
         raise TypeError("design must be a Design (read one with rsm_lrg.design.read_design)")

@@ -63,6 +63,13 @@ def ccd_alpha(k: int, alpha: Any = "rotatable", center: tuple[int, int] = (0, 0)
     blocked : bool
         Whether cube and star form two blocks (changes the ``"orthogonal"`` rule).
 
+    Returns
+    -------
+    float
+        α [coded units].
+
+    Notes
+    -----
     >>> round(ccd_alpha(3), 3), round(ccd_alpha(4), 3)
     (1.682, 2.0)
     """

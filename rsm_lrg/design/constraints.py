@@ -204,7 +204,15 @@ class Constraint:
 
 
 class Constraints:
-    """A set of inequalities on a factor space (see the module docstring for the API)."""
+    """A set of inequalities on a factor space (see the module docstring for the API).
+
+    Parameters
+    ----------
+    items : sequence of Constraint
+        The parsed inequalities (use :meth:`parse` to build them from text).
+    space : FactorSpace
+        The factors they constrain.
+    """
 
     def __init__(self, items: Sequence[Constraint], space: FactorSpace):
         self.items = tuple(items)
@@ -213,7 +221,23 @@ class Constraints:
     # -- construction -------------------------------------------------------------------
     @classmethod
     def parse(cls, exprs: str | Sequence[str] | None, space: FactorSpace, *, check_empty: bool = True) -> Constraints:
-        """Parse constraint texts on ``space`` (names or letters, actual units)."""
+        """Parse constraint texts on ``space`` (names or letters, actual units).
+
+        Parameters
+        ----------
+        exprs : str, sequence of str or None
+            Inequalities such as ``"v**2/a <= s"`` or ``"0.5*A + B <= 1.2"`` (names or letters,
+            actual units).
+        space : FactorSpace
+            The factors.
+        check_empty : bool, default True
+            Raise ``ValueError`` when no setting of the box satisfies them all.
+
+        Returns
+        -------
+        Constraints
+            The parsed set (empty for ``None``).
+        """
         if exprs is None:
             exprs = []
         if isinstance(exprs, str):
@@ -286,9 +310,17 @@ class Constraints:
 
     @property
     def expressions(self) -> list[str]:
+        """The inequalities as text, as given."""
         return [c.text for c in self.items]
 
     def to_list(self) -> list[dict]:
+        """The inequalities as plain data.
+
+        Returns
+        -------
+        list of dict
+            One entry per inequality: ``{"constraint": text, "linear": bool}``.
+        """
         return [{"constraint": c.text, "linear": c.is_linear} for c in self.items]
 
     @property
@@ -343,11 +375,33 @@ class Constraints:
         return M, S
 
     def margin(self, actual) -> np.ndarray:
-        """``rhs - lhs`` of each inequality, shape (n, m): positive inside, NaN undefined."""
+        """``rhs - lhs`` of each inequality, shape (n, m): positive inside, NaN undefined.
+
+        Parameters
+        ----------
+        actual : array_like, shape (n, k)
+            Settings in actual units (columns in factor order).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, m)
+            ``rhs - lhs`` per setting and inequality [units of the inequality].
+        """
         return self._margins(self._actual_array(actual))[0]
 
     def margin_coded(self, coded) -> np.ndarray:
-        """:meth:`margin` at coded settings."""
+        """:meth:`margin` at coded settings.
+
+        Parameters
+        ----------
+        coded : array_like, shape (n, k)
+            Settings in coded units.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, m)
+            ``rhs - lhs`` per setting and inequality.
+        """
         return self._margins(self._decode(coded))[0]
 
     def _ok(self, X: np.ndarray, tol: float) -> np.ndarray:
@@ -359,17 +413,54 @@ class Constraints:
         return np.all(good, axis=1)
 
     def feasible(self, actual, tol: float = 1e-9) -> np.ndarray:
-        """Boolean mask (n,): the settings satisfy every inequality (actual units)."""
+        """Boolean mask (n,): the settings satisfy every inequality (actual units).
+
+        Parameters
+        ----------
+        actual : array_like, shape (n, k)
+            Settings in actual units.
+        tol : float, default 1e-9
+            Slack allowed on each inequality.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (n,)
+            True where every inequality holds.
+        """
         return self._ok(self._actual_array(actual), tol)
 
     def feasible_coded(self, coded, tol: float = 1e-9) -> np.ndarray:
-        """Boolean mask (n,) for coded settings."""
+        """Boolean mask (n,) for coded settings.
+
+        Parameters
+        ----------
+        coded : array_like, shape (n, k)
+            Settings in coded units.
+        tol : float, default 1e-9
+            Slack allowed on each inequality.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (n,)
+            True where every inequality holds.
+        """
         return self._ok(self._decode(coded), tol)
 
     def linear_system(self, coded: bool = True) -> tuple[np.ndarray, np.ndarray]:
         """``(A, b)`` with ``A @ x <= b`` for linear constraints (x coded, or actual with
         ``coded=False``; the columns of categoric factors are 0). ``ValueError`` when a
-        constraint is nonlinear."""
+        constraint is nonlinear.
+
+        Parameters
+        ----------
+        coded : bool, default True
+            ``A`` and ``b`` for coded settings (else actual units).
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(A, b)``, shapes (m, k) and (m,).
+        """
         k = len(self.space)
         if not self.is_linear:
             bad = next(c.text for c in self.items if not c.is_linear)
@@ -401,7 +492,20 @@ class Constraints:
     # -- the region ---------------------------------------------------------------------
     def region_sample(self, n: int = 4096, seed: int = 0) -> np.ndarray:
         """Coded points of the numeric box (corners when few, centre, Sobol' points);
-        categoric columns 0."""
+        categoric columns 0.
+
+        Parameters
+        ----------
+        n : int, default 4096
+            Sobol' points: the power of two at or above n.
+        seed : int, default 0
+            Seed of the scrambled Sobol' sequence.
+
+        Returns
+        -------
+        numpy.ndarray, shape (N, k)
+            Coded points of the box (not filtered by the constraints).
+        """
         from scipy.stats import qmc
 
         k = len(self.space)

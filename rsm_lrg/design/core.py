@@ -74,6 +74,13 @@ def as_factor_space(factors: Any) -> FactorSpace:
         ``(name, low, high)`` tuples or :class:`Factor` / :class:`CategoricFactor`
         objects. Letters go to the numeric factors first, then the categoric ones.
 
+    Returns
+    -------
+    FactorSpace
+        The factors.
+
+    Notes
+    -----
     >>> as_factor_space(["x=0:10", "y=1:2"]).names
     ['x', 'y']
     >>> sp = as_factor_space(["stage=cat:rfcms,rms", "v=0.4:0.6"])
@@ -299,6 +306,7 @@ class Design:
 
     @property
     def n_factors(self) -> int:
+        """The number of factors."""
         return len(self.factors)
 
     @property
@@ -340,6 +348,11 @@ class Design:
         Columns: ``std_order``, ``run_order``, ``block`` (only when blocked), ``whole_plot``
         (only for a split-plot design), ``coded_A``, ``coded_B``, ... and then the actual
         columns named after the factors.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
         """
         import pandas as pd
 
@@ -379,7 +392,13 @@ class Design:
         """The design CSV (:meth:`to_csv`'s text) written without pandas: the same bytes as
         ``to_frame().to_csv(index=False)`` (numbers as their shortest round-trip text, text
         quoted where the CSV dialect needs it), so that ``rsm-lrg design`` does not load
-        pandas (about 0.3 s of CPU time at start-up)."""
+        pandas (about 0.3 s of CPU time at start-up).
+
+        Returns
+        -------
+        str
+            The CSV text, header first, one line per run (run order).
+        """
         import csv
         import io
 
@@ -414,13 +433,31 @@ class Design:
         return buf.getvalue()
 
     def standard_order(self):
-        """:meth:`to_frame` sorted by ``std_order``."""
+        """:meth:`to_frame` sorted by ``std_order``.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         return self.to_frame().sort_values("std_order", kind="stable").reset_index(drop=True)
 
     def to_csv(self, path, force: bool = False):
         """Write the design CSV atomically (see :func:`rsm_lrg.io.write_output`).
 
         An existing file is kept (``InputError``) unless ``force=True``.
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            Where to write the CSV.
+        force : bool, default False
+            Replace an existing file.
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
         """
         from ..io import write_output
 
@@ -428,7 +465,13 @@ class Design:
         return write_output(path, self.csv_text(), force=force)
 
     def to_dict(self) -> dict:
-        """Plain, JSON-safe summary: kind, factors, options and the runs (run order)."""
+        """Plain, JSON-safe summary: kind, factors, options and the runs (run order).
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data (numbers, strings, lists and dicts).
+        """
         from ..io import to_jsonable
 
         return to_jsonable(
@@ -444,7 +487,13 @@ class Design:
         )
 
     def summary(self) -> str:
-        """A few lines for people: kind, factors, runs, blocks, seed."""
+        """A few lines for people: kind, factors, runs, blocks, seed.
+
+        Returns
+        -------
+        str
+            Text for people, several lines.
+        """
         seed = self.options.get("seed")
         rnd = self.options.get("randomize", True)
         lines = [
@@ -528,6 +577,11 @@ class Design:
             Randomisation seed (ignored when ``randomize`` is false).
         randomize : bool
             ``False``: run order = standard order (block by block when blocked).
+
+        Returns
+        -------
+        Design
+            The design with ``std_order`` and a (seeded) run order.
         """
         coded_std = np.asarray(coded_std, dtype=float)
         n = coded_std.shape[0]
@@ -554,6 +608,18 @@ class Design:
         centre runs are matched in standard order). The result keeps this design's
         ``std_order`` for each matched run and takes the run order from the column
         ``run_order`` of ``data`` (or the row order when ``None``).
+
+        Parameters
+        ----------
+        data : pandas.DataFrame
+            Runs with the factor columns in actual units.
+        run_order : str, optional
+            A column of ``data`` holding the order the runs were made in.
+
+        Returns
+        -------
+        Design
+            This design's runs, in ``data``'s order.
 
         Raises
         ------
@@ -608,6 +674,20 @@ class Design:
         of a split-plot design come from the column ``whole_plot`` (or the column named by
         ``whole_plot``): whole numbers >= 1 are kept, other labels numbered 1, 2, ... in order
         of first appearance.
+
+        Parameters
+        ----------
+        df : pandas.DataFrame
+            The design CSV layout.
+        kind : str, default "custom"
+            The design's kind, as recorded.
+        whole_plot : str, optional
+            The whole-plot column of a split-plot design.
+
+        Returns
+        -------
+        Design
+            The design read back.
         """
         cols = [str(c) for c in df.columns]
         coded_cols = [c for c in cols if c.lower().startswith(CODED_PREFIX)]
@@ -779,6 +859,16 @@ def read_design(path) -> Design:
     """Read a design CSV written by ``rsm-lrg design`` (or :meth:`Design.to_csv`).
 
     Errors name the file (:class:`rsm_lrg.io.InputError`).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The design CSV.
+
+    Returns
+    -------
+    Design
+        The design, with its factors, coding, blocks and run order as written.
     """
     from ..io import read_table
 

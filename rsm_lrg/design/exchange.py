@@ -137,7 +137,24 @@ def information_criterion(M: np.ndarray, crit: str, W: np.ndarray | None) -> Any
 def criterion_value(coded: np.ndarray, terms, criterion: str = "D", W: np.ndarray | None = None) -> float:
     """The criterion of coded runs as reported: D ``det(X'X)^(1/p) / n``; A
     ``trace((X'X)^-1)``; I ``trace((X'X)^-1 W)`` (``W`` from :func:`moment_matrix`). A
-    singular design gives 0 (D) or inf (A, I)."""
+    singular design gives 0 (D) or inf (A, I).
+
+    Parameters
+    ----------
+    coded : numpy.ndarray, shape (n, k)
+        The runs in coded units.
+    terms : sequence of Term
+        The model's terms.
+    criterion : {"D", "A", "I"}, default "D"
+        The criterion.
+    W : numpy.ndarray, optional
+        The moment matrix of the region (I only; the cube's by default).
+
+    Returns
+    -------
+    float
+        The criterion's value (0 or inf for a singular design).
+    """
     coded = np.asarray(coded, dtype=float)
     return reported_value(information(coded, terms), coded.shape[0], criterion, W)
 

@@ -40,6 +40,12 @@ def full_factorial(
     seed, randomize
         As for :func:`~rsm_lrg.design.box_behnken`.
 
+    Returns
+    -------
+    Design
+        The runs in coded and actual units, in run order (:meth:`~rsm_lrg.design.Design.to_frame`
+        gives the design CSV layout).
+
     Examples
     --------
     >>> d = full_factorial({"x": (0, 2), "y": (10, 20)}, levels=3, randomize=False)

@@ -153,7 +153,13 @@ class MixtureDesign(Design):
     def csv_text(self) -> str:
         """The design CSV: ``std_order, run_order, coded_A, ...`` (L-pseudo components, then
         the process factors coded) and one column per component with the real proportion
-        (shortest round-trip text), then the process factors' actual settings."""
+        (shortest round-trip text), then the process factors' actual settings.
+
+        Returns
+        -------
+        str
+            The CSV text, header first, one line per run (run order).
+        """
         import csv
         import io
 
@@ -178,7 +184,13 @@ class MixtureDesign(Design):
             raise ValueError("the design holds a non-finite proportion; nothing was written")
 
     def summary(self) -> str:
-        """A few lines for people: kind, components, runs by type, seed, notes."""
+        """A few lines for people: kind, components, runs by type, seed, notes.
+
+        Returns
+        -------
+        str
+            Text for people, several lines.
+        """
         o = self.options
         q = self.n_components
         counts: dict[str, int] = {}
@@ -400,6 +412,13 @@ def simplex_centroid(components: Sequence[str], center: bool = False, axial: boo
     seed, randomize
         Run order as for every design.
 
+    Returns
+    -------
+    MixtureDesign
+        The blends as real proportions and L-pseudo components, in run order.
+
+    Notes
+    -----
     >>> simplex_centroid(["a", "b", "c", "d"], randomize=False).n_runs
     15
     """
@@ -847,6 +866,13 @@ def cross_process(design: MixtureDesign, factors: Any, *, seed: Any = None, rand
     seed, randomize
         Run order of the crossed design, as for every design.
 
+    Returns
+    -------
+    MixtureDesign
+        ``n_blends * 2^k`` runs: every blend at every process setting.
+
+    Notes
+    -----
     >>> d = cross_process(simplex_centroid(["a", "b", "c"], randomize=False), ["t=20:40"], randomize=False)
     >>> d.n_runs, d.actual.iloc[:2].to_dict("list")
     (14, {'a': [1.0, 1.0], 'b': [0.0, 0.0], 'c': [0.0, 0.0], 't': [20.0, 40.0]})

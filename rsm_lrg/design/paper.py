@@ -29,6 +29,11 @@ def paper_design() -> Design:
     ``std_order`` comes from :func:`~rsm_lrg.design.box_behnken` (4 factors, 3 centre
     runs, unrandomised); ``run_order`` is Table 4's ``order`` column.
 
+    Returns
+    -------
+    Design
+        The 27 runs of Table 4 in the paper's run order.
+
     Raises
     ------
     ValueError

@@ -115,6 +115,16 @@ def conference_matrix(n: int) -> np.ndarray:
     >>> C = conference_matrix(6)
     >>> (C.T @ C).tolist()[0]
     [5, 0, 0, 0, 0, 0]
+
+    Parameters
+    ----------
+    n : int
+        The order.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, n)
+        The matrix (integers 0, ±1).
     """
     n = int(n)
     if n < 2 or n % 2:
@@ -355,6 +365,13 @@ def fractional_factorial(factors: Any, resolution: int | None = None, generators
     center : int
         Centre runs added.
 
+    Returns
+    -------
+    Design
+        The fraction in coded and actual units, ``kind="fractional-factorial"``.
+
+    Notes
+    -----
     The runs are in Yates standard order (the first basic factor changing fastest).
     ``options`` records the generators (``"D = ABC"``), the ``resolution`` (``None`` for
     a full factorial) and the alias groups of main effects and two-factor interactions
@@ -557,6 +574,21 @@ def plackett_burman(factors: Any, center: int = 0, seed: Any = None, randomize: 
     normalised Hadamard matrix of order N (:func:`hadamard_matrix`; N = 4, 16, 28, 32, 36,
     ...); the factors take the first k columns. Every column is balanced and orthogonal to
     the others (``X'X = N I``). N = 92 (89 to 91 factors) is not built.
+
+    Parameters
+    ----------
+    factors : FactorSpace, mapping or list
+        As for :func:`~rsm_lrg.design.box_behnken` (numeric factors, two levels each).
+    center : int, default 0
+        Centre runs added.
+    seed, randomize
+        As for :func:`~rsm_lrg.design.box_behnken`.
+
+    Returns
+    -------
+    Design
+        The runs in coded and actual units, in run order (:meth:`~rsm_lrg.design.Design.to_frame`
+        gives the design CSV layout).
     """
     space = as_factor_space(factors)
     if space.has_categoric:
@@ -594,6 +626,22 @@ def alias_matrix(coded: np.ndarray, letters, model: str = "linear", potential: s
 
     Returns ``(A, fitted term names, potential term names)``; ``model`` are the fitted terms,
     ``potential`` the bigger model whose extra terms may bias them.
+
+    Parameters
+    ----------
+    coded : numpy.ndarray, shape (n, k)
+        The runs in coded units.
+    letters : sequence of str
+        The factors' letters.
+    model : str, default "linear"
+        The fitted model.
+    potential : str, default "2fi"
+        The model whose extra terms may be active.
+
+    Returns
+    -------
+    tuple
+        ``(A, fitted term names, potential term names)``, ``A`` of shape (p1, p2).
     """
     from ..terms import column_names, design_matrix, model_terms
 

@@ -83,6 +83,12 @@ def latin_hypercube(factors: Any, runs: int, criterion: str = "discrepancy", con
         ``tries`` hypercubes by their smallest pairwise distance (coded units).
     constraints : str, list or Constraints
         Every run satisfies them (see the module docstring).
+
+    Returns
+    -------
+    Design
+        The runs in coded and actual units, in run order (:meth:`~rsm_lrg.design.Design.to_frame`
+        gives the design CSV layout).
     """
     from scipy.spatial.distance import pdist
     from scipy.stats import qmc
@@ -142,7 +148,25 @@ def latin_hypercube(factors: Any, runs: int, criterion: str = "discrepancy", con
 
 def sobol(factors: Any, runs: int, constraints: Any = None, seed: Any = None, randomize: bool = True) -> Design:
     """Scrambled Sobol' points (Sobol' 1967; scipy.stats.qmc.Sobol); with constraints the first
-    ``runs`` feasible points of the sequence."""
+    ``runs`` feasible points of the sequence.
+
+    Parameters
+    ----------
+    factors : FactorSpace, mapping or list
+        As for :func:`~rsm_lrg.design.box_behnken`.
+    runs : int
+        The number of runs.
+    constraints : str or list of str, optional
+        Inequalities in actual units (``"v**2/a <= s"``); only feasible points are kept.
+    seed, randomize
+        As for :func:`~rsm_lrg.design.box_behnken`.
+
+    Returns
+    -------
+    Design
+        The runs in coded and actual units, in run order (:meth:`~rsm_lrg.design.Design.to_frame`
+        gives the design CSV layout).
+    """
     space, n, cons = _prepare(factors, runs, constraints)
     rng, used = resolve_seed(seed)
     d = len(space.numeric_index)

@@ -90,6 +90,20 @@ def gls_information(X: np.ndarray, plots: np.ndarray, eta: float) -> np.ndarray:
     >>> X = np.array([[1.0, -1.0], [1.0, 1.0], [1.0, -1.0], [1.0, 1.0]])
     >>> gls_information(X, np.array([1, 1, 2, 2]), 1.0).round(6).tolist()
     [[1.333333, 0.0], [0.0, 4.0]]
+
+    Parameters
+    ----------
+    X : numpy.ndarray, shape (n, p)
+        The model matrix.
+    plots : numpy.ndarray, shape (n,)
+        The whole plot of each run.
+    eta : float
+        The variance ratio η = σ²_whole-plot / σ² [-].
+
+    Returns
+    -------
+    numpy.ndarray, shape (p, p)
+        ``X' V⁻¹ X`` [1/σ²].
     """
     X = np.asarray(X, dtype=float)
     _, codes, counts = np.unique(np.asarray(plots), return_inverse=True, return_counts=True)

@@ -54,7 +54,13 @@ class FactorChoice:
         return self.how != "given"
 
     def hint(self) -> str:
-        """A clause naming the inferred factors and suggesting ``--factor`` (empty when given)."""
+        """A clause naming the inferred factors and suggesting ``--factor`` (empty when given).
+
+        Returns
+        -------
+        str
+            The clause, or ``""``.
+        """
         if not self.inferred:
             return ""
         listed = name_list([f"{f.letter} {f.name}" for f in self.space.factors])

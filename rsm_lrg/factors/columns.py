@@ -41,7 +41,18 @@ DESIGN_CODED = re.compile(r"^coded_[a-z][0-9]*$", re.IGNORECASE)
 
 def is_bookkeeping(column) -> bool:
     """A design's or a lab sheet's own column: never a factor and never listed as unused
-    (``run``, ``order``, ``std``, ``std_order``, ``run_order``, ``coded_*``; any case)."""
+    (``run``, ``order``, ``std``, ``std_order``, ``run_order``, ``coded_*``; any case).
+
+    Parameters
+    ----------
+    column : object
+        The column's name.
+
+    Returns
+    -------
+    bool
+        Whether it is a bookkeeping column.
+    """
     low = str(column).lower()
     return low in BOOKKEEPING or low.startswith(CODED_COLUMN_PREFIX)
 
@@ -108,7 +119,22 @@ def _tidy(v: float) -> float:
     return r if math.isclose(r, v, rel_tol=1e-11, abs_tol=0.0) else v
 
 def design_factors(data, coded: list, exclude: set) -> tuple[list, list]:
-    """Pair each coded column with its actual column: ``([(name, low, high)], [coded col])``."""
+    """Pair each coded column with its actual column: ``([(name, low, high)], [coded col])``.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The table.
+    coded : list of str
+        The coded columns (``coded_A``, ...).
+    exclude : set of str
+        Columns that cannot be factors (the response, the block).
+
+    Returns
+    -------
+    tuple of list
+        ``([(name, low, high)], [coded column])``.
+    """
     import pandas as pd
 
     cols = list(data.columns)
@@ -301,6 +327,15 @@ def _categoric_levels(data, name: str, levels) -> tuple:
 def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
     """The factors of a data frame as items, inferred when not given (the work of
     :func:`rsm_lrg.factors.choose_factors` but for a given :class:`~rsm_lrg.factors.FactorSpace`).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The table.
+    factors : object
+        The factors as given, or ``None`` to infer them.
+    exclude : set of str
+        Columns that cannot be factors.
 
     Returns
     -------

@@ -52,7 +52,26 @@ class MixtureComponent(Factor):
     @classmethod
     def build(cls, name: str, letter: str, lower: float, upper: float, total: float,
               pseudo_range: float) -> MixtureComponent:
-        """The component whose coding is ``(x - lower) / pseudo_range``."""
+        """The component whose coding is ``(x - lower) / pseudo_range``.
+
+        Parameters
+        ----------
+        name : str
+            The data column.
+        letter : str
+            The letter in model terms.
+        lower, upper : float
+            The component's bounds [proportion].
+        total : float
+            What the blend sums to.
+        pseudo_range : float
+            ``total`` less the sum of the lower bounds: the L-pseudo scale.
+
+        Returns
+        -------
+        MixtureComponent
+            The component.
+        """
         if not pseudo_range > 0:
             raise ValueError(f"component {name!r}: the lower bounds leave no room (T - sum L = {pseudo_range:g})")
         return cls(name=name, low=lower - pseudo_range, high=lower + pseudo_range, letter=letter,
@@ -65,5 +84,11 @@ class MixtureComponent(Factor):
 
     def to_dict(self) -> dict:
         """As a numeric factor (``low``/``high`` are the levels coded ±1) with ``"component":
-        true`` and the real ``lower``, ``upper`` and ``total``."""
+        true`` and the real ``lower``, ``upper`` and ``total``.
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data.
+        """
         return dict(super().to_dict(), component=True, lower=self.lower, upper=self.upper, total=self.total)

@@ -34,6 +34,16 @@ def letters_for(k: int) -> list[str]:
     ['A', 'B', 'C', 'D']
     >>> letters_for(10)[-2:]
     ['J', 'K']
+
+    Parameters
+    ----------
+    k : int
+        The number of factors.
+
+    Returns
+    -------
+    list of str
+        k letters.
     """
     if k < 0:
         raise ValueError("the number of factors must not be negative")
@@ -61,6 +71,16 @@ def check_factor_name(name: Any) -> str:
 
     >>> check_factor_name("stroke_m")
     'stroke_m'
+
+    Parameters
+    ----------
+    name : object
+        The proposed name.
+
+    Returns
+    -------
+    str
+        ``name``, checked.
     """
     if not isinstance(name, str) or not name.strip():
         raise ValueError("a factor needs a non-empty name")
@@ -94,16 +114,54 @@ class FactorLike(Protocol):
     kind: ClassVar[str]
 
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """The data column."""
+        ...
 
     @property
-    def letter(self) -> str: ...
+    def letter(self) -> str:
+        """The letter in model terms (A, B, ...)."""
+        ...
 
-    def encode(self, x: Any) -> Any: ...
+    def encode(self, x: Any) -> Any:
+        """Actual value(s) to coded value(s).
 
-    def decode(self, c: Any) -> Any: ...
+        Parameters
+        ----------
+        x : object or array_like
+            Actual value(s): numbers in the factor's units, or levels.
 
-    def to_dict(self) -> dict: ...
+        Returns
+        -------
+        object
+            The coded value(s).
+        """
+        ...
+
+    def decode(self, c: Any) -> Any:
+        """Coded value(s) to actual value(s).
+
+        Parameters
+        ----------
+        c : object or array_like
+            Coded value(s).
+
+        Returns
+        -------
+        object
+            The actual value(s): numbers in the factor's units, or levels.
+        """
+        ...
+
+    def to_dict(self) -> dict:
+        """The factor as in the fit JSON's ``factors`` list.
+
+        Returns
+        -------
+        dict
+            ``{"letter", "name", "kind", ...}``.
+        """
+        ...
 
 
 #: The widest factor range [actual units] that coding can handle: LOW, HIGH and HIGH - LOW at
@@ -165,19 +223,48 @@ class Factor:
         return (self.high - self.low) / 2.0
 
     def encode(self, x):
-        """Actual value(s) to coded value(s); low -> -1 and high -> +1 exactly."""
+        """Actual value(s) to coded value(s); low -> -1 and high -> +1 exactly.
+
+        Parameters
+        ----------
+        x : float or array_like
+            Actual value(s) [the factor's units].
+
+        Returns
+        -------
+        float or numpy.ndarray
+            Coded value(s) [coded units, -1 .. +1 across the range].
+        """
         x = np.asarray(x, dtype=float)
         c = ((x - self.low) - (self.high - x)) / (self.high - self.low)
         c = np.round(c, CODED_DECIMALS) + 0.0  # + 0.0 turns -0.0 into 0.0
         return c if c.ndim else float(c)
 
     def decode(self, c):
-        """Coded value(s) to actual value(s); -1 -> low and +1 -> high exactly."""
+        """Coded value(s) to actual value(s); -1 -> low and +1 -> high exactly.
+
+        Parameters
+        ----------
+        c : float or array_like
+            Coded value(s).
+
+        Returns
+        -------
+        float or numpy.ndarray
+            Actual value(s) [the factor's units].
+        """
         c = np.asarray(c, dtype=float)
         x = ((1.0 - c) * self.low + (1.0 + c) * self.high) / 2.0
         return x if x.ndim else float(x)
 
     def to_dict(self) -> dict:
+        """The factor as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return {"letter": self.letter, "name": self.name, "kind": "numeric", "low": self.low, "high": self.high}
 
 
@@ -187,6 +274,16 @@ def level_text(value: Any) -> str:
 
     >>> level_text("rms"), level_text(2), level_text(2.0), level_text(0.1)
     ('rms', '2', '2', '0.1')
+
+    Parameters
+    ----------
+    value : object
+        The level.
+
+    Returns
+    -------
+    str
+        The level as written.
     """
     if isinstance(value, str):
         return value
@@ -241,10 +338,22 @@ class CategoricFactor:
 
     @property
     def n_levels(self) -> int:
+        """The number of levels."""
         return len(self.levels)
 
     def index(self, value: Any) -> int:
-        """Level index of ``value`` (a level as written, or its text), or a ValueError."""
+        """Level index of ``value`` (a level as written, or its text), or a ValueError.
+
+        Parameters
+        ----------
+        level : object
+            A level, as written in the data.
+
+        Returns
+        -------
+        int
+            Its position among the levels (0-based).
+        """
         key = level_text(value)
         try:
             return self.levels.index(key)
@@ -253,7 +362,18 @@ class CategoricFactor:
                              f"({', '.join(self.levels)})") from None
 
     def encode(self, x):
-        """Level(s) to level index (float; an array for an array)."""
+        """Level(s) to level index (float; an array for an array).
+
+        Parameters
+        ----------
+        x : object or array_like
+            Level(s).
+
+        Returns
+        -------
+        numpy.ndarray
+            The effect-coded columns (sum-to-zero, last level omitted).
+        """
         if isinstance(x, (str, bytes)) or np.ndim(x) == 0:
             return float(self.index(x.item() if isinstance(x, np.generic) else x))
         vals = np.asarray(x, dtype=object).ravel()
@@ -267,7 +387,18 @@ class CategoricFactor:
         return out.reshape(np.shape(x))
 
     def decode(self, c):
-        """Level index (indices) to level name(s)."""
+        """Level index (indices) to level name(s).
+
+        Parameters
+        ----------
+        c : array_like
+            Effect-coded columns or level indices.
+
+        Returns
+        -------
+        object or numpy.ndarray
+            The level(s).
+        """
         if np.ndim(c) == 0:
             return self.levels[self._checked(c)]
         return np.array([self.levels[self._checked(v)] for v in np.ravel(c)], dtype=object).reshape(np.shape(c))
@@ -279,5 +410,12 @@ class CategoricFactor:
         return int(v)
 
     def to_dict(self) -> dict:
+        """The factor as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return {"letter": self.letter, "name": self.name, "kind": "categoric", "levels": list(self.levels)}
 

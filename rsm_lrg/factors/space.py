@@ -27,6 +27,11 @@ class FactorSpace:
     Build it with :meth:`from_ranges` (names and levels), :meth:`from_specs` (CLI-style
     ``NAME=LOW:HIGH`` strings) or :meth:`from_data` (levels from the data's observed
     minimum and maximum where not given).
+
+    Parameters
+    ----------
+    factors : tuple of Factor or CategoricFactor
+        The factors, in letter order.
     """
 
     factors: tuple[Factor | CategoricFactor, ...]
@@ -44,7 +49,18 @@ class FactorSpace:
     # -- construction -------------------------------------------------------------
     @classmethod
     def from_ranges(cls, ranges: Mapping[str, tuple[float, float]] | Iterable[tuple[str, float, float]]) -> FactorSpace:
-        """From ``{name: (low, high)}`` or ``[(name, low, high), ...]``, in order (numeric factors)."""
+        """From ``{name: (low, high)}`` or ``[(name, low, high), ...]``, in order (numeric factors).
+
+        Parameters
+        ----------
+        ranges : mapping or iterable
+            ``{name: (low, high)}`` or ``[(name, low, high), ...]`` [the factors' units].
+
+        Returns
+        -------
+        FactorSpace
+            Numeric factors, letters in the order given.
+        """
         items = list(ranges.items()) if isinstance(ranges, Mapping) else [(n, (lo, hi)) for n, lo, hi in ranges]
         letters = letters_for(len(items))
         return cls(tuple(Factor(n, lo, hi, L) for (n, (lo, hi)), L in zip(items, letters)))
@@ -55,6 +71,16 @@ class FactorSpace:
 
         Letters go to the numeric factors first, in the order given, then to the categoric
         ones (Design-Expert's convention), and the factors are held in letter order.
+
+        Parameters
+        ----------
+        items : iterable of tuple
+            ``("numeric", name, low, high)`` and ``("categoric", name, levels)``.
+
+        Returns
+        -------
+        FactorSpace
+            The factors in letter order.
         """
         items = list(items)
         num = [it for it in items if it[0] == "numeric"]
@@ -66,7 +92,18 @@ class FactorSpace:
 
     @classmethod
     def from_specs(cls, specs: Sequence[str]) -> FactorSpace:
-        """From ``["NAME=LOW:HIGH", "NAME=cat:L1,L2", ...]``; every spec must carry its levels."""
+        """From ``["NAME=LOW:HIGH", "NAME=cat:L1,L2", ...]``; every spec must carry its levels.
+
+        Parameters
+        ----------
+        specs : sequence of str
+            ``"NAME=LOW:HIGH"`` and ``"NAME=cat:L1,L2"`` specs.
+
+        Returns
+        -------
+        FactorSpace
+            The factors.
+        """
         return cls.from_items([spec_with_levels(s) for s in specs])
 
     @classmethod
@@ -88,6 +125,11 @@ class FactorSpace:
             minimum and maximum of its column, a text column is categoric.
         exclude : iterable of str
             Columns never taken as factors (the response, the block column).
+
+        Returns
+        -------
+        FactorSpace
+            The factors of ``data``.
         """
         if isinstance(factors, FactorSpace):
             factors.require_columns(data)
@@ -97,7 +139,13 @@ class FactorSpace:
 
     # -- views ----------------------------------------------------------------------
     def require_columns(self, data) -> None:
-        """A ValueError naming the first factor whose column is not in ``data``."""
+        """A ValueError naming the first factor whose column is not in ``data``.
+
+        Parameters
+        ----------
+        data : pandas.DataFrame
+            The table that must hold a column per factor.
+        """
         for f in self.factors:
             if f.name not in data.columns:
                 raise ValueError(f"factor column {quote_value(f.name)} is not in the data")
@@ -118,10 +166,12 @@ class FactorSpace:
 
     @property
     def names(self) -> list[str]:
+        """The factors' names (data columns), in letter order."""
         return [f.name for f in self.factors]
 
     @property
     def letters(self) -> list[str]:
+        """The factors' letters (A, B, ...), in order."""
         return [f.letter for f in self.factors]
 
     @property
@@ -151,6 +201,7 @@ class FactorSpace:
 
     @property
     def has_categoric(self) -> bool:
+        """Whether any factor is categoric."""
         return any(f.kind == "categoric" for f in self.factors)
 
     @property
@@ -166,7 +217,13 @@ class FactorSpace:
 
     def level_combinations(self) -> list[dict]:
         """Every combination of the categoric factors' levels, ``[{name: level}, ...]``
-        (the first factor's level changing slowest; ``[{}]`` when there is none)."""
+        (the first factor's level changing slowest; ``[{}]`` when there is none).
+
+        Returns
+        -------
+        list of dict
+            ``[{name: level}, ...]``.
+        """
         import itertools
 
         cats = [f for f in self.factors if isinstance(f, CategoricFactor)]
@@ -181,6 +238,17 @@ class FactorSpace:
         factor names as columns. Arrays give arrays, mappings give ``{letter: value}``,
         frames give a frame whose columns are the letters. A categoric factor codes to its
         level index (0 .. L-1).
+
+        Parameters
+        ----------
+        actual : array_like, mapping or pandas.DataFrame
+            Settings in actual units: an (n, k) array in factor order, ``{name: value}`` or a
+            frame with the factor columns.
+
+        Returns
+        -------
+        numpy.ndarray or pandas.DataFrame
+            The coded settings (a frame keyed by letter for a frame).
         """
         import pandas as pd
 
@@ -195,7 +263,18 @@ class FactorSpace:
 
     def decode(self, coded):
         """Coded -> actual; the inverse of :meth:`encode` (frames keyed by letter; a
-        categoric factor decodes to its level, so arrays with one are object arrays)."""
+        categoric factor decodes to its level, so arrays with one are object arrays).
+
+        Parameters
+        ----------
+        coded : array_like or pandas.DataFrame
+            Coded settings (an (n, k) array, or a frame keyed by letter).
+
+        Returns
+        -------
+        numpy.ndarray or pandas.DataFrame
+            The actual settings [the factors' units].
+        """
         import pandas as pd
 
         if isinstance(coded, pd.DataFrame):
@@ -207,11 +286,30 @@ class FactorSpace:
         return np.stack(cols, axis=-1)
 
     def to_list(self) -> list[dict]:
-        """``[{"letter", "name", "kind", "low", "high"} or {..., "levels"}, ...]`` as in the fit JSON."""
+        """``[{"letter", "name", "kind", "low", "high"} or {..., "levels"}, ...]`` as in the fit JSON.
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data (numbers, strings, lists and dicts).
+        """
         return [f.to_dict() for f in self.factors]
 
 def encode_column(data, f) -> np.ndarray:
-    """One factor column of a frame coded; errors name the column and the 1-based row."""
+    """One factor column of a frame coded; errors name the column and the 1-based row.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The table.
+    f : FactorLike
+        The factor.
+
+    Returns
+    -------
+    numpy.ndarray
+        The coded column(s).
+    """
     if f.kind == "numeric":
         return f.encode(float_column(data, f.name).to_numpy())
     col = data[f.name]
@@ -230,7 +328,18 @@ def encode_column(data, f) -> np.ndarray:
 
 def design_space(found: list) -> FactorSpace:
     """The factor space of :func:`design_factors`' pairs, letters in coded-column order
-    (``(name, low, high)`` numeric, ``(name, levels)`` categoric)."""
+    (``(name, low, high)`` numeric, ``(name, levels)`` categoric).
+
+    Parameters
+    ----------
+    found : list
+        :func:`design_factors`' pairs.
+
+    Returns
+    -------
+    FactorSpace
+        The design's factors.
+    """
     letters = letters_for(len(found))
     factors: list[Any] = [CategoricFactor(it[0], it[1], L) if len(it) == 2 else Factor(it[0], it[1], it[2], L)
                           for it, L in zip(found, letters)]
@@ -240,5 +349,18 @@ def design_space(found: list) -> FactorSpace:
 def inferred_space(how: str, items: list) -> FactorSpace:
     """The factor space of :func:`~rsm_lrg.factors.columns.infer_items`' items: a design's
     factors in coded-column order (:func:`design_space`), else numeric factors first
-    (:meth:`FactorSpace.from_items`)."""
+    (:meth:`FactorSpace.from_items`).
+
+    Parameters
+    ----------
+    how : str
+        How the items were found (``"design"`` or otherwise).
+    items : list
+        The items.
+
+    Returns
+    -------
+    FactorSpace
+        The factors.
+    """
     return design_space(items) if how == "design" else FactorSpace.from_items(items)

@@ -29,6 +29,16 @@ def parse_factor(spec: str) -> tuple:
     ('categoric', 'stage', ('rfcms', 'rms'))
     >>> parse_factor("stage=cat"), parse_factor("v=0.4:0.6")
     (('categoric', 'stage', None), ('numeric', 'v', 0.4, 0.6))
+
+    Parameters
+    ----------
+    spec : str
+        ``NAME``, ``NAME=LOW:HIGH``, ``NAME=cat`` or ``NAME=cat:L1,L2,...``.
+
+    Returns
+    -------
+    tuple
+        ``("numeric", name, low, high)`` or ``("categoric", name, levels)``.
     """
     if isinstance(spec, str):
         m = _CAT_SPEC.match(spec)
@@ -56,6 +66,16 @@ def parse_factor_spec(spec: str) -> tuple[str, float | None, float | None]:
     ('velocity_m_s', 0.4, 0.6)
     >>> parse_factor_spec("stroke_m")
     ('stroke_m', None, None)
+
+    Parameters
+    ----------
+    spec : str
+        ``NAME`` or ``NAME=LOW:HIGH``.
+
+    Returns
+    -------
+    tuple
+        ``(name, low, high)``, ``low``/``high`` None for a bare name [the factor's units].
     """
     if not isinstance(spec, str) or not spec.strip():
         raise ValueError("empty factor specification; expected NAME, NAME=LOW:HIGH or NAME=cat[:L1,L2,...]")
@@ -77,7 +97,18 @@ def parse_factor_spec(spec: str) -> tuple[str, float | None, float | None]:
 
 def spec_with_levels(spec) -> tuple:
     """:func:`parse_factor` of a spec that must carry its levels (``NAME=LOW:HIGH`` or
-    ``NAME=cat:L1,L2,...``), for a design's factors."""
+    ``NAME=cat:L1,L2,...``), for a design's factors.
+
+    Parameters
+    ----------
+    spec : str
+        ``NAME=LOW:HIGH`` or ``NAME=cat:L1,L2,...``.
+
+    Returns
+    -------
+    tuple
+        As :func:`parse_factor`.
+    """
     parsed = parse_factor(spec)
     if parsed[2] is None:
         how = "NAME=cat:L1,L2,..." if parsed[0] == "categoric" else "NAME=LOW:HIGH"
@@ -94,6 +125,18 @@ def given_items(factors, *, need_levels: bool = False) -> list[tuple]:
     ``need_levels=True`` (a design's factors, :func:`rsm_lrg.design.as_factor_space`):
     every factor must carry its levels, and a mapping value that is not a list of texts is
     ``(low, high)``.
+
+    Parameters
+    ----------
+    factors : sequence or mapping
+        The factors as given (specs, names, or a mapping).
+    need_levels : bool, default False
+        Every factor must carry its levels (a design's factors).
+
+    Returns
+    -------
+    list of tuple
+        The items.
     """
     if isinstance(factors, str):
         factors = [factors]

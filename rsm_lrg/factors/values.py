@@ -24,12 +24,37 @@ def quote_value(value: Any, limit: int = QUOTE_LIMIT) -> str:
     "'fast'"
     >>> len(quote_value("9" * 300)) <= QUOTE_LIMIT + 2
     True
+
+    Parameters
+    ----------
+    value : object
+        The user's value.
+    limit : int, default 40
+        About how many characters to keep.
+
+    Returns
+    -------
+    str
+        The value quoted.
     """
     return quote_user_value(value, limit)
 
 
 def finite_float(value: Any, what: str) -> float:
-    """``float(value)``, or a ValueError naming ``what`` if it is not a finite number."""
+    """``float(value)``, or a ValueError naming ``what`` if it is not a finite number.
+
+    Parameters
+    ----------
+    value : object
+        The value.
+    what : str
+        What it is, for the message.
+
+    Returns
+    -------
+    float
+        The number.
+    """
     try:
         x = float(value)
     except (TypeError, ValueError, OverflowError):
@@ -44,7 +69,20 @@ LIST_LIMIT = 20
 
 
 def name_list(cols, limit: int = LIST_LIMIT) -> str:
-    """``a, b, c and 3 more``; each name cut to QUOTE_LIMIT characters."""
+    """``a, b, c and 3 more``; each name cut to QUOTE_LIMIT characters.
+
+    Parameters
+    ----------
+    cols : iterable of str
+        The names.
+    limit : int, default 20
+        How many to list before ``and N more``.
+
+    Returns
+    -------
+    str
+        The list as text.
+    """
     shown = [str(c) if len(str(c)) <= QUOTE_LIMIT else str(c)[:QUOTE_LIMIT] + "…" for c in cols[:limit]]
     more = len(cols) - limit
     return ", ".join(shown) + (f" and {more} more" if more > 0 else "")

@@ -477,6 +477,12 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         ``η = σ²_wp / σ²`` of the GLS criteria (default 1); the evaluation's ``split_plot``
         holds them (:func:`rsm_lrg.design.split_plot.gls_criteria`) beside the OLS figures.
         Refused for a design without whole plots.
+
+    Returns
+    -------
+    DesignEvaluation
+        VIFs, leverages, the prediction-variance summary and FDS curve, power per term and the
+        alias matrix, before any data.
     """
     import pandas as pd
     from scipy import special

@@ -546,5 +546,24 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
 def fit_transformed(data: pd.DataFrame | dd.DataFrame, response: str, transform: str | Transform, *,
                     constant: float = 0.0, **fit_kwargs: Any) -> FitResult:
     """Fit ``g(response + constant)``: the same as ``fit(data, response, transform=transform,
-    transform_constant=constant, ...)`` (kept for older code; returns a :class:`FitResult`)."""
+    transform_constant=constant, ...)`` (kept for older code; returns a :class:`FitResult`).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame or dask.dataframe.DataFrame
+        The runs, as for :func:`~rsm_lrg.fit`.
+    response : str
+        The response column [response units].
+    transform : str or Transform
+        ``"log"``, ``"log10"``, ``"sqrt"``, ``"inverse"``, ``"power=λ"`` or a :class:`Transform`.
+    constant : float, default 0.0
+        k added to the response before transforming [response units].
+    **fit_kwargs
+        Any other keyword argument of :func:`~rsm_lrg.fit`.
+
+    Returns
+    -------
+    FitResult
+        The fit on the transformed scale; predictions and goals on the response's own scale.
+    """
     return fit(data, response, transform=transform, transform_constant=constant, **fit_kwargs)

@@ -202,6 +202,12 @@ def confirm(result, at, observed, *, confidence: float = 0.95, reference: float 
         Level of the interval (0.95).
     reference : float, optional
         A published prediction to compare against as well (e.g. the rounded 0.023).
+
+    Returns
+    -------
+    ConfirmationResult
+        The prediction and its interval at ``at``, the mean of the observed runs and whether it
+        falls inside the interval.
     """
     from scipy.special import stdtrit  # the t quantile (scipy.stats costs a second to import)
 

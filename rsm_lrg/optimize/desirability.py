@@ -97,6 +97,18 @@ class ResponseGoal:
                              f"{self.low:g}..{self.high:g}")
 
     def with_limits(self, low: float, high: float) -> ResponseGoal:
+        """The goal with its missing limits filled in.
+
+        Parameters
+        ----------
+        low, high : float
+            Limits to use where the goal has none [response units] (a target stays inside them).
+
+        Returns
+        -------
+        ResponseGoal
+            A copy with both limits.
+        """
         lo = self.low if self.low is not None else low
         hi = self.high if self.high is not None else high
         if self.goal == "target" and self.target is not None:  # keep the target inside the limits
@@ -107,6 +119,13 @@ class ResponseGoal:
         return ResponseGoal(self.response, self.goal, float(lo), float(hi), self.target, self.weight, self.importance)
 
     def to_dict(self) -> dict:
+        """The goal as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return {"response": self.response, "goal": self.goal, "low": self.low, "high": self.high,
                 "target": self.target, "weight": list(self.weight), "importance": self.importance}
 
@@ -274,6 +293,14 @@ def optimize_desirability(fits: Mapping[str, Any], goals: Sequence[ResponseGoal]
         first, the best polished by SLSQP with the constraints, the winner by Nelder–Mead
         inside the region; a region with no feasible setting is a ``ValueError``.
 
+    Returns
+    -------
+    DesirabilityResult
+        The best setting (coded and actual), each response's prediction and individual
+        desirability, and the overall desirability (their weighted geometric mean, 0 to 1).
+
+    Notes
+    -----
     With categoric factors every combination of their levels (those allowed by ``bounds``,
     e.g. ``{"stage": "rms"}``) is searched over the numeric factors, and the combination with
     the highest overall desirability wins (its levels are in ``actual``).

@@ -149,10 +149,23 @@ class Suggestion:
     notes: tuple = field(default_factory=tuple)
 
     def to_frame(self) -> Any:
-        """The design CSV layout (``std_order``, ``run_order``, ``coded_*``, the factors)."""
+        """The design CSV layout (``std_order``, ``run_order``, ``coded_*``, the factors).
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         return self.design.to_frame()
 
     def to_dict(self) -> dict:
+        """The suggested runs as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         kind, target = self.goal
         return {"response": self.response, "goal": kind, "target": target, "criterion": self.criterion,
                 "incumbent": float(self.incumbent),
@@ -160,6 +173,13 @@ class Suggestion:
                 "notes": list(self.notes)}
 
     def summary(self) -> str:
+        """A few lines of text for people.
+
+        Returns
+        -------
+        str
+            The text, several lines.
+        """
         kind, target = self.goal
         goal = f"target {target:g}" if kind == "target" else kind
         lines = [f"Next runs for {self.response} ({goal}), criterion {self.criterion}: {len(self.table)} setting(s)",

@@ -70,7 +70,13 @@ class OptimumResult:
     components: tuple = ()
 
     def to_dict(self) -> dict:
-        """The optimize JSON of INTERFACE.md (plus ``target``, ``bounds``, ``warnings``)."""
+        """The optimize JSON of INTERFACE.md (plus ``target``, ``bounds``, ``warnings``).
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data (numbers, strings, lists and dicts).
+        """
         out = {
             "response": self.response,
             "goal": self.goal,
@@ -92,7 +98,13 @@ class OptimumResult:
         return out
 
     def to_frame(self):
-        """One-row DataFrame: actual settings, coded settings, prediction and intervals."""
+        """One-row DataFrame: actual settings, coded settings, prediction and intervals.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         import pandas as pd
 
         row: dict[str, Any] = dict(self.actual)
@@ -102,7 +114,13 @@ class OptimumResult:
         return pd.DataFrame([row])
 
     def summary(self) -> str:
-        """A few lines of text."""
+        """A few lines of text.
+
+        Returns
+        -------
+        str
+            Text for people, several lines.
+        """
         from ..present import format_g
 
         g = self.goal if self.target is None else f"target {format_g(self.target, 6, trim=True)}"

@@ -43,6 +43,20 @@ def parse_bounds(space, bounds, *, allow_extrapolation: bool = False):
 
     Returns ``(lo, hi, warnings)``. A bound beyond the factor's design range is an error
     unless ``allow_extrapolation`` (then it is kept and a warning is returned).
+
+    Parameters
+    ----------
+    space : FactorSpace
+        The factors.
+    bounds : mapping or list of str, optional
+        ``{name or letter: (low, high)}`` in actual units, or ``["NAME=LOW:HIGH", ...]``.
+    allow_extrapolation : bool, default False
+        Allow bounds beyond the design range (with a warning).
+
+    Returns
+    -------
+    tuple
+        ``(lo, hi, warnings)``: coded bounds (arrays) and the warnings.
     """
     from ..factors import parse_factor_spec
 

@@ -57,6 +57,16 @@ def last_digit_unit(printed: str) -> float:
     (0.01, 0.0001, 1e-06, 10000.0)
     >>> last_digit_unit("173.65"), last_digit_unit("14")
     (0.01, 1.0)
+
+    Parameters
+    ----------
+    printed : str
+        The number as printed.
+
+    Returns
+    -------
+    float
+        One unit of its last digit.
     """
     s = printed.strip().lstrip("<>≤≥+-−")
     m = re.fullmatch(r"(\d+)(?:\.(\d*))?(?:[eE]([+-]?\d+))?", s)
@@ -84,7 +94,7 @@ class Row:
     paper_value, toolkit_value : float or None
         The numbers, when there are numbers.
     rel_diff : float or None
-        (toolkit − paper) / |paper|.
+        (toolkit − paper) / abs(paper).
     tolerance : str
         The tolerance, in words or numbers.
     verdict : str
@@ -105,6 +115,13 @@ class Row:
     note: str = ""
 
     def to_dict(self) -> dict:
+        """The row as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return asdict(self)
 
 
@@ -146,21 +163,52 @@ class Reproduction:
         return not any(r.verdict == "FAIL" for r in self.rows)
 
     def counts(self) -> dict:
+        """How many rows have each verdict.
+
+        Returns
+        -------
+        dict
+            ``{verdict: count}`` for every verdict of :data:`VERDICTS`.
+        """
         return {v: sum(r.verdict == v for r in self.rows) for v in VERDICTS}
 
     def to_frame(self):
-        """One row per comparison (the columns of :class:`Row`)."""
+        """One row per comparison (the columns of :class:`Row`).
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         import pandas as pd
 
         return pd.DataFrame([r.to_dict() for r in self.rows])
 
     def to_dict(self) -> dict:
+        """The reproduction as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return {"ok": self.ok, "counts": self.counts(), "rows": [r.to_dict() for r in self.rows],
                 "notes": list(self.notes)}
 
     def to_text(self, width: int = 38) -> str:
         """The side-by-side table for a terminal (drawn by
-        :func:`rsm_lrg.report.reproduction_page.reproduction_text`; long cells wrap, nothing is cut)."""
+        :func:`rsm_lrg.report.reproduction_page.reproduction_text`; long cells wrap, nothing is cut).
+
+        Parameters
+        ----------
+        width : int, default 38
+            The width of the wide columns [characters].
+
+        Returns
+        -------
+        str
+            The table, several lines.
+        """
         from ..report.reproduction_page import reproduction_text
 
         return reproduction_text(self, width)
@@ -861,14 +909,40 @@ def _page_settings() -> dict:
 
 def reproduction_html(rep: Reproduction) -> str:
     """The self-contained HTML page of a :class:`Reproduction` (table and figures), drawn by
-    :func:`rsm_lrg.report.reproduction_page.reproduction_page`."""
+    :func:`rsm_lrg.report.reproduction_page.reproduction_page`.
+
+    Parameters
+    ----------
+    rep : Reproduction
+        The reproduction.
+
+    Returns
+    -------
+    str
+        The page.
+    """
     from ..report.reproduction_page import reproduction_page
 
     return reproduction_page(rep, **_page_settings())
 
 
 def write_reproduction(rep: Reproduction, directory, *, force: bool = False) -> Path:
-    """Write ``DIR/paper-reproduction.html`` atomically; an existing file is kept unless ``force``."""
+    """Write ``DIR/paper-reproduction.html`` atomically; an existing file is kept unless ``force``.
+
+    Parameters
+    ----------
+    rep : Reproduction
+        The reproduction.
+    directory : str or pathlib.Path
+        Where to write the page.
+    force : bool, default False
+        Replace an existing page.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     from ..report.reproduction_page import write_page
 
     return write_page(rep, directory, force=force, **_page_settings())

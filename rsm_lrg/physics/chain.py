@@ -248,6 +248,36 @@ class PhysicsResult:
     """The chain's numbers. ``to_dict()`` is the ``physics --json`` document of INTERFACE.md
     (exactly those keys); ``details`` holds the rest (wear volumes, the Eq. 14 and quasi-static
     readings, the inverse question, dynamics per cycle) and ``to_dict(extended=True)`` adds it.
+
+    Parameters
+    ----------
+    normal_load_n : float
+        Normal load on the guide [N].
+    f_mu_max_n : float
+        Maximum static friction force (Eq. 2) [N].
+    heat_w : float
+        Friction heat (Eq. 8) [W].
+    heat_source_w_m3 : float
+        Heat-source intensity (Eq. 9) [W/m³].
+    reynolds, prandtl : float
+        Reynolds and Prandtl numbers of the air flow (Eqs. 10-11) [-].
+    h_side_w_m2k, h_front_w_m2k : float
+        Convection coefficients of the side and front faces (Eq. 12) [W/(m² K)].
+    hinge : tuple of HingeRow
+        Per leaf thickness [m]: the hinge stiffness [N/m] and deflection [m] (Eq. 1).
+    thermal : dict
+        ``steady_rise_k_fv``, ``steady_rise_k_network`` [K], ``time_to_95_percent_h`` [h],
+        ``tcr_c_per_min`` [°C/min] (Eq. 18).
+    rfcms_over_rms : float
+        Wear of the RFCMS over that of the RMS [-].
+    params : LRGParams
+        The inputs.
+    details : dict
+        The rest (wear volumes, Eq. 14 readings, dynamics per cycle).
+    leaf_yield : LeafYieldScan, optional
+        The leaves' yield check over the thicknesses.
+    rig : object, optional
+        The test rig's reading, when computed.
     """
 
     normal_load_n: float
@@ -267,6 +297,19 @@ class PhysicsResult:
     rig: Any = None
 
     def to_dict(self, extended: bool = False) -> dict[str, Any]:
+        """The ``physics --json`` document of INTERFACE.md.
+
+        Parameters
+        ----------
+        extended : bool, default False
+            Add ``details`` (wear volumes, the Eq. 14 and quasi-static readings, dynamics per
+            cycle).
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data, SI units (the keys name them: ``_n``, ``_w``, ``_k`` ...).
+        """
         out = {
             "normal_load_n": self.normal_load_n, "f_mu_max_n": self.f_mu_max_n,
             "heat_w": self.heat_w, "heat_source_w_m3": self.heat_source_w_m3,
@@ -284,7 +327,13 @@ class PhysicsResult:
         return out
 
     def to_frame(self):
-        """Tidy table: quantity, value, unit, paper."""
+        """Tidy table: quantity, value, unit, paper.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         import pandas as pd
 
         return pd.DataFrame(self._rows(), columns=["quantity", "value", "unit", "paper"])
@@ -325,7 +374,13 @@ class PhysicsResult:
         return rows
 
     def to_text(self) -> str:
-        """A readable table (quantity, value, unit, the paper's value)."""
+        """A readable table (quantity, value, unit, the paper's value).
+
+        Returns
+        -------
+        str
+            Text for people, several lines.
+        """
         rows = self._rows()
         w = max(len(r[0]) for r in rows)
         lines = [f"{'quantity':<{w}}  {'value':>12}  {'unit':<18}  paper",
@@ -414,6 +469,12 @@ def physics_chain(params: LRGParams | None = None, *, thermal: bool = True,
         or ``thermal=False``: ``rig`` is ``None``.
     **overrides
         Any parameter by name (``mu_k=0.01``).
+
+    Returns
+    -------
+    PhysicsResult
+        Every quantity of the chain in SI units; ``to_dict()`` is the ``physics --json``
+        document.
 
     Notes
     -----

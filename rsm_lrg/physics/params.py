@@ -138,6 +138,13 @@ class LRGParams:
     Build a variant with :meth:`with_overrides` (or ``dataclasses.replace``), from a TOML file
     with :func:`load_params`, or from ``NAME=VALUE`` strings with :func:`parse_assignments`.
     Invalid values raise ``ValueError`` naming the parameter.
+
+    Parameters
+    ----------
+    **values : float or int
+        One keyword per field, each named with its unit (``preload_n`` [N], ``stage_mass_kg``
+        [kg], ``hinge_thickness_m`` [m], ...); the unit, default and source of every field are in
+        ``rsm_lrg/data/lrg_shs15v.toml`` and in ``LRGParams().to_frame()``.
     """
 
     # load and friction
@@ -232,16 +239,39 @@ class LRGParams:
 
     # ---- construction ------------------------------------------------------------------
     def with_overrides(self, **overrides: Any) -> LRGParams:
-        """A copy with some values replaced; unknown names raise ``ValueError``."""
+        """A copy with some values replaced; unknown names raise ``ValueError``.
+
+        Parameters
+        ----------
+        **overrides
+            ``name=value`` for the fields to replace (SI units, as the fields).
+
+        Returns
+        -------
+        LRGParams
+            The copy, checked.
+        """
         _check_names(overrides)
         return dataclasses.replace(self, **overrides)
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain ``{name: value}`` (JSON-safe)."""
+        """Plain ``{name: value}`` (JSON-safe).
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data (numbers, strings, lists and dicts).
+        """
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
 
     def to_frame(self):
-        """Tidy table: name, value, unit, source, assumption."""
+        """Tidy table: name, value, unit, source, assumption.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         import pandas as pd
 
         rows = []

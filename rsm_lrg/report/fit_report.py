@@ -556,6 +556,11 @@ def report_context(result, *, title: str | None = None, source_name: str | None 
         Where the factors not on a surface's axes are held.
     optimum : rsm_lrg.optimize.OptimumResult, optional
         A ready optimum (otherwise ``result.optimize(goal)``).
+
+    Returns
+    -------
+    dict
+        The template's values (plain Python, no HTML).
     """
     if hold not in ("center", "optimum"):
         raise ValueError(f"hold must be 'center' or 'optimum', not {hold!r}")
@@ -587,6 +592,18 @@ def notebook_html(result, *, source_name: str | None = None) -> str:
     statistics, coefficients, equations and the stationary point, as one HTML fragment with
     its own scoped style. No figures (they are what makes the full report large and slow);
     :func:`to_html` (``result.to_html()``) gives the full report with every figure.
+
+    Parameters
+    ----------
+    result : FitResult
+        The fit.
+    source_name : str, optional
+        The data's name, as shown.
+
+    Returns
+    -------
+    str
+        The HTML fragment.
     """
     from .html import environment
 
@@ -610,6 +627,18 @@ def to_html(result, *, title: str | None = None, source_name: str | None = None,
 
     See :func:`report_context` for the parameters. The page has no scripts, makes no
     network requests and inlines its figures (``data:`` URIs) and CSS.
+
+    Parameters
+    ----------
+    result : FitResult
+        The fit.
+    title, source_name, goal, hold, optimum
+        As for :func:`report_context`.
+
+    Returns
+    -------
+    str
+        The HTML page.
     """
     ctx = report_context(result, title=title, source_name=source_name, goal=goal, hold=hold, optimum=optimum)
     return render_page("fit_report.html.j2", **ctx)
@@ -621,6 +650,22 @@ def write_report(result, path, *, force: bool = False, title: str | None = None,
 
     An existing file is kept unless ``force=True`` (then ``InputError``, a ValueError).
     Returns the path written.
+
+    Parameters
+    ----------
+    result : FitResult
+        The fit.
+    path : str or pathlib.Path
+        The page to write.
+    force : bool, default False
+        Replace an existing file.
+    title, source_name, goal, hold, optimum
+        As for :func:`report_context`.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
     """
     from ..io import check_output, write_output
 

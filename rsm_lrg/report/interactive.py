@@ -619,7 +619,24 @@ def _render_notebook(ctx: dict) -> tuple[str, tuple[tuple[str, str, str], ...]]:
 
 def write_interactive_report(results, path, *, force: bool = False, **kwargs) -> Path:
     """Write :func:`interactive_html` to ``path`` atomically (refuses to overwrite unless
-    ``force``). Returns the path written."""
+    ``force``). Returns the path written.
+
+    Parameters
+    ----------
+    results : FitResult, list or mapping
+        A fit, a list of them, or ``{response: fit}``.
+    path : str or pathlib.Path
+        The page to write.
+    force : bool, default False
+        Replace an existing file.
+    **kwargs
+        As for :func:`interactive_html`.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     from ..io import check_output, write_output
 
     p = Path(path)
@@ -705,6 +722,22 @@ def profiler(results, *, height: int = 900, tables: bool = False, **kwargs) -> P
     tables are left out unless ``tables=True``, to keep the notebook light).
 
     This is ``FitResult.profiler()``.
+
+    Parameters
+    ----------
+    results : FitResult, list or mapping
+        A fit, a list of them, or ``{response: fit}``.
+    height : int, default 900
+        The frame's height in the notebook [px].
+    tables : bool, default False
+        Add the per-response tables.
+    **kwargs
+        As for :func:`interactive_html`.
+
+    Returns
+    -------
+    Profiler
+        Shown inline by a notebook; ``.save(path)`` writes the page.
     """
     ctx = interactive_context(results, tables=tables, **kwargs)
     if ctx["static"]:

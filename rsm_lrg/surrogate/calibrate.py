@@ -197,7 +197,25 @@ OTHER_PARAMETERS = (
 
 @dataclass(frozen=True)
 class ParameterEstimate:
-    """A calibrated parameter: value, standard error, bounds, unit, meaning."""
+    """A calibrated parameter: value, standard error, bounds, unit, meaning.
+
+    Parameters
+    ----------
+    name : str
+        The parameter.
+    value, std_error : float
+        The estimate and its standard error [unit].
+    lower, upper : float
+        The bounds of the search [unit].
+    unit, meaning : str
+        Its unit and what it is.
+    at_bound : bool, default False
+        Whether the estimate sits on a bound.
+    ci_low, ci_high : float
+        The 95 % interval [unit] (NaN when not computed).
+    ci_method : str
+        How the interval was computed.
+    """
 
     name: str
     value: float
@@ -212,6 +230,13 @@ class ParameterEstimate:
     ci_method: str = ""
 
     def to_dict(self) -> dict:
+        """The estimate as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return {"name": self.name, "value": self.value, "std_error": self.std_error, "lower": self.lower,
                 "upper": self.upper, "unit": self.unit, "meaning": self.meaning, "at_bound": self.at_bound,
                 "ci_low": self.ci_low, "ci_high": self.ci_high, "ci_method": self.ci_method}
@@ -257,17 +282,36 @@ class Calibration:
     loo_models: tuple = field(default=(), repr=False)
 
     def fixed_values(self) -> dict:
-        """The physics the calibration's ``model`` fixes (``{}`` without a model)."""
+        """The physics the calibration's ``model`` fixes (``{}`` without a model).
+
+        Returns
+        -------
+        dict
+            ``{name: value}`` in the parameters' own units (SI).
+        """
         return dict(MODELS[self.model].fixed) if self.model else {}
 
     def parameter_values(self) -> dict:
         """``{name: value}`` as :func:`rsm_lrg.surrogate.runs.evaluate_rows` takes it: the
-        model's fixed physics and the calibrated parameters."""
+        model's fixed physics and the calibrated parameters.
+
+        Returns
+        -------
+        dict
+            ``{name: value}`` in the parameters' own units (SI).
+        """
         out = self.fixed_values()
         out.update({p.name: p.value for p in self.parameters})
         return out
 
     def to_dict(self) -> dict:
+        """The calibration as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return {
             "response": self.response, "n": self.n, "r2": self.r2, "rmse": self.rmse,
             "loo_r2": self.loo_r2, "loo_rmse": self.loo_rmse, "uncalibrated_r2": self.uncalibrated_r2,
@@ -281,12 +325,25 @@ class Calibration:
         }
 
     def to_frame(self):
-        """One row per parameter: name, value, std_error, lower, upper, unit, meaning."""
+        """One row per parameter: name, value, std_error, lower, upper, unit, meaning.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         import pandas as pd
 
         return pd.DataFrame([p.to_dict() for p in self.parameters])
 
     def summary(self) -> str:
+        """A few lines of text for people.
+
+        Returns
+        -------
+        str
+            The text, several lines.
+        """
         lines = [f"calibration of {len(self.parameters)} parameters to {self.response} ({self.n} runs, {self.data})"
                  + (f", model {self.model}" if self.model else "")]
         for p in self.parameters:
@@ -897,6 +954,16 @@ def load_calibration(path) -> Calibration:
     missing ``value`` or a value outside the parameter's documented range
     (:func:`documented_bounds`, and the file's own ``lower``/``upper``) raise ``ValueError``
     naming the file, the table and the key.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The TOML file.
+
+    Returns
+    -------
+    Calibration
+        The calibration, checked.
     """
     from ..io import read_toml, show_path
     from ..physics.params import param_names

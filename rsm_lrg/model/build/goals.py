@@ -23,6 +23,16 @@ def parse_goal(goal: Any) -> tuple[str, float | None]:
 
     >>> parse_goal("target=0.03")
     ('target', 0.03)
+
+    Parameters
+    ----------
+    goal : str or tuple
+        ``"minimize"``, ``"maximize"``, ``"target=V"`` or ``("target", V)``.
+
+    Returns
+    -------
+    tuple
+        ``(kind, T or None)``.
     """
     if isinstance(goal, (tuple, list)) and len(goal) == 2 and str(goal[0]).lower() == "target":
         value = goal[1]

@@ -63,6 +63,19 @@ class ReduceSpec:
     backward elimination would make), ``"all-subsets"`` (every hierarchical sub-model of
     the starting model, the best by AICc or BIC; ``criterion`` defaults to ``"aicc"`` there
     and ``"p"`` elsewhere). See :mod:`rsm_lrg.model.choice.select`.
+
+    Parameters
+    ----------
+    criterion : {"p", "aicc", "bic"}, optional
+        What the selection uses (p-values by default).
+    alpha_out : float, default 0.1
+        A term leaves above this p-value.
+    method : {"backward", "forward", "stepwise", "all-subsets"}, default "backward"
+        The selection method.
+    alpha_in : float, default 0.1
+        A term enters below this p-value (forward and stepwise).
+    hierarchy : bool, default True
+        Keep the model hierarchical.
     """
 
     criterion: str | None = None
@@ -95,7 +108,18 @@ class ReduceSpec:
     def build(cls, value: ReduceArg) -> ReduceSpec | None:
         """``None``/``False`` (no reduction), ``True`` (the defaults), a method name
         (``"forward"``), a ReduceSpec, or a mapping ``{"method": ..., "criterion": ...,
-        "alpha_out": ..., "alpha_in": ..., "hierarchy": ...}``."""
+        "alpha_out": ..., "alpha_in": ..., "hierarchy": ...}``.
+
+        Parameters
+        ----------
+        value : None, bool, str, mapping or ReduceSpec
+            As described above.
+
+        Returns
+        -------
+        ReduceSpec or None
+            ``None`` for no reduction.
+        """
         if value is None or value is False:
             return None
         if value is True:
@@ -113,6 +137,13 @@ class ReduceSpec:
         raise SpecError("reduce", f"reduce must be True, a method name, a mapping or a ReduceSpec, not {value!r}")
 
     def to_dict(self) -> dict[str, Any]:
+        """The reduction as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         out: dict[str, Any] = {"criterion": self.criterion, "alpha_out": self.alpha_out}
         if self.method != "backward" or not self.hierarchy:
             out.update(method=self.method, alpha_in=self.alpha_in, hierarchy=self.hierarchy)
@@ -165,7 +196,28 @@ class ModelSpec:
               transform: str | Transform | None = None, transform_constant: float = 0.0,
               reduce: ReduceArg = None) -> ModelSpec:
         """The specification from the keyword arguments of :func:`rsm_lrg.fit` (a ModelSpec
-        given as ``model`` is returned as it is when nothing else is given)."""
+        given as ``model`` is returned as it is when nothing else is given).
+
+        Parameters
+        ----------
+        model : str or ModelSpec or None, default "quadratic"
+            ``"linear"``, ``"2fi"``, ``"quadratic"``, ``"cubic"``, a mixture model, or a ModelSpec.
+        terms : list of str or str, optional
+            Chosen terms (``["A", "B", "AB", "A^2"]`` or ``"A B AB A^2"``) instead of ``model``.
+        intercept : bool, default True
+            Whether the model has an intercept.
+        transform : str or Transform, optional
+            A response transform (``"log"``, ``"sqrt"``, ``"power=λ"`` ...).
+        transform_constant : float, default 0.0
+            k added to the response before transforming [response units].
+        reduce : bool, str, mapping or ReduceSpec, optional
+            A term selection (see :class:`~rsm_lrg.model.ReduceSpec`).
+
+        Returns
+        -------
+        ModelSpec
+            The checked specification.
+        """
         if isinstance(model, ModelSpec):
             if terms is not None or transform is not None or reduce is not None or not intercept:
                 raise SpecError("model", "give either a ModelSpec or terms/intercept/transform/reduce, not both")
@@ -192,6 +244,13 @@ class ModelSpec:
         return self.order in MIXTURE_ORDERS
 
     def to_dict(self) -> dict[str, Any]:
+        """The model specification as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return {"order": self.order, "terms": None if self.terms is None else list(self.terms),
                 "intercept": self.intercept, "transform": self.transform.to_dict(),
                 "reduce": None if self.reduce is None else self.reduce.to_dict()}

@@ -45,7 +45,17 @@ _NAMES = {"none": ("none", 1.0), "log": ("log", 0.0), "ln": ("log", 0.0), "log10
 @dataclass(frozen=True)
 class Transform:
     """A response transform (frozen): ``name`` in ``none, log, log10, sqrt, inverse, power``,
-    ``lam`` its power (``None`` for log10) and ``constant`` k added before transforming."""
+    ``lam`` its power (``None`` for log10) and ``constant`` k added before transforming.
+
+    Parameters
+    ----------
+    name : str, default "none"
+        ``none``, ``log``, ``log10``, ``sqrt``, ``inverse`` or ``power``.
+    lam : float or None, default 1.0
+        The power λ (0 for log, ``None`` for log10).
+    constant : float, default 0.0
+        k added to the response before transforming [response units].
+    """
 
     name: str = "none"
     lam: float | None = 1.0
@@ -53,6 +63,8 @@ class Transform:
 
     @property
     def label(self) -> str:
+        """The transform as text: ``"log"``, ``"power=0.5"``, with the constant when there is one (``"log (+2)"``).
+        """
         s = self.name if self.name != "power" else f"power={self.lam:g}"
         return s + (f" ({self.constant:+g})" if self.constant else "")  # (+2), (-0.01)
 
@@ -77,6 +89,18 @@ class Transform:
         ('minimize', None)
         >>> Transform("log", 0.0).goal_on_model_scale("target", 1.0)
         ('target', 0.0)
+
+        Parameters
+        ----------
+        kind : {"minimize", "maximize", "target"}
+            The goal.
+        target : float, optional
+            The target [response units], for ``"target"``.
+
+        Returns
+        -------
+        tuple
+            ``(kind, target)`` on the model's scale.
         """
         if kind not in GOAL_KINDS:
             raise ParameterError("goal", f"goal must be minimize, maximize or target, not {kind!r}")
@@ -93,7 +117,20 @@ class Transform:
 
     def back(self, predicted: Any, low: Any = None, high: Any = None) -> tuple[Any, Any, Any]:
         """Predictions and interval ends back-transformed to response units; the ends are
-        ordered (a decreasing transform swaps them)."""
+        ordered (a decreasing transform swaps them).
+
+        Parameters
+        ----------
+        predicted : array_like
+            Predictions on the model's scale.
+        low, high : array_like, optional
+            Interval ends on the model's scale.
+
+        Returns
+        -------
+        tuple
+            ``(predicted, low, high)`` in response units (``None`` for ends not given).
+        """
         pred = self.inverse(predicted)
         if low is None or high is None:
             return pred, None, None
@@ -102,7 +139,15 @@ class Transform:
 
     def check(self, y: Any, column: str = "response") -> None:
         """ValueError naming the first row where ``y + k`` is outside the transform's domain
-        (positive for log, log10, inverse and negative powers; non-negative for positive powers)."""
+        (positive for log, log10, inverse and negative powers; non-negative for positive powers).
+
+        Parameters
+        ----------
+        y : array_like
+            The responses [response units].
+        column : str, default "response"
+            The column's name, for the message.
+        """
         if self.name == "none":
             return
         v = np.asarray(y, dtype=float) + self.constant
@@ -126,6 +171,18 @@ class Transform:
                              "choose a power nearer 0")
 
     def forward(self, y: Any) -> np.ndarray:
+        """The transform ``g(y + k)``.
+
+        Parameters
+        ----------
+        y : array_like
+            Responses [response units].
+
+        Returns
+        -------
+        numpy.ndarray
+            The transformed values (the model's scale).
+        """
         v = np.asarray(y, dtype=float) + self.constant
         if self.name == "none":
             return v
@@ -138,6 +195,18 @@ class Transform:
         return np.power(v, lam)
 
     def inverse(self, z: Any) -> np.ndarray:
+        """The inverse transform: ``g⁻¹(z) - k``.
+
+        Parameters
+        ----------
+        z : array_like
+            Values on the model's scale.
+
+        Returns
+        -------
+        numpy.ndarray
+            Responses [response units]; NaN outside the transform's image.
+        """
         z = np.asarray(z, dtype=float)
         if self.name == "none":
             v = z
@@ -153,12 +222,32 @@ class Transform:
         return v - self.constant
 
     def to_dict(self) -> dict[str, Any]:
+        """The transform as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         return {"name": self.name, "lambda": self.lam, "constant": self.constant}
 
 
 def parse_transform(spec: Any, constant: float = 0.0) -> Transform:
     """A :class:`Transform` from ``"log"``, ``"sqrt"``, ``"inverse"``, ``"log10"``, ``"none"``
-    or ``"power=λ"`` (also a Transform, returned as is)."""
+    or ``"power=λ"`` (also a Transform, returned as is).
+
+    Parameters
+    ----------
+    spec : str or Transform
+        The transform.
+    constant : float, default 0.0
+        k added to the response before transforming [response units].
+
+    Returns
+    -------
+    Transform
+        The transform.
+    """
     if isinstance(spec, Transform):
         return spec
     if spec is None:

@@ -58,13 +58,26 @@ class FitStatistics:
     cv_percent: float
 
     def to_dict(self) -> dict:
-        """``{"r2", "adj_r2", "pred_r2", "press", "adeq_precision", "std_dev", "mean", "cv_percent"}``."""
+        """``{"r2", "adj_r2", "pred_r2", "press", "adeq_precision", "std_dev", "mean", "cv_percent"}``.
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data (numbers, strings, lists and dicts).
+        """
         return asdict(self)
 
     def __getitem__(self, key: str) -> float:  # dict-style access, stats["r2"]
         return getattr(self, key)
 
     def keys(self):
+        """The statistics' names, as :meth:`to_dict` has them.
+
+        Returns
+        -------
+        KeysView
+            ``r2``, ``adj_r2``, ``pred_r2``, ...
+        """
         return self.to_dict().keys()
 
     # -- faces: read like the CLI's block under the ANOVA ----------------------------------

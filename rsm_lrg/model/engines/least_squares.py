@@ -304,14 +304,17 @@ class Regression:
     # -- shape and rank ------------------------------------------------------------------
     @property
     def p(self) -> int:
+        """The number of model columns."""
         return int(self.R.shape[1])
 
     @property
     def rank(self) -> int:
+        """The rank of the model matrix."""
         return len(self.kept)
 
     @property
     def full_rank(self) -> bool:
+        """Whether every column is estimable."""
         return self.rank == self.p
 
     @property
@@ -321,14 +324,26 @@ class Regression:
         return tuple(nm for j, nm in enumerate(self.names) if j not in kept)
 
     def require_full_rank(self, what: str = "model") -> None:
-        """Raise the one rank-deficiency message, naming the aliased columns."""
+        """Raise the one rank-deficiency message, naming the aliased columns.
+
+        Parameters
+        ----------
+        what : str, default "model"
+            What the message calls the model.
+        """
         if not self.full_rank:
             raise ValueError(f"the {what} cannot be estimated from this design: term(s) {', '.join(self.aliased)} "
                              f"are aliased with earlier terms (the design matrix has rank {self.rank} < {self.p})")
 
     def alias_relations(self) -> list[str]:
         """For each aliased column, the combination of earlier estimable columns it equals
-        (``"A^2 = Intercept"``; coefficients shown when not 1; ``"= 0"`` for a zero column)."""
+        (``"A^2 = Intercept"``; coefficients shown when not 1; ``"= 0"`` for a zero column).
+
+        Returns
+        -------
+        list of str
+            One relation per aliased column.
+        """
         kept = set(self.kept)
         out = []
         for j in range(self.p):
@@ -386,10 +401,12 @@ class Regression:
 
     @property
     def ybar(self) -> float:
+        """The mean response [response units]."""
         return self.y_sum / self.n
 
     @property
     def df_resid(self) -> int:
+        """Residual degrees of freedom, n - rank."""
         return int(self.n - self.rank)
 
     @cached_property
@@ -408,13 +425,37 @@ class Regression:
     def interval_form(self, columns: np.ndarray) -> IntervalForm:
         """The prediction contract's :class:`~rsm_lrg.model.contract.prediction.IntervalForm` of the
         model columns ``columns`` (OLS): ``C σ²`` for ``se_fit`` and the mean, ``σ²`` for a new
-        run, ``n - p`` df (NaN without residual df)."""
+        run, ``n - p`` df (NaN without residual df).
+
+        Parameters
+        ----------
+        columns : numpy.ndarray, shape (n, p)
+            Model-matrix rows.
+
+        Returns
+        -------
+        IntervalForm
+            The prediction contract's interval form.
+        """
         cov = np.asarray(self.cov_unscaled, dtype=float)[np.ix_(columns, columns)] * self.sigma2
         return IntervalForm(cov_se=cov, cov_mean=cov, s2_residual=self.sigma2,
                             df=float(self.df_resid) if self.df_resid > 0 else math.nan)
 
     def tests(self, names: Sequence[str], groups: Sequence[Sequence[int]]) -> list:
-        """Separate F tests of a GLS fit's terms: none for least squares, whose ANOVA holds them."""
+        """Separate F tests of a GLS fit's terms: none for least squares, whose ANOVA holds them.
+
+        Parameters
+        ----------
+        names : sequence of str
+            The terms' names.
+        groups : sequence of sequence of int
+            The terms' columns.
+
+        Returns
+        -------
+        list
+            Empty for least squares.
+        """
         return []
 
     @property
@@ -424,24 +465,58 @@ class Regression:
 
     @property
     def std_errors(self) -> np.ndarray:
+        """The coefficients' standard errors [response units per unit of each column]."""
         return np.sqrt(np.diag(self.cov_unscaled) * self.sigma2)
 
     # -- sums of squares -----------------------------------------------------------------
     def sequential_ss(self, cols: Sequence[int] | np.ndarray | int) -> float:
         """Sequential (Type I) sum of squares of the columns ``cols`` given every column
-        before them: ``sum z_j^2`` [response units^2]."""
+        before them: ``sum z_j^2`` [response units^2].
+
+        Parameters
+        ----------
+        cols : int or sequence of int
+            Model-matrix column indices.
+
+        Returns
+        -------
+        float
+            The sequential SS [response units²].
+        """
         self._need_full_rank()
         idx = np.atleast_1d(np.asarray(cols, dtype=int))
         return float(np.sum(self.qty[idx] ** 2))
 
     def partial_ss(self, cols: Sequence[int] | np.ndarray | int) -> float:
         """Partial (Type III) sum of squares of the columns ``cols`` jointly (the extra sum of
-        squares of dropping them): ``b_S' (C_SS)^-1 b_S`` [response units^2]."""
+        squares of dropping them): ``b_S' (C_SS)^-1 b_S`` [response units^2].
+
+        Parameters
+        ----------
+        cols : int or sequence of int
+            Model-matrix column indices.
+
+        Returns
+        -------
+        float
+            The partial SS [response units²].
+        """
         return partial_ss(self._bs, self._cov_scaled, cols)  # scaled: the same number, better conditioned
 
     def residual_ss_after(self, k: int) -> float:
         """Residual sum of squares of the model of the first ``k`` columns (nested models in
-        column order), from the factor: ``rho^2 + sum_{j>=k} z_j^2`` [response units^2]."""
+        column order), from the factor: ``rho^2 + sum_{j>=k} z_j^2`` [response units^2].
+
+        Parameters
+        ----------
+        k : int
+            The number of leading columns.
+
+        Returns
+        -------
+        float
+            The residual SS [response units²].
+        """
         self._need_full_rank()
         return float(self.rho ** 2 + np.sum(self.qty[k:] ** 2))
 
@@ -455,7 +530,18 @@ class Regression:
     def vif(self, cols: Sequence[int] | np.ndarray) -> np.ndarray:
         """Variance inflation factors of the columns ``cols`` among themselves (the other
         columns but the intercept, e.g. blocks, left out): the diagonal of the inverse
-        correlation matrix of those columns [-]."""
+        correlation matrix of those columns [-].
+
+        Parameters
+        ----------
+        cols : sequence of int
+            The columns.
+
+        Returns
+        -------
+        numpy.ndarray
+            One VIF per column [-].
+        """
         cols = [int(c) for c in cols]
         if not cols:
             return np.zeros(0)
@@ -471,7 +557,18 @@ class Regression:
         of columns (a categoric term's effect columns), among the columns of all the groups
         (the intercept in column 0; other columns, e.g. blocks, left out):
         ``GVIF_S = det(R_SS) det(R^-1_SS)`` with ``R`` the correlation matrix of those
-        columns; for a single column it is the VIF [-]."""
+        columns; for a single column it is the VIF [-].
+
+        Parameters
+        ----------
+        groups : sequence of sequence of int
+            Column indices per group.
+
+        Returns
+        -------
+        numpy.ndarray
+            One GVIF per group [-].
+        """
         groups = [[int(c) for c in g] for g in groups]
         cols = sorted({c for g in groups for c in g})
         if not cols:
@@ -489,7 +586,18 @@ class Regression:
     # -- sub-models ----------------------------------------------------------------------
     def submodel(self, cols: Sequence[int] | np.ndarray) -> Regression:
         """The least-squares fit of the columns ``cols`` only, from the p x p factor (no pass
-        over the rows; no hat diagonal)."""
+        over the rows; no hat diagonal).
+
+        Parameters
+        ----------
+        cols : sequence of int
+            The columns kept.
+
+        Returns
+        -------
+        Regression
+            The fit of those columns.
+        """
         cols = [int(c) for c in cols]
         q, p = len(cols), self.p
         A = np.zeros((p + 1, q + 1))
@@ -506,7 +614,18 @@ class Regression:
     # -- second pass ---------------------------------------------------------------------
     def q_factor(self, X: np.ndarray) -> np.ndarray:
         """``Q = X S^-1 R^-1`` for rows ``X`` of the model matrix (orthonormal columns when
-        ``X`` is the whole matrix)."""
+        ``X`` is the whole matrix).
+
+        Parameters
+        ----------
+        X : numpy.ndarray, shape (n, p)
+            Model-matrix rows.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, p)
+            ``Q``.
+        """
         self._need_full_rank()
         return _solve_r(self.R, (np.asarray(X, dtype=float) / self.scale).T, trans=True).T
 
@@ -527,17 +646,52 @@ class Regression:
         return h, r, f, sums
 
     def pass_sums_of(self, chunks: Iterable[tuple[np.ndarray, np.ndarray]]) -> PassSums:
-        """The second-pass sums of some chunks of rows (one partition), without the per-run arrays."""
+        """The second-pass sums of some chunks of rows (one partition), without the per-run arrays.
+
+        Parameters
+        ----------
+        chunks : iterable of tuple of numpy.ndarray
+            ``(X, y)`` chunks of rows.
+
+        Returns
+        -------
+        PassSums
+            The sums.
+        """
         return PassSums.combine([self._pass_chunk(X, y)[3] for X, y in chunks])
 
     def with_pass_sums(self, sums: Sequence[PassSums]) -> Regression:
-        """The fit completed by second-pass sums gathered elsewhere (e.g. over partitions)."""
+        """The fit completed by second-pass sums gathered elsewhere (e.g. over partitions).
+
+        Parameters
+        ----------
+        sums : sequence of PassSums
+            The sums per partition.
+
+        Returns
+        -------
+        Regression
+            The completed fit.
+        """
         total = PassSums.combine(sums)
         return replace(self, pass_sums=total, ss_total=total.ss_total)
 
     def second_pass(self, chunks: Chunks, keep: bool = True) -> Regression:
         """The same fit with the hat diagonal, residuals, fitted values (``keep``), the total
-        sum of squares, the residual sum of squares and PRESS from a pass over the same chunks."""
+        sum of squares, the residual sum of squares and PRESS from a pass over the same chunks.
+
+        Parameters
+        ----------
+        chunks : iterable
+            The same rows as the first pass, in chunks ``(X, y)``.
+        keep : bool, default True
+            Keep the per-run arrays (hat diagonal, residuals, fitted values).
+
+        Returns
+        -------
+        Regression
+            The completed fit.
+        """
         self._need_full_rank()
         hs, rs, fs, sums = [], [], [], []
         for X, y in chunks():
@@ -552,7 +706,20 @@ class Regression:
 
     def nested_press(self, chunks: Chunks, ends: Sequence[int]) -> list[tuple[float, float]]:
         """For the nested models of the first ``k`` columns (``k`` in ``ends``): the residual
-        sum of squares and PRESS from one pass over ``chunks`` (full-matrix rows)."""
+        sum of squares and PRESS from one pass over ``chunks`` (full-matrix rows).
+
+        Parameters
+        ----------
+        chunks : iterable
+            The rows of the full model matrix, in chunks ``(X, y)``.
+        ends : sequence of int
+            The column counts of the nested models.
+
+        Returns
+        -------
+        list of tuple of float
+            ``(residual SS, PRESS)`` per model [response units²].
+        """
         self._need_full_rank()
         ends = [int(k) for k in ends]
         ss: list[list[float]] = [[] for _ in ends]
@@ -573,7 +740,20 @@ class Regression:
 
     def residual_ss_of(self, X: np.ndarray, Z: np.ndarray) -> np.ndarray:
         """Residual sums of squares of other responses ``Z`` (n x m) on the same model
-        matrix ``X`` (e.g. the Box–Cox transforms), by projection on ``Q`` [units^2]."""
+        matrix ``X`` (e.g. the Box–Cox transforms), by projection on ``Q`` [units^2].
+
+        Parameters
+        ----------
+        X : numpy.ndarray, shape (n, p)
+            The model matrix.
+        Z : numpy.ndarray, shape (n, m)
+            Other responses.
+
+        Returns
+        -------
+        numpy.ndarray, shape (m,)
+            Their residual SS [their units²].
+        """
         Q = self.q_factor(X)
         Z = np.asarray(Z, dtype=float)
         Z = Z[:, None] if Z.ndim == 1 else Z
@@ -583,7 +763,22 @@ class Regression:
 
 def partial_ss(beta: np.ndarray, cov_unscaled: np.ndarray, idx: Sequence[int] | np.ndarray | int) -> float:
     """Partial (Type III) sum of squares ``b_S' (C_SS)^-1 b_S`` of the columns ``idx``
-    [response units^2], from coefficients ``beta`` (p,) and ``cov_unscaled = (X'X)^-1``."""
+    [response units^2], from coefficients ``beta`` (p,) and ``cov_unscaled = (X'X)^-1``.
+
+    Parameters
+    ----------
+    beta : numpy.ndarray, shape (p,)
+        Coefficients.
+    cov_unscaled : numpy.ndarray, shape (p, p)
+        ``(X'X)^-1``.
+    idx : int or sequence of int
+        The columns.
+
+    Returns
+    -------
+    float
+        The partial SS [response units²].
+    """
     cols = np.atleast_1d(np.asarray(idx, dtype=int))
     b = beta[cols]
     if cols.size == 1:

@@ -27,6 +27,20 @@ def actual_coefficients(coded: Mapping[str, float], terms: Sequence[Term], space
     keys are exactly the coded keys. A categoric factor keeps its effect coding: the
     coefficient of ``"AE[rms]"`` multiplies the actual A and the effect code of level rms
     (:func:`actual_equations` gives one plain polynomial per level combination).
+
+    Parameters
+    ----------
+    coded : mapping
+        ``{term name: coefficient}`` in coded units.
+    terms : sequence of Term
+        The model's terms.
+    space : FactorSpace
+        The factors and their coding.
+
+    Returns
+    -------
+    dict
+        ``{term name: coefficient}`` in actual units (products of the factors' units).
     """
     acc, names = actual_expansion(coded, terms, space)
     out = {col: acc.get(key, 0.0) for key, col in names.items()}

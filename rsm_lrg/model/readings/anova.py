@@ -88,6 +88,11 @@ def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None
         and more accurate).
     blocks : (n,) array of int, optional
         Block code of each run (0..b-1).
+
+    Returns
+    -------
+    PureError
+        The pure-error SS [response units²] and its df.
     """
     import pandas as pd
 

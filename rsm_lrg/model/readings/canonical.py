@@ -59,7 +59,13 @@ class StationaryPoint:
     letters: tuple = ()
 
     def to_dict(self) -> dict:
-        """The ``stationary_point`` object of the fit JSON (INTERFACE.md), plus extras."""
+        """The ``stationary_point`` object of the fit JSON (INTERFACE.md), plus extras.
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data.
+        """
         vec = None
         if self.eigenvectors is not None:
             vec = {L: [float(v) for v in row] for L, row in zip(self.letters, self.eigenvectors)}
@@ -163,6 +169,11 @@ def canonical_analysis(coefs: Mapping[str, float], terms, space, *, threshold: f
         With categoric factors: the level of each (``{"stage": "rms"}``) at which the
         surface in the numeric factors is analysed; by default the first level of each
         (the note says which).
+
+    Returns
+    -------
+    StationaryPoint
+        The stationary point, the eigenvalues and the kind.
     """
     if space.has_categoric:
         return _canonical_at_levels(coefs, terms, space, threshold=threshold, rel_tol=rel_tol, level=level)

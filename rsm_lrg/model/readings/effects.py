@@ -243,7 +243,13 @@ class EffectsResult:
     def to_frame(self):
         """One row per term, largest ``|effect|`` first: ``term``, ``label``, ``effect``,
         ``abs_effect``, ``half_normal``, ``t_lenth`` (effect / PSE), ``active``,
-        ``active_sme``."""
+        ``active_sme``.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         import pandas as pd
 
         e = np.asarray(self.effects, dtype=float)
@@ -254,6 +260,13 @@ class EffectsResult:
         return df.sort_values("abs_effect", ascending=False, kind="stable").reset_index(drop=True)
 
     def to_dict(self) -> dict[str, Any]:
+        """The effects as plain data.
+
+        Returns
+        -------
+        dict
+            JSON-safe: numbers, strings, lists and dicts.
+        """
         rows = self.to_frame().to_dict(orient="records")
         for r in rows:
             for k in ("effect", "abs_effect", "half_normal", "t_lenth"):
@@ -265,6 +278,13 @@ class EffectsResult:
                 "effects": rows, "aliases": {t: list(a) for t, a in self.aliases.items()}, "notes": list(self.notes)}
 
     def summary(self) -> str:
+        """A few lines of text for people.
+
+        Returns
+        -------
+        str
+            The text, several lines.
+        """
         from ...present import format_number
 
         f = self.to_frame()

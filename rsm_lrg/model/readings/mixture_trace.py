@@ -75,7 +75,13 @@ class MixtureTrace:
 
     def to_frame(self) -> Any:
         """The effects as a DataFrame: one row per component (``low``, ``high``,
-        ``effect``, ``gradient``, ``reference``)."""
+        ``effect``, ``gradient``, ``reference``).
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         import pandas as pd
 
         return pd.DataFrame({"reference": [self.reference[c] for c in self.effects],
@@ -85,7 +91,13 @@ class MixtureTrace:
 
     def to_dict(self) -> dict:
         """Plain data: the direction, the reference blend, per component the effect, the
-        gradient, the range and the curve (``deviation``, ``predicted``)."""
+        gradient, the range and the curve (``deviation``, ``predicted``).
+
+        Returns
+        -------
+        dict
+            Plain JSON-safe data (numbers, strings, lists and dicts).
+        """
         return {"response": self.response, "direction": self.direction, "reference": dict(self.reference),
                 "components": {c: {"effect": self.effects[c], "gradient": self.gradients[c],
                                    "low": self.low[c], "high": self.high[c],
@@ -93,7 +105,13 @@ class MixtureTrace:
                                    "predicted": [float(v) for v in self.predicted[c]]} for c in self.effects}}
 
     def summary(self) -> str:
-        """A few lines of text: the reference blend and each component's effect."""
+        """A few lines of text: the reference blend and each component's effect.
+
+        Returns
+        -------
+        str
+            Text for people, several lines.
+        """
         from ...present import format_g
 
         units = "real proportion" if self.direction == "cox" else "L-pseudo units"

@@ -214,6 +214,11 @@ def ridge(result, goal: str = "maximize", radius: float | None = None, step: flo
     level : mapping, optional
         With categoric factors: the level of each (``{"stage": "rms"}``; the first levels
         by default); the path runs through the numeric factors at that combination.
+
+    Returns
+    -------
+    RidgePath
+        The path: per radius [coded units] the coded and actual settings and the prediction.
     """
     if result.space.has_categoric:  # the path through the numeric factors at one level combination
         from .levels import LevelView

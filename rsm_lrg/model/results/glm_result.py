@@ -162,6 +162,7 @@ class GLMResult:
     # -- the model -----------------------------------------------------------------------
     @property
     def intercept(self) -> bool:
+        """Whether the model has an intercept."""
         return bool(self.spec.intercept)
 
     @property
@@ -179,10 +180,12 @@ class GLMResult:
 
     @property
     def term_names(self) -> list[str]:
+        """The model's column names, in column order."""
         return list(self.column_names)
 
     @property
     def factors(self) -> list[str]:
+        """The factors' names, in letter order."""
         return list(self.space.names)
 
     @property
@@ -192,14 +195,17 @@ class GLMResult:
 
     @property
     def n_params(self) -> int:
+        """The number of coefficients p."""
         return int(self.params.size)
 
     @property
     def df_resid(self) -> int:
+        """Residual degrees of freedom, n - p."""
         return self.n - self.n_params
 
     @property
     def df_null(self) -> int:
+        """Degrees of freedom of the null model, n - 1 (n without an intercept)."""
         return self.n - (1 if self.intercept else 0)
 
     @property
@@ -353,7 +359,18 @@ class GLMResult:
     def goal_on_model_scale(self, goal: Any) -> tuple[str, float | None, str, float | None]:
         """``(kind, target, kind on the link scale, target on the link scale)``: the inverse
         link is increasing, so minimise and maximise keep their sense and a target T (a
-        probability strictly between 0 and 1, or a mean count above 0) becomes ``g(T)``."""
+        probability strictly between 0 and 1, or a mean count above 0) becomes ``g(T)``.
+
+        Parameters
+        ----------
+        goal : str or tuple
+            ``"minimize"``, ``"maximize"``, ``"target=V"`` or ``("target", V)`` (V in a probability or a mean count).
+
+        Returns
+        -------
+        tuple
+            ``(kind, target, kind on the link scale, target on the link scale)``.
+        """
         from ..build.goals import parse_goal
 
         kind, target = parse_goal(goal)
@@ -369,7 +386,22 @@ class GLMResult:
         """The optimum of the probability (mean count) in the factor box; see
         :func:`rsm_lrg.optimize.optimize` (provided by the optimize layer through
         :mod:`rsm_lrg.registry`; the model does not import it). Its prediction interval is
-        empty (NaN), as :meth:`predict`'s."""
+        empty (NaN), as :meth:`predict`'s.
+
+        Parameters
+        ----------
+        goal : str or tuple, default "maximize"
+            ``"minimize"``, ``"maximize"`` or ``"target=V"`` (a probability or mean count).
+        bounds : mapping or list of str, optional
+            Narrower bounds in actual units.
+        **kwargs
+            Any other keyword argument of :func:`rsm_lrg.optimize.optimize`.
+
+        Returns
+        -------
+        OptimumResult
+            The best setting and the predicted probability (mean count) there.
+        """
         from ...registry import lookup
 
         return lookup("FitResult.optimize")(self, goal=goal, bounds=bounds, **kwargs)
@@ -377,25 +409,71 @@ class GLMResult:
     # -- prediction ----------------------------------------------------------------------
     def coded_points(self, points: Any, coded: bool = False) -> np.ndarray:
         """Settings (a frame with the factor columns, a ``{name: values}`` mapping or an
-        (n, k) array in factor order; actual units unless ``coded``) as coded values
-        (:func:`rsm_lrg.model.build.inputs.coded_points`)."""
+        (n, k) array in factor order; actual units unless ``coded``) as coded values.
+
+        Parameters
+        ----------
+        points : pandas.DataFrame, mapping or array_like
+            Settings: a frame with the factor columns, ``{name: value(s)}`` or an (n, k) array in
+            factor order; actual units unless ``coded``.
+        coded : bool, default False
+            ``points`` are in coded units.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, k)
+            The coded settings (:func:`rsm_lrg.model.build.inputs.coded_points`).
+        """
         return coded_points(self.space, points, coded)
 
     def predict_link(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``(eta, se_eta)``: the linear predictor and its standard error at coded settings."""
+        """``(eta, se_eta)``: the linear predictor and its standard error at coded settings.
+
+        Parameters
+        ----------
+        coded : numpy.ndarray, shape (n, k)
+            Settings in coded units (factor order).
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(eta, se_eta)`` on the link scale.
+        """
         Xt = design_matrix(np.asarray(coded, dtype=float), self.terms)
         eta = Xt @ self.params
         se = np.sqrt(np.clip(np.einsum("ij,jk,ik->i", Xt, self.cov, Xt), 0.0, None))
         return eta, se
 
     def predict_coded(self, coded: np.ndarray) -> np.ndarray:
-        """The predicted probability (mean count) at coded settings (n x k)."""
+        """The predicted probability (mean count) at coded settings (n x k).
+
+        Parameters
+        ----------
+        coded : numpy.ndarray, shape (n, k)
+            Settings in coded units (factor order).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            The probability (binomial) or mean count (Poisson).
+        """
         return self.family.linkinv(self.predict_link(coded)[0])
 
     def predictive(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The prediction contract's predictive distribution of a new run: a GLM's new run is a
         0/1 outcome or a whole count, not a Student t about the mean, so it has none here
-        (``ParameterError`` naming ``family``; the probability or rate itself is ``predict``)."""
+        (``ParameterError`` naming ``family``; the probability or rate itself is ``predict``).
+
+        Parameters
+        ----------
+        coded : numpy.ndarray, shape (n, k)
+            Settings in coded units (factor order).
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            Never: it raises ``ParameterError`` (a GLM has no t predictive distribution).
+        """
         raise ParameterError("family", f"a {self.family.name} GLM has no continuous predictive distribution of a new "
                                        "run: its probability or rate is the prediction (predict); a design space "
                                        "or a specification on it is not available yet")
@@ -459,7 +537,13 @@ class GLMResult:
     def to_dict(self) -> dict:
         """The fit JSON: the keys of every fit (``coefficients.coded``/``actual``,
         ``std_errors.coded``/``actual``, ``anova``: the analysis of deviance rows) and the
-        GLM's own (``family``, ``link``, ``deviance``, ``statistics``, ``sequential_anova``)."""
+        GLM's own (``family``, ``link``, ``deviance``, ``statistics``, ``sequential_anova``).
+
+        Returns
+        -------
+        dict
+            The ``fit --json`` document of a GLM: plain Python.
+        """
         coef = self.coefficients
         st = self.statistics
         out: dict[str, Any] = {
@@ -492,7 +576,13 @@ class GLMResult:
 
     def summary(self) -> str:
         """The text face: family and link, the analysis of deviance, the goodness of fit, the
-        coefficients (coded units, Wald) and the linear predictor in coded and actual units."""
+        coefficients (coded units, Wald) and the linear predictor in coded and actual units.
+
+        Returns
+        -------
+        str
+            Text for people, several lines.
+        """
         from ...present import format_p as fmt_p
 
         fam = self.family
@@ -542,7 +632,13 @@ class GLMResult:
     def to_frame(self) -> Any:
         """Per-run table: the factor settings (actual and coded), the response as fitted
         (proportion or count), the trials, the fitted mean, the linear predictor, the deviance
-        and Pearson residuals and the leverage ``h_ii`` of the weighted fit."""
+        and Pearson residuals and the leverage ``h_ii`` of the weighted fit.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         import pandas as pd
 
         df = pd.DataFrame({f.name: self.data[f.name].to_numpy(dtype=float if f.kind == "numeric" else object)

@@ -105,6 +105,8 @@ class FitResult:
         whitened model; the ANOVA holds the Kenward–Roger tests (no sums of squares) and
         PRESS, R² and lack of fit are not computed (NaN / none).
 
+    Notes
+    -----
     Derived (cached): ``coefficients`` (columns ``coded, std_error, t, p, ci_low, ci_high,
     vif, actual``), ``anova`` (Table 5 layout), ``statistics``, ``stationary_point``,
     ``fitted``, ``residuals``, ``hat``, ``cov_unscaled``, ``sigma2``, ``df_resid``,
@@ -183,6 +185,7 @@ class FitResult:
 
     @property
     def df_resid(self) -> int:
+        """Residual degrees of freedom, n - p."""
         return int(self.least_squares.df_resid)
 
     @cached_property
@@ -479,7 +482,18 @@ class FitResult:
         """``(kind, target, kind on the model's scale, target on the model's scale)`` of a goal
         (``"minimize"``, ``"maximize"``, ``"target=V"``, ``("target", V)``): the one mapping
         of a goal onto a transformed response's scale (a decreasing transform swaps minimum
-        and maximum, a target T becomes g(T + k))."""
+        and maximum, a target T becomes g(T + k)).
+
+        Parameters
+        ----------
+        goal : str or tuple
+            ``"minimize"``, ``"maximize"``, ``"target=V"`` or ``("target", V)`` (V in response units).
+
+        Returns
+        -------
+        tuple
+            ``(kind, target, kind on the model's scale, target on the model's scale)``.
+        """
         kind, target = parse_goal(goal)
         mk, mt = self.transform.goal_on_model_scale(kind, target)
         return kind, target, mk, mt
@@ -519,6 +533,7 @@ class FitResult:
 
     @property
     def term_names(self) -> list[str]:
+        """The model's column names (``Intercept``, ``A``, ``AB``, ``A^2`` ...), in column order."""
         return [t.name for t in self.terms]
 
     @property
@@ -566,7 +581,22 @@ class FitResult:
 
     def canonical(self, threshold: float | None = None, level: Mapping[str, str] | None = None) -> StationaryPoint:
         """Canonical analysis; ``threshold`` reproduces R ``rsm``'s ``canonical(threshold=)``;
-        ``level`` picks the categoric levels (``{"stage": "rms"}``; first levels by default)."""
+        ``level`` picks the categoric levels (``{"stage": "rms"}``; first levels by default).
+
+        Parameters
+        ----------
+        threshold : float, optional
+            Eigenvalues smaller than this in absolute value are treated as zero, as R ``rsm``'s
+            ``canonical(threshold=)``.
+        level : mapping, optional
+            The categoric levels to analyse at (``{"stage": "rms"}``; the first levels by default).
+
+        Returns
+        -------
+        StationaryPoint
+            The stationary point in coded and actual units, the prediction there, the eigenvalues
+            and the kind (minimum, maximum or saddle).
+        """
         coefs = dict(zip(self.coefficients.index, self.coefficients["coded"]))
         return canonical_analysis(coefs, self.terms, self.space, threshold=threshold, level=level)
 
@@ -599,7 +629,18 @@ class FitResult:
                                  "blend's shares lie between 0 and the total")
 
     def predict_coded(self, coded: np.ndarray) -> np.ndarray:
-        """ŷ at coded settings (n x k array), average block [response units]."""
+        """ŷ at coded settings (n x k array), average block [response units].
+
+        Parameters
+        ----------
+        coded : numpy.ndarray, shape (n, k)
+            Settings in coded units (factor order).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            ŷ [response units].
+        """
         Xt = design_matrix(coded, self.terms)
         return Xt @ self.coefficients["coded"].to_numpy()
 
@@ -611,6 +652,26 @@ class FitResult:
         See :meth:`predict_model` for the parameters. ``tolerance=P`` adds the tolerance
         interval for a proportion P of runs with confidence ``1 - alpha``
         (:mod:`rsm_lrg.model.contract.tolerance`: ``ti_low``, ``ti_high`` and the one-sided bounds).
+
+        Parameters
+        ----------
+        points : pandas.DataFrame, mapping or array_like
+            Settings: a frame with the factor columns, ``{name: value(s)}`` or an (n, k) array in
+            factor order; actual units unless ``coded``.
+        interval : {None, "confidence", "prediction"}, optional
+            Add the interval's ends (``ci_low``/``ci_high`` or ``pi_low``/``pi_high``).
+        alpha : float, default 0.05
+            1 - the interval's confidence.
+        coded : bool, default False
+            ``points`` are in coded units.
+        tolerance : float, optional
+            P of a two-sided tolerance interval (``ti_low``, ``ti_high``) covering P of new runs.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per point: ``predicted`` [response units], ``se_fit``, and the interval ends
+            asked for.
         """
         out = self.predict_model(points, interval=interval, alpha=alpha, coded=coded)
         if tolerance is not None:
@@ -685,7 +746,13 @@ class FitResult:
 
     def coded_runs(self) -> pd.DataFrame:
         """The coded settings of the runs fitted (columns = letters); ValueError for a fit of a
-        Dask frame, which keeps no per-run data."""
+        Dask frame, which keeps no per-run data.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         if self.coded is None:
             raise ValueError("a fit of a Dask DataFrame keeps no per-run data (fit an in-memory table)")
         return self.coded
@@ -713,14 +780,39 @@ class FitResult:
     def predictive(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The prediction contract's predictive distribution of a new run at coded settings
         (n x k), on the model's scale: ``(mean, variance of a new run, df)`` — ``x b``,
-        ``var_mean + s2_new`` and the t quantile's df of the interval form (average block)."""
+        ``var_mean + s2_new`` and the t quantile's df of the interval form (average block).
+
+        Parameters
+        ----------
+        coded : numpy.ndarray, shape (n, k)
+            Settings in coded units (factor order).
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(mean, variance of a new run, df)`` on the model's scale.
+        """
         X = design_matrix(np.atleast_2d(np.asarray(coded, dtype=float)), self.terms)
         _, _, var_new, df = self.interval_form.at(X)
         return X @ self.coefficients["coded"].to_numpy(dtype=float), var_new, df
 
     def kr_mean(self, points: Any, *, coded: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """For a REML fit: ``(x' Phi_A x, Kenward-Roger den df)`` of the predicted mean at each
-        point (points as for :meth:`predict`) [model-scale units², -]."""
+        point (points as for :meth:`predict`) [model-scale units², -].
+
+        Parameters
+        ----------
+        points : pandas.DataFrame, mapping or array_like
+            Settings: a frame with the factor columns, ``{name: value(s)}`` or an (n, k) array in
+            factor order; actual units unless ``coded``.
+        coded : bool, default False
+            ``points`` are in coded units.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(x' Phi_A x, den df)`` per point [model-scale units², -].
+        """
         if self.mixed is None:
             raise ValueError("kr_mean needs a REML fit (whole_plot= or random_block=)")
         _, var_mean, _, df = self.interval_form.at(design_matrix(coded_points(self.space, points, coded), self.terms))
@@ -731,27 +823,84 @@ class FitResult:
         """Optimum of the fitted response in the factor box; see :func:`rsm_lrg.optimize.optimize`.
 
         A convenience: the optimize layer (above the model) provides it through
-        :mod:`rsm_lrg.registry`; the model does not import it."""
+        :mod:`rsm_lrg.registry`; the model does not import it.
+
+        Parameters
+        ----------
+        goal : str or tuple, default "minimize"
+            ``"minimize"``, ``"maximize"``, ``"target=V"`` (on the response's own scale).
+        bounds : mapping or list of str, optional
+            Narrower bounds ``{name: (low, high)}`` in actual units (``["NAME=LOW:HIGH"]``).
+        **kwargs
+            Any other keyword argument of :func:`rsm_lrg.optimize.optimize`.
+
+        Returns
+        -------
+        OptimumResult
+            The best setting, its prediction [response units] and its confidence and prediction
+            intervals.
+        """
         from ...registry import lookup
 
         return lookup("FitResult.optimize")(self, goal=goal, bounds=bounds, **kwargs)
 
     # -- further analysis (issue 6) ------------------------------------------------------
     def diagnostics(self, **kwargs):
-        """Per-run diagnostics and Box–Cox; see :func:`rsm_lrg.model.readings.diagnostics.diagnostics`."""
+        """Per-run diagnostics and Box–Cox; see :func:`rsm_lrg.model.readings.diagnostics.diagnostics`.
+
+        Parameters
+        ----------
+        **kwargs
+            ``alpha`` and ``boxcox_rule``, as for :func:`rsm_lrg.model.readings.diagnostics.diagnostics`.
+
+        Returns
+        -------
+        Diagnostics
+            Per-run leverage, residuals (studentized), Cook's distance, DFFITS, and the Box–Cox
+            search.
+        """
         from ..readings.diagnostics import diagnostics as _diagnostics
 
         return _diagnostics(self, **kwargs)
 
     def ridge(self, goal="maximize", radius=None, step=0.1):
-        """Ridge (second order) or steepest (first order) path; see :func:`rsm_lrg.model.readings.ridge.ridge`."""
+        """Ridge (second order) or steepest (first order) path; see :func:`rsm_lrg.model.readings.ridge.ridge`.
+
+        Parameters
+        ----------
+        goal : {"maximize", "minimize"}, default "maximize"
+            The direction of the path.
+        radius : float, optional
+            The path's end [coded units]; by default the largest distance of a design point
+        from the centre.
+        step : float, default 0.1
+            The distance between the path's points [coded units].
+
+        Returns
+        -------
+        RidgePath
+            The path: per radius the coded and actual settings and the prediction.
+        """
         from ..readings.ridge import ridge as _ridge
 
         return _ridge(self, goal=goal, radius=radius, step=step)
 
     def reduce(self, alpha_out: float = 0.1, criterion: str = "p") -> FitResult:
         """The model refitted with the terms kept by hierarchical backward elimination
-        (see :func:`rsm_lrg.model.choice.reduce.reduce_terms`), on the same scale (transform)."""
+        (see :func:`rsm_lrg.model.choice.reduce.reduce_terms`), on the same scale (transform).
+
+        Parameters
+        ----------
+        alpha_out : float, default 0.1
+            A term leaves while its p-value exceeds this (``criterion="p"``).
+        criterion : {"p", "aicc", "bic"}, default "p"
+            What backward elimination minimises.
+
+        Returns
+        -------
+        FitResult
+            The reduced model, refitted.
+        """
         from dataclasses import replace
 
         from ...registry import lookup
@@ -771,7 +920,13 @@ class FitResult:
     def summary(self) -> str:
         """Design-Expert style text: ANOVA (Table 5 layout), statistics, coefficients,
         equations in coded and actual units, canonical analysis (under a transform, a first
-        line says which: coefficients and ANOVA are on the transformed scale)."""
+        line says which: coefficients and ANOVA are on the transformed scale).
+
+        Returns
+        -------
+        str
+            Text for people, several lines.
+        """
         from ..faces.text import format_summary
 
         text = format_summary(self)
@@ -788,6 +943,17 @@ class FitResult:
 
         A convenience: the report layer (above the model) provides it through
         :mod:`rsm_lrg.registry`; the model does not import it.
+
+        Parameters
+        ----------
+        **kwargs
+            ``title``, ``source_name``, ``goal``, ``hold``, ``optimum``: see
+            :func:`rsm_lrg.report.report_context`.
+
+        Returns
+        -------
+        str
+            The HTML page, self-contained (no scripts, no network requests).
         """
         from ...registry import lookup
 
@@ -795,7 +961,18 @@ class FitResult:
 
     def effects(self, alpha: float = 0.05):
         """Effects of the one-df terms with Lenth's PSE, ME and SME and half-normal scores
-        (:func:`rsm_lrg.model.readings.effects.screening_effects`), for unreplicated screening fits."""
+        (:func:`rsm_lrg.model.readings.effects.screening_effects`), for unreplicated screening fits.
+
+        Parameters
+        ----------
+        alpha : float, default 0.05
+            The level of Lenth's margin of error (ME) and simultaneous margin (SME).
+
+        Returns
+        -------
+        EffectsResult
+            The effects, PSE, ME, SME and half-normal scores.
+        """
         from ..readings.effects import screening_effects
 
         return screening_effects(self, alpha=alpha)
@@ -803,7 +980,18 @@ class FitResult:
     def profiler(self, **kwargs):
         """The interactive prediction profiler of this fit, shown inline in a notebook (no
         server): see :func:`rsm_lrg.report.interactive.profiler` (``.save(path)`` writes the
-        page). Provided by the report layer through :mod:`rsm_lrg.registry`."""
+        page). Provided by the report layer through :mod:`rsm_lrg.registry`.
+
+        Parameters
+        ----------
+        **kwargs
+            As for :func:`rsm_lrg.report.interactive.profiler` (``height``, ``tables``, goals ...).
+
+        Returns
+        -------
+        Profiler
+            Shown inline by a notebook; ``.save(path)`` writes the page.
+        """
         from ...registry import lookup
 
         return lookup("FitResult.profiler")(self, **kwargs)
@@ -818,7 +1006,13 @@ class FitResult:
         return lookup("FitResult.notebook_html")(self)
 
     def to_dict(self) -> dict:
-        """The fit JSON of INTERFACE.md (plain Python; NaN becomes ``null`` in JSON)."""
+        """The fit JSON of INTERFACE.md (plain Python; NaN becomes ``null`` in JSON).
+
+        Returns
+        -------
+        dict
+            The ``fit --json`` document: plain Python, NaN where JSON writes ``null``.
+        """
         coef = self.coefficients
         out: dict[str, Any] = {
             "response": self.response,
@@ -880,7 +1074,13 @@ class FitResult:
 
     def to_frame(self):
         """Per-run diagnostics: actual and coded settings, response, fitted, residual,
-        leverage, studentized residuals, Cook's distance."""
+        leverage, studentized residuals, Cook's distance.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table described above.
+        """
         import pandas as pd
 
         df = pd.DataFrame({f.name: self.data[f.name].to_numpy(dtype=float if f.kind == "numeric" else object)
