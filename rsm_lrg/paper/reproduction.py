@@ -682,6 +682,26 @@ def _heat_balance_rows(S, cal) -> list[Row]:
                   f"frame and carriage, or to the air; steady: {paths(st)}", st.carriage_rise_per_w)]
 
 
+def _hybrid_rows(h) -> list[Row]:
+    """The physics prior beside the polynomials (:mod:`rsm_lrg.paper.hybrid`): one row per model
+    with its leave-one-out R² on Table 4."""
+    S = "Section 4.2: Fig. 9 and the surrogate"
+    hybrids = [r for r in h.rows if "prior" in r[0] and "alone" not in r[0]]
+    others = [r for r in h.rows if r not in hybrids]
+    top, rival = max(hybrids, key=lambda r: r[1]), max(others, key=lambda r: r[1])
+    verdict = (f"{top[0]} ({top[1]:.3f}) beats {rival[0]} ({rival[1]:.3f})" if top[1] > rival[1] else
+               f"no hybrid beats {rival[0]} ({rival[1]:.3f}): the best, {top[0]}, reaches {top[1]:.3f}, so the "
+               "optimum, profiler and design space keep the polynomial")
+    rows = [_info(S, f"hybrid: {name} — leave-one-out R² on Table 4 [-]", "—", f"{r2:.3f} ({k} coefficients)",
+                  "1 − PRESS/SS_tot of κ; the prior (v6's structure, contact-mechanics conductance, no viscous "
+                  "friction) takes nothing from Table 4, so PRESS is the leave-one-out with nothing to recalibrate "
+                  "inside the folds", r2) for name, r2, k in h.rows]
+    rows.append(_info(S, "hybrid: physics prior + polynomial discrepancy, verdict", "—", verdict,
+                      "Kennedy–O'Hagan in its simplest form: the prior as an offset or as a covariate with a fitted "
+                      "slope, a low-order polynomial for the discrepancy", top[1]))
+    return rows
+
+
 def small_polynomial_press(table4) -> tuple[str, float]:
     """The best PRESS R² (1 − PRESS/SS_tot) of the linear model in the four coded factors plus one
     second-order term (a square or an interaction, 11 candidates) on Table 4's runs, and its name
@@ -889,6 +909,10 @@ def reproduce(progress: Callable[[str], None] | None = None) -> Reproduction:
         cal = resolve_calibration("default")
     rows += _physics_rows(ph, th, cases, readings)
     rows += _surrogate_rows(sim9, sim4, why, table4, cal, float(fit.statistics.pred_r2), sim9j, sim9n, sim9a)
+    if simulate is not None:
+        from .hybrid import hybrid_comparison
+
+        rows += _hybrid_rows(hybrid_comparison(table4))
     rows += _rsm_rows(fit, t5.to_dict("records"), list(zip(eq19["term"], eq19["coefficient"])))
     rows += _optimum_rows(fit, opt)
     return Reproduction(rows=tuple(rows), fit=fit, optimum=opt, physics=ph, thermal=th, fig9=sim9,

@@ -205,3 +205,17 @@ def test_rig_fatigue_and_fig9_rows(rep):
     assert a.toolkit_value < 0.00367
     loo = _row(rep, "surrogate leave-one-out R²")
     assert "inside every fold" in loo.note and "0.894" in loo.note
+
+
+@pytest.mark.slow
+def test_the_hybrid_is_printed_beside_the_polynomials(rep):
+    # issue 34, item 4: the physics prior's LOO R² beside the quadratic's 0.818, linear + C²'s 0.894
+    # and the physics alone, with a verdict that names the winner
+    from rsm_lrg.paper.hybrid import hybrid_comparison
+
+    h = hybrid_comparison()
+    for name, r2, _ in h.rows:
+        row = _row(rep, f"hybrid: {name} ")
+        assert row.toolkit.startswith(f"{r2:.3f}") and row.verdict == "info"
+    verdict = _row(rep, "hybrid: physics prior + polynomial discrepancy, verdict").toolkit
+    assert "no hybrid beats linear + C² (0.894)" in verdict
