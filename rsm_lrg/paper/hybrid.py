@@ -128,7 +128,8 @@ def hybrid_comparison(table4=None, physics: np.ndarray | None = None) -> HybridC
     lin, c2 = ["A", "B", "C", "D"], ["A", "B", "C", "D", "C^2"]
     specs = [
         ("physics alone (a + b·prior)", "tcr_c_per_min", ["physics"], ["A"]),
-        ("quadratic (Eq. 19)", "tcr_c_per_min", list(_FACTORS), "quadratic"),
+        ("quadratic (Eq. 19)", "tcr_c_per_min", list(_FACTORS),
+         lin + ["AB", "AC", "AD", "BC", "BD", "CD", "A^2", "B^2", "C^2", "D^2"]),
         ("linear + C²", "tcr_c_per_min", list(_FACTORS), c2),
         ("prior offset + linear discrepancy", "discrepancy", list(_FACTORS), lin),
         ("linear + prior covariate", "tcr_c_per_min", [*_FACTORS, "physics"], lin + ["E"]),
@@ -136,7 +137,6 @@ def hybrid_comparison(table4=None, physics: np.ndarray | None = None) -> HybridC
     ]
     rows = []
     for name, response, factors, terms in specs:
-        kw = {"model": terms} if isinstance(terms, str) else {"terms": terms}
-        r = fit(data[[*factors, response]], response, factors=factors, **kw)
+        r = fit(data[[*factors, response]], response, factors=factors, terms=terms)
         rows.append((name, 1.0 - float(r.statistics.press) / ss, len(r.terms)))
     return HybridComparison(rows=tuple(rows), physics=ph)
