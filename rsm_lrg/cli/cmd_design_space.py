@@ -9,6 +9,7 @@ from ._common import (
     ResponseGroup,
     about_file,
     add_block_option,
+    add_component_option,
     add_factor_options,
     add_force,
     add_json,
@@ -29,7 +30,9 @@ DESCRIPTION = (
     "independent; with --factor-sd the settings also vary from run to run. Prints the most probable "
     "setting and the largest operating window found (a box of grid nodes at each of which the "
     "probability is at least --probability, that cannot grow by one grid step on any face); -o writes "
-    "a page with the probability map over each pair of factors."
+    "a page with the probability map over each pair of factors. For a mixture (--component with a "
+    "Scheffé --model) the grid is the simplex lattice of the constrained region and the window is "
+    "bounds per component with the total kept (the part of the simplex inside them)."
 )
 
 
@@ -54,6 +57,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--bound", action="append", default=None, metavar="NAME=LEVEL",
                         help="hold a categoric factor at a level (default: its first level)")
     add_factor_options(parser)
+    add_component_option(parser)
     add_block_option(parser, "probability for the average block")
     add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
@@ -92,7 +96,6 @@ def run(args: argparse.Namespace) -> int:
     )
     from .responses import fit_responses
 
-    args.component = None  # the design space of a mixture is not available yet (the fit loop asks)
     responses = list(args.response)
     check_distinct_responses(responses)
     specs: dict = {}
