@@ -47,7 +47,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..factors import finite_float
 
-__all__ = ["DesignSpace", "design_space", "parse_spec", "MAX_GRID_NODES"]
+__all__ = ["DesignSpace", "design_space", "parse_spec", "MAX_GRID_NODES", "largest_window"]
 
 #: The most grid nodes a design-space search evaluates (grid^k): beyond, a smaller --grid.
 MAX_GRID_NODES = 2_000_000
@@ -438,3 +438,10 @@ def _largest_window(ok: np.ndarray, p: np.ndarray) -> list[tuple[int, int]]:
             best, key = box, (size, pmin)
     assert best is not None
     return best
+
+
+def largest_window(ok: np.ndarray, p: np.ndarray) -> list[tuple[int, int]]:
+    """The window search on any grid of probabilities ``p`` (``ok``: the nodes at the target):
+    ``(first, last)`` grid indices per axis (module docstring; used by the surrogate's design
+    space, :mod:`rsm_lrg.paper.surrogate_space`)."""
+    return _largest_window(ok, p)
