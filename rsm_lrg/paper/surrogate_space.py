@@ -29,12 +29,13 @@ inside its specification (its Monte Carlo standard error ``sqrt(p (1 - p) / draw
 reported); the window is searched as in :mod:`rsm_lrg.optimize.design_space` on the grid of
 ``p``.
 
-**Attribution** (first-order Sobol indices of groups of inputs; Jansen's estimator as Saltelli
-et al. 2010, Comput. Phys. Commun. 181, 259, list it): with two independent sets of draws A and
-B of the parameters and tolerances, and A_B^g the set A with the group g taken from B, the
-noise-free surrogate ``f`` gives ``V_g = V_f - mean((f(B) - f(A_B^g))²) / 2`` (``V_f`` the
-variance of ``f`` over A and B), the variance of the response explained by group g alone
-(parameters; tolerances); the run noise adds ``V_noise =
+**Attribution** (first-order Sobol indices of groups of inputs; Saltelli et al. 2010, Comput.
+Phys. Commun. 181, 259, estimator (b), centred): with two independent sets of draws A and B of
+the parameters and tolerances, and A_B^g the set A with the group g taken from B, the
+noise-free surrogate ``f`` gives ``V_g = mean((f(B) - mean f(B)) (f(A_B^g) - f(A)))``, the
+variance of the response explained by group g alone (parameters; tolerances): ``f(A_B^g) -
+f(A)`` changes group g only, so a group that matters little gives a small, quiet estimate;
+the run noise adds ``V_noise =
 var(f_noisy(A) - f(A))`` (it is independent of the rest); the shares are ``V_g / V`` with ``V
 = var(f(A), f(B)) + V_noise``, and ``1 - Σ shares`` is the interaction of parameters and
 tolerances. The estimates carry Monte Carlo error (a share may come out slightly negative).
@@ -218,9 +219,9 @@ def first_order_shares(fa: np.ndarray, eps: np.ndarray, fb: np.ndarray | None = 
     v_noise = float(np.var(eps, ddof=1))
     v0 = float(np.var(np.concatenate([fa, fb]), ddof=1)) if fb is not None else 0.0
     v = {"parameters": 0.0, "tolerances": 0.0}
-    if fab is not None and fb is not None:  # Jansen: V_g = V - mean((f(B) - f(A_B^g))^2) / 2
+    if fab is not None and fb is not None:  # Saltelli (b), centred: V_g = mean((f(B) - mean f(B)) (f(A_B^g) - f(A)))
         for g_, f in fab.items():
-            v[g_] = v0 - 0.5 * float(np.mean((fb - f) ** 2))
+            v[g_] = float(np.mean((fb - fb.mean()) * (f - fa)))
     elif only is not None:
         v[only] = v0
     total = v0 + v_noise

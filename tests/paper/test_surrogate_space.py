@@ -52,7 +52,7 @@ def test_noise_only_probability_is_the_exact_normal_one():
 
 
 def test_first_order_shares_recover_known_indices():
-    # f = 2 X + Z + X Z with X, Z ~ U(-1, 1) independent: V = 4/3 + 1/3 + 1/9 = 16/9;
+    # the estimator (Saltelli 2010 (b), centred) on f = 2 X + Z + X Z with X, Z ~ U(-1, 1) independent: V = 4/3 + 1/3 + 1/9 = 16/9;
     # S_X = (4/3)/(16/9) = 0.75, S_Z = (1/3)/(16/9) = 0.1875; noise N(0, 0.5) adds 0.25
     rng = np.random.default_rng(1)
     n = 200_000
