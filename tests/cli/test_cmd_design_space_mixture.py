@@ -5,7 +5,6 @@ the option."""
 import json
 from pathlib import Path
 
-import pytest
 from _cli_errors import error_line
 
 from rsm_lrg.cli import main

@@ -14,6 +14,7 @@ import pytest
 
 import rsm_lrg
 from rsm_lrg.errors import ParameterError
+
 fit_dispersion = rsm_lrg.fit_dispersion
 
 R = Path(__file__).parent / "r"
