@@ -40,11 +40,42 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--diagnostics", action="store_true",
                         help="also print per-run diagnostics and the Box-Cox recommendation (JSON key 'diagnostics')")
     add_boxcox_rule_option(parser)
+    add_dispersion_options(parser)
     add_gp_options(parser)
     add_json(parser)
     parser.add_argument("--report", metavar="PATH", default=None, help="also write a self-contained HTML report")
     add_force(parser)
     add_glm_options(parser)
+
+
+#: The options of a spread model (``fit``, ``optimize``) mapped from the library's parameters.
+DISPERSION_OPTIONS = {"response": "--dispersion", "factors": "--dispersion", "dispersion_model": "--dispersion-model"}
+
+
+def add_dispersion_options(parser: argparse.ArgumentParser, *, optimise: bool = False) -> None:
+    """``--dispersion`` and ``--dispersion-model`` (:mod:`rsm_lrg.model.dispersion`)."""
+    what = ("also minimise the predicted spread of each response: the standard deviation s of its replicated "
+            "settings, modelled as ln s, enters the desirability beside the response's own goal"
+            if optimise else
+            "also model the spread: ln s of the replicates at each distinct setting (settings run at least twice; "
+            "the unreplicated ones are named), fitted by least squares beside the mean (JSON key 'dispersion')")
+    parser.add_argument("--dispersion", action="store_true", help=what)
+    parser.add_argument("--dispersion-model", default="linear", choices=["linear", "2fi", "quadratic", "cubic"],
+                        help="the model of ln s (default linear)")
+
+
+def fit_spread(data, response: str, space, args: argparse.Namespace):
+    """The :class:`~rsm_lrg.model.dispersion.DispersionFit` of ``response`` coded as ``space``;
+    an error names ``--dispersion`` or ``--dispersion-model``."""
+    from ..model.dispersion import fit_dispersion
+    from ._common import option_error
+
+    try:
+        return fit_dispersion(data, response, factors=space, model=args.dispersion_model)
+    except ValueError as exc:
+        if getattr(exc, "parameter", None) is None:
+            raise
+        raise option_error(exc, options=DISPERSION_OPTIONS) from None
 
 
 def _write_report(result, path, force: bool) -> None:
@@ -130,6 +161,11 @@ def _about_files(many, args: argparse.Namespace):
 def run(args: argparse.Namespace) -> int:
     _one_blas_thread(str(args.data))
     check_gp_options(args)
+    if args.dispersion and (args.model in GP_MODELS or wants_glm(args)):
+        from ..io import InputError
+
+        raise InputError("--dispersion: the spread model (ln s) goes beside a least-squares or REML fit, "
+                         "not a Gaussian process or a GLM")
     if args.model in GP_MODELS:
         return run_gp(args)
     from ..io import dump_json
@@ -142,7 +178,8 @@ def run(args: argparse.Namespace) -> int:
     model_spec(args)  # a bad --model/--terms/--transform is named before any data is read
     many = _many_files(str(args.data), args)  # a directory or glob: fitted partition by partition (Dask)
     if many is not None:
-        unsupported = [o for o in ("reduce", "transform", "diagnostics", "report", "whole_plot", "random_block")
+        unsupported = [o for o in ("reduce", "transform", "diagnostics", "report", "whole_plot", "random_block",
+                                   "dispersion")
                        if getattr(args, o, None)]
         if unsupported:
             raise ValueError(f"{args.data}: --{unsupported[0].replace('_', '-')} is not available when fitting several files")
@@ -154,6 +191,9 @@ def run(args: argparse.Namespace) -> int:
         if args.diagnostics:
             diag = result.diagnostics(boxcox_rule=args.boxcox_rule)
             extra["diagnostics"] = diag.to_dict()
+    spread = fit_spread(data, args.response, result.space, args) if args.dispersion else None
+    if spread is not None:
+        extra["dispersion"] = spread.to_dict()
     out = dict(result.to_dict(), **extra)
     if many is not None:
         print_notes(many[2])  # the files of the directory or pattern that were skipped
@@ -172,4 +212,7 @@ def run(args: argparse.Namespace) -> int:
         if args.diagnostics:
             print()
             print(diag.summary(), end="")
+        if spread is not None:
+            print()
+            print(spread.summary(), end="")
     return 0

@@ -18,6 +18,7 @@ from .options import (
     add_random_effect_options,
     add_reader_options,
 )
+from .cmd_fit import add_dispersion_options
 from .robust_optimize import add_robust_options, robust_requested, run_robust
 from .specs import random_effect
 
@@ -61,12 +62,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
     add_robust_options(parser)
+    add_dispersion_options(parser, optimise=True)
     add_json(parser)
     add_force(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     if robust_requested(args):  # --interval, --factor-sd or --goal poe (rsm_lrg/cli/robust_optimize.py)
+        if args.dispersion:
+            from ..io import InputError
+
+            raise InputError("--dispersion: the modelled spread is not available with --interval, --factor-sd or "
+                             "--goal poe yet (give it alone)")
         return run_robust(args)
     from ..model import fit
     from ..optimize import optimize, parse_goal
@@ -76,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
 
     responses = args.response
     specs = [model_spec(response_options(args, i)) for i in range(len(responses))]  # bad options named first
-    if len(responses) > 1 or args.weight or args.importance or args.limits:
+    if len(responses) > 1 or args.weight or args.importance or args.limits or args.dispersion:
         return _multi(args)
     args.response = responses[0]
     args.goal = per_response_values(args.goal, 1, "--goal")[0] or "minimize"
@@ -132,6 +139,14 @@ def _multi(args) -> int:
         fits, notes = fit_responses(args, data, args.response,
                                     [model_spec(response_options(args, i)) for i in range(n)])
         models = {r: f.label for r, f in fits.items()}
+        if args.dispersion:  # each response's spread, ln s modelled, minimised beside its own goal
+            from .cmd_fit import fit_spread
+
+            for r in list(args.response):
+                spread = fit_spread(data, r, fits[r].space, args)
+                fits[spread.name] = spread.result
+                models[spread.name] = f"ln s {args.dispersion_model} ({len(spread.settings)} replicated settings)"
+                specs.append(parse_response_goal(spread.name, "minimize"))
         with _constraint_errors(args.constraint):
             best = optimize_desirability(fits, specs, bounds=args.bound, constraints=args.constraint)
     print_notes(notes)

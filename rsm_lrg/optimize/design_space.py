@@ -23,6 +23,9 @@ With factor noise (``factor_sd``: one standard deviation per numeric factor, act
 factor box (a draw outside it is drawn again), with the same seeded draws at every node
 (common random numbers).
 
+A mixture's region is its constrained simplex and its window bounds per component with the
+total kept (:mod:`rsm_lrg.optimize.design_space_mixture`).
+
 The **window** is a hyper-rectangle of grid nodes (``grid`` equally spaced levels per numeric
 factor over its range) in which ``p ≥ probability`` at every node, found by growing a box from
 each of the most probable nodes one grid step at a time on any face whose new nodes all keep
@@ -44,7 +47,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..factors import finite_float
 
-__all__ = ["DesignSpace", "design_space", "parse_spec", "MAX_GRID_NODES"]
+__all__ = ["DesignSpace", "design_space", "parse_spec", "MAX_GRID_NODES", "largest_window"]
 
 #: The most grid nodes a design-space search evaluates (grid^k): beyond, a smaller --grid.
 MAX_GRID_NODES = 2_000_000
@@ -91,9 +94,12 @@ class DesignSpace:
     levels : tuple of ndarray
         The grid levels of each factor [actual units].
     grid_probability : ndarray
-        ``p`` at every grid node (shape ``(grid,) * k``) [-].
+        ``p`` at every grid node (shape ``(grid,) * k``; a mixture: one value per blend of the
+        constrained simplex lattice) [-].
     window : dict or None
         ``{factor: (low, high)}`` [actual units], or None when no node reaches the target.
+        For a mixture (``region == "simplex"``): per-component bounds, the window being the
+        blends inside them (the total kept; :mod:`rsm_lrg.optimize.design_space_mixture`).
     window_min_probability : float
         The smallest ``p`` over the window's nodes [-] (NaN without a window).
     best : dict
@@ -102,6 +108,8 @@ class DesignSpace:
         Per pair of factors: ``{"x", "y", "x_levels", "y_levels", "p"}``, the others held at
         the window's centre (or the best node).
     notes : tuple of str
+    region : {"box", "simplex"}
+        The factor box, or a mixture's constrained simplex.
     """
 
     specs: dict
@@ -119,6 +127,7 @@ class DesignSpace:
     notes: tuple = ()
     factor_sd: dict = field(default_factory=dict)
     draws: int = 0
+    region: str = "box"
 
     def to_dict(self) -> dict:
         def num(v: Any) -> float | None:
@@ -134,6 +143,7 @@ class DesignSpace:
             "window": None if self.window is None else {k: {"low": lo, "high": hi} for k, (lo, hi) in self.window.items()},
             "window_min_probability": num(self.window_min_probability),
             "window_nodes": self.window_nodes,
+            "region": self.region,
             "best": dict(self.best),
             "best_probability": num(self.best_probability),
             "factor_sd": dict(self.factor_sd),
@@ -246,12 +256,11 @@ def design_space(fits: Mapping[str, Any], specs: Mapping[str, tuple[float | None
         raise ParameterError("draws", f"draws must be a whole number from 1 to 100000, not {draws!r}")
     first = next(iter(fits.values()))
     space = first.space
-    if space.has_components:
-        raise ParameterError("component", "the design space of a mixture (a window on the simplex) is not "
-                                          "available yet")
     for r, f in fits.items():
         if [g.name for g in f.space.factors] != space.names:
             raise ParameterError("response", f"{r!r} is fitted on other factors than {next(iter(fits))!r}")
+    if space.has_components:
+        return _mixture(fits, specs, space, float(probability), int(grid), factor_sd, held)
     numeric = [f for f in space.factors if f.kind != "categoric"]
     cats = [f for f in space.factors if f.kind == "categoric"]
     if not numeric:
@@ -366,6 +375,34 @@ def design_space(fits: Mapping[str, Any], specs: Mapping[str, tuple[float | None
                        factor_sd=sds, draws=int(draws) if sds else 0)
 
 
+def _mixture(fits: Mapping[str, Any], specs: Mapping[str, tuple[float | None, float | None]], space: Any,
+             probability: float, grid: int, factor_sd: Mapping[str, float] | None,
+             held: Mapping[str, str] | None) -> DesignSpace:
+    """:func:`design_space` of a mixture (:mod:`rsm_lrg.optimize.design_space_mixture`)."""
+    from .design_space_mixture import check_mixture_options, mixture_design_space_parts
+
+    check_mixture_options(space, factor_sd)
+    if held:
+        raise ParameterError("held", f"{next(iter(held))!r} is not a categoric factor")
+    limits = {r: _model_limits(fits[r], lo, hi) for r, (lo, hi) in specs.items()}
+
+    def prob(coded: np.ndarray) -> np.ndarray:
+        return np.prod([_response_probability(fits[r], coded, limits[r]) for r in specs], axis=0)
+
+    parts = mixture_design_space_parts(space, grid, probability, prob, MAX_GRID_NODES)
+    notes = list(parts["notes"])
+    unused = [r for r in fits if r not in specs]
+    if unused:
+        notes.append("responses without a specification are not counted: " + ", ".join(unused))
+    notes.append("probability: posterior predictive of each fitted model (its coefficients' uncertainty and the "
+                 "run-to-run noise; Student t with the fit's df), responses taken as independent")
+    return DesignSpace(specs={r: (lo, hi) for r, (lo, hi) in specs.items()}, probability=probability,
+                       factors=tuple(space.names), levels=parts["levels"], grid_probability=parts["p"],
+                       window=parts["window"], window_min_probability=parts["window_min"],
+                       window_nodes=parts["window_nodes"], best=parts["best"], best_probability=parts["best_p"],
+                       maps=parts["maps"], notes=tuple(notes), region="simplex")
+
+
 def _grow(ok: np.ndarray, start: Sequence[int]) -> list[tuple[int, int]]:
     """A box of grid indices grown from ``start`` one step at a time on any face whose new
     slab of nodes is all ``ok``, until no face can grow."""
@@ -401,3 +438,10 @@ def _largest_window(ok: np.ndarray, p: np.ndarray) -> list[tuple[int, int]]:
             best, key = box, (size, pmin)
     assert best is not None
     return best
+
+
+def largest_window(ok: np.ndarray, p: np.ndarray) -> list[tuple[int, int]]:
+    """The window search on any grid of probabilities ``p`` (``ok``: the nodes at the target):
+    ``(first, last)`` grid indices per axis (module docstring; used by the surrogate's design
+    space, :mod:`rsm_lrg.paper.surrogate_space`)."""
+    return _largest_window(ok, p)

@@ -23,7 +23,11 @@ def _map_figure(m: dict, target: float, window: dict | None) -> Any:
     fig.colorbar(mesh, ax=ax, label="P(in spec)")
     if np.nanmin(p) < target < np.nanmax(p):
         ax.contour(x, y, p, levels=[target], colors="white", linewidths=1.5)
-    if window is not None:
+    if m.get("in_window") is not None:  # a mixture: the window's blends on this slice of the simplex
+        inside = np.asarray(m["in_window"], dtype=float)
+        if inside.any():
+            ax.contour(x, y, inside, levels=[0.5], colors="red", linewidths=1.8)
+    elif window is not None:
         (x0, x1), (y0, y1) = window[m["x"]], window[m["y"]]
         ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, edgecolor="red", linewidth=1.8))
     ax.set_xlabel(str(m["x"]).replace("$", r"\$"))
