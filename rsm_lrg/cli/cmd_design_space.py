@@ -168,7 +168,8 @@ def _run_surrogate(args: argparse.Namespace) -> int:
     """``design-space --surrogate`` (:mod:`rsm_lrg.paper.surrogate_space`)."""
     from ..io import InputError, quote_user_value
     from ..optimize.design_space import parse_spec
-    from ._common import option_error, print_summary_or_json
+    from .errors import option_error
+    from .paths import print_summary_or_json
 
     given = [o for o, v in (("DATA.csv", args.data), ("--response", args.response), ("--factor-sd", args.factor_sd),
                             ("--component", args.component), ("--bound", args.bound), ("--block", args.block))

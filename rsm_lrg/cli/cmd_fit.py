@@ -68,7 +68,7 @@ def fit_spread(data, response: str, space, args: argparse.Namespace):
     """The :class:`~rsm_lrg.model.dispersion.DispersionFit` of ``response`` coded as ``space``;
     an error names ``--dispersion`` or ``--dispersion-model``."""
     from ..model.dispersion import fit_dispersion
-    from ._common import option_error
+    from .errors import option_error
 
     try:
         return fit_dispersion(data, response, factors=space, model=args.dispersion_model)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 
+from .cmd_fit import add_dispersion_options
 from .errors import about_file
 from .options import (
     ResponseGroup,
@@ -18,7 +19,6 @@ from .options import (
     add_random_effect_options,
     add_reader_options,
 )
-from .cmd_fit import add_dispersion_options
 from .robust_optimize import add_robust_options, robust_requested, run_robust
 from .specs import random_effect
 

@@ -152,8 +152,8 @@ def fit_dispersion(data: Any, response: str, factors: Any = None, model: Any = "
     """
     import pandas as pd
 
+    from .build.inputs import model_inputs
     from .fit import fit
-    from .inputs import model_inputs
 
     inp = model_inputs(data, response, factors)
     space = inp.space
