@@ -216,6 +216,22 @@ class _Running:
     start: float
 
 
+def _finished(r: _Running, status: int, label: str, response: str, done: Any) -> None:
+    """Check a call that ended (status, its input untouched, its output) and keep its values."""
+    if status != 0:
+        how = f"was killed by signal {-status}" if status < 0 else f"exited with status {status}"
+        raise EvaluateError(f"{label} {how}{_tail(r.err)}")
+    try:
+        same = hashlib.sha256(r.src.read_bytes()).hexdigest() == r.digest
+    except OSError:
+        raise EvaluateError(f"{label} deleted its input design {{in}}; the study keeps its own "
+                            "copy, but a command that removes its input is not trusted") from None
+    if not same:
+        raise EvaluateError(f"{label} changed its input design {{in}}; the study keeps its own "
+                            "copy, but a command that edits its input is not trusted")
+    done(r.rows, _read_piece_output(r.dst, response, len(r.rows), label))
+
+
 def _evaluate_command(template: str, design_csv: str, rows: list[int], response: str, work: Path,
                       workers: int, timeout: float, what: str, done: Any) -> None:
     """Run the command on pieces of the design (``rows``, at most ``workers`` at a time); call
@@ -255,20 +271,10 @@ def _evaluate_command(template: str, design_csv: str, rows: list[int], response:
                         raise EvaluateError(f"{label} ran past --evaluate-timeout {timeout:g} s and was stopped")
                     continue
                 running.remove(r)
-                if status != 0:
-                    how = f"was killed by signal {-status}" if status < 0 else f"exited with status {status}"
-                    raise EvaluateError(f"{label} {how}{_tail(r.err)}")
                 try:
-                    same = hashlib.sha256(r.src.read_bytes()).hexdigest() == r.digest
-                except OSError:
-                    raise EvaluateError(f"{label} deleted its input design {{in}}; the study keeps its own "
-                                        "copy, but a command that removes its input is not trusted") from None
-                if not same:
-                    raise EvaluateError(f"{label} changed its input design {{in}}; the study keeps its own "
-                                        "copy, but a command that edits its input is not trusted")
-                values = _read_piece_output(r.dst, response, len(r.rows), label)
-                done(r.rows, values)
-                shutil.rmtree(r.src.parent, ignore_errors=True)
+                    _finished(r, status, label, response, done)
+                finally:
+                    shutil.rmtree(r.src.parent, ignore_errors=True)
     finally:
         for r in running:
             _kill_group(r.proc)
