@@ -60,12 +60,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_block_option(parser, "optimum for the average block")
     add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
+    for action in parser._actions:  # a Gaussian process too (one response; its defaults, as 'fit --model gp')
+        if action.dest == "model" and action.choices is not None:
+            action.choices = [*action.choices, "gp"]
     add_robust_options(parser)
     add_json(parser)
     add_force(parser)
 
 
 def run(args: argparse.Namespace) -> int:
+    from ._common import response_options as options_of
+
+    if any(getattr(options_of(args, i), "model", None) == "gp" for i in range(len(args.response))):
+        return _run_gp(args)
     if robust_requested(args):  # --interval, --factor-sd or --goal poe (rsm_lrg/cli/robust_optimize.py)
         return run_robust(args)
     from ..model import fit
@@ -93,6 +100,39 @@ def run(args: argparse.Namespace) -> int:
         with _constraint_errors(args.constraint):
             best = optimize(result, goal=args.goal, bounds=args.bound, constraints=args.constraint)
     print_notes(result.input_notes)
+    print_summary_or_json(args, best)
+    return 0
+
+
+def _run_gp(args: argparse.Namespace) -> int:
+    """``--model gp``: one response, fitted by a Gaussian process (matern52 kernel, constant
+    trend, nugget as 'fit --model gp' chooses it), optimised through the prediction contract."""
+    from ..io import InputError
+    from ..model import fit
+    from ..optimize import optimize, parse_goal
+    from ._common import per_response_values, print_notes, print_summary_or_json, read_input, response_options
+
+    if len(args.response) > 1:
+        raise InputError("--model gp: one --response at a time (a desirability over Gaussian processes is not "
+                         "available yet)")
+    for opt, attr in (("--component", "component"), ("--block", "block"), ("--terms", "terms"),
+                      ("--no-intercept", "no_intercept"), ("--transform", "transform"), ("--reduce", "reduce"),
+                      ("--whole-plot", "whole_plot"), ("--random-block", "random_block"),
+                      ("--interval", "interval"), ("--factor-sd", "factor_sd"), ("--weight", "weight"),
+                      ("--importance", "importance"), ("--limits", "limits")):
+        if getattr(args, attr, None) or getattr(response_options(args, 0), attr, None):
+            raise InputError(f"{opt}: not available with --model gp (a Gaussian process)")
+    args.response = args.response[0]
+    args.goal = per_response_values(args.goal, 1, "--goal")[0] or "minimize"
+    if str(args.goal).strip().lower() == "poe":
+        raise InputError("--goal poe: not available with --model gp (a Gaussian process)")
+    parse_goal(args.goal)
+    data = read_input(args)
+    with about_file(args.data):
+        result = fit(data, args.response, factors=args.factor, model="gp")
+        with _constraint_errors(args.constraint):
+            best = optimize(result, goal=args.goal, bounds=args.bound, constraints=args.constraint)
+    print_notes(result.notes)
     print_summary_or_json(args, best)
     return 0
 

@@ -226,6 +226,24 @@ class GPResult:
         """The response transform: none (a GP is fitted to the response as measured)."""
         return Transform()
 
+    @property
+    def label(self) -> str:
+        """The model in words: ``"Gaussian process (matern52 kernel, constant trend)"``."""
+        return f"Gaussian process ({self.kernel} kernel, {self.trend} trend)"
+
+    def predict_coded(self, coded: np.ndarray) -> np.ndarray:
+        """The prediction contract's mean at coded settings (m x k): the kriging mean
+        [response units]."""
+        return self._mean_var(np.atleast_2d(np.asarray(coded, dtype=float)))[0]
+
+    def goal_on_model_scale(self, goal: Any) -> tuple[str, float | None, str, float | None]:
+        """``(kind, target, kind, target)``: a GP models the response as measured (no
+        transform), so the goal is the same on both scales."""
+        from .goals import parse_goal
+
+        kind, target = parse_goal(goal)
+        return kind, target, kind, target
+
     def predictive(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The prediction contract's predictive distribution of a new run at coded settings
         (m x k): ``(mean, variance, df)`` — the kriging mean, its variance plus the nugget, and

@@ -1,0 +1,38 @@
+"""``rsm-lrg optimize --model gp``: the optimum of a Gaussian-process fit (as the library's
+``optimize(fit(..., model="gp"))``), and the options a GP does not take as one error line."""
+
+import json
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from _cli_errors import error_line
+
+import rsm_lrg
+from rsm_lrg.cli import main
+from rsm_lrg.optimize import optimize
+
+BRANIN = str(Path(__file__).parents[1] / "model" / "r" / "gp_branin.csv")
+FACTORS = ["--factor", "x1=-5:10", "--factor", "x2=0:15"]
+
+
+def test_optimum_is_the_librarys(capsys):
+    assert main(["optimize", BRANIN, "--response", "y", *FACTORS, "--model", "gp", "--goal", "target=30",
+                 "--constraint", "x1 + x2 <= 10", "--json", "-"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    gp = rsm_lrg.fit(pd.read_csv(BRANIN), "y", factors=["x1=-5:10", "x2=0:15"], model="gp")
+    want = optimize(gp, "target=30", constraints=["x1 + x2 <= 10"])
+    assert got["actual"] == pytest.approx(want.actual, abs=1e-12)
+    assert got["predicted"] == pytest.approx(30.0, abs=1e-4)
+    assert got["pi"] == pytest.approx(list(want.pi), rel=1e-12)
+
+
+@pytest.mark.parametrize("extra, option", [
+    (["--reduce"], "--reduce"),
+    (["--transform", "log"], "--transform"),
+    (["--goal", "poe"], "--goal poe"),
+    (["--response", "x2", "--goal", "maximize"], "--model gp"),
+])
+def test_options_a_gp_does_not_take(extra, option, capsys):
+    line = error_line(capsys, main(["optimize", BRANIN, "--response", "y", *FACTORS, "--model", "gp", *extra]))
+    assert option in line
