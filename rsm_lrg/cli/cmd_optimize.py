@@ -104,6 +104,14 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _spec(args: argparse.Namespace, i: int):
+    """The model of response ``i``: ``"gp"`` (a Gaussian process) or its polynomial ModelSpec."""
+    from ._common import model_spec, response_options
+
+    opts = response_options(args, i)
+    return "gp" if getattr(opts, "model", None) == "gp" else model_spec(opts)
+
+
 def _run_gp(args: argparse.Namespace) -> int:
     """``--model gp``: one response, fitted by a Gaussian process (matern52 kernel, constant
     trend, nugget as 'fit --model gp' chooses it), optimised through the prediction contract."""
@@ -112,16 +120,16 @@ def _run_gp(args: argparse.Namespace) -> int:
     from ..optimize import optimize, parse_goal
     from ._common import per_response_values, print_notes, print_summary_or_json, read_input, response_options
 
-    if len(args.response) > 1:
-        raise InputError("--model gp: one --response at a time (a desirability over Gaussian processes is not "
-                         "available yet)")
     for opt, attr in (("--component", "component"), ("--block", "block"), ("--terms", "terms"),
                       ("--no-intercept", "no_intercept"), ("--transform", "transform"), ("--reduce", "reduce"),
                       ("--whole-plot", "whole_plot"), ("--random-block", "random_block"),
-                      ("--interval", "interval"), ("--factor-sd", "factor_sd"), ("--weight", "weight"),
-                      ("--importance", "importance"), ("--limits", "limits")):
-        if getattr(args, attr, None) or getattr(response_options(args, 0), attr, None):
+                      ("--interval", "interval"), ("--factor-sd", "factor_sd")):
+        if getattr(args, attr, None) or any(getattr(response_options(args, i), attr, None)
+                                            for i in range(len(args.response))
+                                            if getattr(response_options(args, i), "model", None) == "gp"):
             raise InputError(f"{opt}: not available with --model gp (a Gaussian process)")
+    if len(args.response) > 1:  # a desirability over the responses, each its own model
+        return _multi(args)
     args.response = args.response[0]
     args.goal = per_response_values(args.goal, 1, "--goal")[0] or "minimize"
     if str(args.goal).strip().lower() == "poe":
@@ -181,7 +189,7 @@ def _multi(args) -> int:
         from .responses import fit_responses
 
         fits, notes = fit_responses(args, data, args.response,
-                                    [model_spec(response_options(args, i)) for i in range(n)])
+                                    [_spec(args, i) for i in range(n)])
         models = {r: f.label for r, f in fits.items()}
         with _constraint_errors(args.constraint):
             best = optimize_desirability(fits, specs, bounds=args.bound, constraints=args.constraint)

@@ -31,8 +31,35 @@ def test_optimum_is_the_librarys(capsys):
     (["--reduce"], "--reduce"),
     (["--transform", "log"], "--transform"),
     (["--goal", "poe"], "--goal poe"),
-    (["--response", "x2", "--goal", "maximize"], "--model gp"),
 ])
 def test_options_a_gp_does_not_take(extra, option, capsys):
     line = error_line(capsys, main(["optimize", BRANIN, "--response", "y", *FACTORS, "--model", "gp", *extra]))
     assert option in line
+
+
+def test_desirability_with_a_gp_and_a_quadratic(tmp_path, capsys):
+    d = pd.read_csv(BRANIN)
+    d["y2"] = 0.5 * d.x1 + d.x2 + 0.1 * d.x1 * d.x2
+    src = tmp_path / "two.csv"
+    d.to_csv(src, index=False)
+    assert main(["optimize", str(src), "--response", "y", "--model", "gp", "--goal", "minimize", "--response", "y2",
+                 "--goal", "maximize", *FACTORS, "--json", "-"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    gp = rsm_lrg.fit(d, "y", factors=["x1=-5:10", "x2=0:15"], model="gp")
+    at = pd.DataFrame([got["actual"]])
+    assert got["predicted"]["y"] == pytest.approx(float(gp.predict(at)["predicted"].iloc[0]), rel=1e-9)
+    assert 0.5 < got["desirability"] <= 1.0
+
+
+def test_report_pages_of_a_gp(tmp_path, capsys):
+    page = tmp_path / "gp.html"
+    assert main(["report", BRANIN, "--response", "y", *FACTORS, "--model", "gp", "-o", str(page)]) == 0
+    text = page.read_text()
+    assert '"kriging"' in text and "a Gaussian process has none" in text
+    static = tmp_path / "gp_static.html"
+    assert main(["report", BRANIN, "--response", "y", *FACTORS, "--model", "gp", "--static", "-o", str(static)]) == 0
+    assert "<script" not in static.read_text()
+    capsys.readouterr()
+    line = error_line(capsys, main(["report", BRANIN, "--response", "y", *FACTORS, "--model", "gp", "--transform",
+                                    "log", "-o", str(tmp_path / "x.html")]))
+    assert "--transform" in line
