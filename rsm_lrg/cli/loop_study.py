@@ -460,11 +460,11 @@ class Study:
             if done >= self.opts.budget:
                 self.stopped = "budget"
                 break
-            if r > 0 and self._stop_by_ei(done):
-                self.stopped = "ei-tol"
-                break
             what = f"round {r}"
             try:
+                if r > 0 and self._stop_by_ei(done):
+                    self.stopped = "ei-tol"
+                    break
                 design_csv, info = self._design(r, done)
             except (ValueError, ArithmeticError) as exc:
                 raise InputError(f"{what}: the Gaussian process or the search failed: {exc}") from None
