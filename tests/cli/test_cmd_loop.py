@@ -210,12 +210,18 @@ def test_not_a_study_directory(tmp_path, capsys):
 def test_surrogate_on_two_factors_of_table3(tmp_path, capsys):
     study = tmp_path / "s"
     rc = main(["loop", "--factor", "velocity_m_s=0.4:0.6", "--factor", "acceleration_m_s2=20:40",
-               "--response", "tcr_c_per_min", "--goal", "minimize", "--budget", "6", "--initial", "5",
+               "--response", "tcr_c_per_min", "--goal", "minimize", "--budget", "7", "--initial", "5",
                "--surrogate", "-o", str(study), "--json", "-", "--no-progress"])
     cap = capsys.readouterr()
     assert rc == 0, cap.err
     s = json.loads(cap.out)
-    assert s["evaluations"] == 6 and s["rounds"] == 2
+    # the rate falls towards the slow corner (0.4 m/s, 20 m/s^2): round 1 runs it, and then the
+    # largest expected improvement is below 1e-6 of the range: the loop stops with a run to spare
+    assert s["evaluations"] == 6 and s["rounds"] == 2 and s["stopped_because"] == "ei-tol"
+    assert s["best"]["setting"] == {"velocity_m_s": 0.4, "acceleration_m_s2": 20.0}
+    nxt = json.loads((study / "round_002" / "suggestions.json").read_text())
+    assert nxt["runs"][0]["criterion"] <= s["ei_tol"]["absolute"] == pytest.approx(
+        1e-6 * (max(c["value"] for c in s["convergence"]) - min(c["value"] for c in s["convergence"])))
     runs = pd.concat(pd.read_csv(study / f"round_{r:03d}" / "responses.csv") for r in range(2))
     # the surrogate itself at the same settings (stroke and thickness at the parameter file's values)
     import rsm_lrg
@@ -224,3 +230,20 @@ def test_surrogate_on_two_factors_of_table3(tmp_path, capsys):
     direct = rsm_lrg.simulate(design, noise_sd=0.0, seed=0)["tcr_c_per_min"].to_numpy()
     assert abs(runs["tcr_c_per_min"].to_numpy() - direct).max() < 1e-15
     assert s["best"]["observed"] == runs["tcr_c_per_min"].min()
+
+
+def test_batches_in_pieces_on_two_workers(tmp_path, script, capsys, monkeypatch):
+    log = tmp_path / "log.txt"
+    monkeypatch.setenv("LOOP_LOG", str(log))
+    study = tmp_path / "study"
+    rc = main(["loop", *BOX, "--goal", "target=0.5", "--budget", "8", "--initial", "4", "--batch", "2",
+               "--workers", "2", "--ei-tol", "0", "--evaluate", _evaluate(script), "-o", str(study), "--json", "-",
+               "--no-progress"])
+    cap = capsys.readouterr()
+    assert rc == 0, cap.err
+    s = json.loads(cap.out)
+    assert s["rounds"] == 3 and s["evaluations"] == 8 and s["goal"] == "target"
+    assert len(log.read_text().splitlines()) == 8
+    r1 = pd.read_csv(study / "round_001" / "responses.csv")
+    assert len(r1) == 2 and not (study / "round_001" / "rows").exists()
+    assert abs(s["best"]["observed"] - 0.5) == min(abs(c["value"] - 0.5) for c in s["convergence"])
