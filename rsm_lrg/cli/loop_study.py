@@ -435,6 +435,9 @@ class Study:
                 values[todo] = _surrogate(design.iloc[todo][self.names].reset_index(drop=True), self.opts.response)
             except ValueError as exc:
                 raise EvaluateError(f"{what}: the surrogate: {exc}") from None
+            if not np.isfinite(values).all():
+                i = int(np.flatnonzero(~np.isfinite(values))[0])
+                raise EvaluateError(f"{what}, row {i + 1}: the surrogate gave no finite {self.opts.response} there")
         elif todo:
             def keep(rows: list[int], v: Any) -> None:
                 values[rows] = v
