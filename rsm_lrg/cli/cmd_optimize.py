@@ -168,12 +168,10 @@ def _multi(args) -> int:
     from ..optimize.desirability import optimize_desirability, parse_response_goal
     from ._common import (
         check_distinct_responses,
-        model_spec,
         per_response_values,
         print_notes,
         print_summary_or_json,
         read_input,
-        response_options,
     )
 
     n = len(args.response)

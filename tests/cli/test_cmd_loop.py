@@ -4,7 +4,6 @@ finished evaluation; failing, garbage and hanging commands as one ``error:`` lin
 with the study directory left readable; ``--surrogate`` on two factors of Table 3."""
 
 import json
-import os
 import signal
 import subprocess
 import sys
