@@ -61,6 +61,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_block_option(parser, "optimum for the average block")
     add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
+    for action in parser._actions:  # a Gaussian process too (one response; its defaults, as 'fit --model gp')
+        if action.dest == "model" and action.choices is not None:
+            action.choices = [*action.choices, "gp"]
     add_robust_options(parser)
     add_dispersion_options(parser, optimise=True)
     add_json(parser)
@@ -68,6 +71,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from .options import response_options as options_of
+
+    if any(getattr(options_of(args, i), "model", None) == "gp" for i in range(len(args.response))):
+        return _run_gp(args)
     if robust_requested(args):  # --interval, --factor-sd or --goal poe (rsm_lrg/cli/robust_optimize.py)
         if args.dispersion:
             from ..io import InputError
@@ -99,6 +106,49 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _spec(args: argparse.Namespace, i: int):
+    """The model of response ``i``: ``"gp"`` (a Gaussian process) or its polynomial ModelSpec."""
+    from .options import response_options
+    from .specs import model_spec
+
+    opts = response_options(args, i)
+    return "gp" if getattr(opts, "model", None) == "gp" else model_spec(opts)
+
+
+def _run_gp(args: argparse.Namespace) -> int:
+    """``--model gp``: one response, fitted by a Gaussian process (matern52 kernel, constant
+    trend, nugget as 'fit --model gp' chooses it), optimised through the prediction contract."""
+    from ..io import InputError
+    from ..model import fit
+    from ..optimize import optimize, parse_goal
+    from .options import per_response_values, response_options
+    from .paths import print_notes, print_summary_or_json, read_input
+
+    for opt, attr in (("--component", "component"), ("--block", "block"), ("--terms", "terms"),
+                      ("--no-intercept", "no_intercept"), ("--transform", "transform"), ("--reduce", "reduce"),
+                      ("--whole-plot", "whole_plot"), ("--random-block", "random_block"),
+                      ("--interval", "interval"), ("--factor-sd", "factor_sd")):
+        if getattr(args, attr, None) or any(getattr(response_options(args, i), attr, None)
+                                            for i in range(len(args.response))
+                                            if getattr(response_options(args, i), "model", None) == "gp"):
+            raise InputError(f"{opt}: not available with --model gp (a Gaussian process)")
+    if len(args.response) > 1:  # a desirability over the responses, each its own model
+        return _multi(args)
+    args.response = args.response[0]
+    args.goal = per_response_values(args.goal, 1, "--goal")[0] or "minimize"
+    if str(args.goal).strip().lower() == "poe":
+        raise InputError("--goal poe: not available with --model gp (a Gaussian process)")
+    parse_goal(args.goal)
+    data = read_input(args)
+    with about_file(args.data):
+        result = fit(data, args.response, factors=args.factor, model="gp")
+        with _constraint_errors(args.constraint):
+            best = optimize(result, goal=args.goal, bounds=args.bound, constraints=args.constraint)
+    print_notes(result.notes)
+    print_summary_or_json(args, best)
+    return 0
+
+
 @contextlib.contextmanager
 def _constraint_errors(constraints):
     """An error about the constraints (a bad expression, an empty region, no feasible
@@ -120,9 +170,8 @@ def _constraint_errors(constraints):
 def _multi(args) -> int:
     """Several responses: Derringer-Suich desirability (Stat-Ease conventions)."""
     from ..optimize.desirability import optimize_desirability, parse_response_goal
-    from .options import check_distinct_responses, per_response_values, response_options
+    from .options import check_distinct_responses, per_response_values
     from .paths import print_notes, print_summary_or_json, read_input
-    from .specs import model_spec
 
     n = len(args.response)
     check_distinct_responses(args.response)
@@ -137,7 +186,7 @@ def _multi(args) -> int:
         from .responses import fit_responses
 
         fits, notes = fit_responses(args, data, args.response,
-                                    [model_spec(response_options(args, i)) for i in range(n)])
+                                    [_spec(args, i) for i in range(n)])
         models = {r: f.label for r, f in fits.items()}
         if args.dispersion:  # each response's spread, ln s modelled, minimised beside its own goal
             from .cmd_fit import fit_spread

@@ -46,6 +46,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_block_option(parser)
     add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
+    for action in parser._actions:  # a Gaussian process too (its defaults, as 'fit --model gp')
+        if action.dest == "model" and action.choices is not None:
+            action.choices = [*action.choices, "gp"]
     add_goal_options(parser,
                      goal_help="goal of the response it follows (several listed together: in --response order; "
                                "default minimize, as in the paper)",
@@ -116,6 +119,19 @@ def _region(space, constraints, bounds):
         raise InputError(f"--constraint: {exc}") from None
 
 
+def _gp_spec(args: argparse.Namespace, opts: argparse.Namespace) -> str:
+    """``--model gp`` for a response: the model ``"gp"`` (a Gaussian process with the defaults
+    of 'fit --model gp'); the polynomial refinements and blocks are refused, naming the option."""
+    from ..io import InputError
+
+    for opt, attr in (("--component", "component"), ("--block", "block"), ("--terms", "terms"),
+                      ("--no-intercept", "no_intercept"), ("--transform", "transform"), ("--reduce", "reduce"),
+                      ("--whole-plot", "whole_plot"), ("--random-block", "random_block")):
+        if getattr(args, attr, None) or getattr(opts, attr, None):
+            raise InputError(f"{opt}: not available with --model gp (a Gaussian process)")
+    return "gp"
+
+
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -145,7 +161,8 @@ def run(args: argparse.Namespace) -> int:
             plotly_js()
         except ImportError as exc:
             raise InputError(str(exc)) from None
-    specs = [model_spec(response_options(args, i)) for i in range(n)]  # bad model options named first
+    specs = [_gp_spec(args, response_options(args, i)) if getattr(response_options(args, i), "model", None) == "gp"
+             else model_spec(response_options(args, i)) for i in range(n)]  # bad model options named first
     data = read_input(args)
     with about_file(args.data):
         from .responses import fit_responses
@@ -161,7 +178,7 @@ def run(args: argparse.Namespace) -> int:
             if r in optima.missing and (args.constraint or args.bound):
                 raise InputError(f"{'--constraint' if args.constraint else '--bound'}: no optimum of {r}: "
                                  f"{optima.missing[r]}")
-        if args.static and n == 1 and fits[responses[0]].transform.identity:
+        if args.static and n == 1 and fits[responses[0]].transform.identity and hasattr(fits[responses[0]], "anova"):
             from ..report import write_report
 
             best = optima.single.get(responses[0])

@@ -20,9 +20,9 @@ __all__ = ["fit_responses"]
 
 
 def fit_responses(args: argparse.Namespace, data: pd.DataFrame, responses: Sequence[str],
-                  specs: Sequence[ModelSpec]) -> tuple[dict[str, FitResult], list[str]]:
+                  specs: Sequence[ModelSpec | str]) -> tuple[dict[str, FitResult], list[str]]:
     """``({response: FitResult}, notes)``: each response of ``responses`` fitted to ``data``
-    with its specification ``specs[i]`` and the command's ``--factor``, ``--block``,
+    with its specification ``specs[i]`` (``"gp"``: a Gaussian process) and the command's ``--factor``, ``--block``,
     ``--component`` and random-effect options.
 
     With several responses and no mixture components, the factors are chosen once

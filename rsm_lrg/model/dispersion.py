@@ -11,10 +11,10 @@ coefficients, ANOVA and R² are those of ``lm(log(s) ~ ...)`` on the table of se
 Settings run once have no ``s``, and settings whose replicates are all equal have ``s = 0``
 (``ln s = -∞``): both are left out, and the result says which (nothing is dropped silently).
 Settings are "distinct" as the mean's fit counts pure-error groups: their coded values equal
-after rounding (:func:`rsm_lrg.model.inputs.model_inputs`). The blocks and random effects of
+after rounding (:func:`rsm_lrg.model.build.inputs.model_inputs`). The blocks and random effects of
 the mean's model play no part here: ``s`` is taken within a setting whatever its block.
 
-The result holds an ordinary :class:`~rsm_lrg.model.result.FitResult` of the response
+The result holds an ordinary :class:`~rsm_lrg.model.results.result.FitResult` of the response
 ``s(Y)`` [response units] fitted under the ``log`` transform, so its coefficients and ANOVA are
 on the ln s scale and its predictions back-transform to ``s``; the desirability optimiser
 takes it beside the mean's fit (``minimize`` the spread).

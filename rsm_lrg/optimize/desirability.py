@@ -400,6 +400,9 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
         f = fits[g.response]
         tr = f.transform
         inverses.append(None if tr.identity else tr.inverse)
+        if not hasattr(f, "coefficients"):  # no polynomial (a Gaussian process): the contract's surface
+            polys.append(("c", f))
+            continue
         beta = f.coefficients["coded"].to_numpy(dtype=float)
         if all(t.order <= 2 for t in f.terms):
             from ..model.readings.canonical import quadratic_parts
@@ -415,6 +418,8 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
             if kind == "q":
                 b0, b, B = par
                 v = b0 + X @ b + np.einsum("ij,jk,ik->i", X, B, X)
+            elif kind == "c":
+                v = np.asarray(par.predict_coded(X), dtype=float)
             else:
                 v = design_matrix(X, par[0]) @ par[1]
             out.append(v if inv is None else inv(v))  # back to response units

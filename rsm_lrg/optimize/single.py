@@ -170,6 +170,13 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
     from ..model.results.glm_result import GLMResult
     from ..model.results.result import FitResult
 
+    if not isinstance(fitted, (FitResult, GLMResult, LevelView)) and _is_surface(fitted):
+        # another kind of fitted model (a Gaussian process): through the prediction contract only
+        if not 0.0 < confidence < 1.0:
+            raise ParameterError("confidence", f"confidence must lie between 0 and 1, not {confidence!r}")
+        return _optimize_contract(fitted, goal, bounds, confidence=confidence,
+                                  allow_extrapolation=allow_extrapolation, seed=seed,
+                                  constraints=_constraint_texts(constraints))
     if not isinstance(fitted, (FitResult, GLMResult, LevelView)):  # a fit, or one at a level combination
         raise TypeError(f"optimize() takes a fitted result (FitResult), not {type(fitted).__name__}: fit first, "
                         "e.g. rsm_lrg.optimize(rsm_lrg.fit(data, response), goal)")
@@ -185,6 +192,74 @@ def optimize(fitted, goal="minimize", bounds=None, *, confidence: float = 0.95,
                                    allow_extrapolation=allow_extrapolation, seed=seed, constraints=exprs)
     return _optimize_numeric(fitted, goal, bounds, confidence=confidence, allow_extrapolation=allow_extrapolation,
                              seed=seed, constraints=exprs)
+
+
+def _is_surface(fitted: Any) -> bool:
+    """A fitted model that answers the prediction contract's surface (``space``,
+    ``predict_coded``, ``predict`` and ``goal_on_model_scale``) without polynomial terms."""
+    return all(hasattr(fitted, a) for a in ("space", "predict_coded", "predict", "goal_on_model_scale", "transform"))
+
+
+#: Sobol starts of the multistart search on a surface that is not a polynomial (2^m points).
+CONTRACT_STARTS_LOG2 = 6
+
+
+def _optimize_contract(fitted: Any, goal: Any, bounds: Any, *, confidence: float, allow_extrapolation: bool,
+                       seed: int, constraints: Any = ()) -> OptimumResult:
+    """:func:`optimize` for a model known by the prediction contract alone (a Gaussian process:
+    no terms, no stationary point): multistart L-BFGS-B (SLSQP inside constraints) on
+    ``predict_coded`` from the best points of a scrambled Sobol sample of the region, the box's
+    centre and corners; the intervals from ``predict``."""
+    from scipy.stats import qmc
+
+    from .region import feasible_only, local_minima, parse_constraints, region_starts
+
+    space = fitted.space
+    if space.has_components or space.has_categoric:
+        raise ParameterError("model", "optimize on this kind of model takes numeric factors only")
+    goal_kind, goal_target, kind, target = fitted.goal_on_model_scale(goal)
+    lo, hi, notes = parse_bounds(space, bounds, allow_extrapolation=allow_extrapolation)
+    cons = parse_constraints(list(constraints or []), space)
+    k = len(space)
+    sample = lo + qmc.Sobol(d=k, scramble=True, seed=seed).random_base2(max(CONTRACT_STARTS_LOG2, k + 2)) * (hi - lo)
+    ys = fitted.predict_coded(sample)
+    scale = float(np.max(np.abs(ys))) or 1.0
+
+    def value(X: np.ndarray) -> np.ndarray:
+        y = np.asarray(fitted.predict_coded(np.atleast_2d(X)), dtype=float)
+        if kind == "target":
+            return ((y - target) / scale) ** 2
+        return (1.0 if kind == "minimize" else -1.0) * y / scale
+
+    def obj(x: np.ndarray) -> float:
+        return float(value(np.asarray(x, dtype=float))[0])
+
+    v = value(sample)
+    starts = [np.clip(np.zeros(k), lo, hi), (lo + hi) / 2.0]
+    if k <= 6:
+        starts += [np.where(np.array(b) > 0, hi, lo) for b in itertools.product((0, 1), repeat=k)]
+    starts += list(sample[np.argsort(v)[:8]])
+    starts += region_starts(cons, lo, hi, seed)
+    candidates = feasible_only(local_minima(obj, starts, lo, hi, cons, jac=False), cons)
+    if not candidates:
+        raise ParameterError("constraints", "no feasible setting found inside the bounds and the constraints")
+    values = value(np.array(candidates))
+    best = np.asarray(candidates[int(np.argmin(values))], dtype=float)
+    span = hi - lo
+    best = np.where(np.abs(best - lo) <= 1e-9 * span, lo, best)
+    best = np.where(np.abs(best - hi) <= 1e-9 * span, hi, best) + 0.0
+    pr = fitted.predict(best[None, :], interval="both", alpha=1.0 - confidence, coded=True).iloc[0]
+    missed = kind == "target" and abs(float(fitted.predict_coded(best[None, :])[0]) - target) > 1e-3 * scale
+    notes += optimum_notes(fitted, goal_target, float(pr["predicted"]), missed)
+    coded = {L: float(x) for L, x in zip(space.letters, best)}
+    actual = {f.name: float(f.decode(x)) for f, x in zip(space.factors, best)}
+    bnds = {f.name: (float(f.decode(a)), float(f.decode(b))) for f, a, b in zip(space.factors, lo, hi)}
+    return OptimumResult(
+        response=fitted.response, goal=goal_kind, target=goal_target, coded=coded, actual=actual,
+        predicted=float(pr["predicted"]), confidence=float(confidence),
+        ci=(float(pr["ci_low"]), float(pr["ci_high"])), pi=(float(pr["pi_low"]), float(pr["pi_high"])),
+        se_fit=float(pr["se_fit"]), bounds=bnds, warnings=tuple(notes), n_starts=len(starts), method="multistart",
+    )
 
 
 def _constraint_texts(constraints) -> list[str]:

@@ -89,6 +89,8 @@ def _equation_terms(result, units: str, labels: list[str], sep: str = "") -> lis
 
 
 def run_numbers(result) -> tuple[np.ndarray, str]:
+    if getattr(result, "data", None) is None:  # a fit that keeps no data frame (a Gaussian process)
+        return np.arange(1, result.n + 1, dtype=float), "row order of the data"
     cols = {str(c).lower(): c for c in result.data.columns}
     for name in _RUN_COLUMNS:
         if name in cols:

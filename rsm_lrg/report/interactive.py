@@ -102,6 +102,8 @@ def model_data(result, confidence: float = 0.95) -> dict:
     fit = result
     tr = None if result.transform.identity else result.transform
     space = fit.space
+    if not hasattr(fit, "interval_form") and hasattr(fit, "kriging_form"):
+        return _kriging_data(fit, confidence)
     factors = []
     for f in space.factors:
         if getattr(f, "kind", "numeric") == "categoric":
@@ -135,6 +137,29 @@ def model_data(result, confidence: float = 0.95) -> dict:
         "transform": None if tr is None else {"name": tr.name, "lam": tr.lam, "constant": float(tr.constant)},
         "coded_decimals": int(CODED_DECIMALS),
         "model": str(fit.model),
+    }
+
+
+def _factors_data(space) -> list[dict]:
+    return [{"name": str(f.name), "letter": f.letter, "kind": "numeric", "low": float(f.low), "high": float(f.high)}
+            for f in space.factors]
+
+
+def _kriging_data(fit, confidence: float) -> dict:
+    """:func:`model_data` of a Gaussian process: the trend as ``terms`` with ``b`` its GLS
+    coefficients, and ``kriging`` (``GPResult.kriging_form``: kernel, length-scales, the runs,
+    the weights and the factors the variance needs); ``t`` is the normal quantile, the codes
+    are not rounded (``coded_decimals`` None), as ``GPResult.predict`` codes."""
+    from scipy import special
+
+    form = fit.kriging_form()
+    terms = [{"name": t["name"], "p": t["p"], "cat": [], "diff": [], "combos": []} for t in form["trend"]]
+    return {
+        "response": str(fit.response), "factors": _factors_data(fit.space), "terms": terms,
+        "b": form["beta"], "interval": None, "kriging": form,
+        "df_text": "normal quantiles (kriging)",
+        "t": float(special.ndtri(1 - (1 - confidence) / 2)), "confidence": float(confidence),
+        "transform": None, "coded_decimals": None, "model": str(fit.label),
     }
 
 
@@ -443,6 +468,10 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
     specs = _as_specs(results, goals, limits, labels)
     optima = _optima(specs, optima)  # found once for the page and the response sections
     data, notes = page_data(specs, confidence=confidence, optima=optima)
+    if tables and not all(hasattr(s.result, "anova") for s in specs):
+        tables = False  # ANOVA, coefficients, equations and residual diagnostics are a polynomial's
+        notes.append("No ANOVA, coefficient or diagnostic tables: a Gaussian process has none (its "
+                      "hyper-parameters and leave-one-out check: rsm-lrg fit --model gp)")
     if region:
         data["region"] = region
     _start(data, start)

@@ -1,6 +1,7 @@
 """The profiler page computes what ``FitResult.predict`` computes, for every kind of model
 (issue 31): OLS, transformed, blocked, categoric, mixture, mixture–process, REML whole plot,
-REML random block (positive and zero variance component).
+REML random block (positive and zero variance component), and Gaussian processes (issue 33:
+the page computes the kriging mean and variance from ``GPResult.kriging_form``).
 
 The page reads the fit's interval form (:class:`rsm_lrg.model.contract.prediction.IntervalForm`) and
 nothing else about its kind: for a REML fit it computes the Kenward–Roger df of each point and
@@ -63,6 +64,13 @@ def _kinds() -> dict:
         "reml_zero_component": rsm_lrg.fit(pd.read_csv(R / "mixed_sp_small.csv"), "wear_um",
                                            factors=["temp_c", "preload_kn", "speed_m_s", "lube_ml"],
                                            whole_plot="whole_plot"),
+        # Gaussian processes (issue 33): the page computes the kriging mean and variance itself
+        "gp": rsm_lrg.fit(pd.read_csv(R / "gp_branin.csv"), "y", factors=["x1=-5:10", "x2=0:15"], model="gp"),
+        "gp_noisy_quadratic_trend": rsm_lrg.fit(pd.read_csv(R / "gp_hartmann3.csv"), "y",
+                                                factors=["x1=0:1", "x2=0:1", "x3=0:1"], model="gp", kernel="gauss",
+                                                trend="quadratic", nugget="estimate"),
+        "gp_matern32_linear": rsm_lrg.fit(pd.read_csv(R / "gp_branin.csv"), "y", factors=["x1=-5:10", "x2=0:15"],
+                                          model="gp", kernel="matern32", trend="linear"),
     }
 
 
@@ -92,7 +100,7 @@ def _random_settings(fit, n: int, rng) -> pd.DataFrame:
 
 
 KINDS = ["ols", "transformed", "blocked", "categoric", "mixture", "mixture_process", "reml_whole_plot",
-         "reml_random_block", "reml_zero_component"]
+         "reml_random_block", "reml_zero_component", "gp", "gp_noisy_quadratic_trend", "gp_matern32_linear"]
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -126,7 +134,7 @@ def test_page_predictions_equal_predict_at_50_random_settings(chromium, kinds, k
         ctx.close()
 
 
-@pytest.mark.parametrize("kind", ["reml_whole_plot", "reml_random_block", "transformed"])
+@pytest.mark.parametrize("kind", ["reml_whole_plot", "reml_random_block", "transformed", "gp"])
 def test_page_static_section_and_optimize_agree_at_the_optimum(chromium, kinds, kind, tmp_path):
     """At the optimum: rsm_lrg.optimize's CI/PI, predict's (the static section's numbers) and
     the page's agree (the split-plot profiler once showed OLS-width intervals there)."""

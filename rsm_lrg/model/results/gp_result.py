@@ -200,6 +200,53 @@ class GPResult:
         """The response transform: none (a GP is fitted to the response as measured)."""
         return Transform()
 
+    @property
+    def label(self) -> str:
+        """The model in words: ``"Gaussian process (matern52 kernel, constant trend)"``."""
+        return f"Gaussian process ({self.kernel} kernel, {self.trend} trend)"
+
+    def kriging_form(self) -> dict:
+        """The predictor as plain data, for a page's script to compute what :meth:`predict`
+        does: at a coded setting ``x``, with ``f`` the trend row and ``r = variance *
+        R(x, X)`` (``kernel``, ``length_scales`` [coded units], the coded runs ``x``),
+        ``mean = f . beta + r . alpha``; ``v = L^-1 r``, ``w = r_f^-T (f - ft' v)``,
+        ``var = variance - v . v + w . w`` (the kriging variance of the mean), and a new run
+        adds ``nugget``. ``trend`` names the trend's columns (``p``: exponents per factor)."""
+        from ..engines.gp_trend import trend_matrix
+
+        k = len(self.space)
+        eye = np.eye(k)
+        _, names = trend_matrix(np.zeros((1, k)), self.trend, self.space.letters)
+        powers = [[0] * k]
+        if self.trend in ("linear", "quadratic"):
+            powers += [list(map(int, eye[j])) for j in range(k)]
+        if self.trend == "quadratic":
+            powers += [list(map(int, eye[j] + eye[m])) for j in range(k) for m in range(j + 1, k)]
+            powers += [list(map(int, 2 * eye[j])) for j in range(k)]
+        c = self.core
+
+        def mat(a: np.ndarray) -> list:
+            return [[float(v) for v in row] for row in np.atleast_2d(a)]
+
+        return {"kernel": self.kernel, "length_scales": [float(v) for v in self.length_scales],
+                "variance": float(self.variance), "nugget": float(self.nugget), "x": mat(self.x),
+                "trend": [{"name": n, "p": p} for n, p in zip(names, powers)],
+                "beta": [float(v) for v in c.beta], "alpha": [float(v) for v in c.alpha],
+                "L": mat(c.chol), "ft": mat(c.ft), "r_f": mat(c.r_f)}
+
+    def predict_coded(self, coded: np.ndarray) -> np.ndarray:
+        """The prediction contract's mean at coded settings (m x k): the kriging mean
+        [response units]."""
+        return self._mean_var(np.atleast_2d(np.asarray(coded, dtype=float)))[0]
+
+    def goal_on_model_scale(self, goal: Any) -> tuple[str, float | None, str, float | None]:
+        """``(kind, target, kind, target)``: a GP models the response as measured (no
+        transform), so the goal is the same on both scales."""
+        from ..build.goals import parse_goal
+
+        kind, target = parse_goal(goal)
+        return kind, target, kind, target
+
     def predictive(self, coded: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The prediction contract's predictive distribution of a new run at coded settings
         (m x k): ``(mean, variance, df)`` — the kriging mean, its variance plus the nugget, and

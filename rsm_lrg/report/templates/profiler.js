@@ -112,6 +112,7 @@
       return i;
     }
     var c = ((x - f.low) - (f.high - x)) / (f.high - f.low);
+    if (decimals === null) return c;  /* a Gaussian process codes without rounding */
     var s = Math.pow(10, decimals);
     var r = Math.round(c * s);
     if (Math.abs(c * s - Math.trunc(c * s)) === 0.5) r = 2 * Math.round(c * s / 2);  /* numpy: half to even */
@@ -157,8 +158,54 @@
     return modelRow(m, m.factors.map(function (f) { return encode(f, setting[f.name], m.coded_decimals); }));
   }
   function fitted(m, x) { var y = 0.0; for (var i = 0; i < x.length; i++) y += x[i] * m.b[i]; return y; }
+  /* a Gaussian process (GPResult.kriging_form): r = variance R(x, X), one entry per run */
+  var SQRT5 = Math.sqrt(5.0), SQRT3 = Math.sqrt(3.0);
+  function krigingCross(m, setting) {
+    var g = m.kriging, xc = m.factors.map(function (f) { return encode(f, setting[f.name], null); });
+    var n = g.x.length, k = xc.length, r = new Array(n);
+    for (var i = 0; i < n; i++) {
+      var xi = g.x[i], tot = 0.0, poly = 1.0;
+      for (var j = 0; j < k; j++) {
+        var h = xc[j] - xi[j];
+        if (g.kernel === "gauss") { h = h / g.length_scales[j]; tot += h * h; continue; }
+        var a = Math.abs(h) * (g.kernel === "matern52" ? SQRT5 : SQRT3) / g.length_scales[j];
+        tot += a;
+        poly *= g.kernel === "matern52" ? 1.0 + a * (1.0 + a / 3.0) : 1.0 + a;
+      }
+      r[i] = g.variance * (g.kernel === "gauss" ? Math.exp(-0.5 * tot) : Math.exp(-tot) * poly);
+    }
+    return r;
+  }
+  function dot(a, b) { var s = 0.0; for (var i = 0; i < a.length; i++) s += a[i] * b[i]; return s; }
+  function krigingMean(m, setting) {
+    return fitted(m, rowAt(m, setting)) + dot(krigingCross(m, setting), m.kriging.alpha);
+  }
+  /* mean and variance of the mean, as GPResult.predict: v = L^-1 r, w = r_f^-T (f - ft' v),
+   * var = variance - v.v + w.w */
+  function krigingPredict(m, setting) {
+    var g = m.kriging, f = rowAt(m, setting), r = krigingCross(m, setting), n = r.length, p = f.length;
+    var v = new Array(n);
+    for (var i = 0; i < n; i++) {
+      var s = r[i], Li = g.L[i];
+      for (var j = 0; j < i; j++) s -= Li[j] * v[j];
+      v[i] = s / Li[i];
+    }
+    var u = new Array(p);
+    for (var a = 0; a < p; a++) { var t = f[a]; for (var q = 0; q < n; q++) t -= g.ft[q][a] * v[q]; u[a] = t; }
+    var w = new Array(p);
+    for (var b = 0; b < p; b++) {  /* r_f' w = u, r_f upper triangular */
+      var z = u[b];
+      for (var c = 0; c < b; c++) z -= g.r_f[c][b] * w[c];
+      w[b] = z / g.r_f[b][b];
+    }
+    var y = fitted(m, f) + dot(r, g.alpha);
+    var vm = Math.max(g.variance - dot(v, v) + dot(w, w), 0.0), se = Math.sqrt(vm);
+    var hm = m.t * se, hn = m.t * Math.sqrt(vm + g.nugget);
+    return {predicted: y, se: se, ci_low: y - hm, ci_high: y + hm, pi_low: y - hn, pi_high: y + hn};
+  }
   /* the prediction alone, on the response's own scale (no intervals: what a search needs) */
   function predictValue(m, setting) {
+    if (m.kriging) return krigingMean(m, setting);
     var y = fitted(m, rowAt(m, setting));
     return m.transform ? backTransform(m.transform, y) : y;
   }
@@ -238,6 +285,7 @@
    * se² = x'·cov_se·x, var_mean = x'·cov_mean·x, var_new = var_mean + s2_new, and the t
    * quantile at the fit's df (OLS: embedded) or at the Kenward-Roger df of x (REML) */
   function predict(m, setting) {
+    if (m.kriging) return krigingPredict(m, setting);
     var x = rowAt(m, setting), f = m.interval;
     var y = fitted(m, x);
     var se2 = quad(f.cov_se, x), vm = quad(f.cov_mean, x);
