@@ -16,6 +16,7 @@ from .options import (
     add_model_option,
     add_model_refinements,
     add_random_effect_options,
+    check_at_settings,
 )
 
 NAME = "confirm"
@@ -53,33 +54,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_force(parser)
 
 
-def _check_at(settings) -> None:
-    """Each --at value is NAME=VALUE with a VALUE that is a finite number or, for a
-    categoric factor, a level (checked against the factor once the data are read)."""
-    import math
-
-    from ..io import InputError, quote_user_value
-
-    for s in settings:
-        name, sep, value = str(s).partition("=")
-        ok = bool(sep and name.strip() and value.strip())
-        if ok:
-            try:
-                ok = math.isfinite(float(value))
-            except ValueError:
-                ok = True  # a categoric level
-        if not ok:
-            raise InputError(f"--at {quote_user_value(s)}: expected NAME=VALUE with a finite number VALUE "
-                             "(or a level of a categoric factor)")
-
-
 def run(args: argparse.Namespace) -> int:
     from ..model import fit
     from ..optimize.confirm import confirm
     from .paths import print_notes, print_summary_or_json, read_input
     from .specs import model_spec, random_effect
 
-    _check_at(args.at)
+    check_at_settings(args.at)
     spec = model_spec(args)
     data = read_input(args)
     with about_file(args.data):

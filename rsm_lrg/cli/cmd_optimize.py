@@ -8,16 +8,15 @@ import contextlib
 from .cmd_fit import add_dispersion_options
 from .errors import about_file
 from .options import (
-    ResponseGroup,
     add_block_option,
     add_component_option,
+    add_data_response,
     add_factor_options,
     add_force,
     add_goal_options,
     add_json,
     add_model_refinements,
     add_random_effect_options,
-    add_reader_options,
 )
 from .robust_optimize import add_robust_options, robust_requested, run_robust
 from .specs import random_effect
@@ -40,10 +39,7 @@ DESCRIPTION = (
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    add_reader_options(parser)
-    parser.add_argument("--response", required=True, action=ResponseGroup, metavar="COL",
-                        help="the response column; repeat (each followed by its --goal and its own model "
+    add_data_response(parser, several="the response column; repeat (each followed by its --goal and its own model "
                              "options) for a multi-response desirability optimisation")
     add_goal_options(parser, goal_metavar="minimize|maximize|target=V|range", desirability=True,
                      goal_help="what to do with the response before it (default minimize; several listed together after the "

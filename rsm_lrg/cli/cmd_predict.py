@@ -7,15 +7,15 @@ import argparse
 
 from .errors import about_file
 from .options import (
-    ResponseGroup,
     add_block_option,
     add_component_option,
+    add_data_response,
     add_factor_options,
     add_force,
     add_json,
     add_model_refinements,
     add_random_effect_options,
-    add_reader_options,
+    check_at_settings,
     probability,
     whole_number,
 )
@@ -38,10 +38,7 @@ DESCRIPTION = (
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    add_reader_options(parser)
-    parser.add_argument("--response", required=True, action=ResponseGroup, metavar="COL",
-                        help="a response column (repeatable; model options after it apply to it only)")
+    add_data_response(parser, several="a response column (repeatable; model options after it apply to it only)")
     where = parser.add_mutually_exclusive_group(required=True)
     where.add_argument("--at", action="extend", nargs="+", metavar="NAME=VALUE",
                        help="the setting in actual units, one NAME=VALUE for every factor (a categoric factor at a "
@@ -95,26 +92,6 @@ def _draws(text: str) -> int:
     return int(v)
 
 
-def _check_at(settings) -> None:
-    """Each --at value is NAME=VALUE with a VALUE that is a finite number or, for a categoric
-    factor, a level (checked against the factor once the data are read)."""
-    import math
-
-    from ..io import InputError, quote_user_value
-
-    for s in settings:
-        name, sep, value = str(s).partition("=")
-        ok = bool(sep and name.strip() and value.strip())
-        if ok:
-            try:
-                ok = math.isfinite(float(value))
-            except ValueError:
-                ok = True  # a categoric level
-        if not ok:
-            raise InputError(f"--at {quote_user_value(s)}: expected NAME=VALUE with a finite number VALUE "
-                             "(or a level of a categoric factor)")
-
-
 def _points(args, space, fit):
     """The settings as a frame of the factor columns: from --at (an error names --at) or from
     --points (an error names the file)."""
@@ -158,7 +135,7 @@ def run(args: argparse.Namespace) -> int:
     check_distinct_responses(responses)
     specs = [model_spec(response_options(args, i)) for i in range(len(responses))]  # bad options named first
     if args.at:
-        _check_at(args.at)
+        check_at_settings(args.at)
     if args.draws is None and (args.seed is not None or args.no_model_uncertainty or args.workers):
         from ..io import InputError
 

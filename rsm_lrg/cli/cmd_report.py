@@ -6,15 +6,14 @@ import argparse
 
 from .errors import about_file
 from .options import (
-    ResponseGroup,
     add_block_option,
     add_component_option,
+    add_data_response,
     add_factor_options,
     add_force,
     add_goal_options,
     add_model_refinements,
     add_random_effect_options,
-    add_reader_options,
 )
 from .paths import print_notes
 
@@ -36,10 +35,7 @@ DESCRIPTION = (
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each")
-    add_reader_options(parser)
-    parser.add_argument("--response", required=True, action=ResponseGroup, metavar="COL",
-                        help="a response column; repeat for several responses in one page, each followed "
+    add_data_response(parser, several="a response column; repeat for several responses in one page, each followed "
                              "by its own model options")
     add_factor_options(parser)
     add_component_option(parser)

@@ -184,11 +184,34 @@ def add_random_effect_options(p: argparse.ArgumentParser) -> None:
                         "that varies inside a whole plot is an error naming the whole plot")
 
 
-def add_data_response(parser: argparse.ArgumentParser) -> None:
-    """DATA.csv (the runs) and ``--response COL``: what every analysis command reads."""
+def add_data_response(parser: argparse.ArgumentParser, several: str | None = None) -> None:
+    """DATA.csv (the runs), the reader options and ``--response COL``: what every analysis
+    command reads. With ``several`` (its help), ``--response`` is repeatable and each one groups
+    the model options that follow it (:class:`ResponseGroup`)."""
     parser.add_argument("data", metavar="DATA.csv", help="the runs, one row each (CSV, .xlsx, .parquet or - for stdin)")
-    parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    if several is None:
+        parser.add_argument("--response", required=True, metavar="COL", help="the response column")
+    else:
+        parser.add_argument("--response", required=True, action=ResponseGroup, metavar="COL", help=several)
     add_reader_options(parser)
+
+
+def check_at_settings(settings) -> None:
+    """Each --at value is NAME=VALUE with a VALUE that is a finite number or, for a
+    categoric factor, a level (checked against the factor once the data are read)."""
+    from ..io import InputError
+
+    for s in settings:
+        name, sep, value = str(s).partition("=")
+        ok = bool(sep and name.strip() and value.strip())
+        if ok:
+            try:
+                ok = math.isfinite(float(value))
+            except ValueError:
+                ok = True  # a categoric level
+        if not ok:
+            raise InputError(f"--at {quote_user_value(s)}: expected NAME=VALUE with a finite number VALUE "
+                             "(or a level of a categoric factor)")
 
 
 #: ``--sep`` words for separators awkward to type.
