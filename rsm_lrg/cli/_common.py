@@ -349,6 +349,12 @@ def add_random_effect_options(p: argparse.ArgumentParser) -> None:
                         "REML with Kenward-Roger F tests")
     g.add_argument("--random-block", metavar="COL", default=None,
                    help="block column whose blocks are a random intercept (REML, Kenward-Roger), not fixed effects")
+    p.add_argument("--random-effect", action="append", default=None, metavar="COL",
+                   help="a grouping column with a random intercept (repeatable: several variance components, nested "
+                        "or crossed as the data say, e.g. a split-split-plot's whole plots and subplots, a "
+                        "strip-plot's rows and columns); fitted by REML with Kenward-Roger F tests; each value of "
+                        "the column is one level, so a nested column needs unique labels; A:B is the interaction "
+                        "of two columns. With --whole-plot or --random-block that column comes first")
     p.add_argument("--hard-to-change", action="append", default=None, metavar="NAME",
                    help="with --whole-plot: a factor that must be constant within every whole plot (repeatable); one "
                         "that varies inside a whole plot is an error naming the whole plot")
@@ -362,6 +368,8 @@ def random_effect(args: argparse.Namespace) -> dict:
         out["whole_plot"] = args.whole_plot
     if getattr(args, "random_block", None) is not None:
         out["random_block"] = args.random_block
+    if getattr(args, "random_effect", None):
+        out["random_effects"] = list(args.random_effect)
     if getattr(args, "hard_to_change", None) is not None:
         if out.get("whole_plot") is None:
             raise InputError("--hard-to-change: give --whole-plot COL too (the factors are checked against the whole "
@@ -371,8 +379,12 @@ def random_effect(args: argparse.Namespace) -> dict:
 
 
 def random_effect_columns(args: argparse.Namespace) -> list[str]:
-    """The whole-plot or random-block column named on the command line (none, or one)."""
-    return [c for c in (getattr(args, "whole_plot", None), getattr(args, "random_block", None)) if c is not None]
+    """The whole-plot, random-block and random-effect columns named on the command line (the
+    columns of an ``A:B`` interaction too)."""
+    cols = [c for c in (getattr(args, "whole_plot", None), getattr(args, "random_block", None)) if c is not None]
+    for c in getattr(args, "random_effect", None) or []:
+        cols += [c] + (c.split(":") if ":" in c else [])
+    return cols
 
 
 def add_data_response(parser: argparse.ArgumentParser) -> None:
@@ -678,7 +690,7 @@ PARAMETER_OPTIONS = {
     "goal": "--goal", "radius": "--radius", "step": "--step", "setting": "--at", "weight": "--weight",
     "importance": "--importance", "limits": "--limits", "criterion": "--criterion", "effect_sd": "--effect",
     "region": "--region", "observed": "--observed", "held": "--bound", "parameters": "--parameter",
-    "constraints": "--constraint",
+    "constraints": "--constraint", "random_effects": "--random-effect",
 }
 
 

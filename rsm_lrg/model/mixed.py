@@ -52,6 +52,9 @@ __all__ = ["MixedModel", "KRTest", "VarianceComponent", "RandomEffect", "fit_rem
            "kr_test", "reml_etas", "whiten",
            "ETA_LOG_RANGE", "CI_METHOD"]
 
+#: A variance ratio (one random effect) or the ratios of several.
+Eta = float | np.ndarray
+
 #: The grid of ``log eta`` that brackets the REML optimum: ``eta`` from e^-18 to e^18.
 ETA_LOG_RANGE = (-18.0, 18.0)
 #: How the variance components' confidence intervals are made (stated in notes and JSON).
@@ -118,19 +121,19 @@ class _Groups:
         """The group values ``S`` ((G,) or (G, k)) on each run (``Z S``)."""
         return np.asarray(S)[self.codes]
 
-    def vinv(self, M: np.ndarray, eta: float) -> np.ndarray:
+    def vinv(self, M: np.ndarray, eta: Eta) -> np.ndarray:
         """``V^-1 M`` with ``V = I + eta ZZ'``: ``V_i^-1 = I - eta/(1 + eta m_i) J``."""
         d = eta / (1.0 + eta * self.m)
         S = self.sums(M)
         return np.asarray(M, dtype=float) - self.spread((d * S.T).T if S.ndim > 1 else d * S)
 
-    def whiten(self, M: np.ndarray, eta: float) -> np.ndarray:
+    def whiten(self, M: np.ndarray, eta: Eta) -> np.ndarray:
         """``V^-1/2 M``: each group less ``(1 - 1/sqrt(1 + eta m_i))`` times its mean."""
         c = (1.0 - 1.0 / np.sqrt(1.0 + eta * self.m)) / self.m
         S = self.sums(M)
         return np.asarray(M, dtype=float) - self.spread((c * S.T).T if S.ndim > 1 else c * S)
 
-    def logdet(self, eta: float) -> float:
+    def logdet(self, eta: Eta) -> float:
         """``log|V| = sum_i log(1 + eta m_i)``."""
         return float(np.sum(np.log1p(eta * self.m)))
 
@@ -142,7 +145,7 @@ class _Groups:
         """The ``G_r`` of the variance parameters ``(s2_group, s2)``: ``ZZ'`` and ``I``."""
         return [self.zzt, lambda M: M]
 
-    def ktrace(self, eta: float, s2: float) -> np.ndarray:
+    def ktrace(self, eta: Eta, s2: float) -> np.ndarray:
         """``tr(Sigma^-1 G_r Sigma^-1 G_s)`` in closed form: the eigenvalues of ``V_i^-1`` are 1
         (``m_i - 1`` times) and ``1/(1 + eta m_i)``."""
         f = 1.0 / (1.0 + eta * self.m)
@@ -189,7 +192,7 @@ class _Blocks:
         self._key: tuple | None = None
         self._fac: list[tuple[np.ndarray, np.ndarray, float]] = []
 
-    def _factor(self, eta: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, float]]:
+    def _factor(self, eta: Eta) -> list[tuple[np.ndarray, np.ndarray, float]]:
         """Per stack ``(L^-1, V^-1, log|V|)`` at ``eta``."""
         e = np.asarray(eta, dtype=float)
         key = tuple(float(v) for v in e)
@@ -206,7 +209,7 @@ class _Blocks:
             self._key = key
         return self._fac
 
-    def _apply(self, M: np.ndarray, eta: np.ndarray, which: int) -> np.ndarray:
+    def _apply(self, M: np.ndarray, eta: Eta, which: int) -> np.ndarray:
         M = np.asarray(M, dtype=float)
         vec = M.ndim == 1
         M2 = M[:, None] if vec else M
@@ -215,18 +218,18 @@ class _Blocks:
             out[R] = f[which] @ M2[R]
         return out[:, 0] if vec else out
 
-    def whiten(self, M: np.ndarray, eta: np.ndarray) -> np.ndarray:
+    def whiten(self, M: np.ndarray, eta: Eta) -> np.ndarray:
         """``L^-1 M`` with ``V = L L'`` (``(L^-1 X)'(L^-1 X) = X' V^-1 X``)."""
         return self._apply(M, eta, 0)
 
-    def vinv(self, M: np.ndarray, eta: np.ndarray) -> np.ndarray:
+    def vinv(self, M: np.ndarray, eta: Eta) -> np.ndarray:
         """``V^-1 M``."""
         return self._apply(M, eta, 1)
 
-    def logdet(self, eta: np.ndarray) -> float:
+    def logdet(self, eta: Eta) -> float:
         return float(sum(f[2] for f in self._factor(eta)))
 
-    def tr_vinv_zz(self, eta: np.ndarray) -> np.ndarray:
+    def tr_vinv_zz(self, eta: Eta) -> np.ndarray:
         """``tr(V^-1 Z_k Z_k')`` for every effect."""
         return np.array([sum(float(np.sum(f[1] * zz[k])) for (_, zz), f in zip(self.stacks, self._factor(eta)))
                          for k in range(self.K)])
@@ -235,7 +238,7 @@ class _Blocks:
         """The ``G_r`` of the variance parameters ``(s2_1, ..., s2_K, s2)``: ``Z_k Z_k'`` and ``I``."""
         return [g.zzt for g in self.groups] + [lambda M: M]
 
-    def ktrace(self, eta: np.ndarray, s2: float) -> np.ndarray:
+    def ktrace(self, eta: Eta, s2: float) -> np.ndarray:
         """``tr(Sigma^-1 G_r Sigma^-1 G_s)`` summed over the connected sets (``tr(H_r H_s)``,
         ``H_r = G_r Sigma^-1``, as pbkrtest's ``Ktrace``)."""
         k = self.K + 1
@@ -260,12 +263,12 @@ def whiten(X: np.ndarray, y: np.ndarray, codes: np.ndarray, eta: float) -> tuple
 class _Profile:
     """The regression core at one ``eta`` and the profiled ``-2 l_R``."""
 
-    eta: float
+    eta: Eta
     m2l: float
     reg: Regression
 
 
-def _profile_at(eta: float | np.ndarray, X: np.ndarray, y: np.ndarray, groups: _Groups | _Blocks,
+def _profile_at(eta: Eta, X: np.ndarray, y: np.ndarray, groups: _Groups | _Blocks,
                 names: Sequence[str]) -> _Profile:
     from .least_squares import CHUNK_ROWS, factorise
 
