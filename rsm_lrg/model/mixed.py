@@ -1,5 +1,6 @@
 """Linear mixed model with one random intercept (whole plots of a split-plot design, or
-random blocks), fitted by REML, with Kenward–Roger tests of the fixed effects.
+random blocks), or several (variance components, nested or crossed), fitted by REML, with
+Kenward–Roger tests of the fixed effects.
 
 The model is ``y = X b + Z u + e`` with ``u ~ N(0, s2_g I)`` one effect per group (whole
 plot or block) and ``e ~ N(0, s2 I)``, so ``Var(y) = s2 V``, ``V = I + eta Z Z'`` with the
@@ -31,6 +32,15 @@ parameters ``I_rs = tr(Sigma^-1 G_r Sigma^-1 G_s) - 2 tr(Phi Q_rs) + tr(Phi P_r 
 ``lambda`` and ``m`` from ``A1``, ``A2`` (Kenward & Roger's Eqs. 5–6 as pbkrtest codes them).
 Every product uses the group structure (``Sigma^-1`` acts through group sums), so the cost
 is O(n p^2), never an n x n matrix. The den df is never clamped.
+
+**Several random intercepts** (:func:`fit_reml_several`): ``V = I + sum_k eta_k Z_k Z_k'``
+is block diagonal over the connected sets of runs and factorised per set (Cholesky,
+:class:`_Blocks`); ``-2 l_R`` is the same profile with ``log|V|`` from the factors and is
+minimised over ``eta >= 0`` by L-BFGS-B with its analytic gradient
+(``d/d eta_k = -(n-p) r'V^-1 Z_kZ_k' V^-1 r / r'V^-1 r + tr(V^-1 Z_kZ_k') - tr(C X'V^-1 Z_kZ_k' V^-1 X)``)
+from three starts, then polished by Newton steps; Kenward–Roger is the same computation with
+``G_k = Z_k Z_k'`` per effect and ``I`` (pbkrtest's ``vcovAdj`` for an ``lmer`` fit with
+``(1|A) + (1|B)``), a component at zero kept.
 """
 
 from __future__ import annotations

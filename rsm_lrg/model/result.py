@@ -300,7 +300,8 @@ class FitResult:
                  "t and p of the coefficients are the one-df Kenward–Roger tests.",
                  "No sums of squares, PRESS, R², adequate precision or lack-of-fit test: they are ordinary "
                  "least-squares quantities with no counterpart in a REML fit.",
-                 f"Variance component intervals: {CI_METHOD}.",
+                 "Variance component intervals: Wald on the log scale: log(s2_k) ± z·se(log s2_k), se from the "
+                 "inverse expected (REML) information of the variance components, the W of Kenward–Roger.",
                  "Residuals are conditional (y - Xb - Σ Z_k u_k, BLUPs u_k); studentized residuals and leverages are "
                  "those of the whitened model; prediction intervals are for a new run in new levels of every random "
                  "effect (variance x'Φ_A x + the sum of the random-effect variances + s2)."]
