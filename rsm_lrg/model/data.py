@@ -23,7 +23,6 @@ fits: ``fit``, ``optimize``, ``report``, ``fit-summary``, ``ridge``, ``confirm``
 from __future__ import annotations
 
 from collections.abc import Sequence
-
 from dataclasses import dataclass
 from typing import Any
 

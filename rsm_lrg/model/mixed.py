@@ -195,7 +195,7 @@ class _Blocks:
             by_size.setdefault(ix.size, []).append(ix)
         #: (rows (b, m), Z_kZ_k' (K, b, m, m)) per size m of the connected sets
         self.stacks = []
-        for m, ixs in sorted(by_size.items()):
+        for _size, ixs in sorted(by_size.items()):
             R = np.stack(ixs)
             zz = np.stack([(g.codes[R][:, :, None] == g.codes[R][:, None, :]).astype(float) for g in self.groups])
             self.stacks.append((R, zz))

@@ -292,8 +292,6 @@ class FitResult:
         return tuple(notes)
 
     def _several_notes(self, mm: MixedModel) -> tuple:
-        from .mixed import CI_METHOD
-
         notes = [f"REML fit with {mm.describe()}: coefficients and standard errors are generalised least squares at "
                  "the REML variance ratios; F tests use the Kenward–Roger adjusted covariance and den df (pbkrtest's "
                  "computation with one variance parameter per random effect and the residual, den df not clamped); "
