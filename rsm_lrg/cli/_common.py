@@ -379,11 +379,12 @@ def random_effect(args: argparse.Namespace) -> dict:
 
 
 def random_effect_columns(args: argparse.Namespace) -> list[str]:
-    """The whole-plot, random-block and random-effect columns named on the command line (the
-    columns of an ``A:B`` interaction too)."""
+    """The whole-plot, random-block and random-effect columns named on the command line, kept out
+    of the inferred factors (the columns of an ``A:B`` interaction too when no ``--factor`` is
+    given, as :func:`rsm_lrg.fit` keeps them out)."""
     cols = [c for c in (getattr(args, "whole_plot", None), getattr(args, "random_block", None)) if c is not None]
     for c in getattr(args, "random_effect", None) or []:
-        cols += [c] + (c.split(":") if ":" in c else [])
+        cols += [c] + (c.split(":") if ":" in c and not getattr(args, "factor", None) else [])
     return cols
 
 

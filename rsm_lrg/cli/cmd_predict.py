@@ -156,6 +156,7 @@ def run(args: argparse.Namespace) -> int:
         print_notes,
         print_summary_or_json,
         random_effect,
+        random_effect_columns,
         read_input,
         response_options,
     )
@@ -181,7 +182,7 @@ def run(args: argparse.Namespace) -> int:
 
         choice = None if args.component else choose_factors(
             data, args.factor, exclude=responses + ([args.block] if args.block else [])
-            + [c for c in (args.whole_plot, args.random_block) if c])
+            + random_effect_columns(args))
         for i, r in enumerate(responses):
             with about_response(r, len(responses) > 1):
                 fits[r] = fit(data, r, factors=args.factor if choice is None else choice.space, block=args.block,
