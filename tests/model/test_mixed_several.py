@@ -13,7 +13,8 @@ four data sets none of which was used to tune anything:
 * ``mixed_ssp`` — made by ``make_mixed_several.py``: an unbalanced split-split-plot (8 whole
   plots, 2 subplots each with unique labels, 4 runs per subplot less three), linear + 2FI;
 * ``mixed_strip`` — made by ``make_mixed_several.py``: a strip-plot, 8 rows crossed with 6
-  columns, quadratic in the row and column factors with an easy 2-level factor.
+  columns, quadratic in the row and column factors with an easy 2-level factor;
+* ``mixed_ssp3`` — the split-split-plot with its blocks of whole plots as a third effect.
 
 Tolerances (the issue's): fixed effects, standard errors and variance components 1e-6
 relative to lme4 (run with bobyqa's rhoend 1e-12; lme4 stops ~1e-7 short of the optimum
@@ -39,7 +40,11 @@ CASES = {
     "mixed_ssp": ("wear_um", ["temp_c", "preload_kn", "speed_m_s", "lube_ml"], ["whole_plot", "subplot"],
                   {"model": "2fi"}),
     "mixed_strip": ("gloss", ["wash_min", "dry_c", "rpm"], ["row", "col"], {"terms": "A B C AB AC BC A^2 B^2"}),
+    # three effects: blocks of whole plots, whole plots, subplots
+    "mixed_ssp3": ("wear_um", ["temp_c", "preload_kn", "speed_m_s", "lube_ml"], ["block", "whole_plot", "subplot"],
+                   {"model": "2fi"}),
 }
+DATA = {"mixed_ssp3": "mixed_ssp"}
 RTOL_EST = 1e-6
 RTOL_KR = 1e-5
 _FITS: dict = {}
@@ -48,7 +53,7 @@ _FITS: dict = {}
 def _fit(name):
     if name not in _FITS:
         response, factors, random, extra = CASES[name]
-        _FITS[name] = rsm_lrg.fit(pd.read_csv(R / f"{name}.csv"), response, factors=factors, random_effects=random,
+        _FITS[name] = rsm_lrg.fit(pd.read_csv(R / f"{DATA.get(name, name)}.csv"), response, factors=factors, random_effects=random,
                                   **extra)
     return _FITS[name]
 
@@ -97,7 +102,7 @@ def test_kenward_roger_tests_match_pbkrtest(name):
             np.testing.assert_allclose(t[key], alt, rtol=RTOL_KR, err_msg=f"{row.term} {key} (lmerTest)")
 
 
-@pytest.mark.parametrize("name", ["mixed_ssp", "mixed_strip"])
+@pytest.mark.parametrize("name", ["mixed_ssp", "mixed_strip", "mixed_ssp3"])
 def test_predicted_mean_se_and_df_match_lmertest(name):
     """The mean at five coded points: Kenward–Roger standard error sqrt(x'Φ_A x) and den df
     equal lmerTest's ``contest1D(ddf = "Kenward-Roger")``; the CI of ``predict`` uses them and

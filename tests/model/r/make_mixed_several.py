@@ -7,7 +7,8 @@
   ``preload_kn`` at its low and high setting), each of 4 runs (easy ``speed_m_s`` x
   ``lube_ml``, the 2^2 factorial); whole-plot sd 1.2, subplot sd 0.8, run sd 0.5; three runs
   removed (unbalanced). Subplot labels are unique (``wp3-s2``), so ``subplot`` is nested in
-  ``whole_plot`` as given.
+  ``whole_plot`` as given. A ``block`` column pairs the whole plots (b1 = wp1, wp2, ...; no block
+  effect was simulated) for a three-effect fit.
 * ``mixed_strip.csv``: a strip-plot: 8 rows (``wash_min``, 4 levels twice) crossed with 6
   columns (``dry_c``, 3 levels twice), one run per cell with an easy ``rpm`` at +-1
   (alternating); row sd 1.0, column sd 0.7, run sd 0.6.
@@ -34,7 +35,7 @@ def split_split_plot(seed: int = 351) -> pd.DataFrame:
                     a, b, c, d = (t - 180) / 30, (pre - 4) / 2, sp - 2, (lube - 10) / 5
                     y = 20 + 1.5 * a + 0.8 * b - 1.1 * c + 0.6 * d + 0.5 * a * c - 0.4 * b * d + uw + us \
                         + rng.normal(0.0, 0.5)
-                    rows.append({"whole_plot": f"wp{w}", "subplot": f"wp{w}-s{s}", "temp_c": t, "preload_kn": pre,
+                    rows.append({"block": f"b{(w + 1) // 2}", "whole_plot": f"wp{w}", "subplot": f"wp{w}-s{s}", "temp_c": t, "preload_kn": pre,
                                  "speed_m_s": sp, "lube_ml": lube, "wear_um": round(y, 4)})
     df = pd.DataFrame(rows)
     return df.drop(index=[5, 30, 47]).reset_index(drop=True)

@@ -17,7 +17,8 @@
 #                     nitrogen levels): yield ~ Variety * nitro (nitro numeric) + (1|Block) +
 #                     (1|Block:Variety).
 #   mixed_ssp.csv   - made by make_mixed_several.py: a split-split-plot, subplots nested in whole
-#                     plots (unique labels); linear + two-factor interactions in 4 factors.
+#                     plots (unique labels); linear + two-factor interactions in 4 factors; and
+#                     (dataset mixed_ssp3) with the blocks of whole plots as a third effect.
 #   mixed_strip.csv - made by make_mixed_several.py: a strip-plot, 8 rows crossed with 6 columns;
 #                     quadratic in wash_min and dry_c with rpm (2 levels, no square).
 suppressMessages({library(lme4); library(pbkrtest); library(lmerTest)})
@@ -31,6 +32,8 @@ cases <- list(
        re = c("Block", "Block:Variety")),
   list(name = "mixed_ssp", y = "wear_um", num = c("temp_c", "preload_kn", "speed_m_s", "lube_ml"), cat = character(0),
        order = 2, sq = FALSE, re = c("whole_plot", "subplot")),
+  list(name = "mixed_ssp", tag = "mixed_ssp3", y = "wear_um", num = c("temp_c", "preload_kn", "speed_m_s", "lube_ml"),
+       cat = character(0), order = 2, sq = FALSE, re = c("block", "whole_plot", "subplot")),
   list(name = "mixed_strip", y = "gloss", num = c("wash_min", "dry_c", "rpm"), cat = character(0), order = 2,
        sq = c(TRUE, TRUE, FALSE), re = c("row", "col"))
 )
@@ -42,6 +45,7 @@ pts <- data.frame(A = c(0, 1, -1, 0.5, -0.3), B = c(0, -1, 1, 0.25, 0.9), C = c(
                   D = c(0, 0, -1, 0.75, 0.1))
 ctl <- lmerControl(optimizer = "bobyqa", optCtrl = list(rhoend = 1e-12, maxfun = 1e5))
 for (cs in cases) {
+  if (is.null(cs$tag)) cs$tag <- cs$name
   d <- read.csv(file.path(here, paste0(cs$name, ".csv")), stringsAsFactors = FALSE)
   facs <- c(cs$num, cs$cat)  # numeric factors first, as rsm-lrg letters them
   L <- LETTERS[seq_along(facs)]
@@ -60,12 +64,12 @@ for (cs in cases) {
   fr <- update(f, as.formula(paste(". ~ . +", paste0("(1 | ", cs$re, ")", collapse = " + "))))
   l <- suppressMessages(lme4::lmer(fr, data = X, REML = TRUE, control = ctl))
   lt <- suppressMessages(lmerTest::lmer(fr, data = X, REML = TRUE, control = ctl))
-  cat(cs$name, "theta", getME(l, "theta"), "REMLcrit", REMLcrit(l), "\n")
+  cat(cs$tag, "theta", getME(l, "theta"), "REMLcrit", REMLcrit(l), "\n")
   b <- fixef(l); se <- sqrt(diag(as.matrix(vcov(l))))
-  for (t in names(b)) coef_out <- c(coef_out, paste(cs$name, paste0("\"", t, "\""), g(b[t]), g(se[t]), sep = ","))
+  for (t in names(b)) coef_out <- c(coef_out, paste(cs$tag, paste0("\"", t, "\""), g(b[t]), g(se[t]), sep = ","))
   vcd <- as.data.frame(VarCorr(l))
   for (i in seq_len(nrow(vcd)))
-    vc_out <- c(vc_out, paste(cs$name, if (vcd$grp[i] == "Residual") "residual" else vcd$grp[i], g(vcd$vcov[i]), sep = ","))
+    vc_out <- c(vc_out, paste(cs$tag, if (vcd$grp[i] == "Residual") "residual" else vcd$grp[i], g(vcd$vcov[i]), sep = ","))
   at <- anova(lt, ddf = "Kenward-Roger", type = 3)
   mm <- model.matrix(f, X)
   asg <- attr(mm, "assign")
@@ -75,7 +79,7 @@ for (cs in cases) {
     Lm <- matrix(0, length(cols), ncol(mm))
     Lm[cbind(seq_along(cols), cols)] <- 1
     kr <- KRmodcomp(l, Lm)$test
-    kr_out <- c(kr_out, paste(cs$name, paste0("\"", labs[k], "\""), kr["Ftest", "ndf"], g(kr["Ftest", "ddf"]),
+    kr_out <- c(kr_out, paste(cs$tag, paste0("\"", labs[k], "\""), kr["Ftest", "ndf"], g(kr["Ftest", "ddf"]),
                               g(kr["Ftest", "stat"]), g(kr["Ftest", "p.value"]),
                               g(at[labs[k], "DenDF"]), g(at[labs[k], "F value"]), g(at[labs[k], "Pr(>F)"]), sep = ","))
   }
@@ -84,7 +88,7 @@ for (cs in cases) {
     Lp <- model.matrix(delete.response(terms(f)), P)
     for (i in seq_len(nrow(P))) {
       ct <- contest1D(lt, Lp[i, ], ddf = "Kenward-Roger")
-      pred_out <- c(pred_out, paste(cs$name, g(pts$A[i]), g(pts$B[i]), g(pts$C[i]), g(pts$D[i]), g(ct$Estimate),
+      pred_out <- c(pred_out, paste(cs$tag, g(pts$A[i]), g(pts$B[i]), g(pts$C[i]), g(pts$D[i]), g(ct$Estimate),
                                     g(ct[["Std. Error"]]), g(ct$df), sep = ","))
     }
   }
