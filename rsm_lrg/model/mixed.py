@@ -406,7 +406,8 @@ def _dprofile_several(eta: np.ndarray, X: np.ndarray, y: np.ndarray, blocks: _Bl
 def reml_etas(X: np.ndarray, y: np.ndarray, codes: Sequence[np.ndarray], names: Sequence[str]) -> tuple[np.ndarray, float]:
     """``(eta, -2 l_R)`` at the REML optimum of the variance ratios ``eta_k = s2_k / s2`` of
     several random intercepts: L-BFGS-B on ``eta`` (bounds at 0, the analytic gradient) from
-    three starts (each effect's own one-effect REML ratio, all 1, all 0.1), the best polished
+    up to three starts (each effect's own one-effect REML ratio over K, all 1, all 0.1; the
+    third only when the first two disagree), the best polished
     by Newton steps on the components inside the bounds (Hessian by central differences of
     the analytic gradient); a component at its bound stays exactly 0."""
     from scipy.optimize import minimize
@@ -430,13 +431,17 @@ def reml_etas(X: np.ndarray, y: np.ndarray, codes: Sequence[np.ndarray], names: 
         single.append(min(max(e1, 1e-3), 1e6))
     starts = [np.array(single) / K, np.ones(K), np.full(K, 0.1)]
     best: tuple[np.ndarray, float] | None = None
+    found = []
     for x0 in starts:
         res = minimize(fg, x0, jac=True, method="L-BFGS-B", bounds=[(0.0, None)] * K,
                        options={"ftol": 1e-15, "gtol": 1e-11, "maxiter": 2000, "maxcor": 20})
         e = np.maximum(np.asarray(res.x, dtype=float), 0.0)
         v = m2l(e)
+        found.append(v)
         if best is None or v < best[1]:
             best = (e, v)
+        if len(found) == 2 and abs(found[0] - found[1]) <= 1e-9 * max(1.0, abs(found[0])):
+            break  # two starts reach one optimum: the third is not needed
     assert best is not None
     eta, val = best
     # Newton polish of the components inside the bounds

@@ -172,8 +172,10 @@ def test_several_effects_json_and_refit():
     assert set(d["random_effects"]) == {"whole_plot", "subplot"} and len(d["random_effects"]["subplot"]) == 16
     # conditional fitted values: X b + the BLUPs of every effect; y = fitted + residuals
     np.testing.assert_allclose(res.fitted + res.residuals, res.y, rtol=1e-12)
-    red = res.reduce(alpha_out=0.05)
-    assert red.mixed.columns == ("whole_plot", "subplot") and len(red.model_terms) < len(res.model_terms)
+    strip = _fit("mixed_strip")
+    red = strip.reduce(alpha_out=0.05)  # by the Kenward-Roger p-values, hierarchy kept
+    assert red.mixed.columns == ("row", "col") and 0 < len(red.model_terms) < len(strip.model_terms)
+    assert {t.term for t in red.tests} <= {t.term for t in strip.tests}
 
 
 def test_boundary_component_stays_in_kr():
