@@ -239,3 +239,18 @@ def test_balanced_cake_equals_the_anova_estimates():
     np.testing.assert_allclose(vc["residual"].variance, ms_e, rtol=1e-12)
     np.testing.assert_allclose(vc["replicate:recipe"].variance, (ms_wp - ms_e) / 6, rtol=1e-10)
     np.testing.assert_allclose(vc["replicate"].variance, (ms_rep - ms_wp) / 18, rtol=1e-10)
+
+
+def test_whole_plot_with_further_random_effects_checks_hard_to_change():
+    """``whole_plot=`` with ``random_effects=[...]``: the whole plot comes first, its
+    hard-to-change factors are checked as for the one-effect fit, the fit is the same."""
+    d = pd.read_csv(R / "mixed_ssp.csv")
+    f = CASES["mixed_ssp"][1]
+    res = rsm_lrg.fit(d, "wear_um", factors=f, whole_plot="whole_plot", random_effects=["subplot"], model="2fi",
+                      hard_to_change=["temp_c"])
+    assert res.mixed.columns == ("whole_plot", "subplot")
+    np.testing.assert_allclose(res.mixed.etas, _fit("mixed_ssp").mixed.etas, rtol=1e-12)
+    assert any("Hard-to-change factors (checked constant within every whole plot): temp_c" in n for n in res.notes)
+    with pytest.raises(ValueError, match="'preload_kn' varies inside whole plot"):
+        rsm_lrg.fit(d, "wear_um", factors=f, whole_plot="whole_plot", random_effects=["subplot"], model="2fi",
+                    hard_to_change=["preload_kn"])
