@@ -657,6 +657,11 @@ def _fit_several(data: pd.DataFrame | dd.DataFrame, response: str, factors: Fact
     for c in cols:
         codes, labels = group_codes(inp.prep.data[c].tolist())
         effects.append(RandomEffect(column=c, codes=codes, labels=labels))
+    for i, a in enumerate(effects):
+        for b in effects[i + 1:]:
+            if len(set(zip(a.codes.tolist(), b.codes.tolist()))) == a.n_levels == b.n_levels:
+                raise ValueError(f"random effects {a.column!r} and {b.column!r} group the runs the same way: their "
+                                 "variances cannot be told apart; give one of them")
     extra += _crossing_notes(effects)
     inp = replace(inp, prep=replace(inp.prep, notes=tuple(inp.prep.notes) + tuple(extra)))
     if len(effects) == 1:  # random_effects=[COL]: the one-effect engine, the component named as the column

@@ -216,6 +216,9 @@ def test_bad_random_effect_columns_are_errors():
     d2.loc[4, "subplot"] = None
     with pytest.raises(ValueError, match="'subplot', row 5: is empty"):
         rsm_lrg.fit(d2, "wear_um", factors=f, random_effects=["whole_plot", "subplot"])
+    d4 = d.assign(wp_copy="x" + d.whole_plot)
+    with pytest.raises(ValueError, match="group the runs the same way"):
+        rsm_lrg.fit(d4, "wear_um", factors=f, random_effects=["whole_plot", "wp_copy"])
     # one run per level of a crossed pair of effects that span the data: no residual df
     d3 = pd.DataFrame({"a": np.repeat([1, 2, 3], 2), "b": np.tile([1, 2], 3), "x": [0, 1, 0, 1, 0, 1],
                        "y": [1.0, 2.0, 1.5, 2.5, 0.7, 2.2], "u": [1, 2, 3, 4, 5, 6]})
