@@ -179,8 +179,7 @@ def run(args: argparse.Namespace) -> int:
     many = _many_files(str(args.data), args)  # a directory or glob: fitted partition by partition (Dask)
     if many is not None:
         unsupported = [o for o in ("reduce", "transform", "diagnostics", "report", "whole_plot", "random_block",
-                                   "dispersion")
-                       if getattr(args, o, None)]
+                                   "random_effect", "dispersion") if getattr(args, o, None)]
         if unsupported:
             raise ValueError(f"{args.data}: --{unsupported[0].replace('_', '-')} is not available when fitting several files")
     data = many[0] if many is not None else read_input(args)

@@ -129,7 +129,7 @@ def run(args: argparse.Namespace) -> int:
     from .errors import about_response
     from .options import check_distinct_responses, response_options
     from .paths import print_notes, print_summary_or_json, read_input
-    from .specs import model_spec, random_effect
+    from .specs import model_spec, random_effect, random_effect_columns
 
     responses = list(args.response)
     check_distinct_responses(responses)
@@ -152,7 +152,7 @@ def run(args: argparse.Namespace) -> int:
 
         choice = None if args.component else choose_factors(
             data, args.factor, exclude=responses + ([args.block] if args.block else [])
-            + [c for c in (args.whole_plot, args.random_block) if c])
+            + random_effect_columns(args))
         for i, r in enumerate(responses):
             with about_response(r, len(responses) > 1):
                 fits[r] = fit(data, r, factors=args.factor if choice is None else choice.space, block=args.block,

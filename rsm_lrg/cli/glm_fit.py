@@ -21,7 +21,7 @@ LINK_NAMES = ("logit", "probit", "cloglog", "log")
 
 #: fit's options that a GLM does not take yet (checked before any data is read).
 GLM_UNSUPPORTED = ("transform", "diagnostics", "report", "block", "component", "whole_plot", "random_block",
-                   "hard_to_change")
+                   "random_effect", "hard_to_change")
 
 
 def add_glm_options(parser: argparse.ArgumentParser) -> None:

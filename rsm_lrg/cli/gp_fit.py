@@ -57,6 +57,7 @@ def _refuse(args: argparse.Namespace) -> None:
     for opt, attr in (("--block", "block"), ("--component", "component"), ("--terms", "terms"),
                       ("--no-intercept", "no_intercept"), ("--transform", "transform"), ("--reduce", "reduce"),
                       ("--whole-plot", "whole_plot"), ("--random-block", "random_block"),
+                      ("--random-effect", "random_effect"),
                       ("--hard-to-change", "hard_to_change"), ("--diagnostics", "diagnostics"),
                       ("--report", "report")):
         if getattr(args, attr, None):

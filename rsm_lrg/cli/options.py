@@ -179,6 +179,12 @@ def add_random_effect_options(p: argparse.ArgumentParser) -> None:
                         "REML with Kenward-Roger F tests")
     g.add_argument("--random-block", metavar="COL", default=None,
                    help="block column whose blocks are a random intercept (REML, Kenward-Roger), not fixed effects")
+    p.add_argument("--random-effect", action="append", default=None, metavar="COL",
+                   help="a grouping column with a random intercept (repeatable: several variance components, nested "
+                        "or crossed as the data say, e.g. a split-split-plot's whole plots and subplots, a "
+                        "strip-plot's rows and columns); fitted by REML with Kenward-Roger F tests; each value of "
+                        "the column is one level, so a nested column needs unique labels; A:B is the interaction "
+                        "of two columns. With --whole-plot or --random-block that column comes first")
     p.add_argument("--hard-to-change", action="append", default=None, metavar="NAME",
                    help="with --whole-plot: a factor that must be constant within every whole plot (repeatable); one "
                         "that varies inside a whole plot is an error naming the whole plot")

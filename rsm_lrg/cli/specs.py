@@ -19,6 +19,8 @@ def random_effect(args: argparse.Namespace) -> dict:
         out["whole_plot"] = args.whole_plot
     if getattr(args, "random_block", None) is not None:
         out["random_block"] = args.random_block
+    if getattr(args, "random_effect", None):
+        out["random_effects"] = list(args.random_effect)
     if getattr(args, "hard_to_change", None) is not None:
         if out.get("whole_plot") is None:
             raise InputError("--hard-to-change: give --whole-plot COL too (the factors are checked against the whole "
@@ -28,8 +30,13 @@ def random_effect(args: argparse.Namespace) -> dict:
 
 
 def random_effect_columns(args: argparse.Namespace) -> list[str]:
-    """The whole-plot or random-block column named on the command line (none, or one)."""
-    return [c for c in (getattr(args, "whole_plot", None), getattr(args, "random_block", None)) if c is not None]
+    """The whole-plot, random-block and random-effect columns named on the command line, kept out
+    of the inferred factors (the columns of an ``A:B`` interaction too when no ``--factor`` is
+    given, as :func:`rsm_lrg.fit` keeps them out)."""
+    cols = [c for c in (getattr(args, "whole_plot", None), getattr(args, "random_block", None)) if c is not None]
+    for c in getattr(args, "random_effect", None) or []:
+        cols += [c] + (c.split(":") if ":" in c and not getattr(args, "factor", None) else [])
+    return cols
 
 
 def check_option_specs(args: argparse.Namespace) -> None:

@@ -58,7 +58,8 @@ def fit(  # type: ignore[overload-overlap]  # "gp" is also a str: the first matc
         model: Literal["gp"], terms: TermsArg = ..., intercept: bool = ..., transform: str | Transform | None = ...,
         transform_constant: float = ..., reduce: ReduceArg = ..., chunk_rows: int = ...,
         components: Sequence[str] | None = ..., whole_plot: str | None = ..., random_block: str | None = ...,
-        hard_to_change: str | Sequence[str] | None = ..., kernel: str = ..., trend: str = ...,
+        hard_to_change: str | Sequence[str] | None = ...,
+        random_effects: Sequence[str] | None = ..., kernel: str = ..., trend: str = ...,
         nugget: float | str | None = ..., length_scales: Sequence[float] | None = ..., variance: float | None = ...,
         seed: int | None = ..., family: None = ..., link: None = ..., trials: None = ...) -> GPResult: ...
 @overload
@@ -66,7 +67,8 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         model: str | ModelSpec = ..., *, terms: TermsArg = ..., intercept: bool = ...,
         transform: str | Transform | None = ..., transform_constant: float = ..., reduce: ReduceArg = ...,
         chunk_rows: int = ..., components: Sequence[str] | None = ..., whole_plot: str | None = ...,
-        random_block: str | None = ..., hard_to_change: str | Sequence[str] | None = ..., kernel: str = ...,
+        random_block: str | None = ..., hard_to_change: str | Sequence[str] | None = ...,
+        random_effects: Sequence[str] | None = ..., kernel: str = ...,
         trend: str = ..., nugget: float | str | None = ..., length_scales: Sequence[float] | None = ...,
         variance: float | None = ..., seed: int | None = ..., family: str | Family, link: str | None = ...,
         trials: str | None = ...) -> GLMResult: ...
@@ -75,7 +77,8 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         model: str | ModelSpec = ..., *, terms: TermsArg = ..., intercept: bool = ...,
         transform: str | Transform | None = ..., transform_constant: float = ..., reduce: ReduceArg = ...,
         chunk_rows: int = ..., components: Sequence[str] | None = ..., whole_plot: str | None = ...,
-        random_block: str | None = ..., hard_to_change: str | Sequence[str] | None = ..., kernel: str = ...,
+        random_block: str | None = ..., hard_to_change: str | Sequence[str] | None = ...,
+        random_effects: Sequence[str] | None = ..., kernel: str = ...,
         trend: str = ..., nugget: float | str | None = ..., length_scales: Sequence[float] | None = ...,
         variance: float | None = ..., seed: int | None = ..., family: None = ..., link: None = ...,
         trials: None = ...) -> FitResult: ...
@@ -83,7 +86,8 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         model: str | ModelSpec = "quadratic", *, terms: TermsArg = None, intercept: bool = True,
         transform: str | Transform | None = None, transform_constant: float = 0.0, reduce: ReduceArg = None,
         chunk_rows: int = CHUNK_ROWS, components: Sequence[str] | None = None, whole_plot: str | None = None,
-        random_block: str | None = None, hard_to_change: str | Sequence[str] | None = None, kernel: str = "matern52",
+        random_block: str | None = None, hard_to_change: str | Sequence[str] | None = None,
+        random_effects: Sequence[str] | None = None, kernel: str = "matern52",
         trend: str = "constant", nugget: float | str | None = None, length_scales: Sequence[float] | None = None,
         variance: float | None = None, seed: int | None = 0, family: str | Family | None = None,
         link: str | None = None, trials: str | None = None) -> FitResult | GPResult | GLMResult:
@@ -155,6 +159,19 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         plot; one that varies inside a whole plot raises ValueError naming the factor, the
         whole plot and its rows. Without it the notes list the factors found constant
         within every whole plot.
+    random_effects : sequence of str, optional
+        Grouping columns, one random intercept each (a variance-components model: a
+        split-split-plot's whole plots and subplots, a strip-plot's rows and columns, blocks
+        and the whole plots inside them), fitted by REML with Kenward–Roger tests
+        (:func:`rsm_lrg.model.engines.mixed.fit_reml_several`); with ``whole_plot`` or ``random_block``
+        that column comes first. The effects are nested or crossed as the data say: each
+        distinct value of a column is one level, as lme4's ``(1|COL)`` takes it, so a nested
+        column must label its levels uniquely (``wp3-s2``, not ``s2`` in every whole plot);
+        ``"A:B"`` (two columns joined by ``:``, when no column has that name) is their
+        interaction, one level per combination, as lme4's ``(1|A:B)``. When two effects'
+        levels cross (a level of each meets several of the other) the notes say so. The
+        variance components are named as the columns; a prediction interval is for a new run
+        in new levels of every random effect (variance ``x'Φ_A x + Σ s2_k + s2``).
     kernel, trend, nugget, length_scales, variance, seed
         With ``model="gp"`` only: the Gaussian process's kernel (``"matern52"``,
         ``"matern32"``, ``"gauss"``), trend (``"constant"``, ``"linear"``,
@@ -190,7 +207,8 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         from .pipelines.gp import fit_gp, refuse_options
 
         refuse_options(block=block, terms=terms, intercept=intercept, transform=transform, reduce=reduce,
-                       components=components, whole_plot=whole_plot, random_block=random_block, dask=is_dask(data))
+                       components=components, whole_plot=whole_plot, random_block=random_block, dask=is_dask(data),
+                       random_effects=random_effects)
         return fit_gp(data, response, factors, kernel=kernel, trend=trend, nugget=nugget,
                       length_scales=length_scales, variance=variance, seed=seed)
     spec = ModelSpec.build(model, terms=terms, intercept=intercept, transform=transform,
@@ -199,10 +217,11 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         from .pipelines.glm import fit_glm
 
         return fit_glm(data, response, factors, spec=spec, family_name=family, link=link, trials=trials, block=block,
-                       components=components, random_effect=whole_plot or random_block)
+                       components=components,
+                       random_effect=whole_plot or random_block or (list(random_effects) if random_effects else None))
     if is_dask(data):  # fitted partition by partition, never collected; OLS only
         for option, given in (("whole_plot", whole_plot), ("random_block", random_block),
-                              ("hard_to_change", hard_to_change)):
+                              ("random_effects", random_effects), ("hard_to_change", hard_to_change)):
             if given is not None:  # a REML fit needs every run in memory: never an OLS fit instead
                 raise SpecError(option, f"{option}: a REML fit (random whole plots or blocks) is made from one "
                                         "in-memory table, not from a Dask DataFrame (call .compute() first)")
@@ -212,6 +231,9 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
 
         return fit_dask(data, response, factors=factors, block=block, spec=spec, chunk_rows=chunk_rows)
     hard = _hard_names(hard_to_change, whole_plot)
+    if random_effects is not None:
+        return _fit_several(data, response, factors, block, spec, whole_plot, random_block, random_effects,
+                            components, hard)
     if whole_plot is not None or random_block is not None:
         return _fit_mixed(data, response, factors, block, spec, whole_plot, random_block, components, hard)
     if not isinstance(data, pd.DataFrame):
@@ -535,6 +557,170 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
 
     least_squares(X, y, col_names).require_full_rank(f"{model} model" if spec.terms is None else "model")
     mm, ls = fit_reml(X, y, codes, glabels, col_names, column=col, kind=kind)
+    pe = pure_error(inp.settings, y - float(np.mean(y)), None)
+    prep = inp.prep
+    return assemble(spec=spec, response=response, block=None, space=space, terms=terms, col_names=col_names,
+                    ls=ls, pe=pe, bkeys=None, blevels=None, data=prep.data.copy(), coded=inp.coded, y=y,
+                    y_response=inp.y_response, input_notes=prep.notes, omitted_rows=prep.omitted_rows,
+                    omitted_data=prep.omitted_data, reduction=reduction, mixed=mm)
+
+
+def _effect_columns(data: pd.DataFrame, response: str, whole_plot: str | None, random_block: str | None,
+                    random_effects: Sequence[str] | str, block: str | None) -> tuple[pd.DataFrame, list[str], list[str]]:
+    """``(data, columns, used)``: the random-effect columns in order (``whole_plot`` or
+    ``random_block`` first), checked on every row, the data with the ``"A:B"`` interaction
+    columns added, and every data column they use (kept out of the inferred factors)."""
+    import numpy as np
+
+    from ..factors import quote_value
+    from ..factors.columns import check_label_column
+    from .build.data import columns_text, empty_cells
+
+    if whole_plot is not None and random_block is not None:
+        raise SpecError("random_block", "give a whole-plot column or a random block column, not both (give several "
+                                        "grouping columns as random_effects)")
+    given = [random_effects] if isinstance(random_effects, str) else [str(c) for c in random_effects]
+    cols = [str(c) for c in (whole_plot, random_block) if c is not None] + given
+    if not cols:
+        raise SpecError("random_effects", "name at least one random-effect column")
+    for i, c in enumerate(cols):
+        if c in cols[:i]:
+            raise SpecError("random_effects", f"random-effect column {quote_value(c)} is given twice")
+    if block is not None:
+        raise SpecError("block", "fixed blocks together with random effects are not available (give the blocks as a "
+                                 "random effect)")
+    used: list[str] = []
+    out = data
+    for c in cols:
+        parts = c.split(":") if c not in data.columns and ":" in c else [c]
+        for part in parts:
+            if part not in data.columns:
+                raise ValueError(f"random-effect column {quote_value(part)} not found (columns: {columns_text(data)})")
+            if part == response:
+                raise ValueError(f"column {quote_value(part)} cannot be both the response and a random-effect column")
+            empty = np.asarray(empty_cells(data[part]), dtype=bool)
+            if empty.any():
+                raise ValueError(f"random-effect column {quote_value(part)}, row {int(empty.argmax()) + 1}: is empty")
+            check_label_column(data, part)
+            used.append(part)
+        if len(parts) > 1:  # the interaction: one level per combination of the columns' values
+            if out is data:
+                out = data.copy()
+            out[c] = [":".join(str(v) for v in row) for row in zip(*(data[q].tolist() for q in parts))]
+        levels = out[c].unique()
+        if len(levels) < 2:
+            raise ValueError(f"random-effect column {quote_value(c)} has a single level ({quote_value(str(levels[0]))})"
+                             "; a random effect needs at least two levels")
+    return out, cols, used
+
+
+def _crossing_notes(effects: Sequence[Any]) -> list[str]:
+    """A note for each pair of random effects whose levels cross (a level of each meets several
+    levels of the other): fitted as crossed, as given."""
+    notes = []
+    for i, a in enumerate(effects):
+        for b in effects[i + 1:]:
+            pairs = set(zip(a.codes.tolist(), b.codes.tolist()))
+            if len(pairs) > max(a.n_levels, b.n_levels):  # neither nested in the other
+                notes.append(f"Random effects {a.column!r} and {b.column!r} are crossed (a level of each meets several "
+                             "levels of the other) and are fitted so, each value one level as given; if one is nested "
+                             "in the other with its labels reused (1, 2, ... inside every level), give it unique "
+                             f"labels or name the interaction ('{a.column}:{b.column}').")
+    return notes
+
+
+def _fit_several(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg, block: str | None,
+                 spec: ModelSpec, whole_plot: str | None, random_block: str | None, random_effects: Sequence[str] | str,
+                 components: Sequence[str] | None, hard: list[str] | None = None) -> FitResult:
+    """A REML fit with the random intercepts of ``random_effects`` (and ``whole_plot`` or
+    ``random_block``): one effect goes to :func:`_fit_mixed`'s engine, several to
+    :func:`rsm_lrg.model.engines.mixed.fit_reml_several`; the reduction (if asked) by Kenward–Roger p."""
+    import pandas as pd
+
+    from .engines.mixed import RandomEffect, group_codes
+
+    if not isinstance(data, pd.DataFrame):
+        raise TypeError("data must be a pandas DataFrame")
+    if components is not None or spec.mixture:
+        raise SpecError("model", "a mixture model with random effects is not available yet")
+    frame, cols, used = _effect_columns(data, response, whole_plot, random_block, random_effects, block)
+    if len(cols) == 1 and (whole_plot is not None or random_block is not None):
+        return _fit_mixed(data, response, factors, block, spec, whole_plot, random_block, components, hard)
+    inp = model_inputs(frame, response, factors, None, transform=spec.transform, origin=not spec.intercept,
+                       exclude=cols + (used if factors is None else []))
+    from dataclasses import replace
+
+    extra = []
+    if whole_plot is not None:
+        extra.append(_check_hard_to_change(frame, whole_plot, hard, inp.space.names, response))
+    effects = []
+    for c in cols:
+        codes, labels = group_codes(inp.prep.data[c].tolist())
+        effects.append(RandomEffect(column=c, codes=codes, labels=labels))
+    for i, a in enumerate(effects):
+        for b in effects[i + 1:]:
+            if len(set(zip(a.codes.tolist(), b.codes.tolist()))) == a.n_levels == b.n_levels:
+                raise ValueError(f"random effects {a.column!r} and {b.column!r} group the runs the same way: their "
+                                 "variances cannot be told apart; give one of them")
+    extra += _crossing_notes(effects)
+    inp = replace(inp, prep=replace(inp.prep, notes=tuple(inp.prep.notes) + tuple(extra)))
+    if len(effects) == 1:  # random_effects=[COL]: the one-effect engine, the component named as the column
+        labels1 = inp.prep.data[cols[0]].tolist()
+
+        def refit1(sp: ModelSpec, reduction: Reduction | None = None) -> FitResult:
+            return _fit_mixed_inputs(inp, response, sp, labels1, cols[0], "effect", "random-effect",
+                                     reduction=reduction)
+        refit = refit1
+    else:
+        def refit_k(sp: ModelSpec, reduction: Reduction | None = None) -> FitResult:
+            return _fit_several_inputs(inp, response, sp, effects, reduction=reduction)
+        refit = refit_k
+    reduction = None
+    if spec.reduce is not None:
+        from .choice.mixed_reduce import reduce_mixed
+
+        if spec.reduce.criterion != "p":
+            raise SpecError("criterion", "a REML fit is reduced by the Kenward-Roger p-values (criterion 'p'), "
+                                         f"not {spec.reduce.criterion!r}")
+        reduction = reduce_mixed(lambda sp: refit(sp), spec, inp.space)
+        spec = replace(spec, terms=tuple(t for t in reduction.kept if t != "Intercept") or None)
+        if spec.terms is None:
+            raise SpecError("alpha_out", "backward elimination removed every term: no factor explains the response "
+                                         f"(alpha_out {reduction.alpha_out:g})")
+    return refit(spec, reduction)
+
+
+def _fit_several_inputs(inp: ModelInputs, response: str, spec: ModelSpec, effects: Sequence[Any],
+                        reduction: Reduction | None = None) -> FitResult:
+    """The REML fit of checked inputs with several random intercepts (estimability checked
+    first: every effect adds to the fixed terms' span, and a residual degree of freedom is left)."""
+    import numpy as np
+
+    from .engines.least_squares import least_squares
+    from .engines.mixed import fit_reml_several
+
+    space, y, hint, n = inp.space, inp.y, inp.hint, inp.n
+    terms = _spec_terms(inp, spec, 0)
+    col_names = inp.column_names(terms)
+    p = len(col_names)
+    what_model = f"the {spec.order} model" if spec.terms is None else "the model"
+    if n < p:
+        raise ValueError(f"{n} runs cannot fit {p} coefficients ({what_model} in {len(space)} factors){hint}")
+    X = inp.rows(terms)
+    least_squares(X, y, col_names).require_full_rank(f"{spec.order} model" if spec.terms is None else "model")
+    Z = [np.eye(e.n_levels)[e.codes] for e in effects]
+    rank_x = int(np.linalg.matrix_rank(X))
+    for e, z in zip(effects, Z):
+        if int(np.linalg.matrix_rank(np.hstack([X, z]))) == rank_x:
+            raise ValueError(f"random effect {e.column!r}: its {e.n_levels} levels are explained by the model's fixed "
+                             "terms (each level's mean is a fixed effect), so it has no variance to estimate; leave "
+                             "it out or drop the terms that are constant within its levels")
+    rank_all = int(np.linalg.matrix_rank(np.hstack([X] + Z)))
+    if n - rank_all <= 0:
+        raise ValueError(f"{n} runs leave no degree of freedom for the residual variance once the {p} model columns "
+                         f"and the levels of {', '.join(repr(e.column) for e in effects)} are fitted: REML needs "
+                         "replication within the random-effect levels")
+    mm, ls = fit_reml_several(X, y, effects, col_names)
     pe = pure_error(inp.settings, y - float(np.mean(y)), None)
     prep = inp.prep
     return assemble(spec=spec, response=response, block=None, space=space, terms=terms, col_names=col_names,

@@ -491,9 +491,8 @@ def table_sections(result, source_name: str | None, optimum) -> dict:
     caption = (f"ANOVA for the {result.model} model of {result.response} "
                "(partial sums of squares, Type III), laid out like Table 5.")
     if mixed is not None:  # REML: no sums of squares; Kenward-Roger tests and the variance components
-        what = "whole plot" if mixed.kind == "whole_plot" else "block"
-        summary[4] = ("Model", f"{result.model} ({len(result.terms)} terms, fitted by REML in coded units with a random "
-                               f"intercept per {what}: column {mixed.column!r}, {mixed.n_groups} {what}s)")
+        summary[4] = ("Model", f"{result.model} ({len(result.terms)} terms, fitted by REML in coded units with "
+                               f"{mixed.describe()})")
         summary[6] = ("Lack of fit", "not tested (REML fit)")
         summary.insert(5, ("Variance components (95 % CI, Wald on the log scale)", "; ".join(
             f"{k} {fmt_num(c.variance, 4)} ({fmt_num(c.ci_low, 3)} .. {fmt_num(c.ci_high, 3)})"

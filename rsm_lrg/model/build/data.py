@@ -22,6 +22,7 @@ fits: ``fit``, ``optimize``, ``report``, ``fit-summary``, ``ridge``, ``confirm``
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -129,7 +130,8 @@ def check_response_block(data, response: str, block: str | None) -> None:
         raise ValueError(f"column {quote_value(str(response))} cannot be both the response and the block")
 
 
-def prepare(data, response: str, factors=None, block: str | None = None) -> PreparedData:
+def prepare(data, response: str, factors=None, block: str | None = None, *,
+            exclude: Sequence[str] = ()) -> PreparedData:
     """Check the columns, choose the factors and leave out the runs without a response.
 
     Parameters
@@ -143,6 +145,8 @@ def prepare(data, response: str, factors=None, block: str | None = None) -> Prep
         :func:`rsm_lrg.factors.choose_factors`).
     block : str, optional
         Block column (every cell must be filled).
+    exclude : sequence of str
+        Further columns that are never inferred as factors (random-effect columns).
 
     Returns
     -------
@@ -160,7 +164,7 @@ def prepare(data, response: str, factors=None, block: str | None = None) -> Prep
         raise TypeError("data must be a pandas DataFrame")
     check_frame(data, [response] + ([block] if block is not None else []))
     check_response_block(data, response, block)
-    exclude = [response] + ([block] if block is not None else [])
+    exclude = [response] + ([block] if block is not None else []) + [c for c in exclude if c in data.columns]
     choice = choose_factors(data, factors, exclude=exclude)
     for f in choice.space.factors:  # every row, the runs left out too: errors name the input row
         float_column(data, f.name) if f.kind == "numeric" else encode_column(data, f)

@@ -297,7 +297,8 @@ def mixture_inputs(data: Any, response: str, components: Sequence[str] | str, fa
 
 
 def model_inputs(data: Any, response: str, factors: Any = None, block: str | None = None,
-                 transform: Transform | None = None, *, origin: bool = False) -> ModelInputs:
+                 transform: Transform | None = None, *, origin: bool = False,
+                 exclude: Sequence[str] = ()) -> ModelInputs:
     """Check the data and code the factors as every fit does (see :func:`rsm_lrg.model.fit.fit`
     for what is refused); with ``transform`` the response is taken to the model's scale
     ``g(y + k)`` (a value outside the transform's domain is an error naming its row).
@@ -317,7 +318,7 @@ def model_inputs(data: Any, response: str, factors: Any = None, block: str | Non
         tr.check(response_values(data, response)[0], response)  # NaN (not run) passes; rows as in the file
     # columns, factors (inferred from a design's coded columns when not given), runs
     # without a response left out, notes on everything left out (rsm_lrg.model.build.data)
-    prep = prepare(data, response, factors, block)
+    prep = prepare(data, response, factors, block, exclude=exclude)  # exclude: random-effect columns
     data, space, y = prep.data, prep.space, prep.y
     if origin:
         space = origin_coding(space)

@@ -21,7 +21,9 @@ pbkrtest computes them, :mod:`rsm_lrg.model.engines.mixed`)::
     df(x)  = 2 / A₂(x),     A₂(x) = Σ_rs W_rs a_r a_s / c²,  a_r = x' Φ P_r Φ x,  c = x' Φ x
 
 (the one-df Kenward–Roger den df of the contrast ``x b``; a variance component estimated at
-zero keeps its ``P_r`` and its row of ``W``).
+zero keeps its ``P_r`` and its row of ``W``). With several random intercepts
+(``random_effects=[...]``) ``σ²_g`` is the sum of their variances (a new run in new levels of
+every random effect) and ``r`` runs over every component and the residual.
 """
 
 from __future__ import annotations

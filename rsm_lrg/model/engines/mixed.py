@@ -1,5 +1,6 @@
 """Linear mixed model with one random intercept (whole plots of a split-plot design, or
-random blocks), fitted by REML, with Kenward–Roger tests of the fixed effects.
+random blocks), or several (variance components, nested or crossed), fitted by REML, with
+Kenward–Roger tests of the fixed effects.
 
 The model is ``y = X b + Z u + e`` with ``u ~ N(0, s2_g I)`` one effect per group (whole
 plot or block) and ``e ~ N(0, s2 I)``, so ``Var(y) = s2 V``, ``V = I + eta Z Z'`` with the
@@ -31,6 +32,15 @@ parameters ``I_rs = tr(Sigma^-1 G_r Sigma^-1 G_s) - 2 tr(Phi Q_rs) + tr(Phi P_r 
 ``lambda`` and ``m`` from ``A1``, ``A2`` (Kenward & Roger's Eqs. 5–6 as pbkrtest codes them).
 Every product uses the group structure (``Sigma^-1`` acts through group sums), so the cost
 is O(n p^2), never an n x n matrix. The den df is never clamped.
+
+**Several random intercepts** (:func:`fit_reml_several`): ``V = I + sum_k eta_k Z_k Z_k'``
+is block diagonal over the connected sets of runs and factorised per set (Cholesky,
+:class:`_Blocks`); ``-2 l_R`` is the same profile with ``log|V|`` from the factors and is
+minimised over ``eta >= 0`` by L-BFGS-B with its analytic gradient
+(``d/d eta_k = -(n-p) r'V^-1 Z_kZ_k' V^-1 r / r'V^-1 r + tr(V^-1 Z_kZ_k') - tr(C X'V^-1 Z_kZ_k' V^-1 X)``)
+from three starts, then polished by Newton steps; Kenward–Roger is the same computation with
+``G_k = Z_k Z_k'`` per effect and ``I`` (pbkrtest's ``vcovAdj`` for an ``lmer`` fit with
+``(1|A) + (1|B)``), a component at zero kept.
 """
 
 from __future__ import annotations
@@ -48,8 +58,12 @@ from ..contract.statistics import fdtrc, stdtrit
 if TYPE_CHECKING:
     from .least_squares import Regression
 
-__all__ = ["MixedModel", "KRTest", "VarianceComponent", "fit_reml", "group_codes", "kr_test", "whiten",
+__all__ = ["MixedModel", "KRTest", "VarianceComponent", "RandomEffect", "fit_reml", "fit_reml_several", "group_codes",
+           "kr_test", "reml_etas", "whiten",
            "ETA_LOG_RANGE", "CI_METHOD"]
+
+#: A variance ratio (one random effect) or the ratios of several.
+Eta = float | np.ndarray
 
 #: The grid of ``log eta`` that brackets the REML optimum: ``eta`` from e^-18 to e^18.
 ETA_LOG_RANGE = (-18.0, 18.0)
@@ -117,17 +131,136 @@ class _Groups:
         """The group values ``S`` ((G,) or (G, k)) on each run (``Z S``)."""
         return np.asarray(S)[self.codes]
 
-    def vinv(self, M: np.ndarray, eta: float) -> np.ndarray:
+    def vinv(self, M: np.ndarray, eta: Eta) -> np.ndarray:
         """``V^-1 M`` with ``V = I + eta ZZ'``: ``V_i^-1 = I - eta/(1 + eta m_i) J``."""
         d = eta / (1.0 + eta * self.m)
         S = self.sums(M)
         return np.asarray(M, dtype=float) - self.spread((d * S.T).T if S.ndim > 1 else d * S)
 
-    def whiten(self, M: np.ndarray, eta: float) -> np.ndarray:
+    def whiten(self, M: np.ndarray, eta: Eta) -> np.ndarray:
         """``V^-1/2 M``: each group less ``(1 - 1/sqrt(1 + eta m_i))`` times its mean."""
         c = (1.0 - 1.0 / np.sqrt(1.0 + eta * self.m)) / self.m
         S = self.sums(M)
         return np.asarray(M, dtype=float) - self.spread((c * S.T).T if S.ndim > 1 else c * S)
+
+    def logdet(self, eta: Eta) -> float:
+        """``log|V| = sum_i log(1 + eta m_i)``."""
+        return float(np.sum(np.log1p(eta * self.m)))
+
+    def zzt(self, M: np.ndarray) -> np.ndarray:
+        """``ZZ' M``: each run gets its group's sum."""
+        return self.spread(self.sums(M))
+
+    def kr_ops(self) -> list[Callable[[np.ndarray], np.ndarray]]:
+        """The ``G_r`` of the variance parameters ``(s2_group, s2)``: ``ZZ'`` and ``I``."""
+        return [self.zzt, lambda M: M]
+
+    def ktrace(self, eta: Eta, s2: float) -> np.ndarray:
+        """``tr(Sigma^-1 G_r Sigma^-1 G_s)`` in closed form: the eigenvalues of ``V_i^-1`` are 1
+        (``m_i - 1`` times) and ``1/(1 + eta m_i)``."""
+        f = 1.0 / (1.0 + eta * self.m)
+        m = self.m
+        tr_zz_zz = float(np.sum((m * f) ** 2)) / s2 ** 2
+        tr_zz_i = float(np.sum(m * f ** 2)) / s2 ** 2
+        tr_i_i = float(np.sum(m - 1.0 + f ** 2)) / s2 ** 2
+        return np.array([[tr_zz_zz, tr_zz_i], [tr_zz_i, tr_i_i]])
+
+
+class _Blocks:
+    """Several random intercepts: ``V = I + sum_k eta_k Z_k Z_k'``.
+
+    ``V`` is block diagonal over the connected sets of runs (runs that share a level of some
+    effect, directly or through other runs: a replicate with its whole plots, or the whole
+    grid of a strip-plot); each set is factorised densely (Cholesky; sets of one size
+    together, as a stack), so the cost is ``sum_c n_c^3`` per variance ratio, never an
+    n x n matrix unless every run is connected."""
+
+    def __init__(self, codes: Sequence[np.ndarray]) -> None:
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+
+        self.groups = [_Groups(c) for c in codes]
+        self.K = len(self.groups)
+        n = self.groups[0].codes.size
+        offs = np.cumsum([0] + [g.G for g in self.groups])
+        rows = np.concatenate([np.arange(n)] * self.K)
+        cols = n + np.concatenate([g.codes + o for g, o in zip(self.groups, offs)])
+        N = n + int(offs[-1])
+        graph = coo_matrix((np.ones(rows.size), (rows, cols)), shape=(N, N))
+        _, lab = connected_components(graph, directed=False)
+        lab = lab[:n]
+        sets = [np.flatnonzero(lab == c) for c in np.unique(lab)]
+        by_size: dict[int, list[np.ndarray]] = {}
+        for ix in sets:
+            by_size.setdefault(ix.size, []).append(ix)
+        #: (rows (b, m), Z_kZ_k' (K, b, m, m)) per size m of the connected sets
+        self.stacks = []
+        for _size, ixs in sorted(by_size.items()):
+            R = np.stack(ixs)
+            zz = np.stack([(g.codes[R][:, :, None] == g.codes[R][:, None, :]).astype(float) for g in self.groups])
+            self.stacks.append((R, zz))
+        self._key: tuple | None = None
+        self._fac: list[tuple[np.ndarray, np.ndarray, float]] = []
+
+    def _factor(self, eta: Eta) -> list[tuple[np.ndarray, np.ndarray, float]]:
+        """Per stack ``(L^-1, V^-1, log|V|)`` at ``eta``."""
+        e = np.asarray(eta, dtype=float)
+        key = tuple(float(v) for v in e)
+        if key != self._key:
+            fac = []
+            for R, zz in self.stacks:
+                V = np.eye(R.shape[1]) + np.einsum("k,kbij->bij", e, zz)
+                L = np.linalg.cholesky(V)
+                Li = np.linalg.inv(L)
+                Li = np.tril(Li)
+                Vi = np.swapaxes(Li, 1, 2) @ Li
+                fac.append((Li, Vi, float(2.0 * np.sum(np.log(np.diagonal(L, axis1=1, axis2=2))))))
+            self._fac = fac
+            self._key = key
+        return self._fac
+
+    def _apply(self, M: np.ndarray, eta: Eta, which: int) -> np.ndarray:
+        M = np.asarray(M, dtype=float)
+        vec = M.ndim == 1
+        M2 = M[:, None] if vec else M
+        out = np.empty_like(M2)
+        for (R, _), f in zip(self.stacks, self._factor(eta)):
+            out[R] = f[which] @ M2[R]
+        return out[:, 0] if vec else out
+
+    def whiten(self, M: np.ndarray, eta: Eta) -> np.ndarray:
+        """``L^-1 M`` with ``V = L L'`` (``(L^-1 X)'(L^-1 X) = X' V^-1 X``)."""
+        return self._apply(M, eta, 0)
+
+    def vinv(self, M: np.ndarray, eta: Eta) -> np.ndarray:
+        """``V^-1 M``."""
+        return self._apply(M, eta, 1)
+
+    def logdet(self, eta: Eta) -> float:
+        return float(sum(f[2] for f in self._factor(eta)))
+
+    def tr_vinv_zz(self, eta: Eta) -> np.ndarray:
+        """``tr(V^-1 Z_k Z_k')`` for every effect."""
+        return np.array([sum(float(np.sum(f[1] * zz[k])) for (_, zz), f in zip(self.stacks, self._factor(eta)))
+                         for k in range(self.K)])
+
+    def kr_ops(self) -> list[Callable[[np.ndarray], np.ndarray]]:
+        """The ``G_r`` of the variance parameters ``(s2_1, ..., s2_K, s2)``: ``Z_k Z_k'`` and ``I``."""
+        return [g.zzt for g in self.groups] + [lambda M: M]
+
+    def ktrace(self, eta: Eta, s2: float) -> np.ndarray:
+        """``tr(Sigma^-1 G_r Sigma^-1 G_s)`` summed over the connected sets (``tr(H_r H_s)``,
+        ``H_r = G_r Sigma^-1``, as pbkrtest's ``Ktrace``)."""
+        k = self.K + 1
+        out = np.zeros((k, k))
+        for (_, zz), f in zip(self.stacks, self._factor(eta)):
+            Vi = f[1]
+            H = [zz[j] @ Vi for j in range(self.K)] + [Vi]
+            for r in range(k):
+                for s in range(r, k):
+                    out[r, s] += float(np.sum(np.swapaxes(H[r], 1, 2) * H[s]))
+        out = np.triu(out) + np.triu(out, 1).T
+        return out / s2 ** 2
 
 
 def whiten(X: np.ndarray, y: np.ndarray, codes: np.ndarray, eta: float) -> tuple[np.ndarray, np.ndarray]:
@@ -140,12 +273,13 @@ def whiten(X: np.ndarray, y: np.ndarray, codes: np.ndarray, eta: float) -> tuple
 class _Profile:
     """The regression core at one ``eta`` and the profiled ``-2 l_R``."""
 
-    eta: float
+    eta: Eta
     m2l: float
     reg: Regression
 
 
-def _profile_at(eta: float, X: np.ndarray, y: np.ndarray, groups: _Groups, names: Sequence[str]) -> _Profile:
+def _profile_at(eta: Eta, X: np.ndarray, y: np.ndarray, groups: _Groups | _Blocks,
+                names: Sequence[str]) -> _Profile:
     from .least_squares import CHUNK_ROWS, factorise
 
     Xw, yw = groups.whiten(X, eta), groups.whiten(y, eta)
@@ -157,7 +291,7 @@ def _profile_at(eta: float, X: np.ndarray, y: np.ndarray, groups: _Groups, names
         return _Profile(eta, math.inf, reg)
     logdet_xvx = 2.0 * float(np.sum(np.log(d)) + np.sum(np.log(reg.scale)))
     rss = reg.rho ** 2
-    m2l = (n - p) * math.log(rss) + float(np.sum(np.log1p(eta * groups.m))) + logdet_xvx if rss > 0 else -math.inf
+    m2l = (n - p) * math.log(rss) + groups.logdet(eta) + logdet_xvx if rss > 0 else -math.inf
     return _Profile(eta, m2l, reg)
 
 
@@ -249,6 +383,98 @@ def reml_eta(X: np.ndarray, y: np.ndarray, codes: np.ndarray, names: Sequence[st
     return best
 
 
+def _dprofile_several(eta: np.ndarray, X: np.ndarray, y: np.ndarray, blocks: _Blocks) -> np.ndarray:
+    """``d(-2 l_R)/d eta_k`` for every effect, in closed form:
+    ``-(n-p) r'V^-1 Z_kZ_k' V^-1 r / r'V^-1 r + tr(V^-1 Z_kZ_k') - tr(C X'V^-1 Z_kZ_k' V^-1 X)``."""
+    n, p = X.shape
+    Xw, yw = blocks.whiten(X, eta), blocks.whiten(y, eta)
+    C = np.linalg.inv(Xw.T @ Xw)
+    b = C @ (Xw.T @ yw)
+    r = y - X @ b
+    Vr = blocks.vinv(r, eta)
+    VX = blocks.vinv(X, eta)
+    rvr = float(r @ Vr)
+    tr_vz = blocks.tr_vinv_zz(eta)
+    out = np.empty(blocks.K)
+    for k, g in enumerate(blocks.groups):
+        a = g.sums(Vr)
+        A = g.sums(VX)
+        out[k] = -(n - p) * float(np.sum(a * a)) / rvr + tr_vz[k] - float(np.einsum("gi,ij,gj->", A, C, A))
+    return out
+
+
+def reml_etas(X: np.ndarray, y: np.ndarray, codes: Sequence[np.ndarray], names: Sequence[str]) -> tuple[np.ndarray, float]:
+    """``(eta, -2 l_R)`` at the REML optimum of the variance ratios ``eta_k = s2_k / s2`` of
+    several random intercepts: L-BFGS-B on ``eta`` (bounds at 0, the analytic gradient) from
+    up to three starts (each effect's own one-effect REML ratio over K, all 1, all 0.1; the
+    third only when the first two disagree), the best polished
+    by Newton steps on the components inside the bounds (Hessian by central differences of
+    the analytic gradient); a component at its bound stays exactly 0."""
+    from scipy.optimize import minimize
+
+    blocks = _Blocks(codes)
+    K = blocks.K
+
+    def m2l(e: np.ndarray) -> float:
+        return _profile_at(np.asarray(e, dtype=float), X, y, blocks, names).m2l
+
+    def fg(e: np.ndarray) -> tuple[float, np.ndarray]:
+        e = np.maximum(np.asarray(e, dtype=float), 0.0)
+        v = m2l(e)
+        if not math.isfinite(v):
+            return 1e300, np.zeros(K)
+        return v, _dprofile_several(e, X, y, blocks)
+
+    single = []
+    for c in codes:
+        e1, _ = reml_eta(X, y, c, names)
+        single.append(min(max(e1, 1e-3), 1e6))
+    starts = [np.array(single) / K, np.ones(K), np.full(K, 0.1)]
+    best: tuple[np.ndarray, float] | None = None
+    found = []
+    for x0 in starts:
+        res = minimize(fg, x0, jac=True, method="L-BFGS-B", bounds=[(0.0, None)] * K,
+                       options={"ftol": 1e-15, "gtol": 1e-11, "maxiter": 2000, "maxcor": 20})
+        e = np.maximum(np.asarray(res.x, dtype=float), 0.0)
+        v = m2l(e)
+        found.append(v)
+        if best is None or v < best[1]:
+            best = (e, v)
+        if len(found) == 2 and abs(found[0] - found[1]) <= 1e-9 * max(1.0, abs(found[0])):
+            break  # two starts reach one optimum: the third is not needed
+    assert best is not None
+    eta, val = best
+    # Newton polish of the components inside the bounds
+    for _ in range(30):
+        free = np.flatnonzero(eta > 0)
+        if free.size == 0:
+            break
+        g = _dprofile_several(eta, X, y, blocks)[free]
+        H = np.empty((free.size, free.size))
+        for j, i in enumerate(free):
+            h = 1e-5 * eta[i]
+            ep, em = eta.copy(), eta.copy()
+            ep[i] += h
+            em[i] -= h
+            H[:, j] = (_dprofile_several(ep, X, y, blocks)[free] - _dprofile_several(em, X, y, blocks)[free]) / (2 * h)
+        H = 0.5 * (H + H.T)
+        try:
+            step = np.linalg.solve(H, g)
+        except np.linalg.LinAlgError:
+            break
+        trial = eta.copy()
+        trial[free] -= step
+        if np.any(trial[free] <= 0) or not np.all(np.linalg.eigvalsh(H) > 0):
+            break
+        v = m2l(trial)
+        if not v <= val + 1e-12 * abs(val):
+            break
+        eta, val = trial, min(v, val)
+        if np.all(np.abs(step) <= 1e-13 * eta[free]):
+            break
+    return eta, float(val)
+
+
 # ----------------------------------------------------------------------------------------
 # Kenward-Roger
 # ----------------------------------------------------------------------------------------
@@ -263,35 +489,29 @@ class _KRParts:
     information: np.ndarray
 
 
-def _kr_parts(X: np.ndarray, groups: _Groups, s2g: float, s2: float) -> _KRParts:
+def _kr_parts(X: np.ndarray, groups: _Groups | _Blocks, s2g: float | np.ndarray, s2: float) -> _KRParts:
+    """pbkrtest's ``vcovAdj`` with ``Sigma = sum_k s2g_k Z_k Z_k' + s2 I`` (``s2g`` one variance
+    per random effect: a float for one, an array for several)."""
     eta = s2g / s2
 
     def sinv(M: np.ndarray) -> np.ndarray:  # Sigma^-1 M
         return groups.vinv(M, eta) / s2
 
-    def zzt(M: np.ndarray) -> np.ndarray:  # ZZ' M
-        return groups.spread(groups.sums(M))
-
     SX = sinv(X)
     phi = np.linalg.inv(X.T @ SX)
     phi = 0.5 * (phi + phi.T)
-    # the group component stays in the computation when it is estimated at zero (the boundary),
-    # as pbkrtest and lmerTest keep it: Sigma = s2 I there, but the information about s2_group,
-    # and so W, Phi_A and the den df, still count it
-    G: list[Callable[[np.ndarray], np.ndarray]] = [zzt, lambda M: M]
+    # a random-effect component stays in the computation when it is estimated at zero (the
+    # boundary), as pbkrtest and lmerTest keep it: Sigma lacks it there, but the information
+    # about it, and so W, Phi_A and the den df, still count it
+    G = groups.kr_ops()
     # O_r = G_r Sigma^-1 X ; P_r = -O_r' Sigma^-1 X ; Q_rs = O_r' Sigma^-1 O_s
     O = [gr(SX) for gr in G]
     P = [-(o.T @ SX) for o in O]
     P = [0.5 * (pr + pr.T) for pr in P]
     k = len(G)
     Q = [[O[r].T @ sinv(O[s]) for s in range(k)] for r in range(k)]
-    # tr(Sigma^-1 G_r Sigma^-1 G_s): eigenvalues of V_i^-1 are 1 (m_i - 1 times) and 1/(1 + eta m_i)
-    f = 1.0 / (1.0 + eta * groups.m)
-    m = groups.m
-    tr_zz_zz = float(np.sum((m * f) ** 2)) / s2 ** 2
-    tr_zz_i = float(np.sum(m * f ** 2)) / s2 ** 2
-    tr_i_i = float(np.sum(m - 1.0 + f ** 2)) / s2 ** 2
-    K = np.array([[tr_zz_zz, tr_zz_i], [tr_zz_i, tr_i_i]])
+    # tr(Sigma^-1 G_r Sigma^-1 G_s)
+    K = groups.ktrace(eta, s2)
     info = np.empty((k, k))
     for r in range(k):
         for s in range(k):
@@ -357,21 +577,42 @@ def kr_test(parts: _KRParts, L: np.ndarray, beta: np.ndarray) -> tuple[float, fl
 # the fitted mixed model
 # ----------------------------------------------------------------------------------------
 @dataclass(frozen=True)
+class RandomEffect:
+    """One random intercept of a model with several: its grouping column, the level of each run
+    (codes 0..G-1 in order of first appearance) and the levels' labels."""
+
+    column: str
+    codes: np.ndarray = field(repr=False)
+    labels: tuple = field(repr=False)
+
+    @property
+    def n_levels(self) -> int:
+        return len(self.labels)
+
+
+@dataclass(frozen=True)
 class MixedModel:
     """The mixed-model part of a REML fit (:attr:`rsm_lrg.model.results.result.FitResult.mixed`).
+
+    With one random intercept (``kind`` ``"whole_plot"``, ``"block"`` or ``"effect"``) the
+    attributes below describe it; with several (``kind == "several"``, ``effects`` holds them)
+    ``column``, ``codes`` and ``labels`` are the first effect's, ``eta`` and ``sigma2_group``
+    the sums over the effects (``etas`` and :attr:`variance_components` give each).
 
     Attributes
     ----------
     column : str
         The group column (whole plot or random block).
-    kind : {"whole_plot", "block"}
-        What the random intercept is (names the variance component).
+    kind : {"whole_plot", "block", "effect", "several"}
+        What the random intercept is (names the variance component: ``"whole_plot"``,
+        ``"block"``, or the column for ``"effect"`` and ``"several"``).
     codes : (n,) ndarray of int
         Group of each run (0..G-1, in order of first appearance); ``labels`` the original values.
     eta : float
         REML variance ratio ``s2_group / s2`` (0 on the boundary) [-].
     sigma2, sigma2_group : float
-        Residual and group variance components [response units²].
+        Residual and group variance components [response units²]; with several random
+        effects ``sigma2_group`` is their sum, the variance of a new run's random part.
     m2loglik : float
         ``-2 l_R`` at the optimum (profiled, without the constant ``(n - p)(1 + log 2 pi - log(n - p))``).
     beta : (p,) ndarray
@@ -392,15 +633,58 @@ class MixedModel:
     X: np.ndarray = field(repr=False)
     y: np.ndarray = field(repr=False)
     parts: _KRParts = field(repr=False)
+    effects: tuple = field(default=(), repr=False)
+    etas: np.ndarray | None = field(default=None, repr=False)
+    structure: _Blocks | None = field(default=None, repr=False)
+
+    @property
+    def several(self) -> bool:
+        """Whether the model has more than one random intercept."""
+        return self.kind == "several"
 
     @property
     def n_groups(self) -> int:
         return len(self.labels)
 
     @property
+    def columns(self) -> tuple:
+        """The grouping columns of the random intercepts."""
+        return tuple(e.column for e in self.effects) if self.several else (self.column,)
+
+    @property
+    def component_names(self) -> tuple:
+        """The names of the random-effect variance components (without ``"residual"``)."""
+        if self.several or self.kind == "effect":
+            return self.columns
+        return (self.kind,)
+
+    @property
+    def component_variances(self) -> tuple:
+        """The random-effect variance components [response units²], as :attr:`component_names`."""
+        if self.several:
+            assert self.etas is not None
+            return tuple(float(e) * self.sigma2 for e in self.etas)
+        return (self.sigma2_group,)
+
+    @property
     def boundary(self) -> bool:
-        """The group variance is estimated at zero (the fit is then the OLS fit)."""
+        """A random-effect variance is estimated at zero (with one effect the fit is then the
+        OLS fit)."""
+        if self.several:
+            assert self.etas is not None
+            return bool(np.any(self.etas == 0.0))
         return self.eta == 0.0
+
+    def describe(self) -> str:
+        """``"a random intercept per whole plot ('wp', 8 whole plots)"`` or, with several,
+        ``"random intercepts per level of 'replicate' (15) and of 'replicate:recipe' (45)"``."""
+        if self.several:
+            parts = [f"{e.column!r} ({e.n_levels})" for e in self.effects]
+            return "random intercepts per level of " + ", of ".join(parts[:-1]) + " and of " + parts[-1]
+        if self.kind == "effect":
+            return f"a random intercept per level of {self.column!r} ({self.n_groups} levels)"
+        what = "whole plot" if self.kind == "whole_plot" else "block"
+        return f"a random intercept per {what} ({self.column!r}, {self.n_groups} {what}s)"
 
     @property
     def cov(self) -> np.ndarray:
@@ -435,17 +719,21 @@ class MixedModel:
         ix = np.ix_(columns, columns)
         phi = self.parts.phi
         return IntervalForm(cov_se=phi[ix], cov_mean=self.parts.phi_a[ix], s2_residual=self.sigma2,
-                            s2_group=self.sigma2_group, df=math.nan, kr_phi_p_phi=tuple((phi @ P @ phi)[ix] for P in self.parts.P),
+                            s2_group=float(sum(self.component_variances)), df=math.nan, kr_phi_p_phi=tuple((phi @ P @ phi)[ix] for P in self.parts.P),
                             kr_w=self.parts.W)
 
     @property
     def variance_components(self) -> dict:
-        """``{kind: VarianceComponent, "residual": VarianceComponent}`` with Wald intervals on
-        the log scale (:data:`CI_METHOD`; none for a component at zero)."""
+        """``{kind: VarianceComponent, "residual": VarianceComponent}`` (with several random
+        effects, or ``random_effects=[COL]``, one entry per grouping column, named as the
+        column) with Wald intervals on the log scale (:data:`CI_METHOD`; none for a component at
+        zero)."""
         z = float(stdtrit(math.inf, 0.975))
         W = self.parts.W
         out = {}
-        for i, (nm, v) in enumerate(zip([self.kind, "residual"], [self.sigma2_group, self.sigma2])):
+        names = list(self.component_names) + ["residual"]
+        values = list(self.component_variances) + [self.sigma2]
+        for i, (nm, v) in enumerate(zip(names, values)):
             se_log = math.sqrt(W[i, i]) / v if W[i, i] > 0 and v > 0 else math.nan
             lo, hi = (v * math.exp(-z * se_log), v * math.exp(z * se_log)) if math.isfinite(se_log) else (math.nan,) * 2
             out[nm] = VarianceComponent(nm, float(v), float(lo), float(hi))
@@ -463,8 +751,10 @@ class MixedModel:
 
     @property
     def random_effect(self) -> dict:
-        """``{"whole_plot": COL}`` or ``{"random_block": COL}``: the keyword :func:`rsm_lrg.fit`
-        takes to refit the model."""
+        """``{"whole_plot": COL}``, ``{"random_block": COL}`` or ``{"random_effects": [COL, ...]}``:
+        the keyword :func:`rsm_lrg.fit` takes to refit the model."""
+        if self.several or self.kind == "effect":
+            return {"random_effects": list(self.columns)}
         return {"whole_plot" if self.kind == "whole_plot" else "random_block": self.column}
 
     @property
@@ -474,10 +764,31 @@ class MixedModel:
 
     @property
     def blups(self) -> np.ndarray:
-        """Predicted group effects ``u_i = eta sum_i(r) / (1 + eta m_i)`` (BLUPs), one per group."""
+        """Predicted group effects ``u_i = eta sum_i(r) / (1 + eta m_i)`` (BLUPs), one per group
+        (with several random effects: the first effect's, see :attr:`effect_blups`)."""
+        if self.several:
+            return self.effect_blups[0]
         g = _Groups(self.codes)
         r = self.y - self.marginal_fitted
         return self.eta * g.sums(r) / (1.0 + self.eta * g.m)
+
+    @property
+    def effect_blups(self) -> tuple:
+        """The BLUPs of every random effect, ``u_k = eta_k Z_k' V^-1 (y - X b)``, one array per
+        effect (levels as its ``labels``)."""
+        if not self.several:
+            return (self.blups,)
+        assert self.structure is not None and self.etas is not None
+        Vr = self.structure.vinv(self.y - self.marginal_fitted, self.etas)
+        return tuple(float(e) * g.sums(Vr) for e, g in zip(self.etas, self.structure.groups))
+
+    @property
+    def random_effects_table(self) -> dict:
+        """``{label: BLUP}`` (one effect) or ``{column: {label: BLUP}}`` (several)."""
+        if not self.several:
+            return {str(lab): float(u) for lab, u in zip(self.labels, self.blups)}
+        return {e.column: {str(lab): float(u) for lab, u in zip(e.labels, b)}
+                for e, b in zip(self.effects, self.effect_blups)}
 
     @property
     def marginal_residuals(self) -> np.ndarray:
@@ -487,6 +798,8 @@ class MixedModel:
     @property
     def conditional_fitted(self) -> np.ndarray:
         """``X b + Z u`` [response units]."""
+        if self.several:
+            return self.marginal_fitted + sum(b[e.codes] for e, b in zip(self.effects, self.effect_blups))
         return self.marginal_fitted + self.blups[self.codes]
 
     @property
@@ -533,4 +846,42 @@ def fit_reml(X: np.ndarray, y: np.ndarray, codes: np.ndarray, labels: Sequence, 
     parts = _kr_parts(X, groups, eta * s2, s2)
     mm = MixedModel(column=column, kind=kind, codes=np.asarray(codes, dtype=int), labels=tuple(labels), eta=float(eta),
                     sigma2=s2, sigma2_group=float(eta * s2), m2loglik=float(m2l), beta=beta, X=X, y=y, parts=parts)
+    return mm, reg
+
+
+def fit_reml_several(X: np.ndarray, y: np.ndarray, effects: Sequence[RandomEffect],
+                     names: Sequence[str]) -> tuple[MixedModel, Regression]:
+    """REML fit of ``y = X b + sum_k Z_k u_k + e`` with several random intercepts (nested or
+    crossed as the codes say), ``u_k ~ N(0, s2_k I)``: the variance ratios by :func:`reml_etas`,
+    then the same GLS core and Kenward–Roger parts as :func:`fit_reml` (pbkrtest's ``vcovAdj``
+    with one ``G_k = Z_k Z_k'`` per effect and ``I``)."""
+    from dataclasses import replace
+
+    from .least_squares import CHUNK_ROWS
+
+    X = np.asarray(X, dtype=float)
+    y = np.asarray(y, dtype=float)
+    n, p = X.shape
+    ones = bool(np.all(X[:, 0] == 1.0)) if p else False
+    c = math.fsum(y) / n if ones else 0.0
+    yc = y - c
+    codes = [np.asarray(e.codes, dtype=int) for e in effects]
+    etas, m2l = reml_etas(X, yc, codes, names)
+    blocks = _Blocks(codes)
+    prof = _profile_at(etas, X, yc, blocks, names)
+    Xw, yw = blocks.whiten(X, etas), blocks.whiten(yc, etas)
+    reg = prof.reg.second_pass(lambda: ((Xw[s:s + CHUNK_ROWS], yw[s:s + CHUNK_ROWS]) for s in range(0, n, CHUNK_ROWS)))
+    reg = replace(reg, shift=c, intercept=ones)
+    s2 = float(reg.sigma2)
+    spread = float(np.sum((y - np.mean(y)) ** 2))
+    if not (math.isfinite(s2) and s2 * (n - p) > 1e-20 * spread):
+        raise ValueError("the model fits the data exactly within the random-effect levels (no residual variance): "
+                         "REML has nothing to estimate the variance components from")
+    beta = np.asarray(reg.params, dtype=float)
+    parts = _kr_parts(X, blocks, etas * s2, s2)
+    first = effects[0]
+    mm = MixedModel(column=first.column, kind="several", codes=np.asarray(first.codes, dtype=int),
+                    labels=tuple(first.labels), eta=float(np.sum(etas)), sigma2=s2,
+                    sigma2_group=float(np.sum(etas) * s2), m2loglik=float(m2l), beta=beta, X=X, y=y, parts=parts,
+                    effects=tuple(effects), etas=np.asarray(etas, dtype=float), structure=blocks)
     return mm, reg

@@ -46,8 +46,11 @@ def format_mixed(result, alpha: float = 0.05) -> list[str]:
     """The REML part of the text: variance components and the Kenward–Roger F tests of the
     model terms (in place of the least-squares ANOVA)."""
     mm = result.mixed
-    out = [f"REML variance components (random intercept per {'whole plot' if mm.kind == 'whole_plot' else 'block'}: "
-           f"{mm.column!r}, {mm.n_groups} groups; 95 % CI Wald on the log scale)"]
+    if mm.kind in ("whole_plot", "block"):
+        out = [f"REML variance components (random intercept per {'whole plot' if mm.kind == 'whole_plot' else 'block'}: "
+               f"{mm.column!r}, {mm.n_groups} groups; 95 % CI Wald on the log scale)"]
+    else:
+        out = [f"REML variance components ({mm.describe()}; 95 % CI Wald on the log scale)"]
     rows = []
     for name, c in mm.variance_components.items():
         rows.append([name, format_g(c.variance), format_g(math.sqrt(c.variance)), format_g(c.ci_low),

@@ -386,7 +386,7 @@ def deviance_tables(X: np.ndarray, y: np.ndarray, m: np.ndarray, fam: Family, te
 
 def fit_glm(data: Any, response: str, factors: Any = None, *, spec: ModelSpec,
             family_name: str | Family | None = "binomial", link: str | None = None, trials: str | None = None,
-            block: str | None = None, components: Any = None, random_effect: str | None = None) -> GLMResult:
+            block: str | None = None, components: Any = None, random_effect: Any = None) -> GLMResult:
     """Fit a generalised linear model (see the module docstring): the model terms of
     ``spec`` over the coded factors, by maximum likelihood.
 

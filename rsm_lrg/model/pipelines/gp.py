@@ -392,7 +392,7 @@ def fit_gp(data: Any, response: str, factors: Any = None, *, kernel: str = "mate
 
 
 def refuse_options(*, block: Any, terms: Any, intercept: bool, transform: Any, reduce: Any, components: Any,
-                   whole_plot: Any, random_block: Any, dask: bool) -> None:
+                   whole_plot: Any, random_block: Any, dask: bool, random_effects: Any = None) -> None:
     """ParameterError naming the first option of :func:`rsm_lrg.fit` that a Gaussian process
     does not take (blocks, terms, transforms, reduction, mixtures, random effects, Dask)."""
     given = [("block", block is not None, "blocks"), ("terms", terms is not None, "a list of terms"),
@@ -402,6 +402,7 @@ def refuse_options(*, block: Any, terms: Any, intercept: bool, transform: Any, r
              ("components", components is not None, "mixture components"),
              ("whole_plot", whole_plot is not None, "a whole-plot random effect"),
              ("random_block", random_block is not None, "a random block effect"),
+             ("random_effects", random_effects is not None, "random effects"),
              ("data", dask, "a Dask DataFrame (several files)")]
     for name, on, what in given:
         if on:

@@ -273,6 +273,8 @@ class FitResult:
     def _mixed_notes(self, mm: MixedModel) -> tuple:
         from ..engines.mixed import CI_METHOD
 
+        if mm.kind not in ("whole_plot", "block"):
+            return self._several_notes(mm)
         what = "whole plot" if mm.kind == "whole_plot" else "block"
         notes = [f"REML fit with a random intercept per {what} ({mm.column!r}, {mm.n_groups} {what}s): coefficients "
                  "and standard errors are generalised least squares at the REML variance ratio; F tests use the "
@@ -290,6 +292,25 @@ class FitResult:
                          "stays in the Kenward–Roger computation (as pbkrtest and lmerTest keep it), so the den df, F "
                          f"and p still count the {what}-to-{what} variation the data could hold; they are not the OLS "
                          "tests.")
+        return tuple(notes)
+
+    def _several_notes(self, mm: MixedModel) -> tuple:
+        notes = [f"REML fit with {mm.describe()}: coefficients and standard errors are generalised least squares at "
+                 "the REML variance ratios; F tests use the Kenward–Roger adjusted covariance and den df (pbkrtest's "
+                 "computation with one variance parameter per random effect and the residual, den df not clamped); "
+                 "t and p of the coefficients are the one-df Kenward–Roger tests.",
+                 "No sums of squares, PRESS, R², adequate precision or lack-of-fit test: they are ordinary "
+                 "least-squares quantities with no counterpart in a REML fit.",
+                 "Variance component intervals: Wald on the log scale: log(s2_k) ± z·se(log s2_k), se from the "
+                 "inverse expected (REML) information of the variance components, the W of Kenward–Roger.",
+                 "Residuals are conditional (y - Xb - Σ Z_k u_k, BLUPs u_k); studentized residuals and leverages are "
+                 "those of the whitened model; prediction intervals are for a new run in new levels of every random "
+                 "effect (variance x'Φ_A x + the sum of the random-effect variances + s2)."]
+        zero = [n for n, v in zip(mm.component_names, mm.component_variances) if v == 0.0]
+        if zero:
+            notes.append(f"Variance component{'s' if len(zero) > 1 else ''} {', '.join(repr(z) for z in zero)} "
+                         "estimated at zero (REML on the boundary): kept in the Kenward–Roger computation, as pbkrtest "
+                         "and lmerTest keep it.")
         return tuple(notes)
 
     @cached_property
@@ -1061,8 +1082,22 @@ class FitResult:
     def _mixed_dict(self, mm: MixedModel) -> dict:
         from ..engines.mixed import CI_METHOD
 
-        key = "whole_plot" if mm.kind == "whole_plot" else "random_block"
         vc = {k: {kk: _f(vv) for kk, vv in c.to_dict().items()} for k, c in mm.variance_components.items()}
+        if mm.kind not in ("whole_plot", "block"):  # random_effects=[...]: one entry per grouping column
+            assert mm.kind == "effect" or mm.etas is not None
+            ratios = [mm.eta] if mm.kind == "effect" else list(mm.etas)  # type: ignore[arg-type]
+            return {
+                "random_effect_columns": list(mm.columns), "method": "REML",
+                "variance_ratio": {c: _f(r) for c, r in zip(mm.columns, ratios)},
+                "variance_components": vc, "variance_component_ci": CI_METHOD,
+                "tests": [{k: (_f(v) if k not in ("term", "num_df") else v) for k, v in t.to_dict().items()}
+                          for t in self.tests],
+                "den_df_method": "Kenward-Roger",
+                "random_effects": ({mm.column: {k: _f(v) for k, v in mm.random_effects_table.items()}}
+                                   if mm.kind == "effect" else
+                                   {c: {k: _f(v) for k, v in t.items()} for c, t in mm.random_effects_table.items()}),
+            }
+        key = "whole_plot" if mm.kind == "whole_plot" else "random_block"
         return {
             key: mm.column, "method": "REML", "variance_ratio": _f(mm.eta),
             "variance_components": vc, "variance_component_ci": CI_METHOD,
@@ -1098,7 +1133,8 @@ class FitResult:
         df["cooks_distance"] = self.cooks_distance
         if self.mixed is not None:
             mm = self.mixed
-            df.insert(df.columns.get_loc(self.response), mm.column, self.data[mm.column].to_numpy())
+            for c in mm.columns:
+                df.insert(df.columns.get_loc(self.response), c, self.data[c].to_numpy())
             df["marginal_residual"] = mm.marginal_residuals
             df["conditional_residual"] = mm.conditional_residuals
             df["marginal_fitted"] = mm.marginal_fitted
