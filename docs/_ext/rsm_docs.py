@@ -36,7 +36,7 @@ GUIDE = [
     ("designs", "Designs", ["Designs", "Categoric factors", "Designs beyond the classics"]),
     ("fitting", "Fitting models", ["Fit and optimise", "Any model", "Beyond the fit", "Pass/fail and count",
                                    "Screening"]),
-    ("optimisation", "Optimisation and prediction", ["Prediction under uncertainty"]),
+    ("optimisation", "Optimisation and prediction", ["Prediction under uncertainty", "Mean and spread from replicates"]),
     ("mixtures", "Mixtures", ["Mixture designs", "Mixtures: Scheffé", "Mixture study"]),
     ("split-plot", "Split-plot experiments", ["Split-plot study", "Split-plot analysis"]),
     ("design-space", "Design space", ["Design space"]),

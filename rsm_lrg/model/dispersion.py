@@ -67,13 +67,29 @@ class DispersionFit:
         return dispersion_name(self.response)
 
     def predict_s(self, X: Any) -> np.ndarray:
-        """The predicted standard deviation ``exp(ln s)`` at the settings ``X`` (a DataFrame
-        of the factor columns, actual units) [response units]."""
+        """The predicted standard deviation ``exp(ln s)`` at the settings ``X``.
+
+        Parameters
+        ----------
+        X : pandas.DataFrame
+            The factor columns, actual units.
+
+        Returns
+        -------
+        numpy.ndarray
+            The predicted s at each row [response units].
+        """
         return np.asarray(self.result.predict(X)["predicted"], dtype=float)
 
     def to_dict(self) -> dict:
-        """The JSON ``dispersion`` block: the model of ln s (terms, coefficients, standard
-        errors, ANOVA, statistics with R²) and the settings used and left out."""
+        """The JSON ``dispersion`` block.
+
+        Returns
+        -------
+        dict
+            The model of ln s (terms, coefficients, standard errors, ANOVA, statistics with R²)
+            and the settings used and left out.
+        """
         d = self.result.to_dict()
         return {
             "response": self.response,
@@ -92,7 +108,13 @@ class DispersionFit:
         }
 
     def summary(self) -> str:
-        """The spread model as text: what was used and left out, then the fit of ln s."""
+        """The spread model as text.
+
+        Returns
+        -------
+        str
+            What was used and left out, then the fit of ln s.
+        """
         lines = [f"Dispersion model: ln s of {self.response} at {len(self.settings)} replicated settings "
                  f"(runs per setting {int(self.settings['runs'].min())}..{int(self.settings['runs'].max())})"]
         unrep = [s for s in self.left_out if s["reason"] == "unreplicated"]
