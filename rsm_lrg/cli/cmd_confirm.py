@@ -71,8 +71,7 @@ def run(args: argparse.Namespace) -> int:
         from ..optimize.confirm import parse_settings
 
         settings = parse_settings(result.space, args.at)
-        if result.mixture:  # a blend must sum to the total: named as --at's fault
-            result.predict({k: [v] for k, v in settings.items()})
+        result.predict({k: [v] for k, v in settings.items()})  # e.g. a blend off the total: --at's fault
     except ValueError as exc:
         from ..io import InputError
 

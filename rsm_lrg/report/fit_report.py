@@ -479,7 +479,7 @@ def table_sections(result, source_name: str | None, optimum) -> dict:
         ("Data", source_name or "a DataFrame"),
         ("Runs", str(result.n)),
         ("Factors", ", ".join(f"{f.letter} = {f.name}" for f in space.factors)),
-        ("Model", f"{result.model} ({len(result.terms)} terms, fitted by least squares in coded units)"),
+        ("Model", f"{result.model} ({len(result.terms)} terms, fitted by {result.reading.fitted_by(result)})"),
         ("Block", result.block or "none"),
         ("Replicated settings", f"{pe_df} degrees of freedom of pure error" if pe_df else "none (no lack-of-fit test)"),
         ("R² / adjusted R² / predicted R²",
@@ -487,16 +487,17 @@ def table_sections(result, source_name: str | None, optimum) -> dict:
         ("Model F-value, p-value",
          next((f"{fmt_f(r['f'])}, {fmt_p(r['p'])}" for r in anova_rows if r["source"] == "Model"), "—")),
     ]
-    mixed = result.mixed
-    caption = (f"ANOVA for the {result.model} model of {result.response} "
-               "(partial sums of squares, Type III), laid out like Table 5.")
-    if mixed is not None:  # REML: no sums of squares; Kenward-Roger tests and the variance components
-        summary[4] = ("Model", f"{result.model} ({len(result.terms)} terms, fitted by REML in coded units with "
-                               f"{mixed.describe()})")
-        summary[6] = ("Lack of fit", "not tested (REML fit)")
+    reading = result.reading  # least squares, or REML: no sums of squares, the variance components
+    if reading.lack_of_fit_note is not None:
+        summary[6] = ("Lack of fit", reading.lack_of_fit_note)
+    components = reading.variance_components(result)
+    if components:
         summary.insert(5, ("Variance components (95 % CI, Wald on the log scale)", "; ".join(
             f"{k} {fmt_num(c.variance, 4)} ({fmt_num(c.ci_low, 3)} .. {fmt_num(c.ci_high, 3)})"
-            for k, c in mixed.variance_components.items())))
+            for k, c in components.items())))
+    caption = (f"ANOVA for the {result.model} model of {result.response} "
+               "(partial sums of squares, Type III), laid out like Table 5.")
+    if result.tests:  # Kenward-Roger tests in the ANOVA's place
         caption = (f"Fixed effects of the REML fit of {result.response}: Kenward–Roger F tests, each term's columns "
                    "jointly (Type III); no sums of squares. df is the numerator df; the Kenward–Roger den df are "
                    + ", ".join(f"{t.term} {fmt_num(t.den_df, 4)}" for t in result.tests) + ".")

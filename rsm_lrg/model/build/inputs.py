@@ -14,8 +14,7 @@ import numpy as np
 from ...errors import ParameterError
 from ...factors import FactorSpace, quote_value
 from ...io import float_column
-from .data import prepare
-from .data import CHUNK_ROWS
+from .data import CHUNK_ROWS, prepare
 from .terms import Term, column_names, model_matrix, model_terms, n_columns, parse_term
 from .transform import Transform
 
@@ -224,8 +223,9 @@ def coded_points(space: FactorSpace, points: Any, coded: bool = False) -> np.nda
     Raises
     ------
     ValueError
-        A factor column missing, the wrong number of columns, a level not in the fit, or a
-        value that is not a finite number.
+        A factor column missing, the wrong number of columns, a level not in the fit, a
+        value that is not a number, or a setting more than :data:`MAX_FACTOR_MAGNITUDE`
+        half-ranges from its factor's centre (the point is named).
     """
     import pandas as pd
 
@@ -256,8 +256,15 @@ def coded_points(space: FactorSpace, points: Any, coded: bool = False) -> np.nda
             frame = pd.DataFrame({f.name: arr[:, j] for j, f in enumerate(space.factors)})
             with np.errstate(over="ignore", invalid="ignore"):
                 x = unrounded_coding(space, frame, np.asarray(space.encode(arr), dtype=float))
-    if not np.isfinite(x).all():
+    if np.isnan(x).any():
         raise ValueError("prediction points must be finite numbers")
+    far = ~(np.abs(x) <= MAX_FACTOR_MAGNITUDE)
+    if far.any():  # a polynomial there overflows (and says nothing): refuse with the factor named
+        i, j = np.argwhere(far)[0]
+        f = space.factors[j]
+        where = f" ({f.center:.6g})" if f.kind == "numeric" else ""
+        raise ValueError(f"prediction point {i + 1}: factor {f.name!r} is more than {MAX_FACTOR_MAGNITUDE:.0e} "
+                         f"half-ranges from its centre{where}; the model says nothing there")
     return x
 
 

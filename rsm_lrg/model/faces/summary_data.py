@@ -86,8 +86,7 @@ def summary_data(result: Any) -> SummaryData:
              + (" (Linear Mixture sequential, other terms partial sum of squares - Type III; about the mean)"
                 if mixture else " (partial sum of squares - Type III)")
              + ("" if result.intercept or mixture else "; no intercept: the model row and total are uncorrected"))
-    if result.mixed is not None:
-        title = "Fixed effects of the REML fit: Kenward-Roger F tests (no sums of squares)"
+    title = result.reading.anova_title or title  # a REML fit's: its Kenward-Roger tests
     anova = result.anova
     rows = {r.source: r for r in anova.itertuples(index=False)}
     notes: list[str] = []

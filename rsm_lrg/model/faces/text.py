@@ -206,6 +206,33 @@ def _equation_lines(result, units: str, level) -> str:
     return "\n".join(lines)
 
 
+def _anova_lines(result, sd) -> list[str]:
+    """The least-squares ANOVA with its title and notes."""
+    return [sd.anova_title, format_anova(result), "", *sd.anova_notes, ""]
+
+
+def _statistics_lines(result, sd) -> list[str]:
+    """The fit statistics under the ANOVA (R², PRESS, adequate precision ...)."""
+    s = result.statistics
+    stat_rows = [
+        ["Std. Dev.", format_g(s.std_dev), "R²", format_g(s.r2)],
+        ["Mean", format_g(s.mean), "Adjusted R²", format_g(s.adj_r2)],
+        ["C.V. %", format_g(s.cv_percent), "Predicted R²", format_g(s.pred_r2)],
+        ["PRESS", format_g(s.press), "Adeq Precision", format_g(s.adeq_precision)],
+    ]
+    return ["Fit statistics", text_table(["", "", "", ""], stat_rows, ["<", ">", "<", ">"]).split("\n", 2)[2],
+            *sd.statistics_notes, ""]
+
+
+def _mixed_lines(result, sd) -> list[str]:
+    """A REML fit's Kenward-Roger tests and variance components with the notes."""
+    return [*format_mixed(result), *sd.anova_notes, ""]
+
+
+#: The text of each section a fit's reading lists (``result.reading.text_sections``).
+_SECTIONS = {"anova": _anova_lines, "statistics": _statistics_lines, "mixed": _mixed_lines}
+
+
 def format_summary(result) -> str:
     """The whole text report of a fit."""
     out = []
@@ -232,27 +259,8 @@ def format_summary(result) -> str:
             out.append(f"  {f.letter}: {f.name}  {format_g(f.low, 6, trim=True)} .. {format_g(f.high, 6, trim=True)}")
     out.append("")
     sd = summary_data(result)  # the one summary every face renders
-    if result.mixed is not None:
-        out.extend(format_mixed(result))
-        out.extend(sd.anova_notes)
-        out.append("")
-    else:
-        out.append(sd.anova_title)
-        out.append(format_anova(result))
-        out.append("")
-        out.extend(sd.anova_notes)
-        out.append("")
-        s = result.statistics
-        stat_rows = [
-            ["Std. Dev.", format_g(s.std_dev), "R²", format_g(s.r2)],
-            ["Mean", format_g(s.mean), "Adjusted R²", format_g(s.adj_r2)],
-            ["C.V. %", format_g(s.cv_percent), "Predicted R²", format_g(s.pred_r2)],
-            ["PRESS", format_g(s.press), "Adeq Precision", format_g(s.adeq_precision)],
-        ]
-        out.append("Fit statistics")
-        out.append(text_table(["", "", "", ""], stat_rows, ["<", ">", "<", ">"]).split("\n", 2)[2])
-        out.extend(sd.statistics_notes)
-        out.append("")
+    for section in result.reading.text_sections:  # what the fit's reading has: its ANOVA and statistics,
+        out.extend(_SECTIONS[section](result, sd))  # or the Kenward-Roger tests and variance components
     out.append("Coefficients in terms of coded factors (95 % CI)")
     rows = []
     cscale = float(result.coefficients["coded"].abs().max())

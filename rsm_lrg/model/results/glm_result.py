@@ -29,7 +29,7 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...factors import FactorSpace
-from ..build.inputs import MAX_FACTOR_MAGNITUDE, coded_points
+from ..build.inputs import coded_points
 from ..build.spec import ModelSpec
 from ..build.terms import column_names, design_matrix
 from ..engines.glm_family import Family
@@ -513,12 +513,6 @@ class GLMResult:
         index = points.index if isinstance(points, pd.DataFrame) else None
         with np.errstate(over="ignore", invalid="ignore"):
             x = self.coded_points(points, coded)
-        far = ~(np.abs(x) <= MAX_FACTOR_MAGNITUDE)
-        if far.any():
-            i, j = np.argwhere(far)[0]
-            f = self.space.factors[j]
-            raise ValueError(f"prediction point {i + 1}: factor {f.name!r} is more than {MAX_FACTOR_MAGNITUDE:.0e} "
-                             f"half-ranges from its centre; the model says nothing there")
         eta, se_eta = self.predict_link(x)
         fam = self.family
         mu = fam.linkinv(eta)

@@ -12,7 +12,6 @@ back-transforms predictions and intervals in one place, and
 
 from __future__ import annotations
 
-import math
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -24,19 +23,18 @@ import numpy as np
 from ...errors import ParameterError
 from ...factors import FactorSpace
 from ...io import float_column
-from ...present import clean_anova
 from ..build.goals import parse_goal
-from ..build.inputs import MAX_FACTOR_MAGNITUDE, block_codes, coded_points, model_rows, unrounded_coding
+from ..build.inputs import block_codes, coded_points, model_rows, unrounded_coding
 from ..build.spec import ModelSpec, ReduceSpec
 from ..build.terms import Term, column_names, design_matrix, n_columns, term_columns
 from ..build.transform import Transform
 from ..contract.prediction import IntervalForm
-from ..contract.statistics import FitStatistics, fit_statistics
+from ..contract.statistics import FitStatistics
 from ..contract.tolerance import TOLERANCE_PAIRS, add_tolerance_interval
 from ..engines.least_squares import Regression
-from ..readings.actual import actual_coefficients
-from ..readings.anova import TOTAL_UNCORRECTED, PureError, anova_table
+from ..readings.anova import PureError
 from ..readings.canonical import StationaryPoint, canonical_analysis
+from .kinds import LeastSquaresReading, PolynomialForm, REMLReading, form_of, json_number, reading_of
 
 if TYPE_CHECKING:
     import dask.dataframe as dd
@@ -134,6 +132,8 @@ class FitResult:
     omitted_data: pd.DataFrame | None = field(default=None, repr=False)
     reduction: Reduction | Selection | None = field(default=None, repr=False)
     mixed: MixedModel | None = field(default=None, repr=False)
+    reading: LeastSquaresReading | REMLReading = field(default_factory=LeastSquaresReading, repr=False)
+    form: PolynomialForm = field(default_factory=PolynomialForm, repr=False)
 
     # -- what the regression core says ------------------------------------------------
     @property
@@ -153,7 +153,7 @@ class FitResult:
         """The engine's part of the fit, which answers for the kind: the regression core (least
         squares) or the mixed model (REML). Fitted values, residuals, the interval form, the
         separate tests and the random effect come from it."""
-        return self.least_squares if self.mixed is None else self.mixed
+        return self.reading.estimation(self)
 
     @property
     def fitted(self) -> np.ndarray | None:
@@ -192,9 +192,7 @@ class FitResult:
     def pure_error(self) -> PureError | None:
         """Pure error (R ``rsm``'s ``PE()``), or None when no setting is replicated (and for a
         REML fit: no lack-of-fit test against a pure error that mixes whole-plot variation)."""
-        if self.mixed is not None:
-            return None
-        return None if self.raw_pure_error.df == 0 else self.raw_pure_error
+        return self.reading.pure_error(self)
 
     @cached_property
     def tests(self) -> list:
@@ -205,20 +203,10 @@ class FitResult:
         return self.estimation.tests([t.name for t in self.model_terms], [tidx[g] for g in groups])
 
     @cached_property
-    def _sums(self) -> dict[str, Any]:
-        """The sums of squares of the ANOVA from the core (blocks first, sequential; terms Type III)."""
-        ls, nb, tidx = self.least_squares, self.n_blocks, self.term_index
-        if self.mixture:  # Scheffé: about the mean, linear blending first (rsm_lrg.model.build.mixture)
-            from ..build.mixture import mixture_sums
-
-            return mixture_sums(ls, self.terms)
-        mcols = tidx[1:] if self.intercept else tidx
-        ss_block = ls.sequential_ss(np.arange(1, nb)) if nb > 1 else 0.0
-        ss_model = ls.sequential_ss(mcols) if mcols.size else 0.0
-        ss_total = ls.ss_total if self.intercept else ss_model + ls.ss_res  # uncorrected: sum y^2
-        groups = term_columns(self.model_terms, 1 if self.intercept else 0)
-        return {"ss_block": ss_block, "ss_model": ss_model, "ss_total": ss_total, "df_model": int(mcols.size),
-                "groups": groups, "term_ss": [ls.partial_ss(tidx[g]) for g in groups]}
+    def sums(self) -> dict[str, Any]:
+        """The sums of squares of the ANOVA from the core, by the model's form
+        (:meth:`~rsm_lrg.model.results.kinds.PolynomialForm.sums`)."""
+        return self.form.sums(self)
 
     @cached_property
     def anova(self) -> pd.DataFrame:
@@ -227,91 +215,12 @@ class FitResult:
         For a REML fit, one row per term with the Kenward–Roger test (``df`` its numerator df,
         a ``den_df`` column, ``sum_sq`` and ``mean_sq`` NaN: a GLS fit has no sums of squares
         that add up)."""
-        if self.mixed is not None:
-            import pandas as pd
-
-            return pd.DataFrame({"source": [t.term for t in self.tests], "sum_sq": math.nan,
-                                 "df": [t.num_df for t in self.tests], "mean_sq": math.nan,
-                                 "f": [t.f for t in self.tests], "p": [t.p for t in self.tests],
-                                 "den_df": [t.den_df for t in self.tests]},
-                                columns=["source", "sum_sq", "df", "mean_sq", "f", "p", "den_df"])
-        s, ls = self._sums, self.least_squares
-        n, nb = ls.n, self.n_blocks
-        if self.mixture:  # Design-Expert's mixture ANOVA: Linear Mixture, non-linear terms, Cor Total
-            return clean_anova(anova_table(
-                term_names=s["names"], term_ss=s["term_ss"], ss_model=s["ss_model"], df_model=s["df_model"],
-                ss_block=0.0, df_block=0, ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"],
-                df_total=n - 1, pe=self.pure_error, term_df=s["term_df"], total_label="Cor Total"))
-        # Sums of squares that are round-off against the total (e.g. 2.5e-34 for a term whose
-        # coefficient is zero by symmetry) are stored as 0 with F 0 and p 1, as every face shows them.
-        return clean_anova(anova_table(
-            term_names=[t.name for t in self.model_terms], term_ss=s["term_ss"], ss_model=s["ss_model"],
-            df_model=s["df_model"], ss_block=s["ss_block"], df_block=nb - 1, ss_res=ls.ss_res, df_res=ls.df_resid,
-            ss_total=s["ss_total"], df_total=n - 1 if self.intercept else n, pe=self.pure_error,
-            term_df=[t.df for t in self.model_terms],
-            total_label="Cor Total" if self.intercept else TOTAL_UNCORRECTED))
+        return self.reading.anova(self)
 
     @cached_property
     def notes(self) -> tuple:
         """Remarks for the text output: ``input_notes`` first, then the fit's own."""
-        ls, nb = self.least_squares, self.n_blocks
-        notes = []
-        if self.mixed is not None:
-            return tuple(self.input_notes) + self._mixed_notes(self.mixed)
-        if self.raw_pure_error.df == 0:
-            notes.append("No lack-of-fit test: no factor setting is replicated"
-                         + (" (once the block effects are removed)" if nb > 1 else "") + ", so there is no pure error.")
-        elif ls.df_resid - self.raw_pure_error.df == 0:
-            notes.append("No lack-of-fit test: the model uses every degree of freedom beyond pure error.")
-        if ls.df_resid == 0:
-            notes.append("The model is saturated (no residual degrees of freedom): no F tests.")
-        elif ls.ss_res <= 1e-20 * self._sums["ss_total"]:  # residual RMS below 1e-10 of the response's spread
-            notes.append("The model fits the data exactly (residuals at round-off level): its F-values, p-values "
-                         "and standard errors measure round-off, not noise.")
-        return tuple(self.input_notes) + tuple(notes)
-
-    def _mixed_notes(self, mm: MixedModel) -> tuple:
-        from ..engines.mixed import CI_METHOD
-
-        if mm.kind not in ("whole_plot", "block"):
-            return self._several_notes(mm)
-        what = "whole plot" if mm.kind == "whole_plot" else "block"
-        notes = [f"REML fit with a random intercept per {what} ({mm.column!r}, {mm.n_groups} {what}s): coefficients "
-                 "and standard errors are generalised least squares at the REML variance ratio; F tests use the "
-                 "Kenward–Roger adjusted covariance and den df (pbkrtest's computation, den df not clamped); "
-                 "t and p of the coefficients are the one-df Kenward–Roger tests.",
-                 "No sums of squares, PRESS, R², adequate precision or lack-of-fit test: they are ordinary "
-                 "least-squares quantities with no counterpart in a REML fit.",
-                 f"Variance component intervals: {CI_METHOD}.",
-                 "Residuals are conditional (y - Xb - Zu, BLUPs u); studentized residuals and leverages are those of "
-                 "the whitened (V^-1/2) model; prediction intervals are for a new run in a new "
-                 f"{what} (variance x'Φ_A x + s2_{'wp' if mm.kind == 'whole_plot' else 'block'} + s2)."]
-        if mm.boundary:
-            notes.append(f"The {what} variance component is estimated at zero (REML on the boundary): the coefficients "
-                         "and their standard errors equal the ordinary least-squares ones, but the zero component "
-                         "stays in the Kenward–Roger computation (as pbkrtest and lmerTest keep it), so the den df, F "
-                         f"and p still count the {what}-to-{what} variation the data could hold; they are not the OLS "
-                         "tests.")
-        return tuple(notes)
-
-    def _several_notes(self, mm: MixedModel) -> tuple:
-        notes = [f"REML fit with {mm.describe()}: coefficients and standard errors are generalised least squares at "
-                 "the REML variance ratios; F tests use the Kenward–Roger adjusted covariance and den df (pbkrtest's "
-                 "computation with one variance parameter per random effect and the residual, den df not clamped); "
-                 "t and p of the coefficients are the one-df Kenward–Roger tests.",
-                 "No sums of squares, PRESS, R², adequate precision or lack-of-fit test: they are ordinary "
-                 "least-squares quantities with no counterpart in a REML fit.",
-                 "Variance component intervals: Wald on the log scale: log(s2_k) ± z·se(log s2_k), se from the "
-                 "inverse expected (REML) information of the variance components, the W of Kenward–Roger.",
-                 "Residuals are conditional (y - Xb - Σ Z_k u_k, BLUPs u_k); studentized residuals and leverages are "
-                 "those of the whitened model; prediction intervals are for a new run in new levels of every random "
-                 "effect (variance x'Φ_A x + the sum of the random-effect variances + s2)."]
-        zero = [n for n, v in zip(mm.component_names, mm.component_variances) if v == 0.0]
-        if zero:
-            notes.append(f"Variance component{'s' if len(zero) > 1 else ''} {', '.join(repr(z) for z in zero)} "
-                         "estimated at zero (REML on the boundary): kept in the Kenward–Roger computation, as pbkrtest "
-                         "and lmerTest keep it.")
-        return tuple(notes)
+        return tuple(self.input_notes) + self.reading.notes(self)
 
     @cached_property
     def actual_solution(self) -> Any:
@@ -322,7 +231,8 @@ class FitResult:
         is used then)."""
         from ..readings.actual_units import is_closed_under_shift, solve_actual
 
-        if self.coded is None or self.y is None or self.mixture or self.mixed is not None:
+        if (self.coded is None or self.y is None or not self.form.solves_in_actual_units
+                or not self.reading.solves_in_actual_units):
             return None  # mixture, REML: the exact change of basis of the coded coefficients
         x = np.column_stack([self.coded[f.letter].to_numpy(dtype=float) if f.kind == "categoric"
                              else float_column(self.data, f.name).to_numpy(dtype=float) for f in self.space.factors])
@@ -356,11 +266,7 @@ class FitResult:
         """``{monomial: coefficient}`` in actual units of coded coefficients ``{column: value}``:
         the exact, linear change of basis (L-pseudo components to real proportions for a
         Scheffé model, coded to actual factors otherwise)."""
-        if self.mixture:
-            from ..build.mixture import pseudo_to_actual
-
-            return pseudo_to_actual(dict(coded), self.terms, self.space)
-        return actual_coefficients(dict(coded), self.terms, self.space)
+        return self.form.to_actual(dict(coded), self)
 
     @property
     def actual_std_errors(self) -> dict | None:
@@ -417,40 +323,19 @@ class FitResult:
     @cached_property
     def term_vif(self) -> dict:
         """Generalised VIF of each term when a categoric term has several columns (else empty)."""
-        if self.mixed is not None or not (self.intercept and any(t.df > 1 for t in self.terms)):
-            return {}
-        tidx = self.term_index
-        gv = self.least_squares.gvif([tidx[g] for g in self._sums["groups"]])
-        return dict(zip([t.name for t in self.model_terms], gv.tolist()))
+        return self.reading.term_vif(self)
 
     @cached_property
     def statistics(self) -> FitStatistics:
         """R², adjusted and predicted R², PRESS, adequate precision, std dev, mean, C.V."""
-        ls = self.least_squares
-        if self.mixed is not None:  # std dev of the residual (within-group) component only
-            ybar = float(np.mean(self.mixed.y))
-            sd = math.sqrt(self.mixed.sigma2)
-            return FitStatistics(r2=math.nan, adj_r2=math.nan, pred_r2=math.nan, press=math.nan,
-                                 adeq_precision=math.nan, std_dev=sd, mean=ybar,
-                                 cv_percent=100.0 * sd / abs(ybar) if ybar != 0 else math.nan)
-        s = self._sums
-        if ls.pass_sums is None:
-            raise ValueError("the fit's statistics need the second pass over the rows")
-        sol = self.actual_solution  # its residual sum of squares is exact to the data's digits (NIST StRD)
-        ss_res = float(sol.rss) if sol is not None and math.isfinite(sol.rss) else ls.ss_res
-        return fit_statistics(n=ls.n, mean=ls.ybar, fitted_range=ls.pass_sums.fitted_max - ls.pass_sums.fitted_min,
-                              ss_res=ss_res, df_res=ls.df_resid, ss_total=s["ss_total"], ss_block=s["ss_block"],
-                              df_model=s["df_model"], n_params=ls.p, press=ls.press)
+        return self.reading.statistics(self)
 
     @cached_property
     def stationary_point(self) -> StationaryPoint:
         """The stationary point and canonical analysis (first categoric levels); none for a
         mixture model, whose components are not free."""
-        if self.mixture:
-            return StationaryPoint(None, None, None, note="no canonical analysis: the mixture components are not free "
-                                   "(they sum to the total)", letters=tuple(self.space.letters))
         coded = dict(zip(column_names(self.terms), self.least_squares.params[self.term_index].tolist()))
-        return canonical_analysis(coded, self.terms, self.space)
+        return self.form.stationary_point(coded, self)
 
     @cached_property
     def block_effects(self) -> dict | None:
@@ -493,8 +378,7 @@ class FitResult:
             parts = [f"{red.start_model}, reduced (removed {', '.join(red.removed) or 'nothing'})"]
         else:
             parts = [spec.order if spec.terms is None else "terms " + " ".join(t.name for t in self.model_terms)]
-        if not self.intercept and not self.mixture:
-            parts.append("no intercept")
+        parts += self.form.label_parts(self)
         if not self.transform.identity:
             parts.append(f"{self.transform.label} transform")
         return ", ".join(parts)
@@ -572,7 +456,7 @@ class FitResult:
     def _residuals_and_hat(self) -> tuple[np.ndarray, np.ndarray]:
         """``(residuals, hat)``; a Dask fit keeps no per-run arrays. For a REML fit those of the
         whitened model (scaled residuals ``V^-1/2 (y - X b)``)."""
-        e, h = (self.least_squares.residuals if self.mixed is not None else self.residuals), self.hat
+        e, h = self.reading.scaled_residuals(self), self.hat
         if e is None or h is None:
             raise ValueError("a Dask fit keeps no per-run residuals or leverages")
         return e, h
@@ -622,33 +506,6 @@ class FitResult:
         return canonical_analysis(coefs, self.terms, self.space, threshold=threshold, level=level)
 
     # -- prediction ------------------------------------------------------------------
-    def _check_blends(self, x: np.ndarray) -> None:
-        """ValueError naming the first point whose components do not sum to the total (the
-        L-pseudo components sum to one; tolerance :data:`~rsm_lrg.model.build.mixture.SUM_RTOL`)."""
-        from ...factors import MixtureComponent
-        from ..build.mixture import SUM_RTOL
-
-        comps = [j for j, f in enumerate(self.space.factors) if isinstance(f, MixtureComponent)]
-        f0 = self.space.factors[comps[0]]
-        assert isinstance(f0, MixtureComponent)
-        sums = x[:, comps].sum(axis=1)
-        bad = np.flatnonzero(~(np.abs(sums - 1.0) <= SUM_RTOL * f0.total / f0.pseudo_range))
-        if bad.size:
-            i = int(bad[0])
-            raise ValueError(f"prediction point {i + 1}: the components sum to {f0.lower_sum + sums[i] * f0.pseudo_range:.12g}, "
-                             f"not the total {f0.total:.12g} (tolerance {SUM_RTOL:g} of the total)")
-        tol = SUM_RTOL * f0.total
-        for j in comps:  # a share below zero or above the total is no blend (the sum alone passes 2 - 1 + 0)
-            f = self.space.factors[j]
-            assert isinstance(f, MixtureComponent)
-            share = f.lower + x[:, j] * f.pseudo_range
-            out = np.flatnonzero(~((share >= -tol) & (share <= f.total + tol)))
-            if out.size:
-                i = int(out[0])
-                where = "negative" if share[i] < 0 else f"above the total {f.total:.12g}"
-                raise ValueError(f"prediction point {i + 1}: component {f.name!r} is {where} ({share[i]:.12g}); a "
-                                 "blend's shares lie between 0 and the total")
-
     def predict_coded(self, coded: np.ndarray) -> np.ndarray:
         """ŷ at coded settings (n x k array), average block [response units].
 
@@ -739,16 +596,9 @@ class FitResult:
         if not 0.0 < alpha < 1.0:
             raise ParameterError("alpha", f"alpha must lie between 0 and 1, not {alpha!r}")
         index = points.index if isinstance(points, pd.DataFrame) else None
-        with np.errstate(over="ignore"):  # a far point codes to a huge number or inf: refused below
+        with np.errstate(over="ignore"):  # a far point codes to a huge number or inf: refused there
             x = coded_points(self.space, points, coded)
-        far = ~(np.abs(x) <= MAX_FACTOR_MAGNITUDE)
-        if far.any():  # a polynomial there overflows (and says nothing): refuse with the factor named
-            i, j = np.argwhere(far)[0]
-            f = self.space.factors[j]
-            raise ValueError(f"prediction point {i + 1}: factor {f.name!r} is more than {MAX_FACTOR_MAGNITUDE:.0e} "
-                             f"half-ranges from its centre ({f.center:.6g}); the model says nothing there")
-        if self.mixture:  # a Scheffé model speaks of blends: the components must sum to the total
-            self._check_blends(x)
+        self.form.check_points(self.space, x)  # a Scheffé model speaks of blends that sum to the total
         Xt = design_matrix(x, self.terms)
         beta = self.coefficients["coded"].to_numpy()
         pred = Xt @ beta
@@ -834,8 +684,8 @@ class FitResult:
         tuple of numpy.ndarray
             ``(x' Phi_A x, den df)`` per point [model-scale units², -].
         """
-        if self.mixed is None:
-            raise ValueError("kr_mean needs a REML fit (whole_plot= or random_block=)")
+        if not self.interval_form.kenward_roger:
+            raise ValueError("kr_mean needs a REML fit (whole_plot=, random_block= or random_effects=)")
         _, var_mean, _, df = self.interval_form.at(design_matrix(coded_points(self.space, points, coded), self.terms))
         return var_mean, df
 
@@ -1042,33 +892,21 @@ class FitResult:
             "block": self.block,
             "factors": self.space.to_list(),
             "coefficients": {
-                "coded": {k: _f(v) for k, v in coef["coded"].items()},
-                "actual": {k: _f(v) for k, v in self.actual_coefficients.items()},
+                "coded": {k: json_number(v) for k, v in coef["coded"].items()},
+                "actual": {k: json_number(v) for k, v in self.actual_coefficients.items()},
             },
-            "std_errors": {"coded": {k: _f(v) for k, v in coef["std_error"].items()}},
+            "std_errors": {"coded": {k: json_number(v) for k, v in coef["std_error"].items()}},
         }
         if self.actual_std_errors is not None:
-            out["std_errors"]["actual"] = {k: _f(v) for k, v in self.actual_std_errors.items()}
+            out["std_errors"]["actual"] = {k: json_number(v) for k, v in self.actual_std_errors.items()}
 
         if self.block is not None:
-            out["block_effects"] = {k: _f(v) for k, v in (self.block_effects or {}).items()}
-        if self.mixed is not None:
-            out.update(self._mixed_dict(self.mixed))
-        if self.mixed is not None:
-            # a REML fit has no sums of squares: its "anova" is the Kenward-Roger tests in the
-            # ANOVA's shape (one row per term, unused numbers null, den_df added), as "tests"
-            out["anova"] = [{"source": t["term"], "sum_sq": None, "df": t["num_df"], "mean_sq": None,
-                             "f": t["f"], "p": t["p"], "den_df": t["den_df"]} for t in out["tests"]]
-        else:
-            out["anova"] = [
-                {"source": r["source"], "sum_sq": _f(r["sum_sq"]), "df": int(r["df"]), "mean_sq": _f(r["mean_sq"]),
-                 "f": _f(r["f"]), "p": _f(r["p"])}
-                for r in self.anova.to_dict(orient="records")
-            ]
-        out["statistics"] = {k: _f(v) for k, v in self.statistics.to_dict().items()}
+            out["block_effects"] = {k: json_number(v) for k, v in (self.block_effects or {}).items()}
+        out.update(self.reading.json_parts(self))
+        out["statistics"] = {k: json_number(v) for k, v in self.statistics.to_dict().items()}
         out["stationary_point"] = self.stationary_point.to_dict()
         if self.term_vif:
-            out["term_vif"] = {k: _f(v) for k, v in self.term_vif.items()}
+            out["term_vif"] = {k: json_number(v) for k, v in self.term_vif.items()}
         out["notes"] = list(self.notes)
         out["omitted_rows"] = list(self.omitted_rows)  # 1-based data rows without a response
         out["terms"] = [t.name for t in self.model_terms]
@@ -1078,34 +916,6 @@ class FitResult:
         if self.reduction is not None:
             out["reduction"] = self.reduction.to_dict()
         return out
-
-    def _mixed_dict(self, mm: MixedModel) -> dict:
-        from ..engines.mixed import CI_METHOD
-
-        vc = {k: {kk: _f(vv) for kk, vv in c.to_dict().items()} for k, c in mm.variance_components.items()}
-        if mm.kind not in ("whole_plot", "block"):  # random_effects=[...]: one entry per grouping column
-            assert mm.kind == "effect" or mm.etas is not None
-            ratios = [mm.eta] if mm.kind == "effect" else list(mm.etas)  # type: ignore[arg-type]
-            return {
-                "random_effect_columns": list(mm.columns), "method": "REML",
-                "variance_ratio": {c: _f(r) for c, r in zip(mm.columns, ratios)},
-                "variance_components": vc, "variance_component_ci": CI_METHOD,
-                "tests": [{k: (_f(v) if k not in ("term", "num_df") else v) for k, v in t.to_dict().items()}
-                          for t in self.tests],
-                "den_df_method": "Kenward-Roger",
-                "random_effects": ({mm.column: {k: _f(v) for k, v in mm.random_effects_table.items()}}
-                                   if mm.kind == "effect" else
-                                   {c: {k: _f(v) for k, v in t.items()} for c, t in mm.random_effects_table.items()}),
-            }
-        key = "whole_plot" if mm.kind == "whole_plot" else "random_block"
-        return {
-            key: mm.column, "method": "REML", "variance_ratio": _f(mm.eta),
-            "variance_components": vc, "variance_component_ci": CI_METHOD,
-            "tests": [{k: (_f(v) if k not in ("term", "num_df") else v) for k, v in t.to_dict().items()}
-                      for t in self.tests],
-            "den_df_method": "Kenward-Roger",
-            "random_effects": {str(lab): _f(u) for lab, u in zip(mm.labels, mm.blups)},
-        }
 
     def to_frame(self):
         """Per-run diagnostics: actual and coded settings, response, fitted, residual,
@@ -1131,22 +941,8 @@ class FitResult:
         df["studentized"] = self.studentized_residuals
         df["externally_studentized"] = self.externally_studentized_residuals
         df["cooks_distance"] = self.cooks_distance
-        if self.mixed is not None:
-            mm = self.mixed
-            for c in mm.columns:
-                df.insert(df.columns.get_loc(self.response), c, self.data[c].to_numpy())
-            df["marginal_residual"] = mm.marginal_residuals
-            df["conditional_residual"] = mm.conditional_residuals
-            df["marginal_fitted"] = mm.marginal_fitted
+        self.reading.add_run_columns(self, df)
         return df
-
-
-def _f(v):
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        return None
-    return x if math.isfinite(x) else None
 
 
 def assemble(*, spec: ModelSpec, response: str, block: str | None, space: FactorSpace, terms: Sequence[Term],
@@ -1165,4 +961,4 @@ def assemble(*, spec: ModelSpec, response: str, block: str | None, space: Factor
                      raw_pure_error=pe, column_names=tuple(col_names), data=data, coded=coded, y=y,
                      y_response=y_response, block_keys=None if bkeys is None else tuple(bkeys), block_levels=blevels,
                      input_notes=tuple(input_notes), omitted_rows=tuple(omitted_rows), omitted_data=omitted_data,
-                     reduction=reduction, mixed=mixed)
+                     reduction=reduction, mixed=mixed, reading=reading_of(mixed), form=form_of(spec.mixture))
