@@ -13,7 +13,7 @@ the result (and no consumer above it) branches on a kind.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -30,9 +30,64 @@ if TYPE_CHECKING:
     from ...factors import FactorSpace
     from ..engines.least_squares import Regression
     from ..engines.mixed import MixedModel
-    from .result import FitResult
 
 __all__ = ["json_number", "LeastSquaresReading", "REMLReading", "PolynomialForm", "ScheffeForm", "reading_of", "form_of"]
+
+
+class ReadFit(Protocol):
+    """The parts of a :class:`rsm_lrg.model.results.result.FitResult` that a reading and a form
+    read (a protocol: the result module imports this one, not the other way round)."""
+
+    @property
+    def response(self) -> str: ...
+
+    @property
+    def space(self) -> FactorSpace: ...
+
+    @property
+    def terms(self) -> tuple: ...
+
+    @property
+    def least_squares(self) -> Regression: ...
+
+    @property
+    def raw_pure_error(self) -> PureError: ...
+
+    @property
+    def data(self) -> Any: ...
+
+    @property
+    def form(self) -> PolynomialForm: ...
+
+    @property
+    def intercept(self) -> bool: ...
+
+    @property
+    def model_terms(self) -> Any: ...
+
+    @property
+    def n_blocks(self) -> int: ...
+
+    @property
+    def term_index(self) -> np.ndarray: ...
+
+    @property
+    def sums(self) -> dict[str, Any]: ...
+
+    @property
+    def pure_error(self) -> PureError | None: ...
+
+    @property
+    def residuals(self) -> np.ndarray | None: ...
+
+    @property
+    def tests(self) -> Any: ...
+
+    @property
+    def anova(self) -> Any: ...
+
+    @property
+    def actual_solution(self) -> Any: ...
 
 
 def json_number(v: Any) -> float | None:
@@ -61,7 +116,7 @@ class PolynomialForm:
     #: The model can be solved again in actual units to the accuracy of the data.
     solves_in_actual_units = True
 
-    def sums(self, r: FitResult) -> dict[str, Any]:
+    def sums(self, r: ReadFit) -> dict[str, Any]:
         """The sums of squares of the ANOVA from the core (blocks first, sequential; terms Type III).
 
         Parameters
@@ -84,7 +139,7 @@ class PolynomialForm:
         return {"ss_block": ss_block, "ss_model": ss_model, "ss_total": ss_total, "df_model": int(mcols.size),
                 "groups": groups, "term_ss": [ls.partial_ss(tidx[g]) for g in groups]}
 
-    def anova(self, r: FitResult) -> pd.DataFrame:
+    def anova(self, r: ReadFit) -> pd.DataFrame:
         """The Design-Expert ANOVA of a least-squares fit (Table 5 layout).
 
         Parameters
@@ -108,7 +163,7 @@ class PolynomialForm:
             term_df=[t.df for t in r.model_terms],
             total_label="Cor Total" if r.intercept else TOTAL_UNCORRECTED))
 
-    def to_actual(self, coded: dict, r: FitResult) -> dict:
+    def to_actual(self, coded: dict, r: ReadFit) -> dict:
         """``{monomial: coefficient}`` in actual units of coded coefficients (the exact change of coding).
 
         Parameters
@@ -125,7 +180,7 @@ class PolynomialForm:
         """
         return actual_coefficients(dict(coded), r.terms, r.space)
 
-    def stationary_point(self, coded: dict, r: FitResult) -> StationaryPoint:
+    def stationary_point(self, coded: dict, r: ReadFit) -> StationaryPoint:
         """The stationary point and canonical analysis (first categoric levels).
 
         Parameters
@@ -153,7 +208,7 @@ class PolynomialForm:
             Coded settings.
         """
 
-    def label_parts(self, r: FitResult) -> list[str]:
+    def label_parts(self, r: ReadFit) -> list[str]:
         """Words of the model's label beyond its terms (``no intercept``).
 
         Parameters
@@ -173,7 +228,7 @@ class ScheffeForm(PolynomialForm):
 
     solves_in_actual_units = False  # the exact change of basis of the coded coefficients instead
 
-    def sums(self, r: FitResult) -> dict[str, Any]:
+    def sums(self, r: ReadFit) -> dict[str, Any]:
         """The mixture ANOVA's sums: about the mean, linear blending first
         (:func:`rsm_lrg.model.build.mixture.mixture_sums`).
 
@@ -191,7 +246,7 @@ class ScheffeForm(PolynomialForm):
 
         return mixture_sums(r.least_squares, r.terms)
 
-    def anova(self, r: FitResult) -> pd.DataFrame:
+    def anova(self, r: ReadFit) -> pd.DataFrame:
         """Design-Expert's mixture ANOVA: Linear Mixture, the non-linear terms, Cor Total.
 
         Parameters
@@ -210,7 +265,7 @@ class ScheffeForm(PolynomialForm):
             ss_block=0.0, df_block=0, ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"],
             df_total=ls.n - 1, pe=r.pure_error, term_df=s["term_df"], total_label="Cor Total"))
 
-    def to_actual(self, coded: dict, r: FitResult) -> dict:
+    def to_actual(self, coded: dict, r: ReadFit) -> dict:
         """``{monomial: coefficient}`` in real proportions of L-pseudo-component coefficients.
 
         Parameters
@@ -229,7 +284,7 @@ class ScheffeForm(PolynomialForm):
 
         return pseudo_to_actual(dict(coded), r.terms, r.space)
 
-    def stationary_point(self, coded: dict, r: FitResult) -> StationaryPoint:
+    def stationary_point(self, coded: dict, r: ReadFit) -> StationaryPoint:
         """None: the mixture components are not free (they sum to the total).
 
         Parameters
@@ -283,7 +338,7 @@ class ScheffeForm(PolynomialForm):
                 raise ValueError(f"prediction point {i + 1}: component {f.name!r} is {where} ({share[i]:.12g}); a "
                                  "blend's shares lie between 0 and the total")
 
-    def label_parts(self, r: FitResult) -> list[str]:
+    def label_parts(self, r: ReadFit) -> list[str]:
         """None: a Scheffé model has no intercept by its form.
 
         Parameters
@@ -311,7 +366,7 @@ class LeastSquaresReading:
     #: Why lack of fit is not tested, when it cannot be (None: the ANOVA says).
     lack_of_fit_note: str | None = None
 
-    def fitted_by(self, r: FitResult) -> str:
+    def fitted_by(self, r: ReadFit) -> str:
         """How the coefficients were estimated, for a summary line.
 
         Parameters
@@ -325,7 +380,7 @@ class LeastSquaresReading:
         """
         return "least squares in coded units"
 
-    def variance_components(self, r: FitResult) -> dict:
+    def variance_components(self, r: ReadFit) -> dict:
         """The variance components beside the residual (none for least squares).
 
         Parameters
@@ -340,7 +395,7 @@ class LeastSquaresReading:
         """
         return {}
 
-    def estimation(self, r: FitResult) -> Regression:
+    def estimation(self, r: ReadFit) -> Regression:
         """The engine's part: the regression core.
 
         Parameters
@@ -354,7 +409,7 @@ class LeastSquaresReading:
         """
         return r.least_squares
 
-    def pure_error(self, r: FitResult) -> PureError | None:
+    def pure_error(self, r: ReadFit) -> PureError | None:
         """The pure error, or None when no setting is replicated.
 
         Parameters
@@ -368,7 +423,7 @@ class LeastSquaresReading:
         """
         return None if r.raw_pure_error.df == 0 else r.raw_pure_error
 
-    def anova(self, r: FitResult) -> pd.DataFrame:
+    def anova(self, r: ReadFit) -> pd.DataFrame:
         """The ANOVA of the model's form.
 
         Parameters
@@ -382,7 +437,7 @@ class LeastSquaresReading:
         """
         return r.form.anova(r)
 
-    def notes(self, r: FitResult) -> tuple:
+    def notes(self, r: ReadFit) -> tuple:
         """The fit's own remarks (lack of fit, saturation, an exact fit).
 
         Parameters
@@ -408,7 +463,7 @@ class LeastSquaresReading:
                          "and standard errors measure round-off, not noise.")
         return tuple(notes)
 
-    def statistics(self, r: FitResult) -> FitStatistics:
+    def statistics(self, r: ReadFit) -> FitStatistics:
         """R², adjusted and predicted R², PRESS, adequate precision, std dev, mean, C.V.
 
         Parameters
@@ -429,7 +484,7 @@ class LeastSquaresReading:
                               ss_res=ss_res, df_res=ls.df_resid, ss_total=s["ss_total"], ss_block=s["ss_block"],
                               df_model=s["df_model"], n_params=ls.p, press=ls.press)
 
-    def term_vif(self, r: FitResult) -> dict:
+    def term_vif(self, r: ReadFit) -> dict:
         """Generalised VIF of each term when a categoric term has several columns (else empty).
 
         Parameters
@@ -447,7 +502,7 @@ class LeastSquaresReading:
         gv = r.least_squares.gvif([tidx[g] for g in r.sums["groups"]])
         return dict(zip([t.name for t in r.model_terms], gv.tolist()))
 
-    def scaled_residuals(self, r: FitResult) -> np.ndarray | None:
+    def scaled_residuals(self, r: ReadFit) -> np.ndarray | None:
         """The residuals the studentized residuals and Cook's distance are computed from.
 
         Parameters
@@ -462,7 +517,7 @@ class LeastSquaresReading:
         """
         return r.residuals
 
-    def json_parts(self, r: FitResult) -> dict:
+    def json_parts(self, r: ReadFit) -> dict:
         """The fit JSON's ANOVA rows.
 
         Parameters
@@ -480,7 +535,7 @@ class LeastSquaresReading:
              "f": json_number(row["f"]), "p": json_number(row["p"])}
             for row in r.anova.to_dict(orient="records")]}
 
-    def add_run_columns(self, r: FitResult, frame: pd.DataFrame) -> None:
+    def add_run_columns(self, r: ReadFit, frame: pd.DataFrame) -> None:
         """Add the reading's own per-run columns to the diagnostics table (none).
 
         Parameters
@@ -509,7 +564,7 @@ class REMLReading:
     def __init__(self, mixed: MixedModel) -> None:
         self.mixed = mixed
 
-    def estimation(self, r: FitResult) -> MixedModel:
+    def estimation(self, r: ReadFit) -> MixedModel:
         """The engine's part: the mixed model.
 
         Parameters
@@ -523,7 +578,7 @@ class REMLReading:
         """
         return self.mixed
 
-    def fitted_by(self, r: FitResult) -> str:
+    def fitted_by(self, r: ReadFit) -> str:
         """How the coefficients were estimated, for a summary line.
 
         Parameters
@@ -538,7 +593,7 @@ class REMLReading:
         """
         return f"REML in coded units with {self.mixed.describe()}"
 
-    def variance_components(self, r: FitResult) -> dict:
+    def variance_components(self, r: ReadFit) -> dict:
         """The variance components (each random effect and the residual) with their intervals.
 
         Parameters
@@ -553,7 +608,7 @@ class REMLReading:
         """
         return dict(self.mixed.variance_components)
 
-    def pure_error(self, r: FitResult) -> PureError | None:
+    def pure_error(self, r: ReadFit) -> PureError | None:
         """None: no lack-of-fit test against a pure error that mixes the groups' variation.
 
         Parameters
@@ -567,7 +622,7 @@ class REMLReading:
         """
         return None
 
-    def anova(self, r: FitResult) -> pd.DataFrame:
+    def anova(self, r: ReadFit) -> pd.DataFrame:
         """One row per term with its Kenward–Roger test (``df`` the numerator df, ``den_df``
         added, ``sum_sq`` and ``mean_sq`` NaN: a GLS fit has no sums of squares that add up).
 
@@ -588,7 +643,7 @@ class REMLReading:
                              "den_df": [t.den_df for t in r.tests]},
                             columns=["source", "sum_sq", "df", "mean_sq", "f", "p", "den_df"])
 
-    def notes(self, r: FitResult) -> tuple:
+    def notes(self, r: ReadFit) -> tuple:
         """What a REML fit is and is not (its tests, intervals and residuals).
 
         Parameters
@@ -644,7 +699,7 @@ class REMLReading:
                          "and lmerTest keep it.")
         return tuple(notes)
 
-    def statistics(self, r: FitResult) -> FitStatistics:
+    def statistics(self, r: ReadFit) -> FitStatistics:
         """The std dev of the residual (within-group) component, the mean and C.V.; R², PRESS
         and adequate precision NaN.
 
@@ -663,7 +718,7 @@ class REMLReading:
                              adeq_precision=math.nan, std_dev=sd, mean=ybar,
                              cv_percent=100.0 * sd / abs(ybar) if ybar != 0 else math.nan)
 
-    def term_vif(self, r: FitResult) -> dict:
+    def term_vif(self, r: ReadFit) -> dict:
         """None (a property of X'X, not of a GLS fit).
 
         Parameters
@@ -678,7 +733,7 @@ class REMLReading:
         """
         return {}
 
-    def scaled_residuals(self, r: FitResult) -> np.ndarray | None:
+    def scaled_residuals(self, r: ReadFit) -> np.ndarray | None:
         """The residuals of the whitened model ``V^-1/2 (y - X b)``.
 
         Parameters
@@ -692,7 +747,7 @@ class REMLReading:
         """
         return r.least_squares.residuals
 
-    def json_parts(self, r: FitResult) -> dict:
+    def json_parts(self, r: ReadFit) -> dict:
         """The REML block of the fit JSON (variance components, Kenward–Roger tests, random
         effects) and its ``anova``: the tests in the ANOVA's shape (unused numbers null).
 
@@ -734,7 +789,7 @@ class REMLReading:
                          "f": t["f"], "p": t["p"], "den_df": t["den_df"]} for t in tests]
         return out
 
-    def add_run_columns(self, r: FitResult, frame: pd.DataFrame) -> None:
+    def add_run_columns(self, r: ReadFit, frame: pd.DataFrame) -> None:
         """Add the grouping columns and the marginal and conditional residuals and fitted values.
 
         Parameters

@@ -7,8 +7,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import rsm_lrg
-from rsm_lrg.model.fit import fit_transformed
 from rsm_lrg.model.build.transform import parse_transform
+from rsm_lrg.model.fit import fit_transformed
 
 PAPER_OPT = {"thickness_m": [0.0001], "stroke_m": [0.04], "velocity_m_s": [0.4], "acceleration_m_s2": [20.0]}
 
