@@ -48,7 +48,7 @@ import sys
 import warnings
 
 from ._common import check_option_specs, claim_standard_output, input_paths, mark_outputs, planned_outputs
-from .processes import Terminated, handle_signals, pending_signal, stop_children
+from .processes import Terminated, handle_signals, pending_signal, settle, stop_children
 
 __all__ = ["main", "build_parser", "UsageError"]
 
@@ -271,8 +271,14 @@ def main(argv: list[str] | None = None) -> int:
     guard = _PipeGuard(sys.stdout)
     sys.stdout = guard
     try:
-        with handle_signals():  # SIGTERM and SIGHUP unwind the command like an error
-            status = _main(argv)
+        with handle_signals(restore=argv is not None):  # SIGTERM and SIGHUP unwind the command like an error
+            try:
+                status = _main(argv)
+                settle(status, leave=argv is None)  # a later signal finds the command ended
+            except (KeyboardInterrupt, Terminated) as exc:  # one that came as _main returned
+                signum = exc.signum if isinstance(exc, Terminated) else signal.SIGINT
+                settle(128 + signum, leave=argv is None)
+                status = _stopped(signum)
     finally:
         if sys.stdout is guard:
             sys.stdout = guard.stream
@@ -315,7 +321,7 @@ def _one_blas_thread(argv: list[str]) -> None:
 
 
 def _main(argv: list[str] | None) -> int:
-    from ..io import output_transaction
+    from ..io import CommitAborted, output_transaction
 
     argv = sys.argv[1:] if argv is None else list(argv)
     _one_blas_thread(argv)
@@ -359,6 +365,8 @@ def _main(argv: list[str] | None) -> int:
         return int(exc.code or 0) if isinstance(exc.code, int) else 0
     except KeyboardInterrupt:
         return _stopped(signal.SIGINT)
+    except CommitAborted:  # a signal came while the outputs were placed: they were taken back
+        return _stopped(pending_signal() or signal.SIGINT)
     except Terminated as exc:  # the outputs were discarded on the way out; no worker is left
         return _stopped(exc.signum)
     except Exception as exc:
