@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
+import errno
 import math
 import os
 import re
@@ -533,27 +534,39 @@ class _Transaction:
         self.labels = {os.path.abspath(k): v for k, v in (labels or {}).items()}
         self.staged: list[tuple[str, Path, bool]] = []  # (temporary file, target, force)
         self.streams: list[tuple[int, bytes, Path]] = []  # (descriptor, data, path named): written last
+        self.temporaries: list[str] = []  # every temporary file named, from before it is created
 
     def label(self, path) -> str | None:
         """The option that named ``path`` (``--json``), when known."""
         return self.labels.get(os.path.abspath(path))
 
     def discard(self) -> None:
-        for tmp, *_ in self.staged:
-            _unlink(tmp)
-        self.staged = []
-        self.streams = []
+        """Remove every temporary file (while :func:`committing` is true: a signal handler
+        then only records its signal, so no file is left half-way through)."""
+        before = _STATE[0]
+        _STATE[0] = "cleaning"
+        try:
+            for tmp in [*(t for t, *_ in self.staged), *self.temporaries]:
+                _unlink(tmp)
+            self.staged = []
+            self.streams = []
+            self.temporaries = []
+        finally:
+            _STATE[0] = "idle" if before == "committed" else before
 
     def commit(self) -> None:
         """Rename every staged file into place, then write the streams (``/dev/stdout``); if
         one step fails, every file already placed is put back as it was (the file it replaced
         restored from its backup, a new file removed) and the error is raised. While it runs,
-        :func:`committing` is true (a signal handler then lets it finish)."""
-        _COMMITTING[0] = True
+        :func:`committing` is true (a signal handler then lets it finish, or asks with
+        :func:`abort_commit` that it be undone: :class:`CommitAborted` is then raised after the
+        roll-back); once it has succeeded :func:`committed` is true (the command is done)."""
+        _STATE[0] = "committing"
         try:
             self._commit()
         finally:
-            _COMMITTING[0] = False
+            if _STATE[0] != "committed":
+                _STATE[0] = "idle"
 
     def _commit(self) -> None:
         done: list[tuple[Path, str | None]] = []  # (target, backup of the file it replaced)
@@ -572,6 +585,14 @@ class _Transaction:
                 done.append((target, backup))
             for fd, data, path in self.streams:
                 _write_stream(fd, data, path, self.label(path))
+            # the point of no return, free of races with a signal handler (it runs between two
+            # statements of this thread): a handler that ran before the state became
+            # "committed" asked for the abort, which is seen on the next line; one that runs
+            # after it sees "committed" and leaves the outputs be
+            _STATE[0] = "committed"
+            if _ABORT[0]:
+                _STATE[0] = "committing"
+                raise CommitAborted()
         except BaseException as exc:
             lost = []
             for target, backup in reversed(done):
@@ -592,13 +613,41 @@ class _Transaction:
 
 
 _BACKUP_PREFIX = ".rsm-lrg-backup."
-_COMMITTING = [False]
+#: Where the outputs stand: "idle", "committing" (being placed or put back), "cleaning"
+#: (temporary files being removed) or "committed" (all placed: the command has done its work).
+_STATE = ["idle"]
+_ABORT = [False]
+
+
+class CommitAborted(BaseException):
+    """A signal asked (:func:`abort_commit`) that the outputs being placed be taken back: they
+    were, and the command ends as if the signal had come before (no output written). A
+    BaseException, as the signal's own exception is."""
 
 
 def committing() -> bool:
-    """True while an :func:`output_transaction` places its files: a signal handler should let
-    the commit (or its roll-back) finish rather than interrupt it half-way."""
-    return _COMMITTING[0]
+    """True while an :func:`output_transaction` places its files, puts them back or removes its
+    temporary files: a signal handler should let that finish rather than interrupt it
+    half-way (and may ask with :func:`abort_commit` that the placed outputs be taken back)."""
+    return _STATE[0] in ("committing", "cleaning")
+
+
+def committed() -> bool:
+    """True once the outputs of the running command are all in place: a signal that comes
+    later finds the command's work done (it can no longer be taken back)."""
+    return _STATE[0] == "committed"
+
+
+def abort_commit() -> None:
+    """Ask the commit under way (:func:`committing`) to put back every output it placed and
+    raise :class:`CommitAborted`, so that a command stopped by a signal leaves no output."""
+    _ABORT[0] = True
+
+
+def reset_commit_state() -> None:
+    """A new command begins: no commit under way, done or asked to abort."""
+    _STATE[0] = "idle"
+    _ABORT[0] = False
 
 
 def _still_replaceable(target: Path, label: str | None) -> None:
@@ -738,14 +787,15 @@ def output_transaction(inputs=(), labels=None):
     """
     tx = _Transaction(inputs, labels)
     token = _TRANSACTION.set(tx)
+    reset_commit_state()
     try:
         yield tx
+        tx.commit()  # inside: an interrupt before the commit begins still removes the temporary files
     except BaseException:
         tx.discard()
         raise
     finally:
         _TRANSACTION.reset(token)
-    tx.commit()
 
 
 def register_input(path: str | os.PathLike) -> None:
@@ -909,11 +959,7 @@ def check_output(path: str | os.PathLike, *, force: bool = False, inputs=(), opt
         raise InputError(f"{head}: the directory {_show(parent)} is not writable")
     if probe:  # the only sure test (read-only file systems, /proc, root's permissions)
         try:
-            import tempfile  # lazily: rsm-lrg --help never writes
-
-            pfd, tmp = tempfile.mkstemp(prefix=".rsm-lrg-probe.", suffix=".tmp", dir=parent)
-            os.close(pfd)
-            _unlink(tmp)
+            _probe_directory(parent)
         except OSError as exc:
             raise InputError(f"{head}: the directory {_show(parent)} is not writable "
                              f"({exc.strerror or type(exc).__name__})") from None
@@ -955,9 +1001,7 @@ def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO
     parent = target.parent if str(target.parent) else Path(".")
     tmp = None
     try:
-        import tempfile
-
-        tfd, tmp = tempfile.mkstemp(prefix=f".{target.name[:60]}.", suffix=".tmp", dir=parent)
+        tfd, tmp = _temporary_file(parent, target.name, tx)
         with os.fdopen(tfd, "wb") as fh:
             if callable(data):
                 data(fh)
@@ -980,6 +1024,42 @@ def write_output(path: str | os.PathLike, data: str | bytes | Callable[[BinaryIO
             _unlink(tmp)
         raise
     return p
+
+
+def _probe_directory(parent: Path) -> None:
+    """Create and remove a file in ``parent`` (raises OSError where that fails); its path is
+    known before it is created, so an interrupt at any moment still removes it."""
+    import secrets
+
+    path: str | None = os.path.join(parent, f".rsm-lrg-probe.{secrets.token_hex(6)}.tmp")
+    try:
+        os.close(os.open(str(path), os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0), 0o600))
+    except FileExistsError:
+        path = None  # another's file: never removed
+        raise
+    finally:
+        if path is not None:
+            _unlink(path)
+
+
+def _temporary_file(parent: Path, name: str, tx: _Transaction | None) -> tuple[int, str]:
+    """``(descriptor, path)`` of a new temporary file beside the output ``name`` in ``parent``,
+    created exclusively (mode 0600). Inside a transaction its path is recorded *before* the
+    file is created, so that an interrupt at any moment leaves no temporary file behind (the
+    transaction removes every path it recorded)."""
+    import secrets
+
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_NOFOLLOW", 0)
+    for _ in range(100):
+        path = os.path.join(parent, f".{name[:60]}.{secrets.token_hex(6)}.tmp")
+        if tx is not None:
+            tx.temporaries.append(path)
+        try:
+            return os.open(path, flags, 0o600), path
+        except FileExistsError:
+            if tx is not None:
+                tx.temporaries.remove(path)  # another's file: never removed
+    raise FileExistsError(errno.EEXIST, "no unused temporary file name", str(parent))
 
 
 def _umask() -> int:

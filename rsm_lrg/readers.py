@@ -719,10 +719,19 @@ def xlsx_bytes(frame: pd.DataFrame, sheet: str = "Design") -> bytes:
 _BLOCK = 1 << 22
 
 
-def count_rows(fh: Any, fmt: str) -> int:
+#: The longest line of a CSV file read piece by piece (:func:`count_rows`), as for a file read
+#: whole (:data:`rsm_lrg.io.MAX_LINE_BYTES`) [bytes]: a longer one is refused, naming its row,
+#: before any of it is parsed (a 2 GB line was buffered until memory ran out).
+MAX_STREAM_LINE_BYTES = 1024 * 1024
+
+
+def count_rows(fh: Any, fmt: str, *, max_line_bytes: int = MAX_STREAM_LINE_BYTES) -> int:
     """Data rows of an open CSV (lines with text, less the header) or Parquet file (from its
     metadata), read in blocks: memory stays bounded whatever the file's size. The file is
-    left at its start."""
+    left at its start. A CSV line longer than ``max_line_bytes`` is a :class:`TableError`
+    naming its row (the header, or data row N), found in this pass, before any parsing."""
+    import numpy as np
+
     fh.seek(0)
     if fmt == "parquet":
         import pyarrow.parquet as pq
@@ -733,12 +742,25 @@ def count_rows(fh: Any, fmt: str) -> int:
             raise TableError(f"is not a readable Parquet file ({type(exc).__name__}: {str(exc)[:80]})") from None
         fh.seek(0)
         return n
-    lines, last = 0, b"\n"
+    lines, last, run = 0, b"\n", 0  # run: bytes of the line under way since its last newline
     while True:
         block = fh.read(_BLOCK)
         if not block:
             break
-        lines += block.count(b"\n")
+        nl = np.flatnonzero(np.frombuffer(block, dtype=np.uint8) == 10)
+        if nl.size:
+            lengths = np.diff(np.concatenate([[-1], nl])) - 1
+            lengths[0] += run
+            over = np.flatnonzero(lengths > max_line_bytes)
+            run = len(block) - int(nl[-1]) - 1
+        else:
+            over = np.zeros(0, dtype=int)
+            run += len(block)
+        if over.size or run > max_line_bytes:
+            line = lines + (int(over[0]) if over.size else int(nl.size)) + 1
+            raise TableError(f"{row_of_line(line)} is longer than the limit of {max_line_bytes} bytes "
+                             "(a line that long is no design row)")
+        lines += int(nl.size)
         last = block[-1:]
     fh.seek(0)
     return lines + (last != b"\n") - 1

@@ -48,7 +48,7 @@ import sys
 import warnings
 
 from .paths import claim_standard_output, input_paths, mark_outputs, planned_outputs
-from .processes import Terminated, handle_signals, pending_signal, stop_children
+from .processes import Terminated, handle_signals, pending_signal, settle, stop_children
 from .specs import check_option_specs
 
 __all__ = ["main", "build_parser", "UsageError"]
@@ -272,8 +272,14 @@ def main(argv: list[str] | None = None) -> int:
     guard = _PipeGuard(sys.stdout)
     sys.stdout = guard
     try:
-        with handle_signals():  # SIGTERM and SIGHUP unwind the command like an error
-            status = _main(argv)
+        with handle_signals(restore=argv is not None):  # SIGTERM and SIGHUP unwind the command like an error
+            try:
+                status = _main(argv)
+                settle(status, leave=argv is None)  # a later signal finds the command ended
+            except (KeyboardInterrupt, Terminated) as exc:  # one that came as _main returned
+                signum = exc.signum if isinstance(exc, Terminated) else signal.SIGINT
+                settle(128 + signum, leave=argv is None)
+                status = _stopped(signum)
     finally:
         if sys.stdout is guard:
             sys.stdout = guard.stream
@@ -316,10 +322,14 @@ def _one_blas_thread(argv: list[str]) -> None:
 
 
 def _main(argv: list[str] | None) -> int:
-    from ..io import output_transaction
+    from ..io import CommitAborted, output_transaction
 
     argv = sys.argv[1:] if argv is None else list(argv)
     _one_blas_thread(argv)
+    if "pyarrow" not in sys.modules:  # Arrow's allocator: no purging thread of its own, which near a
+        # memory limit fails and says so on standard error itself ("<jemalloc>: ... failed"), a
+        # second line beside the command's one error line
+        os.environ.setdefault("JE_ARROW_MALLOC_CONF", "background_thread:false")
     debug = "--debug" in argv
     args = None
     try:
@@ -360,6 +370,8 @@ def _main(argv: list[str] | None) -> int:
         return int(exc.code or 0) if isinstance(exc.code, int) else 0
     except KeyboardInterrupt:
         return _stopped(signal.SIGINT)
+    except CommitAborted:  # a signal came while the outputs were placed: they were taken back
+        return _stopped(pending_signal() or signal.SIGINT)
     except Terminated as exc:  # the outputs were discarded on the way out; no worker is left
         return _stopped(exc.signum)
     except Exception as exc:
@@ -407,11 +419,24 @@ def _failed(exc: Exception, args, debug: bool) -> int:
 
             traceback.print_exc()
         where = _input_name(args) if args is not None else ""
-        what = ("the input or options ask for more memory than there is" if isinstance(exc, MemoryError)
+        what = ("memory ran out: the input or options ask for more memory than there is (or than the "
+                "address-space limit, ulimit -v, allows)" if isinstance(exc, MemoryError)
                 else "a number is too large to compute with")
         detail = str(exc).strip()
         print(_error_line(f"{where + ': ' if where else ''}{what}"
                           f" ({type(exc).__name__}{': ' + detail if detail else ''})"), file=sys.stderr)
+        return 2
+    except ImportError as exc:
+        # a library's shared object that cannot be mapped: the address-space limit (ulimit -v)
+        # or the machine's memory ran out while it loaded (the system's loader says so in words)
+        text = str(exc).lower()
+        if not any(m in text for m in ("failed to map segment", "cannot allocate memory", "cannot map zero-fill")):
+            return _internal(exc, debug)
+        if debug:
+            import traceback
+
+            traceback.print_exc()
+        print(_error_line(f"{_OUT_OF_MEMORY} (a library could not be loaded)"), file=sys.stderr)
         return 2
     except OSError as exc:
         if exc.errno not in _SYSTEM_LIMITS:
@@ -435,12 +460,41 @@ _SYSTEM_LIMITS = {errno.EMFILE: "the open-file limit, ulimit -n", errno.ENFILE: 
                   errno.EDQUOT: "the disk quota", errno.ENOMEM: "memory", errno.EAGAIN: "the process limit, ulimit -u"}
 
 
+def _near_memory_limit() -> bool:
+    """The process has come near its address-space limit (``ulimit -v``, RLIMIT_AS): its peak
+    virtual size (``VmPeak``, /proc/self/status) is within a quarter of the limit. A library
+    whose allocation failed there may say so only as a SystemError or an ImportError (a shared
+    object that could not be mapped)."""
+    try:
+        import resource
+
+        limit = resource.getrlimit(resource.RLIMIT_AS)[0]
+        if limit == resource.RLIM_INFINITY or limit <= 0:
+            return False
+        with open("/proc/self/status", encoding="ascii", errors="replace") as fh:
+            for line in fh:
+                if line.startswith("VmPeak:"):
+                    return int(line.split()[1]) * 1024 >= 0.75 * limit
+    except (OSError, ValueError, ImportError):
+        return False
+    return False
+
+
+#: The line of a command that ran out of memory (MemoryError, or a library failing near the limit).
+_OUT_OF_MEMORY = ("memory ran out (the process's address-space limit, ulimit -v, or the machine's memory is too "
+                  "small for this input and these options); no output written")
+
+
 def _internal(exc: BaseException, debug: bool) -> int:
-    """An internal fault: one line naming the exception, exit 1."""
+    """An internal fault: one line naming the exception, exit 1 (near the address-space limit:
+    the memory line and exit 2, since the fault is then the memory a library could not get)."""
     if debug:
         import traceback
 
         traceback.print_exc()
+    if _near_memory_limit():
+        print(_error_line(f"{_OUT_OF_MEMORY} ({type(exc).__name__})"), file=sys.stderr)
+        return 2
     msg = str(exc).strip()
     print(_error_line(f"internal error ({type(exc).__name__}: {msg[:150]}); rerun with --debug for details"),
           file=sys.stderr)

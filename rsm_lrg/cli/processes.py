@@ -25,7 +25,7 @@ import time
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["Terminated", "handle_signals", "pending_signal", "process_pool", "close_pool", "stop_children",
+__all__ = ["Terminated", "handle_signals", "pending_signal", "settle", "process_pool", "close_pool", "stop_children",
            "child_processes", "kill_children", "connect_scheduler",
            "scheduler_lost", "pool_lost", "DEFAULT_SCHEDULER_TIMEOUT"]
 
@@ -60,12 +60,23 @@ def _raise(signum: int, frame: Any) -> None:
     """The handler: raise :class:`Terminated` (KeyboardInterrupt for SIGINT), once. While the
     outputs are being placed (:func:`rsm_lrg.io.committing`), or once the command is already
     unwinding, the signal is only recorded (:func:`pending_signal`), so that no commit, roll-back
-    or clean-up is cut half-way."""
-    from ..io import committing
+    or clean-up is cut half-way; a commit under way is asked to take its outputs back
+    (:func:`rsm_lrg.io.abort_commit`), so a command that reports a signal has written nothing.
+    Once the outputs are all in place (:func:`rsm_lrg.io.committed`) the command has done its
+    work and the signal is let go: it ends as it would have a moment later, with its outputs."""
+    from ..io import abort_commit, committed, committing
 
+    if _SETTLED:  # the command has ended: the program leaves now with its status (in-process: let go)
+        if _SETTLED[1]:
+            os._exit(_SETTLED[0])
+        return
+    if committed():  # every output is in place: the command has done its work, and ends so
+        return
     if committing() or _PENDING:
         if signum not in _PENDING:
             _PENDING.append(signum)
+        if committing():  # the outputs placed so far are taken back when the commit ends
+            abort_commit()
         return
     _PENDING.append(signum)
     # the workers go at once, whatever the exception raised here meets on its way out (a library
@@ -77,6 +88,16 @@ def _raise(signum: int, frame: Any) -> None:
     raise Terminated(signum)
 
 
+_SETTLED: list[Any] = []  # [status, leave]: the command has ended (see settle)
+
+
+def settle(status: int, leave: bool) -> None:
+    """The command has ended with ``status``: a signal from now on no longer stops anything;
+    with ``leave`` (the program, not ``main()`` called in-process) it ends the program at once
+    with that status (no traceback, and no hang on a standard output nobody reads)."""
+    _SETTLED[:] = [int(status), bool(leave)]
+
+
 def pending_signal() -> int | None:
     """The signal that arrived while the outputs were being placed (the command then ends
     with ``128 + signal`` after its outputs were written), or None."""
@@ -84,15 +105,20 @@ def pending_signal() -> int | None:
 
 
 @contextlib.contextmanager
-def handle_signals() -> Iterator[None]:
+def handle_signals(restore: bool = True) -> Iterator[None]:
     """SIGTERM and SIGHUP raise :class:`Terminated` and SIGINT KeyboardInterrupt inside the
     block, once (see :func:`_raise`; main thread only; the previous handlers are put back
-    after it)."""
+    after it, unless not ``restore``: the program's own run keeps them to its exit, where a
+    signal after :func:`settle` ends it with the command's status)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    from ..io import reset_commit_state
+
     old = {}
     _PENDING.clear()
+    _SETTLED.clear()
+    reset_commit_state()
     for name in (*_HANDLED, "SIGINT"):
         sig = getattr(signal, name, None)
         if sig is None:
@@ -107,7 +133,7 @@ def handle_signals() -> Iterator[None]:
         yield
     finally:
         sys.unraisablehook = hook
-        for sig, handler in old.items():
+        for sig, handler in old.items() if restore else ():
             try:
                 signal.signal(sig, handler)
             except (OSError, ValueError, TypeError):

@@ -37,7 +37,7 @@ import numpy as np
 from .single import parse_goal
 
 __all__ = ["ResponseGoal", "individual_desirability", "overall_desirability", "optimize_desirability",
-           "DesirabilityResult", "parse_response_goal"]
+           "DesirabilityResult", "parse_response_goal", "log_individual_desirability", "log_overall_desirability"]
 
 _GOALS = {"maximize": "maximize", "maximise": "maximize", "max": "maximize", "minimize": "minimize",
           "minimise": "minimize", "min": "minimize", "target": "target", "range": "range",
@@ -167,28 +167,102 @@ def parse_response_goal(response: str, goal: str = "maximize", *, weight=None, i
     return ResponseGoal(response, g, lo, hi, target, w, imp)
 
 
-def individual_desirability(y, goal: ResponseGoal) -> np.ndarray:
-    """d_i for predicted values ``y`` (limits must be set; see the module docstring) [-]."""
+def _ramp(y: np.ndarray, a: float, b: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(t, 1 - t)`` of the ramp ``t = (y - a) / (b - a)`` clipped to [0, 1], each computed
+    directly: halves of the limits keep ``b - a`` finite for limits near the largest float
+    (``-1e308..1e308``), and the shortfall ``1 - t = (b - y) / (b - a)`` keeps its digits
+    where ``t`` rounds to 1 (a slope of 1e-308 per unit)."""
+    den = 0.5 * b - 0.5 * a
+    t = np.clip((0.5 * y - 0.5 * a) / den, 0.0, 1.0)
+    s = np.clip((0.5 * b - 0.5 * y) / den, 0.0, 1.0)
+    return t, s
+
+
+def _log_power(t: np.ndarray, s: np.ndarray, w: float) -> np.ndarray:
+    """``w log t`` with ``s = 1 - t`` (``log1p(-s)`` where ``t`` is near 1; ``-inf`` at 0)."""
+    with np.errstate(divide="ignore"):
+        return w * np.where(s < 0.5, np.log1p(-np.minimum(s, 0.5)), np.log(np.maximum(t, 0.0)))
+
+
+def log_individual_desirability(y, goal: ResponseGoal) -> np.ndarray:
+    """``log d_i`` for predicted values ``y`` (``-inf`` where ``d_i = 0``) [-].
+
+    Computed from the shortfall ``1 - t`` of each ramp, so it keeps its digits where ``d_i``
+    itself rounds to 1: with limits ``-1e308..1e308`` and a target 0.03, a prediction 0.0337 has
+    ``d = 1 - 1.2e-311`` — 1.0 as a float, but ``log d`` is ``-1.2e-311`` and the search still
+    tells it from the target itself (issue 36)."""
     y = np.asarray(y, dtype=float)
     L, U = goal.low, goal.high
     if L is None or U is None:
         raise ValueError(f"response {goal.response!r}: limits are not set")
     w1, w2 = goal.weight
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         if goal.goal == "maximize":
-            d = np.clip((y - L) / (U - L), 0.0, 1.0) ** w1
+            t, sh = _ramp(y, L, U)
+            ld = _log_power(t, sh, w1)
         elif goal.goal == "minimize":
-            d = np.clip((U - y) / (U - L), 0.0, 1.0) ** w1
+            t, sh = _ramp(y, U, L)
+            ld = _log_power(t, sh, w1)
+        elif goal.goal == "range":
+            ld = np.where((y >= L) & (y <= U), 0.0, -np.inf)
+        else:
+            T = goal.target
+            if T is None:
+                raise ValueError(f"response {goal.response!r}: the target is not set")
+            if T > L:
+                lo_part = _log_power(*_ramp(y, L, T), w1)
+            else:
+                lo_part = np.where(y >= L, 0.0, -np.inf)
+            if U > T:
+                hi_part = _log_power(*_ramp(y, U, T), w2)
+            else:
+                hi_part = np.where(y <= U, 0.0, -np.inf)
+            ld = np.where(y <= T, lo_part, hi_part)
+    return np.where(np.isfinite(y), ld, -np.inf)
+
+
+def individual_desirability(y, goal: ResponseGoal) -> np.ndarray:
+    """d_i for predicted values ``y`` (limits must be set; see the module docstring) [-].
+
+    The ramps are taken with halves of the limits, so limits near the largest float
+    (``-1e308..1e308``) do not overflow ``U - L`` (which made every ``d_i`` 0)."""
+    y = np.asarray(y, dtype=float)
+    L, U = goal.low, goal.high
+    if L is None or U is None:
+        raise ValueError(f"response {goal.response!r}: limits are not set")
+    w1, w2 = goal.weight
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        if goal.goal == "maximize":
+            d = _ramp(y, L, U)[0] ** w1
+        elif goal.goal == "minimize":
+            d = _ramp(y, U, L)[0] ** w1
         elif goal.goal == "range":
             d = ((y >= L) & (y <= U)).astype(float)
         else:
             T = goal.target
             if T is None:
                 raise ValueError(f"response {goal.response!r}: the target is not set")
-            lo_part = np.clip((y - L) / (T - L), 0.0, 1.0) ** w1 if T > L else (y >= L).astype(float)
-            hi_part = np.clip((U - y) / (U - T), 0.0, 1.0) ** w2 if U > T else (y <= U).astype(float)
+            lo_part = _ramp(y, L, T)[0] ** w1 if T > L else (y >= L).astype(float)
+            hi_part = _ramp(y, U, T)[0] ** w2 if U > T else (y <= U).astype(float)
             d = np.where(y <= T, lo_part, hi_part)
     return np.where(np.isfinite(y), d, 0.0)
+
+
+def log_overall_desirability(logds: Sequence, goals: Sequence[ResponseGoal]) -> np.ndarray:
+    """``log D`` from the ``log d_i`` (:func:`log_individual_desirability`): the
+    importance-weighted mean of the ``log d_i``; "in range" goals enter as 0 or ``-inf`` [-]."""
+    logds = [np.asarray(v, dtype=float) for v in logds]
+    total: float | np.ndarray = 0.0
+    rsum = 0.0
+    zero = np.zeros_like(logds[0], dtype=bool)
+    for ld, g in zip(logds, goals):
+        zero = zero | ~(ld > -np.inf)
+        if g.goal == "range":
+            continue
+        total = total + g.importance * np.where(ld > -np.inf, ld, 0.0)
+        rsum += g.importance
+    out = total / rsum if rsum else np.zeros_like(logds[0])
+    return np.where(zero, -np.inf, out)
 
 
 def overall_desirability(ds: Sequence, goals: Sequence[ResponseGoal]) -> np.ndarray:
@@ -430,10 +504,14 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
         return overall_desirability([individual_desirability(y, g) for y, g in zip(ys, goals)], goals), ys
 
     def objective_many(X):
-        D, ys = D_of(X)
-        pen = np.zeros(len(D))
+        # minimised: where D > 0, u / (1 + u) with u = -log D (0 at D = 1, below 1; it keeps
+        # the digits of a D that rounds to 1, which -D loses: limits -1e308..1e308 made every
+        # setting "D = 1"); where D = 0, 1 + the distance to the limits
+        ys = preds(X)
+        logD = log_overall_desirability([log_individual_desirability(y, g) for y, g in zip(ys, goals)], goals)
+        pen = np.zeros(len(logD))
         for y, g in zip(ys, goals):
-            span = g.high - g.low
+            span = 2.0 * (0.5 * g.high - 0.5 * g.low)  # finite for limits near the largest float
             if g.goal == "maximize":
                 pen += np.maximum(g.low - y, 0.0) / span
             elif g.goal == "minimize":
@@ -441,7 +519,9 @@ def _desirability_numeric(fits, goals, bounds, *, seed, n_sobol, n_polish, const
             else:
                 pen += (np.maximum(g.low - y, 0.0) + np.maximum(y - g.high, 0.0)) / span
         pen = np.where(np.isfinite(pen), pen, 1e6)  # a back-transform undefined there
-        return np.where(D > 0, -D, pen + 1e-12)
+        with np.errstate(invalid="ignore", over="ignore"):
+            u = -logD
+            return np.where(logD > -np.inf, u / (1.0 + u), 1.0 + pen + 1e-12)
 
     def objective(x):
         return float(objective_many(np.asarray(x, dtype=float)[None, :])[0])

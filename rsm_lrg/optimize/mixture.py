@@ -327,7 +327,7 @@ def extrapolation_notes(fitted: Any, actual: dict) -> list[str]:
 
 def desirability_search(objective: Any, objective_many: Any, region: MixtureRegion, extra: list, *,
                         n_polish: int = 6, seed: int = SEED) -> tuple[np.ndarray, int]:
-    """The point of ``region`` minimising ``objective`` (``-D``, or a distance to the limits
+    """The point of ``region`` minimising ``objective`` (a decreasing function of ``D``, or 1 + a distance to the limits
     where D is 0: :mod:`rsm_lrg.optimize.desirability`): every start of :func:`region_starts`
     (256 random blends) and ``extra`` (each response's own optimum) screened at once with
     ``objective_many``, the best ``n_polish`` polished by SLSQP, the winner by Nelder–Mead

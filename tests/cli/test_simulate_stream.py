@@ -122,3 +122,32 @@ def test_two_million_rows_in_memory_bounded_by_the_piece(tmp_path):
     print(f"peak RSS: 200,000 rows {small:.0f} MiB, 2,000,000 rows {big:.0f} MiB")
     assert big < 1.25 * small + 20, (small, big)
     assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0 < 2000  # this process held no design
+
+
+# -- a line longer than any design row (issue 36) ---------------------------------------------
+@pytest.mark.parametrize("extra", [2 * 1024 * 1024, 9 * 1024 * 1024])  # within one block; across three
+def test_a_huge_line_is_refused_before_it_is_read(tmp_path, capsys, extra):
+    """A 2 GB line was buffered by the streaming reader until memory ran out; every line is now
+    measured in the counting pass (blocks of bounded size) and one over
+    ``readers.MAX_STREAM_LINE_BYTES`` is refused naming its row, before any parsing."""
+    from rsm_lrg import readers
+    from rsm_lrg.cli import main
+    from rsm_lrg.datasets import data_path
+
+    d = pd.read_csv(data_path("table4.csv"))[["thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2"]]
+    lines = pd.concat([d] * 50, ignore_index=True).to_csv(index=False).splitlines()  # 1350 rows
+    lines[1201] += "," + "9" * extra
+    p = tmp_path / "long.csv"
+    p.write_text("\n".join(lines) + "\n")
+    out = tmp_path / "o.csv"
+    assert main(["simulate", str(p), "--chunk-rows", "1000", "--no-progress", "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "row 1201 is longer than the limit" in err[0] and str(p.name) in err[0], err
+    assert not out.exists()
+    # the bound is a parameter of the counting pass; the rows count as before under it
+    with open(p, "rb") as fh:
+        with pytest.raises(readers.TableError, match="row 1201"):
+            readers.count_rows(fh, "csv")
+        assert readers.count_rows(fh, "csv", max_line_bytes=extra + 100) == 1350
+        with pytest.raises(readers.TableError, match="in the header"):
+            readers.count_rows(fh, "csv", max_line_bytes=10)

@@ -12,6 +12,7 @@ import rsm_lrg
 from rsm_lrg.optimize.desirability import (
     ResponseGoal,
     individual_desirability,
+    log_individual_desirability,
     optimize_desirability,
     overall_desirability,
     parse_response_goal,
@@ -139,3 +140,37 @@ def test_transformed_fit_is_back_transformed_and_limits_are_on_the_original_scal
     x = np.array([[res.coded["A"], res.coded["B"]]])
     assert res.predicted["y"] == pytest.approx(float(tf.predict(x, coded=True)["predicted"].iloc[0]), rel=1e-12)
     assert res.individual["y"] == pytest.approx((res.predicted["y"] - 75.6) / (80.3 - 75.6), rel=1e-9)
+
+
+# -- limits near the largest float (issue 36) --------------------------------------------------
+def test_huge_limits_neither_overflow_nor_flatten_the_ramps():
+    """``U - L`` of -1e308..1e308 overflows: every d was 0 (maximize) — the ramps take halves."""
+    g = ResponseGoal("y", "maximize", -1e308, 1e308)
+    np.testing.assert_array_equal(individual_desirability([-1e308, 0.0, 1e308], g), [0.0, 0.5, 1.0])
+    g = ResponseGoal("y", "minimize", -1.7e308, 1.7e308)
+    np.testing.assert_array_equal(individual_desirability([-1.7e308, 0.0, 1.7e308], g), [1.0, 0.5, 0.0])
+    # near a target d rounds to 1; log d keeps the shortfall (T - y) / (T - L) = 0.0037 / 1e308
+    g = ResponseGoal("y", "target", -1e308, 1e308, target=0.03)
+    assert individual_desirability([0.0337], g)[0] == 1.0
+    ld = log_individual_desirability([0.0337, 0.03, 0.0263], g)
+    assert ld[1] == 0.0 and ld[0] < 0.0 and ld[2] < 0.0
+    assert ld[0] == pytest.approx(-0.0037 / 1e308, rel=1e-3)
+    # ordinary limits: log d is log of d
+    g = ResponseGoal("y", "target", 0.02, 0.05, target=0.03, weight=(2.0, 0.5))
+    y = np.linspace(0.021, 0.049, 15)
+    np.testing.assert_allclose(np.exp(log_individual_desirability(y, g)), individual_desirability(y, g), rtol=1e-13)
+
+
+def test_target_with_huge_limits_is_met_where_it_can_be(capsys):
+    """``optimize --goal target=0.03 --limits -1e308:1e308`` reported D = 1 "on target" at a
+    prediction of 0.0337, since every d rounded to 1; the target is reachable (Table 4's
+    predictions span 0.028..0.045), so the optimum predicts it."""
+    import json
+
+    from rsm_lrg.cli import main
+
+    assert main(["optimize", "data/table4.csv", "--response", "tcr_c_per_min", "--goal", "target=0.03",
+                 "--limits", "-1e308:1e308", "--json", "-"]) == 0
+    js = json.loads(capsys.readouterr().out)
+    assert js["predicted"]["tcr_c_per_min"] == pytest.approx(0.03, abs=1e-9)
+    assert js["desirability"] == 1.0

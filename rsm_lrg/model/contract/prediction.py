@@ -70,7 +70,11 @@ class IntervalForm:
     kr_phi_p_phi : tuple of (p, p) ndarray
         ``Φ P_r Φ`` per variance parameter (REML only; empty for OLS).
     kr_w : (r, r) ndarray or None
-        Kenward–Roger's ``W`` (the inverse expected information of the variance parameters).
+        Kenward–Roger's ``W`` (the inverse expected information of the variance parameters)
+        in units of ``kr_unit²``: ``W`` itself is ``kr_unit² kr_w`` [model-scale units⁴].
+    kr_unit : float
+        The variance unit ``kr_w`` is given in (a REML fit's response scale squared, so that
+        ``W`` stays within the floats for a response in any unit) [model-scale units²].
     """
 
     cov_se: np.ndarray = field(repr=False)
@@ -80,6 +84,7 @@ class IntervalForm:
     s2_group: float = 0.0
     kr_phi_p_phi: tuple = field(default=(), repr=False)
     kr_w: np.ndarray | None = field(default=None, repr=False)
+    kr_unit: float = 1.0
 
     @property
     def s2_new(self) -> float:
@@ -110,7 +115,7 @@ class IntervalForm:
             a = np.stack([np.einsum("ij,jk,ik->i", X, M, X) for M in self.kr_phi_p_phi])  # (r, n)
             A2 = np.einsum("rn,rs,sn->n", a, self.kr_w, a)
             with np.errstate(divide="ignore", invalid="ignore"):
-                A2 = A2 / se2 ** 2
+                A2 = A2 / (se2 / self.kr_unit) ** 2
                 df = np.where(A2 > 0, 2.0 / A2, math.inf)
             df = np.where(se2 > 0, df, math.nan)
         return np.sqrt(np.maximum(se2, 0.0)), var_mean, var_mean + self.s2_new, df
@@ -124,7 +129,7 @@ class IntervalForm:
 
     def to_dict(self) -> dict:
         """Plain JSON-safe data for a page's script (``cov_se``, ``cov_mean``, ``s2_new``,
-        ``df`` and, for Kenward–Roger, ``kr``: ``{"phi_p_phi": [...], "w": [...]}``)."""
+        ``df`` and, for Kenward–Roger, ``kr``: ``{"phi_p_phi": [...], "w": [...], "unit": u}``)."""
         def mat(M: np.ndarray) -> list:
             return [[float(v) for v in row] for row in np.asarray(M, dtype=float)]
 
@@ -134,7 +139,8 @@ class IntervalForm:
         out: dict[str, Any] = {"cov_se": mat(self.cov_se), "cov_mean": mat(self.cov_mean), "s2_new": num(self.s2_new),
                                "df": num(self.df)}
         if self.kr_w is not None:
-            out["kr"] = {"phi_p_phi": [mat(M) for M in self.kr_phi_p_phi], "w": mat(self.kr_w)}
+            out["kr"] = {"phi_p_phi": [mat(M) for M in self.kr_phi_p_phi], "w": mat(self.kr_w),
+                         "unit": float(self.kr_unit)}
         return out
 
 

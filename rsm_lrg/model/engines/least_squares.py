@@ -704,6 +704,24 @@ class Regression:
         out = self.with_pass_sums(sums)
         return replace(out, hat=_cat(hs), residuals=_cat(rs), fitted=_cat(fs)) if keep else out
 
+    def rescaled(self, k: float) -> Regression:
+        """The same fit of the response multiplied by ``k`` (a fit of a standardised response
+        brought back to the response's unit): the coefficients, residuals, fitted values and
+        ``rho`` times ``k``, the sums of squares times ``k²``; ``R`` and the leverages unchanged."""
+        k = float(k)
+        k2 = k * k
+
+        def times(a: np.ndarray | None) -> np.ndarray | None:
+            return None if a is None else np.asarray(a, dtype=float) * k
+
+        ps = self.pass_sums
+        if ps is not None:
+            ps = PassSums(ss_res=ps.ss_res * k2, press=ps.press * k2, fitted_min=ps.fitted_min * k,
+                          fitted_max=ps.fitted_max * k, ss_total=ps.ss_total * k2)
+        return replace(self, qty=self.qty * k, rho=self.rho * k, shift=self.shift * k, y_sum=self.y_sum * k,
+                       residuals=times(self.residuals), fitted=times(self.fitted), ss_total=self.ss_total * k2,
+                       pass_sums=ps)
+
     def nested_press(self, chunks: Chunks, ends: Sequence[int]) -> list[tuple[float, float]]:
         """For the nested models of the first ``k`` columns (``k`` in ``ends``): the residual
         sum of squares and PRESS from one pass over ``chunks`` (full-matrix rows).

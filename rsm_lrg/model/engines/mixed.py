@@ -484,14 +484,39 @@ class _KRParts:
 
     phi: np.ndarray
     phi_a: np.ndarray
-    P: tuple
-    W: np.ndarray
-    information: np.ndarray
+    P_std: tuple
+    W_std: np.ndarray
+    information_std: np.ndarray
+    #: The variance unit ``u`` (the response's scale squared) the parts are computed in:
+    #: ``phi`` and ``phi_a`` are in response units² (``u`` times their standardised values),
+    #: ``P_std``, ``W_std`` and ``information_std`` are those of the standardised response
+    #: ``y / sqrt(u)``. Every test and interval is computed from these, free of ``u``.
+    unit: float = 1.0
+
+    @property
+    def W(self) -> np.ndarray:
+        """``W`` in response units⁴ (``u² W_std``; infinite or 0 where that leaves the floats)."""
+        with np.errstate(over="ignore", under="ignore"):
+            return self.W_std * self.unit * self.unit
+
+    @property
+    def P(self) -> tuple:
+        """The ``P_r`` in response units⁻⁴ (``P_std / u²``)."""
+        with np.errstate(over="ignore", under="ignore"):
+            return tuple(Pr / self.unit / self.unit for Pr in self.P_std)
+
+    @property
+    def information(self) -> np.ndarray:
+        """The expected information of the variance parameters in response units⁻⁴."""
+        with np.errstate(over="ignore", under="ignore"):
+            return self.information_std / self.unit / self.unit
 
 
-def _kr_parts(X: np.ndarray, groups: _Groups | _Blocks, s2g: float | np.ndarray, s2: float) -> _KRParts:
+def _kr_parts(X: np.ndarray, groups: _Groups | _Blocks, s2g: float | np.ndarray, s2: float,
+              unit: float = 1.0) -> _KRParts:
     """pbkrtest's ``vcovAdj`` with ``Sigma = sum_k s2g_k Z_k Z_k' + s2 I`` (``s2g`` one variance
-    per random effect: a float for one, an array for several)."""
+    per random effect: a float for one, an array for several), at the variance components of the
+    response standardised by ``sqrt(unit)`` (see :class:`_KRParts`)."""
     eta = s2g / s2
 
     def sinv(M: np.ndarray) -> np.ndarray:  # Sigma^-1 M
@@ -524,7 +549,8 @@ def _kr_parts(X: np.ndarray, groups: _Groups | _Blocks, s2g: float | np.ndarray,
         for s in range(k):
             U += W[r, s] * (Q[r][s] - P[r] @ phi @ P[s])
     phi_a = phi + 2.0 * phi @ U @ phi
-    return _KRParts(phi=phi, phi_a=0.5 * (phi_a + phi_a.T), P=tuple(P), W=W, information=info)
+    return _KRParts(phi=phi * unit, phi_a=0.5 * (phi_a + phi_a.T) * unit, P_std=tuple(P), W_std=W,
+                    information_std=info, unit=unit)
 
 
 def _div_zero(x: float, y: float, tol: float = 1e-14) -> float:
@@ -536,14 +562,14 @@ def kr_test(parts: _KRParts, L: np.ndarray, beta: np.ndarray) -> tuple[float, fl
     ``.KR_adjust``: ``F`` scaled by ``lambda``; ``den_df`` not clamped; ``p`` NaN when the
     den df is not positive)."""
     L = np.atleast_2d(np.asarray(L, dtype=float))
-    phi, W = parts.phi, parts.W
+    phi, W = parts.phi / parts.unit, parts.W_std  # standardised (the statistics are free of the unit)
     q = int(np.linalg.matrix_rank(L))
     LPL = L @ phi @ L.T
     Theta = L.T @ np.linalg.solve(LPL, L)
     TP = Theta @ phi
-    k = len(parts.P)
+    k = len(parts.P_std)
     A1 = A2 = 0.0
-    us = [TP @ parts.P[i] @ phi for i in range(k)]
+    us = [TP @ parts.P_std[i] @ phi for i in range(k)]
     for i in range(k):
         for j in range(i, k):
             e = 1.0 if i == j else 2.0
@@ -566,8 +592,8 @@ def kr_test(parts: _KRParts, L: np.ndarray, beta: np.ndarray) -> tuple[float, fl
         rho = (1.0 / q) * _div_zero(1.0 - A2 / q, V1) ** 2 * V0 / V2
         df2 = 4.0 + (q + 2.0) / (q * rho - 1.0)
         scale = 1.0 if abs(df2 - 2.0) < 1e-2 else df2 * (1.0 - A2 / q) / (df2 - 2.0)
-    Lb = L @ beta
-    wald = float(Lb @ np.linalg.solve(L @ parts.phi_a @ L.T, Lb))
+    Lb = L @ beta / math.sqrt(parts.unit)
+    wald = float(Lb @ np.linalg.solve(L @ (parts.phi_a / parts.unit) @ L.T, Lb))
     F = float(scale * wald / q)
     p = float(fdtrc(q, df2, F)) if df2 > 0 and math.isfinite(df2) and F >= 0 else math.nan
     return F, float(df2), p, q
@@ -717,10 +743,13 @@ class MixedModel:
         new group (``σ²_g + σ²``), and the Kenward–Roger den df per point from ``Φ P_r Φ``
         and ``W``."""
         ix = np.ix_(columns, columns)
+        u = self.parts.unit
         phi = self.parts.phi
+        phi_s = phi / u  # Phi P_r Phi is free of the unit; W is given in the unit (kr_unit)
         return IntervalForm(cov_se=phi[ix], cov_mean=self.parts.phi_a[ix], s2_residual=self.sigma2,
-                            s2_group=float(sum(self.component_variances)), df=math.nan, kr_phi_p_phi=tuple((phi @ P @ phi)[ix] for P in self.parts.P),
-                            kr_w=self.parts.W)
+                            s2_group=float(sum(self.component_variances)), df=math.nan,
+                            kr_phi_p_phi=tuple((phi_s @ P @ phi_s)[ix] for P in self.parts.P_std),
+                            kr_w=self.parts.W_std, kr_unit=u)
 
     @property
     def variance_components(self) -> dict:
@@ -729,12 +758,12 @@ class MixedModel:
         column) with Wald intervals on the log scale (:data:`CI_METHOD`; none for a component at
         zero)."""
         z = float(stdtrit(math.inf, 0.975))
-        W = self.parts.W
+        W, u = self.parts.W_std, self.parts.unit  # W of the standardised response: se(log s2) is free of the unit
         out = {}
         names = list(self.component_names) + ["residual"]
         values = list(self.component_variances) + [self.sigma2]
         for i, (nm, v) in enumerate(zip(names, values)):
-            se_log = math.sqrt(W[i, i]) / v if W[i, i] > 0 and v > 0 else math.nan
+            se_log = math.sqrt(W[i, i]) / (v / u) if W[i, i] > 0 and v > 0 else math.nan
             lo, hi = (v * math.exp(-z * se_log), v * math.exp(z * se_log)) if math.isfinite(se_log) else (math.nan,) * 2
             out[nm] = VarianceComponent(nm, float(v), float(lo), float(hi))
         return out
@@ -830,20 +859,30 @@ def fit_reml(X: np.ndarray, y: np.ndarray, codes: np.ndarray, labels: Sequence, 
     ones = bool(np.all(X[:, 0] == 1.0)) if p else False
     c = math.fsum(y) / n if ones else 0.0  # the response centred (digits), added back to the intercept
     yc = y - c
-    eta, m2l = reml_eta(X, yc, codes, names)
+    # the response standardised (its largest centred value 1): eta, the profile and the
+    # Kenward-Roger parts are computed free of the response's unit, so a response in 1e-95 or
+    # 1e80 units fits as well as one in units near 1 (the variances, y's scale squared, and
+    # their products would leave the floats otherwise)
+    k = float(np.max(np.abs(yc))) if n else 0.0
+    k = k if math.isfinite(k) and k > 0.0 else 1.0
+    ys = yc / k
+    eta, m2l = reml_eta(X, ys, codes, names)
+    m2l += (n - p) * 2.0 * math.log(k)  # -2 l_R of the response in its own unit
     groups = _Groups(codes)
-    prof = _profile_at(eta, X, yc, groups, names)
-    Xw, yw = groups.whiten(X, eta), groups.whiten(yc, eta)
+    prof = _profile_at(eta, X, ys, groups, names)
+    Xw, yw = groups.whiten(X, eta), groups.whiten(ys, eta)
     reg = prof.reg
     reg = reg.second_pass(lambda: ((Xw[s:s + CHUNK_ROWS], yw[s:s + CHUNK_ROWS]) for s in range(0, n, CHUNK_ROWS)))
-    reg = replace(reg, shift=c, intercept=ones)  # params: b[0] + c (the whitened intercept column fits y - c)
-    s2 = float(reg.sigma2)
-    spread = float(np.sum((y - np.mean(y)) ** 2))
-    if not (math.isfinite(s2) and s2 * (n - p) > 1e-20 * spread):  # residual RMS at round-off of the spread
+    s2s = float(reg.sigma2)  # of the standardised response
+    spread = float(np.sum((ys - np.mean(ys)) ** 2))
+    if not (math.isfinite(s2s) and s2s * (n - p) > 1e-20 * spread):  # residual RMS at round-off of the spread
         raise ValueError(f"the model fits the data exactly within every {'whole plot' if kind == 'whole_plot' else 'block'}"
                          " (no residual variance): REML has nothing to estimate the variance components from")
+    reg = reg.rescaled(k)  # back to the response's unit
+    reg = replace(reg, shift=c, intercept=ones)  # params: b[0] + c (the whitened intercept column fits y - c)
+    s2 = float(reg.sigma2)
     beta = np.asarray(reg.params, dtype=float)
-    parts = _kr_parts(X, groups, eta * s2, s2)
+    parts = _kr_parts(X, groups, eta * s2s, s2s, unit=k * k)
     mm = MixedModel(column=column, kind=kind, codes=np.asarray(codes, dtype=int), labels=tuple(labels), eta=float(eta),
                     sigma2=s2, sigma2_group=float(eta * s2), m2loglik=float(m2l), beta=beta, X=X, y=y, parts=parts)
     return mm, reg
@@ -866,19 +905,26 @@ def fit_reml_several(X: np.ndarray, y: np.ndarray, effects: Sequence[RandomEffec
     c = math.fsum(y) / n if ones else 0.0
     yc = y - c
     codes = [np.asarray(e.codes, dtype=int) for e in effects]
-    etas, m2l = reml_etas(X, yc, codes, names)
+    # the response standardised as in fit_reml: the fit is free of the response's unit
+    k = float(np.max(np.abs(yc))) if n else 0.0
+    k = k if math.isfinite(k) and k > 0.0 else 1.0
+    ys = yc / k
+    etas, m2l = reml_etas(X, ys, codes, names)
+    m2l += (n - p) * 2.0 * math.log(k)  # -2 l_R of the response in its own unit
     blocks = _Blocks(codes)
-    prof = _profile_at(etas, X, yc, blocks, names)
-    Xw, yw = blocks.whiten(X, etas), blocks.whiten(yc, etas)
+    prof = _profile_at(etas, X, ys, blocks, names)
+    Xw, yw = blocks.whiten(X, etas), blocks.whiten(ys, etas)
     reg = prof.reg.second_pass(lambda: ((Xw[s:s + CHUNK_ROWS], yw[s:s + CHUNK_ROWS]) for s in range(0, n, CHUNK_ROWS)))
-    reg = replace(reg, shift=c, intercept=ones)
-    s2 = float(reg.sigma2)
-    spread = float(np.sum((y - np.mean(y)) ** 2))
-    if not (math.isfinite(s2) and s2 * (n - p) > 1e-20 * spread):
+    s2s = float(reg.sigma2)  # of the standardised response
+    spread = float(np.sum((ys - np.mean(ys)) ** 2))
+    if not (math.isfinite(s2s) and s2s * (n - p) > 1e-20 * spread):
         raise ValueError("the model fits the data exactly within the random-effect levels (no residual variance): "
                          "REML has nothing to estimate the variance components from")
+    reg = reg.rescaled(k)  # back to the response's unit
+    reg = replace(reg, shift=c, intercept=ones)
+    s2 = float(reg.sigma2)
     beta = np.asarray(reg.params, dtype=float)
-    parts = _kr_parts(X, blocks, etas * s2, s2)
+    parts = _kr_parts(X, blocks, etas * s2s, s2s, unit=k * k)
     first = effects[0]
     mm = MixedModel(column=first.column, kind="several", codes=np.asarray(first.codes, dtype=int),
                     labels=tuple(first.labels), eta=float(np.sum(etas)), sigma2=s2,

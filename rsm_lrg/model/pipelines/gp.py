@@ -352,6 +352,13 @@ def fit_gp(data: Any, response: str, factors: Any = None, *, kernel: str = "mate
         raise ParameterError("model", "a Gaussian process for mixtures is not available yet")
     x, y = inp.x, inp.y
     n, k = x.shape
+    spread = float(np.ptp(y)) if y.size else 0.0
+    for name, given in (("nugget", nugget), ("variance", var)):
+        # a noise or process variance beyond 1e6 times the response's squared range says every
+        # run is noise and leaves the likelihood flat (length-scales at their starts): refused
+        if isinstance(given, float) and spread > 0 and given > 1e6 * spread ** 2:
+            raise ParameterError(name, f"{name} {given:g} is more than 1e6 times the squared range of the response "
+                                       f"({spread:g}², response units²): every run would be noise")
     theta = None
     if length_scales is not None:
         vals = np.atleast_1d(np.asarray(length_scales, dtype=object))

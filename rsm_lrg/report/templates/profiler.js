@@ -294,7 +294,8 @@
     if (f.kr) {
       var a = f.kr.phi_p_phi.map(function (M) { return quad(M, x); }), A2 = 0.0;
       for (var r = 0; r < a.length; r++) for (var q = 0; q < a.length; q++) A2 += f.kr.w[r][q] * a[r] * a[q];
-      A2 /= se2 * se2;
+      var su = se2 / (f.kr.unit || 1.0);  /* w is in units of kr.unit² (a response in any unit) */
+      A2 /= su * su;
       tq = se2 > 0 ? tQuantile(A2 > 0 ? 2.0 / A2 : Infinity, 1 - (1 - m.confidence) / 2) : NaN;
     } else {
       tq = m.t === null ? NaN : m.t;
