@@ -257,3 +257,21 @@ def test_whole_plot_with_further_random_effects_checks_hard_to_change():
     with pytest.raises(ValueError, match="'preload_kn' varies inside whole plot"):
         rsm_lrg.fit(d, "wear_um", factors=f, whole_plot="whole_plot", random_effects=["subplot"], model="2fi",
                     hard_to_change=["preload_kn"])
+
+
+@pytest.mark.parametrize("scale", [1e-80, 1e-95, 1e80])
+def test_several_effects_are_free_of_the_response_unit(scale):
+    # issue 36: the response standardised inside the engine, for several random effects too: the
+    # Kenward-Roger tests unchanged, coefficients and variance components scaled exactly
+    response, factors, random, extra = CASES["mixed_ssp3"]
+    data = pd.read_csv(R / "mixed_ssp.csv")
+    ref = _fit("mixed_ssp3")
+    r = rsm_lrg.fit(data.assign(**{response: data[response] * scale}), response, factors=factors,
+                    random_effects=random, **extra)
+    for a, b in zip(r.tests, ref.tests):
+        assert a.den_df == pytest.approx(b.den_df, rel=1e-9) and a.f == pytest.approx(b.f, rel=1e-9)
+        assert a.p == pytest.approx(b.p, rel=1e-9, abs=1e-300)
+    np.testing.assert_allclose(r.coefficients["coded"].to_numpy() / scale, ref.coefficients["coded"].to_numpy(),
+                               rtol=1e-9, atol=1e-12 * float(np.abs(ref.coefficients["coded"]).max()))
+    for k, c in r.mixed.variance_components.items():
+        assert c.variance / scale ** 2 == pytest.approx(ref.mixed.variance_components[k].variance, rel=1e-9, abs=1e-300)
