@@ -707,7 +707,18 @@ class Regression:
     def rescaled(self, k: float) -> Regression:
         """The same fit of the response multiplied by ``k`` (a fit of a standardised response
         brought back to the response's unit): the coefficients, residuals, fitted values and
-        ``rho`` times ``k``, the sums of squares times ``k²``; ``R`` and the leverages unchanged."""
+        ``rho`` times ``k``, the sums of squares times ``k²``; ``R`` and the leverages unchanged.
+
+        Parameters
+        ----------
+        k : float
+            The factor [response units per unit of the fitted response].
+
+        Returns
+        -------
+        Regression
+            The fit in the response's unit.
+        """
         k = float(k)
         k2 = k * k
 
