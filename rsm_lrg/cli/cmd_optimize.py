@@ -56,10 +56,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(repeatable; with several responses the desirability optimum satisfies them)")
     add_block_option(parser, "optimum for the average block")
     add_random_effect_options(parser)
-    add_model_refinements(parser, per_response=True, model=True)
-    for action in parser._actions:  # a Gaussian process too (one response; its defaults, as 'fit --model gp')
-        if action.dest == "model" and action.choices is not None:
-            action.choices = [*action.choices, "gp"]
+    add_model_refinements(parser, per_response=True, model=True, gp=True)  # a GP: one response, its defaults
     add_robust_options(parser)
     add_dispersion_options(parser, optimise=True)
     add_json(parser)

@@ -41,10 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_component_option(parser)
     add_block_option(parser)
     add_random_effect_options(parser)
-    add_model_refinements(parser, per_response=True, model=True)
-    for action in parser._actions:  # a Gaussian process too (its defaults, as 'fit --model gp')
-        if action.dest == "model" and action.choices is not None:
-            action.choices = [*action.choices, "gp"]
+    add_model_refinements(parser, per_response=True, model=True, gp=True)  # a GP: one response, its defaults
     add_goal_options(parser,
                      goal_help="goal of the response it follows (several listed together: in --response order; "
                                "default minimize, as in the paper)",

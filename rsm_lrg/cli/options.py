@@ -294,14 +294,15 @@ def response_options(args: argparse.Namespace, i: int) -> argparse.Namespace:
 
 
 def add_model_refinements(parser: argparse.ArgumentParser, *, per_response: bool = False,
-                          model: bool = False) -> None:
+                          model: bool = False, gp: bool = False) -> None:
     """fit's model options: ``--reduce``, ``--alpha-out``, ``--criterion``, ``--transform``,
-    ``--transform-constant`` (and ``--model`` when ``model``). With ``per_response`` each one
+    ``--transform-constant`` (and ``--model`` when ``model``; ``--model gp`` too when ``gp``: a
+    Gaussian process with its defaults, as ``fit --model gp``). With ``per_response`` each one
     given after a ``--response`` (declared with :class:`ResponseGroup`) applies to that
     response only; see :func:`response_options` and :func:`model_spec`."""
     kw: dict[str, Any] = {"action": PerResponseOption} if per_response else {}
     if model:
-        parser.add_argument("--model", default=None, choices=list(FIT_MODELS),
+        parser.add_argument("--model", default=None, choices=[*FIT_MODELS, *(["gp"] if gp else [])],
                             help="model order (default quadratic; with --component and --terms the terms are the "
                                  "Scheffé model)", **kw)
     add_terms_options(parser, per_response=per_response)
