@@ -57,13 +57,13 @@ def main(argv=None) -> int:
     for g in args.grid:
         levels = np.linspace(-1.0, 1.0, g)
         nodes = np.array(list(itertools.product(levels, repeat=k)))
-        anchor = _median_time(lambda: fit.predictive(nodes), args.repeat)
+        anchor = _median_time(lambda nodes=nodes: fit.predictive(nodes), args.repeat)
         ds = design_space({Y: fit}, SPEC, probability=args.probability, grid=g)
-        whole = _median_time(lambda: design_space({Y: fit}, SPEC, probability=args.probability, grid=g),
+        whole = _median_time(lambda g=g: design_space({Y: fit}, SPEC, probability=args.probability, grid=g),
                              args.repeat)
         p = np.asarray(ds.grid_probability)
         ok = p >= args.probability
-        window = _median_time(lambda: largest_window(ok, p), args.repeat)
+        window = _median_time(lambda ok=ok, p=p: largest_window(ok, p), args.repeat)
         rows.append({"grid": g, "nodes": int(g ** k), "anchor_s": anchor, "design_space_s": whole,
                      "window_s": window, "design_space_per_anchor": whole / anchor,
                      "window_per_anchor": window / anchor, "window_found": bool(ds.window)})
