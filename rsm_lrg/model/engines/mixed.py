@@ -48,7 +48,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -837,6 +837,47 @@ class MixedModel:
         return self.y - self.conditional_fitted
 
 
+def _standardised(X: Any, y: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, float, bool]:
+    """``(X, y, ys, c, k, ones)``: the response centred on its mean ``c`` when the model has an
+    intercept column, and standardised, ``ys = (y - c) / k`` with ``k`` its largest centred
+    value. The variance ratios, the profile and the Kenward–Roger parts are computed on ``ys``,
+    free of the response's unit, so a response in 1e-95 or 1e80 units fits as well as one in
+    units near 1 (the variances, y's scale squared, and their products would leave the floats
+    otherwise)."""
+    X = np.asarray(X, dtype=float)
+    y = np.asarray(y, dtype=float)
+    n, p = X.shape
+    ones = bool(np.all(X[:, 0] == 1.0)) if p else False
+    c = math.fsum(y) / n if ones else 0.0  # added back to the intercept
+    yc = y - c
+    k = float(np.max(np.abs(yc))) if n else 0.0
+    k = k if math.isfinite(k) and k > 0.0 else 1.0
+    return X, y, yc / k, c, k, ones
+
+
+def _gls_in_unit(eta: Any, X: np.ndarray, ys: np.ndarray, structure: Any, names: Sequence[str], c: float, k: float,
+                 ones: bool, exact: str) -> tuple[Regression, float]:
+    """The GLS core at the variance ratios ``eta`` (one whitening, a second pass over row
+    chunks), back in the response's unit: ``(Regression, s2s)`` with ``s2s`` the residual
+    variance of the standardised response. Raises ``ValueError(exact)`` when the model leaves
+    no residual variance (the residual RMS at round-off of the spread)."""
+    from dataclasses import replace
+
+    from .least_squares import CHUNK_ROWS
+
+    n, p = X.shape
+    prof = _profile_at(eta, X, ys, structure, names)
+    Xw, yw = structure.whiten(X, eta), structure.whiten(ys, eta)
+    reg = prof.reg.second_pass(lambda: ((Xw[s:s + CHUNK_ROWS], yw[s:s + CHUNK_ROWS]) for s in range(0, n, CHUNK_ROWS)))
+    s2s = float(reg.sigma2)
+    spread = float(np.sum((ys - np.mean(ys)) ** 2))
+    if not (math.isfinite(s2s) and s2s * (n - p) > 1e-20 * spread):
+        raise ValueError(exact)
+    reg = reg.rescaled(k)  # back to the response's unit
+    # params: b[0] + c (the whitened intercept column fits y - c)
+    return replace(reg, shift=c, intercept=ones), s2s
+
+
 def fit_reml(X: np.ndarray, y: np.ndarray, codes: np.ndarray, labels: Sequence, names: Sequence[str], *,
              column: str, kind: str = "whole_plot") -> tuple[MixedModel, Regression]:
     """REML fit of ``y = X b + Z u + e`` (one random intercept per group ``codes``).
@@ -849,37 +890,15 @@ def fit_reml(X: np.ndarray, y: np.ndarray, codes: np.ndarray, labels: Sequence, 
         ``(X' V^-1 X)^-1`` and the REML residual variance; its residuals and leverages are
         those of the whitened model).
     """
-    from dataclasses import replace
-
-    from .least_squares import CHUNK_ROWS
-
-    X = np.asarray(X, dtype=float)
-    y = np.asarray(y, dtype=float)
+    X, y, ys, c, k, ones = _standardised(X, y)
     n, p = X.shape
-    ones = bool(np.all(X[:, 0] == 1.0)) if p else False
-    c = math.fsum(y) / n if ones else 0.0  # the response centred (digits), added back to the intercept
-    yc = y - c
-    # the response standardised (its largest centred value 1): eta, the profile and the
-    # Kenward-Roger parts are computed free of the response's unit, so a response in 1e-95 or
-    # 1e80 units fits as well as one in units near 1 (the variances, y's scale squared, and
-    # their products would leave the floats otherwise)
-    k = float(np.max(np.abs(yc))) if n else 0.0
-    k = k if math.isfinite(k) and k > 0.0 else 1.0
-    ys = yc / k
     eta, m2l = reml_eta(X, ys, codes, names)
     m2l += (n - p) * 2.0 * math.log(k)  # -2 l_R of the response in its own unit
     groups = _Groups(codes)
-    prof = _profile_at(eta, X, ys, groups, names)
-    Xw, yw = groups.whiten(X, eta), groups.whiten(ys, eta)
-    reg = prof.reg
-    reg = reg.second_pass(lambda: ((Xw[s:s + CHUNK_ROWS], yw[s:s + CHUNK_ROWS]) for s in range(0, n, CHUNK_ROWS)))
-    s2s = float(reg.sigma2)  # of the standardised response
-    spread = float(np.sum((ys - np.mean(ys)) ** 2))
-    if not (math.isfinite(s2s) and s2s * (n - p) > 1e-20 * spread):  # residual RMS at round-off of the spread
-        raise ValueError(f"the model fits the data exactly within every {'whole plot' if kind == 'whole_plot' else 'block'}"
-                         " (no residual variance): REML has nothing to estimate the variance components from")
-    reg = reg.rescaled(k)  # back to the response's unit
-    reg = replace(reg, shift=c, intercept=ones)  # params: b[0] + c (the whitened intercept column fits y - c)
+    within = "whole plot" if kind == "whole_plot" else "block"
+    reg, s2s = _gls_in_unit(eta, X, ys, groups, names, c, k, ones,
+                            f"the model fits the data exactly within every {within} (no residual variance): "
+                            "REML has nothing to estimate the variance components from")
     s2 = float(reg.sigma2)
     beta = np.asarray(reg.params, dtype=float)
     parts = _kr_parts(X, groups, eta * s2s, s2s, unit=k * k)
@@ -894,34 +913,15 @@ def fit_reml_several(X: np.ndarray, y: np.ndarray, effects: Sequence[RandomEffec
     crossed as the codes say), ``u_k ~ N(0, s2_k I)``: the variance ratios by :func:`reml_etas`,
     then the same GLS core and Kenward–Roger parts as :func:`fit_reml` (pbkrtest's ``vcovAdj``
     with one ``G_k = Z_k Z_k'`` per effect and ``I``)."""
-    from dataclasses import replace
-
-    from .least_squares import CHUNK_ROWS
-
-    X = np.asarray(X, dtype=float)
-    y = np.asarray(y, dtype=float)
+    X, y, ys, c, k, ones = _standardised(X, y)
     n, p = X.shape
-    ones = bool(np.all(X[:, 0] == 1.0)) if p else False
-    c = math.fsum(y) / n if ones else 0.0
-    yc = y - c
     codes = [np.asarray(e.codes, dtype=int) for e in effects]
-    # the response standardised as in fit_reml: the fit is free of the response's unit
-    k = float(np.max(np.abs(yc))) if n else 0.0
-    k = k if math.isfinite(k) and k > 0.0 else 1.0
-    ys = yc / k
     etas, m2l = reml_etas(X, ys, codes, names)
     m2l += (n - p) * 2.0 * math.log(k)  # -2 l_R of the response in its own unit
     blocks = _Blocks(codes)
-    prof = _profile_at(etas, X, ys, blocks, names)
-    Xw, yw = blocks.whiten(X, etas), blocks.whiten(ys, etas)
-    reg = prof.reg.second_pass(lambda: ((Xw[s:s + CHUNK_ROWS], yw[s:s + CHUNK_ROWS]) for s in range(0, n, CHUNK_ROWS)))
-    s2s = float(reg.sigma2)  # of the standardised response
-    spread = float(np.sum((ys - np.mean(ys)) ** 2))
-    if not (math.isfinite(s2s) and s2s * (n - p) > 1e-20 * spread):
-        raise ValueError("the model fits the data exactly within the random-effect levels (no residual variance): "
-                         "REML has nothing to estimate the variance components from")
-    reg = reg.rescaled(k)  # back to the response's unit
-    reg = replace(reg, shift=c, intercept=ones)
+    reg, s2s = _gls_in_unit(etas, X, ys, blocks, names, c, k, ones,
+                            "the model fits the data exactly within the random-effect levels (no residual variance): "
+                            "REML has nothing to estimate the variance components from")
     s2 = float(reg.sigma2)
     beta = np.asarray(reg.params, dtype=float)
     parts = _kr_parts(X, blocks, etas * s2s, s2s, unit=k * k)
