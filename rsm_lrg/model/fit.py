@@ -27,6 +27,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, Literal, overload
 
+from .build.data import check_group_column
 from .build.inputs import ModelInputs, chosen_terms, is_dask, model_inputs
 from .build.spec import FactorsArg, ModelSpec, ReduceArg, SpecError, TermsArg
 from .build.terms import check_model_size, model_terms
@@ -378,11 +379,8 @@ def _random_column(data: pd.DataFrame, response: str, whole_plot: str | None, ra
                    block: str | None) -> tuple[str, str, str]:
     """``(column, kind, what)`` of the random intercept, checked on every row (exists, not the
     response or the block, no empty cell)."""
-    import numpy as np
 
     from ..factors import quote_value
-    from ..factors.columns import check_label_column
-    from .build.data import columns_text, empty_cells
 
     if whole_plot is not None and random_block is not None:
         raise SpecError("random_block", "give a whole-plot column or a random block column, not both")
@@ -392,14 +390,7 @@ def _random_column(data: pd.DataFrame, response: str, whole_plot: str | None, ra
     if block is not None:
         raise SpecError("block", f"fixed blocks together with a {what} column are not available (give the blocks as "
                                  "random_block)")
-    if col not in data.columns:
-        raise ValueError(f"{what} column {quote_value(col)} not found (columns: {columns_text(data)})")
-    if col == response:
-        raise ValueError(f"column {quote_value(col)} cannot be both the response and the {what} column")
-    empty = np.asarray(empty_cells(data[col]), dtype=bool)
-    if empty.any():
-        raise ValueError(f"{what} column {quote_value(col)}, row {int(empty.argmax()) + 1}: is empty")
-    check_label_column(data, col)  # a list in a cell is no whole plot
+    check_group_column(data, col, response, what, f"the {what} column")
     levels = data[col].unique()
     if len(levels) < 2:
         unit = "whole plots" if kind == "whole_plot" else "blocks"
@@ -570,11 +561,8 @@ def _effect_columns(data: pd.DataFrame, response: str, whole_plot: str | None, r
     """``(data, columns, used)``: the random-effect columns in order (``whole_plot`` or
     ``random_block`` first), checked on every row, the data with the ``"A:B"`` interaction
     columns added, and every data column they use (kept out of the inferred factors)."""
-    import numpy as np
 
     from ..factors import quote_value
-    from ..factors.columns import check_label_column
-    from .build.data import columns_text, empty_cells
 
     if whole_plot is not None and random_block is not None:
         raise SpecError("random_block", "give a whole-plot column or a random block column, not both (give several "
@@ -594,14 +582,7 @@ def _effect_columns(data: pd.DataFrame, response: str, whole_plot: str | None, r
     for c in cols:
         parts = c.split(":") if c not in data.columns and ":" in c else [c]
         for part in parts:
-            if part not in data.columns:
-                raise ValueError(f"random-effect column {quote_value(part)} not found (columns: {columns_text(data)})")
-            if part == response:
-                raise ValueError(f"column {quote_value(part)} cannot be both the response and a random-effect column")
-            empty = np.asarray(empty_cells(data[part]), dtype=bool)
-            if empty.any():
-                raise ValueError(f"random-effect column {quote_value(part)}, row {int(empty.argmax()) + 1}: is empty")
-            check_label_column(data, part)
+            check_group_column(data, part, response, "random-effect", "a random-effect column")
             used.append(part)
         if len(parts) > 1:  # the interaction: one level per combination of the columns' values
             if out is data:

@@ -81,11 +81,6 @@ def columns_text(data) -> str:
 
 
 def empty_cells(col) -> np.ndarray:
-    """Mask of the empty cells of a column: missing, or text of blanks only."""
-    return _empty_cells(col)
-
-
-def _empty_cells(col) -> np.ndarray:
     """Mask of the empty cells of a column: missing, or text of blanks only (vectorised)."""
     import pandas as pd
 
@@ -104,7 +99,7 @@ def response_values(data, response: str) -> tuple[np.ndarray, np.ndarray]:
 
     col = data[response]
     check_number_kinds(col, response)  # True is no 1.0, a complex number no response
-    empty = _empty_cells(col)
+    empty = empty_cells(col)
     num = pd.to_numeric(col.where(~empty) if empty.any() else col, errors="coerce").to_numpy(dtype=float,
                                                                                                  na_value=np.nan)
     bad = ~empty & ~np.isfinite(num)
@@ -128,6 +123,40 @@ def check_response_block(data, response: str, block: str | None) -> None:
         raise ValueError(f"block column {quote_value(str(block))} not found (columns: {columns_text(data)})")
     if block is not None and block == response:
         raise ValueError(f"column {quote_value(str(response))} cannot be both the response and the block")
+
+
+def check_group_column(data, col: str, response: str, what: str, role: str) -> None:
+    """A grouping column (a whole plot, a random block, a random effect) is in ``data``, is
+    not the response, has no empty cell and holds labels (no list in a cell).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The runs.
+    col : str
+        The grouping column.
+    response : str
+        The response column.
+    what : str
+        The column's kind in messages ("whole-plot", "random-effect").
+    role : str
+        The column's role after "the response and" ("the whole-plot column").
+
+    Returns
+    -------
+    None
+        Raises ``ValueError`` naming the column (and the first empty row) otherwise.
+    """
+    from ...factors.columns import check_label_column
+
+    if col not in data.columns:
+        raise ValueError(f"{what} column {quote_value(col)} not found (columns: {columns_text(data)})")
+    if col == response:
+        raise ValueError(f"column {quote_value(col)} cannot be both the response and {role}")
+    empty = empty_cells(data[col])
+    if empty.any():
+        raise ValueError(f"{what} column {quote_value(col)}, row {int(empty.argmax()) + 1}: is empty")
+    check_label_column(data, col)  # a list in a cell is no group
 
 
 def prepare(data, response: str, factors=None, block: str | None = None, *,
@@ -169,7 +198,7 @@ def prepare(data, response: str, factors=None, block: str | None = None, *,
     for f in choice.space.factors:  # every row, the runs left out too: errors name the input row
         float_column(data, f.name) if f.kind == "numeric" else encode_column(data, f)
     if block is not None:
-        empty_b = np.flatnonzero(_empty_cells(data[block]))
+        empty_b = np.flatnonzero(empty_cells(data[block]))
         if empty_b.size:
             raise ValueError(f"block column {quote_value(str(block))}, row {int(empty_b[0]) + 1}: is empty")
     y, empty = response_values(data, response)
