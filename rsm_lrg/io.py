@@ -504,6 +504,13 @@ def float_column(data, name: str):
     col = data[name]
     if isinstance(col, pd.DataFrame):  # a name given to several columns
         raise ValueError(f"column {quote_user_value(name)} appears {col.shape[1]} times in the data; rename all but one")
+    if col.dtype.kind in "fiu":  # numbers already (the usual CSV column): no conversion, one finiteness check
+        arr = col.to_numpy(dtype=float, na_value=np.nan)
+        finite = np.isfinite(arr)
+        if finite.all():
+            return col.astype(float)
+        i = int(np.flatnonzero(~finite)[0])
+        raise cell_error(name, i + 1, col.iloc[i])
     check_number_kinds(col, name)
     num = pd.to_numeric(col, errors="coerce")
     bad = num.isna() | ~np.isfinite(num.to_numpy(dtype=float, na_value=np.nan))
