@@ -20,6 +20,7 @@ The modules of a fit import them by name (``from .statistics import stdtrit``); 
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import asdict, dataclass
 
@@ -284,7 +285,14 @@ def _t_density(df: float, t: float) -> float:
 
 def _stdtrit(df: float, p: float) -> float:
     """The ``p`` quantile of Student's t with ``df`` degrees of freedom
-    (``scipy.special.stdtrit``): ``stdtr(df, t) = p``."""
+    (``scipy.special.stdtrit``): ``stdtr(df, t) = p``; remembered for the last 1,024
+    ``(df, p)`` pairs (every coefficient of a fit asks for the same quantile)."""
+    return _stdtrit_solved(float(df), float(p))
+
+
+@functools.lru_cache(maxsize=1024)
+def _stdtrit_solved(df: float, p: float) -> float:
+    """:func:`_stdtrit`'s root search (pure: a function of the two floats only)."""
     if not (df > 0 and 0.0 <= p <= 1.0):
         return math.nan
     if p == 0.0:
