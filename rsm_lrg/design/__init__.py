@@ -29,6 +29,7 @@ from .screening import (
     plackett_burman,
 )
 from .spacefill import latin_hypercube, sobol
+from .multi_stratum import split_split_plot, stratum_criteria, strip_plot
 from .split_plot import gls_criteria, gls_information, split_plot, split_plot_ccd
 
 __all__ = [
@@ -59,6 +60,9 @@ __all__ = [
     "extreme_vertices",
     "split_plot",
     "split_plot_ccd",
+    "split_split_plot",
+    "strip_plot",
+    "stratum_criteria",
     "gls_information",
     "gls_criteria",
     "mixture_optimal",
