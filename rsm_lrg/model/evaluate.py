@@ -689,7 +689,8 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
             design, terms=list(terms) if given_terms else None, model=model,
             variance_ratios={**dict.fromkeys(([] if plots is None else ["whole_plot"]) + list(strata),
                                              1.0 if variance_ratio is None else variance_ratio),
-                             **(variance_ratios or {})}) if strata else None if plots is None else gls_criteria(
+                             **(variance_ratios or {})}) if strata or variance_ratios else None if plots is None
+        else gls_criteria(
             design, terms=list(terms) if given_terms else None, model=model,
             variance_ratio=1.0 if variance_ratio is None else variance_ratio),
     )

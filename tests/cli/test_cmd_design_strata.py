@@ -138,3 +138,19 @@ def test_evaluate_unknown_stratum(tmp_path, capsys):
     assert "--variance-ratio-of" in line and "'subplot' is not a stratum" in line
     line = error_line(capsys, main(["evaluate", str(out), "--variance-ratio-of", "strip_row"]))
     assert line.startswith("error: --variance-ratio-of 'strip_row': expected COL=ETA")
+
+
+def test_variance_ratio_of_on_a_split_plot_design(tmp_path, capsys):
+    """One stratum: --variance-ratio-of whole_plot=ETA gives the closed-form split-plot criteria of
+    --variance-ratio ETA (Goos & Vandebroek's V_b^-1 = I - c_b J against the dense inverse)."""
+    out = tmp_path / "sp.csv"
+    assert main(["design", "split-plot", *FACTORS, "--hard-to-change", "T", "--whole-plots", "4", "--runs", "12",
+                 "--model", "linear", "--seed", "1", "--starts", "2", "-o", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["evaluate", str(out), "--model", "linear", "--variance-ratio", "2.5", "--json", "-"]) == 0
+    closed = json.loads(capsys.readouterr().out)["split_plot"]
+    assert main(["evaluate", str(out), "--model", "linear", "--variance-ratio-of", "whole_plot=2.5", "--json", "-"]) == 0
+    dense = json.loads(capsys.readouterr().out)["split_plot"]
+    for key in ("d_efficiency", "a_efficiency", "i_average"):
+        assert dense[key] == pytest.approx(closed[key], rel=1e-10)
+    assert dense["strata"]["whole_plot"]["variance_ratio"] == 2.5
