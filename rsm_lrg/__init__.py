@@ -54,7 +54,7 @@ _register("rsm_lrg.design", "Design", "box_behnken", "central_composite", "full_
 _register("rsm_lrg.design", "optimal", "augment", "Constraints", "definitive_screening", "fractional_factorial",
           "plackett_burman", "latin_hypercube", "sobol")
 _register("rsm_lrg.design", "simplex_lattice", "simplex_centroid", "extreme_vertices", "MixtureDesign", "split_plot",
-          "split_plot_ccd", "mixture_optimal", "cross_process")
+          "split_plot_ccd", "split_split_plot", "strip_plot", "mixture_optimal", "cross_process")
 _register("rsm_lrg.model", "fit", "FitResult", "ModelSpec", "Transform")
 _register("rsm_lrg.optimize", "optimize", "OptimumResult")
 _register("rsm_lrg.surrogate", "simulate", "calibrate", "Calibration")

@@ -13,7 +13,7 @@ from .options import add_force, add_reader_options, whole_number
 
 NAME = "design"
 HELP = ("write a design CSV (box-behnken, central-composite, full-factorial, optimal, split-plot, split-plot-ccd, "
-        "augment, definitive-screening, fractional-factorial, plackett-burman, latin-hypercube, sobol, "
+        "strip-plot, augment, definitive-screening, fractional-factorial, plackett-burman, latin-hypercube, sobol, "
         "simplex-lattice, simplex-centroid, extreme-vertices)")
 DESCRIPTION = (
     "Generate an experimental design and write it as CSV: std_order, run_order, block (when "
@@ -230,6 +230,83 @@ def _split_plot_parser(sub: Any) -> None:
                     help="eta = sigma^2 whole plot / sigma^2, 0 to 1e6 (default 1)")
     sp.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
                     help="random starts of the exchange (default 20 for up to 21 model terms, else 6)")
+    sp.add_argument("--very-hard-to-change", action="append", default=None, metavar="NAME",
+                    help="split-split-plot: a factor (name) held constant within each whole plot (repeatable); "
+                         "the --hard-to-change factors are then held within sub-plots nested in the whole plots "
+                         "(needs --subplots; the CSV adds a subplot column)")
+    sp.add_argument("--subplots", type=whole_number(1), default=None, metavar="S",
+                    help="split-split-plot: the number of sub-plots in all (S/W per whole plot, N/S runs each)")
+    sp.add_argument("--subplot-variance-ratio", type=number(0, 1e6), default=1.0, metavar="ETA",
+                    help="split-split-plot: eta_s = sigma^2 sub-plot / sigma^2, 0 to 1e6 (default 1)")
+    st = sub.add_parser("strip-plot", help="optimal strip-plot design (row factors per row strip, column factors "
+                                           "per column strip)",
+                        description="Optimal strip-plot design (Arnouts, Goos & Jones 2010): R row strips cross C "
+                                    "column strips, one run per cell; the --row-factor factors take one setting per "
+                                    "row strip (the first processing stage), the --column-factor ones one per column "
+                                    "strip (the second), any other factor one per run. Coordinate exchange on the "
+                                    "GLS information X'V^-1 X with V = I + eta_r Z_r Z_r' + eta_c Z_c Z_c'. The CSV "
+                                    "adds the columns strip_row and strip_column (fit --random-effect strip_row "
+                                    "--random-effect strip_column analyses it).")
+    _base(st)
+    st.add_argument("--row-factor", action="append", required=True, metavar="NAME",
+                    help="a factor (name) set once per row strip (repeatable)")
+    st.add_argument("--column-factor", action="append", required=True, metavar="NAME",
+                    help="a factor (name) set once per column strip (repeatable)")
+    st.add_argument("--rows", type=whole_number(1, 600), required=True, metavar="R", help="number of row strips")
+    st.add_argument("--columns", type=whole_number(1, 600), required=True, metavar="C",
+                    help="number of column strips (R x C runs, at most 600)")
+    st.add_argument("--model", default="quadratic", choices=["linear", "2fi", "quadratic", "cubic"],
+                    help="the model the design supports (default quadratic)")
+    st.add_argument("--criterion", default="D", type=str.upper, choices=["D", "I"],
+                    help="optimality criterion on the GLS information (default D)")
+    st.add_argument("--row-variance-ratio", type=number(0, 1e6), default=1.0, metavar="ETA",
+                    help="eta_r = sigma^2 row strip / sigma^2, 0 to 1e6 (default 1)")
+    st.add_argument("--column-variance-ratio", type=number(0, 1e6), default=1.0, metavar="ETA",
+                    help="eta_c = sigma^2 column strip / sigma^2, 0 to 1e6 (default 1)")
+    st.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
+                    help="random starts of the exchange (default 20 for up to 21 model terms, else 6)")
+
+
+def _strip_plot(args: argparse.Namespace) -> Any:
+    """Build the strip-plot design; bad input is an InputError naming the option."""
+    from ..design.multi_stratum import strip_plot
+    from ..io import InputError
+
+    space = _space(args)
+    try:
+        return strip_plot(space, args.row_factor, args.column_factor, args.rows, args.columns, model=args.model,
+                          criterion=args.criterion,
+                          variance_ratios={"strip_row": args.row_variance_ratio,
+                                           "strip_column": args.column_variance_ratio},
+                          seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
+    except InputError:
+        raise
+    except ValueError as exc:
+        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
+
+
+def _split_split_plot(args: argparse.Namespace) -> Any:
+    """Build the split-split-plot design (``--very-hard-to-change``); bad input is an
+    InputError naming the option."""
+    from ..design.multi_stratum import split_split_plot
+    from ..io import InputError
+
+    if args.subplots is None:
+        raise InputError("--subplots: a split-split-plot design (--very-hard-to-change) needs the number of "
+                         "sub-plots")
+    if args.constraint:
+        raise InputError("--constraint: not available for a split-split-plot design (--very-hard-to-change)")
+    space = _space(args)
+    try:
+        return split_split_plot(space, args.very_hard_to_change, args.hard_to_change, args.whole_plots,
+                                args.subplots, args.runs, model=args.model, criterion=args.criterion,
+                                variance_ratios={"whole_plot": args.variance_ratio,
+                                                 "subplot": args.subplot_variance_ratio},
+                                seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
+    except InputError:
+        raise
+    except ValueError as exc:
+        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
 
 
 def _split_plot_ccd_parser(sub: Any) -> None:
@@ -276,6 +353,11 @@ def _split_plot(args: argparse.Namespace) -> Any:
     from ..design.split_plot import split_plot
     from ..io import InputError
 
+    if args.very_hard_to_change:
+        return _split_split_plot(args)
+    if args.subplots is not None:
+        raise InputError("--subplots: sub-plots belong to a split-split-plot design; name its whole-plot factors "
+                         "with --very-hard-to-change")
     space = _space(args)
     cons = _constraints(args, space)
     try:
@@ -371,9 +453,10 @@ def run(args) -> int:
         print(design.summary())
         print(f"wrote {out}")
         return 0
-    if args.kind in _NEW_KINDS or args.kind in ("split-plot", "split-plot-ccd"):
+    if args.kind in _NEW_KINDS or args.kind in ("split-plot", "split-plot-ccd", "strip-plot"):
         design = (_split_plot(args) if args.kind == "split-plot" else _split_plot_ccd(args)
-                  if args.kind == "split-plot-ccd" else _new_kind(args))
+                  if args.kind == "split-plot-ccd" else _strip_plot(args) if args.kind == "strip-plot"
+                  else _new_kind(args))
         write_design(design, out, args)
         print(design.summary())
         print(f"wrote {out}")
@@ -415,7 +498,8 @@ MAX_ALPHA = 1000.0
 #: (``hard_to_change`` -> ``--hard-to-change``) nor in :data:`.errors.PARAMETER_OPTIONS`.
 _DESIGN_OPTIONS = {
     "factors": "--factor", "process": "--factor", "components": "--component", "bounds": "--component",
-    "generators": "--generator",
+    "generators": "--generator", "very_hard_to_change": "--very-hard-to-change", "row_factors": "--row-factor",
+    "column_factors": "--column-factor", "subplots": "--subplots", "rows": "--rows", "columns": "--columns",
 }
 
 #: Kinds handled by :func:`_new_kind` (added with issue 13).

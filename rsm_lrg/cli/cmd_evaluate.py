@@ -55,6 +55,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "when there is one): adds the GLS criteria")
     parser.add_argument("--variance-ratio", type=number(0, 1e6), default=None, metavar="ETA",
                         help="eta = sigma^2 whole plot / sigma^2 of the GLS criteria, 0 to 1e6 (default 1)")
+    parser.add_argument("--variance-ratio-of", action="append", default=[], metavar="COL=ETA",
+                        help="eta of one random stratum by its group column (whole_plot, subplot, strip_row, "
+                             "strip_column), over --variance-ratio (repeatable)")
     add_plot_option(parser, "the fraction-of-design-space curve(s) on one plot")
     add_json(parser)
     add_force(parser)
@@ -84,13 +87,39 @@ def _load(path, exclude, args):
 
     if wp is None and WHOLE_PLOT_COLUMN in df.columns:
         wp = WHOLE_PLOT_COLUMN
-    space = FactorSpace.from_data(df, None, exclude=list(exclude or []) + ([wp] if wp is not None else []))
+    from ..design.core import STRATUM_COLUMNS
+
+    groups = [c for c in STRATUM_COLUMNS if c in df.columns]
+    space = FactorSpace.from_data(df, None, exclude=list(exclude or []) + ([wp] if wp is not None else []) + groups)
     coded = space.encode(df).to_numpy(dtype=float)
     n = len(df)
     import numpy as np
 
     plots = None if wp is None else whole_plot_codes(df[wp].tolist(), wp)
-    return Design(space, "custom", coded, np.arange(1, n + 1), np.arange(1, n + 1), whole_plots=plots)
+    return Design(space, "custom", coded, np.arange(1, n + 1), np.arange(1, n + 1), whole_plots=plots,
+                  strata={c: whole_plot_codes(df[c].tolist(), c) for c in groups})
+
+
+def _stratum_ratios(items: list[str]) -> dict[str, float] | None:
+    """``--variance-ratio-of COL=ETA`` as ``{COL: ETA}``; a malformed item is an InputError."""
+    import math
+
+    from ..io import InputError, quote_user_value
+
+    out: dict[str, float] = {}
+    for item in items:
+        col, eq, text = str(item).partition("=")
+        try:
+            eta = float(text)
+        except ValueError:
+            eta = math.nan
+        if not eq or not col.strip() or not (math.isfinite(eta) and 0 <= eta <= 1e6):
+            raise InputError(f"--variance-ratio-of {quote_user_value(item)}: expected COL=ETA with ETA a number "
+                             "from 0 to 1e6")
+        if col.strip() in out:
+            raise InputError(f"--variance-ratio-of {quote_user_value(item)}: {col.strip()} is given twice")
+        out[col.strip()] = eta
+    return out or None
 
 
 def run(args: argparse.Namespace) -> int:
@@ -108,6 +137,9 @@ def run(args: argparse.Namespace) -> int:
             designs.append(_load(path, args.exclude, args))
     opts = dict(region=args.region, alpha=args.alpha, effect_sd=args.effect, potential=potential,
                 variance_ratio=args.variance_ratio)
+    ratios = _stratum_ratios(args.variance_ratio_of)
+    if ratios:
+        opts["variance_ratios"] = ratios
     result: DesignEvaluation | DesignComparison
     if len(paths) == 1:
         with about_file(paths[0]):

@@ -57,7 +57,7 @@ PARAMETER_OPTIONS = {
     "goal": "--goal", "radius": "--radius", "step": "--step", "setting": "--at", "weight": "--weight",
     "importance": "--importance", "limits": "--limits", "criterion": "--criterion", "effect_sd": "--effect",
     "region": "--region", "observed": "--observed", "held": "--bound", "parameters": "--parameter",
-    "constraints": "--constraint", "random_effects": "--random-effect",
+    "constraints": "--constraint", "random_effects": "--random-effect", "variance_ratios": "--variance-ratio-of",
 }
 
 

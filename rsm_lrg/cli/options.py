@@ -129,7 +129,7 @@ FIT_MODELS = MODEL_ORDERS + MIXTURE_MODEL_NAMES
 
 #: ``--reduce`` methods (those of :data:`rsm_lrg.model.build.spec.REDUCE_METHODS`, not imported here so that
 #: building the parser loads no NumPy; a test checks that they agree).
-REDUCE_METHOD_NAMES = ("backward", "forward", "stepwise", "all-subsets")
+REDUCE_METHOD_NAMES = ("backward", "forward", "stepwise", "all-subsets", "dsd")
 
 
 def add_component_option(p: argparse.ArgumentParser) -> None:
@@ -307,13 +307,16 @@ def add_model_refinements(parser: argparse.ArgumentParser, *, per_response: bool
                                  "Scheffé model)", **kw)
     add_terms_options(parser, per_response=per_response)
     reduce_kw: dict[str, Any] = dict(kw, nargs="?", const="backward", default=False, choices=list(REDUCE_METHOD_NAMES))
-    parser.add_argument("--reduce", metavar="backward|forward|stepwise|all-subsets",
+    parser.add_argument("--reduce", metavar="backward|forward|stepwise|all-subsets|dsd",
                         help="choose the terms, hierarchy kept: backward elimination (the default), forward or "
-                             "stepwise selection, or the best of all hierarchical subsets", **reduce_kw)
+                             "stepwise selection, the best of all hierarchical subsets, or dsd: the two-stage "
+                             "analysis of a definitive screening design (main effects from the fold-over pairs, then "
+                             "second-order terms of the active factors; threshold --alpha-in)", **reduce_kw)
     parser.add_argument("--alpha-out", type=number(0, 1, above=True, below=True), default=0.1, metavar="A",
                         help="with --reduce and --criterion p: remove terms while p > A (default 0.1)", **kw)
-    parser.add_argument("--alpha-in", type=number(0, 1, above=True, below=True), default=0.1, metavar="A",
-                        help="with --reduce forward|stepwise and --criterion p: add terms while p < A (default 0.1)",
+    parser.add_argument("--alpha-in", type=number(0, 1, above=True, below=True), default=None, metavar="A",
+                        help="with --reduce forward|stepwise and --criterion p: add terms while p < A (default "
+                             "0.1); with --reduce dsd: the threshold of both stages (default 0.05)",
                         **kw)
     parser.add_argument("--criterion", default=None, choices=["p", "aicc", "bic"],
                         help="with --reduce: by p-value (default), or while AICc or BIC falls (all-subsets: the "

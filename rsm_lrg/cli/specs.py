@@ -76,8 +76,9 @@ def model_spec(opts: argparse.Namespace, *, order: str | None = None):
     how = getattr(opts, "reduce", False)
     reduce: dict[str, str | float] | None = None
     if how:
-        reduce = {"alpha_out": getattr(opts, "alpha_out", 0.1), "method": how if isinstance(how, str) else "backward",
-                  "alpha_in": getattr(opts, "alpha_in", 0.1)}
+        reduce = {"alpha_out": getattr(opts, "alpha_out", 0.1), "method": how if isinstance(how, str) else "backward"}
+        if getattr(opts, "alpha_in", None) is not None:  # else the method's default (0.1; dsd 0.05)
+            reduce["alpha_in"] = opts.alpha_in
         if getattr(opts, "criterion", None) is not None:
             reduce["criterion"] = opts.criterion
     if (order is None and getattr(opts, "model", None) is None and getattr(opts, "component", None)

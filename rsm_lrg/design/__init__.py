@@ -19,6 +19,7 @@ from .core import Design, as_factor_space, read_design
 from .factorial import full_factorial
 from .mixture import MixtureDesign, cross_process, extreme_vertices, simplex_centroid, simplex_lattice
 from .mixture_optimal import mixture_optimal
+from .multi_stratum import split_split_plot, stratum_criteria, strip_plot
 from .optimal import criterion_value, optimal
 from .paper import paper_design
 from .screening import (
@@ -59,6 +60,9 @@ __all__ = [
     "extreme_vertices",
     "split_plot",
     "split_plot_ccd",
+    "split_split_plot",
+    "strip_plot",
+    "stratum_criteria",
     "gls_information",
     "gls_criteria",
     "mixture_optimal",

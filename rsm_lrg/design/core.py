@@ -11,7 +11,10 @@ The CSV layout (what ``rsm-lrg design`` writes and what later commands read)::
 
 A split-plot design (:func:`rsm_lrg.design.split_plot`) adds the ``whole_plot`` column: the
 whole plot (1..W, numbered in run order) of each run; its hard-to-change factors are constant
-within each whole plot.
+within each whole plot. A split-split-plot design adds ``subplot`` beside it (sub-plots
+numbered 1..S across the design, nested in the whole plots), a strip-plot design ``strip_row``
+and ``strip_column`` (:mod:`rsm_lrg.design.multi_stratum`); these group columns stand before
+the coded columns, where ``fit --random-effect COL`` reads them.
 
 The coded columns carry the prefix ``coded_`` so that ``fit`` skips them when it picks the
 factor columns by default (see :meth:`rsm_lrg.factors.FactorSpace.from_data`).
@@ -46,6 +49,7 @@ __all__ = [
     "CODED_PREFIX",
     "BLOCK_COLUMN",
     "WHOLE_PLOT_COLUMN",
+    "STRATUM_COLUMNS",
     "cross_categoric",
     "numeric_part",
     "check_center",
@@ -57,6 +61,9 @@ CODED_PREFIX = "coded_"
 BLOCK_COLUMN = "block"
 #: Name of the whole-plot column of a split-plot design CSV.
 WHOLE_PLOT_COLUMN = "whole_plot"
+#: The further group columns a design CSV may carry (a split-split-plot design's sub-plots,
+#: a strip-plot design's row and column strips), in the order they are written.
+STRATUM_COLUMNS = ("subplot", "strip_row", "strip_column")
 
 # Relative tolerance when reading the coding back from coded + actual columns.
 _READ_RTOL = 1e-9
@@ -248,6 +255,10 @@ class Design:
         The generator's options (centre points, alpha, seed, ...), JSON-safe.
     whole_plots : numpy.ndarray of int or None
         Whole plot (1..W) of each row of a split-plot design, or ``None``.
+    strata : dict
+        Further group columns (names among :data:`STRATUM_COLUMNS`) to their group numbers
+        (>= 1) per row: ``subplot`` of a split-split-plot design, ``strip_row`` and
+        ``strip_column`` of a strip-plot design; empty for other designs.
     """
 
     factors: FactorSpace
@@ -258,6 +269,7 @@ class Design:
     blocks: np.ndarray | None = None
     options: dict = field(default_factory=dict)
     whole_plots: np.ndarray | None = None
+    strata: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         coded = np.array(self.coded_runs, dtype=float)
@@ -289,13 +301,22 @@ class Design:
         std, run = std[order], run[order]
         blocks = None if blocks is None else blocks[order]
         plots = None if plots is None else plots[order]
-        for a in (coded, std, run) + tuple(x for x in (blocks, plots) if x is not None):
+        strata: dict[str, np.ndarray] = {}
+        for name, labels in dict(self.strata or {}).items():
+            if name not in STRATUM_COLUMNS:
+                raise ValueError(f"strata: {name!r} is not one of {', '.join(STRATUM_COLUMNS)}")
+            g = np.asarray(labels, dtype=int)
+            if g.shape != (n,) or g.min() < 1:
+                raise ValueError(f"strata: {name} must give a group number >= 1 for every run")
+            strata[name] = g[order]
+        for a in (coded, std, run) + tuple(x for x in (blocks, plots) if x is not None) + tuple(strata.values()):
             a.setflags(write=False)
         object.__setattr__(self, "coded_runs", coded)
         object.__setattr__(self, "std_order", std)
         object.__setattr__(self, "run_order", run)
         object.__setattr__(self, "blocks", blocks)
         object.__setattr__(self, "whole_plots", plots)
+        object.__setattr__(self, "strata", {c: strata[c] for c in STRATUM_COLUMNS if c in strata})
         object.__setattr__(self, "options", dict(self.options))
 
     # -- sizes ----------------------------------------------------------------------------
@@ -361,6 +382,8 @@ class Design:
             cols[BLOCK_COLUMN] = self.blocks.copy()
         if self.whole_plots is not None:
             cols[WHOLE_PLOT_COLUMN] = self.whole_plots.copy()
+        for name, g in self.strata.items():
+            cols[name] = g.copy()
         for i, f in enumerate(self.factors):
             c = self.coded_runs[:, i]
             if f.kind == "categoric":  # Design-Expert shows the level as the coded value
@@ -408,6 +431,8 @@ class Design:
             columns[BLOCK_COLUMN] = [str(v) for v in self.blocks.tolist()]
         if self.whole_plots is not None:
             columns[WHOLE_PLOT_COLUMN] = [str(v) for v in self.whole_plots.tolist()]
+        for name, g in self.strata.items():
+            columns[name] = [str(v) for v in g.tolist()]
 
         def text(values: np.ndarray) -> list[str]:
             if values.dtype.kind in "iu":
@@ -526,6 +551,22 @@ class Design:
             each = (f"{int(sizes[0])} runs each" if sizes.min() == sizes.max()
                     else f"{int(sizes.min())} to {int(sizes.max())} runs")
             lines.append(f"{len(sizes)} whole plots ({each})")
+        for name, g in self.strata.items():
+            sizes = np.unique(g, return_counts=True)[1]
+            each = (f"{int(sizes[0])} runs each" if sizes.min() == sizes.max()
+                    else f"{int(sizes.min())} to {int(sizes.max())} runs")
+            lines.append(f"{len(sizes)} groups in column {name} ({each})")
+        if self.kind in ("split-split-plot", "strip-plot"):
+            lines.append(f"{o.get('criterion')}-optimal {self.kind} design for the {o.get('model')} model "
+                         f"({o.get('model_terms')} terms), variance ratios "
+                         + ", ".join(f"{k} {format_g(v, 6, trim=True)}" for k, v in o.get("variance_ratios", {}).items())
+                         + f": GLS criterion {format_g(o.get('criterion_value'), 6, trim=True) or 'n/a'}")
+            for key, label in (("very_hard_to_change", "very hard to change (whole plots)"),
+                               ("hard_to_change", "hard to change (sub-plots)"),
+                               ("row_factors", "row factors (strip_row)"),
+                               ("column_factors", "column factors (strip_column)")):
+                if o.get(key):
+                    lines.append(f"{label}: " + ", ".join(o[key]))
         if o.get("constraints"):
             lines.append("constraints: " + "; ".join(o["constraints"]))
         if self.kind == "augmented":
@@ -704,7 +745,9 @@ class Design:
         wp_col = whole_plot if whole_plot is not None else (WHOLE_PLOT_COLUMN if WHOLE_PLOT_COLUMN in cols else None)
         if wp_col is not None and wp_col not in cols:
             raise ValueError(f"whole-plot column {wp_col!r} not found (columns: {', '.join(cols)})")
-        after = [c for c in cols[last + 1:] if c.lower() not in BOOKKEEPING and c not in (BLOCK_COLUMN, wp_col)]
+        group_cols = [c for c in STRATUM_COLUMNS if c in cols]
+        after = [c for c in cols[last + 1:]
+                 if c.lower() not in BOOKKEEPING and c not in (BLOCK_COLUMN, wp_col, *group_cols)]
         if len(after) < k:
             raise ValueError(
                 f"found {k} coded columns but only {len(after)} factor columns after them; "
@@ -768,8 +811,9 @@ class Design:
             codes = {v: i + 1 for i, v in enumerate(sorted(set(b.tolist()), key=lambda v: (str(type(v)), v)))}
             blocks = np.array([codes[v] for v in b.tolist()], dtype=int)
         plots = None if wp_col is None else whole_plot_codes(df[wp_col].tolist(), wp_col)
+        strata = {c: whole_plot_codes(df[c].tolist(), c) for c in group_cols}
         return cls(space, kind, coded, _order("std_order"), _order("run_order"), blocks,
-                   {"source": "file"}, plots)
+                   {"source": "file"}, plots, strata)
 
 
 def whole_plot_codes(values: list, column: str) -> np.ndarray:

@@ -232,6 +232,16 @@ class DesignEvaluation:
         g = self.split_plot
         if g is None:
             return []
+        if "strata" in g:
+            parts = [f"{k} {v['groups']} groups ({v['sizes'][0]}" + (f" to {v['sizes'][1]}" if v['sizes'][1] != v['sizes'][0]
+                     else "") + f" runs), η {format_g(v['variance_ratio'], 6, trim=True)}" for k, v in g["strata"].items()]
+            return ["", (f"{name}: " if name else "") + "Random strata: " + "; ".join(parts) + ". The figures above "
+                    "treat the runs as independent (OLS, X'X);",
+                    "under generalised least squares with V = I + Σ η_k Z_k Z_k' (η = σ²_k/σ², --variance-ratio, "
+                    "--variance-ratio-of):",
+                    f"  D-efficiency det(X'V⁻¹X)^(1/p)/n {100 * g['d_efficiency']:.1f} %, A-efficiency "
+                    f"{100 * g['a_efficiency']:.1f} %, I (average prediction variance over the cube) "
+                    f"{format_g(g['i_average'])} σ²"]
         lo, hi = g["plot_sizes"]
         size = f"{lo} runs each" if lo == hi else f"{lo} to {hi} runs"
         eta = format_g(g["variance_ratio"], 6, trim=True)
@@ -447,7 +457,8 @@ def _max_variance_ball(E: np.ndarray, Ct: np.ndarray, k: int, radius: float, sam
 def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", alpha: float = 0.05,
                     effect_sd: float = 2.0, n_region: int = 4096, seed: int = 0,
                     potential: str | None = "auto", terms=None, intercept: bool = True,
-                    variance_ratio: float | None = None) -> DesignEvaluation:
+                    variance_ratio: float | None = None,
+                    variance_ratios: dict | None = None) -> DesignEvaluation:
     """Evaluate a design for a model before any data (see the module docstring).
 
     ``terms`` (a list of term names, or ``"A B AB A^2"``) evaluates that model instead of
@@ -476,7 +487,13 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         For a split-plot design (a :class:`~rsm_lrg.design.Design` with whole plots):
         ``η = σ²_wp / σ²`` of the GLS criteria (default 1); the evaluation's ``split_plot``
         holds them (:func:`rsm_lrg.design.split_plot.gls_criteria`) beside the OLS figures.
-        Refused for a design without whole plots.
+        Refused for a design without whole plots. With further strata (a split-split-plot
+        design's ``subplot``, a strip-plot design's ``strip_row`` and ``strip_column``) it is
+        the ratio of every stratum, and the criteria come from
+        :func:`rsm_lrg.design.multi_stratum.stratum_criteria`.
+    variance_ratios : dict, optional
+        ``η`` [-] of single strata by group column (``{"subplot": 0.5}``), over
+        ``variance_ratio``.
 
     Returns
     -------
@@ -487,6 +504,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     import pandas as pd
     from scipy import special
 
+    from ..design.multi_stratum import stratum_criteria
     from ..design.split_plot import gls_criteria
     from ..factors import letters_for
     from .build.terms import (
@@ -514,7 +532,12 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
             raise ValueError("coded settings must be an (n, k) array")
         letters = letters_for(coded.shape[1])
     plots = getattr(design, "whole_plots", None)
-    if variance_ratio is not None and plots is None:
+    strata = dict(getattr(design, "strata", None) or {})
+    if variance_ratios and not strata and plots is None:
+        raise ParameterError("variance_ratios", "the design has no random strata")
+    if strata and blocks is not None:
+        raise ValueError("a design with both blocks and random strata is not evaluated under GLS here")
+    if variance_ratio is not None and plots is None and not strata:
         raise ParameterError("variance_ratio", "the design has no whole plots (no whole_plot column; name the "
                                                "whole-plot column with --whole-plot COL)")
     if plots is not None and blocks is not None:
@@ -662,7 +685,12 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         rank=rank, n_distinct=n_distinct,
         d_efficiency=d_eff, a_efficiency=a_eff, i_average=i_avg,
         potential=potential, alias_matrix=alias, correlation=corr, fds_curve=fds_curve,
-        split_plot=None if plots is None else gls_criteria(
+        split_plot=stratum_criteria(
+            design, terms=list(terms) if given_terms else None, model=model,
+            variance_ratios={**dict.fromkeys(([] if plots is None else ["whole_plot"]) + list(strata),
+                                             1.0 if variance_ratio is None else variance_ratio),
+                             **(variance_ratios or {})}) if strata or variance_ratios else None if plots is None
+        else gls_criteria(
             design, terms=list(terms) if given_terms else None, model=model,
             variance_ratio=1.0 if variance_ratio is None else variance_ratio),
     )
@@ -812,7 +840,7 @@ def compare_designs(designs, model: str = "quadratic", *, names=None, region: st
 
     k0 = shape(designs[0])
     eta = kwargs.pop("variance_ratio", None)
-    with_plots = [getattr(d, "whole_plots", None) is not None for d in designs]
+    with_plots = [getattr(d, "whole_plots", None) is not None or bool(getattr(d, "strata", None)) for d in designs]
     if eta is not None and not any(with_plots):
         raise ParameterError("variance_ratio", "the designs have no whole plots (no whole_plot column; name the "
                                                "whole-plot column with --whole-plot COL)")

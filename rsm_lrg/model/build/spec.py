@@ -47,7 +47,7 @@ class SpecError(ParameterError):
 
 
 #: Ways of choosing the terms (:mod:`rsm_lrg.model.choice.reduce`, :mod:`rsm_lrg.model.choice.select`).
-REDUCE_METHODS = ("backward", "forward", "stepwise", "all-subsets")
+REDUCE_METHODS = ("backward", "forward", "stepwise", "all-subsets", "dsd")
 #: Criteria of the choice.
 REDUCE_CRITERIA = ("p", "aicc", "bic")
 
@@ -70,10 +70,11 @@ class ReduceSpec:
         What the selection uses (p-values by default).
     alpha_out : float, default 0.1
         A term leaves above this p-value.
-    method : {"backward", "forward", "stepwise", "all-subsets"}, default "backward"
+    method : {"backward", "forward", "stepwise", "all-subsets", "dsd"}, default "backward"
         The selection method.
-    alpha_in : float, default 0.1
-        A term enters below this p-value (forward and stepwise).
+    alpha_in : float, optional
+        A term enters below this p-value (forward and stepwise; default 0.1); the threshold
+        of both stages of ``"dsd"`` (default 0.05).
     hierarchy : bool, default True
         Keep the model hierarchical.
     """
@@ -81,17 +82,22 @@ class ReduceSpec:
     criterion: str | None = None
     alpha_out: float = 0.1
     method: str = "backward"
-    alpha_in: float = 0.1
+    alpha_in: float = math.nan  # resolved in __post_init__: 0.05 for "dsd", else 0.1
     hierarchy: bool = True
 
     def __post_init__(self) -> None:
         if self.method not in REDUCE_METHODS:
             raise SpecError("reduce", f"the reduction method must be one of {', '.join(REDUCE_METHODS)}, not "
                                       f"{self.method!r}")
+        if self.alpha_in is None or (isinstance(self.alpha_in, float) and math.isnan(self.alpha_in)):
+            object.__setattr__(self, "alpha_in", 0.05 if self.method == "dsd" else 0.1)
         if self.criterion is None:
             object.__setattr__(self, "criterion", "aicc" if self.method == "all-subsets" else "p")
         if self.criterion not in REDUCE_CRITERIA:
             raise SpecError("criterion", f"criterion must be 'p', 'aicc' or 'bic', not {self.criterion!r}")
+        if self.method == "dsd" and self.criterion != "p":
+            raise SpecError("criterion", "the definitive screening analysis tests by p-values (criterion 'p'), not "
+                                         f"{self.criterion!r}")
         if self.method == "all-subsets" and self.criterion == "p":
             raise SpecError("criterion", "all-subsets ranks the models by AICc or BIC (criterion 'aicc' or 'bic'), "
                                          "not by p-values")

@@ -40,6 +40,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from ..build.spec import ReduceSpec, SpecError
+from .dsd import TwoStage
 from .reduce import Reduction, aicc, reduce_inputs, removable
 
 __all__ = ["choose_terms", "search", "Scorer", "LeastSquaresScorer", "Selection", "bic", "MAX_SUBSETS", "TOP_SUBSETS",
@@ -140,15 +141,16 @@ class Selection:
 
 
 def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", terms: Any = None, intercept: bool = True,
-                 mixture: bool = False) -> Reduction | Selection:
+                 mixture: bool = False) -> Reduction | Selection | TwoStage:
     """The terms chosen from the starting model (``model`` or ``terms``) over checked inputs
     (:func:`rsm_lrg.model.build.inputs.model_inputs`) as ``reduce`` says (see the module docstring).
 
     Returns
     -------
-    Reduction or Selection
+    Reduction, Selection or TwoStage
         Backward elimination by p or AICc with hierarchy gives
-        :func:`rsm_lrg.model.choice.reduce.reduce_inputs`'s Reduction; every other choice a Selection.
+        :func:`rsm_lrg.model.choice.reduce.reduce_inputs`'s Reduction; ``"dsd"`` the
+        :class:`~rsm_lrg.model.choice.dsd.TwoStage` analysis; every other choice a Selection.
 
     Raises
     ------
@@ -163,6 +165,17 @@ def choose_terms(inp: Any, reduce: ReduceSpec, *, model: str = "quadratic", term
     from ..build.terms import check_model_size, model_terms, n_columns, term_columns
     from ..engines.least_squares import factorise
 
+    if reduce.method == "dsd":
+        from .dsd import two_stage_inputs
+
+        if mixture or not intercept:
+            raise SpecError("model", "the definitive screening analysis fits a model with an intercept in process "
+                                      "factors (not a mixture or a model without intercept)")
+        if terms is not None or model != "quadratic":
+            raise SpecError("terms" if terms is not None else "model",
+                            "the definitive screening analysis chooses among the quadratic model's terms; give no "
+                            "other model or terms")
+        return two_stage_inputs(inp, reduce.alpha_in)
     if reduce.method == "backward" and reduce.criterion in ("p", "aicc") and reduce.hierarchy:
         return reduce_inputs(inp, model=model, terms=terms, intercept=intercept, alpha_out=reduce.alpha_out,
                              criterion=str(reduce.criterion), mixture=mixture)

@@ -523,6 +523,8 @@ def select_glm_terms(inp: ModelInputs, gi: GLMInputs, fam: Family, spec: ModelSp
     from ..engines.least_squares import least_squares
 
     assert spec.reduce is not None
+    if spec.reduce.method == "dsd":
+        raise SpecError("reduce", "the definitive screening analysis is for least-squares fits, not a GLM")
     if not spec.intercept and spec.reduce.method != "backward":
         raise SpecError("reduce", f"{spec.reduce.method} selection starts from (or keeps) the intercept: the model "
                                   "needs one")
