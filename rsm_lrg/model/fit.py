@@ -487,10 +487,11 @@ def _fit_mixed(data: pd.DataFrame | dd.DataFrame, response: str, factors: Factor
 
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
-    if components is not None or spec.mixture:
-        raise SpecError("model", "a mixture model with a random whole-plot or block effect is not available yet")
     col, kind, what = _random_column(data, response, whole_plot, random_block, block)
-    inp = model_inputs(data, response, factors, col, transform=spec.transform, origin=not spec.intercept)
+    if components is not None or spec.mixture:  # a Scheffé model (Kowalski, Cornell & Vining 2002)
+        inp = _mixed_mixture_inputs(data, response, components, factors, spec, col)
+    else:
+        inp = model_inputs(data, response, factors, col, transform=spec.transform, origin=not spec.intercept)
     from dataclasses import replace
 
     if kind == "whole_plot":
@@ -499,6 +500,8 @@ def _fit_mixed(data: pd.DataFrame | dd.DataFrame, response: str, factors: Factor
     labels = inp.prep.data[col].tolist()
     inp = replace(inp, block=None, bcodes=None, bkeys=None, blevels=None)
     reduction = None
+    if spec.reduce is not None and spec.mixture:
+        raise SpecError("reduce", "a REML mixture fit is not reduced here: fit the chosen Scheffé terms (terms=...)")
     if spec.reduce is not None:
         from .choice.mixed_reduce import reduce_mixed
 
@@ -524,7 +527,7 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
 
     space, y, hint, n = inp.space, inp.y, inp.hint, inp.n
     model = spec.order
-    terms = _spec_terms(inp, spec, 0)
+    terms = _mixture_terms(spec, space, n, inp.settings, hint) if spec.mixture else _spec_terms(inp, spec, 0)
     col_names = inp.column_names(terms)
     p = len(col_names)
     what_model = f"the {model} model" if spec.terms is None else "the model"
@@ -563,6 +566,24 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
                     ls=ls, pe=pe, bkeys=None, blevels=None, data=prep.data.copy(), coded=inp.coded, y=y,
                     y_response=inp.y_response, input_notes=prep.notes, omitted_rows=prep.omitted_rows,
                     omitted_data=prep.omitted_data, reduction=reduction, mixed=mm)
+
+
+def _mixed_mixture_inputs(data: pd.DataFrame, response: str, components: Sequence[str] | None, factors: FactorsArg,
+                          spec: ModelSpec, col: str) -> ModelInputs:
+    """The inputs of a Scheffé model with a random effect: the components as L-pseudo
+    components and the process factors as :func:`_fit_mixture` reads them; the grouping
+    column ``col`` read as blocks are (checked, kept out of the notes), then dropped."""
+    from .build.mixture import MIXTURE_ORDERS, mixture_space
+
+    if not spec.mixture:
+        raise SpecError("model", f"mixture components need a Scheffé model ({', '.join(MIXTURE_ORDERS)}), "
+                                 f"not {spec.order!r}")
+    if not components:
+        raise SpecError("model", f"the {spec.order} model needs the mixture components (components=[...], "
+                                 "--component NAME)")
+    comps = [components] if isinstance(components, str) else list(components)
+    space = mixture_space(data, comps, response, process=factors)
+    return model_inputs(data, response, space, col, transform=spec.transform)
 
 
 def _effect_columns(data: pd.DataFrame, response: str, whole_plot: str | None, random_block: str | None,
