@@ -276,9 +276,7 @@ def _fit_mixture(data: pd.DataFrame, response: str, components: Sequence[str] | 
     else:
         given = None
     if given is not None:  # the space of a fitted mixture model
-        if block is not None:
-            raise SpecError("block", "blocks in a mixture model are not available yet")
-        inp = model_inputs(data, response, given, None, transform=spec.transform)
+        inp = model_inputs(data, response, given, block, transform=spec.transform)
     else:
         inp = mixture_inputs(data, response, components or (), factors, block, transform=spec.transform)
     reduction = None
@@ -325,7 +323,7 @@ def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: 
         terms = _mixture_terms(spec, space, n, inp.settings, hint)
     else:
         terms = _spec_terms(inp, spec, nb - 1)
-    if nb > 1 and not spec.intercept:
+    if nb > 1 and not spec.intercept and not spec.mixture:
         raise SpecError("terms", "blocks need a model with an intercept (block effects sum to zero about it)")
     col_names = inp.column_names(terms)
     p = len(col_names)

@@ -268,6 +268,10 @@ class ScheffeForm(PolynomialForm):
         """
         from ..build.mixture import mixture_sums
 
+        if r.n_blocks > 1:
+            from ..build.inputs import block_codes
+
+            return mixture_sums(r.least_squares, r.terms, block_codes(r.data, r.block)[0], r.y)
         return mixture_sums(r.least_squares, r.terms)
 
     def anova(self, r: ReadFit) -> pd.DataFrame:
@@ -286,7 +290,7 @@ class ScheffeForm(PolynomialForm):
         s, ls = r.sums, r.least_squares
         return clean_anova(anova_table(
             term_names=s["names"], term_ss=s["term_ss"], ss_model=s["ss_model"], df_model=s["df_model"],
-            ss_block=0.0, df_block=0, ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"],
+            ss_block=s["ss_block"], df_block=r.n_blocks - 1, ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"],
             df_total=ls.n - 1, pe=r.pure_error, term_df=s["term_df"], total_label="Cor Total"))
 
     def test_contrasts(self, r: ReadFit) -> list[tuple[str, np.ndarray]]:
