@@ -232,7 +232,8 @@ def _blocked(*, cs: CandidateSet, terms: list[Term], what: str, crit: str, runs:
         raise ParameterError("criterion", f"a blocked mixture design is D-optimal (criterion D), not {crit}")
     for name, given in (("lof_points", lof_points), ("replicates", replicates)):
         if given:
-            raise ParameterError(name, f"{name.replace('_', ' ')} are not set apart in a blocked design: every run is "
+            what = "lack-of-fit points" if name == "lof_points" else "replicates"
+            raise ParameterError(name, f"{what} are not set apart in a blocked design: every run is "
                                        "chosen by the D criterion (repeats where it gains)")
     if isinstance(blocks, (bool, np.bool_)) or not isinstance(blocks, (int, np.integer)) or blocks < 2:
         raise ParameterError("blocks", f"blocks must be a whole number >= 2 (got {blocks!r})")
