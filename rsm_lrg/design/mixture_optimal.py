@@ -237,6 +237,8 @@ def _blocked(*, cs: CandidateSet, terms: list[Term], what: str, crit: str, runs:
                                        "chosen by the D criterion (repeats where it gains)")
     if isinstance(blocks, (bool, np.bool_)) or not isinstance(blocks, (int, np.integer)) or blocks < 2:
         raise ParameterError("blocks", f"blocks must be a whole number >= 2 (got {blocks!r})")
+    blocks = int(blocks)
+    plural = "s" if blocks > 2 else ""
     p = len(terms)
     P = p + int(blocks) - 1
     if runs is None:
@@ -249,7 +251,7 @@ def _blocked(*, cs: CandidateSet, terms: list[Term], what: str, crit: str, runs:
     sizes = block_sizes(runs, blocks, block_size)
     if runs < P:
         raise ParameterError("runs", f"{runs} runs cannot support {what} ({p} terms) and {blocks - 1} block "
-                                     f"effect{'s' * (blocks > 2)}: at least {P} are needed")
+                                     f"effect{plural}: at least {P} are needed")
     k = 0 if proc is None else len(proc)
     pool, blend_of, r = _candidates(cs, k)
     if len(pool) > MAX_CANDIDATES:
@@ -278,7 +280,7 @@ def _blocked(*, cs: CandidateSet, terms: list[Term], what: str, crit: str, runs:
                "algorithm": "exchange and interchange over the extreme-vertices candidate set (Cook & Nachtsheim "
                             "1989), blocks as fixed effects",
                "notes": [f"D-optimal for {what} ({p} terms) beside {blocks - 1} block contrast"
-                         f"{'s' * (blocks > 2)} (fixed block effects, as fit --block fits them); blocks of "
+                         f"{plural} (fixed block effects, as fit --block fits them); blocks of "
                          f"{', '.join(map(str, sizes))} runs; L-pseudo coding"]}
     if proc is not None:
         options["process"] = {f.name: (float(f.low), float(f.high)) for f in proc.factors if isinstance(f, Factor)}

@@ -57,6 +57,12 @@ class ReadFit(Protocol):
     def data(self) -> Any: ...
 
     @property
+    def block(self) -> str | None: ...
+
+    @property
+    def y(self) -> np.ndarray | None: ...
+
+    @property
     def form(self) -> PolynomialForm: ...
 
     @property
@@ -271,6 +277,7 @@ class ScheffeForm(PolynomialForm):
         if r.n_blocks > 1:
             from ..build.inputs import block_codes
 
+            assert r.block is not None and r.y is not None  # an in-memory fit with fixed blocks
             return mixture_sums(r.least_squares, r.terms, block_codes(r.data, r.block)[0], r.y)
         return mixture_sums(r.least_squares, r.terms)
 

@@ -26,7 +26,7 @@ from ...io import float_column
 from ..build.goals import parse_goal
 from ..build.inputs import block_codes, coded_points, model_rows, unrounded_coding
 from ..build.spec import ModelSpec, ReduceSpec
-from ..build.terms import Term, column_names, design_matrix, n_columns, term_columns
+from ..build.terms import Term, column_names, design_matrix, n_columns
 from ..build.transform import Transform
 from ..contract.prediction import IntervalForm
 from ..contract.statistics import FitStatistics

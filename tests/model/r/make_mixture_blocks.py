@@ -5,7 +5,6 @@ from this folder: PYTHONPATH=../../.. python make_mixture_blocks.py
 """
 
 import numpy as np
-import pandas as pd
 
 from rsm_lrg.design.mixture_optimal import mixture_optimal
 
