@@ -80,8 +80,21 @@ def block_sizes(runs: int, blocks: Any, sizes: Any = None) -> list[int]:
 
 
 def block_rows(blocks: np.ndarray, n_blocks: int) -> np.ndarray:
-    """The sum-to-zero block contrasts (n x (b - 1)) of block codes 0..b-1: column j is 1 in
-    block j, -1 in the last block (:func:`rsm_lrg.terms.block_contrasts`)."""
+    """The sum-to-zero block contrasts of block codes: column j is 1 in block j, -1 in the last
+    block (:func:`rsm_lrg.terms.block_contrasts`).
+
+    Parameters
+    ----------
+    blocks : numpy.ndarray of int, shape (n,)
+        Block codes 0..b-1.
+    n_blocks : int
+        The number of blocks b.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, b - 1)
+        The contrasts.
+    """
     from ..terms import block_contrasts
 
     return block_contrasts(np.asarray(blocks, dtype=int), int(n_blocks))

@@ -163,7 +163,12 @@ class ModelInputs:
 
     @property
     def mixture(self) -> bool:
-        """Whether the factors are mixture components (a Scheffé model, no intercept column)."""
+        """Whether the factors are mixture components (a Scheffé model, no intercept column).
+
+        Returns
+        -------
+        bool
+        """
         from ...factors import MixtureComponent
 
         return any(isinstance(f, MixtureComponent) for f in self.space.factors)
