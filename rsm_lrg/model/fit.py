@@ -487,7 +487,9 @@ def _fit_mixed(data: pd.DataFrame | dd.DataFrame, response: str, factors: Factor
         raise TypeError("data must be a pandas DataFrame")
     col, kind, what = _random_column(data, response, whole_plot, random_block, block)
     if components is not None or spec.mixture:  # a Scheffé model (Kowalski, Cornell & Vining 2002)
-        inp = _mixed_mixture_inputs(data, response, components, factors, spec, col)
+        # the grouping column read as blocks are (checked, kept out of the notes), then dropped
+        inp = model_inputs(data, response, _mixed_mixture_space(data, response, components, factors, spec), col,
+                           transform=spec.transform)
     else:
         inp = model_inputs(data, response, factors, col, transform=spec.transform, origin=not spec.intercept)
     from dataclasses import replace
@@ -566,11 +568,10 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
                     omitted_data=prep.omitted_data, reduction=reduction, mixed=mm)
 
 
-def _mixed_mixture_inputs(data: pd.DataFrame, response: str, components: Sequence[str] | None, factors: FactorsArg,
-                          spec: ModelSpec, col: str) -> ModelInputs:
-    """The inputs of a Scheffé model with a random effect: the components as L-pseudo
-    components and the process factors as :func:`_fit_mixture` reads them; the grouping
-    column ``col`` read as blocks are (checked, kept out of the notes), then dropped."""
+def _mixed_mixture_space(data: pd.DataFrame, response: str, components: Sequence[str] | None, factors: FactorsArg,
+                         spec: ModelSpec) -> FactorSpace:
+    """The factors of a Scheffé model with random effects: the components as L-pseudo
+    components and the process factors, as :func:`_fit_mixture` reads them."""
     from .build.mixture import MIXTURE_ORDERS, mixture_space
 
     if not spec.mixture:
@@ -580,8 +581,7 @@ def _mixed_mixture_inputs(data: pd.DataFrame, response: str, components: Sequenc
         raise SpecError("model", f"the {spec.order} model needs the mixture components (components=[...], "
                                  "--component NAME)")
     comps = [components] if isinstance(components, str) else list(components)
-    space = mixture_space(data, comps, response, process=factors)
-    return model_inputs(data, response, space, col, transform=spec.transform)
+    return mixture_space(data, comps, response, process=factors)
 
 
 def _effect_columns(data: pd.DataFrame, response: str, whole_plot: str | None, random_block: str | None,
@@ -660,13 +660,15 @@ def _fit_several(data: pd.DataFrame | dd.DataFrame, response: str, factors: Fact
 
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
-    if components is not None or spec.mixture:
-        raise SpecError("model", "a mixture model with random effects is not available yet")
     frame, cols, used = _effect_columns(data, response, whole_plot, random_block, random_effects, block)
     if len(cols) == 1 and (whole_plot is not None or random_block is not None):
         return _fit_mixed(data, response, factors, block, spec, whole_plot, random_block, components, hard)
-    inp = model_inputs(frame, response, factors, None, transform=spec.transform, origin=not spec.intercept,
-                       exclude=cols + (used if factors is None else []))
+    if components is not None or spec.mixture:  # a Scheffé model (the effect columns are no factors)
+        inp = model_inputs(frame, response, _mixed_mixture_space(frame, response, components, factors, spec), None,
+                           transform=spec.transform, exclude=cols + used)
+    else:
+        inp = model_inputs(frame, response, factors, None, transform=spec.transform, origin=not spec.intercept,
+                           exclude=cols + (used if factors is None else []))
     from dataclasses import replace
 
     extra = []
@@ -695,6 +697,8 @@ def _fit_several(data: pd.DataFrame | dd.DataFrame, response: str, factors: Fact
             return _fit_several_inputs(inp, response, sp, effects, reduction=reduction)
         refit = refit_k
     reduction = None
+    if spec.reduce is not None and spec.mixture:
+        raise SpecError("reduce", "a REML mixture fit is not reduced here: fit the chosen Scheffé terms (terms=...)")
     if spec.reduce is not None:
         from .choice.mixed_reduce import reduce_mixed
 
@@ -719,7 +723,7 @@ def _fit_several_inputs(inp: ModelInputs, response: str, spec: ModelSpec, effect
     from .engines.mixed import fit_reml_several
 
     space, y, hint, n = inp.space, inp.y, inp.hint, inp.n
-    terms = _spec_terms(inp, spec, 0)
+    terms = _mixture_terms(spec, space, n, inp.settings, hint) if spec.mixture else _spec_terms(inp, spec, 0)
     col_names = inp.column_names(terms)
     p = len(col_names)
     what_model = f"the {spec.order} model" if spec.terms is None else "the model"

@@ -8,7 +8,10 @@ whole plots, each one blend of three plasticisers run at the four points of the 
 in extrusion rate and drying temperature. Two models on the L-pseudo components A, B, C (the
 observed minima as lower bounds) and the process factors D, E: Kowalski et al.'s
 ``(A + B + C)(1 + D + E + DE)`` (12 terms) and rsm-lrg's ``mixture-linear`` model crossed with
-the process main effects (9 terms). Fixed effects, standard errors and variance components to
+the process main effects (9 terms). With two random effects, ``mixture_ssp`` (made by
+``r/make_mixture_ssp.py``, simulated): 4 days x 3 batches (one blend each) x the 2^2 process
+factorial, the quadratic Scheffé model crossed with the process main effects, random days and
+batches. Fixed effects, standard errors and variance components to
 1e-6 relative (lme4 with bobyqa's rhoend 1e-12; nlme's ``lme`` as a second route, which agrees
 with lme4 to about 2e-7), Kenward–Roger den df, F and p to 1e-5 relative to pbkrtest's
 ``KRmodcomp``: ``Linear Mixture`` is the test of equal linear blending coefficients (the
@@ -29,8 +32,10 @@ from rsm_lrg.errors import ParameterError
 
 R = Path(__file__).parents[1] / "r"
 DATA = R / "mixture_vinyl.csv"
-MODELS = {"kcv": {"model": "mixture-linear", "terms": "A B C AD AE BD BE CD CE ADE BDE CDE"},
-          "cross": {"model": "mixture-linear"}}
+MODELS = {"kcv": {"model": "mixture-linear", "terms": "A B C AD AE BD BE CD CE ADE BDE CDE", "whole_plot": "WP"},
+          "cross": {"model": "mixture-linear", "whole_plot": "WP"},
+          "ssp": {"model": "mixture-quadratic", "random_effects": ["day", "batch"]}}
+FILES = {"ssp": R / "mixture_ssp.csv"}
 RTOL_EST = 1e-6
 RTOL_KR = 1e-5
 _FITS: dict = {}
@@ -38,8 +43,8 @@ _FITS: dict = {}
 
 def _fit(name):
     if name not in _FITS:
-        _FITS[name] = rsm_lrg.fit(pd.read_csv(DATA), "y", components=["x1", "x2", "x3"], factors=["z1", "z2"],
-                                  whole_plot="WP", **MODELS[name])
+        _FITS[name] = rsm_lrg.fit(pd.read_csv(FILES.get(name, DATA)), "y", components=["x1", "x2", "x3"],
+                                  factors=["z1", "z2"], **MODELS[name])
     return _FITS[name]
 
 
@@ -49,7 +54,8 @@ def test_fixed_effects_and_errors_match_lme4_and_nlme(name):
     exp = pd.read_csv(R / "mixture_vinyl_coef_expected.csv")
     exp = exp[exp.model == name]
     coef = res.coefficients
-    assert list(coef.index) == list(exp.column)
+    assert sorted(coef.index) == sorted(exp.column)
+    exp = exp.set_index("column").loc[coef.index]
     np.testing.assert_allclose(coef.coded, exp.estimate, rtol=RTOL_EST, atol=1e-12)
     np.testing.assert_allclose(coef.std_error, exp.std_error, rtol=RTOL_EST)
     np.testing.assert_allclose(coef.coded, exp.estimate_nlme, rtol=RTOL_EST, atol=1e-12)
@@ -60,7 +66,9 @@ def test_fixed_effects_and_errors_match_lme4_and_nlme(name):
 def test_variance_components_match_lme4_and_nlme(name):
     vc = _fit(name).to_dict()["variance_components"]
     exp = pd.read_csv(R / "mixture_vinyl_vc_expected.csv")
-    for row in exp[exp.model == name].itertuples():
+    exp = exp[exp.model == name]
+    assert set(vc) == set(exp.component)
+    for row in exp.itertuples():
         np.testing.assert_allclose(vc[row.component]["variance"], row.variance, rtol=RTOL_EST, err_msg=row.component)
         np.testing.assert_allclose(vc[row.component]["variance"], row.variance_nlme, rtol=RTOL_EST,
                                    err_msg=row.component)
@@ -72,7 +80,7 @@ def test_kenward_roger_tests_match_pbkrtest(name):
     exp = pd.read_csv(R / "mixture_vinyl_kr_expected.csv")
     exp = exp[exp.model == name]
     tests = {t["term"]: t for t in res.to_dict()["tests"]}
-    assert list(tests) == list(exp.term)  # Linear Mixture, then the non-linear terms in order
+    assert list(tests)[0] == "Linear Mixture" and sorted(tests) == sorted(exp.term)  # then the non-linear terms
     for row in exp.itertuples():
         t = tests[row.term]
         assert t["num_df"] == row.num_df
@@ -82,6 +90,22 @@ def test_kenward_roger_tests_match_pbkrtest(name):
     np.testing.assert_allclose(anova.loc["Linear Mixture", "f"], exp.f.iloc[0], rtol=RTOL_KR)
 
 
+def test_one_random_effect_is_the_whole_plot_fit():
+    """``random_effects=["WP"]`` is the whole-plot fit (its component named as the column)."""
+    a = _fit("cross")
+    b = rsm_lrg.fit(pd.read_csv(DATA), "y", components=["x1", "x2", "x3"], factors=["z1", "z2"],
+                    model="mixture-linear", random_effects=["WP"])
+    np.testing.assert_allclose(b.coefficients.std_error, a.coefficients.std_error, rtol=1e-12)
+    assert b.to_dict()["variance_components"]["WP"]["variance"] == pytest.approx(
+        a.to_dict()["variance_components"]["whole_plot"]["variance"], rel=1e-12)
+
+
+def test_reduce_of_a_reml_mixture_fit_is_refused():
+    with pytest.raises(ParameterError, match="not reduced"):
+        rsm_lrg.fit(pd.read_csv(DATA), "y", components=["x1", "x2", "x3"], factors=["z1", "z2"],
+                    model="mixture-linear", whole_plot="WP", reduce="backward")
+
+
 def test_the_blend_is_the_whole_plot_factor_and_ols_differs():
     """The note names the components as constant within every whole plot, and the REML
     standard errors of the blend terms are the larger whole-plot ones (the OLS fit of the same
@@ -89,7 +113,7 @@ def test_the_blend_is_the_whole_plot_factor_and_ols_differs():
     res = _fit("kcv")
     assert any("whole-plot factors): x1, x2, x3" in n for n in res.notes)
     ols = rsm_lrg.fit(pd.read_csv(DATA), "y", components=["x1", "x2", "x3"], factors=["z1", "z2"],
-                      **MODELS["kcv"])
+                      model="mixture-linear", terms=MODELS["kcv"]["terms"])
     assert res.coefficients.std_error["A"] > 1.7 * ols.coefficients.std_error["A"]
     assert res.coefficients.std_error["AD"] < ols.coefficients.std_error["AD"]
     np.testing.assert_allclose(res.coefficients.coded, ols.coefficients.coded, rtol=1e-9, atol=1e-12)  # balanced
