@@ -571,9 +571,14 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
 def _mixed_mixture_space(data: pd.DataFrame, response: str, components: Sequence[str] | None, factors: FactorsArg,
                          spec: ModelSpec) -> FactorSpace:
     """The factors of a Scheffé model with random effects: the components as L-pseudo
-    components and the process factors, as :func:`_fit_mixture` reads them."""
+    components and the process factors, as :func:`_fit_mixture` reads them (or the space of
+    a fitted mixture model given as ``factors``, as a refit passes it)."""
+    from ..factors import FactorSpace, MixtureComponent
     from .build.mixture import MIXTURE_ORDERS, mixture_space
 
+    if (not components and isinstance(factors, FactorSpace)
+            and any(isinstance(f, MixtureComponent) for f in factors.factors)):
+        return factors
     if not spec.mixture:
         raise SpecError("model", f"mixture components need a Scheffé model ({', '.join(MIXTURE_ORDERS)}), "
                                  f"not {spec.order!r}")

@@ -157,3 +157,10 @@ def test_cli_fit_component_whole_plot_json(tmp_path):
     exp = pd.read_csv(R / "mixture_vinyl_vc_expected.csv")
     want = float(exp[(exp.model == "cross") & (exp.component == "whole_plot")].variance.iloc[0])
     np.testing.assert_allclose(got["variance_components"]["whole_plot"]["variance"], want, rtol=RTOL_EST)
+
+
+def test_refit_from_the_fitted_space():
+    """A refit given the fitted mixture space (as the report and ``FitResult.reduce`` pass it)."""
+    res = _fit("cross")
+    again = rsm_lrg.fit(pd.read_csv(DATA), "y", factors=res.space, model="mixture-linear", whole_plot="WP")
+    np.testing.assert_allclose(again.coefficients.coded, res.coefficients.coded, rtol=0, atol=0)
