@@ -128,26 +128,26 @@ def _gain(v: float, cur: float) -> bool:
 
 def _exchange_step(Fc: np.ndarray, C: np.ndarray, idx: np.ndarray, blk: np.ndarray, A: np.ndarray
                    ) -> tuple[float, int, int]:
-    """The best run-for-candidate exchange within its block: ``(log det ratio, run, candidate)``."""
+    """The best run-for-candidate exchange within its block: ``(log det ratio, run, candidate)``.
+
+    With ``g = [f_j, c_b]`` split at the model's ``p`` columns: ``g'Ag = f_j'A11 f_j + 2 f_j'A12 c_b
+    + c_b'A22 c_b`` and ``r'Ag = (r'A)_1 f_j + (r'A)_2 c_b``, one product over the candidates for
+    every run and block."""
+    p = Fc.shape[1]
     R = np.hstack([Fc[idx], C[blk]])
-    best = (-math.inf, -1, -1)
-    for b in range(C.shape[0]):
-        runs = np.flatnonzero(blk == b)
-        if not runs.size:
-            continue
-        G = np.hstack([Fc, np.broadcast_to(C[b], (len(Fc), C.shape[1]))])
-        GA = G @ A
-        gAg = np.einsum("ij,ij->i", GA, G)
-        Rb = R[runs]
-        fAf = np.einsum("ij,ij->i", Rb @ A, Rb)
-        fAg = Rb @ GA.T
-        with np.errstate(all="ignore"):
-            r = (1.0 + gAg[None, :]) * (1.0 - fAf[:, None]) + fAg ** 2
-        r = np.where(np.isfinite(r), r, -np.inf)
-        a, j = np.unravel_index(int(np.argmax(r)), r.shape)
-        if r[a, j] > 0 and math.log(r[a, j]) > best[0]:
-            best = (math.log(r[a, j]), int(runs[a]), int(j))
-    return best
+    FA = Fc @ A[:p]  # (m, P)
+    base = np.einsum("ij,ij->i", FA[:, :p], Fc)  # f'A11 f
+    cross = FA[:, p:] @ C.T  # (m, b): f'A12 c_b
+    cc = np.einsum("bj,jk,bk->b", C, A[p:, p:], C)  # c_b'A22 c_b
+    gAg = base[:, None] + 2.0 * cross + cc[None, :]  # (m, b)
+    RA = R @ A
+    fAf = np.einsum("ij,ij->i", RA, R)
+    fAg = RA[:, :p] @ Fc.T + (RA[:, p:] * C[blk]).sum(axis=1)[:, None]  # (n, m), each run in its block
+    with np.errstate(all="ignore"):
+        r = (1.0 + gAg[:, blk].T) * (1.0 - fAf[:, None]) + fAg ** 2
+    r = np.where(np.isfinite(r), r, -np.inf)
+    a, j = np.unravel_index(int(np.argmax(r)), r.shape)
+    return (math.log(r[a, j]) if r[a, j] > 0 else -math.inf), int(a), int(j)
 
 
 def _interchange_step(Fc: np.ndarray, C: np.ndarray, idx: np.ndarray, blk: np.ndarray, A: np.ndarray
@@ -165,7 +165,7 @@ def _interchange_step(Fc: np.ndarray, C: np.ndarray, idx: np.ndarray, blk: np.nd
     new_i = np.hstack([F[i], C[blk[k]]])
     new_k = np.hstack([F[k], C[blk[i]]])
     W = np.stack([old_i, old_k, new_i, new_k], axis=1)  # (pairs, 4, P)
-    G = np.einsum("qap,pr,qbr->qab", W, A, W)
+    G = (W @ A) @ W.transpose(0, 2, 1)
     sgn = np.array([-1.0, -1.0, 1.0, 1.0])
     Mx = np.eye(4)[None, :, :] + sgn[:, None] * G  # I + C W'AW, C = diag(sgn)
     with np.errstate(all="ignore"):
