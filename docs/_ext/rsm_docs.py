@@ -37,7 +37,7 @@ GUIDE = [
     ("fitting", "Fitting models", ["Fit and optimise", "Any model", "Beyond the fit", "Pass/fail and count",
                                    "Screening"]),
     ("optimisation", "Optimisation and prediction", ["Prediction under uncertainty", "Mean and spread from replicates"]),
-    ("mixtures", "Mixtures", ["Mixture designs", "Mixtures: Scheffé", "Mixture study"]),
+    ("mixtures", "Mixtures", ["Mixture designs", "Mixtures: Scheffé", "Blocked mixtures", "Mixture study"]),
     ("split-plot", "Split-plot experiments", ["Split-plot study", "Split-split-plot and strip-plot", "Split-plot analysis"]),
     ("design-space", "Design space", ["Design space"]),
     ("gp", "Gaussian processes and the next runs", ["Computer experiments"]),

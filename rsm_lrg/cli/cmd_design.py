@@ -115,8 +115,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                          "repeat for each, in order; --constraint then takes linear inequalities in them")
     op.add_argument("--total", default="1", metavar="T", help="with --component: the total the proportions sum to "
                                                               "(default 1)")
-    op.add_argument("--criterion", default="I", type=str.upper, choices=["D", "I", "A"],
-                    help="optimality criterion (default I, as Design-Expert)")
+    op.add_argument("--criterion", default=None, type=str.upper, choices=["D", "I", "A"],
+                    help="optimality criterion (default I, as Design-Expert; D with --blocks)")
     op.add_argument("--model", default=None,
                     choices=["linear", "2fi", "quadratic", "cubic", "mixture-linear", "mixture-quadratic",
                              "special-cubic", "mixture-cubic"],
@@ -131,6 +131,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                     help="replicated model points (default 5 without --runs, else 0)")
     op.add_argument("--starts", type=whole_number(1, 1000), default=None, metavar="N",
                     help="random starts of the exchange (default by model size)")
+    op.add_argument("--blocks", type=whole_number(2, MAX_DESIGN_RUNS), default=None, metavar="N",
+                    help="with --component: N blocks (batches, days) as fixed effects; the design is D-optimal for "
+                         "the Scheffé model beside the block effects, as fit --block fits them, and the CSV has a "
+                         "block column (runs default: terms + N - 1 + 10)")
+    op.add_argument("--block-size", default=None, metavar="N[,N...]",
+                    help="with --blocks: the runs of every block (one number for all, or one per block; default "
+                         "as equal as possible)")
     _split_plot_parser(sub)
     _split_plot_ccd_parser(sub)
     ag = sub.add_parser("augment", help="add runs to a design CSV (optimal, star + centre points, fold-over)",
@@ -560,11 +567,15 @@ def _mixture(args):
         if args.kind == "optimal":
             from ..design.mixture_optimal import mixture_optimal
 
+            sizes = _block_sizes(args.block_size)
+            if sizes is not None and args.blocks is None:
+                raise InputError("--block-size: give the number of blocks too (--blocks N)")
+            criterion = args.criterion or ("D" if args.blocks is not None else "I")
             return mixture_optimal(_component_bounds(args.component, total), model=args.model or "mixture-quadratic",
-                                   criterion=args.criterion, runs=args.runs, lof_points=args.lof_points,
+                                   criterion=criterion, runs=args.runs, lof_points=args.lof_points,
                                    replicates=args.replicates, constraints=args.constraint or None, total=total,
                                    process=process, seed=args.seed, starts=args.starts,
-                                   randomize=not args.no_randomize)
+                                   randomize=not args.no_randomize, blocks=args.blocks, block_size=sizes)
         if args.kind == "extreme-vertices":
             bounds = _component_bounds(args.component, total)
             design = extreme_vertices(bounds, constraints=args.constraint or None, centroids=args.centroids,
@@ -582,6 +593,23 @@ def _mixture(args):
         raise
     except (TypeError, ValueError) as exc:
         raise option_error(exc, options=_DESIGN_OPTIONS, default="--component") from None
+
+
+def _block_sizes(text: str | None) -> int | list[int] | None:
+    """``--block-size N`` or ``N1,N2,...`` as a number or a list (whole numbers >= 1)."""
+    from ..io import InputError, quote_user_value
+
+    if text is None:
+        return None
+    parts = [t.strip() for t in str(text).split(",")]
+    try:
+        vals = [int(t) for t in parts]
+    except ValueError:
+        vals = []
+    if not vals or any(v < 1 or v > MAX_DESIGN_RUNS for v in vals):
+        raise InputError(f"--block-size: expected a whole number of runs (1 to {MAX_DESIGN_RUNS}) or one per block "
+                         f"separated by commas, got {quote_user_value(text)}")
+    return vals[0] if len(vals) == 1 else vals
 
 
 def _space(args):
@@ -611,6 +639,12 @@ def _new_kind(args):
         if not args.factor:
             raise InputError("--factor: the optimal design needs its factors (--factor NAME=LOW:HIGH, repeatable) "
                              "or mixture components (--component)")
+        if args.blocks is not None or args.block_size is not None:
+            raise InputError(f"--{'blocks' if args.blocks is not None else 'block-size'}: blocks in an optimal design "
+                             "are available for mixtures (--component); for factors use a blocked central composite "
+                             "or Box-Behnken design")
+        if args.criterion is None:
+            args.criterion = "I"
         if args.model is None:
             args.model = "quadratic"
         if args.model not in ("linear", "2fi", "quadratic", "cubic"):

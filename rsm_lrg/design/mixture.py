@@ -54,7 +54,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..factors import Factor, FactorSpace, letters_for
 from ..factors.factor import check_factor_name
-from .core import CODED_PREFIX, Design, as_factor_space, randomized_run_order, seeded_options
+from .core import BLOCK_COLUMN, CODED_PREFIX, Design, as_factor_space, randomized_run_order, seeded_options
 
 __all__ = [
     "MixtureDesign",
@@ -165,6 +165,8 @@ class MixtureDesign(Design):
 
         columns: dict[str, list[str]] = {"std_order": [str(int(v)) for v in self.std_order],
                                          "run_order": [str(int(v)) for v in self.run_order]}
+        if self.blocks is not None:
+            columns[BLOCK_COLUMN] = [str(v) for v in self.blocks.tolist()]
         for i, f in enumerate(self.factors):
             c = self.coded_runs[:, i]
             columns[CODED_PREFIX + f.letter] = ([str(int(v)) for v in c] if np.all(c == np.round(c))
@@ -200,7 +202,8 @@ class MixtureDesign(Design):
         process = list(self.factors)[q:]
         lines = [f"{self.kind} design: {q} components"
                  + (f" and {len(process)} process factor{'s' * (len(process) > 1)}" if process else "")
-                 + f", {self.n_runs} runs ({kinds}), total {self.total:g}"]
+                 + f", {self.n_runs} runs ({kinds}), total {self.total:g}"
+                 + (f", {self.n_blocks} blocks" if self.blocks is not None else "")]
         if o.get("constraints"):
             lines.append("constraints: " + "; ".join(o["constraints"]))
         for note in o.get("notes", []):
@@ -208,7 +211,7 @@ class MixtureDesign(Design):
         if not o.get("randomize", True):
             lines.append("run order: standard order (not randomised)")
         elif o.get("seed") is not None:
-            lines.append(f"run order: randomised, seed {o['seed']}")
+            lines.append(f"run order: randomised{' within blocks' if self.blocks is not None else ''}, seed {o['seed']}")
         else:
             lines.append("run order: randomised from a numpy Generator")
         bounds = o.get("bounds", {})
@@ -293,10 +296,12 @@ def _compositions(q: int, m: int) -> list[tuple[int, ...]]:
 
 def finish_mixture(kind: str, names: list[str], props_std: np.ndarray, types_std: list[str], total: float,
             lows: np.ndarray, *, seed: Any, randomize: bool, options: dict, process: Any = None,
-            process_coded: np.ndarray | None = None) -> MixtureDesign:
+            process_coded: np.ndarray | None = None, blocks: np.ndarray | None = None) -> MixtureDesign:
     """Assign standard and run order and build the design (pseudo coding from ``lows``);
     ``process`` (factors) and ``process_coded`` (their coded settings per run, standard order)
-    for a mixture-process design. ``props_std``: the real proportions, standard order."""
+    for a mixture-process design; ``blocks`` (1..b per run, standard order, block by block):
+    the run order is randomised within each block. ``props_std``: the real proportions,
+    standard order."""
     n, q = props_std.shape
     if n > MAX_RUNS:
         raise ParameterError("runs", f"the design would have {n} runs; at most {MAX_RUNS} are written")
@@ -312,10 +317,11 @@ def finish_mixture(kind: str, names: list[str], props_std: np.ndarray, types_std
     rng, opts = seeded_options(options, seed, randomize)
     opts["total"] = total
     opts["pseudo_lows"] = {nm: float(lo) for nm, lo in zip(names, lows)}
-    perm = randomized_run_order(None, n, rng)
+    bl = None if blocks is None else np.asarray(blocks, dtype=int)
+    perm = randomized_run_order(bl, n, rng)
     run_order = np.empty(n, dtype=int)
     run_order[perm] = np.arange(1, n + 1)
-    return MixtureDesign(space, kind, coded, np.arange(1, n + 1), run_order, None, opts,
+    return MixtureDesign(space, kind, coded, np.arange(1, n + 1), run_order, bl, opts,
                          proportions=props_std, total=total, point_types=tuple(types_std))
 
 

@@ -80,7 +80,7 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
                     model: str = "mixture-quadratic", criterion: str = "D", runs: int | None = None,
                     lof_points: int | None = None, replicates: int | None = None, constraints: Any = None,
                     total: float = 1.0, process: Any = None, seed: Any = None, starts: int | None = None,
-                    randomize: bool = True) -> MixtureDesign:
+                    randomize: bool = True, blocks: int | None = None, block_size: Any = None) -> MixtureDesign:
     """An exact D-, I- or A-optimal mixture (or mixture-process) design by candidate exchange.
 
     Parameters
@@ -105,14 +105,24 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
         Numeric process factors ``"NAME=LOW:HIGH"`` (letters after the components).
     seed, starts, randomize
         Seed of the random starts and the run order; random starts besides the greedy one
-        (default 20 up to 10 model terms, 10 up to 30, 5 beyond); run order.
+        (default 20 up to 10 model terms, 10 up to 30, 5 beyond); run order (within blocks).
+    blocks : int or None
+        Blocks (batches, days) as fixed effects: the design is D-optimal for the Scheffé model
+        beside the ``blocks - 1`` block contrasts, as ``fit --block`` fits it, every run chosen
+        by exchange and interchange over the candidates
+        (:mod:`rsm_lrg.design.mixture_blocks`); criterion D only, no separate lack-of-fit
+        points or replicates; ``runs`` defaults to the terms + ``blocks - 1`` + 10.
+    block_size : int, sequence of int or None
+        The runs of every block (one number for all); default as equal as possible.
 
     Returns
     -------
     MixtureDesign
-        ``kind="optimal"``; standard order: model points, replicates, lack-of-fit points.
-        ``options`` holds the criterion and its value (:func:`~rsm_lrg.design.optimal.criterion_value`
-        in the L-pseudo coding), the model, the counts and the candidate set's size.
+        ``kind="optimal"``; standard order: model points, replicates, lack-of-fit points
+        (with blocks: block by block, a ``block`` column 1..b). ``options`` holds the
+        criterion and its value (:func:`~rsm_lrg.design.optimal.criterion_value` in the
+        L-pseudo coding; with blocks ``det(M)^(1/P) / n`` of the P columns of the model and
+        the block contrasts), the model, the counts and the candidate set's size.
 
     >>> d = mixture_optimal({"a": (0.1, 0.8), "b": (0.1, 0.8), "c": (0.0, 0.5)}, runs=8, seed=1)
     >>> d.n_runs, bool(np.allclose(d.proportions.sum(axis=1), 1.0, rtol=0, atol=1e-12))
@@ -133,9 +143,15 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
         check_columns(p, model, q + k)
     except ValueError as exc:
         raise ParameterError("model", f"{exc}") from None
+    what = f"the {model} model in {q} components" + (f" and {k} process factor{'s' * (k > 1)}" if k else "")
+    if blocks is not None:
+        return _blocked(cs=cs, terms=terms, what=what, crit=crit, runs=runs, lof_points=lof_points,
+                        replicates=replicates, blocks=blocks, block_size=block_size, proc=proc, seed=seed,
+                        starts=starts, randomize=randomize, model=model)
+    if block_size is not None:
+        raise ParameterError("block_size", "block sizes need blocks (blocks=N)")
     runs, n_lof, n_rep = run_budget(p, runs, lof_points, replicates, starts)
     n_model = runs - n_lof - n_rep
-    what = f"the {model} model in {q} components" + (f" and {k} process factor{'s' * (k > 1)}" if k else "")
     if n_model < p:
         raise ParameterError("runs", f"{runs} runs leave {n_model} model points after {n_lof} lack-of-fit points and "
                          f"{n_rep} replicates; {what} needs at least {p} (one per term)")
@@ -194,6 +210,83 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
     return finish_mixture("optimal", names, props, types, t, lows, seed=rng if used_seed is None else used_seed,
                           randomize=randomize, options=options, process=proc,
                           process_coded=D[:, q:] if k else None)
+
+
+def _candidates(cs: CandidateSet, k: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """``(pool, blend_of, r)``: the candidate points (L-pseudo blends x process levels -1, 0,
+    +1), the blend of each and the pseudo range ``r``."""
+    r = cs.total - float(np.sum(cs.lows))
+    zc = (cs.points - cs.lows[None, :]) / r
+    levels = np.array(list(itertools.product([-1.0, 0.0, 1.0], repeat=k))) if k else np.zeros((1, 0))
+    pool = np.hstack([np.repeat(zc, len(levels), axis=0), np.tile(levels, (len(zc), 1))])
+    return pool, np.repeat(np.arange(len(zc)), len(levels)), r
+
+
+def _blocked(*, cs: CandidateSet, terms: list[Term], what: str, crit: str, runs: Any, lof_points: Any,
+             replicates: Any, blocks: Any, block_size: Any, proc: FactorSpace | None, seed: Any, starts: Any,
+             randomize: bool, model: str) -> MixtureDesign:
+    """The D-optimal blocked mixture (or mixture-process) design (:func:`mixture_optimal` with ``blocks``)."""
+    from .mixture_blocks import block_exchange, block_sizes
+
+    if crit != "D":
+        raise ParameterError("criterion", f"a blocked mixture design is D-optimal (criterion D), not {crit}")
+    for name, given in (("lof_points", lof_points), ("replicates", replicates)):
+        if given:
+            what = "lack-of-fit points" if name == "lof_points" else "replicates"
+            raise ParameterError(name, f"{what} are not set apart in a blocked design: every run is "
+                                       "chosen by the D criterion (repeats where it gains)")
+    if isinstance(blocks, (bool, np.bool_)) or not isinstance(blocks, (int, np.integer)) or blocks < 2:
+        raise ParameterError("blocks", f"blocks must be a whole number >= 2 (got {blocks!r})")
+    blocks = int(blocks)
+    plural = "s" if blocks > 2 else ""
+    p = len(terms)
+    P = p + int(blocks) - 1
+    if runs is None:
+        runs = P + 10 if block_size is None else (
+            int(block_size) * int(blocks) if isinstance(block_size, (int, np.integer)) else sum(block_size))
+    run_budget(p, runs, None, None, starts)  # whole numbers
+    runs = int(runs)
+    if runs > MAX_RUNS:
+        raise ParameterError("runs", f"at most {MAX_RUNS} runs (got {runs})")
+    sizes = block_sizes(runs, blocks, block_size)
+    if runs < P:
+        raise ParameterError("runs", f"{runs} runs cannot support {what} ({p} terms) and {blocks - 1} block "
+                                     f"effect{plural}: at least {P} are needed")
+    k = 0 if proc is None else len(proc)
+    pool, blend_of, r = _candidates(cs, k)
+    if len(pool) > MAX_CANDIDATES:
+        raise ParameterError("bounds", f"the region gives {len(pool)} candidate points; at most {MAX_CANDIDATES} are "
+                                       "searched (fewer components or process factors)")
+    Fc = design_matrix(pool, terms)
+    if np.linalg.matrix_rank(Fc) < p:
+        raise ParameterError("model", f"the candidate blends of this region cannot support {what} "
+                                      f"({np.linalg.matrix_rank(Fc)} of {p} terms estimable)")
+    rng, used_seed = resolve_seed(seed)
+    if starts is None:
+        starts = 20 if P <= 10 else (10 if P <= 30 else 5)
+    starts = min(max(1, int(starts)), MAX_STARTS)
+    idx, blk, logdet = block_exchange(Fc, sizes, rng, starts)
+    if not math.isfinite(logdet):
+        raise ParameterError("runs", f"no design of {runs} runs in blocks of {', '.join(map(str, sizes))} supports "
+                                     f"{what} and the block effects (every search ended singular)")
+    q = len(cs.names)
+    D = pool[idx]
+    value = float(math.exp(logdet / P) / runs)
+    options = {"criterion": "D", "criterion_value": value, "model": model, "model_terms": p,
+               "model_points": runs, "replicates": 0, "lof_points": 0, "starts": starts,
+               "blocks": int(blocks), "block_sizes": sizes, "candidates": int(len(pool)),
+               "constraints": list(cs.texts),
+               "bounds": {nm: (float(lo), float(hi)) for nm, lo, hi in zip(cs.names, cs.lower, cs.upper)},
+               "algorithm": "exchange and interchange over the extreme-vertices candidate set (Cook & Nachtsheim "
+                            "1989), blocks as fixed effects",
+               "notes": [f"D-optimal for {what} ({p} terms) beside {blocks - 1} block contrast"
+                         f"{plural} (fixed block effects, as fit --block fits them); blocks of "
+                         f"{', '.join(map(str, sizes))} runs; L-pseudo coding"]}
+    if proc is not None:
+        options["process"] = {f.name: (float(f.low), float(f.high)) for f in proc.factors if isinstance(f, Factor)}
+    return finish_mixture("optimal", cs.names, cs.points[blend_of[idx]], [cs.types[i] for i in blend_of[idx]],
+                          cs.total, cs.lows, seed=rng if used_seed is None else used_seed, randomize=randomize,
+                          options=options, process=proc, process_coded=D[:, q:] if k else None, blocks=blk + 1)
 
 
 def _greedy(prob: ExchangeProblem, F: np.ndarray, n: int) -> np.ndarray:

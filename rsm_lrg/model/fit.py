@@ -277,9 +277,7 @@ def _fit_mixture(data: pd.DataFrame, response: str, components: Sequence[str] | 
     else:
         given = None
     if given is not None:  # the space of a fitted mixture model
-        if block is not None:
-            raise SpecError("block", "blocks in a mixture model are not available yet")
-        inp = model_inputs(data, response, given, None, transform=spec.transform)
+        inp = model_inputs(data, response, given, block, transform=spec.transform)
     else:
         inp = mixture_inputs(data, response, components or (), factors, block, transform=spec.transform)
     reduction = None
@@ -326,7 +324,7 @@ def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: 
         terms = _mixture_terms(spec, space, n, inp.settings, hint)
     else:
         terms = _spec_terms(inp, spec, nb - 1)
-    if nb > 1 and not spec.intercept:
+    if nb > 1 and not spec.intercept and not spec.mixture:
         raise SpecError("terms", "blocks need a model with an intercept (block effects sum to zero about it)")
     col_names = inp.column_names(terms)
     p = len(col_names)
@@ -478,10 +476,13 @@ def _fit_mixed(data: pd.DataFrame | dd.DataFrame, response: str, factors: Factor
 
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
-    if components is not None or spec.mixture:
-        raise SpecError("model", "a mixture model with a random whole-plot or block effect is not available yet")
     col, kind, what = _random_column(data, response, whole_plot, random_block, block)
-    inp = model_inputs(data, response, factors, col, transform=spec.transform, origin=not spec.intercept)
+    if components is not None or spec.mixture:  # a Scheffé model (Kowalski, Cornell & Vining 2002)
+        # the grouping column read as blocks are (checked, kept out of the notes), then dropped
+        inp = model_inputs(data, response, _mixed_mixture_space(data, response, components, factors, spec), col,
+                           transform=spec.transform)
+    else:
+        inp = model_inputs(data, response, factors, col, transform=spec.transform, origin=not spec.intercept)
     from dataclasses import replace
 
     if kind == "whole_plot":
@@ -490,6 +491,8 @@ def _fit_mixed(data: pd.DataFrame | dd.DataFrame, response: str, factors: Factor
     labels = inp.prep.data[col].tolist()
     inp = replace(inp, block=None, bcodes=None, bkeys=None, blevels=None)
     reduction = None
+    if spec.reduce is not None and spec.mixture:
+        raise SpecError("reduce", "a REML mixture fit is not reduced here: fit the chosen Scheffé terms (terms=...)")
     if spec.reduce is not None:
         from .choice.mixed_reduce import reduce_mixed
 
@@ -515,7 +518,7 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
 
     space, y, hint, n = inp.space, inp.y, inp.hint, inp.n
     model = spec.order
-    terms = _spec_terms(inp, spec, 0)
+    terms = _mixture_terms(spec, space, n, inp.settings, hint) if spec.mixture else _spec_terms(inp, spec, 0)
     col_names = inp.column_names(terms)
     p = len(col_names)
     what_model = f"the {model} model" if spec.terms is None else "the model"
@@ -554,6 +557,27 @@ def _fit_mixed_inputs(inp: ModelInputs, response: str, spec: ModelSpec, labels: 
                     ls=ls, pe=pe, bkeys=None, blevels=None, data=prep.data.copy(), coded=inp.coded, y=y,
                     y_response=inp.y_response, input_notes=prep.notes, omitted_rows=prep.omitted_rows,
                     omitted_data=prep.omitted_data, reduction=reduction, mixed=mm)
+
+
+def _mixed_mixture_space(data: pd.DataFrame, response: str, components: Sequence[str] | None, factors: FactorsArg,
+                         spec: ModelSpec) -> FactorSpace:
+    """The factors of a Scheffé model with random effects: the components as L-pseudo
+    components and the process factors, as :func:`_fit_mixture` reads them (or the space of
+    a fitted mixture model given as ``factors``, as a refit passes it)."""
+    from ..factors import FactorSpace, MixtureComponent
+    from .build.mixture import MIXTURE_ORDERS, mixture_space
+
+    if (not components and isinstance(factors, FactorSpace)
+            and any(isinstance(f, MixtureComponent) for f in factors.factors)):
+        return factors
+    if not spec.mixture:
+        raise SpecError("model", f"mixture components need a Scheffé model ({', '.join(MIXTURE_ORDERS)}), "
+                                 f"not {spec.order!r}")
+    if not components:
+        raise SpecError("model", f"the {spec.order} model needs the mixture components (components=[...], "
+                                 "--component NAME)")
+    comps = [components] if isinstance(components, str) else list(components)
+    return mixture_space(data, comps, response, process=factors)
 
 
 def _effect_columns(data: pd.DataFrame, response: str, whole_plot: str | None, random_block: str | None,
@@ -622,13 +646,15 @@ def _fit_several(data: pd.DataFrame | dd.DataFrame, response: str, factors: Fact
 
     if not isinstance(data, pd.DataFrame):
         raise TypeError("data must be a pandas DataFrame")
-    if components is not None or spec.mixture:
-        raise SpecError("model", "a mixture model with random effects is not available yet")
     frame, cols, used = _effect_columns(data, response, whole_plot, random_block, random_effects, block)
     if len(cols) == 1 and (whole_plot is not None or random_block is not None):
         return _fit_mixed(data, response, factors, block, spec, whole_plot, random_block, components, hard)
-    inp = model_inputs(frame, response, factors, None, transform=spec.transform, origin=not spec.intercept,
-                       exclude=cols + (used if factors is None else []))
+    if components is not None or spec.mixture:  # a Scheffé model (the effect columns are no factors)
+        inp = model_inputs(frame, response, _mixed_mixture_space(frame, response, components, factors, spec), None,
+                           transform=spec.transform, exclude=cols + used)
+    else:
+        inp = model_inputs(frame, response, factors, None, transform=spec.transform, origin=not spec.intercept,
+                           exclude=cols + (used if factors is None else []))
     from dataclasses import replace
 
     extra = []
@@ -657,6 +683,8 @@ def _fit_several(data: pd.DataFrame | dd.DataFrame, response: str, factors: Fact
             return _fit_several_inputs(inp, response, sp, effects, reduction=reduction)
         refit = refit_k
     reduction = None
+    if spec.reduce is not None and spec.mixture:
+        raise SpecError("reduce", "a REML mixture fit is not reduced here: fit the chosen Scheffé terms (terms=...)")
     if spec.reduce is not None:
         from .choice.mixed_reduce import reduce_mixed
 
@@ -681,7 +709,7 @@ def _fit_several_inputs(inp: ModelInputs, response: str, spec: ModelSpec, effect
     from .engines.mixed import fit_reml_several
 
     space, y, hint, n = inp.space, inp.y, inp.hint, inp.n
-    terms = _spec_terms(inp, spec, 0)
+    terms = _mixture_terms(spec, space, n, inp.settings, hint) if spec.mixture else _spec_terms(inp, spec, 0)
     col_names = inp.column_names(terms)
     p = len(col_names)
     what_model = f"the {spec.order} model" if spec.terms is None else "the model"

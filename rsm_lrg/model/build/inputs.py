@@ -162,15 +162,29 @@ class ModelInputs:
         return len(self.bkeys) if self.bkeys else 1
 
     @property
+    def mixture(self) -> bool:
+        """Whether the factors are mixture components (a Scheffé model, no intercept column).
+
+        Returns
+        -------
+        bool
+        """
+        from ...factors import MixtureComponent
+
+        return any(isinstance(f, MixtureComponent) for f in self.space.factors)
+
+    @property
     def hint(self) -> str:
         return self.prep.choice.hint()
 
     def column_names(self, terms: Sequence[Term]) -> list[str]:
         names = column_names(terms)
         if self.bkeys and len(self.bkeys) > 1:  # self.nb > 1
-            if not terms or terms[0].order != 0:
+            if not terms or not (terms[0].order == 0 or self.mixture):
                 raise ParameterError("block", "blocks need a model with an intercept (block effects sum to zero about it)")
-            return ["Intercept"] + [f"Block[{k}]" for k in self.bkeys[:-1]] + names[1:]
+            # after the intercept, or after a Scheffé model's first blending term (the linear
+            # blending terms hold the mean)
+            return names[:1] + [f"Block[{k}]" for k in self.bkeys[:-1]] + names[1:]
         return names
 
     def term_columns(self, terms) -> np.ndarray:
@@ -292,15 +306,13 @@ def mixture_inputs(data: Any, response: str, components: Sequence[str] | str, fa
     """The checked inputs of a Scheffé mixture fit (:func:`rsm_lrg.fit` with ``components``
     and the mixture fit summary read them so): the components as L-pseudo components and the
     process factors ``factors`` (:func:`rsm_lrg.model.build.mixture.mixture_space`), then
-    :func:`model_inputs`. Blocks are refused (``ParameterError`` naming ``block``)."""
-    from ...errors import ParameterError
+    :func:`model_inputs`; ``block`` the column of fixed blocks (their sum-to-zero contrasts
+    after the first linear blending term, as after the intercept of a polynomial)."""
     from .mixture import mixture_space
 
-    if block is not None:
-        raise ParameterError("block", "blocks in a mixture model are not available yet")
     comps = [components] if isinstance(components, str) else list(components)
     space = mixture_space(data, comps, response, process=factors)
-    return model_inputs(data, response, space, None, transform=transform)
+    return model_inputs(data, response, space, block, transform=transform)
 
 
 def model_inputs(data: Any, response: str, factors: Any = None, block: str | None = None,

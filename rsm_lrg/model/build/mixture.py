@@ -278,16 +278,35 @@ def _scheffe_basis(m: tuple[int, ...], T: float) -> dict[tuple[tuple[int, ...], 
     return out
 
 
-def mixture_sums(ls: Any, terms: Sequence[Term]) -> dict[str, Any]:
+def mixture_sums(ls: Any, terms: Sequence[Term], blocks: np.ndarray | None = None,
+                 y: np.ndarray | None = None) -> dict[str, Any]:
     """The mixture ANOVA's sums of squares from the regression core of a Scheffé fit (no
     intercept column; linear terms first): ``Linear Mixture`` = the linear model's SS about
-    the mean (q - 1 df), the partial SS of each non-linear term, the model about the mean."""
-    q = sum(1 for t in terms if t.order == 1)  # the linear blending terms (process terms are crossed)
+    the mean (q - 1 df), the partial SS of each non-linear term, the model about the mean.
+
+    With fixed blocks (``blocks``: the block code 0..b-1 of each run, ``y`` the response on
+    the model's scale; the block contrasts are columns 1..b-1, after the first linear term)
+    the blocks come first, as Design-Expert orders them: ``ss_block`` is the block means'
+    SS about the mean (b - 1 df), ``Linear Mixture`` the linear terms' SS after the blocks,
+    the model the SS after the blocks; the non-linear terms are partial (Type III) as always.
+    """
+    nb = 1 if blocks is None else int(np.max(blocks)) + 1
+    col = np.r_[0, np.arange(nb, nb + len(terms) - 1)]  # each term's column (blocks skipped)
+    lin = [j for j, t in enumerate(terms) if t.order == 1]  # the linear blending terms (process terms are crossed)
+    q = len(lin)
     ss_total = float(ls.ss_total)
-    ss_lin = max(ss_total - float(ls.submodel(np.arange(q)).ss_res), 0.0)
+    ss_block, base = 0.0, ss_total  # the residual of the blocks alone (the mean alone without them)
+    if nb > 1:
+        assert blocks is not None and y is not None
+        yv = np.asarray(y, dtype=float)
+        means = np.bincount(blocks, weights=yv, minlength=nb) / np.bincount(blocks, minlength=nb)
+        base = float(np.sum((yv - means[blocks]) ** 2))
+        ss_block = max(ss_total - base, 0.0)
+    keep = np.r_[col[lin], np.arange(1, nb)].astype(int)
+    ss_lin = max(base - float(ls.submodel(np.sort(keep)).ss_res), 0.0)
     nonlin = [j for j, t in enumerate(terms) if t.order > 1]
     names = ["Linear Mixture"] + [terms[j].name for j in nonlin]
-    term_ss = [ss_lin] + [float(ls.partial_ss(j)) for j in nonlin]
-    return {"ss_block": 0.0, "ss_model": max(ss_total - float(ls.ss_res), 0.0), "ss_total": ss_total,
+    term_ss = [ss_lin] + [float(ls.partial_ss(int(col[j]))) for j in nonlin]
+    return {"ss_block": ss_block, "ss_model": max(base - float(ls.ss_res), 0.0), "ss_total": ss_total,
             "df_model": len(terms) - 1, "names": names, "term_ss": term_ss, "term_df": [q - 1] + [1] * len(nonlin),
-            "groups": [np.arange(q)] + [np.array([j]) for j in nonlin]}
+            "groups": [np.asarray(lin)] + [np.array([j]) for j in nonlin]}

@@ -346,6 +346,11 @@ def _mixture_models(data: Any, response: str, components: Any, factors: Any, blo
     from ..build.inputs import chosen_terms, mixture_inputs
     from ..build.mixture import scheffe_names
 
+    if block is not None:
+        from ...errors import ParameterError
+
+        raise ParameterError("block", "the fit summary of a blocked mixture is not available yet (fit the blocked "
+                                      "model itself: fit --component ... --block COL)")
     inp = mixture_inputs(data, response, components, factors, block, transform=transform)
     space = inp.space
     q = sum(isinstance(f, MixtureComponent) for f in space.factors)

@@ -458,6 +458,21 @@ class Regression:
         """
         return []
 
+    def contrast_tests(self, hypotheses: Sequence[tuple[str, np.ndarray]]) -> list:
+        """Separate F tests of hypotheses ``L b = 0``: none for least squares, whose ANOVA holds them.
+
+        Parameters
+        ----------
+        hypotheses : sequence of (str, numpy.ndarray)
+            The name of each test and its L.
+
+        Returns
+        -------
+        list
+            Empty for least squares.
+        """
+        return []
+
     @property
     def random_effect(self) -> dict:
         """The random effect that refits the model (:meth:`rsm_lrg.model.engines.mixed.MixedModel.random_effect`): none."""

@@ -737,6 +737,24 @@ class MixedModel:
             out.append(KRTest(term=str(name), num_df=q, den_df=df2, f=F, p=pv))
         return out
 
+    def contrast_tests(self, hypotheses: Sequence[tuple[str, np.ndarray]]) -> list[KRTest]:
+        """One Kenward–Roger test per ``(name, L)``: the hypothesis ``L b = 0``.
+
+        Parameters
+        ----------
+        hypotheses : sequence of (str, numpy.ndarray)
+            The name of each test and its L (rows over every model column).
+
+        Returns
+        -------
+        list of KRTest
+        """
+        out = []
+        for name, L in hypotheses:
+            F, df2, pv, q = self.test(L)
+            out.append(KRTest(term=str(name), num_df=q, den_df=df2, f=F, p=pv))
+        return out
+
     def interval_form(self, columns: np.ndarray) -> IntervalForm:
         """The prediction contract's :class:`~rsm_lrg.model.contract.prediction.IntervalForm` of the
         model columns ``columns``: ``Φ`` for ``se_fit``, ``Φ_A`` for the mean, a new run in a

@@ -57,6 +57,12 @@ class ReadFit(Protocol):
     def data(self) -> Any: ...
 
     @property
+    def block(self) -> str | None: ...
+
+    @property
+    def y(self) -> np.ndarray | None: ...
+
+    @property
     def form(self) -> PolynomialForm: ...
 
     @property
@@ -163,6 +169,30 @@ class PolynomialForm:
             term_df=[t.df for t in r.model_terms],
             total_label="Cor Total" if r.intercept else TOTAL_UNCORRECTED))
 
+    def test_contrasts(self, r: ReadFit) -> list[tuple[str, np.ndarray]]:
+        """The hypotheses a REML fit tests, one per model term: all its columns zero.
+
+        Parameters
+        ----------
+        r : FitResult
+            The fit.
+
+        Returns
+        -------
+        list of (str, numpy.ndarray)
+            ``(term name, L)``: the test of ``L b = 0`` (L one row per column of the term,
+            over every model column).
+        """
+        groups = term_columns(r.model_terms, 1 if r.intercept else 0)
+        tidx = r.term_index
+        p = len(r.least_squares.params)
+        out = []
+        for t, g in zip(r.model_terms, groups):
+            L = np.zeros((len(g), p))
+            L[np.arange(len(g)), tidx[g]] = 1.0
+            out.append((t.name, L))
+        return out
+
     def to_actual(self, coded: dict, r: ReadFit) -> dict:
         """``{monomial: coefficient}`` in actual units of coded coefficients (the exact change of coding).
 
@@ -244,6 +274,11 @@ class ScheffeForm(PolynomialForm):
         """
         from ..build.mixture import mixture_sums
 
+        if r.n_blocks > 1:
+            from ..build.inputs import block_codes
+
+            assert r.block is not None and r.y is not None  # an in-memory fit with fixed blocks
+            return mixture_sums(r.least_squares, r.terms, block_codes(r.data, r.block)[0], r.y)
         return mixture_sums(r.least_squares, r.terms)
 
     def anova(self, r: ReadFit) -> pd.DataFrame:
@@ -262,8 +297,38 @@ class ScheffeForm(PolynomialForm):
         s, ls = r.sums, r.least_squares
         return clean_anova(anova_table(
             term_names=s["names"], term_ss=s["term_ss"], ss_model=s["ss_model"], df_model=s["df_model"],
-            ss_block=0.0, df_block=0, ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"],
+            ss_block=s["ss_block"], df_block=r.n_blocks - 1, ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"],
             df_total=ls.n - 1, pe=r.pure_error, term_df=s["term_df"], total_label="Cor Total"))
+
+    def test_contrasts(self, r: ReadFit) -> list[tuple[str, np.ndarray]]:
+        """The hypotheses a REML fit of a Scheffé model tests, as the mixture ANOVA's rows:
+        ``Linear Mixture`` (the linear blending coefficients all equal, q - 1 df: a flat
+        surface, the counterpart of Design-Expert's row in the full model) and every
+        non-linear term (its coefficient zero).
+
+        Parameters
+        ----------
+        r : FitResult
+            The fit.
+
+        Returns
+        -------
+        list of (str, numpy.ndarray)
+            ``(row name, L)``: the test of ``L b = 0`` over every model column.
+        """
+        tidx = r.term_index
+        p = len(r.least_squares.params)
+        lin = [int(tidx[j]) for j, t in enumerate(r.terms) if t.order == 1]
+        L = np.zeros((len(lin) - 1, p))
+        for i, j in enumerate(lin[:-1]):
+            L[i, j], L[i, lin[-1]] = 1.0, -1.0
+        out = [("Linear Mixture", L)]
+        for j, t in enumerate(r.terms):
+            if t.order > 1:
+                row = np.zeros((1, p))
+                row[0, tidx[j]] = 1.0
+                out.append((t.name, row))
+        return out
 
     def to_actual(self, coded: dict, r: ReadFit) -> dict:
         """``{monomial: coefficient}`` in real proportions of L-pseudo-component coefficients.

@@ -26,7 +26,7 @@ from ...io import float_column
 from ..build.goals import parse_goal
 from ..build.inputs import block_codes, coded_points, model_rows, unrounded_coding
 from ..build.spec import ModelSpec, ReduceSpec
-from ..build.terms import Term, column_names, design_matrix, n_columns, term_columns
+from ..build.terms import Term, column_names, design_matrix, n_columns
 from ..build.transform import Transform
 from ..contract.prediction import IntervalForm
 from ..contract.statistics import FitStatistics
@@ -198,9 +198,7 @@ class FitResult:
     def tests(self) -> list:
         """The Kenward–Roger F tests of the model terms of a REML fit
         (:class:`~rsm_lrg.model.engines.mixed.KRTest`, one per term, no intercept); empty for OLS."""
-        groups = term_columns(self.model_terms, 1 if self.intercept else 0)
-        tidx = self.term_index
-        return self.estimation.tests([t.name for t in self.model_terms], [tidx[g] for g in groups])
+        return self.estimation.contrast_tests(self.form.test_contrasts(self))
 
     @cached_property
     def sums(self) -> dict[str, Any]:
