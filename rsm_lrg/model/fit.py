@@ -43,6 +43,7 @@ if TYPE_CHECKING:
 
     from ..factors import FactorSpace
     from .build.transform import Transform
+    from .choice.dsd import TwoStage
     from .choice.reduce import Reduction
     from .choice.select import Selection
     from .engines.glm_family import Family
@@ -315,7 +316,7 @@ def _spec_terms(inp: ModelInputs, spec: ModelSpec, block_df: int) -> tuple:
 
 
 def fit_inputs(inp: ModelInputs, response: str, spec: ModelSpec, *, chunk_rows: int = CHUNK_ROWS,
-               reduction: Reduction | Selection | None = None) -> FitResult:
+               reduction: Reduction | Selection | TwoStage | None = None) -> FitResult:
     """The fit of checked inputs (:func:`~rsm_lrg.model.build.inputs.model_inputs`) to ``spec``'s
     terms (its reduction, if any, already applied)."""
     space, y, hint, nb, n = inp.space, inp.y, inp.hint, inp.nb, inp.n

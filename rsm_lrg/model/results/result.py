@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     import dask.dataframe as dd
     import pandas as pd
 
+    from ..choice.dsd import TwoStage
     from ..choice.reduce import Reduction
     from ..choice.select import Selection
     from ..engines.mixed import MixedModel
@@ -130,7 +131,7 @@ class FitResult:
     input_notes: tuple = field(default=(), repr=False)
     omitted_rows: tuple = field(default=(), repr=False)
     omitted_data: pd.DataFrame | None = field(default=None, repr=False)
-    reduction: Reduction | Selection | None = field(default=None, repr=False)
+    reduction: Reduction | Selection | TwoStage | None = field(default=None, repr=False)
     mixed: MixedModel | None = field(default=None, repr=False)
     reading: LeastSquaresReading | REMLReading = field(default_factory=LeastSquaresReading, repr=False)
     form: PolynomialForm = field(default_factory=PolynomialForm, repr=False)
@@ -947,7 +948,7 @@ def assemble(*, spec: ModelSpec, response: str, block: str | None, space: Factor
              col_names: Sequence[str], ls: Regression, pe: PureError, bkeys: list | None, blevels: dict | None,
              data: pd.DataFrame | dd.DataFrame, coded: pd.DataFrame | None, y: np.ndarray | None,
              y_response: np.ndarray | None = None, input_notes: Sequence = (), omitted_rows: Sequence[int] = (),
-             omitted_data: pd.DataFrame | None = None, reduction: Reduction | Selection | None = None,
+             omitted_data: pd.DataFrame | None = None, reduction: Reduction | Selection | TwoStage | None = None,
              mixed: MixedModel | None = None) -> FitResult:
     """The :class:`FitResult` of a factorised fit (both passes done) and its pure error; every
     statistic is derived from them on first use.
