@@ -55,7 +55,7 @@ import numpy as np
 from ..errors import ParameterError
 
 __all__ = ["evaluate_design", "DesignEvaluation", "FDS_FRACTIONS", "compare_designs", "DesignComparison",
-           "POTENTIAL", "design_model", "DesignModel"]
+           "POTENTIAL", "design_model", "DesignModel", "ols_power"]
 
 #: The potential terms of each model: the next bigger model's (cubic: none).
 POTENTIAL = {"linear": "2fi", "2fi": "quadratic", "quadratic": "cubic", "cubic": None}
@@ -445,6 +445,33 @@ def _max_variance_ball(E: np.ndarray, Ct: np.ndarray, k: int, radius: float, sam
 
 
 
+def ols_power(c_diag, df_residual: int, alpha: float, effect_sd: float) -> np.ndarray:
+    """Exact power of the OLS test of single coefficients: ``P(F'(1, ν, λ) > F(1-α; 1, ν))``
+    with ``λ = (effect_sd / 2)² / C_jj`` (the module docstring).
+
+    Parameters
+    ----------
+    c_diag : array_like
+        Diagonal entries ``C_jj`` of ``(X'X)⁻¹`` of the coefficients [1/σ² units].
+    df_residual : int
+        Residual degrees of freedom ν (> 0).
+    alpha : float
+        Level of the test.
+    effect_sd : float
+        Effect over the coded range -1..+1, in σ (coefficient ``effect_sd / 2``).
+
+    Returns
+    -------
+    ndarray
+        The power of each coefficient's test [-].
+    """
+    from scipy import special
+
+    fcrit = special.fdtri(1, df_residual, 1 - alpha)
+    lam = (effect_sd / 2.0) ** 2 / np.asarray(c_diag, dtype=float)
+    return np.asarray(1.0 - special.ncfdtr(1, df_residual, lam, fcrit), dtype=float)
+
+
 @dataclass(frozen=True)
 class DesignModel:
     """The model matrix of a design, before any data (:func:`design_model`).
@@ -595,7 +622,6 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         alias matrix, before any data.
     """
     import pandas as pd
-    from scipy import special
 
     from ..design.split_plot import gls_criteria
     from .build.terms import (
@@ -670,9 +696,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     vif = np.r_[np.nan, ls.vif(tidx[1:])]  # the same definition as fit()
     power = np.full(tidx.size, np.nan)
     if df_res > 0:  # noncentral F: P(F'(1, ν, λ) > F(1-α; 1, ν))
-        fcrit = special.fdtri(1, df_res, 1 - alpha)
-        lam = (effect_sd / 2.0) ** 2 / np.diag(C)[tidx]
-        power = 1.0 - special.ncfdtr(1, df_res, lam, fcrit)
+        power = ols_power(np.diag(C)[tidx], df_res, alpha, effect_sd)
         power[0] = np.nan  # no test of the intercept
     term_frame = pd.DataFrame({"std_error": se, "vif": vif, "power": power}, index=pd.Index(names, name="term"))
     hat = ls.hat
