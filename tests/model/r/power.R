@@ -28,10 +28,10 @@ for (i in seq_len(N)) {
   u <- rnorm(8, 0, 1)
   sp$y <- 0.5 * (sp$A + sp$B + sp$C) + u[as.integer(sp$wp)] + rnorm(nrow(sp))
   fit <- suppressMessages(lmer(y ~ A + B + C + (1 | wp), data = sp, REML = TRUE))
-  V0 <- as.matrix(vcov(fit)); Va <- as.matrix(vcovAdj(fit)); b <- fixef(fit)
+  V0 <- vcov(fit); Va <- vcovAdj(fit); b <- fixef(fit)  # Va keeps its P and W for Lb_ddf
   p <- sapply(2:4, function(j) {
     L <- matrix(0, 1, 4); L[1, j] <- 1
-    pf(b[j]^2 / Va[j, j], 1, Lb_ddf(L, V0, Va), lower.tail = FALSE)
+    pf(b[j]^2 / as.matrix(Va)[j, j], 1, Lb_ddf(L, V0, Va), lower.tail = FALSE)
   })
   hits <- hits + (p < alpha)
 }
