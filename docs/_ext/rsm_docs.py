@@ -38,7 +38,7 @@ GUIDE = [
                                    "Screening"]),
     ("optimisation", "Optimisation and prediction", ["Prediction under uncertainty", "Mean and spread from replicates"]),
     ("mixtures", "Mixtures", ["Mixture designs", "Mixtures: Scheffé", "Mixture study"]),
-    ("split-plot", "Split-plot experiments", ["Split-plot study", "Split-plot analysis"]),
+    ("split-plot", "Split-plot experiments", ["Split-plot study", "Split-plot analysis", "Power by simulation"]),
     ("design-space", "Design space", ["Design space"]),
     ("gp", "Gaussian processes and the next runs", ["Computer experiments"]),
     ("reports", "Reports", ["Interactive report", "Reports (static sections)"]),
