@@ -17,9 +17,9 @@ from rsm_lrg.model.power import simulate_power
 
 #: ``Rscript tests/model/r/power.R 3000`` (R 4, lme4, pbkrtest; set.seed(20261128)), printed figures.
 R_DRAWS = 3000
-R_SPLIT_PLOT = {"A": None, "B": None, "C": None}
-R_LOGISTIC = {"A": None, "B": None, "C": None}
-R_LOGISTIC_SEPARATED = None
+R_SPLIT_PLOT = {"A": 0.184000, "B": 0.784000, "C": 0.773000}
+R_LOGISTIC = {"A": 0.359000, "B": 0.369000, "C": 0.364667}
+R_LOGISTIC_SEPARATED = 0.003667
 
 
 def _factorial(k: int, reps: int = 1) -> np.ndarray:

@@ -2,7 +2,8 @@
 # designs and simulated truth as rsm_lrg.model.power.simulate_power, drawn with R's own
 # random numbers and analysed by R's own fits.
 #
-#   Rscript tests/model/r/power.R [DRAWS]      (default 3000; the test's constants are from 3000)
+#   Rscript tests/model/r/power.R [DRAWS [SEED]]   (default 3000 draws, seed 20261128; the test's
+#   constants pool the runs with seeds 20261128 and 20261129, 3000 draws each)
 #
 # Split plot: 8 whole plots of 4 runs, whole-plot factor A (+1/-1 alternately), sub-plot
 #   factors B, C (a 2^2 in every whole plot); y = 0.5 (A + B + C) + u_wp + e, u_wp ~ N(0, eta),
@@ -17,7 +18,7 @@
 suppressPackageStartupMessages({library(lme4); library(pbkrtest)})
 args <- commandArgs(trailingOnly = TRUE)
 N <- if (length(args)) as.integer(args[1]) else 3000L
-set.seed(20261128)
+set.seed(if (length(args) > 1) as.integer(args[2]) else 20261128L)
 alpha <- 0.05
 
 sp <- expand.grid(B = c(-1, 1), C = c(-1, 1), wp = 1:8)
