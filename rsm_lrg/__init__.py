@@ -67,6 +67,7 @@ _register("rsm_lrg.model.readings.mixture_trace", "mixture_trace", "MixtureTrace
 _register("rsm_lrg.model.fit", "fit_transformed")
 _register("rsm_lrg.model.dispersion", "fit_dispersion", "DispersionFit")
 _register("rsm_lrg.model.evaluate", "evaluate_design", "compare_designs")
+_register("rsm_lrg.model.power", "simulate_power", "PowerSimulation")
 _register("rsm_lrg.model.readings.effects", "screening_effects", "EffectsResult")
 _register("rsm_lrg.optimize.confirm", "confirm")
 _register("rsm_lrg.optimize.desirability", "optimize_desirability", "ResponseGoal")

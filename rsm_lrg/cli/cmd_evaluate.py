@@ -39,12 +39,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_terms_options(parser)
     parser.add_argument("--region", default="cube", choices=["cube", "sphere"],
                         help="region for the prediction variance (default: the coded cube)")
-    from .options import number, probability
+    from .options import number, probability, whole_number
 
     parser.add_argument("--alpha", type=probability, default=0.05, metavar="A",
                         help="level of the power test (default 0.05)")
-    parser.add_argument("--effect", type=number(0, 1e6, above=True), default=2.0, metavar="SD",
-                        help="effect to detect, in standard deviations (default 2)")
+    parser.add_argument("--effect", "--effect-size", dest="effect", type=number(0, 1e6, above=True), default=2.0,
+                        metavar="SD", help="effect to detect over the coded range -1..+1 (coefficient SD/2), in "
+                                           "standard deviations; with --family binomial on the logit scale (default 2)")
     parser.add_argument("--exclude", action="append", default=[], metavar="COL",
                         help="a column that is not a factor (data CSVs only; repeatable)")
     parser.add_argument("--potential", default="auto", choices=["auto", "none", "2fi", "quadratic", "cubic"],
@@ -58,6 +59,25 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--variance-ratio-of", action="append", default=[], metavar="COL=ETA",
                         help="eta of one random stratum by its group column (whole_plot, subplot, strip_row, "
                              "strip_column), over --variance-ratio (repeatable)")
+    power = parser.add_argument_group("power by simulation (--power)")
+    power.add_argument("--power", action="store_true",
+                       help="report the Monte Carlo power of each coefficient instead of the evaluation: responses "
+                            "simulated at --effect-size (noise sigma 1; whole plots with variance eta sigma^2) and "
+                            "refitted by the analysis fit runs (OLS t tests, REML with Kenward-Roger for whole plots, "
+                            "binomial GLM likelihood-ratio tests), beside the exact OLS power")
+    power.add_argument("--family", default=None, choices=["gaussian", "binomial"],
+                       help="response family of --power (default gaussian); binomial: one pass/fail per run, "
+                            "logit link")
+    power.add_argument("--baseline", type=number(), default=None, metavar="P",
+                       help="probability at the design centre of a binomial --power simulation, strictly between "
+                            "0 and 1 (default 0.5)")
+    power.add_argument("--draws", type=whole_number(1, 10_000_000), default=None, metavar="N",
+                       help="simulated responses of --power (default 1000)")
+    power.add_argument("--seed", type=whole_number(0, 2 ** 63 - 1), default=None, metavar="S",
+                       help="seed of --power's draws (default 1); the same seed gives the same numbers for any "
+                            "--workers")
+    power.add_argument("--workers", type=whole_number(1, 64), default=None, metavar="K",
+                       help="worker processes for --power's draws (default 1)")
     add_plot_option(parser, "the fraction-of-design-space curve(s) on one plot")
     add_json(parser)
     add_force(parser)
@@ -126,6 +146,13 @@ def run(args: argparse.Namespace) -> int:
     from ..io import dump_json, write_output
     from ..model.evaluate import DesignComparison, DesignEvaluation, compare_designs, evaluate_design
 
+    if args.power:
+        return _run_power(args)
+    for opt in ("family", "baseline", "draws", "seed", "workers"):
+        if getattr(args, opt) is not None:
+            from ..io import InputError
+
+            raise InputError(f"--{opt}: belongs to --power (power by simulation); give --power too")
     fmt = plot_format(args.plot)
     potential = None if args.potential == "none" else args.potential
     paths = list(args.design)
@@ -184,3 +211,33 @@ def _fds_figure(evaluations, names):
     ax.grid(True, color="#dddddd", linewidth=0.6)
     ax.legend(fontsize=8)
     return fig
+
+
+def _run_power(args: argparse.Namespace) -> int:
+    """``evaluate DESIGN.csv --power``: the Monte Carlo power of every coefficient."""
+    from ..io import InputError, dump_json
+    from ..model.power import simulate_power
+
+    if len(args.design) != 1:
+        raise InputError("--power: simulates one design at a time; give one DESIGN.csv")
+    for opt, given in (("--plot", args.plot is not None), ("--region", args.region != "cube"),
+                       ("--potential", args.potential != "auto")):
+        if given:
+            raise InputError(f"{opt}: not used by --power (power by simulation); leave it out")
+    path = args.design[0]
+    with about_file(path):
+        design = _load(path, args.exclude, args)
+        sim = simulate_power(design, args.model, terms=args.terms, intercept=not args.no_intercept,
+                             effect_sd=args.effect, alpha=args.alpha, draws=1000 if args.draws is None else args.draws,
+                             seed=1 if args.seed is None else args.seed, family=args.family or "gaussian",
+                             baseline=args.baseline, variance_ratio=args.variance_ratio,
+                             workers=args.workers or 1)
+    payload = sim.to_dict()
+    if args.json and args.json != "-":
+        dump_json(payload, args.json, force=args.force)
+    if args.json == "-":
+        dump_json(payload, "-")
+    else:
+        print(f"Design: {path}")
+        print(sim.summary(), end="")
+    return 0

@@ -55,7 +55,7 @@ import numpy as np
 from ..errors import ParameterError
 
 __all__ = ["evaluate_design", "DesignEvaluation", "FDS_FRACTIONS", "compare_designs", "DesignComparison",
-           "POTENTIAL"]
+           "POTENTIAL", "design_model", "DesignModel", "ols_power"]
 
 #: The potential terms of each model: the next bigger model's (cubic: none).
 POTENTIAL = {"linear": "2fi", "2fi": "quadratic", "quadratic": "cubic", "cubic": None}
@@ -454,6 +454,143 @@ def _max_variance_ball(E: np.ndarray, Ct: np.ndarray, k: int, radius: float, sam
     return best_v, best_x
 
 
+
+def ols_power(c_diag, df_residual: int, alpha: float, effect_sd: float) -> np.ndarray:
+    """Exact power of the OLS test of single coefficients: ``P(F'(1, ν, λ) > F(1-α; 1, ν))``
+    with ``λ = (effect_sd / 2)² / C_jj`` (the module docstring).
+
+    Parameters
+    ----------
+    c_diag : array_like
+        Diagonal entries ``C_jj`` of ``(X'X)⁻¹`` of the coefficients [1/σ² units].
+    df_residual : int
+        Residual degrees of freedom ν (> 0).
+    alpha : float
+        Level of the test.
+    effect_sd : float
+        Effect over the coded range -1..+1, in σ (coefficient ``effect_sd / 2``).
+
+    Returns
+    -------
+    ndarray
+        The power of each coefficient's test [-].
+    """
+    from scipy import special
+
+    fcrit = special.fdtri(1, df_residual, 1 - alpha)
+    lam = (effect_sd / 2.0) ** 2 / np.asarray(c_diag, dtype=float)
+    return np.asarray(1.0 - special.ncfdtr(1, df_residual, lam, fcrit), dtype=float)
+
+
+@dataclass(frozen=True)
+class DesignModel:
+    """The model matrix of a design, before any data (:func:`design_model`).
+
+    Attributes
+    ----------
+    coded : (n, k) ndarray
+        Coded settings (a categoric factor's value is its level index).
+    letters : tuple of str
+        The factors' letters.
+    categoric : dict
+        ``{position: levels}`` of the categoric factors.
+    blocks, whole_plots : ndarray or None
+        Block and whole-plot labels of the runs, as the design holds them.
+    terms : tuple of Term
+        The model's terms.
+    X : (n, p) ndarray
+        Model matrix: intercept, the block contrasts (sum to zero), then the term columns.
+    names : tuple of str
+        The names of the intercept and term columns (without the block contrasts).
+    n_blocks : int
+        Number of blocks (1 without blocks).
+    block_codes : ndarray or None
+        Block index 0..n_blocks-1 of each run (None with one block).
+    """
+
+    coded: np.ndarray = field(repr=False)
+    letters: tuple
+    categoric: dict
+    blocks: Any = field(repr=False)
+    whole_plots: Any = field(repr=False)
+    terms: tuple
+    X: np.ndarray = field(repr=False)
+    names: tuple
+    n_blocks: int = 1
+    block_codes: Any = field(default=None, repr=False)
+
+    @property
+    def term_columns(self) -> np.ndarray:
+        """Index in ``X`` of the intercept and term columns (block contrasts left out), as ``names``.
+
+        Returns
+        -------
+        ndarray of int
+        """
+        p = self.X.shape[1]
+        return np.r_[0, np.arange(self.n_blocks, p)] if self.n_blocks > 1 else np.arange(p)
+
+
+def design_model(design, model: str = "quadratic", *, terms=None, intercept: bool = True) -> DesignModel:
+    """The model matrix of a design for ``model`` (or a list of ``terms``), as :func:`evaluate_design`
+    and :func:`rsm_lrg.model.power.simulate_power` evaluate it.
+
+    Parameters
+    ----------
+    design : Design or (n, k) array of coded settings
+        A :class:`~rsm_lrg.design.Design` (blocks and whole plots are kept) or coded runs.
+    model : {"linear", "2fi", "quadratic", "cubic"}
+    terms : list of str or str, optional
+        A list of term names (``"A B AB A^2"``) instead of ``model``.
+    intercept : bool
+        Whether the model has an intercept (with ``terms``).
+
+    Returns
+    -------
+    DesignModel
+        ``ValueError`` when far more parameters than runs are asked for.
+    """
+    from ..factors import letters_for
+    from .build.terms import MAX_TERMS, check_model_size, column_names, model_matrix, model_terms, n_model_terms
+
+    blocks, cats = None, {}
+    if hasattr(design, "coded_runs"):
+        coded = np.asarray(design.coded_runs, dtype=float)
+        letters = list(design.factors.letters)
+        blocks = design.blocks
+        cats = design.factors.categoric  # {position: levels}; their coded value is the level index
+    else:
+        coded = np.asarray(design, dtype=float)
+        if coded.ndim != 2:
+            raise ValueError("coded settings must be an (n, k) array")
+        letters = letters_for(coded.shape[1])
+    plots = getattr(design, "whole_plots", None)
+    n, k = coded.shape
+    # counted before any term is built: far more parameters than runs is refused at once
+    # (naming each of thousands of aliased terms would take minutes and help nobody)
+    n_par = n_model_terms(k, model, cats) if terms is None else 0
+    if n_par > MAX_TERMS or (n < n_par and n_par > MAX_ALIAS_LISTED):
+        check_model_size(n, k, model, categoric=cats)  # raises with the count ("N runs cannot fit P terms ...")
+        raise ValueError(f"the {model} model in {k} factors has {n_par} terms and {n} runs cannot estimate "
+                         "them; choose a smaller model or add runs")
+    if terms is None:
+        terms = model_terms(letters, model, cats)
+    else:
+        from .build.inputs import chosen_terms
+        from .build.spec import ModelSpec
+
+        terms = list(chosen_terms(list(ModelSpec.build(model, terms=terms, intercept=intercept).terms or ()),
+                                  letters, cats, intercept=intercept))
+    nb, codes = 1, None
+    if blocks is not None and len(set(np.asarray(blocks).tolist())) > 1:
+        levels = sorted(set(np.asarray(blocks).tolist()))
+        nb = len(levels)
+        codes = np.searchsorted(levels, blocks)
+    X = model_matrix(coded, terms, codes, nb)
+    return DesignModel(coded=coded, letters=tuple(letters), categoric=dict(cats), blocks=blocks, whole_plots=plots,
+                       terms=tuple(terms), X=X, names=tuple(column_names(terms)), n_blocks=nb, block_codes=codes)
+
+
 def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", alpha: float = 0.05,
                     effect_sd: float = 2.0, n_region: int = 4096, seed: int = 0,
                     potential: str | None = "auto", terms=None, intercept: bool = True,
@@ -502,36 +639,28 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
         alias matrix, before any data.
     """
     import pandas as pd
-    from scipy import special
 
     from ..design.multi_stratum import stratum_criteria
     from ..design.split_plot import gls_criteria
-    from ..factors import letters_for
     from .build.terms import (
-        MAX_TERMS,
-        check_model_size,
-        column_names,
         design_matrix,
-        model_matrix,
         model_terms,
         n_model_terms,
     )
     from .engines.least_squares import least_squares
     from .readings.anova import pure_error
 
-    blocks, cats, levels_of = None, {}, {}
-    if hasattr(design, "coded_runs"):
-        coded = np.asarray(design.coded_runs, dtype=float)
-        letters = list(design.factors.letters)
-        blocks = design.blocks
-        cats = design.factors.categoric  # {position: levels}; their coded value is the level index
-        levels_of = cats
-    else:
-        coded = np.asarray(design, dtype=float)
-        if coded.ndim != 2:
-            raise ValueError("coded settings must be an (n, k) array")
-        letters = letters_for(coded.shape[1])
-    plots = getattr(design, "whole_plots", None)
+    if region not in ("cube", "sphere"):
+        raise ParameterError("region", f"region must be 'cube' or 'sphere', not {region!r}")
+    if not 0 < alpha < 1:
+        raise ParameterError("alpha", f"alpha must lie between 0 and 1, not {alpha!r}")
+    if not (effect_sd > 0 and math.isfinite(effect_sd)):
+        raise ParameterError("effect_sd", f"effect_sd must be a positive number, not {effect_sd!r}")
+    given_terms = terms is not None
+    dm = design_model(design, model, terms=terms, intercept=intercept)
+    coded, letters, blocks, cats, plots, terms = dm.coded, list(dm.letters), dm.blocks, dm.categoric, dm.whole_plots, \
+        list(dm.terms)
+    levels_of = cats
     strata = dict(getattr(design, "strata", None) or {})
     if variance_ratios and not strata and plots is None:
         raise ParameterError("variance_ratios", "the design has no random strata")
@@ -543,29 +672,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     if plots is not None and blocks is not None:
         raise ValueError("a design with both blocks and whole plots is not evaluated under GLS here; "
                          "drop the block column or the whole-plot column")
-    given_terms = terms is not None
-    if region not in ("cube", "sphere"):
-        raise ParameterError("region", f"region must be 'cube' or 'sphere', not {region!r}")
-    if not 0 < alpha < 1:
-        raise ParameterError("alpha", f"alpha must lie between 0 and 1, not {alpha!r}")
-    if not (effect_sd > 0 and math.isfinite(effect_sd)):
-        raise ParameterError("effect_sd", f"effect_sd must be a positive number, not {effect_sd!r}")
     n, k = coded.shape
-    # counted before any term is built: far more parameters than runs is refused at once
-    # (naming each of thousands of aliased terms would take minutes and help nobody)
-    n_par = n_model_terms(k, model, cats) if terms is None else 0
-    if n_par > MAX_TERMS or (n < n_par and n_par > MAX_ALIAS_LISTED):
-        check_model_size(n, k, model, categoric=cats)  # raises with the count ("N runs cannot fit P terms ...")
-        raise ValueError(f"the {model} model in {k} factors has {n_par} terms and {n} runs cannot estimate "
-                         "them; choose a smaller model or add runs")
-    if terms is None:
-        terms = model_terms(letters, model, cats)
-    else:
-        from .build.inputs import chosen_terms
-        from .build.spec import ModelSpec
-
-        terms = list(chosen_terms(list(ModelSpec.build(model, terms=terms, intercept=intercept).terms or ()),
-                                  letters, cats, intercept=intercept))
     auto = potential == "auto"
     if auto:
         potential = POTENTIAL.get(model)
@@ -584,17 +691,9 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
             potential_terms = [t for t in model_terms(letters, potential, cats) if t.name not in have]
             if not potential_terms:
                 raise ParameterError("potential", f"potential {potential!r} adds no term to the {model} model; choose a bigger model")
-    nb, codes = 1, None
-    if blocks is not None and len(set(np.asarray(blocks).tolist())) > 1:
-        levels = sorted(set(np.asarray(blocks).tolist()))
-        nb = len(levels)
-        codes = np.searchsorted(levels, blocks)
-        keys = np.column_stack([coded, codes])
-    else:
-        keys = coded
-    X = model_matrix(coded, terms, codes, nb)
+    nb, codes, X, names = dm.n_blocks, dm.block_codes, dm.X, list(dm.names)
+    keys = coded if codes is None else np.column_stack([coded, codes])
     p = X.shape[1]
-    names = column_names(terms)
     # pure error as fit() splits it: residual of (blocks +) one mean per distinct setting
     pe = pure_error(coded, np.zeros(n), codes if nb > 1 else None)
     df_res = n - p
@@ -620,9 +719,7 @@ def evaluate_design(design, model: str = "quadratic", *, region: str = "cube", a
     vif = np.r_[np.nan, ls.vif(tidx[1:])]  # the same definition as fit()
     power = np.full(tidx.size, np.nan)
     if df_res > 0:  # noncentral F: P(F'(1, ν, λ) > F(1-α; 1, ν))
-        fcrit = special.fdtri(1, df_res, 1 - alpha)
-        lam = (effect_sd / 2.0) ** 2 / np.diag(C)[tidx]
-        power = 1.0 - special.ncfdtr(1, df_res, lam, fcrit)
+        power = ols_power(np.diag(C)[tidx], df_res, alpha, effect_sd)
         power[0] = np.nan  # no test of the intercept
     term_frame = pd.DataFrame({"std_error": se, "vif": vif, "power": power}, index=pd.Index(names, name="term"))
     hat = ls.hat
