@@ -78,6 +78,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                             "--workers")
     power.add_argument("--workers", type=whole_number(1, 64), default=None, metavar="K",
                        help="worker processes for --power's draws (default 1)")
+    power.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                       help="run --power's blocks of draws on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786; "
+                            "the same numbers as in one process)")
+    power.add_argument("--scheduler-timeout", type=number(0, 3600, above=True), default=60.0, metavar="S",
+                       help="seconds the --scheduler has to answer before the run is refused (default 60)")
     add_plot_option(parser, "the fraction-of-design-space curve(s) on one plot")
     add_json(parser)
     add_force(parser)
@@ -148,7 +153,7 @@ def run(args: argparse.Namespace) -> int:
 
     if args.power:
         return _run_power(args)
-    for opt in ("family", "baseline", "draws", "seed", "workers"):
+    for opt in ("family", "baseline", "draws", "seed", "workers", "scheduler"):
         if getattr(args, opt) is not None:
             from ..io import InputError
 
@@ -224,14 +229,27 @@ def _run_power(args: argparse.Namespace) -> int:
                        ("--potential", args.potential != "auto")):
         if given:
             raise InputError(f"{opt}: not used by --power (power by simulation); leave it out")
+    if args.scheduler is not None and args.workers is not None:
+        raise InputError("--scheduler: give --workers or --scheduler, not both")
     path = args.design[0]
     with about_file(path):
         design = _load(path, args.exclude, args)
-        sim = simulate_power(design, args.model, terms=args.terms, intercept=not args.no_intercept,
-                             effect_sd=args.effect, alpha=args.alpha, draws=1000 if args.draws is None else args.draws,
-                             seed=1 if args.seed is None else args.seed, family=args.family or "gaussian",
-                             baseline=args.baseline, variance_ratio=args.variance_ratio,
-                             workers=args.workers or 1)
+    from .processes import cluster_failures, connect_scheduler
+
+    client = None
+    if args.scheduler is not None:  # an empty address is refused, not run locally
+        client = connect_scheduler(args.scheduler, args.scheduler_timeout)
+    try:
+        with about_file(path), cluster_failures(args.scheduler, args.workers):
+            sim = simulate_power(design, args.model, terms=args.terms, intercept=not args.no_intercept,
+                                 effect_sd=args.effect, alpha=args.alpha,
+                                 draws=1000 if args.draws is None else args.draws,
+                                 seed=1 if args.seed is None else args.seed, family=args.family or "gaussian",
+                                 baseline=args.baseline, variance_ratio=args.variance_ratio,
+                                 workers=args.workers or 1, executor=None if client is None else client.get_executor())
+    finally:
+        if client is not None:
+            client.close()
     payload = sim.to_dict()
     if args.json and args.json != "-":
         dump_json(payload, args.json, force=args.force)

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 from collections.abc import Iterable
-from contextlib import contextmanager
 from typing import Any, BinaryIO
 
 from .errors import about_file
@@ -181,30 +180,6 @@ def _calibration_with_overrides(calibration, overrides, surrogate):
     return values if values else None
 
 
-@contextmanager
-def _lost_scheduler(address: str | None, workers: int | None = None):
-    """With a ``--scheduler``, a failure of the cluster itself (a CancelledError, lost
-    communications: the scheduler killed mid-run) is one error naming the scheduler; with
-    ``--workers``, a worker process that died (killed by a signal, by the out-of-memory
-    killer) is one error naming the option."""
-    from concurrent.futures.process import BrokenProcessPool
-
-    from .processes import Terminated, pool_lost, scheduler_lost
-
-    try:
-        yield
-    except (ValueError, TypeError, KeyboardInterrupt, SystemExit, Terminated):
-        raise
-    except BrokenProcessPool as exc:
-        if address is not None or not workers:
-            raise
-        raise pool_lost(workers, exc) from None
-    except BaseException as exc:
-        if address is None:
-            raise
-        raise scheduler_lost(address, exc) from None
-
-
 def run(args) -> int:
     import sys
     from pathlib import Path
@@ -264,7 +239,7 @@ def run(args) -> int:
 
     # a local pool whose workers die with this process and are killed at once on an error or a
     # signal, or a scheduler that must answer within --scheduler-timeout (rsm_lrg.cli.processes)
-    from .processes import close_pool, connect_scheduler, process_pool, watch_workers
+    from .processes import close_pool, cluster_failures, connect_scheduler, process_pool, watch_workers
 
     executor = client = None
     ok = False
@@ -283,7 +258,7 @@ def run(args) -> int:
 
         watch = (watch_workers(client, args.scheduler, args.scheduler_timeout) if client is not None
                  else contextlib.nullcontext())
-        with about_file(args.design), _lost_scheduler(args.scheduler if client is not None else None,
+        with about_file(args.design), cluster_failures(args.scheduler if client is not None else None,
                                                       args.workers if executor is not None and client is None
                                                       else None), watch:
             if streamed is None:

@@ -433,6 +433,29 @@ def watch_workers(client: Any, address: str, timeout: float, poll: float = 0.5) 
         signal.signal(signal.SIGUSR1, old)
 
 
+@contextlib.contextmanager
+def cluster_failures(address: str | None, workers: int | None = None) -> Iterator[None]:
+    """With a ``--scheduler``, a failure of the cluster itself (a CancelledError, lost
+    communications: the scheduler killed mid-run) is one error naming the scheduler; with
+    ``--workers``, a worker process that died (killed by a signal, by the out-of-memory
+    killer) is one error naming the option. Errors of the input (``ValueError``,
+    ``TypeError``) and signals pass through."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    try:
+        yield
+    except (ValueError, TypeError, KeyboardInterrupt, SystemExit, Terminated):
+        raise
+    except BrokenProcessPool as exc:
+        if address is not None or not workers:
+            raise
+        raise pool_lost(workers, exc) from None
+    except BaseException as exc:
+        if address is None:
+            raise
+        raise scheduler_lost(address, exc) from None
+
+
 def scheduler_lost(address: str, exc: BaseException):
     """The error for a run whose scheduler stopped answering or went away mid-run."""
     from ..io import InputError

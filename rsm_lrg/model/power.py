@@ -302,7 +302,7 @@ def _whole(value: Any, name: str, lo: int, hi: int) -> int:
 def simulate_power(design: Any, model: str = "quadratic", *, effect_sd: float = 2.0, alpha: float = 0.05,
                    draws: int = 1000, seed: int = 1, family: str = "gaussian", baseline: float | None = None,
                    variance_ratio: float | None = None, whole_plots: Any = None, workers: int = 1,
-                   terms: Any = None, intercept: bool = True) -> PowerSimulation:
+                   terms: Any = None, intercept: bool = True, executor: Any = None) -> PowerSimulation:
     """Monte Carlo power of each model coefficient of a design (see the module docstring).
 
     Parameters
@@ -332,6 +332,10 @@ def simulate_power(design: Any, model: str = "quadratic", *, effect_sd: float = 
         Worker processes for the draws (1 to 64); the result does not depend on it.
     terms, intercept
         A list of terms instead of ``model``, as :func:`~rsm_lrg.model.evaluate.evaluate_design`.
+    executor : concurrent.futures.Executor, optional
+        Where the blocks of draws run instead of ``workers`` local processes: a
+        ``ProcessPoolExecutor`` or a Dask ``Client.get_executor()`` (a cluster); the blocks and
+        their seeds are the same, so the result does not depend on it.
 
     Returns
     -------
@@ -422,7 +426,9 @@ def simulate_power(design: Any, model: str = "quadratic", *, effect_sd: float = 
     starts = list(range(0, draws, size))
     stops = [min(s + size, draws) for s in starts]
     t0 = time.perf_counter()
-    if workers > 1 and len(starts) > 1:
+    if executor is not None:
+        parts = list(executor.map(_chunk, [setup] * len(starts), [seed] * len(starts), starts, stops))
+    elif workers > 1 and len(starts) > 1:
         from concurrent.futures import ProcessPoolExecutor
 
         with ProcessPoolExecutor(max_workers=min(workers, len(starts))) as ex:

@@ -101,3 +101,24 @@ def test_binomial_with_whole_plots_is_refused(split_plot, capsys):
 def test_power_takes_one_design(factorial, capsys):
     line = error_line(capsys, main(["evaluate", str(factorial), str(factorial), "--power"]))
     assert "--power" in line or "once" in line
+
+
+def test_a_dask_scheduler_gives_the_numbers_of_one_process(split_plot, capsys):
+    """``--scheduler``: the blocks of draws run on a real local Dask cluster (two worker
+    processes) and give the same JSON as one process."""
+    distributed = pytest.importorskip("distributed")
+    argv = ["evaluate", str(split_plot), "--model", "linear", "--power", "--draws", "40", "--seed", "3"]
+    one = _json(capsys, argv)
+    with distributed.LocalCluster(processes=True, n_workers=2, threads_per_worker=1, host="127.0.0.1",
+                                  dashboard_address=None) as cluster:
+        dask = _json(capsys, argv + ["--scheduler", cluster.scheduler_address])
+    assert {k: v for k, v in dask.items() if k != "seconds"} == {k: v for k, v in one.items() if k != "seconds"}
+
+
+@pytest.mark.parametrize("extra, option", [
+    (["--scheduler", "tcp://127.0.0.1:9"], "--scheduler"),  # without --power
+    (["--power", "--workers", "2", "--scheduler", "tcp://127.0.0.1:9"], "--scheduler"),
+])
+def test_scheduler_options_are_checked(factorial, capsys, extra, option):
+    line = error_line(capsys, main(["evaluate", str(factorial), "--model", "linear", *extra]))
+    assert option in line
