@@ -657,6 +657,27 @@ def _run_tasks(stage: str, args: tuple, specs: Mapping[str, tuple], work: Sequen
     return results
 
 
+class _NoBar:
+    def update(self, n: int) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def _progress_bar(total: int, show: bool, desc: str) -> Any:
+    """A tqdm bar on stderr (the ``parallel`` extra), or one that shows nothing."""
+    if not show:
+        return _NoBar()
+    try:
+        from tqdm import tqdm
+    except ImportError:
+        return _NoBar()
+    import sys
+
+    return tqdm(total=total, unit="run", unit_scale=True, desc=desc, file=sys.stderr, dynamic_ncols=True)
+
+
 def _lerp(a: float, b: float, t: float) -> float:
     """NumPy's linear interpolation of its quantiles (``numpy.quantile``, method linear), so
     that the streamed quantiles equal those of the kept runs bit for bit."""
@@ -674,13 +695,11 @@ def _streamed(fits: Mapping[str, Any], setting: Mapping[str, Any], sds: Mapping[
     bin's least and largest value), the bin that holds each wanted order statistic found from
     the counts, narrowed again inside that bin while it holds more than
     :data:`MAX_BIN_VALUES` distinct runs, and its values finally collected and sorted."""
-    from ..surrogate.progress import progress_bar
-
     n = int(sum(sizes))
     task_args = (fits, setting, sds, model_uncertainty)
 
     def run(stage: str, work: Sequence[tuple], what: str) -> list:
-        bar = progress_bar(n, progress, desc=f"simulated runs ({what})")
+        bar = _progress_bar(n, progress, f"simulated runs ({what})")
         try:
             return _run_tasks(stage, task_args, dict(specs), work, children, sizes, executor, bar)
         finally:
