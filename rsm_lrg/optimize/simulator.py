@@ -633,7 +633,7 @@ def stream_task(stage: str, fits: Mapping[str, Any], setting: Mapping[str, Any],
     raise ValueError(f"unknown stage {stage!r}")
 
 
-def _run_tasks(stage: str, args: tuple, specs: Mapping[str, tuple], work: Sequence[tuple], children: Sequence[Any],
+def _run_tasks(stage: str, args: tuple[Any, Any, Any, bool], specs: Mapping[str, tuple], work: Sequence[tuple], children: Sequence[Any],
                sizes: Sequence[int], executor: Any, bar: Any) -> list:
     """``stream_task(stage, ...)`` over groups of :data:`TASK_BLOCKS` blocks, here or on the
     ``executor``; the results in block order (whatever order they finish in)."""
@@ -644,7 +644,9 @@ def _run_tasks(stage: str, args: tuple, specs: Mapping[str, tuple], work: Sequen
     results: list[Any] = [None] * len(groups)
     if executor is None:
         for i, (a, b) in enumerate(groups):
-            results[i] = stream_task(stage, *args, children[a:b], sizes[a:b], specs, work)
+            fits, setting, sds, model_uncertainty = args
+            results[i] = stream_task(stage, fits, setting, sds, model_uncertainty, children[a:b], sizes[a:b], specs,
+                                     work)
             bar.update(int(sum(sizes[a:b])))
         return results
     futures = {executor.submit(stream_task, stage, *args, children[a:b], sizes[a:b], specs, work): i

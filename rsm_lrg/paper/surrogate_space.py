@@ -121,7 +121,7 @@ class SurrogateDesignSpace:
             out.append(f"  {p['name']}: {p['description']}")
         if self.nodes and self.nodes[0].get("limits"):
             names_ = list(self.space.factors)
-            for resp_, (lo_s, hi_s) in self.space.specs.items():
+            for resp_, (_lo_s, hi_s) in self.space.specs.items():
                 side = "upper" if hi_s is not None else "lower"
                 vals = [(nd["limits"][resp_][side], nd) for nd in self.nodes if nd["limits"][resp_][side] is not None]
                 if not vals:

@@ -67,10 +67,12 @@ def _attribution(nodes: list, factors: list) -> dict | None:
                          "p": f"{nd['p']:.3f} ± {nd['p_se']:.3f}", "variance": fmt_num(a["variance"]),
                          "shares": [(k, f"{a[k]:.3f}") for k, _ in ATTRIBUTION_SOURCES],
                          "dominant": a["dominant"], "dominant_label": labels[a["dominant"]]})
+        fig = _attribution_figure(nodes, r, factors)
+        width = int(round(float(fig.get_size_inches()[0]) * 96))  # its natural size in CSS pixels
         out.append({"response": r, "rows": rows,
                     "counts": [(labels[k], c) for k, c in counts.items()],
-                    "figure": {"uri": to_data_uri(_attribution_figure(nodes, r, factors)),
-                               "title": f"Variance shares of {r} per setting"}})
+                    "figure": {"uri": to_data_uri(fig), "title": f"Variance shares of {r} per setting",
+                               "width": width}})
     return {"factors": factors, "sources": [lab for _, lab in ATTRIBUTION_SOURCES], "responses": out}
 
 
