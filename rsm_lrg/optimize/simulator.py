@@ -30,7 +30,22 @@ Each rate has its Monte Carlo standard error √(p(1-p)/N).
 Reproducible: the draws come in fixed blocks of :data:`BLOCK` runs, block ``b`` from the
 generator of ``SeedSequence(seed).spawn`` child ``b``, so a seed gives bit-identical numbers
 however the blocks are scheduled: in this process or on the workers of an ``executor`` (a
-process pool: ``predict --workers N``).
+process pool: ``predict --workers N``; a Dask client's executor: ``predict --scheduler``).
+
+**Streaming** (more than :data:`MAX_KEPT` runs, or ``stream=True``): the runs are not kept. The
+blocks go out in tasks of :data:`TASK_BLOCKS`; pass 1 returns per block and response the count,
+mean, sum of squared deviations, least and largest value and the counts outside the spec (and
+per block the runs outside any spec), merged on the caller's side block by block *in block
+order* (Chan, Golub and LeVeque's pairwise update), so the numbers do not depend on the worker
+count or on the order in which tasks finish. The quantiles are **exact** — the order statistics
+``numpy.quantile`` (method linear) would interpolate, found without sorting the runs: pass 2
+counts the finite runs in :data:`HIST_BINS` equal bins over [least, largest] (integer counts,
+and each bin's least and largest run); the bin that holds each wanted order statistic follows
+from the cumulative counts; a bin with more than :data:`MAX_BIN_VALUES` runs is binned again
+over its own range (another pass); a last pass collects the runs of those bins only, which are
+sorted. Every pass redraws the same blocks from their seeds. Memory per task: a few histograms
+(1.5 MiB each) and the collected bins' runs, whatever N. The mean and SD equal the kept runs'
+to rounding (a different order of summation); everything else is equal bit for bit.
 """
 
 from __future__ import annotations

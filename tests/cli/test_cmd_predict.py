@@ -193,3 +193,9 @@ def test_workers_and_scheduler_are_exclusive(capsys):
     line = error_line(capsys, main(["predict", HELI, "--response", "ave", *FACTORS, *AT, "--draws", "10",
                                     "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"]))
     assert "--scheduler" in line and "not allowed with" in line
+
+
+def test_an_unreachable_scheduler_is_one_line(capsys):
+    line = error_line(capsys, main(["predict", HELI, "--response", "ave", *FACTORS, *AT, "--draws", "10", "--seed", "1",
+                                    "--scheduler", "tcp://127.0.0.1:1", "--scheduler-timeout", "2"]))
+    assert line.startswith("error: --scheduler")
