@@ -610,9 +610,9 @@ def stream_task(stage: str, fits: Mapping[str, Any], setting: Mapping[str, Any],
                 v = y[ok]
                 m = int(v.size)
                 mean = float(v.mean()) if m else 0.0
-                d = v - mean
+                d = v - mean  # summed by numpy's pairwise sum, not BLAS (whose threads would change the bits)
                 lo, hi = specs.get(r, (None, None))
-                recs[r] = (int(y.size), m, mean, float(np.dot(d, d)), float(v.min()) if m else math.inf,
+                recs[r] = (int(y.size), m, mean, float(np.sum(d * d)), float(v.min()) if m else math.inf,
                            float(v.max()) if m else -math.inf,
                            int(np.count_nonzero(v < lo)) if lo is not None else 0,
                            int(np.count_nonzero(v > hi)) if hi is not None else 0)

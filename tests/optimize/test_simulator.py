@@ -214,14 +214,14 @@ def test_streamed_statistics_equal_the_kept_runs(linear, monkeypatch, capsys):
 def test_streamed_numbers_do_not_depend_on_the_workers(linear, monkeypatch):
     """The streamed simulation in this process, on a pool of two processes and on a real local
     Dask cluster of two workers: bit-identical results (the blocks, not the workers, define the
-    stream; the merge is in block order). Tasks of two blocks: four tasks per pass."""
+    stream; the merge is in block order). Tasks of two blocks: three tasks per pass."""
     from concurrent.futures import ProcessPoolExecutor
 
     from rsm_lrg.optimize import simulator as sim
 
     distributed = pytest.importorskip("distributed")
     monkeypatch.setattr(sim, "TASK_BLOCKS", 2)
-    kw = dict(draws=6 * 65536 + 3, seed=4, factor_sd={"b": 0.2}, spec={"y": (None, 11.5)}, stream=True)
+    kw = dict(draws=4 * 65536 + 3, seed=4, factor_sd={"b": 0.2}, spec={"y": (None, 11.5)}, stream=True)
     setting = {"a": 50, "b": 5, "c": 1}
     here = simulate(linear, setting, **kw).to_dict()
     with ProcessPoolExecutor(max_workers=2) as pool:
