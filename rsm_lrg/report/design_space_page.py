@@ -46,7 +46,7 @@ def _attribution_figure(nodes: list, response: str, factors: list) -> Any:
     return fig
 
 
-def _attribution(nodes: list, factors: list) -> dict | None:
+def _attribution(nodes: list, factors: list, specs: dict | None = None, target: float | None = None) -> dict | None:
     """The attribution section's data: per response the rows and the count of settings each
     source dominates, and the figures."""
     from .html import fmt_num
@@ -56,6 +56,12 @@ def _attribution(nodes: list, factors: list) -> dict | None:
         return None
     responses = list(nodes[0]["attribution"])
     labels = dict(ATTRIBUTION_SOURCES)
+    # the limit each setting's runs stay within with the target probability: the upper one, or the
+    # lower one for a specification with a lower limit only
+    side = {}
+    for r in responses:
+        lo, hi = (specs or {}).get(r, (None, None))
+        side[r] = "lower" if hi is None and lo is not None else "upper"
     out = []
     for r in responses:
         rows = []
@@ -65,11 +71,13 @@ def _attribution(nodes: list, factors: list) -> dict | None:
             counts[a["dominant"]] = counts.get(a["dominant"], 0) + 1
             rows.append({"setting": [fmt_num(nd["setting"][f]) for f in factors],
                          "p": f"{nd['p']:.3f} ± {nd['p_se']:.3f}", "variance": fmt_num(a["variance"]),
+                         "limit": fmt_num((nd.get("limits") or {}).get(r, {}).get(side.get(r, "upper"))),
                          "shares": [(k, f"{a[k]:.3f}") for k, _ in ATTRIBUTION_SOURCES],
                          "dominant": a["dominant"], "dominant_label": labels[a["dominant"]]})
         fig = _attribution_figure(nodes, r, factors)
         width = int(round(float(fig.get_size_inches()[0]) * 96))  # its natural size in CSS pixels
-        out.append({"response": r, "rows": rows,
+        out.append({"response": r, "rows": rows, "limit_label": f"{side[r]} limit, p {target:g}"
+                    if target is not None else f"{side[r]} limit",
                     "counts": [(labels[k], c) for k, c in counts.items()],
                     "figure": {"uri": to_data_uri(fig), "title": f"Variance shares of {r} per setting",
                                "width": width}})
@@ -143,7 +151,7 @@ def design_space_html(ds: Any, *, title: str | None = None, source_name: str | N
         figures.append({"uri": to_data_uri(_map_figure(m, ds.probability, ds.window)),
                         "title": f"P(every response in spec) over {m['x']} and {m['y']}"})
     window = None if ds.window is None else [(k, fmt_num(lo), fmt_num(hi)) for k, (lo, hi) in ds.window.items()]
-    shares = _attribution(list(attribution or []), list(ds.factors))
+    shares = _attribution(list(attribution or []), list(ds.factors), dict(ds.specs), ds.probability)
     toc = [("summary", "Summary"), ("window", "Operating window"), ("maps", "Probability maps")]
     if shares is not None:
         toc.append(("attribution", "Variance attribution"))

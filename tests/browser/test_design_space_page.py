@@ -43,6 +43,7 @@ def test_surrogate_page_shows_the_variance_attribution(visit, tmp_path, capsys):
     import json
 
     from rsm_lrg.cli import main
+    from rsm_lrg.report.html import fmt_num
 
     page = tmp_path / "surrogate.html"
     argv = ["design-space", "--surrogate", "--factor", "velocity_m_s=0.4:0.6", "--factor", "acceleration_m_s2=20:40",
@@ -69,6 +70,7 @@ def test_surrogate_page_shows_the_variance_attribution(visit, tmp_path, capsys):
         top = max(("parameters", "tolerances", "noise"), key=lambda k: a[k])
         assert row["marked"] == [top] and row["dominant"] == label[top] == label[a["dominant"]]
         assert row["cells"][2] == f"{nd['p']:.3f} ± {nd['p_se']:.3f}"
+        assert row["cells"][3] == fmt_num(nd["limits"]["tcr_c_per_min"]["upper"])  # κ's limit met with p 0.9
         counts[label[top]] += 1
     shown = v.page.evaluate("() => Object.fromEntries(Array.from(document.querySelectorAll('.dominant-count')).map("
                             "e => [e.dataset.source, Number(e.innerText)]))")
