@@ -84,7 +84,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True)
     parser.add_argument("-o", "--output", default=None, metavar="PAGE.html",
-                        help="also write the page of probability maps and the window")
+                        help="also write the page of probability maps and the window (with --surrogate also the variance "
+                             "attribution per setting)")
     add_json(parser)
     add_force(parser)
 
@@ -229,7 +230,8 @@ def _run_surrogate(args: argparse.Namespace) -> int:
     if args.output:
         from ..report.design_space_page import write_design_space_page
 
-        write_design_space_page(result.space, args.output, force=args.force, source_name="the calibrated surrogate")
+        write_design_space_page(result.space, args.output, force=args.force, source_name="the calibrated surrogate",
+                                attribution=result.nodes)
     args.data = f"the calibrated surrogate ({args.calibration or 'data/calibration.toml'})"
     print_summary_or_json(args, result)
     return 0

@@ -16,6 +16,7 @@ from .options import (
     add_model_refinements,
     add_random_effect_options,
     check_at_settings,
+    number,
     probability,
     whole_number,
 )
@@ -56,11 +57,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="specification limits of a response for the simulator (repeatable; Y=:HIGH or Y=LOW: "
                              "for one limit)")
     parser.add_argument("--draws", type=_draws, default=None, metavar="N",
-                        help="simulate N runs at each setting (at most 1e7)")
+                        help="simulate N runs at each setting (at most 1e9; above 1e7 the runs are not kept: the "
+                             "statistics are streamed, the quantiles still exact)")
     parser.add_argument("--seed", type=whole_number(0), default=None, metavar="S",
                         help="seed of the simulator (default: a fresh one, printed so that the run can be repeated)")
-    parser.add_argument("--workers", type=whole_number(1, 256), default=None, metavar="N",
-                        help="draw the simulator's runs in N local processes (the numbers do not depend on N)")
+    where_runs = parser.add_mutually_exclusive_group()
+    where_runs.add_argument("--workers", type=whole_number(1, 256), default=None, metavar="N",
+                            help="draw the simulator's runs in N local processes (the numbers do not depend on N)")
+    where_runs.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                            help="draw the simulator's runs on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786; "
+                                 "the numbers are those of one process)")
+    parser.add_argument("--scheduler-timeout", type=number(0, 3600, above=True), default=60.0, metavar="S",
+                        help="seconds the --scheduler has to answer before the run is refused (default 60)")
+    bar = parser.add_mutually_exclusive_group()
+    bar.add_argument("--progress", dest="progress", action="store_true", default=None,
+                     help="always show the simulator's progress bar on stderr")
+    bar.add_argument("--no-progress", dest="progress", action="store_false",
+                     help="never show it (default: shown above 1e7 draws)")
     parser.add_argument("--no-model-uncertainty", action="store_true",
                         help="the simulator takes the fitted coefficients and residual SD as known")
     add_factor_options(parser)
@@ -87,8 +100,7 @@ def _draws(text: str) -> int:
     if not math.isfinite(v) or v != int(v) or v < 1:
         raise argparse.ArgumentTypeError(f"expected a whole number of runs >= 1, got {q}")
     if v > MAX_DRAWS:
-        raise argparse.ArgumentTypeError(f"at most {MAX_DRAWS:.0e} runs (every run is kept for exact quantiles), "
-                                         f"got {q}")
+        raise argparse.ArgumentTypeError(f"at most {MAX_DRAWS:.0e} runs, got {q}")
     return int(v)
 
 
@@ -136,10 +148,12 @@ def run(args: argparse.Namespace) -> int:
     specs = [model_spec(response_options(args, i)) for i in range(len(responses))]  # bad options named first
     if args.at:
         check_at_settings(args.at)
-    if args.draws is None and (args.seed is not None or args.no_model_uncertainty or args.workers):
+    if args.draws is None and (args.seed is not None or args.no_model_uncertainty or args.workers
+                               or args.scheduler is not None or args.progress is not None):
         from ..io import InputError
 
-        raise InputError("--seed, --workers and --no-model-uncertainty belong to the simulator: give --draws N too")
+        raise InputError("--seed, --workers, --scheduler, --progress and --no-model-uncertainty belong to the "
+                         "simulator: give --draws N too")
     if args.spec and args.draws is None:
         from ..io import InputError
 
@@ -167,19 +181,39 @@ def run(args: argparse.Namespace) -> int:
         import secrets
 
         seed = secrets.randbelow(2**32)  # printed with the result: the run can be repeated
-    from .processes import close_pool, process_pool
+    import contextlib
 
-    executor = process_pool(args.workers) if args.workers and args.workers > 1 and args.draws else None
+    from .processes import close_pool, connect_scheduler, process_pool, scheduler_lost, watch_workers
+
+    executor = client = None
     ok = False
     try:
-        with about_file(args.points or args.data):
-            report = predict_points(fits, points, confidence=args.confidence, tolerance=args.tolerance,
-                                    factor_sd=args.factor_sd, spec=args.spec, draws=args.draws, seed=seed,
-                                    model_uncertainty=not args.no_model_uncertainty, executor=executor)
+        if args.draws and args.workers and args.workers > 1:
+            executor = process_pool(args.workers)
+        elif args.draws and args.scheduler is not None:  # an empty address is refused, not run locally
+            client = connect_scheduler(args.scheduler, args.scheduler_timeout)
+            executor = client.get_executor()
+        watch = (watch_workers(client, args.scheduler, args.scheduler_timeout) if client is not None
+                 else contextlib.nullcontext())
+        with about_file(args.points or args.data), watch:
+            try:
+                report = predict_points(fits, points, confidence=args.confidence, tolerance=args.tolerance,
+                                        factor_sd=args.factor_sd, spec=args.spec, draws=args.draws, seed=seed,
+                                        model_uncertainty=not args.no_model_uncertainty, executor=executor,
+                                        progress=args.progress)
+            except (ValueError, TypeError, KeyboardInterrupt, SystemExit):
+                raise
+            except Exception as exc:
+                if client is None:
+                    raise
+                raise scheduler_lost(args.scheduler, exc) from None
         ok = True
     finally:
-        if executor is not None:
+        if executor is not None and client is None:
             close_pool(executor, ok)
+        if client is not None:
+            with contextlib.suppress(Exception):
+                client.close(timeout=5)
     print_notes(dict.fromkeys(str(n) for n in notes))
     print_summary_or_json(args, report, extra={"seed": seed} if args.draws is not None else None)
     return 0

@@ -109,7 +109,8 @@ class PredictionReport:
 def predict_points(fits: Mapping[str, Any], points: Any, *, confidence: float = 0.95, tolerance: float | None = None,
                    factor_sd: Mapping[str, Any] | Sequence[str] | None = None,
                    spec: Mapping[str, Any] | Sequence[str] | None = None, draws: int | None = None,
-                   seed: int | None = None, model_uncertainty: bool = True, executor: Any = None) -> PredictionReport:
+                   seed: int | None = None, model_uncertainty: bool = True, executor: Any = None,
+                   progress: bool | None = None) -> PredictionReport:
     """Predictions with intervals, POE and (with ``draws``) simulated runs at each point.
 
     Parameters
@@ -134,6 +135,9 @@ def predict_points(fits: Mapping[str, Any], points: Any, *, confidence: float = 
         Whether the simulator draws the coefficients from their sampling distribution.
     executor : concurrent.futures.Executor, optional
         Where the simulator's blocks run (the numbers do not depend on it).
+    progress : bool, optional
+        The simulator's progress bar on stderr (default: for more than
+        :data:`rsm_lrg.optimize.simulator.MAX_KEPT` runs).
 
     Returns
     -------
@@ -164,7 +168,7 @@ def predict_points(fits: Mapping[str, Any], points: Any, *, confidence: float = 
         children = np.random.SeedSequence(seed).spawn(len(frame))
         for i, s in enumerate(settings):
             res = simulate(fits, s, draws=draws, seed=children[i], factor_sd=sds, spec=spec,
-                           model_uncertainty=model_uncertainty, executor=executor)
+                           model_uncertainty=model_uncertainty, executor=executor, progress=progress)
             sims.append(_with_seed(res, seed))
     return PredictionReport(points=settings, predictions=predictions, confidence=float(confidence),
                             tolerance=None if tolerance is None else float(tolerance), factor_sd=sds,

@@ -74,7 +74,11 @@ class SurrogateDesignSpace:
         Map, window and probabilities (:class:`rsm_lrg.optimize.design_space.DesignSpace`).
     nodes : list of dict
         Per grid node: the setting, ``p``, ``p_se`` and, with the attribution, per response
-        ``{"variance", "parameters", "tolerances", "noise", "interaction", "dominant"}``.
+        ``{"variance", "parameters", "tolerances", "noise", "interaction", "dominant"}``, and
+        ``limits``: per response the ``upper`` limit that the setting's runs stay at or below
+        with the target probability (at least that fraction of its draws; the ``probability``
+        quantile, inverted CDF) and the ``lower`` one they stay at or above (None where a
+        run's response is not finite).
     parameters : list of dict
         How each varied input was drawn (``name``, ``kind``, ``distribution`` and its numbers).
     draws : int
@@ -115,6 +119,17 @@ class SurrogateDesignSpace:
             out.append("Held at Table 3's centre: " + ", ".join(f"{k} = {format_g(v)}" for k, v in self.held.items()))
         for p in self.parameters:
             out.append(f"  {p['name']}: {p['description']}")
+        if self.nodes and self.nodes[0].get("limits"):
+            names_ = list(self.space.factors)
+            for resp_, (_lo_s, hi_s) in self.space.specs.items():
+                side = "upper" if hi_s is not None else "lower"
+                vals = [(nd["limits"][resp_][side], nd) for nd in self.nodes if nd["limits"][resp_][side] is not None]
+                if not vals:
+                    continue
+                v_, nd_ = (min if side == "upper" else max)(vals, key=lambda t: t[0])
+                where_ = ", ".join(f"{f}={format_g(nd_['setting'][f])}" for f in names_)
+                out.append(f"{'Lowest upper' if side == 'upper' else 'Highest lower'} limit of {resp_} met with "
+                           f"probability {self.space.probability:g}: {format_g(v_)} at {where_}")
         if self.nodes and "attribution" in self.nodes[0]:
             resp = next(iter(self.nodes[0]["attribution"]))
             out.append(f"Variance attribution of {resp} (first-order shares: parameters / tolerances / run noise; "
@@ -418,7 +433,13 @@ def surrogate_design_space(factors: Mapping[str, tuple[float, float]], specs: Ma
     nodes = []
     for i in range(n_nodes):
         nd: dict[str, Any] = {"setting": {f: float(mesh[i, j]) for j, f in enumerate(names)}, "p": float(p[i]),
-                              "p_se": float(p_se[i])}
+                              "p_se": float(p_se[i]), "limits": {}}
+        for r in specs:  # the limits this setting meets with the target probability, one side at a time
+            v = noisy_a[r].to_numpy(dtype=float)[i * n:(i + 1) * n]
+            v = np.where(np.isnan(v), np.inf, v)
+            lo_q, hi_q = np.quantile(v, [1.0 - float(probability), float(probability)], method="inverted_cdf")
+            nd["limits"][r] = {"upper": float(hi_q) if math.isfinite(hi_q) else None,
+                               "lower": float(lo_q) if math.isfinite(lo_q) else None}
         if attribution:
             nd["attribution"] = {}
             for r in specs:

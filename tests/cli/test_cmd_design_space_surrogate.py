@@ -57,3 +57,23 @@ def test_surrogate_only_options_are_refused_on_data(capsys):
     assert line.startswith("error: --param-sd: only with --surrogate")
     line = error_line(capsys, main(["design-space", "--spec", "tcr_c_per_min=:0.035"]))
     assert line.startswith("error: DATA.csv")
+
+
+def test_the_table3_box_gives_the_same_json_on_one_and_two_workers(capsys):
+    """All three of the paper's varied factors (leaf thickness, velocity, acceleration; stroke at
+    Table 3's centre), a tiny grid: the same seed gives the same JSON on one worker and two."""
+    argv = ["design-space", "--surrogate", "--factor", "thickness_m=1e-4:5e-4", "--factor", "velocity_m_s=0.4:0.6",
+            "--factor", "acceleration_m_s2=20:40", "--spec", "tcr_c_per_min=:0.035", "--grid", "2", "--draws", "4",
+            "--seed", "7", "--param-sd", "thickness_m=5e-6", "--json", "-"]
+    outs = []
+    for workers in ("1", "2"):
+        assert main(argv + ["--workers", workers]) == 0
+        d = json.loads(capsys.readouterr().out)
+        assert d["surrogate"].pop("workers") == int(workers)
+        d["surrogate"].pop("seconds")
+        outs.append(d)
+    assert outs[0] == outs[1]
+    nodes = outs[0]["surrogate"]["nodes"]
+    assert len(nodes) == 8 and outs[0]["surrogate"]["runs"] == 8 * 4 * 5
+    assert outs[0]["surrogate"]["held"] == {"stroke_m": 0.05}
+    assert all(set(nd["attribution"]["tcr_c_per_min"]) >= {"parameters", "tolerances", "noise"} for nd in nodes)

@@ -167,3 +167,35 @@ def test_one_and_two_workers_give_the_same_numbers(capsys):
     assert one == two
     line = error_line(capsys, main(["predict", HELI, "--response", "ave", *FACTORS, *AT, "--workers", "2"]))
     assert "--workers" in line
+
+
+@pytest.mark.slow
+def test_a_dask_scheduler_gives_the_numbers_of_one_process(capsys):
+    """``--scheduler ADDRESS``: the simulator's blocks drawn on a real local Dask cluster of two
+    workers give the JSON of one process."""
+    distributed = pytest.importorskip("distributed")
+    argv = ["predict", HELI, "--response", "ave", *FACTORS, *AT, "--draws", "140000", "--seed", "3",
+            "--factor-sd", "A=0.3", "--spec", "ave=365:385", "--json", "-"]
+    one = _json(capsys, argv)
+    with distributed.LocalCluster(processes=True, n_workers=2, threads_per_worker=1, host="127.0.0.1",
+                                  dashboard_address=None) as cluster:
+        dask = _json(capsys, argv + ["--scheduler", cluster.scheduler_address, "--progress"])
+    assert dask == one
+
+
+@pytest.mark.parametrize("extra", [["--scheduler", "tcp://127.0.0.1:1"], ["--progress"]])
+def test_simulator_options_need_draws(capsys, extra):
+    line = error_line(capsys, main(["predict", HELI, "--response", "ave", *FACTORS, *AT, *extra]))
+    assert line.startswith("error: --seed, --workers, --scheduler") and "--draws" in line
+
+
+def test_workers_and_scheduler_are_exclusive(capsys):
+    line = error_line(capsys, main(["predict", HELI, "--response", "ave", *FACTORS, *AT, "--draws", "10",
+                                    "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"]))
+    assert "--scheduler" in line and "not allowed with" in line
+
+
+def test_an_unreachable_scheduler_is_one_line(capsys):
+    line = error_line(capsys, main(["predict", HELI, "--response", "ave", *FACTORS, *AT, "--draws", "10", "--seed", "1",
+                                    "--scheduler", "tcp://127.0.0.1:1", "--scheduler-timeout", "2"]))
+    assert line.startswith("error: --scheduler")

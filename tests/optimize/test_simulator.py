@@ -180,3 +180,52 @@ def test_same_numbers_on_two_workers(linear):
         b, runs_b = simulate_runs(linear, {"a": 50, "b": 5, "c": 1}, executor=pool, **kw)
     np.testing.assert_array_equal(runs_a["y"], runs_b["y"])
     assert a.to_dict() == b.to_dict()
+
+
+def test_streamed_statistics_equal_the_kept_runs(linear, monkeypatch, capsys):
+    """Above MAX_KEPT runs the statistics are streamed: the quantiles are the kept runs' to the
+    last bit (also when the histogram must be split again inside a bin: MAX_BIN_VALUES set to 8
+    forces several levels), the counts equal, the mean and SD to rounding."""
+    from rsm_lrg.optimize import simulator as sim
+
+    kw = dict(draws=3 * 65536 + 17, seed=9, factor_sd={"a": 1.0}, spec={"y": (9.0, 11.0)})
+    setting = {"a": 50, "b": 5, "c": 1}
+    kept, runs = simulate_runs(linear, setting, **kw)
+    assert runs["y"].size == kw["draws"]
+    for max_bin in (sim.MAX_BIN_VALUES, 8):
+        monkeypatch.setattr(sim, "MAX_BIN_VALUES", max_bin)
+        streamed, none = simulate_runs(linear, setting, stream=True, progress=True, **kw)
+        assert none == {}
+        a, b = kept.responses["y"], streamed.responses["y"]
+        assert b["quantiles"] == a["quantiles"] == {f"{100 * q:g}%": float(x) for q, x in
+                                                    zip(sim.QUANTILES, np.quantile(runs["y"], sim.QUANTILES))}
+        for key in ("ppm", "ppm_below", "ppm_above", "ppm_se", "invalid"):
+            assert b[key] == a[key], key
+        assert b["mean"] == pytest.approx(a["mean"], rel=1e-14) and b["sd"] == pytest.approx(a["sd"], rel=1e-12)
+        assert streamed.ppm_any == kept.ppm_any and any("not kept" in n for n in streamed.notes)
+        assert "simulated runs (moments)" in capsys.readouterr().err  # the progress bar
+    # a response whose runs are all equal (no noise, no uncertainty): every quantile is that value
+    flat = simulate(linear, setting, draws=1000, seed=1, model_uncertainty=False, stream=True)
+    assert flat.responses["y"]["sd"] > 0  # the residual noise is still drawn
+    assert MAX_DRAWS >= 10**8
+
+
+@pytest.mark.slow
+def test_streamed_numbers_do_not_depend_on_the_workers(linear, monkeypatch):
+    """The streamed simulation in this process, on a pool of two processes and on a real local
+    Dask cluster of two workers: bit-identical results (the blocks, not the workers, define the
+    stream; the merge is in block order). Tasks of two blocks: three tasks per pass."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    from rsm_lrg.optimize import simulator as sim
+
+    distributed = pytest.importorskip("distributed")
+    monkeypatch.setattr(sim, "TASK_BLOCKS", 2)
+    kw = dict(draws=4 * 65536 + 3, seed=4, factor_sd={"b": 0.2}, spec={"y": (None, 11.5)}, stream=True)
+    setting = {"a": 50, "b": 5, "c": 1}
+    here = simulate(linear, setting, **kw).to_dict()
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        assert simulate(linear, setting, executor=pool, **kw).to_dict() == here
+    with distributed.LocalCluster(processes=True, n_workers=2, threads_per_worker=1, host="127.0.0.1",
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        assert simulate(linear, setting, executor=client.get_executor(), **kw).to_dict() == here

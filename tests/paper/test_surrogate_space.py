@@ -49,6 +49,13 @@ def test_noise_only_probability_is_the_exact_normal_one():
         assert a["noise"] == pytest.approx(1.0) and a["parameters"] == 0.0 and a["dominant"] == "noise"
         assert math.sqrt(a["variance"]) == pytest.approx(sigma, rel=0.15)
     assert r.space.window == {"velocity_m_s": (0.49, 0.50)}  # p >= 0.3 at the two slower settings only
+    # the limit met with the target probability: the 0.3-quantile of the node's runs; the spec is met with p >= 0.3
+    # exactly where it is at least that limit, and that limit against the exact normal quantile
+    for nd, k in zip(r.nodes, k0):
+        lim = nd["limits"]["tcr_c_per_min"]["upper"]
+        assert (nd["p"] >= 0.3) == (upper >= lim)
+        assert lim == pytest.approx(k + sigma * stats.norm.ppf(0.3), abs=4 * sigma / math.sqrt(n) / 0.35)
+    assert "Lowest upper limit of tcr_c_per_min met with probability 0.3" in r.summary()
 
 
 def test_first_order_shares_recover_known_indices():
