@@ -104,11 +104,45 @@ def _pairs(items: list[str] | None, option: str) -> dict[str, str]:
     return out
 
 
-def run(args: argparse.Namespace) -> int:
+def _specs(items: list[str], responses: list[str] | None) -> dict[str, tuple[float | None, float | None]]:
+    """``--spec Y=LOW:HIGH`` (repeatable) as ``{Y: (low, high)}`` (an open side None); each
+    name once and, with ``responses``, one of them."""
     from ..errors import ParameterError
     from ..io import InputError, quote_user_value
-    from ..optimize.design_space import design_space, parse_spec
+    from ..optimize.design_space import parse_spec
     from .errors import option_error
+
+    specs: dict[str, tuple[float | None, float | None]] = {}
+    for text in items:
+        try:
+            name, lo, hi = parse_spec(text)
+        except (ParameterError, ValueError) as exc:
+            raise option_error(exc) from None
+        if responses is not None and name not in responses:
+            raise InputError(f"--spec: {quote_user_value(name)} is not a --response ({', '.join(responses)})")
+        if name in specs:
+            raise InputError(f"--spec: {quote_user_value(name)} is given twice")
+        specs[name] = (lo, hi)
+    return specs
+
+
+def _numbers(items: list[str] | None, option: str) -> dict[str, float]:
+    """``NAME=NUMBER`` pairs of ``option`` (``--factor-sd``, ``--param-sd``) as floats."""
+    from ..io import InputError, quote_user_value
+
+    out: dict[str, float] = {}
+    for name, value in _pairs(items, option).items():
+        try:
+            out[name] = float(value)
+        except ValueError:
+            raise InputError(f"{option}: {quote_user_value(name)}: expected a number, got "
+                             f"{quote_user_value(value)}") from None
+    return out
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..io import InputError
+    from ..optimize.design_space import design_space
     from .options import check_distinct_responses, response_options
     from .paths import print_notes, print_summary_or_json, read_input
     from .responses import fit_responses
@@ -131,24 +165,8 @@ def run(args: argparse.Namespace) -> int:
     args.draws = 1000 if args.draws is None else args.draws
     responses = list(args.response)
     check_distinct_responses(responses)
-    specs: dict = {}
-    for text in args.spec:
-        try:
-            name, lo, hi = parse_spec(text)
-        except ParameterError as exc:
-            raise option_error(exc) from None
-        if name not in responses:
-            raise InputError(f"--spec: {quote_user_value(name)} is not a --response ({', '.join(responses)})")
-        if name in specs:
-            raise InputError(f"--spec: {quote_user_value(name)} is given twice")
-        specs[name] = (lo, hi)
-    sds: dict[str, float] = {}
-    for name, value in _pairs(args.factor_sd, "--factor-sd").items():
-        try:
-            sds[name] = float(value)
-        except ValueError:
-            raise InputError(f"--factor-sd: {quote_user_value(name)}: expected a number, got "
-                             f"{quote_user_value(value)}") from None
+    specs = _specs(args.spec, responses)
+    sds = _numbers(args.factor_sd, "--factor-sd")
     held = _pairs(args.bound, "--bound")
     specs_models = [model_spec(response_options(args, i)) for i in range(len(responses))]
     data = read_input(args)
@@ -168,7 +186,6 @@ def run(args: argparse.Namespace) -> int:
 def _run_surrogate(args: argparse.Namespace) -> int:
     """``design-space --surrogate`` (:mod:`rsm_lrg.paper.surrogate_space`)."""
     from ..io import InputError, quote_user_value
-    from ..optimize.design_space import parse_spec
     from .errors import option_error
     from .paths import print_summary_or_json
 
@@ -191,22 +208,8 @@ def _run_surrogate(args: argparse.Namespace) -> int:
         if name.strip() in factors:
             raise InputError(f"--factor: {quote_user_value(name.strip())} is given twice")
         factors[name.strip()] = (lo, hi)
-    specs: dict = {}
-    for text in args.spec:
-        try:
-            name, lo_s, hi_s = parse_spec(text)
-        except ValueError as exc:
-            raise option_error(exc) from None
-        if name in specs:
-            raise InputError(f"--spec: {quote_user_value(name)} is given twice")
-        specs[name] = (lo_s, hi_s)
-    sds: dict[str, float] = {}
-    for name, value in _pairs(args.param_sd, "--param-sd").items():
-        try:
-            sds[name] = float(value)
-        except ValueError:
-            raise InputError(f"--param-sd: {quote_user_value(name)}: expected a number, got "
-                             f"{quote_user_value(value)}") from None
+    specs = _specs(args.spec, None)
+    sds = _numbers(args.param_sd, "--param-sd")
     calibration: object = "default"
     if args.calibration:
         from ..surrogate.calibrate import load_calibration

@@ -17,6 +17,7 @@ from .options import (
     add_json,
     add_model_refinements,
     add_random_effect_options,
+    add_region_options,
 )
 from .robust_optimize import add_robust_options, robust_requested, run_robust
 from .specs import random_effect
@@ -47,13 +48,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                      limits_help="desirability limits per response (multi-response; default: observed min:max)")
     add_factor_options(parser)
     add_component_option(parser)
-    parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
-                        help="tighter limits for a factor in actual units, or NAME=LEVEL[,LEVEL...] to hold a "
-                             "categoric factor at its level(s) (repeatable)")
-    parser.add_argument("--constraint", action="append", default=None, metavar="EXPR",
-                        help="an inequality on the factors in actual units the optimum must satisfy, e.g. "
-                             "\"velocity_m_s**2/acceleration_m_s2 <= stroke_m\" or \"0.5*A + B <= 1.2\" "
-                             "(repeatable; with several responses the desirability optimum satisfies them)")
+    add_region_options(parser,
+                       bound_help="tighter limits for a factor in actual units, or NAME=LEVEL[,LEVEL...] to hold a "
+                            "categoric factor at its level(s) (repeatable)",
+                       constraint_help="an inequality on the factors in actual units the optimum must satisfy, e.g. "
+                            "\"velocity_m_s**2/acceleration_m_s2 <= stroke_m\" or \"0.5*A + B <= 1.2\" "
+                            "(repeatable; with several responses the desirability optimum satisfies them)")
     add_block_option(parser, "optimum for the average block")
     add_random_effect_options(parser)
     add_model_refinements(parser, per_response=True, model=True, gp=True)  # a GP: one response, its defaults

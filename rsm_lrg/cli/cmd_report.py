@@ -14,6 +14,7 @@ from .options import (
     add_goal_options,
     add_model_refinements,
     add_random_effect_options,
+    add_region_options,
 )
 from .paths import print_notes
 
@@ -49,14 +50,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                                  "--response order; default: "
                                  "minimize: at most the observed median, maximize: at least the median, else the "
                                  "observed range; either end may be left empty: :0.03)")
-    parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH",
-                        help="as on optimize: tighter limits for a factor in actual units, or NAME=LEVEL[,LEVEL...] "
-                             "for a categoric factor (repeatable); the optima, the overlay's shading and the setting "
-                             "deepest inside every limit stay inside them")
-    parser.add_argument("--constraint", action="append", default=None, metavar="EXPR",
-                        help="as on optimize: an inequality on the factors in actual units, e.g. "
-                             "\"velocity_m_s**2/acceleration_m_s2 <= stroke_m\" (repeatable); the optima, the overlay's "
-                             "shading and the setting deepest inside every limit stay inside it")
+    add_region_options(parser,
+                       bound_help="as on optimize: tighter limits for a factor in actual units, or NAME=LEVEL[,LEVEL...] "
+                            "for a categoric factor (repeatable); the optima, the overlay's shading and the setting "
+                            "deepest inside every limit stay inside them",
+                       constraint_help="as on optimize: an inequality on the factors in actual units, e.g. "
+                            "\"velocity_m_s**2/acceleration_m_s2 <= stroke_m\" (repeatable); the optima, the overlay's "
+                            "shading and the setting deepest inside every limit stay inside it")
     parser.add_argument("--hold", default="center", choices=["center", "optimum"],
                         help="where the factors off a surface's axes are held, and where the profiler starts "
                              "(default center)")

@@ -98,6 +98,26 @@ def accept_negative_values(parser: argparse.ArgumentParser) -> None:
         parser._negative_number_matcher = re.compile(NEGATIVE_VALUE)
 
 
+def add_region_options(parser: argparse.ArgumentParser, *, bound_help: str, constraint_help: str) -> None:
+    """``--bound NAME=LOW:HIGH`` (or ``NAME=LEVEL[,LEVEL...]`` for a categoric factor) and
+    ``--constraint EXPR`` (an inequality on the factors in actual units), both repeatable: the
+    region options of ``optimize`` and ``report``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    bound_help, constraint_help : str
+        The options' help texts (what the region limits in that command).
+
+    Returns
+    -------
+    None
+    """
+    parser.add_argument("--bound", action="append", default=None, metavar="NAME=LOW:HIGH", help=bound_help)
+    parser.add_argument("--constraint", action="append", default=None, metavar="EXPR", help=constraint_help)
+
+
 def add_force(p: argparse.ArgumentParser) -> None:
     p.add_argument("--force", action="store_true", help="overwrite existing output files")
 
