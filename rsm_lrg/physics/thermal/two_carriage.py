@@ -44,7 +44,7 @@ import numpy as np
 from .fixed_order import modal_sum, network_modes, solve_spd
 from .geometry import GuideGeometry
 
-__all__ = ["CarriageSetting", "TwoCarriageNetwork", "two_carriage_network", "cached_network", "STAGES",
+__all__ = ["CarriageSetting", "TwoCarriageNetwork", "two_carriage_network", "cached_network", "STAGES", "two_carriage_rows",
            "ContactInterpolant"]
 
 #: The two stages on the rail, in the order of their positions (RMS first).
@@ -148,8 +148,10 @@ def _overlap(edges: np.ndarray, lo: float, hi: float) -> np.ndarray:
     return np.clip(np.minimum(edges[1:], hi) - np.maximum(edges[:-1], lo), 0.0, None)
 
 
-def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float) -> _Parts:
-    """The network's parts (:func:`two_carriage_network`), the ball contacts apart."""
+def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float, fixed_only: bool = False) -> _Parts:
+    """The network's parts (:func:`two_carriage_network`), the ball contacts apart; ``fixed_only``: only
+    what does not depend on the settings ``rms``, ``rfcms`` (:func:`two_carriage_rows` adds the rest per
+    row: the bodies' convection at the air speed they see, the leaves, the ball contacts)."""
     from .. import convection
     from .network import rig_bodies
 
@@ -159,12 +161,12 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float)
     g = GuideGeometry.from_params(v)
     L_r, spacing = g.rail_length_m, float(v["carriage_spacing_m"])
     L, Lrow = g.block_length_m, g.row_length_m
-    for name, setting in zip(STAGES, (rms, rfcms)):
+    for name, setting in zip(STAGES, (rms, rfcms) if not fixed_only else ()):
         half = spacing / 2 + (L + setting.stroke_m) / 2
         if half > L_r / 2 + 1e-12:
             raise ValueError(f"the {name.upper()} carriage runs off the rail: centres {spacing:g} m apart on a "
                              f"{L_r:g} m rail with a {L:g} m block and a {setting.stroke_m:g} m stroke")
-    if spacing < L + (rms.stroke_m + rfcms.stroke_m) / 2 - 1e-12:
+    if not fixed_only and spacing < L + (rms.stroke_m + rfcms.stroke_m) / 2 - 1e-12:
         raise ValueError(f"the two carriages collide: centres {spacing:g} m apart, blocks {L:g} m long, strokes "
                          f"{rms.stroke_m:g} and {rfcms.stroke_m:g} m")
     rho, lam, cp = g.body_properties()
@@ -238,7 +240,7 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float)
     conv = {}
     for st, setting in zip(STAGES, (rms, rfcms)):
         u = float(convection.relative_air_speed(float(v["air_velocity_m_s"]), setting.mean_square_speed_m2_s2))
-        hm = convection.moving_coefficients(v, u)
+        hm = convection.moving_coefficients(v, u) if not fixed_only else h_room
         conv[st] = {"air_speed_m_s": u, "reynolds": hm.reynolds, "h_side_w_m2k": hm.h_side,
                    "h_front_w_m2k": hm.h_front}
         rigid = st == "rms"
@@ -248,17 +250,19 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float)
         car, balls, frame = per[st][:3]
         stage = per[st][-1]
         C[car] = g.carriage_steel_volume_m3 * g.steel_density_kg_m3 * g.steel_specific_heat_j_kgk
-        loss(car, hm.h_side * area_side + hm.h_front * area_front)
+        if not fixed_only:
+            loss(car, hm.h_side * area_side + hm.h_front * area_front)
         C[balls] = g.ball_mass_kg * g.ball_specific_heat_j_kgk
         # ball contacts: carriage side
-        link(car, balls, 1.0, K1)
+        if not fixed_only:
+            link(car, balls, 1.0, K1)
         sources[st][car] += 0.5 * to_race
         sources[st][balls] += 0.5 * (1.0 - to_race) * 2.0  # both sides' ball shares
         # rail side, spread over the length the rows sweep
         reach = (Lrow + setting.stroke_m) / 2
         sweep = _overlap(edges, centres[st] - reach, centres[st] + reach)
         share = sweep / sweep.sum()
-        for cell in np.flatnonzero(share > 0).tolist():
+        for cell in np.flatnonzero(share > 0).tolist() if not fixed_only else ():
             link(balls, cell, float(share[cell]), K1)
             sources[st][cell] += 0.5 * to_race * float(share[cell])
         # the clearance air under the block (at its mean position)
@@ -267,13 +271,15 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float)
             link(car, cell, g_air_per_m * float(foot[cell]))
         # frame, leaves, stage
         C[frame] = bodies.frame_capacity_j_k
-        loss(frame, bodies.frame_loss_w_k * scale)
+        if not fixed_only:
+            loss(frame, bodies.frame_loss_w_k * scale)
         link(car, frame, bodies.frame_joint_w_k)
         C[stage] = bodies.stage_capacity_j_k
-        loss(stage, bodies.stage_loss_w_k * scale)
+        if not fixed_only:
+            loss(stage, bodies.stage_loss_w_k * scale)
         if rigid:
             link(frame, stage, bodies.frame_joint_w_k)
-        else:
+        elif not fixed_only:
             leaves = per[st][3]
             C[leaves] = bodies.leaf_capacity_j_k
             loss(leaves, bodies.leaf_loss_w_k)
@@ -380,3 +386,226 @@ class ContactInterpolant:
         x = (2.0 * math.log(g) - self._a - self._b) / (self._b - self._a)
         t = np.cos(np.arange(self._coef.shape[0]) * math.acos(min(1.0, max(-1.0, x))))  # T_k(x)
         return np.asarray(t @ self._coef, float)
+
+
+# ----------------------------------------------------------------------------------------
+# many rows in one compiled loop
+# ----------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _RowTemplate:
+    """What every row of one rig shares (:func:`two_carriage_rows`): the network without the
+    parts that change with the row, where those parts go, and the constants they are made of."""
+
+    k_base: np.ndarray
+    c_base: np.ndarray
+    src_base: np.ndarray
+    k_pos: np.ndarray  # (19 + 6 n_r, 2): see _row_patches
+    s_pos: np.ndarray  # (2 n_r, 2)
+    c_pos: np.ndarray  # (1,): the RFCMS's leaves
+    carriage: tuple  # node of each stage's carriage (STAGES order)
+    edges: np.ndarray
+    centres: tuple
+    row_length_m: float
+    block_length_m: float
+    rail_length_m: float
+    spacing_m: float
+    to_race: float
+    area_side_m2: float
+    area_front_m2: float
+    h_room_side: float
+    frame_loss_w_k: float
+    stage_loss_w_k: float
+    leaf_area_m2: float  # n 2 w l: both faces of the leaves
+    air: tuple  # the convection's air parameters (convection.AIR_PARAMETERS)
+
+
+@lru_cache(maxsize=64)
+def _row_template(items: tuple, dx_m: float) -> _RowTemplate:
+    from .. import convection
+
+    v = dict(items)
+    dummy = CarriageSetting(float(v["hinge_thickness_m"]), 0.0, 0.0)  # its parts are left out
+    parts = _assemble(v, dummy, dummy, dx_m, fixed_only=True)
+    nd = parts.nodes
+    n_r = len(parts.rail_cells)
+    g = GuideGeometry.from_params(v)
+    w, hr, H1, gap = g.rail_width_m, g.rail_height_m, g.block_clearance_m, g.clearance_m
+    W, M, L = g.block_width_m, g.block_height_m, g.block_length_m
+    hb = M - H1
+    chan_w, chan_h = w + 2 * gap, hr - H1 + gap
+    pos = []
+    for st in STAGES:  # the bodies' losses (convection at the row's air speed)
+        pos += [(nd[f"{st}.carriage"],) * 2, (nd[f"{st}.frame"],) * 2, (nd[f"{st}.stage"],) * 2]
+    fr, lv, sg = nd["rfcms.frame"], nd["rfcms.leaves"], nd["rfcms.stage"]
+    # the leaves: their loss, then their links to the frame and to the stage (at mid-length: 2 g each)
+    pos += [(lv, lv), (fr, fr), (lv, lv), (fr, lv), (lv, lv), (sg, sg), (lv, sg)]
+    spos = []
+    for col, st in enumerate(STAGES):  # the ball contacts: carriage side, then rail side cell by cell
+        b = nd[f"{st}.balls"]
+        pos += [(nd[f"{st}.carriage"], nd[f"{st}.carriage"]), (b, b), (nd[f"{st}.carriage"], b)]
+        for cell in range(n_r):
+            pos += [(b, b), (cell, cell), (b, cell)]
+            spos.append((cell, col))
+    L_r, spacing = g.rail_length_m, float(v["carriage_spacing_m"])
+    n_r_edges = np.linspace(-L_r / 2, L_r / 2, n_r + 1)
+    ratio = float(v["guide_conductivity_w_mk"]) / float(v["ball_conductivity_w_mk"])
+    h_room = convection.moving_coefficients(v, float(v["air_velocity_m_s"]))
+    return _RowTemplate(
+        k_base=parts.k_rest, c_base=parts.capacity, src_base=np.stack([parts.sources[s] for s in STAGES], axis=1),
+        k_pos=np.array(pos, dtype=np.int64), s_pos=np.array(spos, dtype=np.int64),
+        c_pos=np.array([lv], dtype=np.int64), carriage=tuple(nd[f"{s}.carriage"] for s in STAGES),
+        edges=n_r_edges, centres=(-spacing / 2, spacing / 2), row_length_m=g.row_length_m, block_length_m=L,
+        rail_length_m=L_r, spacing_m=spacing, to_race=ratio / (1.0 + ratio),
+        area_side_m2=W * L + 2 * hb * L + (W - chan_w) * L, area_front_m2=2 * (W * hb - chan_w * chan_h),
+        h_room_side=h_room.h_side, frame_loss_w_k=float(v["stage_loss_conductance_w_k"]),
+        stage_loss_w_k=float(v["stage_loss_conductance_w_k"]),
+        leaf_area_m2=float(v["hinge_count"]) * 2.0 * float(v["hinge_width_m"]) * float(v["hinge_length_m"]),
+        air=tuple(float(v[k]) for k in convection.AIR_PARAMETERS))
+
+
+def _row_checks(tpl: _RowTemplate, y: np.ndarray, s: np.ndarray, msq: np.ndarray, re: np.ndarray,
+                pr: float) -> tuple[int, str]:
+    """The first row (from 0) that :func:`two_carriage_network` would refuse, and why; ``(-1, "")``
+    where none is."""
+    from .. import convection
+
+    rows = y.shape[0]
+    first, why = rows, ""
+    for name, x in (("thickness_m", y), ("stroke_m", s), ("mean_square_speed_m2_s2", msq)):
+        bad = np.flatnonzero(~(np.isfinite(x) & (x >= 0)))
+        if bad.size and bad[0] < first:
+            first, why = int(bad[0]), f"CarriageSetting.{name} must be a finite float >= 0, got {float(x[bad[0]])!r}"
+    L, L_r, spacing = tpl.block_length_m, tpl.rail_length_m, tpl.spacing_m
+    off = np.flatnonzero(spacing / 2 + (L + s) / 2 > L_r / 2 + 1e-12)
+    if off.size and off[0] < first:
+        first, why = int(off[0]), (f"the RMS carriage runs off the rail: centres {spacing:g} m apart on a {L_r:g} m "
+                                   f"rail with a {L:g} m block and a {float(s[off[0]]):g} m stroke")
+    hit = np.flatnonzero(spacing < L + (s + s) / 2 - 1e-12)
+    if hit.size and hit[0] < first:
+        first, why = int(hit[0]), (f"the two carriages collide: centres {spacing:g} m apart, blocks {L:g} m long, "
+                                   f"strokes {float(s[hit[0]]):g} and {float(s[hit[0]]):g} m")
+    out = np.flatnonzero(~((re < convection.PARALLEL_PLATE_RE_MAX) & (re * pr >= 0.2)))
+    if out.size and out[0] < first:
+        first, why = int(out[0]), (f"Re = {float(re[out[0]]):.4g} is outside the convection correlations' range "
+                                   f"(laminar flat plate Re < {convection.PARALLEL_PLATE_RE_MAX:g}, "
+                                   f"Churchill-Bernstein Re Pr >= 0.2)")
+    return (first, why) if first < rows else (-1, "")
+
+
+def two_carriage_rows(values, thickness_m, stroke_m, mean_square_speed_m2_s2, observed, times_s, *,
+                      dx_m: float = 1e-2) -> tuple[np.ndarray, np.ndarray]:
+    """The rise per watt of a working carriage for many rows of the rig, each row the network
+    :func:`two_carriage_network` builds for it with both stages running its setting, in one
+    compiled loop (no Python object per row).
+
+    What does not change from row to row (the rail, the base, the joints, the clearance air, the
+    heat capacities, the carriage-side sources) is assembled once per parameter set; each row adds
+    what its setting changes: the convection of every body at the air speed it sees (``<v²>``), the
+    RFCMS's leaves (thickness), the ball contacts spread over the rail cells the rows sweep (stroke)
+    and their heat; then its ``C^(-1/2) K C^(-1/2)`` is decomposed on its own in a fixed order of
+    operations (:func:`.fixed_order.patched_rows`). The numbers equal those of
+    :func:`two_carriage_network` to rounding (1e-11 relative, tested) and a row's numbers do not
+    depend on the other rows.
+
+    Parameters
+    ----------
+    values : mapping
+        A full :meth:`rsm_lrg.physics.params.LRGParams.to_dict`.
+    thickness_m, stroke_m, mean_square_speed_m2_s2 : array (rows,)
+        Each row's setting (:class:`CarriageSetting`) [m], [m], [m²/s²].
+    observed : bool array (rows,)
+        True: the RMS's carriage is observed (the RMS is the working stage); false: the RFCMS's.
+    times_s : array (rows, m)
+        Times after the heat step [s].
+    dx_m : float
+        Rail cell length [m].
+
+    Returns
+    -------
+    resp : ndarray (rows, 2, m)
+        Rise per watt [K/W] of the observed carriage at ``times_s`` of the friction power of the
+        RMS and of the RFCMS (:data:`STAGES` order).
+    steady : ndarray (rows, 2)
+        The steady rises per watt [K/W].
+
+    Raises :class:`.fixed_order.RowError` (a ``ValueError``) naming the first row (from 0) that
+    :func:`two_carriage_network` would refuse or whose decomposition fails.
+
+    Examples
+    --------
+    >>> from rsm_lrg.physics.params import LRGParams
+    >>> v = LRGParams().to_dict()
+    >>> resp, steady = two_carriage_rows(v, [3e-4], [0.05], [0.2], [False], [[3000.0]])
+    >>> net = two_carriage_network(v, *(CarriageSetting(3e-4, 0.05, 0.2),) * 2)
+    >>> bool(abs(resp[0, 1, 0] / net.response([3000.0], "rfcms.carriage", "rfcms")[0] - 1) < 1e-11)
+    True
+    """
+    from .. import convection
+    from .fixed_order import RowError, patched_rows
+    from .network import leaf_terms
+
+    gk = float(values["ball_contact_conductance_w_k"])
+    if not (math.isfinite(gk) and gk > 0):
+        raise ValueError(f"ball_contact_conductance_w_k must be a positive number [W/K], got {gk!r}")
+    if not (math.isfinite(dx_m) and 0 < dx_m <= 0.05):
+        raise ValueError(f"dx_m must be in (0, 0.05] m, got {dx_m!r}.")
+    t = np.atleast_2d(np.asarray(times_s, float))
+    rows = t.shape[0]
+    y, s, msq = (np.ascontiguousarray(np.broadcast_to(np.asarray(q, float), (rows,)))
+                 for q in (thickness_m, stroke_m, mean_square_speed_m2_s2))
+    obs = np.broadcast_to(np.asarray(observed, bool), (rows,))
+    items = tuple(sorted((k, x) for k, x in dict(values).items() if k != "ball_contact_conductance_w_k"))
+    tpl = _row_template(items, float(dx_m))
+    air_speed, lc, nu, eta, lam, cp = tpl.air
+    with np.errstate(invalid="ignore"):
+        u = convection.relative_air_speed(air_speed, msq)
+        re = np.asarray(convection.reynolds(u, lc, nu), float)
+    pr = float(convection.prandtl(cp, eta, lam))
+    bad, why = _row_checks(tpl, y, s, msq, re, pr)
+    ok = rows if bad < 0 else bad  # the rows before the first refused one are still solved: an earlier
+    y, s, msq, re, t = y[:ok], s[:ok], msq[:ok], re[:ok], t[:ok]  # failing decomposition is named first
+    k_add, c_add, s_add = _row_patches(tpl, gk, y, s, re, pr, lam, lc, leaf_terms(values, y))
+    node = np.where(obs[:ok], tpl.carriage[0], tpl.carriage[1])
+    try:
+        resp, steady = patched_rows(tpl.k_base, tpl.c_base, tpl.src_base, tpl.k_pos, k_add, tpl.c_pos, c_add,
+                                    tpl.s_pos, s_add, node, t)
+    except RowError:
+        raise
+    if bad >= 0:
+        raise RowError(bad, why)
+    return resp, steady
+
+
+def _row_patches(tpl: _RowTemplate, gk: float, y, s, re, pr: float, lam: float, lc: float, leaf):
+    """Each row's additions to the shared network (the positions of :class:`_RowTemplate`)."""
+    from .. import convection
+
+    rows = y.shape[0]
+    hs = np.asarray(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr), lam, lc), float)
+    hf = np.asarray(convection.heat_transfer_coefficient(convection.nusselt_cross_flow(re, pr), lam, lc), float)
+    hs, hf = np.broadcast_to(hs, (rows,)), np.broadcast_to(hf, (rows,))
+    scale = hs / tpl.h_room_side  # the frame's and stage's losses are given at the room's air speed
+    g_leaf, c_leaf = (np.broadcast_to(np.asarray(q, float), (rows,)) for q in leaf)
+    two = 2.0 * g_leaf
+    car = hs * tpl.area_side_m2 + hf * tpl.area_front_m2
+    cols = [car, tpl.frame_loss_w_k * scale, tpl.stage_loss_w_k * scale] * 2
+    cols += [tpl.leaf_area_m2 * hs, two, two, -two, two, two, -two]
+    edges = tpl.edges
+    n_r = edges.size - 1
+    s_cols = []
+    g = np.full(rows, gk)
+    for centre in tpl.centres:
+        reach = (tpl.row_length_m + s) / 2
+        lo, hi = (centre - reach)[:, None], (centre + reach)[:, None]
+        sweep = np.clip(np.minimum(edges[None, 1:], hi) - np.maximum(edges[None, :-1], lo), 0.0, None)
+        total = sweep[:, 0].copy()
+        for k in range(1, n_r):  # in cell order, row by row: a row's share does not depend on the others
+            total += sweep[:, k]
+        share = sweep / total[:, None]
+        cols += [g, g, -g]
+        for k in range(n_r):
+            gs = gk * share[:, k]
+            cols += [gs, gs, -gs]
+            s_cols.append(0.5 * tpl.to_race * share[:, k])
+    k_add = np.stack([np.broadcast_to(np.asarray(c, float), (rows,)) for c in cols], axis=1)
+    return k_add, c_leaf[:, None].copy(), np.stack(s_cols, axis=1)
