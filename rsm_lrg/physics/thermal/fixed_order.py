@@ -106,11 +106,18 @@ def _fo_tridiag(a: np.ndarray, x: np.ndarray, d: np.ndarray, e: np.ndarray) -> N
         if vv == 0.0:
             continue
         beta = 2.0 / vv
-        for i in range(k + 1, n):  # p = beta B v, the columns added in a fixed order
-            acc = a[i, k + 1] * v[k + 1]
-            for j in range(k + 2, n):
-                acc += a[i, j] * v[j]
-            p[i] = acc * beta
+        # p = beta B v, each p[i] summed over j in ascending order; B is exactly symmetric, so row j of B
+        # is its column j and the sweep runs along rows (contiguous, in vector registers: the order of each
+        # p[i]'s additions is unchanged)
+        vk = v[k + 1]
+        for i in range(k + 1, n):
+            p[i] = a[k + 1, i] * vk
+        for j in range(k + 2, n):
+            vj = v[j]
+            for i in range(k + 1, n):
+                p[i] += a[j, i] * vj
+        for i in range(k + 1, n):
+            p[i] = p[i] * beta
         vp = 0.0
         for i in range(k + 1, n):
             vp += v[i] * p[i]
