@@ -372,8 +372,8 @@ def _fo_patched_rows(k_base: np.ndarray, c_base: np.ndarray, src_base: np.ndarra
     # rows of a network K = k_base + the row's patches (k_add[r, p] added at (k_pos[p, 0], k_pos[p, 1]) and,
     # off the diagonal, at its mirror; the patches added in their order), C = c_base + c_add[r] at c_pos,
     # sources src_base + s_add[r] at (s_pos[p, 0] node, s_pos[p, 1] column): each row assembled and
-    # decomposed (Householder, QL) on its own, its observed node node[r]; resp (rows, ns, m) at times
-    # (rows, m), steady (rows, ns) (a tridiagonal solve in the Householder basis); status as _fo_network
+    # decomposed (Householder, QL) on its own, its observed node node[r], with the operations of
+    # _fo_network; resp (rows, ns, m) at times (rows, m), steady (rows, ns); status as _fo_network
     n = k_base.shape[0]
     ns = src_base.shape[1]
     a = np.empty((n, n))
@@ -381,14 +381,9 @@ def _fo_patched_rows(k_base: np.ndarray, c_base: np.ndarray, src_base: np.ndarra
     cap = np.empty(n)
     sc = np.empty(n)
     x = np.empty((n, 1 + ns))
-    x0 = np.empty((n, 1 + ns))
-    d = np.empty(n)
-    e = np.empty(n)
-    d0 = np.empty(n)
-    e0 = np.empty(n)
+    b = np.empty((n, ns))
     mu = np.empty(n)
     proj = np.empty((n, 1 + ns))
-    y = np.empty(n)
     coef = np.empty(n)
     out = np.empty(times.shape[1])
     for r in range(times.shape[0]):
@@ -430,14 +425,9 @@ def _fo_patched_rows(k_base: np.ndarray, c_base: np.ndarray, src_base: np.ndarra
         x[nd, 0] = 1.0
         for i in range(n):
             for c in range(ns):
+                b[i, c] = x[i, 1 + c]
                 x[i, 1 + c] = sc[i] * x[i, 1 + c]
-        _fo_tridiag(a, x, d, e)
-        for i in range(n):
-            d0[i] = d[i]
-            e0[i] = e[i]
-            for c in range(1 + ns):
-                x0[i, c] = x[i, c]
-        if _fo_ql(d, e, x, max_iter, mu, proj) != 0:
+        if _fo_eigen(a, x, max_iter, mu, proj) != 0:
             status[r] = 1
             continue
         if not mu[0] > 1e-13 * abs(mu[n - 1]):
@@ -449,15 +439,11 @@ def _fo_patched_rows(k_base: np.ndarray, c_base: np.ndarray, src_base: np.ndarra
             _fo_modal_sum(coef, mu, times[r], out)
             for j in range(times.shape[1]):
                 resp[r, c, j] = out[j]
-            for i in range(n):
-                y[i] = x0[i, 1 + c]
-            if _fo_tri_solve(d0, e0, y) != 0:
-                status[r] = 3
-                break
-            acc = 0.0  # e_node^T Q T^-1 Q^T C^-1/2 b
-            for i in range(n):
-                acc += x0[i, 0] * y[i]
-            steady[r, c] = sc[nd] * acc
+        if _fo_solve(kk, b) != 0:  # the steady state K^-1 b, as network_modes and solve_spd solve it
+            status[r] = 3
+            continue
+        for c in range(ns):
+            steady[r, c] = b[nd, c]
 
 
 _FO_NAMES = ("_fo_solve", "_fo_hypot", "_fo_tridiag", "_fo_ql", "_fo_eigen", "_fo_modal_sum", "_fo_network", "_fo_tri_solve", "_fo_chain_rows",
@@ -682,10 +668,11 @@ def patched_rows(k_base, c_base, src_base, k_pos, k_add, c_pos, c_add, s_pos, s_
     Row ``r``'s network is ``K = k_base`` with ``k_add[r, p]`` added at ``k_pos[p]`` (and at its
     mirror off the diagonal), ``C = c_base`` with ``c_add[r, p]`` added at node ``c_pos[p]``, and
     the sources ``src_base`` (n, ns) with ``s_add[r, p]`` added at ``s_pos[p]`` (node, source); the
-    patches are added in their order. Its ``C^(-1/2) K C^(-1/2)`` is decomposed as
-    :func:`network_modes` does (Householder, then QL with the projections carried along), the
-    response of node ``node[r]`` summed at ``times_s[r]`` (:func:`modal_sum`) and its steady rise
-    solved in the tridiagonal basis. A row's numbers do not depend on the other rows.
+    patches are added in their order. Then the row runs the operations of :func:`network_modes`:
+    its ``C^(-1/2) K C^(-1/2)`` decomposed (Householder, then QL with the projections carried
+    along), the response of node ``node[r]`` summed at ``times_s[r]`` (:func:`modal_sum`) and its
+    steady rise solved from ``K`` (:func:`solve_spd`), so a row equal to a network gives that
+    network's numbers to the last bit. A row's numbers do not depend on the other rows.
 
     Parameters
     ----------

@@ -211,7 +211,14 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float,
     g_amb = np.zeros(n)
     sources = {st: np.zeros(n) for st in STAGES}
 
+    # fixed_only: the bodies whose diagonal a row changes start from 0 in K; the fixed terms added to
+    # their diagonal are logged in their order, for each row to add them after its own loss
+    logged = {i: [] for st in STAGES for i in (per[st][0], *per[st][2:])} if fixed_only else {}
+
     def link(i: int, j: int, G: float, mat: np.ndarray = K) -> None:
+        for q in (i, j):
+            if mat is K and q in logged:
+                logged[q].append(G)
         mat[i, i] += G
         mat[j, j] += G
         mat[i, j] -= G
@@ -261,7 +268,10 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float,
         # rail side, spread over the length the rows sweep
         reach = (Lrow + setting.stroke_m) / 2
         sweep = _overlap(edges, centres[st] - reach, centres[st] + reach)
-        share = sweep / sweep.sum()
+        total = sweep[0]
+        for x in sweep[1:]:  # in cell order (two_carriage_rows adds them in the same order)
+            total += x
+        share = sweep / total
         for cell in np.flatnonzero(share > 0).tolist() if not fixed_only else ():
             link(balls, cell, float(share[cell]), K1)
             sources[st][cell] += 0.5 * to_race * float(share[cell])
@@ -285,7 +295,9 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float,
             loss(leaves, bodies.leaf_loss_w_k)
             link(frame, leaves, 2.0 * bodies.leaf_w_k)  # the leaves' node at mid-length
             link(leaves, stage, 2.0 * bodies.leaf_w_k)
-    return _Parts(K, K1, C, sources, g_amb, nodes, cells, names, conv)
+    for q in logged:
+        K[q, q] = 0.0
+    return _Parts(K, K1, C, sources, g_amb, nodes, cells, names, conv, {q: tuple(a) for q, a in logged.items()})
 
 
 @dataclass(frozen=True)
@@ -301,6 +313,7 @@ class _Parts:
     rail_cells: np.ndarray
     names: list
     convection: dict
+    diag_terms: dict  # fixed_only: node -> the fixed terms of its diagonal, in their order
 
 
 def two_carriage_network(values, rms: CarriageSetting, rfcms: CarriageSetting, *,
@@ -399,10 +412,12 @@ class _RowTemplate:
     k_base: np.ndarray
     c_base: np.ndarray
     src_base: np.ndarray
-    k_pos: np.ndarray  # (19 + 6 n_r, 2): see _row_patches
-    s_pos: np.ndarray  # (2 n_r, 2)
+    k_pos: np.ndarray  # see _row_patches
+    s_pos: np.ndarray  # (2 n_r, 2): the rail cells' share of each stage's heat
     c_pos: np.ndarray  # (1,): the RFCMS's leaves
     carriage: tuple  # node of each stage's carriage (STAGES order)
+    diag_terms: tuple  # per stage: the fixed terms of the diagonal of its carriage, frame and stage
+    leaf_terms: tuple  # the fixed terms of the RFCMS's leaves
     edges: np.ndarray
     centres: tuple
     row_length_m: float
@@ -433,29 +448,35 @@ def _row_template(items: tuple, dx_m: float) -> _RowTemplate:
     W, M, L = g.block_width_m, g.block_height_m, g.block_length_m
     hb = M - H1
     chan_w, chan_h = w + 2 * gap, hr - H1 + gap
+    # the entries a row sets, in the order _row_patches makes them (each the same sum, in the same order, as
+    # two_carriage_network's k_rest + g k_contact)
     pos = []
-    for st in STAGES:  # the bodies' losses (convection at the row's air speed)
+    for st in STAGES:  # the bodies' diagonals: their loss at the row's air speed, then their links
         pos += [(nd[f"{st}.carriage"],) * 2, (nd[f"{st}.frame"],) * 2, (nd[f"{st}.stage"],) * 2]
     fr, lv, sg = nd["rfcms.frame"], nd["rfcms.leaves"], nd["rfcms.stage"]
-    # the leaves: their loss, then their links to the frame and to the stage (at mid-length: 2 g each)
-    pos += [(lv, lv), (fr, fr), (lv, lv), (fr, lv), (lv, lv), (sg, sg), (lv, sg)]
+    pos += [(lv, lv), (fr, lv), (lv, sg)]  # the leaves: diagonal, links to the frame and the stage
+    for st in STAGES:  # the ball contacts: carriage side
+        car, b = nd[f"{st}.carriage"], nd[f"{st}.balls"]
+        pos += [(car, car), (car, b), (b, b)]
+    pos += [(cell, cell) for cell in range(n_r)]  # rail side
     spos = []
-    for col, st in enumerate(STAGES):  # the ball contacts: carriage side, then rail side cell by cell
+    for col, st in enumerate(STAGES):
         b = nd[f"{st}.balls"]
-        pos += [(nd[f"{st}.carriage"], nd[f"{st}.carriage"]), (b, b), (nd[f"{st}.carriage"], b)]
-        for cell in range(n_r):
-            pos += [(b, b), (cell, cell), (b, cell)]
-            spos.append((cell, col))
+        pos += [(b, cell) for cell in range(n_r)]
+        spos += [(cell, col) for cell in range(n_r)]
     L_r, spacing = g.rail_length_m, float(v["carriage_spacing_m"])
-    n_r_edges = np.linspace(-L_r / 2, L_r / 2, n_r + 1)
     ratio = float(v["guide_conductivity_w_mk"]) / float(v["ball_conductivity_w_mk"])
     h_room = convection.moving_coefficients(v, float(v["air_velocity_m_s"]))
+    terms = parts.diag_terms
     return _RowTemplate(
         k_base=parts.k_rest, c_base=parts.capacity, src_base=np.stack([parts.sources[s] for s in STAGES], axis=1),
         k_pos=np.array(pos, dtype=np.int64), s_pos=np.array(spos, dtype=np.int64),
         c_pos=np.array([lv], dtype=np.int64), carriage=tuple(nd[f"{s}.carriage"] for s in STAGES),
-        edges=n_r_edges, centres=(-spacing / 2, spacing / 2), row_length_m=g.row_length_m, block_length_m=L,
-        rail_length_m=L_r, spacing_m=spacing, to_race=ratio / (1.0 + ratio),
+        diag_terms=tuple(tuple(terms[nd[f"{st}.{body}"]] for body in ("carriage", "frame", "stage")) for st in STAGES),
+        leaf_terms=terms[lv],
+        edges=np.linspace(-L_r / 2, L_r / 2, n_r + 1), centres=(-spacing / 2, spacing / 2),
+        row_length_m=g.row_length_m, block_length_m=L, rail_length_m=L_r, spacing_m=spacing,
+        to_race=ratio / (1.0 + ratio),
         area_side_m2=W * L + 2 * hb * L + (W - chan_w) * L, area_front_m2=2 * (W * hb - chan_w * chan_h),
         h_room_side=h_room.h_side, frame_loss_w_k=float(v["stage_loss_conductance_w_k"]),
         stage_loss_w_k=float(v["stage_loss_conductance_w_k"]),
@@ -577,7 +598,9 @@ def two_carriage_rows(values, thickness_m, stroke_m, mean_square_speed_m2_s2, ob
 
 
 def _row_patches(tpl: _RowTemplate, gk: float, y, s, re, pr: float, lam: float, lc: float, leaf):
-    """Each row's additions to the shared network (the positions of :class:`_RowTemplate`)."""
+    """Each row's entries of the network (the positions of :class:`_RowTemplate`): every one the
+    same sum, in the same order, as :func:`two_carriage_network` makes it (``k_rest + g k_contact``),
+    so each row's matrix is that network's to the last bit."""
     from .. import convection
 
     rows = y.shape[0]
@@ -587,25 +610,42 @@ def _row_patches(tpl: _RowTemplate, gk: float, y, s, re, pr: float, lam: float, 
     scale = hs / tpl.h_room_side  # the frame's and stage's losses are given at the room's air speed
     g_leaf, c_leaf = (np.broadcast_to(np.asarray(q, float), (rows,)) for q in leaf)
     two = 2.0 * g_leaf
-    car = hs * tpl.area_side_m2 + hf * tpl.area_front_m2
-    cols = [car, tpl.frame_loss_w_k * scale, tpl.stage_loss_w_k * scale] * 2
-    cols += [tpl.leaf_area_m2 * hs, two, two, -two, two, two, -two]
+
+    def summed(first, fixed, *row_terms):
+        out = np.array(first, float, copy=True)
+        for t in fixed:
+            out += t
+        for t in row_terms:
+            out += t
+        return out
+
+    cols = []
+    for k, (car, frame, stage) in enumerate(tpl.diag_terms):
+        rigid = STAGES[k] == "rms"
+        cols += [summed(hs * tpl.area_side_m2 + hf * tpl.area_front_m2, car),
+                 summed(tpl.frame_loss_w_k * scale, frame, *(() if rigid else (two,))),
+                 summed(tpl.stage_loss_w_k * scale, stage, *(() if rigid else (two,)))]
+    cols += [summed(tpl.leaf_area_m2 * hs, tpl.leaf_terms, two, two), -two, -two]
     edges = tpl.edges
     n_r = edges.size - 1
-    s_cols = []
-    g = np.full(rows, gk)
+    shares = []
     for centre in tpl.centres:
         reach = (tpl.row_length_m + s) / 2
         lo, hi = (centre - reach)[:, None], (centre + reach)[:, None]
         sweep = np.clip(np.minimum(edges[None, 1:], hi) - np.maximum(edges[None, :-1], lo), 0.0, None)
         total = sweep[:, 0].copy()
-        for k in range(1, n_r):  # in cell order, row by row: a row's share does not depend on the others
+        for k in range(1, n_r):  # in cell order, as two_carriage_network; a row's share is its own
             total += sweep[:, k]
         share = sweep / total[:, None]
-        cols += [g, g, -g]
+        kb = np.ones(rows)  # the balls' contact links: the carriage side (1), then the cells in order
         for k in range(n_r):
-            gs = gk * share[:, k]
-            cols += [gs, gs, -gs]
-            s_cols.append(0.5 * tpl.to_race * share[:, k])
+            kb += share[:, k]
+        shares.append(share)
+        cols += [np.full(rows, gk), np.full(rows, -gk), gk * kb]
+    cell = shares[0] + shares[1]  # 0 + the RMS's share + the RFCMS's (each cell's, in stage order)
+    cols += [gk * cell[:, k] for k in range(n_r)]
+    for share in shares:
+        cols += [gk * -share[:, k] for k in range(n_r)]
+    s_add = np.concatenate([0.5 * tpl.to_race * share for share in shares], axis=1)
     k_add = np.stack([np.broadcast_to(np.asarray(c, float), (rows,)) for c in cols], axis=1)
-    return k_add, c_leaf[:, None].copy(), np.stack(s_cols, axis=1)
+    return k_add, c_leaf[:, None].copy(), np.ascontiguousarray(s_add)
