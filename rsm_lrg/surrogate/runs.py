@@ -38,7 +38,7 @@ import numpy as np
 from ..errors import ParameterError
 
 __all__ = ["evaluate_rows", "SURROGATE_PARAMETERS", "thermal_unit_response", "MAX_DURATION_MIN",
-           "check_duration"]
+           "check_duration", "NETWORK_ROUTE", "clear_row_caches"]
 
 #: Longest test [min] (69 days; the rig's tests last about 50 min, the guide is steady after
 #: a few hours): the upper end of ``test_duration_min``'s physical range.
@@ -161,6 +161,24 @@ _INTERP: dict = {}
 _ROWS: dict = {}
 _INTERP_SIZE = 4096
 
+#: How the two-carriage network of a batch's rows is solved: ``"compiled"`` (the default: every
+#: distinct row in one compiled loop, :func:`rsm_lrg.physics.thermal.two_carriage.two_carriage_rows`)
+#: or ``"dense"`` (each row its own :func:`~rsm_lrg.physics.thermal.two_carriage.two_carriage_network`
+#: object, the route before; kept to compare the two, ``benchmarks/bench_simulate.py``). Both give the
+#: same numbers; clear the row caches (:func:`clear_row_caches`) when switching to time them.
+NETWORK_ROUTE = "compiled"
+
+
+def clear_row_caches() -> None:
+    """Forget the two-carriage rows, interpolants and stage dynamics remembered in this process (the
+    results do not change: a timing starts from nothing)."""
+    from ..physics.thermal.two_carriage import clear_network_cache
+
+    _ROWS.clear()
+    _INTERP.clear()
+    _MEMO.clear()
+    clear_network_cache()
+
 
 def _network_items(values: dict) -> tuple:
     """The (name, value) pairs of ``values`` that enter the two-carriage network (a cache key)."""
@@ -219,11 +237,28 @@ def _two_carriage_many(values: dict, dur: np.ndarray, y: np.ndarray, s: np.ndarr
     (:func:`rsm_lrg.physics.thermal.two_carriage.two_carriage_rows`; each row's numbers do not depend
     on the others): an array (rows, 4) of the self and other rises and the two steady rises. Raises
     ``RowError`` naming the first row (from 0) that fails."""
-    from ..physics.thermal.two_carriage import two_carriage_rows
+    from ..physics.thermal.fixed_order import RowError
+    from ..physics.thermal.two_carriage import STAGES, CarriageSetting, cached_network, two_carriage_rows
 
     lo, hi = np.floor(dur), np.ceil(dur)
     w = np.where(hi > lo, dur - lo, 0.0)
-    resp, steady = two_carriage_rows(values, y, s, msq, rigid, np.stack([lo, hi], axis=1) * 60.0)
+    times = np.stack([lo, hi], axis=1) * 60.0
+    if NETWORK_ROUTE == "dense":  # each row its own network object (before issue 34's item 5)
+        resp, steady = np.empty((dur.shape[0], 2, 2)), np.empty((dur.shape[0], 2))
+        for i in range(dur.shape[0]):
+            try:
+                run = CarriageSetting(float(y[i]), float(s[i]), float(msq[i]))
+                net = cached_network(values, run, run)
+            except ValueError as exc:
+                raise RowError(i, str(exc)) from None
+            node = "rms.carriage" if rigid[i] else "rfcms.carriage"
+            for c, src in enumerate(STAGES):
+                resp[i, c] = net.response(times[i], node, src)
+                steady[i, c] = net.steady_rise(src)[net.node(node)]
+    elif NETWORK_ROUTE == "compiled":
+        resp, steady = two_carriage_rows(values, y, s, msq, rigid, times)
+    else:
+        raise ValueError(f"NETWORK_ROUTE must be 'compiled' or 'dense', got {NETWORK_ROUTE!r}")
     me = np.where(rigid, 0, 1)
     r = np.arange(dur.shape[0])
     r_self, r_other = resp[r, me], resp[r, 1 - me]
@@ -240,26 +275,30 @@ def _two_carriage_batch(base: dict, row_keys: np.ndarray, first: np.ndarray, nam
     with its reason (``-1, ""`` where none fails)."""
     from ..physics.thermal.fixed_order import RowError
 
+    from ..physics.thermal.two_carriage import network_items
+
     parts = np.full((len(first), 4), np.nan)
-    keys: list = []
-    todo: dict = {}  # parameter values -> [(distinct row, key)]
-    sets: dict = {}  # parameter values -> (network items, contact conductance)
+    todo: dict = {}  # network parameters -> [(distinct row, key)]
+    sets: dict = {}  # parameter values -> (network parameters and contact conductance, the values)
+    enter = {k for k, _ in network_items(dict.fromkeys(names, 0.0))} | {"ball_contact_conductance_w_k"}
+    cols = [j for j, k in enumerate(names) if k in enter]  # the other columns do not change the network
     for g in range(len(first)):
-        over = tuple(float(x) for x in row_keys[g, 5:])
+        over = tuple(float(row_keys[g, 5 + j]) for j in cols)
         if over not in sets:
-            vals = dict(base, **dict(zip(names, over)))
-            sets[over] = (_network_items(vals), float(vals["ball_contact_conductance_w_k"]))
+            vals = dict(base, **{names[j]: x for j, x in zip(cols, over)})
+            sets[over] = ((network_items(vals), float(vals["ball_contact_conductance_w_k"])), vals)
+        net, _ = sets[over]
         dur, y, s, msq, rigid = (float(x) for x in row_keys[g, :5])
-        key = (*sets[over], dur, y, s, msq, bool(rigid))
+        key = (*net, dur, y, s, msq, bool(rigid))
         hit = _ROWS.get(key)
         if hit is not None:  # a design's repeated settings, across its batches
             parts[g] = hit
         else:
-            todo.setdefault(over, []).append((g, key))
+            todo.setdefault(net, []).append((g, key, over))
     bad, why = n, ""
-    for over, rows in todo.items():
-        idx = np.array([g for g, _ in rows])
-        vals = dict(base, **dict(zip(names, over)))
+    for rows in todo.values():  # rows whose parameters differ only outside the network: one loop
+        idx = np.array([g for g, _, _ in rows])
+        vals = sets[rows[0][2]][1]
         k = row_keys[idx]
         try:
             parts[idx] = _two_carriage_many(vals, k[:, 0], k[:, 1], k[:, 2], k[:, 3], k[:, 4] != 0)
@@ -271,7 +310,7 @@ def _two_carriage_batch(base: dict, row_keys: np.ndarray, first: np.ndarray, nam
             if int(first[idx[0]]) < bad:
                 bad, why = int(first[idx[0]]), str(exc)
             continue
-        for g, key in rows:
+        for g, key, _ in rows:
             if len(_ROWS) >= _INTERP_SIZE:
                 _ROWS.pop(next(iter(_ROWS)))
             _ROWS[key] = tuple(float(x) for x in parts[g])

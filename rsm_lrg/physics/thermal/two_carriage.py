@@ -45,6 +45,7 @@ from .fixed_order import modal_sum, network_modes, solve_spd
 from .geometry import GuideGeometry
 
 __all__ = ["CarriageSetting", "TwoCarriageNetwork", "two_carriage_network", "cached_network", "STAGES", "two_carriage_rows",
+           "clear_network_cache", "network_items",
            "ContactInterpolant"]
 
 #: The two stages on the rail, in the order of their positions (RMS first).
@@ -358,6 +359,13 @@ def _parts_cached(items: tuple, rms: CarriageSetting, rfcms: CarriageSetting, dx
     return _assemble(dict(items), rms, rfcms, dx_m)
 
 
+def clear_network_cache() -> None:
+    """Forget the networks' parts (:func:`cached_network`) and the rows' templates
+    (:func:`two_carriage_rows`) built in this process (for a timing that starts from nothing)."""
+    _parts_cached.cache_clear()
+    _row_template.cache_clear()
+
+
 def cached_network(values, rms: CarriageSetting, rfcms: CarriageSetting, *, dx_m: float = 1e-2) -> TwoCarriageNetwork:
     """:func:`two_carriage_network` (its parts but the ball contacts are cached per parameters and
     settings: a calibration asks for the same rows many times)."""
@@ -484,6 +492,45 @@ def _row_template(items: tuple, dx_m: float) -> _RowTemplate:
         air=tuple(float(v[k]) for k in convection.AIR_PARAMETERS))
 
 
+#: Parameters the two-carriage network reads besides the guide's geometry
+#: (:class:`~.geometry.GuideGeometry`) and the air (:data:`rsm_lrg.physics.convection.AIR_PARAMETERS`).
+_NETWORK_PARAMETERS = ("ball_conductivity_w_mk", "base_heat_capacity_j_k", "base_loss_conductance_w_k", "block_length_m",
+                       "block_width_m", "carriage_spacing_m", "frame_mass_fraction", "guide_conductivity_w_mk",
+                       "hinge_conductivity_w_mk", "hinge_count", "hinge_density_kg_m3", "hinge_length_m",
+                       "hinge_specific_heat_j_kgk", "hinge_thickness_m", "hinge_width_m", "joint_conductance_w_m2k",
+                       "stage_loss_conductance_w_k", "stage_mass_kg", "stage_specific_heat_j_kgk")
+
+
+def network_items(values) -> tuple:
+    """The ``(name, value)`` pairs of the parameters ``values`` that the two-carriage network reads
+    but the ball contacts' conductance, sorted: rows whose parameters differ elsewhere (the motion,
+    the friction, the wear) share one network template (:func:`two_carriage_rows`).
+
+    Parameters
+    ----------
+    values : mapping
+        A full :meth:`rsm_lrg.physics.params.LRGParams.to_dict` (or more).
+
+    Returns
+    -------
+    tuple of (str, value)
+
+    >>> from rsm_lrg.physics.params import LRGParams
+    >>> names = dict(network_items(LRGParams().to_dict()))
+    >>> "carriage_spacing_m" in names, "mu_k" in names, "ball_contact_conductance_w_k" in names
+    (True, False, False)
+    """
+    from dataclasses import fields
+
+    from .. import convection
+    from .geometry import PARAM_ALIASES
+
+    geo = {f.name for f in fields(GuideGeometry)}
+    keep = set(_NETWORK_PARAMETERS) | set(convection.AIR_PARAMETERS)
+    return tuple(sorted((k, x) for k, x in dict(values).items()
+                        if (k in keep or PARAM_ALIASES.get(k, k) in geo) and k != "ball_contact_conductance_w_k"))
+
+
 def _row_checks(tpl: _RowTemplate, y: np.ndarray, s: np.ndarray, msq: np.ndarray, re: np.ndarray,
                 pr: float) -> tuple[int, str]:
     """The first row (from 0) that :func:`two_carriage_network` would refuse, and why; ``(-1, "")``
@@ -575,8 +622,7 @@ def two_carriage_rows(values, thickness_m, stroke_m, mean_square_speed_m2_s2, ob
     y, s, msq = (np.ascontiguousarray(np.broadcast_to(np.asarray(q, float), (rows,)))
                  for q in (thickness_m, stroke_m, mean_square_speed_m2_s2))
     obs = np.broadcast_to(np.asarray(observed, bool), (rows,))
-    items = tuple(sorted((k, x) for k, x in dict(values).items() if k != "ball_contact_conductance_w_k"))
-    tpl = _row_template(items, float(dx_m))
+    tpl = _row_template(network_items(values), float(dx_m))  # only these: a parameter missed fails loudly
     air_speed, lc, nu, eta, lam, cp = tpl.air
     with np.errstate(invalid="ignore"):
         u = convection.relative_air_speed(air_speed, msq)
