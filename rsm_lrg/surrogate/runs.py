@@ -274,7 +274,6 @@ def _two_carriage_batch(base: dict, row_keys: np.ndarray, first: np.ndarray, nam
     (:func:`_two_carriage_many`). Returns the parts (len(first), 4) and the first failing batch row
     with its reason (``-1, ""`` where none fails)."""
     from ..physics.thermal.fixed_order import RowError
-
     from ..physics.thermal.two_carriage import network_items
 
     parts = np.full((len(first), 4), np.nan)

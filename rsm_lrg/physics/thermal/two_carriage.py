@@ -214,7 +214,8 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float,
 
     # fixed_only: the bodies whose diagonal a row changes start from 0 in K; the fixed terms added to
     # their diagonal are logged in their order, for each row to add them after its own loss
-    logged = {i: [] for st in STAGES for i in (per[st][0], *per[st][2:])} if fixed_only else {}
+    logged: dict[int, list[float]] = ({i: [] for st in STAGES for i in (per[st][0], *per[st][2:])} if fixed_only
+                                      else {})
 
     def link(i: int, j: int, G: float, mat: np.ndarray = K) -> None:
         for q in (i, j):
