@@ -54,10 +54,12 @@ def _fo_solve(a: np.ndarray, x: np.ndarray) -> int:
         piv = a[k, k]
         if not (piv > 0.0 and piv < np.inf):
             return 1
+        rk = a[k, k + 1:]
         for i in range(k + 1, n):
             f = a[i, k] / piv
-            for j in range(k + 1, n):
-                a[i, j] -= f * a[k, j]
+            ri = a[i, k + 1:]  # views from 0: vector registers, the same operations
+            for j in range(n - k - 1):
+                ri[j] = ri[j] - f * rk[j]
             for c in range(m):
                 x[i, c] -= f * x[k, c]
     for k in range(n - 1, -1, -1):
@@ -109,24 +111,34 @@ def _fo_tridiag(a: np.ndarray, x: np.ndarray, d: np.ndarray, e: np.ndarray) -> N
         # p = beta B v, each p[i] summed over j in ascending order; B is exactly symmetric, so row j of B
         # is its column j and the sweep runs along rows (contiguous, in vector registers: the order of each
         # p[i]'s additions is unchanged)
-        vk = v[k + 1]
-        for i in range(k + 1, n):
-            p[i] = a[k + 1, i] * vk
-        for j in range(k + 2, n):
-            vj = v[j]
-            for i in range(k + 1, n):
-                p[i] += a[j, i] * vj
-        for i in range(k + 1, n):
-            p[i] = p[i] * beta
+        # (the loops run over views that start at k + 1 and from 0, where the compiler sees no negative
+        # index and uses vector registers: each element's operations are the same, in the same order)
+        m_ = n - k - 1
+        pt = p[k + 1:]
+        vt = v[k + 1:]
+        row = a[k + 1, k + 1:]
+        vk = vt[0]
+        for i in range(m_):
+            pt[i] = row[i] * vk
+        for j in range(1, m_):
+            vj = vt[j]
+            row = a[k + 1 + j, k + 1:]
+            for i in range(m_):
+                pt[i] += row[i] * vj
+        for i in range(m_):
+            pt[i] = pt[i] * beta
         vp = 0.0
         for i in range(k + 1, n):
             vp += v[i] * p[i]
         half = 0.5 * beta * vp
         for i in range(k + 1, n):
             p[i] = p[i] - half * v[i]  # q
-        for i in range(k + 1, n):
-            for j in range(k + 1, n):
-                a[i, j] -= v[i] * p[j] + p[i] * v[j]  # stays exactly symmetric
+        for i in range(m_):
+            vi = vt[i]
+            pi = pt[i]
+            row = a[k + 1 + i, k + 1:]
+            for j in range(m_):
+                row[j] = row[j] - (vi * pt[j] + pi * vt[j])  # stays exactly symmetric
         for i in range(k + 1, n):
             a[i, k] = 0.0
             a[k, i] = 0.0
