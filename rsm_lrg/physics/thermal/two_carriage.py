@@ -634,11 +634,8 @@ def two_carriage_rows(values, thickness_m, stroke_m, mean_square_speed_m2_s2, ob
     y, s, msq, re, t = y[:ok], s[:ok], msq[:ok], re[:ok], t[:ok]  # failing decomposition is named first
     k_add, c_add, s_add = _row_patches(tpl, gk, y, s, re, pr, lam, lc, leaf_terms(values, y))
     node = np.where(obs[:ok], tpl.carriage[0], tpl.carriage[1])
-    try:
-        resp, steady = patched_rows(tpl.k_base, tpl.c_base, tpl.src_base, tpl.k_pos, k_add, tpl.c_pos, c_add,
-                                    tpl.s_pos, s_add, node, t)
-    except RowError:
-        raise
+    resp, steady = patched_rows(tpl.k_base, tpl.c_base, tpl.src_base, tpl.k_pos, k_add, tpl.c_pos, c_add,
+                                tpl.s_pos, s_add, node, t)  # a RowError here names a row before ``bad``
     if bad >= 0:
         raise RowError(bad, why)
     return resp, steady

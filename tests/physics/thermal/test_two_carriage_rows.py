@@ -90,6 +90,9 @@ def test_the_first_refused_row_is_named_with_the_network_s_reason():
     with pytest.raises(RowError, match="Re = ") as exc:
         two_carriage_rows(v, y[:2], s[:2], np.array([0.2, 1e12]), obs[:2], times[:2])
     assert exc.value.row == 1
+    with pytest.raises(RowError, match="stroke_m") as exc:  # the very first row: nothing is solved
+        two_carriage_rows(v, y[:2], np.array([-1.0, 0.05]), msq[:2], obs[:2], times[:2])
+    assert exc.value.row == 0
     with pytest.raises(ValueError, match="ball_contact_conductance_w_k"):
         two_carriage_rows(dict(v, ball_contact_conductance_w_k=0.0), y, s, msq, obs, times)
 
