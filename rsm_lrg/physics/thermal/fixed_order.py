@@ -25,6 +25,9 @@ whatever the process, the number of threads or the other rows of a batch.
   differ in a chain of nodes attached to it (the leaves of each thickness of a design): the
   core is reduced to tridiagonal form once, so a row costs a QL iteration, in one compiled
   loop with no Python per row.
+* :func:`patched_rows` -- many rows of a network that differ in a few entries (the two-carriage
+  rig of each setting of a design): each row assembled from a shared base and its own entries and
+  decomposed with the operations of :func:`network_modes`, in one compiled loop.
 
 The kernels are compiled on first use (numba imported only then) and cached on disk.
 """
