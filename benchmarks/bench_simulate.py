@@ -1,7 +1,7 @@
 """Virtual runs per second of ``rsm_lrg.simulate`` (the physics surrogate).
 
     python benchmarks/bench_simulate.py [--rows 1 27 1000 100000] [--single 40] [--workers 2]
-                                        [--noise-sd 0.03] [--compare 2000] [--json PATH]
+                                        [--noise-sd 0.03] [--compare 2000] [--network 2000] [--json PATH]
 
 Workload: every row a different setting, drawn uniformly from the paper's Table 3 box
 (thickness 0.1-0.5 mm, stroke 0.04-0.06 m, velocity 0.4-0.6 m/s, acceleration 20-40 m/s^2),
@@ -26,6 +26,11 @@ Also:
   simulate writes, between the integrators and against the converged reference
   (:data:`CONVERGED`: the periodic state to 1e-10; issue 24 asks >= 8,900 rows per CPU-second,
   the pre-membrane surrogate, and 1e-6).
+- ``two-carriage network``: ``--network`` rows (default 2,000, :func:`network_compare`) through
+  ``simulate`` with the default calibration (both carriages on one rail), the network solved per row
+  by its own object (``runs.NETWORK_ROUTE = "dense"``, before issue 34's item 5) and all rows in one
+  compiled loop (the default), alternated in this one process: rows per CPU-second, the network's
+  CPU time per row alone, and the largest relative difference of the columns.
 
 Figures go in the report, not in tests (wall-clock times depend on the machine).
 """
@@ -158,6 +163,82 @@ def compare(n, noise_sd, repeat=2):
     return res | {"speedup": speedup, "relative_differences": diffs}
 
 
+def network_compare(n, noise_sd, repeat=2):
+    """Rows per CPU-second of simulate() with the default calibration (model v6-alone: both carriages on
+    one rail) on n rows (:func:`compare_rows`), the two-carriage network solved by each route of
+    ``rsm_lrg.surrogate.runs.NETWORK_ROUTE`` -- ``"dense"`` (each row its own network object, before issue
+    34's item 5) and ``"compiled"`` (the default: every row in one compiled loop) -- alternated in this one
+    process, the caches cleared before every run (best of ``repeat`` each); the CPU time of the network
+    alone per row on the same settings (each route called directly); and the largest relative difference
+    of every numeric column simulate writes between the two routes."""
+    from rsm_lrg.physics import motion
+    from rsm_lrg.physics.params import LRGParams
+    from rsm_lrg.physics.thermal import two_carriage as tc
+    from rsm_lrg.surrogate import runs
+    from rsm_lrg.surrogate.design_input import EXTRA_OUTPUT_COLUMNS, OUTPUT_COLUMNS
+
+    d = compare_rows(n)
+    cpu = {"dense": np.inf, "compiled": np.inf}
+    frames = {}
+    try:
+        for _ in range(repeat):
+            for route in cpu:
+                runs.NETWORK_ROUTE = route
+                runs.clear_row_caches()
+                t = time.process_time()
+                frames[route] = simulate(d, seed=1, noise_sd=noise_sd, progress=False)
+                cpu[route] = min(cpu[route], time.process_time() - t)
+    finally:
+        runs.NETWORK_ROUTE = "compiled"
+        runs.clear_row_caches()
+    # the network alone, on the rows' own settings (the default calibration's parameters)
+    from rsm_lrg.surrogate.calibrate import resolve_calibration
+
+    v = LRGParams().with_overrides(**{k: x for k, x in resolve_calibration("default").parameter_values().items()
+                                      if k in LRGParams().to_dict()}).to_dict()
+    y = d["thickness_m"].to_numpy()
+    s = d["stroke_m"].to_numpy()
+    msq = np.asarray(motion.mean_square_speed(s, d["velocity_m_s"].to_numpy(), d["acceleration_m_s2"].to_numpy(),
+                                              0.0, d["jerk_time_s"].to_numpy()), float)
+    rms = (d["stage"] == "rms").to_numpy()
+    times = np.tile([49 * 60.0, 50 * 60.0], (n, 1))
+    m = min(n, 300)
+    tc.clear_network_cache()
+    t = time.process_time()
+    for i in range(m):
+        run = tc.CarriageSetting(float(y[i]), float(s[i]), float(msq[i]))
+        net = tc.cached_network(v, run, run)
+        node = "rms.carriage" if rms[i] else "rfcms.carriage"
+        for src in tc.STAGES:
+            net.response(times[i], node, src)
+            net.steady_rise(src)
+    dense_row = (time.process_time() - t) / m
+    tc.two_carriage_rows(v, y[:2], s[:2], msq[:2], rms[:2], times[:2])  # the template, once per rig
+    t = time.process_time()
+    tc.two_carriage_rows(v, y, s, msq, rms, times)
+    compiled_row = (time.process_time() - t) / n
+    print(f"two-carriage network (default calibration, model v6-alone), {n} random rows of the Table 3 box through "
+          f"simulate, each route alternated in one process (CPU time, best of {repeat}, caches cleared):")
+    print(f"{'route':>20} {'CPU s':>8} {'rows/CPU-s':>11} {'network ms/row':>15}")
+    res = {}
+    for route, per in (("dense", dense_row), ("compiled", compiled_row)):
+        res[route] = {"rows": n, "cpu_seconds": cpu[route], "rows_per_cpu_s": n / cpu[route],
+                      "network_ms_per_row": 1e3 * per}
+        print(f"{route:>20} {cpu[route]:>8.3f} {n / cpu[route]:>11.0f} {1e3 * per:>15.3f}")
+    worst = {}
+    for col in OUTPUT_COLUMNS + EXTRA_OUTPUT_COLUMNS:
+        a, b = frames["dense"][col].to_numpy(), frames["compiled"][col].to_numpy()
+        if a.dtype == bool:
+            worst[col] = float(np.sum(a != b))
+            continue
+        with np.errstate(divide="ignore", invalid="ignore"):
+            worst[col] = float(np.max(np.where(a == b, 0.0, np.abs(b / a - 1.0))))
+    print(f"compiled over dense: {cpu['dense'] / cpu['compiled']:.2f}x (simulate), "
+          f"{dense_row / compiled_row:.1f}x (network alone); largest relative difference of any column: "
+          f"{max(worst.values()):.1e}")
+    return res | {"speedup": cpu["dense"] / cpu["compiled"], "max_relative_difference": worst}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rows", type=int, nargs="*", default=[1, 27, 1000, 100_000])
@@ -166,11 +247,15 @@ def main(argv=None):
     ap.add_argument("--noise-sd", type=float, default=0.03)
     ap.add_argument("--json", default=None)
     ap.add_argument("--compare", type=int, default=2000, help="rows for the old-vs-new integrator comparison (0: skip)")
+    ap.add_argument("--network", type=int, default=2000,
+                    help="rows for the two-carriage network's dense-vs-compiled comparison (0: skip)")
     a = ap.parse_args(argv)
 
     simulate(box(3), seed=0, noise_sd=a.noise_sd)  # warm-up: imports, thermal network, compiled stepper
     out = {"machine": {"cpus": os.cpu_count(), "python": platform.python_version(),
                        "processor": platform.processor() or platform.machine()}, "sizes": []}
+    if a.network > 0:
+        out["network_dense_vs_compiled"] = network_compare(a.network, a.noise_sd)
     if a.compare > 0:
         out["old_vs_new"] = compare(a.compare, a.noise_sd)
     print(f"{'rows':>8} {'seconds':>10} {'runs/s':>12} {'ms/run':>10}")

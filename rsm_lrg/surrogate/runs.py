@@ -38,7 +38,7 @@ import numpy as np
 from ..errors import ParameterError
 
 __all__ = ["evaluate_rows", "SURROGATE_PARAMETERS", "thermal_unit_response", "MAX_DURATION_MIN",
-           "check_duration"]
+           "check_duration", "NETWORK_ROUTE", "clear_row_caches"]
 
 #: Longest test [min] (69 days; the rig's tests last about 50 min, the guide is steady after
 #: a few hours): the upper end of ``test_duration_min``'s physical range.
@@ -161,6 +161,24 @@ _INTERP: dict = {}
 _ROWS: dict = {}
 _INTERP_SIZE = 4096
 
+#: How the two-carriage network of a batch's rows is solved: ``"compiled"`` (the default: every
+#: distinct row in one compiled loop, :func:`rsm_lrg.physics.thermal.two_carriage.two_carriage_rows`)
+#: or ``"dense"`` (each row its own :func:`~rsm_lrg.physics.thermal.two_carriage.two_carriage_network`
+#: object, the route before; kept to compare the two, ``benchmarks/bench_simulate.py``). Both give the
+#: same numbers; clear the row caches (:func:`clear_row_caches`) when switching to time them.
+NETWORK_ROUTE = "compiled"
+
+
+def clear_row_caches() -> None:
+    """Forget the two-carriage rows, interpolants and stage dynamics remembered in this process (the
+    results do not change: a timing starts from nothing)."""
+    from ..physics.thermal.two_carriage import clear_network_cache
+
+    _ROWS.clear()
+    _INTERP.clear()
+    _MEMO.clear()
+    clear_network_cache()
+
 
 def _network_items(values: dict) -> tuple:
     """The (name, value) pairs of ``values`` that enter the two-carriage network (a cache key)."""
@@ -203,19 +221,99 @@ def _two_carriage_exact(values: dict, dur: float, y: float, s: float, msq: float
     minutes, as :func:`_rise_at`) of its own friction power and of the other stage's, and the two
     steady rises per watt. Both stages run the same stroke ``s`` [m] and speed (``msq`` = <v²>
     [m²/s²]; one link span drives both, Section 4.1); the RFCMS has leaves of thickness ``y`` [m]."""
-    from ..physics.thermal.two_carriage import CarriageSetting, cached_network
+    from ..physics.thermal.fixed_order import RowError
 
-    run = CarriageSetting(float(y), float(s), float(msq))
-    net = cached_network(values, run, run)
-    me, other = ("rms", "rfcms") if rigid else ("rfcms", "rms")
-    lo, hi = math.floor(dur), math.ceil(dur)
-    w = dur - lo if hi > lo else 0.0
-    node = f"{me}.carriage"
-    r_self = net.response(np.array([lo, hi], float) * 60.0, node, me)
-    r_other = net.response(np.array([lo, hi], float) * 60.0, node, other)
-    i = net.node(node)
-    return (float(r_self[0] + w * (r_self[1] - r_self[0])), float(r_other[0] + w * (r_other[1] - r_other[0])),
-            float(net.steady_rise(me)[i]), float(net.steady_rise(other)[i]))
+    try:
+        out = _two_carriage_many(values, np.array([dur]), np.array([y]), np.array([s]), np.array([msq]),
+                                 np.array([rigid]))
+    except RowError as exc:
+        raise ValueError(exc.reason) from None
+    return tuple(float(x) for x in out[0])
+
+
+def _two_carriage_many(values: dict, dur: np.ndarray, y: np.ndarray, s: np.ndarray, msq: np.ndarray,
+                       rigid: np.ndarray) -> np.ndarray:
+    """:func:`_two_carriage_exact` of many rows with the parameters ``values``, in one compiled loop
+    (:func:`rsm_lrg.physics.thermal.two_carriage.two_carriage_rows`; each row's numbers do not depend
+    on the others): an array (rows, 4) of the self and other rises and the two steady rises. Raises
+    ``RowError`` naming the first row (from 0) that fails."""
+    from ..physics.thermal.fixed_order import RowError
+    from ..physics.thermal.two_carriage import STAGES, CarriageSetting, cached_network, two_carriage_rows
+
+    lo, hi = np.floor(dur), np.ceil(dur)
+    w = np.where(hi > lo, dur - lo, 0.0)
+    times = np.stack([lo, hi], axis=1) * 60.0
+    if NETWORK_ROUTE == "dense":  # each row its own network object (before issue 34's item 5)
+        resp, steady = np.empty((dur.shape[0], 2, 2)), np.empty((dur.shape[0], 2))
+        for i in range(dur.shape[0]):
+            try:
+                run = CarriageSetting(float(y[i]), float(s[i]), float(msq[i]))
+                net = cached_network(values, run, run)
+            except ValueError as exc:
+                raise RowError(i, str(exc)) from None
+            node = "rms.carriage" if rigid[i] else "rfcms.carriage"
+            for c, src in enumerate(STAGES):
+                resp[i, c] = net.response(times[i], node, src)
+                steady[i, c] = net.steady_rise(src)[net.node(node)]
+    elif NETWORK_ROUTE == "compiled":
+        resp, steady = two_carriage_rows(values, y, s, msq, rigid, times)
+    else:
+        raise ValueError(f"NETWORK_ROUTE must be 'compiled' or 'dense', got {NETWORK_ROUTE!r}")
+    me = np.where(rigid, 0, 1)
+    r = np.arange(dur.shape[0])
+    r_self, r_other = resp[r, me], resp[r, 1 - me]
+    return np.stack([r_self[:, 0] + w * (r_self[:, 1] - r_self[:, 0]), r_other[:, 0] + w * (r_other[:, 1] - r_other[:, 0]),
+                     steady[r, me], steady[r, 1 - me]], axis=1)
+
+
+def _two_carriage_batch(base: dict, row_keys: np.ndarray, first: np.ndarray, names: list,
+                        n: int) -> tuple[np.ndarray, int, str]:
+    """The network parts (rows of ``row_keys``: dur, y, s, msq, rigid, then the values of the parameter
+    columns ``names``) of a batch's distinct rows (``first``: the batch row each stands for), each looked up
+    in (or added to) the shared cache of rows, the rest solved together per parameter set
+    (:func:`_two_carriage_many`). Returns the parts (len(first), 4) and the first failing batch row
+    with its reason (``-1, ""`` where none fails)."""
+    from ..physics.thermal.fixed_order import RowError
+    from ..physics.thermal.two_carriage import network_items
+
+    parts = np.full((len(first), 4), np.nan)
+    todo: dict = {}  # network parameters -> [(distinct row, key)]
+    sets: dict = {}  # parameter values -> (network parameters and contact conductance, the values)
+    enter = {k for k, _ in network_items(dict.fromkeys(names, 0.0))} | {"ball_contact_conductance_w_k"}
+    cols = [j for j, k in enumerate(names) if k in enter]  # the other columns do not change the network
+    for g in range(len(first)):
+        over = tuple(float(row_keys[g, 5 + j]) for j in cols)
+        if over not in sets:
+            vals = dict(base, **{names[j]: x for j, x in zip(cols, over)})
+            sets[over] = ((network_items(vals), float(vals["ball_contact_conductance_w_k"])), vals)
+        net, _ = sets[over]
+        dur, y, s, msq, rigid = (float(x) for x in row_keys[g, :5])
+        key = (*net, dur, y, s, msq, bool(rigid))
+        hit = _ROWS.get(key)
+        if hit is not None:  # a design's repeated settings, across its batches
+            parts[g] = hit
+        else:
+            todo.setdefault(net, []).append((g, key, over))
+    bad, why = n, ""
+    for rows in todo.values():  # rows whose parameters differ only outside the network: one loop
+        idx = np.array([g for g, _, _ in rows])
+        vals = sets[rows[0][2]][1]
+        k = row_keys[idx]
+        try:
+            parts[idx] = _two_carriage_many(vals, k[:, 0], k[:, 1], k[:, 2], k[:, 3], k[:, 4] != 0)
+        except RowError as exc:
+            if int(first[idx[exc.row]]) < bad:
+                bad, why = int(first[idx[exc.row]]), exc.reason
+            continue
+        except ValueError as exc:  # the parameter set itself
+            if int(first[idx[0]]) < bad:
+                bad, why = int(first[idx[0]]), str(exc)
+            continue
+        for g, key, _ in rows:
+            if len(_ROWS) >= _INTERP_SIZE:
+                _ROWS.pop(next(iter(_ROWS)))
+            _ROWS[key] = tuple(float(x) for x in parts[g])
+    return parts, (bad if bad < n else -1), why
 
 
 def _lagged_rise_at(values: dict, dur: np.ndarray, tau: np.ndarray, unit: np.ndarray, q: np.ndarray):
@@ -436,15 +534,23 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
                           + [np.broadcast_to(np.asarray(pcols[k], float), (n,)) for k in names_t], axis=1)
         uniq_t, first_t, inv_t = np.unique(keys_t, axis=0, return_index=True, return_inverse=True)
         inv_t = inv_t.reshape(-1)
-        parts_t = np.empty((len(uniq_t), 4))
-        for g in np.argsort(first_t, kind="stable").tolist():  # in row order: the first bad row is named
-            i = int(first_t[g])
-            vals = dict(base2, **{k: float(np.broadcast_to(pcols[k], (n,))[i]) for k in names_t})
-            try:
-                parts_t[g] = _two_carriage_row(vals, float(dur[i]), float(y[i]), float(s[i]), float(msq[i]),
-                                               bool(rigid[i]), memo, items0)
-            except ValueError as exc:
-                raise ValueError(f"row {row_start + i + 1}: {exc}") from None
+        if memo:  # a calibration: the same rows at many contact conductances (interpolants in ln g)
+            parts_t = np.empty((len(uniq_t), 4))
+            for g in np.argsort(first_t, kind="stable").tolist():  # in row order: the first bad row is named
+                i = int(first_t[g])
+                vals = dict(base2, **{k: float(np.broadcast_to(pcols[k], (n,))[i]) for k in names_t})
+                try:
+                    parts_t[g] = _two_carriage_row(vals, float(dur[i]), float(y[i]), float(s[i]), float(msq[i]),
+                                                   bool(rigid[i]), memo, items0)
+                except ValueError as exc:
+                    raise ValueError(f"row {row_start + i + 1}: {exc}") from None
+        else:  # every distinct row's network in one compiled loop
+            order = np.argsort(first_t, kind="stable")
+            parts_o, bad, why = _two_carriage_batch(base2, uniq_t[order], first_t[order], names_t, n)
+            if bad >= 0:
+                raise ValueError(f"row {row_start + bad + 1}: {why}")
+            parts_t = np.empty_like(parts_o)
+            parts_t[order] = parts_o
         unit_end[:], lag_end[:], steady[:], steady_drive[:] = parts_t[inv_t].T
     if balance and not two:  # each row its own rig network (rig_responses), grouped by stage kind and per-row parameters
         from ..physics.thermal.fixed_order import RowError

@@ -83,3 +83,26 @@ def test_replicated_rows_share_one_solution_equal_to_each_alone():
     bad["carriage_spacing_m"] = [0.2, 0.01, 0.001, 0.2]  # rows 2 and 3 collide; row 3 sorts first (y)
     with pytest.raises(ValueError, match=r"^row 2: the two carriages collide"):
         simulate(bad, noise_sd=0, calibration=CAL)
+
+
+@pytest.mark.parametrize("running", [True, False])
+def test_the_compiled_rows_give_what_each_row_s_own_network_gives(monkeypatch, running):
+    # runs.NETWORK_ROUTE "dense": each distinct row its own two_carriage_network object (the route before the
+    # compiled rows); random rows of the Table 3 box, both stages, the other stage running or at rest
+    from rsm_lrg.surrogate import runs
+
+    rng = np.random.default_rng(8)
+    n = 24
+    rows = pd.DataFrame({"thickness_m": rng.uniform(1e-4, 5e-4, n), "stroke_m": rng.uniform(0.04, 0.06, n),
+                         "velocity_m_s": rng.uniform(0.4, 0.6, n), "acceleration_m_s2": rng.uniform(20, 40, n),
+                         "stage": np.where(np.arange(n) % 3 == 0, "rms", "rfcms"),
+                         "test_duration_min": rng.uniform(5, 60, n)})
+    cal = dict(CAL, other_stage_running=running)
+    runs.clear_row_caches()
+    new = simulate(rows, noise_sd=0.03, seed=4, calibration=cal)
+    monkeypatch.setattr(runs, "NETWORK_ROUTE", "dense")
+    runs.clear_row_caches()
+    old = simulate(rows, noise_sd=0.03, seed=4, calibration=cal)
+    runs.clear_row_caches()
+    for col in ("tcr_c_per_min", "temperature_rise_k", "steady_rise_k"):
+        np.testing.assert_allclose(new[col], old[col], rtol=1e-12, atol=0)

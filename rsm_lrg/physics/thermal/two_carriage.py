@@ -44,7 +44,8 @@ import numpy as np
 from .fixed_order import modal_sum, network_modes, solve_spd
 from .geometry import GuideGeometry
 
-__all__ = ["CarriageSetting", "TwoCarriageNetwork", "two_carriage_network", "cached_network", "STAGES",
+__all__ = ["CarriageSetting", "TwoCarriageNetwork", "two_carriage_network", "cached_network", "STAGES", "two_carriage_rows",
+           "clear_network_cache", "network_items",
            "ContactInterpolant"]
 
 #: The two stages on the rail, in the order of their positions (RMS first).
@@ -148,8 +149,10 @@ def _overlap(edges: np.ndarray, lo: float, hi: float) -> np.ndarray:
     return np.clip(np.minimum(edges[1:], hi) - np.maximum(edges[:-1], lo), 0.0, None)
 
 
-def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float) -> _Parts:
-    """The network's parts (:func:`two_carriage_network`), the ball contacts apart."""
+def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float, fixed_only: bool = False) -> _Parts:
+    """The network's parts (:func:`two_carriage_network`), the ball contacts apart; ``fixed_only``: only
+    what does not depend on the settings ``rms``, ``rfcms`` (:func:`two_carriage_rows` adds the rest per
+    row: the bodies' convection at the air speed they see, the leaves, the ball contacts)."""
     from .. import convection
     from .network import rig_bodies
 
@@ -159,12 +162,12 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float)
     g = GuideGeometry.from_params(v)
     L_r, spacing = g.rail_length_m, float(v["carriage_spacing_m"])
     L, Lrow = g.block_length_m, g.row_length_m
-    for name, setting in zip(STAGES, (rms, rfcms)):
+    for name, setting in zip(STAGES, (rms, rfcms) if not fixed_only else ()):
         half = spacing / 2 + (L + setting.stroke_m) / 2
         if half > L_r / 2 + 1e-12:
             raise ValueError(f"the {name.upper()} carriage runs off the rail: centres {spacing:g} m apart on a "
                              f"{L_r:g} m rail with a {L:g} m block and a {setting.stroke_m:g} m stroke")
-    if spacing < L + (rms.stroke_m + rfcms.stroke_m) / 2 - 1e-12:
+    if not fixed_only and spacing < L + (rms.stroke_m + rfcms.stroke_m) / 2 - 1e-12:
         raise ValueError(f"the two carriages collide: centres {spacing:g} m apart, blocks {L:g} m long, strokes "
                          f"{rms.stroke_m:g} and {rfcms.stroke_m:g} m")
     rho, lam, cp = g.body_properties()
@@ -209,7 +212,15 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float)
     g_amb = np.zeros(n)
     sources = {st: np.zeros(n) for st in STAGES}
 
+    # fixed_only: the bodies whose diagonal a row changes start from 0 in K; the fixed terms added to
+    # their diagonal are logged in their order, for each row to add them after its own loss
+    logged: dict[int, list[float]] = ({i: [] for st in STAGES for i in (per[st][0], *per[st][2:])} if fixed_only
+                                      else {})
+
     def link(i: int, j: int, G: float, mat: np.ndarray = K) -> None:
+        for q in (i, j):
+            if mat is K and q in logged:
+                logged[q].append(G)
         mat[i, i] += G
         mat[j, j] += G
         mat[i, j] -= G
@@ -238,7 +249,7 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float)
     conv = {}
     for st, setting in zip(STAGES, (rms, rfcms)):
         u = float(convection.relative_air_speed(float(v["air_velocity_m_s"]), setting.mean_square_speed_m2_s2))
-        hm = convection.moving_coefficients(v, u)
+        hm = convection.moving_coefficients(v, u) if not fixed_only else h_room
         conv[st] = {"air_speed_m_s": u, "reynolds": hm.reynolds, "h_side_w_m2k": hm.h_side,
                    "h_front_w_m2k": hm.h_front}
         rigid = st == "rms"
@@ -248,17 +259,22 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float)
         car, balls, frame = per[st][:3]
         stage = per[st][-1]
         C[car] = g.carriage_steel_volume_m3 * g.steel_density_kg_m3 * g.steel_specific_heat_j_kgk
-        loss(car, hm.h_side * area_side + hm.h_front * area_front)
+        if not fixed_only:
+            loss(car, hm.h_side * area_side + hm.h_front * area_front)
         C[balls] = g.ball_mass_kg * g.ball_specific_heat_j_kgk
         # ball contacts: carriage side
-        link(car, balls, 1.0, K1)
+        if not fixed_only:
+            link(car, balls, 1.0, K1)
         sources[st][car] += 0.5 * to_race
         sources[st][balls] += 0.5 * (1.0 - to_race) * 2.0  # both sides' ball shares
         # rail side, spread over the length the rows sweep
         reach = (Lrow + setting.stroke_m) / 2
         sweep = _overlap(edges, centres[st] - reach, centres[st] + reach)
-        share = sweep / sweep.sum()
-        for cell in np.flatnonzero(share > 0).tolist():
+        total = sweep[0]
+        for x in sweep[1:]:  # in cell order (two_carriage_rows adds them in the same order)
+            total += x
+        share = sweep / total
+        for cell in np.flatnonzero(share > 0).tolist() if not fixed_only else ():
             link(balls, cell, float(share[cell]), K1)
             sources[st][cell] += 0.5 * to_race * float(share[cell])
         # the clearance air under the block (at its mean position)
@@ -267,19 +283,23 @@ def _assemble(values, rms: CarriageSetting, rfcms: CarriageSetting, dx_m: float)
             link(car, cell, g_air_per_m * float(foot[cell]))
         # frame, leaves, stage
         C[frame] = bodies.frame_capacity_j_k
-        loss(frame, bodies.frame_loss_w_k * scale)
+        if not fixed_only:
+            loss(frame, bodies.frame_loss_w_k * scale)
         link(car, frame, bodies.frame_joint_w_k)
         C[stage] = bodies.stage_capacity_j_k
-        loss(stage, bodies.stage_loss_w_k * scale)
+        if not fixed_only:
+            loss(stage, bodies.stage_loss_w_k * scale)
         if rigid:
             link(frame, stage, bodies.frame_joint_w_k)
-        else:
+        elif not fixed_only:
             leaves = per[st][3]
             C[leaves] = bodies.leaf_capacity_j_k
             loss(leaves, bodies.leaf_loss_w_k)
             link(frame, leaves, 2.0 * bodies.leaf_w_k)  # the leaves' node at mid-length
             link(leaves, stage, 2.0 * bodies.leaf_w_k)
-    return _Parts(K, K1, C, sources, g_amb, nodes, cells, names, conv)
+    for q in logged:
+        K[q, q] = 0.0
+    return _Parts(K, K1, C, sources, g_amb, nodes, cells, names, conv, {q: tuple(a) for q, a in logged.items()})
 
 
 @dataclass(frozen=True)
@@ -295,6 +315,7 @@ class _Parts:
     rail_cells: np.ndarray
     names: list
     convection: dict
+    diag_terms: dict  # fixed_only: node -> the fixed terms of its diagonal, in their order
 
 
 def two_carriage_network(values, rms: CarriageSetting, rfcms: CarriageSetting, *,
@@ -339,6 +360,13 @@ def _parts_cached(items: tuple, rms: CarriageSetting, rfcms: CarriageSetting, dx
     return _assemble(dict(items), rms, rfcms, dx_m)
 
 
+def clear_network_cache() -> None:
+    """Forget the networks' parts (:func:`cached_network`) and the rows' templates
+    (:func:`two_carriage_rows`) built in this process (for a timing that starts from nothing)."""
+    _parts_cached.cache_clear()
+    _row_template.cache_clear()
+
+
 def cached_network(values, rms: CarriageSetting, rfcms: CarriageSetting, *, dx_m: float = 1e-2) -> TwoCarriageNetwork:
     """:func:`two_carriage_network` (its parts but the ball contacts are cached per parameters and
     settings: a calibration asks for the same rows many times)."""
@@ -380,3 +408,288 @@ class ContactInterpolant:
         x = (2.0 * math.log(g) - self._a - self._b) / (self._b - self._a)
         t = np.cos(np.arange(self._coef.shape[0]) * math.acos(min(1.0, max(-1.0, x))))  # T_k(x)
         return np.asarray(t @ self._coef, float)
+
+
+# ----------------------------------------------------------------------------------------
+# many rows in one compiled loop
+# ----------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _RowTemplate:
+    """What every row of one rig shares (:func:`two_carriage_rows`): the network without the
+    parts that change with the row, where those parts go, and the constants they are made of."""
+
+    k_base: np.ndarray
+    c_base: np.ndarray
+    src_base: np.ndarray
+    k_pos: np.ndarray  # see _row_patches
+    s_pos: np.ndarray  # (2 n_r, 2): the rail cells' share of each stage's heat
+    c_pos: np.ndarray  # (1,): the RFCMS's leaves
+    carriage: tuple  # node of each stage's carriage (STAGES order)
+    diag_terms: tuple  # per stage: the fixed terms of the diagonal of its carriage, frame and stage
+    leaf_terms: tuple  # the fixed terms of the RFCMS's leaves
+    edges: np.ndarray
+    centres: tuple
+    row_length_m: float
+    block_length_m: float
+    rail_length_m: float
+    spacing_m: float
+    to_race: float
+    area_side_m2: float
+    area_front_m2: float
+    h_room_side: float
+    frame_loss_w_k: float
+    stage_loss_w_k: float
+    leaf_area_m2: float  # n 2 w l: both faces of the leaves
+    air: tuple  # the convection's air parameters (convection.AIR_PARAMETERS)
+
+
+@lru_cache(maxsize=64)
+def _row_template(items: tuple, dx_m: float) -> _RowTemplate:
+    from .. import convection
+
+    v = dict(items)
+    dummy = CarriageSetting(float(v["hinge_thickness_m"]), 0.0, 0.0)  # its parts are left out
+    parts = _assemble(v, dummy, dummy, dx_m, fixed_only=True)
+    nd = parts.nodes
+    n_r = len(parts.rail_cells)
+    g = GuideGeometry.from_params(v)
+    w, hr, H1, gap = g.rail_width_m, g.rail_height_m, g.block_clearance_m, g.clearance_m
+    W, M, L = g.block_width_m, g.block_height_m, g.block_length_m
+    hb = M - H1
+    chan_w, chan_h = w + 2 * gap, hr - H1 + gap
+    # the entries a row sets, in the order _row_patches makes them (each the same sum, in the same order, as
+    # two_carriage_network's k_rest + g k_contact)
+    pos = []
+    for st in STAGES:  # the bodies' diagonals: their loss at the row's air speed, then their links
+        pos += [(nd[f"{st}.carriage"],) * 2, (nd[f"{st}.frame"],) * 2, (nd[f"{st}.stage"],) * 2]
+    fr, lv, sg = nd["rfcms.frame"], nd["rfcms.leaves"], nd["rfcms.stage"]
+    pos += [(lv, lv), (fr, lv), (lv, sg)]  # the leaves: diagonal, links to the frame and the stage
+    for st in STAGES:  # the ball contacts: carriage side
+        car, b = nd[f"{st}.carriage"], nd[f"{st}.balls"]
+        pos += [(car, car), (car, b), (b, b)]
+    pos += [(cell, cell) for cell in range(n_r)]  # rail side
+    spos = []
+    for col, st in enumerate(STAGES):
+        b = nd[f"{st}.balls"]
+        pos += [(b, cell) for cell in range(n_r)]
+        spos += [(cell, col) for cell in range(n_r)]
+    L_r, spacing = g.rail_length_m, float(v["carriage_spacing_m"])
+    ratio = float(v["guide_conductivity_w_mk"]) / float(v["ball_conductivity_w_mk"])
+    h_room = convection.moving_coefficients(v, float(v["air_velocity_m_s"]))
+    terms = parts.diag_terms
+    return _RowTemplate(
+        k_base=parts.k_rest, c_base=parts.capacity, src_base=np.stack([parts.sources[s] for s in STAGES], axis=1),
+        k_pos=np.array(pos, dtype=np.int64), s_pos=np.array(spos, dtype=np.int64),
+        c_pos=np.array([lv], dtype=np.int64), carriage=tuple(nd[f"{s}.carriage"] for s in STAGES),
+        diag_terms=tuple(tuple(terms[nd[f"{st}.{body}"]] for body in ("carriage", "frame", "stage")) for st in STAGES),
+        leaf_terms=terms[lv],
+        edges=np.linspace(-L_r / 2, L_r / 2, n_r + 1), centres=(-spacing / 2, spacing / 2),
+        row_length_m=g.row_length_m, block_length_m=L, rail_length_m=L_r, spacing_m=spacing,
+        to_race=ratio / (1.0 + ratio),
+        area_side_m2=W * L + 2 * hb * L + (W - chan_w) * L, area_front_m2=2 * (W * hb - chan_w * chan_h),
+        h_room_side=h_room.h_side, frame_loss_w_k=float(v["stage_loss_conductance_w_k"]),
+        stage_loss_w_k=float(v["stage_loss_conductance_w_k"]),
+        leaf_area_m2=float(v["hinge_count"]) * 2.0 * float(v["hinge_width_m"]) * float(v["hinge_length_m"]),
+        air=tuple(float(v[k]) for k in convection.AIR_PARAMETERS))
+
+
+#: Parameters the two-carriage network reads besides the guide's geometry
+#: (:class:`~.geometry.GuideGeometry`) and the air (:data:`rsm_lrg.physics.convection.AIR_PARAMETERS`).
+_NETWORK_PARAMETERS = ("ball_conductivity_w_mk", "base_heat_capacity_j_k", "base_loss_conductance_w_k", "block_length_m",
+                       "block_width_m", "carriage_spacing_m", "frame_mass_fraction", "guide_conductivity_w_mk",
+                       "hinge_conductivity_w_mk", "hinge_count", "hinge_density_kg_m3", "hinge_length_m",
+                       "hinge_specific_heat_j_kgk", "hinge_thickness_m", "hinge_width_m", "joint_conductance_w_m2k",
+                       "stage_loss_conductance_w_k", "stage_mass_kg", "stage_specific_heat_j_kgk")
+
+
+def network_items(values) -> tuple:
+    """The ``(name, value)`` pairs of the parameters ``values`` that the two-carriage network reads
+    but the ball contacts' conductance, sorted: rows whose parameters differ elsewhere (the motion,
+    the friction, the wear) share one network template (:func:`two_carriage_rows`).
+
+    Parameters
+    ----------
+    values : mapping
+        A full :meth:`rsm_lrg.physics.params.LRGParams.to_dict` (or more).
+
+    Returns
+    -------
+    tuple of (str, value)
+
+    >>> from rsm_lrg.physics.params import LRGParams
+    >>> names = dict(network_items(LRGParams().to_dict()))
+    >>> "carriage_spacing_m" in names, "mu_k" in names, "ball_contact_conductance_w_k" in names
+    (True, False, False)
+    """
+    from dataclasses import fields
+
+    from .. import convection
+    from .geometry import PARAM_ALIASES
+
+    geo = {f.name for f in fields(GuideGeometry)}
+    keep = set(_NETWORK_PARAMETERS) | set(convection.AIR_PARAMETERS)
+    return tuple(sorted((k, x) for k, x in dict(values).items()
+                        if (k in keep or PARAM_ALIASES.get(k, k) in geo) and k != "ball_contact_conductance_w_k"))
+
+
+def _row_checks(tpl: _RowTemplate, y: np.ndarray, s: np.ndarray, msq: np.ndarray, re: np.ndarray,
+                pr: float) -> tuple[int, str]:
+    """The first row (from 0) that :func:`two_carriage_network` would refuse, and why; ``(-1, "")``
+    where none is."""
+    from .. import convection
+
+    rows = y.shape[0]
+    first, why = rows, ""
+    for name, x in (("thickness_m", y), ("stroke_m", s), ("mean_square_speed_m2_s2", msq)):
+        bad = np.flatnonzero(~(np.isfinite(x) & (x >= 0)))
+        if bad.size and bad[0] < first:
+            first, why = int(bad[0]), f"CarriageSetting.{name} must be a finite float >= 0, got {float(x[bad[0]])!r}"
+    L, L_r, spacing = tpl.block_length_m, tpl.rail_length_m, tpl.spacing_m
+    off = np.flatnonzero(spacing / 2 + (L + s) / 2 > L_r / 2 + 1e-12)
+    if off.size and off[0] < first:
+        first, why = int(off[0]), (f"the RMS carriage runs off the rail: centres {spacing:g} m apart on a {L_r:g} m "
+                                   f"rail with a {L:g} m block and a {float(s[off[0]]):g} m stroke")
+    hit = np.flatnonzero(spacing < L + (s + s) / 2 - 1e-12)
+    if hit.size and hit[0] < first:
+        first, why = int(hit[0]), (f"the two carriages collide: centres {spacing:g} m apart, blocks {L:g} m long, "
+                                   f"strokes {float(s[hit[0]]):g} and {float(s[hit[0]]):g} m")
+    out = np.flatnonzero(~((re < convection.PARALLEL_PLATE_RE_MAX) & (re * pr >= 0.2)))
+    if out.size and out[0] < first:
+        first, why = int(out[0]), (f"Re = {float(re[out[0]]):.4g} is outside the convection correlations' range "
+                                   f"(laminar flat plate Re < {convection.PARALLEL_PLATE_RE_MAX:g}, "
+                                   f"Churchill-Bernstein Re Pr >= 0.2)")
+    return (first, why) if first < rows else (-1, "")
+
+
+def two_carriage_rows(values, thickness_m, stroke_m, mean_square_speed_m2_s2, observed, times_s, *,
+                      dx_m: float = 1e-2) -> tuple[np.ndarray, np.ndarray]:
+    """The rise per watt of a working carriage for many rows of the rig, each row the network
+    :func:`two_carriage_network` builds for it with both stages running its setting, in one
+    compiled loop (no Python object per row).
+
+    What does not change from row to row (the rail, the base, the joints, the clearance air, the
+    heat capacities, the carriage-side sources) is assembled once per parameter set; each row adds
+    what its setting changes: the convection of every body at the air speed it sees (``<v²>``), the
+    RFCMS's leaves (thickness), the ball contacts spread over the rail cells the rows sweep (stroke)
+    and their heat; then its ``C^(-1/2) K C^(-1/2)`` is decomposed on its own in a fixed order of
+    operations (:func:`.fixed_order.patched_rows`). The numbers equal those of
+    :func:`two_carriage_network` to rounding (1e-11 relative, tested) and a row's numbers do not
+    depend on the other rows.
+
+    Parameters
+    ----------
+    values : mapping
+        A full :meth:`rsm_lrg.physics.params.LRGParams.to_dict`.
+    thickness_m, stroke_m, mean_square_speed_m2_s2 : array (rows,)
+        Each row's setting (:class:`CarriageSetting`) [m], [m], [m²/s²].
+    observed : bool array (rows,)
+        True: the RMS's carriage is observed (the RMS is the working stage); false: the RFCMS's.
+    times_s : array (rows, m)
+        Times after the heat step [s].
+    dx_m : float
+        Rail cell length [m].
+
+    Returns
+    -------
+    resp : ndarray (rows, 2, m)
+        Rise per watt [K/W] of the observed carriage at ``times_s`` of the friction power of the
+        RMS and of the RFCMS (:data:`STAGES` order).
+    steady : ndarray (rows, 2)
+        The steady rises per watt [K/W].
+
+    Raises :class:`.fixed_order.RowError` (a ``ValueError``) naming the first row (from 0) that
+    :func:`two_carriage_network` would refuse or whose decomposition fails.
+
+    Examples
+    --------
+    >>> from rsm_lrg.physics.params import LRGParams
+    >>> v = LRGParams().to_dict()
+    >>> resp, steady = two_carriage_rows(v, [3e-4], [0.05], [0.2], [False], [[3000.0]])
+    >>> net = two_carriage_network(v, *(CarriageSetting(3e-4, 0.05, 0.2),) * 2)
+    >>> bool(abs(resp[0, 1, 0] / net.response([3000.0], "rfcms.carriage", "rfcms")[0] - 1) < 1e-11)
+    True
+    """
+    from .. import convection
+    from .fixed_order import RowError, patched_rows
+    from .network import leaf_terms
+
+    gk = float(values["ball_contact_conductance_w_k"])
+    if not (math.isfinite(gk) and gk > 0):
+        raise ValueError(f"ball_contact_conductance_w_k must be a positive number [W/K], got {gk!r}")
+    if not (math.isfinite(dx_m) and 0 < dx_m <= 0.05):
+        raise ValueError(f"dx_m must be in (0, 0.05] m, got {dx_m!r}.")
+    t = np.atleast_2d(np.asarray(times_s, float))
+    rows = t.shape[0]
+    y, s, msq = (np.ascontiguousarray(np.broadcast_to(np.asarray(q, float), (rows,)))
+                 for q in (thickness_m, stroke_m, mean_square_speed_m2_s2))
+    obs = np.broadcast_to(np.asarray(observed, bool), (rows,))
+    tpl = _row_template(network_items(values), float(dx_m))  # only these: a parameter missed fails loudly
+    air_speed, lc, nu, eta, lam, cp = tpl.air
+    with np.errstate(invalid="ignore"):
+        u = convection.relative_air_speed(air_speed, msq)
+        re = np.asarray(convection.reynolds(u, lc, nu), float)
+    pr = float(convection.prandtl(cp, eta, lam))
+    bad, why = _row_checks(tpl, y, s, msq, re, pr)
+    ok = rows if bad < 0 else bad  # the rows before the first refused one are still solved: an earlier
+    y, s, msq, re, t = y[:ok], s[:ok], msq[:ok], re[:ok], t[:ok]  # failing decomposition is named first
+    k_add, c_add, s_add = _row_patches(tpl, gk, y, s, re, pr, lam, lc, leaf_terms(values, y))
+    node = np.where(obs[:ok], tpl.carriage[0], tpl.carriage[1])
+    resp, steady = patched_rows(tpl.k_base, tpl.c_base, tpl.src_base, tpl.k_pos, k_add, tpl.c_pos, c_add,
+                                tpl.s_pos, s_add, node, t)  # a RowError here names a row before ``bad``
+    if bad >= 0:
+        raise RowError(bad, why)
+    return resp, steady
+
+
+def _row_patches(tpl: _RowTemplate, gk: float, y, s, re, pr: float, lam: float, lc: float, leaf):
+    """Each row's entries of the network (the positions of :class:`_RowTemplate`): every one the
+    same sum, in the same order, as :func:`two_carriage_network` makes it (``k_rest + g k_contact``),
+    so each row's matrix is that network's to the last bit."""
+    from .. import convection
+
+    rows = y.shape[0]
+    hs = np.asarray(convection.heat_transfer_coefficient(convection.nusselt_parallel_plate(re, pr), lam, lc), float)
+    hf = np.asarray(convection.heat_transfer_coefficient(convection.nusselt_cross_flow(re, pr), lam, lc), float)
+    hs, hf = np.broadcast_to(hs, (rows,)), np.broadcast_to(hf, (rows,))
+    scale = hs / tpl.h_room_side  # the frame's and stage's losses are given at the room's air speed
+    g_leaf, c_leaf = (np.broadcast_to(np.asarray(q, float), (rows,)) for q in leaf)
+    two = 2.0 * g_leaf
+
+    def summed(first, fixed, *row_terms):
+        out = np.array(first, float, copy=True)
+        for t in fixed:
+            out += t
+        for t in row_terms:
+            out += t
+        return out
+
+    cols = []
+    for k, (car, frame, stage) in enumerate(tpl.diag_terms):
+        rigid = STAGES[k] == "rms"
+        cols += [summed(hs * tpl.area_side_m2 + hf * tpl.area_front_m2, car),
+                 summed(tpl.frame_loss_w_k * scale, frame, *(() if rigid else (two,))),
+                 summed(tpl.stage_loss_w_k * scale, stage, *(() if rigid else (two,)))]
+    cols += [summed(tpl.leaf_area_m2 * hs, tpl.leaf_terms, two, two), -two, -two]
+    edges = tpl.edges
+    n_r = edges.size - 1
+    shares = []
+    for centre in tpl.centres:
+        reach = (tpl.row_length_m + s) / 2
+        lo, hi = (centre - reach)[:, None], (centre + reach)[:, None]
+        sweep = np.clip(np.minimum(edges[None, 1:], hi) - np.maximum(edges[None, :-1], lo), 0.0, None)
+        total = sweep[:, 0].copy()
+        for k in range(1, n_r):  # in cell order, as two_carriage_network; a row's share is its own
+            total += sweep[:, k]
+        share = sweep / total[:, None]
+        kb = np.ones(rows)  # the balls' contact links: the carriage side (1), then the cells in order
+        for k in range(n_r):
+            kb += share[:, k]
+        shares.append(share)
+        cols += [np.full(rows, gk), np.full(rows, -gk), gk * kb]
+    cell = shares[0] + shares[1]  # 0 + the RMS's share + the RFCMS's (each cell's, in stage order)
+    cols += [gk * cell[:, k] for k in range(n_r)]
+    for share in shares:
+        cols += [gk * -share[:, k] for k in range(n_r)]
+    s_add = np.concatenate([0.5 * tpl.to_race * share for share in shares], axis=1)
+    k_add = np.stack([np.broadcast_to(np.asarray(c, float), (rows,)) for c in cols], axis=1)
+    return k_add, c_leaf[:, None].copy(), np.ascontiguousarray(s_add)
