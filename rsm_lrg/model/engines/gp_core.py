@@ -19,7 +19,8 @@ from scipy.linalg import solve_triangular
 
 from .gp_kernels import correlation
 
-__all__ = ["KrigingCore", "kriging_core", "cholesky_jitter", "JITTERS"]
+__all__ = ["KrigingCore", "kriging_core", "cholesky_jitter", "inverse_lower", "gradient_sums", "JITTERS",
+           "POTRI_RUNS"]
 
 #: Relative jitters tried, in order, when a Cholesky factorisation fails.
 JITTERS = (0.0,) + tuple(10.0 ** e for e in range(-12, -3))
@@ -36,6 +37,74 @@ def cholesky_jitter(m: np.ndarray, scale: float) -> tuple[np.ndarray, float]:
         except np.linalg.LinAlgError:
             continue
     raise np.linalg.LinAlgError("the covariance matrix is not positive definite even with a jitter of 1e-4")
+
+
+#: From this many runs on, :func:`inverse_lower` inverts by LAPACK ``dpotri`` (a third of the
+#: work of solving against the identity); below, by two triangular solves, which OpenBLAS
+#: threads better for small matrices on busy cores.
+POTRI_RUNS = 500
+
+
+def inverse_lower(chol: np.ndarray) -> np.ndarray:
+    """``(L L')^-1`` from the lower Cholesky factor ``L``: from :data:`POTRI_RUNS` runs on by
+    LAPACK ``dpotri``, which fills only the lower triangle; below, solved against the identity.
+
+    Parameters
+    ----------
+    chol : (n, n) ndarray
+        Lower Cholesky factor (C order).
+
+    Returns
+    -------
+    (n, n) ndarray
+        The inverse's lower triangle (the strict upper triangle is not defined).
+    """
+    from scipy.linalg import cho_solve
+    from scipy.linalg.lapack import dpotri
+
+    if chol.shape[0] < POTRI_RUNS:
+        return cho_solve((chol, True), np.eye(chol.shape[0]), check_finite=False)
+    # L (C order) is U = L' in Fortran order: dpotri on the upper factor, read back transposed
+    inv, info = dpotri(chol.T, lower=0)
+    if info != 0:
+        raise np.linalg.LinAlgError(f"dpotri failed (info {info})")
+    return np.asarray(inv).T
+
+
+def gradient_sums(x: np.ndarray, theta: np.ndarray, kernel: str, R: np.ndarray, minv: np.ndarray, w: np.ndarray,
+                  kappa: float, out: np.ndarray) -> float:
+    """The likelihood gradient's sums over the pairs of runs ``i > l`` in one compiled pass:
+    ``out[j] = sum g_il R_il d log R_il / d log theta_j`` with ``g = kappa w_i w_l - minv_il``.
+
+    Parameters
+    ----------
+    x : (n, k) ndarray
+        Coded settings.
+    theta : (k,) ndarray
+        Length-scales [coded units].
+    kernel : str
+        Kernel name.
+    R : (n, n) ndarray
+        Correlation matrix.
+    minv : (n, n) ndarray
+        Lower triangle of the covariance's inverse (:func:`inverse_lower`).
+    w : (n,) ndarray
+        ``M^-1 z``.
+    kappa : float
+        Weight of ``w w'`` (``1 / sigma2`` when the variance is concentrated out, else 1).
+    out : (k,) ndarray
+        Receives the sums per factor.
+
+    Returns
+    -------
+    float
+        ``sum g_il R_il`` over the same pairs.
+    """
+    from .gp_compiled import KERNEL_CODES, kernels, scales
+
+    xt = np.ascontiguousarray(x.T, dtype=float)
+    return float(kernels()["gradient_sums"](xt, scales(theta, kernel), KERNEL_CODES[kernel], R,
+                                            np.ascontiguousarray(minv), w, float(kappa), out))
 
 
 @dataclass(frozen=True)

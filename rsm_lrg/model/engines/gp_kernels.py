@@ -23,13 +23,18 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["KERNELS", "DICEKRIGING_NAMES", "correlation", "log_derivative_theta", "log_derivative_x"]
+__all__ = ["KERNELS", "DICEKRIGING_NAMES", "COMPILED_PAIRS", "correlation", "log_derivative_theta",
+           "log_derivative_x"]
 
 #: The kernels, by their rsm-lrg names.
 KERNELS = ("matern52", "matern32", "gauss")
 #: The same kernels as ``DiceKriging::km(covtype=...)`` names them.
 DICEKRIGING_NAMES = {"matern52": "matern5_2", "matern32": "matern3_2", "gauss": "gauss"}
 _SCALE = {"matern52": np.sqrt(5.0), "matern32": np.sqrt(3.0)}
+#: From this many pairs of settings on, :func:`correlation` runs the compiled loops of
+#: :mod:`rsm_lrg.model.engines.gp_compiled` (one pass, the symmetric matrix's lower triangle
+#: only) instead of NumPy's per-factor passes over the whole matrix.
+COMPILED_PAIRS = 1 << 16
 
 
 def _differences(x1: np.ndarray, x2: np.ndarray, j: int) -> np.ndarray:
@@ -52,6 +57,8 @@ def correlation(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) 
     (n1, n2) ndarray
     """
     shape = (x1.shape[0], x2.shape[0])
+    if shape[0] * shape[1] >= COMPILED_PAIRS:
+        return _compiled_correlation(x1, x2, theta, kernel)
     total = np.zeros(shape)
     if kernel == "gauss":  # exp(-sum_j h_j^2 / (2 theta_j^2))
         for j in range(x1.shape[1]):
@@ -75,6 +82,20 @@ def correlation(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) 
     np.exp(total, out=total)
     total *= poly
     return total
+
+
+def _compiled_correlation(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
+    from .gp_compiled import KERNEL_CODES, kernels, scales
+
+    fns = kernels()
+    out = np.empty((x1.shape[0], x2.shape[0]))
+    c, code = scales(theta, kernel), KERNEL_CODES[kernel]
+    x1t = np.ascontiguousarray(x1.T, dtype=float)
+    if x1 is x2:
+        fns["symmetric"](x1t, c, code, out)
+    else:
+        fns["cross"](x1t, np.ascontiguousarray(x2.T, dtype=float), c, code, out)
+    return out
 
 
 def log_derivative_theta(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str, j: int) -> np.ndarray:

@@ -18,8 +18,12 @@ DiceKriging's concentrated log-likelihood (``logLik``). The free parameters are 
 log length-scales (and ``log g`` for an estimated nugget; ``log sigma2`` when a fixed nugget
 keeps the variance from being concentrated out), optimised by L-BFGS-B with the analytic
 gradient ``d log L / dp = (w' dA w / sigma2 - tr(A^-1 dA)) / 2``, ``w = A^-1 z``, from
-several seeded starting points (above :data:`MULTISTART_RUNS` runs searched on a random
-subsample, the best two then polished on every run); the best optimum is kept. Bounds: a length-scale between
+several seeded starting points; the best optimum is kept. Above :data:`MULTISTART_RUNS` runs
+the starting points are searched on a seeded random subsample of that many runs and the best
+:data:`POLISHED` of those optima are then polished on every run (each evaluation on all runs
+costs a Cholesky factorisation and an inverse, O(n³); the kernel and the gradient's trace sums
+are one compiled O(n² k) pass, :mod:`rsm_lrg.model.engines.gp_compiled`); the notes and the
+JSON's ``gp.search`` say so. Bounds: a length-scale between
 1e-3 and 10 times the factor's coded range in the data; ``g`` between 1e-10 and 10.
 
 The nugget: ``nugget="estimate"`` for noisy data; a number fixes it [response units²];
@@ -45,24 +49,27 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.linalg import cho_solve, solve_triangular
+from scipy.linalg import solve_triangular
 
 from ...errors import ParameterError
-from ..engines.gp_core import KrigingCore, cholesky_jitter, gls, kriging_core
-from ..engines.gp_kernels import KERNELS, correlation, log_derivative_theta
+from ..engines.gp_core import KrigingCore, cholesky_jitter, gls, gradient_sums, inverse_lower, kriging_core
+from ..engines.gp_kernels import COMPILED_PAIRS, KERNELS, correlation, log_derivative_theta
 from ..engines.gp_trend import TRENDS, trend_matrix, trend_size
 from ..results.gp_result import GPResult
 
 __all__ = ["fit_gp", "refuse_options", "estimate", "ProfileLikelihood", "Estimate", "GP_STARTS", "THETA_BOUNDS",
-           "NUGGET_RATIO_BOUNDS", "MULTISTART_RUNS"]
+           "NUGGET_RATIO_BOUNDS", "MULTISTART_RUNS", "POLISHED"]
 
 #: Number of starting points of the likelihood's maximisation (the first at half the range).
 GP_STARTS = 10
 #: Length-scale bounds as multiples of the factor's coded range in the data.
 THETA_BOUNDS = (1e-3, 10.0)
 #: Above this many runs the starting points are searched on a random subsample of this size
-#: and the best two are then polished on every run (each likelihood evaluation costs O(n³)).
+#: and the best :data:`POLISHED` are then polished on every run (each likelihood evaluation
+#: costs O(n³)).
 MULTISTART_RUNS = 300
+#: Optima of the subsample search polished on every run.
+POLISHED = 1
 #: Bounds of the nugget-to-variance ratio ``g`` when the nugget is estimated.
 NUGGET_RATIO_BOUNDS = (1e-10, 10.0)
 
@@ -85,6 +92,10 @@ class Estimate:
         Which of ``length_scales``, ``variance``, ``nugget`` were estimated.
     starts : int
         Starting points used (0 when nothing was optimised).
+    search : dict
+        How the maximum was searched: ``subsample`` (runs the starting points were searched
+        on; ``None``: all runs), ``polished`` (optima polished on all runs), and the
+        likelihood evaluations on the subsample and on all runs.
     """
 
     theta: np.ndarray
@@ -93,6 +104,7 @@ class Estimate:
     core: KrigingCore
     estimated: dict = field(default_factory=dict)
     starts: int = 0
+    search: dict = field(default_factory=dict)
 
 
 class ProfileLikelihood:
@@ -151,14 +163,23 @@ class ProfileLikelihood:
             ll = -0.5 * (n * np.log(2.0 * np.pi) + logdet + quad)
             kappa = 1.0
         w = solve_triangular(chol, z, lower=True, trans="T", check_finite=False)
-        minv = cho_solve((chol, True), np.eye(n), check_finite=False)
-        G = (kappa * np.outer(w, w) - minv) * R  # so that dL/dp = sum(G * dM/dp elementwise(R-free)) / 2
+        minv = inverse_lower(chol)  # M^-1, its lower triangle
         grad: list[float] = []
-        if self.theta is None:
-            for j in range(self.k):
-                grad.append(0.5 * a * float(np.sum(G * log_derivative_theta(x, x, theta, self.kernel, j))))
+        if n * n >= COMPILED_PAIRS:  # one compiled pass over the pairs i > l (the diagonal's dR is 0)
+            sums = np.empty(self.k)
+            off = gradient_sums(x, theta, self.kernel, R, minv, w, kappa, sums)
+            if self.theta is None:
+                grad += list(a * sums)
+            g_total = 2.0 * off + float(kappa * (w @ w) - np.trace(minv))  # sum(G), R's diagonal is 1
+        else:
+            minv = np.tril(minv) + np.tril(minv, -1).T
+            G = (kappa * np.outer(w, w) - minv) * R  # so that dL/dp = sum(G * dM/dp elementwise(R-free)) / 2
+            if self.theta is None:
+                for j in range(self.k):
+                    grad.append(0.5 * a * float(np.sum(G * log_derivative_theta(x, x, theta, self.kernel, j))))
+            g_total = float(np.sum(G))
         if not self.concentrated and self.scale is None:
-            grad.append(0.5 * a * float(np.sum(G)))
+            grad.append(0.5 * a * g_total)
         if self.noise == "estimate":
             grad.append(0.5 * b * (kappa * float(w @ w) - float(np.trace(minv))))
         return -float(ll), -np.asarray(grad)
@@ -241,21 +262,29 @@ def estimate(x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, *, length
     estimated = {"length_scales": length_scales is None, "variance": variance is None,
                  "nugget": nugget == "estimate"}
     used = 0
+    info: dict[str, Any] = {}
     if lo:
         rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
         pts = _starts(rng, np.array(box_lo), np.array(box_hi), np.array(first), max(1, int(starts)))
         bounds = list(zip(lo, hi))
         opts = {"maxiter": 500, "ftol": 1e-14, "gtol": 1e-10}
         search = lik
-        if y.size > MULTISTART_RUNS:  # the starts on a random subsample; the best two polished on every run
+        if y.size > MULTISTART_RUNS:  # the starts on a random subsample; the best polished on every run
             idx = np.sort(rng.choice(y.size, MULTISTART_RUNS, replace=False))
             search = ProfileLikelihood(x[idx], y[idx], F[idx], kernel, theta=length_scales, concentrated=concentrated,
                                        scale=variance, noise=noise)
         found = sorted((minimize(search, p0, jac=True, method="L-BFGS-B", bounds=bounds, options=opts) for p0 in pts),
                        key=lambda r: r.fun)
+        evals = {"subsample": sum(int(r.nfev) for r in found), "all": 0}
         if search is not lik:
             found = sorted((minimize(lik, r.x, jac=True, method="L-BFGS-B", bounds=bounds, options=opts)
-                            for r in found[:2]), key=lambda r: r.fun)
+                            for r in found[:POLISHED]), key=lambda r: r.fun)
+            evals["all"] = sum(int(r.nfev) for r in found)
+        else:
+            evals = {"subsample": 0, "all": evals["subsample"]}
+        info = {"subsample": MULTISTART_RUNS if search is not lik else None,
+                "polished": POLISHED if search is not lik else 0,
+                "evaluations_subsample": evals["subsample"], "evaluations_all": evals["all"]}
         used = len(pts)
         p = np.asarray(found[0].x, dtype=float)
     else:
@@ -269,7 +298,7 @@ def estimate(x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, *, length
         sigma2, tau2 = a, b
     core = kriging_core(x, y, F, kernel, theta, sigma2, tau2)
     return Estimate(theta=np.asarray(theta, dtype=float), variance=float(sigma2), nugget=float(tau2), core=core,
-                    estimated=estimated, starts=used)
+                    estimated=estimated, starts=used, search=info)
 
 
 def _check_choice(name: str, value: Any, allowed: Sequence[str]) -> str:
@@ -387,14 +416,15 @@ def fit_gp(data: Any, response: str, factors: Any = None, *, kernel: str = "mate
     except ValueError as exc:
         raise ParameterError("trend", str(exc)) from None
     if est.starts and n > MULTISTART_RUNS:
+        best = "the best" if POLISHED == 1 else f"the best {POLISHED}"
         notes.append(f"the likelihood's {est.starts} starting points were searched on a random subsample of "
-                     f"{MULTISTART_RUNS} runs and the best two polished on all {n}")
+                     f"{MULTISTART_RUNS} runs and {best} polished on all {n}")
     if est.core.jitter:
         notes.append(f"the covariance matrix was singular to working precision: a jitter of {est.core.jitter:.0e} "
                      "times the process variance was added to its diagonal")
     return GPResult(response=response, space=space, kernel=kernel, trend=trend, x=x, y=y, trend_names=names,
                     length_scales=est.theta, variance=est.variance, nugget=est.nugget, core=est.core,
-                    estimated=est.estimated, starts=est.starts, seed=seed if isinstance(seed, int) else None,
+                    estimated=est.estimated, starts=est.starts, search=est.search, seed=seed if isinstance(seed, int) else None,
                     notes=tuple(notes), omitted_rows=tuple(inp.prep.omitted_rows))
 
 

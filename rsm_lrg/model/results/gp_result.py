@@ -27,14 +27,14 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
-from scipy.linalg import cho_solve, solve_triangular
+from scipy.linalg import solve_triangular
 
 from ...errors import ParameterError
 from ...factors import FactorSpace
 from ..build.inputs import coded_points
 from ..build.transform import Transform
-from ..engines.gp_core import KrigingCore, cholesky_jitter
-from ..engines.gp_kernels import DICEKRIGING_NAMES, correlation, log_derivative_x
+from ..engines.gp_core import KrigingCore, cholesky_jitter, inverse_lower
+from ..engines.gp_kernels import COMPILED_PAIRS, DICEKRIGING_NAMES, correlation, log_derivative_x
 from ..engines.gp_trend import trend_gradient, trend_matrix
 
 __all__ = ["GPResult", "LeaveOneOut", "PREDICT_CHUNK"]
@@ -107,6 +107,9 @@ class GPResult:
         Which hyper-parameters were estimated (the others were given).
     starts : int
         Starting points of the likelihood's maximisation.
+    search : dict
+        How the maximum was searched (``subsample``, ``polished``, likelihood evaluations;
+        :class:`rsm_lrg.model.pipelines.gp.Estimate`); empty when nothing was estimated.
     seed : int or None
     notes : tuple of str
     omitted_rows : tuple of int
@@ -126,6 +129,7 @@ class GPResult:
     core: KrigingCore
     estimated: dict = field(default_factory=dict)
     starts: int = 0
+    search: dict = field(default_factory=dict)
     seed: int | None = None
     notes: tuple = ()
     omitted_rows: tuple = ()
@@ -165,7 +169,10 @@ class GPResult:
         from scipy.linalg.lapack import dpocon
 
         L = self.core.chol
-        anorm = float(np.max(np.sum(np.abs(L @ L.T), axis=0)))
+        # the matrix factorised, L L' = sigma2 R + (tau2 + jitter sigma2) I, rebuilt in O(n^2)
+        sigma = self.variance * correlation(self.x, self.x, self.length_scales, self.kernel)
+        sigma[np.diag_indices_from(sigma)] += self.nugget + self.core.jitter * self.variance
+        anorm = float(np.max(np.sum(np.abs(sigma), axis=0)))
         rcond, _ = dpocon(L, anorm, uplo="L")
         return float(1.0 / rcond) if rcond > 0 else float("inf")
 
@@ -180,15 +187,33 @@ class GPResult:
         """``sigma2 R(x, X)`` (m x n)."""
         return self.variance * correlation(x, self.x, self.length_scales, self.kernel)
 
-    def _mean_var(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _mean(self, x: np.ndarray) -> np.ndarray:
+        """The kriging mean alone at coded settings (m x k); from
+        :data:`~rsm_lrg.model.engines.gp_kernels.COMPILED_PAIRS` pairs on, in one compiled pass
+        that never stores the cross-correlations (rows on all cores)."""
+        c = self.core
+        if x.shape[0] * self.n < COMPILED_PAIRS:
+            return self._mean_var(x, variance=False)[0]
+        from ..engines.gp_compiled import KERNEL_CODES, kernels, scales
+
+        out = np.empty(x.shape[0])
+        kernels()["mean"](np.ascontiguousarray(x.T, dtype=float), np.ascontiguousarray(self.x.T, dtype=float),
+                          scales(self.length_scales, self.kernel), KERNEL_CODES[self.kernel],
+                          np.ascontiguousarray(c.alpha), out)
+        fx, _ = trend_matrix(x, self.trend, self.space.letters)
+        return fx @ c.beta + self.variance * out
+
+    def _mean_var(self, x: np.ndarray, variance: bool = True) -> tuple[np.ndarray, np.ndarray]:
         mean = np.empty(x.shape[0])
-        var = np.empty(x.shape[0])
+        var = np.zeros(x.shape[0])
         c = self.core
         for s in range(0, x.shape[0], PREDICT_CHUNK):
             xs = x[s:s + PREDICT_CHUNK]
             r = self._cross(xs)
             fx, _ = trend_matrix(xs, self.trend, self.space.letters)
             mean[s:s + PREDICT_CHUNK] = fx @ c.beta + r @ c.alpha
+            if not variance:
+                continue
             v = solve_triangular(c.chol, r.T, lower=True, check_finite=False)  # L^-1 r (n x m)
             u = fx.T - c.ft.T @ v
             w = solve_triangular(c.r_f, u, lower=False, trans="T", check_finite=False)
@@ -237,7 +262,7 @@ class GPResult:
     def predict_coded(self, coded: np.ndarray) -> np.ndarray:
         """The prediction contract's mean at coded settings (m x k): the kriging mean
         [response units]."""
-        return self._mean_var(np.atleast_2d(np.asarray(coded, dtype=float)))[0]
+        return self._mean(np.atleast_2d(np.asarray(coded, dtype=float)))
 
     def goal_on_model_scale(self, goal: Any) -> tuple[str, float | None, str, float | None]:
         """``(kind, target, kind, target)``: a GP models the response as measured (no
@@ -359,15 +384,15 @@ class GPResult:
         y = np.r_[self.y, yn]
         F, _ = trend_matrix(x, self.trend, self.space.letters)
         core = kriging_core(x, y, F, self.kernel, self.length_scales, self.variance, self.nugget)
-        return replace(self, x=x, y=y, core=core, estimated={k: False for k in self.estimated}, starts=0)
+        return replace(self, x=x, y=y, core=core, estimated={k: False for k in self.estimated}, starts=0,
+                       search={})
 
     # -- leave-one-out ---------------------------------------------------------------------
     @cached_property
     def loo(self) -> LeaveOneOut:
         """Closed-form leave-one-out (Dubrule 1983; see the module docstring)."""
         c = self.core
-        n = self.n
-        minv = cho_solve((c.chol, True), np.eye(n), check_finite=False)
+        minv = inverse_lower(c.chol)
         h = solve_triangular(c.chol, c.ft, lower=True, trans="T", check_finite=False)  # Sigma^-1 F
         g = solve_triangular(c.r_f, h.T, lower=False, trans="T", check_finite=False)  # r_f^-T F' Sigma^-1
         qdiag = np.diag(minv) - np.sum(g * g, axis=0)
@@ -398,6 +423,7 @@ class GPResult:
                 "log_likelihood": _f(self.log_likelihood),
                 "estimated": dict(self.estimated),
                 "starts": self.starts,
+                "search": dict(self.search),
                 "seed": self.seed,
                 "jitter": _f(self.core.jitter),
                 "condition_number": _f(self.condition_number),

@@ -1,0 +1,303 @@
+"""Benchmark the closed loop (``rsm-lrg loop``: Latin hypercube, then Gaussian process ->
+expected improvement -> evaluate, issue 33) against random search, a Latin hypercube with a
+quadratic model, and R ``DiceOptim::EGO.nsteps`` started from the same initial designs, on
+Branin, Hartmann-6 and the calibrated surrogate.
+
+Usage::
+
+    python benchmarks/bench_ego.py --seeds 20                       # the README's table
+    python benchmarks/bench_ego.py --seeds 2 --problems branin      # a quick check
+    python benchmarks/bench_ego.py --seeds 20 --no-r --json ego.json
+
+Per problem and seed, every method spends the same budget of evaluations:
+
+* ``loop``: the loop's own steps, in process (what ``rsm-lrg loop --batch 1`` does round by
+  round: ``latin_hypercube(space, initial, seed)``, then ``fit(..., model="gp", seed)`` and
+  ``suggest(model, goal, 1, criterion="ei", seed=seed + round)`` on all runs so far);
+* ``diceoptim``: ``km(~1, covtype="matern5_2")`` on the same initial design and
+  ``EGO.nsteps`` for the rest of the budget (``benchmarks/r/ego_diceoptim.R``, DiceOptim's
+  defaults);
+* ``random``: uniform random settings (seeded);
+* ``lhs_quadratic``: at budget ``b``, a Latin hypercube of ``b - 1`` runs, a full quadratic
+  fitted to them and one run at its predicted optimum (``rsm_lrg.optimize``); with fewer runs
+  than the quadratic's coefficients + 1, the hypercube's best alone. Each budget is a
+  separate design (a one-shot strategy cannot reuse a smaller one).
+
+The simple regret at budget ``b`` is the best of the first ``b`` evaluations minus the
+optimum (Branin 0.397887, Hartmann-6 -3.32237; the surrogate's is the best value known: a
+grid of 5⁴ settings, its best polished by L-BFGS-B, and every evaluation of every method).
+Printed: the median regret over the seeds per method at each budget from the end of the
+initial design, and whether the loop's median is below random's and LHS + quadratic's at every
+such step and at most DiceOptim's. Nothing here is asserted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+import rsm_lrg
+from rsm_lrg.design.spacefill import latin_hypercube
+from rsm_lrg.factors import FactorSpace
+from rsm_lrg.optimize.next_runs import suggest
+
+HERE = Path(__file__).parent
+R_SCRIPT = HERE / "r" / "ego_diceoptim.R"
+
+_A = np.array([[10, 3, 17, 3.5, 1.7, 8], [0.05, 10, 17, 0.1, 8, 14], [3, 3.5, 1.7, 10, 17, 8],
+               [17, 8, 0.05, 10, 0.1, 14]])
+_P = 1e-4 * np.array([[1312, 1696, 5569, 124, 8283, 5886], [2329, 4135, 8307, 3736, 1004, 9991],
+                      [2348, 1451, 3522, 2883, 3047, 6650], [4047, 8828, 8732, 5743, 1091, 381]])
+_ALPHA = np.array([1.0, 1.2, 3.0, 3.2])
+
+
+def branin(x: np.ndarray) -> np.ndarray:
+    """Branin–Hoo on [-5, 10] x [0, 15] (minimum 0.397887 at three points)."""
+    x1, x2 = x[:, 0], x[:, 1]
+    return (x2 - 5.1 / (4 * np.pi ** 2) * x1 ** 2 + 5 / np.pi * x1 - 6) ** 2 + 10 * (1 - 1 / (8 * np.pi)) * np.cos(x1) + 10
+
+
+def hartmann6(x: np.ndarray) -> np.ndarray:
+    """Hartmann-6 on [0, 1]⁶ (minimum -3.32237)."""
+    return -np.sum(_ALPHA * np.exp(-np.sum(_A * (x[:, None, :] - _P) ** 2, axis=2)), axis=1)
+
+
+SURROGATE_FACTORS = {"thickness_m": (1e-4, 5e-4), "stroke_m": (0.04, 0.06), "velocity_m_s": (0.4, 0.6),
+                     "acceleration_m_s2": (20.0, 40.0)}  # the paper's Table 3 box
+
+
+def surrogate(x: np.ndarray) -> np.ndarray:
+    """κ [°C/min] of the calibrated surrogate, deterministic (what ``loop --surrogate`` runs)."""
+    from rsm_lrg.surrogate.execute import simulate
+
+    df = pd.DataFrame(np.atleast_2d(x), columns=list(SURROGATE_FACTORS))
+    out = simulate(df, seed=0, noise_sd=0.0, calibration="default", progress=False)
+    return out["tcr_c_per_min"].to_numpy(dtype=float)
+
+
+PROBLEMS = {  # name: (factors {name: (low, high)}, function, optimum or None, initial runs, budget)
+    "branin": ({"x1": (-5.0, 10.0), "x2": (0.0, 15.0)}, branin, 0.397887357729739, 8, 20),
+    "hartmann6": ({f"x{i}": (0.0, 1.0) for i in range(1, 7)}, hartmann6, -3.32236801141551, 12, 36),
+    "surrogate": (SURROGATE_FACTORS, surrogate, None, 10, 20),
+}
+
+
+def _space(factors: dict) -> FactorSpace:
+    return FactorSpace.from_specs([f"{n}={lo!r}:{hi!r}" for n, (lo, hi) in factors.items()])
+
+
+def initial_design(factors: dict, n: int, seed: int) -> np.ndarray:
+    """The loop's initial design (actual units)."""
+    d = latin_hypercube(_space(factors), n, seed=seed)
+    return d.actual[list(factors)].to_numpy(dtype=float)
+
+
+def run_loop(factors: dict, fun, x0: np.ndarray, budget: int, seed: int) -> np.ndarray:
+    """The loop's steps in process (batch 1): the responses in order of evaluation."""
+    names = list(factors)
+    specs = [f"{n}={lo!r}:{hi!r}" for n, (lo, hi) in factors.items()]
+    X = x0.copy()
+    y = fun(X)
+    r = 1
+    while y.size < budget:
+        data = pd.DataFrame(X, columns=names)
+        data["y"] = y
+        model = rsm_lrg.fit(data, "y", factors=specs, model="gp", seed=seed)
+        s = suggest(model, "minimize", 1, criterion="ei", seed=seed + r)
+        xn = s.design.actual[names].to_numpy(dtype=float)
+        X = np.vstack([X, xn])
+        y = np.r_[y, fun(xn)]
+        r += 1
+    return y
+
+
+def run_random(factors: dict, fun, budget: int, seed: int) -> np.ndarray:
+    lo, hi = (np.array(v) for v in zip(*factors.values()))
+    u = np.random.default_rng(10_000 + seed).random((budget, len(factors)))
+    return fun(lo + u * (hi - lo))
+
+
+def run_lhs_quadratic(factors: dict, fun, budget: int, initial: int, seed: int) -> np.ndarray:
+    """Best value per budget ``b = initial .. budget`` (index ``b - 1``; NaN before ``initial``)."""
+    names = list(factors)
+    specs = [f"{n}={lo!r}:{hi!r}" for n, (lo, hi) in factors.items()]
+    k = len(names)
+    p = (k + 1) * (k + 2) // 2
+    best = np.full(budget, np.nan)
+    for b in range(initial, budget + 1):
+        if b - 1 < p + 1:
+            x = initial_design(factors, b, 20_000 + 97 * seed + b)
+            best[b - 1] = float(np.min(fun(x)))
+            continue
+        x = initial_design(factors, b - 1, 20_000 + 97 * seed + b)
+        y = fun(x)
+        data = pd.DataFrame(x, columns=names)
+        data["y"] = y
+        fit = rsm_lrg.fit(data, "y", factors=specs, model="quadratic")
+        opt = rsm_lrg.optimize(fit, "minimize")
+        xo = np.array([[opt.actual[n] for n in names]])
+        best[b - 1] = float(min(np.min(y), fun(xo)[0]))
+    return best
+
+
+def _fifo_server(fun, fifo_in: str, fifo_out: str, stop: threading.Event) -> None:
+    while not stop.is_set():
+        with open(fifo_in) as f:
+            line = f.readline().strip()
+        if not line:
+            continue
+        v = float(fun(np.array([[float(s) for s in line.split(",")]]))[0])
+        with open(fifo_out, "w") as f:
+            f.write(f"{v!r}\n")
+
+
+def run_diceoptim(name: str, factors: dict, fun, designs: dict, budget: int) -> dict:
+    """``{seed: responses}`` from R DiceOptim (``benchmarks/r/ego_diceoptim.R``)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        rows = []
+        for seed, (x0, y0) in designs.items():
+            for xi, yi in zip(x0, y0):
+                rows.append({"seed": seed, **{f"x{j + 1}": v for j, v in enumerate(xi)}, "y": yi})
+        init = Path(tmp) / "initial.csv"
+        pd.DataFrame(rows).to_csv(init, index=False, float_format="%.17g")
+        lo, hi = zip(*factors.values())
+        pd.DataFrame({"low": lo, "high": hi}).to_csv(Path(tmp) / "initial_bounds.csv", index=False,
+                                                     float_format="%.17g")
+        out = Path(tmp) / "out.csv"
+        nsteps = budget - len(next(iter(designs.values()))[1])
+        cmd = ["Rscript", str(R_SCRIPT), name, str(init), str(nsteps), str(out)]
+        stop = threading.Event()
+        if name == "surrogate":
+            fin, fout = str(Path(tmp) / "in.fifo"), str(Path(tmp) / "out.fifo")
+            os.mkfifo(fin)
+            os.mkfifo(fout)
+            th = threading.Thread(target=_fifo_server, args=(fun, fin, fout, stop), daemon=True)
+            th.start()
+            cmd += [fin, fout]
+        proc = subprocess.run(cmd, capture_output=True, text=True)
+        stop.set()
+        if proc.returncode != 0:
+            raise RuntimeError(f"Rscript failed: {proc.stderr[-2000:]}")
+        for line in proc.stdout.splitlines() + proc.stderr.splitlines():
+            if line.startswith("seed "):
+                print(f"DiceOptim {name} {line}", flush=True)
+        res = pd.read_csv(out)
+    return {int(s): g.sort_values("evaluation")["y"].to_numpy(dtype=float) for s, g in res.groupby("seed")}
+
+
+def best_so_far(y: np.ndarray, budget: int) -> np.ndarray:
+    out = np.full(budget, np.nan)
+    m = np.minimum.accumulate(y[:budget])
+    out[:m.size] = m
+    if m.size < budget:  # a run that stopped early keeps its best
+        out[m.size:] = m[-1]
+    return out
+
+
+def surrogate_optimum(extra: list) -> float:
+    """Best value known of the surrogate: a 5⁴ grid, its best polished, and ``extra`` values."""
+    from scipy.optimize import minimize
+
+    lo, hi = (np.array(v) for v in zip(*SURROGATE_FACTORS.values()))
+    g = np.linspace(0.0, 1.0, 5)
+    U = np.array(np.meshgrid(*[g] * 4, indexing="ij")).reshape(4, -1).T
+    X = lo + U * (hi - lo)
+    y = surrogate(X)
+    r = minimize(lambda u: float(surrogate((lo + u * (hi - lo))[None, :])[0]), U[int(np.argmin(y))],
+                 method="L-BFGS-B", bounds=[(0.0, 1.0)] * 4)
+    return float(min(np.min(y), r.fun, *extra))
+
+
+def one_seed(name: str, seed: int) -> dict:
+    """The initial design and the traces of ``loop``, ``random`` and ``lhs_quadratic``."""
+    factors, fun, _, initial, budget = PROBLEMS[name]
+    x0 = initial_design(factors, initial, seed)
+    t0 = time.perf_counter()
+    loop = run_loop(factors, fun, x0, budget, seed)
+    t_loop = time.perf_counter() - t0
+    return {"x0": x0.tolist(), "loop": loop.tolist(), "random": run_random(factors, fun, budget, seed).tolist(),
+            "lhs_quadratic": run_lhs_quadratic(factors, fun, budget, initial, seed).tolist(), "loop_s": t_loop}
+
+
+def summarise(name: str, runs: dict, fstar: float | None) -> dict:
+    """Median simple regret per method and budget, and the verdicts."""
+    factors, _, _, initial, budget = PROBLEMS[name]
+    seeds = sorted(runs)
+    methods = [m for m in ("loop", "diceoptim", "random", "lhs_quadratic") if all(m in runs[s] for s in seeds)]
+    if fstar is None:
+        fstar = surrogate_optimum([float(np.nanmin(runs[s][m])) for s in seeds for m in methods])
+    curves = {}
+    for m in methods:
+        if m == "lhs_quadratic":
+            regret = np.array([runs[s][m] for s in seeds], dtype=float) - fstar
+        else:
+            regret = np.array([best_so_far(np.asarray(runs[s][m], dtype=float), budget) for s in seeds]) - fstar
+        curves[m] = np.median(regret, axis=0)
+    steps = list(range(initial + 1, budget + 1))
+    loop = curves["loop"]
+    verdict = {"below_random": bool(all(loop[b - 1] < curves["random"][b - 1] for b in steps)),
+               "below_lhs_quadratic": bool(all(loop[b - 1] < curves["lhs_quadratic"][b - 1] for b in steps))}
+    if "diceoptim" in curves:
+        verdict["at_most_diceoptim_at_budget"] = bool(loop[budget - 1] <= curves["diceoptim"][budget - 1])
+        verdict["at_most_diceoptim_every_step"] = bool(all(loop[b - 1] <= curves["diceoptim"][b - 1] for b in steps))
+    print(f"\n{name}: {len(factors)} factors, initial {initial}, budget {budget}, {len(seeds)} seeds; "
+          f"median simple regret (optimum {fstar:.6g})")
+    print("budget " + " ".join(f"{m:>14}" for m in methods))
+    for b in range(initial, budget + 1):
+        print(f"{b:6d} " + " ".join(f"{curves[m][b - 1]:14.4g}" for m in methods))
+    print(f"verdict: {verdict}", flush=True)
+    return {"initial": initial, "budget": budget, "seeds": len(seeds), "optimum": fstar,
+            "median_regret": {m: [float(v) for v in c] for m, c in curves.items()}, "verdict": verdict}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--seeds", type=int, default=20)
+    ap.add_argument("--problems", nargs="+", default=list(PROBLEMS), choices=list(PROBLEMS))
+    ap.add_argument("--no-r", action="store_true", help="leave out R DiceOptim")
+    ap.add_argument("--r-only", metavar="TRACES", default=None,
+                    help="add R DiceOptim to the traces of an earlier --json (its initial designs) and summarise")
+    ap.add_argument("--jobs", type=int, default=1, help="seeds run in parallel processes")
+    ap.add_argument("--json", default=None, help="write the traces and the summary here")
+    args = ap.parse_args(argv)
+
+    if args.r_only:
+        data = json.loads(Path(args.r_only).read_text())
+        traces = {name: {int(s): v for s, v in d.items()} for name, d in data["traces"].items()}
+    else:
+        from concurrent.futures import ProcessPoolExecutor
+
+        traces = {name: {} for name in args.problems}
+        tasks = [(name, s) for name in args.problems for s in range(1, args.seeds + 1)]
+        t0 = time.perf_counter()
+        with ProcessPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+            for (name, s), res in zip(tasks, pool.map(one_seed, *zip(*tasks))):
+                traces[name][s] = res
+                if args.json:  # what is done so far, should the run be cut short
+                    Path(args.json).write_text(json.dumps({"traces": traces}))
+                print(f"{name} seed {s}: loop best {min(res['loop']):.6g}, loop {res['loop_s']:.1f} s "
+                      f"({time.perf_counter() - t0:.0f} s)", flush=True)
+    summary = {}
+    for name, runs in traces.items():
+        factors, fun, fstar, initial, budget = PROBLEMS[name]
+        if not args.no_r:
+            designs = {s: (np.array(r["x0"]), np.asarray(r["loop"][:initial])) for s, r in runs.items()}
+            for s, y in run_diceoptim(name, factors, fun, designs, budget).items():
+                runs[s]["diceoptim"] = y.tolist()
+        summary[name] = summarise(name, runs, fstar)
+    if args.json:
+        Path(args.json).write_text(json.dumps({"summary": summary, "traces": traces}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
