@@ -9,6 +9,10 @@ exponential from the C library), so the two agree to a few units in the last pla
 (``tests/model/engines/test_gp_compiled.py``). The functions below are plain Python until
 :func:`kernels` compiles them (once per process; numba keeps the machine code on disk).
 Settings are passed transposed, ``(k, n)``, so that the loop over runs reads memory in order.
+The loops run on one thread: numba's parallel layers are not safe here (GNU OpenMP ends a
+child forked after the parent used it, so a GP predicted before ``--workers`` forks its pool
+would end its workers; the workqueue layer aborts when two threads call in at once, as Dask's
+threads may), and CPU time, not wall time, is what a busy two-core machine has to spare.
 
 Kernel codes: 0 ``gauss``, 1 ``matern52``, 2 ``matern32``.
 """
@@ -71,10 +75,10 @@ def _pair(x1t: Any, i: int, x2t: Any, l: int, c: Any, code: int) -> float:
 
 
 def _cross(x1t: Any, x2t: Any, c: Any, code: int, out: Any) -> None:
-    """``out[i, l] = k(x1[i], x2[l])`` (rows in parallel)."""
+    """``out[i, l] = k(x1[i], x2[l])``."""
     m = x1t.shape[1]
     n = x2t.shape[1]
-    for i in _prange(m):
+    for i in range(m):
         for l in range(n):
             out[i, l] = _pair(x1t, i, x2t, l, c, code)
 
@@ -93,11 +97,10 @@ def _symmetric(xt: Any, c: Any, code: int, out: Any) -> None:
 
 
 def _mean(x1t: Any, x2t: Any, c: Any, code: int, weights: Any, out: Any) -> None:
-    """``out[i] = sum_l k(x1[i], x2[l]) weights[l]``, in the order of ``l`` (rows in parallel,
-    each row's sum in one thread: the result does not depend on the number of threads)."""
+    """``out[i] = sum_l k(x1[i], x2[l]) weights[l]``, in the order of ``l``."""
     m = x1t.shape[1]
     n = x2t.shape[1]
-    for i in _prange(m):
+    for i in range(m):
         acc = 0.0
         for l in range(n):
             acc += _pair(x1t, i, x2t, l, c, code) * weights[l]
@@ -131,9 +134,7 @@ def _gradient_sums(xt: Any, c: Any, code: int, R: Any, minv: Any, w: Any, kappa:
     return total
 
 
-_prange = range
-_SERIAL = ("_pair", "_symmetric", "_gradient_sums")
-_PARALLEL = ("_cross", "_mean")
+_LOOPS = ("_pair", "_symmetric", "_gradient_sums", "_cross", "_mean")  # the callee first
 
 
 @lru_cache(maxsize=1)
@@ -150,10 +151,6 @@ def kernels() -> dict[str, Any]:
 
     g = globals()
     jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
-    par = numba.njit(cache=True, fastmath=False, error_model="numpy", parallel=True)
-    g["_prange"] = numba.prange
-    for name in _SERIAL:  # the callee first
+    for name in _LOOPS:
         g[name] = jit(g[name])
-    for name in _PARALLEL:
-        g[name] = par(g[name])
-    return {name.lstrip("_"): g[name] for name in _SERIAL + _PARALLEL if name != "_pair"}
+    return {name.lstrip("_"): g[name] for name in _LOOPS if name != "_pair"}

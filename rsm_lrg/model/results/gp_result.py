@@ -190,7 +190,7 @@ class GPResult:
     def _mean(self, x: np.ndarray) -> np.ndarray:
         """The kriging mean alone at coded settings (m x k); from
         :data:`~rsm_lrg.model.engines.gp_kernels.COMPILED_PAIRS` pairs on, in one compiled pass
-        that never stores the cross-correlations (rows on all cores)."""
+        that never stores the cross-correlations."""
         c = self.core
         if x.shape[0] * self.n < COMPILED_PAIRS:
             return self._mean_var(x, variance=False)[0]
