@@ -5,7 +5,15 @@ from __future__ import annotations
 import argparse
 
 from .errors import about_file
-from .options import add_force, add_json, add_model_option, add_plot_option, add_reader_options, plot_format
+from .options import (
+    add_force,
+    add_json,
+    add_model_option,
+    add_plot_option,
+    add_reader_options,
+    add_where_options,
+    plot_format,
+)
 
 NAME = "evaluate"
 HELP = ("evaluate a design for a model before any data: VIF, leverage, prediction variance, FDS, power, "
@@ -76,13 +84,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     power.add_argument("--seed", type=whole_number(0, 2 ** 63 - 1), default=None, metavar="S",
                        help="seed of --power's draws (default 1); the same seed gives the same numbers for any "
                             "--workers")
-    power.add_argument("--workers", type=whole_number(1, 64), default=None, metavar="K",
-                       help="worker processes for --power's draws (default 1)")
-    power.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                       help="run --power's blocks of draws on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786; "
-                            "the same numbers as in one process)")
-    power.add_argument("--scheduler-timeout", type=number(0, 3600, above=True), default=60.0, metavar="S",
-                       help="seconds the --scheduler has to answer before the run is refused (default 60)")
+    add_where_options(parser, "run --power's blocks of draws", most_workers=64, group=power)
     add_plot_option(parser, "the fraction-of-design-space curve(s) on one plot")
     add_json(parser)
     add_force(parser)
@@ -229,8 +231,6 @@ def _run_power(args: argparse.Namespace) -> int:
                        ("--potential", args.potential != "auto")):
         if given:
             raise InputError(f"{opt}: not used by --power (power by simulation); leave it out")
-    if args.scheduler is not None and args.workers is not None:
-        raise InputError("--scheduler: give --workers or --scheduler, not both")
     path = args.design[0]
     with about_file(path):
         design = _load(path, args.exclude, args)

@@ -15,8 +15,8 @@ from .options import (
     add_json,
     add_model_refinements,
     add_random_effect_options,
+    add_where_options,
     check_at_settings,
-    number,
     probability,
     whole_number,
 )
@@ -61,14 +61,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "statistics are streamed, the quantiles still exact)")
     parser.add_argument("--seed", type=whole_number(0), default=None, metavar="S",
                         help="seed of the simulator (default: a fresh one, printed so that the run can be repeated)")
-    where_runs = parser.add_mutually_exclusive_group()
-    where_runs.add_argument("--workers", type=whole_number(1, 256), default=None, metavar="N",
-                            help="draw the simulator's runs in N local processes (the numbers do not depend on N)")
-    where_runs.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                            help="draw the simulator's runs on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786; "
-                                 "the numbers are those of one process)")
-    parser.add_argument("--scheduler-timeout", type=number(0, 3600, above=True), default=60.0, metavar="S",
-                        help="seconds the --scheduler has to answer before the run is refused (default 60)")
+    add_where_options(parser, "draw the simulator's runs")
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument("--progress", dest="progress", action="store_true", default=None,
                      help="always show the simulator's progress bar on stderr")

@@ -7,7 +7,7 @@ from collections.abc import Iterable
 from typing import Any, BinaryIO
 
 from .errors import about_file
-from .options import add_force, add_reader_options, number, whole_number
+from .options import add_force, add_reader_options, add_where_options, whole_number
 
 NAME = "simulate"
 HELP = "virtual runs of the physics surrogate, one row per design row"
@@ -46,13 +46,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "every minute, averaged); kappa's SD is X / duration. 0 = deterministic (default 0.03)")
     p.add_argument("--duration-min", type=_nonneg_float, default=50.0, metavar="M",
                    help="test duration [min] for rows without a test_duration_min column (default 50)")
-    where = p.add_mutually_exclusive_group()
-    where.add_argument("--workers", type=whole_number(1, 256), default=None, metavar="N",
-                       help="run batches in N local processes (at most 256)")
-    where.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                       help="run batches on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786)")
-    p.add_argument("--scheduler-timeout", type=number(0, 3600, above=True), default=60.0, metavar="S",
-                   help="seconds the --scheduler has to answer before the run is refused (default 60)")
+    add_where_options(p, "run batches")
     cal = p.add_mutually_exclusive_group()
     cal.add_argument("--calibration", default=None, metavar="PATH",
                      help="calibration TOML (default: the shipped data/calibration.toml)")

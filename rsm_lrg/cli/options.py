@@ -118,6 +118,36 @@ def add_region_options(parser: argparse.ArgumentParser, *, bound_help: str, cons
     parser.add_argument("--constraint", action="append", default=None, metavar="EXPR", help=constraint_help)
 
 
+def add_where_options(parser: argparse.ArgumentParser, what: str, *, most_workers: int = 256,
+                      group: Any = None) -> None:
+    """``--workers N`` or ``--scheduler ADDRESS`` (one of the two) and ``--scheduler-timeout S``:
+    where a command's independent pieces of work run (local processes or a Dask cluster).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    what : str
+        The work, as the help texts say it ("run batches", "draw the simulator's runs").
+    most_workers : int
+        The most local processes accepted.
+    group : argparse argument group, optional
+        Where the options are listed (default: the parser's options).
+
+    Returns
+    -------
+    None
+    """
+    where = (group or parser).add_mutually_exclusive_group()
+    where.add_argument("--workers", type=whole_number(1, most_workers), default=None, metavar="N",
+                       help=f"{what} in N local processes (at most {most_workers}; the numbers do not depend on N)")
+    where.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                       help=f"{what} on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786; the numbers are "
+                            "those of one process)")
+    (group or parser).add_argument("--scheduler-timeout", type=number(0, 3600, above=True), default=60.0, metavar="S",
+                                   help="seconds the --scheduler has to answer before the run is refused (default 60)")
+
+
 def add_force(p: argparse.ArgumentParser) -> None:
     p.add_argument("--force", action="store_true", help="overwrite existing output files")
 
