@@ -222,8 +222,9 @@ def _fds_figure(evaluations, names):
 
 def _run_power(args: argparse.Namespace) -> int:
     """``evaluate DESIGN.csv --power``: the Monte Carlo power of every coefficient."""
-    from ..io import InputError, dump_json
+    from ..io import InputError
     from ..model.power import simulate_power
+    from .paths import print_summary_or_json
 
     if len(args.design) != 1:
         raise InputError("--power: simulates one design at a time; give one DESIGN.csv")
@@ -250,12 +251,5 @@ def _run_power(args: argparse.Namespace) -> int:
     finally:
         if client is not None:
             client.close()
-    payload = sim.to_dict()
-    if args.json and args.json != "-":
-        dump_json(payload, args.json, force=args.force)
-    if args.json == "-":
-        dump_json(payload, "-")
-    else:
-        print(f"Design: {path}")
-        print(sim.summary(), end="")
+    print_summary_or_json(args, sim, source=f"Design: {path}")
     return 0

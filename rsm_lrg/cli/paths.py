@@ -204,11 +204,11 @@ def read_input(args: argparse.Namespace, path=None):
 
 
 def print_summary_or_json(args: argparse.Namespace, result, *, extra: dict | None = None,
-                          header: tuple[str, ...] = ()) -> None:
+                          header: tuple[str, ...] = (), source: str | None = None) -> None:
     """The output of an analysis command: ``--json FILE`` writes ``result.to_dict()`` updated
     with ``extra`` (and the text still prints), ``--json -`` prints it instead of the text; the
-    text is ``Data: DATA.csv``, the ``header`` lines (``Model: ...``) and ``result.summary()``
-    (ending in one newline)."""
+    text is ``Data: DATA.csv`` (or the ``source`` line, ``Design: D.csv``), the ``header``
+    lines (``Model: ...``) and ``result.summary()`` (ending in one newline)."""
     from ..io import dump_json
 
     out = result.to_dict()
@@ -218,7 +218,7 @@ def print_summary_or_json(args: argparse.Namespace, result, *, extra: dict | Non
     if args.json == "-":
         dump_json(out, "-")
     else:
-        print(f"Data: {args.data}")
+        print(source if source is not None else f"Data: {args.data}")
         for line in header:
             print(line)
         text = result.summary()
