@@ -6,9 +6,13 @@ same command resumes (:mod:`rsm_lrg.cli.loop_study`)."""
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
 
 from .gp_fit import KERNEL_CHOICES, TREND_CHOICES
 from .options import add_json, number, whole_number
+
+if TYPE_CHECKING:
+    from .loop_study import LoopOptions
 
 NAME = "loop"
 HELP = "closed loop: space-filling design, then GP + expected improvement rounds, resumable (study directory)"
@@ -48,6 +52,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                      help="a command that reads the design CSV {in} and writes the responses CSV {out}")
     parser.add_argument("--workers", type=whole_number(1, 256), default=1, metavar="K",
                         help="--evaluate: run the command on up to K pieces of a round at once (default 1)")
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                        help="--surrogate: run each round's rows on a Dask distributed scheduler (e.g. "
+                             "tcp://10.0.0.5:8786; the same numbers as in this process)")
+    parser.add_argument("--scheduler-timeout", type=number(0, 3600, above=True), default=60.0, metavar="S",
+                        help="seconds the --scheduler has to answer before the run is refused (default 60)")
     parser.add_argument("--evaluate-timeout", type=number(0, 1e7, above=True), default=600.0, metavar="SECONDS",
                         help="--evaluate: seconds one call may run before it is stopped (default 600)")
     parser.add_argument("--ei-tol", type=number(0, 1), default=1e-6, metavar="R",
@@ -78,7 +87,7 @@ def outputs(args: argparse.Namespace) -> list[tuple[str, str]]:
     return [("--json", args.json)] if args.json is not None else []
 
 
-def _options(args: argparse.Namespace) -> object:
+def _options(args: argparse.Namespace) -> LoopOptions:
     from ..design.core import as_factor_space
     from ..io import InputError, quote_user_value
     from ..model.build.goals import parse_goal
@@ -132,6 +141,9 @@ def _options(args: argparse.Namespace) -> object:
             if token not in joined:
                 raise InputError(f"--evaluate: the command has no {token} (it reads the design CSV {{in}} and "
                                  f"writes the responses CSV {{out}})")
+        if args.scheduler is not None:
+            raise InputError("--scheduler: only with --surrogate (an --evaluate command runs here, on up to "
+                             "--workers pieces at once)")
         evaluator = {"kind": "command", "command": args.evaluate}
     del kind, target
     return LoopOptions(factors=list(args.factor), response=args.response, goal=args.goal.strip().lower(),
@@ -145,9 +157,19 @@ def run(args: argparse.Namespace) -> int:
 
     from ..io import dump_json
     from .loop_study import run_study
+    from .processes import cluster_failures, connect_scheduler
 
     opts = _options(args)
-    summary = run_study(Path(args.output), opts)  # type: ignore[arg-type]
+    client = None
+    if args.scheduler is not None:  # an empty address is refused, not run locally
+        client = connect_scheduler(args.scheduler, args.scheduler_timeout)
+        opts.executor = client.get_executor()
+    try:
+        with cluster_failures(args.scheduler):
+            summary = run_study(Path(args.output), opts)
+    finally:
+        if client is not None:
+            client.close()
     if args.json and args.json != "-":
         dump_json(summary, args.json)
     if args.json == "-":

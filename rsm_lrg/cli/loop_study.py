@@ -71,6 +71,9 @@ class LoopOptions:
     timeout: float = 600.0
     progress: bool = True
     extra: dict = field(default_factory=dict)
+    #: Where ``--surrogate`` runs its rows (a Dask ``Client.get_executor()`` with
+    #: ``--scheduler``; None: this process). Not recorded: the rows do not depend on it.
+    executor: Any = None
 
     def recorded(self) -> dict:
         return {k: getattr(self, k) for k in compared_options}
@@ -132,8 +135,9 @@ def surrogate_factor_names() -> tuple[tuple[str, ...], dict[str, float]]:
     return (*FACTOR_COLUMNS, *per_row), defaults
 
 
-def _surrogate(design: Any, response: str) -> Any:
-    """The calibrated, deterministic surrogate (noise 0) at the design's rows: the response."""
+def _surrogate(design: Any, response: str, executor: Any = None) -> Any:
+    """The calibrated, deterministic surrogate (noise 0) at the design's rows: the response
+    (on ``executor``'s workers when one is given; the same numbers)."""
     from ..surrogate.execute import simulate
 
     _, defaults = surrogate_factor_names()
@@ -141,7 +145,7 @@ def _surrogate(design: Any, response: str) -> Any:
     for name, value in defaults.items():
         if name not in df.columns:
             df[name] = value
-    out = simulate(df, seed=0, noise_sd=0.0, calibration="default", progress=False)
+    out = simulate(df, seed=0, noise_sd=0.0, calibration="default", progress=False, executor=executor)
     return out[response].to_numpy(dtype=float)
 
 
@@ -432,7 +436,8 @@ class Study:
         ev = self.opts.evaluator
         if todo and ev["kind"] == "surrogate":
             try:
-                values[todo] = _surrogate(design.iloc[todo][self.names].reset_index(drop=True), self.opts.response)
+                values[todo] = _surrogate(design.iloc[todo][self.names].reset_index(drop=True), self.opts.response,
+                                          self.opts.executor)
             except ValueError as exc:
                 raise EvaluateError(f"{what}: the surrogate: {exc}") from None
             if not np.isfinite(values).all():

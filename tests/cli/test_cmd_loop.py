@@ -246,3 +246,26 @@ def test_batches_in_pieces_on_two_workers(tmp_path, script, capsys, monkeypatch)
     r1 = pd.read_csv(study / "round_001" / "responses.csv")
     assert len(r1) == 2 and not (study / "round_001" / "rows").exists()
     assert abs(s["best"]["observed"] - 0.5) == min(abs(c["value"] - 0.5) for c in s["convergence"])
+
+
+def test_surrogate_rounds_on_a_dask_scheduler_equal_this_process(tmp_path, capsys):
+    """``--scheduler`` (with ``--surrogate``): each round's rows run on a real local Dask cluster
+    and the study is the one run in this process (the rows do not depend on where they run)."""
+    distributed = pytest.importorskip("distributed")
+    argv = ["loop", "--factor", "velocity_m_s=0.4:0.6", "--response", "tcr_c_per_min", "--goal", "minimize",
+            "--budget", "5", "--initial", "4", "--ei-tol", "0", "--surrogate", "--json", "-", "--no-progress"]
+    assert main([*argv, "-o", str(tmp_path / "here")]) == 0
+    here = json.loads(capsys.readouterr().out)
+    with distributed.LocalCluster(processes=True, n_workers=2, threads_per_worker=1, host="127.0.0.1",
+                                  dashboard_address=None) as cluster:
+        assert main([*argv, "-o", str(tmp_path / "dask"), "--scheduler", cluster.scheduler_address]) == 0
+    there = json.loads(capsys.readouterr().out)
+    assert {k: v for k, v in there.items() if k != "study"} == {k: v for k, v in here.items() if k != "study"}
+    for name in ("round_000/responses.csv", "round_001/responses.csv"):
+        assert (tmp_path / "dask" / name).read_bytes() == (tmp_path / "here" / name).read_bytes()
+
+
+def test_scheduler_is_only_for_the_surrogate(tmp_path, capsys):
+    line = error_line(capsys, main(["loop", *BOX, "--budget", "6", "--evaluate", "x {in} {out}",
+                                    "--scheduler", "tcp://127.0.0.1:9", "-o", str(tmp_path / "s")]))
+    assert "--scheduler" in line and "--surrogate" in line
