@@ -258,8 +258,11 @@ def test_surrogate_rounds_on_a_dask_scheduler_equal_this_process(tmp_path, capsy
     here = json.loads(capsys.readouterr().out)
     with distributed.LocalCluster(processes=True, n_workers=2, threads_per_worker=1, host="127.0.0.1",
                                   dashboard_address=None) as cluster:
-        assert main([*argv, "-o", str(tmp_path / "dask"), "--scheduler", cluster.scheduler_address]) == 0
-    there = json.loads(capsys.readouterr().out)
+        # as a process: an event loop left running in this one (a browser test's) would stop the client
+        done = subprocess.run([sys.executable, "-m", "rsm_lrg", *argv, "-o", str(tmp_path / "dask"), "--scheduler",
+                               cluster.scheduler_address], capture_output=True, text=True, env=cli_env(), timeout=600)
+    assert done.returncode == 0, done.stderr
+    there = json.loads(done.stdout)
     assert {k: v for k, v in there.items() if k != "study"} == {k: v for k, v in here.items() if k != "study"}
     for name in ("round_000/responses.csv", "round_001/responses.csv"):
         assert (tmp_path / "dask" / name).read_bytes() == (tmp_path / "here" / name).read_bytes()

@@ -19,6 +19,27 @@ from _cli_process import cli_env
 pytestmark = [pytest.mark.slow, pytest.mark.cluster]
 
 
+def _wait_on_scheduler(address: str, condition: str, timeout: float = 120.0) -> None:
+    """Wait (in a child process, with a Dask client of its own) until ``condition`` holds on
+    the scheduler: ``"workers"`` (a worker has joined) or ``"tasks"`` (work was submitted)."""
+    code = (
+        "import sys, time\n"
+        "from distributed import Client\n"
+        f"c = Client({address!r}, timeout='60s')\n"
+        f"end = time.monotonic() + {timeout}\n"
+        f"if {condition!r} == 'workers':\n"
+        f"    c.wait_for_workers(1, timeout={timeout})\n"
+        "else:\n"
+        "    while not c.run_on_scheduler(lambda dask_scheduler: len(dask_scheduler.tasks)):\n"
+        "        if time.monotonic() > end:\n"
+        "            sys.exit(1)\n"
+        "        time.sleep(0.2)\n"
+        "c.close()\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=cli_env(),
+                          timeout=timeout + 60)
+    assert done.returncode == 0, done.stderr[-2000:]
+
+
 def _free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
@@ -37,6 +58,7 @@ def test_every_worker_lost_mid_run_is_one_error_not_a_hang(tmp_path):
         time.sleep(2.0)
         worker = subprocess.Popen(["dask", "worker", address, "--nthreads", "1", "--no-nanny", "--no-dashboard"],
                                   **quiet)
+        _wait_on_scheduler(address, "workers")  # joined before simulate asks (a busy machine starts it slowly)
         design = tmp_path / "design.csv"
         made = subprocess.run([sys.executable, "-m", "rsm_lrg", "design", "latin-hypercube", "--runs", "40000",
                                "--factor", "thickness_m=0.0001:0.0005", "--factor", "stroke_m=0.04:0.06",
@@ -47,7 +69,7 @@ def test_every_worker_lost_mid_run_is_one_error_not_a_hang(tmp_path):
         run = subprocess.Popen([sys.executable, "-m", "rsm_lrg", "simulate", str(design), "--scheduler", address,
                                 "--scheduler-timeout", "5", "--no-progress", "-o", str(out)],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=cli_env())
-        time.sleep(6.0)  # connected, batches submitted (the worker compiles and runs for longer than this)
+        _wait_on_scheduler(address, "tasks")  # connected, batches submitted (the worker runs for longer than this)
         assert run.poll() is None, run.communicate()
         worker.send_signal(signal.SIGKILL)
         worker.wait(timeout=10)
