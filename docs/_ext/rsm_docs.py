@@ -35,7 +35,7 @@ GUIDE = [
     ("command-line", "Working on the command line", ["The command line"]),
     ("designs", "Designs", ["Designs", "Categoric factors", "Designs beyond the classics"]),
     ("fitting", "Fitting models", ["Fit and optimise", "Any model", "Beyond the fit", "Pass/fail and count",
-                                   "Screening"]),
+                                   "Screening:", "Screening with a definitive screening design"]),
     ("optimisation", "Optimisation and prediction", ["Prediction under uncertainty", "Mean and spread from replicates"]),
     ("mixtures", "Mixtures", ["Mixture designs", "Mixtures: Scheffé", "Blocked mixtures", "Mixture study"]),
     ("split-plot", "Split-plot experiments", ["Split-plot study", "Split-split-plot and strip-plot", "Split-plot analysis",
