@@ -157,19 +157,7 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
                          f"{n_rep} replicates; {what} needs at least {p} (one per term)")
     if runs > MAX_RUNS:
         raise ParameterError("runs", f"at most {MAX_RUNS} runs (got {runs})")
-    r = t - float(np.sum(lows))
-    # candidates: blends (L-pseudo) x process levels
-    zc = (cands - lows[None, :]) / r
-    levels = np.array(list(itertools.product([-1.0, 0.0, 1.0], repeat=k))) if k else np.zeros((1, 0))
-    pool = np.hstack([np.repeat(zc, len(levels), axis=0), np.tile(levels, (len(zc), 1))])
-    blend_of = np.repeat(np.arange(len(zc)), len(levels))
-    if len(pool) > MAX_CANDIDATES:
-        raise ParameterError("bounds", f"the region gives {len(pool)} candidate points; at most {MAX_CANDIDATES} are "
-                         "searched (fewer components or process factors)")
-    Fc = design_matrix(pool, terms)
-    if np.linalg.matrix_rank(Fc) < p:
-        raise ParameterError("model", f"the candidate blends of this region cannot support {what} "
-                         f"({np.linalg.matrix_rank(Fc)} of {p} terms estimable)")
+    pool, blend_of, r, Fc = _checked_candidates(cs, k, terms, what)
     space = FactorSpace(tuple(Factor(nm, float(lo) - r, float(lo) + r, L) for nm, lo, L in zip(names, lows, letters))
                         + (() if proc is None else tuple(replace(f, letter=L) for f, L in zip(proc.factors, letters[q:]))))
     W = _moments(terms, cs, r, k) if crit == "I" else None
@@ -212,14 +200,25 @@ def mixture_optimal(bounds: Mapping[str, tuple[float, float]] | Sequence[tuple[s
                           process_coded=D[:, q:] if k else None)
 
 
-def _candidates(cs: CandidateSet, k: int) -> tuple[np.ndarray, np.ndarray, float]:
-    """``(pool, blend_of, r)``: the candidate points (L-pseudo blends x process levels -1, 0,
-    +1), the blend of each and the pseudo range ``r``."""
+def _checked_candidates(cs: CandidateSet, k: int, terms: list[Term],
+                        what: str) -> tuple[np.ndarray, np.ndarray, float, np.ndarray]:
+    """``(pool, blend_of, r, Fc)``: the candidate points (L-pseudo blends x process levels -1,
+    0, +1), the blend of each, the pseudo range ``r`` and the candidates' model matrix; a
+    ``ParameterError`` when there are more than :data:`MAX_CANDIDATES` points or they cannot
+    estimate every term."""
     r = cs.total - float(np.sum(cs.lows))
     zc = (cs.points - cs.lows[None, :]) / r
     levels = np.array(list(itertools.product([-1.0, 0.0, 1.0], repeat=k))) if k else np.zeros((1, 0))
     pool = np.hstack([np.repeat(zc, len(levels), axis=0), np.tile(levels, (len(zc), 1))])
-    return pool, np.repeat(np.arange(len(zc)), len(levels)), r
+    if len(pool) > MAX_CANDIDATES:
+        raise ParameterError("bounds", f"the region gives {len(pool)} candidate points; at most {MAX_CANDIDATES} are "
+                                       "searched (fewer components or process factors)")
+    Fc = design_matrix(pool, terms)
+    rank = np.linalg.matrix_rank(Fc)
+    if rank < len(terms):
+        raise ParameterError("model", f"the candidate blends of this region cannot support {what} "
+                                      f"({rank} of {len(terms)} terms estimable)")
+    return pool, np.repeat(np.arange(len(zc)), len(levels)), r, Fc
 
 
 def _blocked(*, cs: CandidateSet, terms: list[Term], what: str, crit: str, runs: Any, lof_points: Any,
@@ -253,14 +252,7 @@ def _blocked(*, cs: CandidateSet, terms: list[Term], what: str, crit: str, runs:
         raise ParameterError("runs", f"{runs} runs cannot support {what} ({p} terms) and {blocks - 1} block "
                                      f"effect{plural}: at least {P} are needed")
     k = 0 if proc is None else len(proc)
-    pool, blend_of, r = _candidates(cs, k)
-    if len(pool) > MAX_CANDIDATES:
-        raise ParameterError("bounds", f"the region gives {len(pool)} candidate points; at most {MAX_CANDIDATES} are "
-                                       "searched (fewer components or process factors)")
-    Fc = design_matrix(pool, terms)
-    if np.linalg.matrix_rank(Fc) < p:
-        raise ParameterError("model", f"the candidate blends of this region cannot support {what} "
-                                      f"({np.linalg.matrix_rank(Fc)} of {p} terms estimable)")
+    pool, blend_of, r, Fc = _checked_candidates(cs, k, terms, what)
     rng, used_seed = resolve_seed(seed)
     if starts is None:
         starts = 20 if P <= 10 else (10 if P <= 30 else 5)
