@@ -1,7 +1,7 @@
 """Sphinx extension of the rsm-lrg documentation: at ``builder-inited`` it writes, under
 ``docs/_generated/`` (git-ignored), the pages that are produced from the project itself:
 
-- the user guide, split from the README's sections (:data:`GUIDE`; every section of the README
+- the user guide, split from the README's sections (:data:`rsm_guide.GUIDE`; every section of the README
   must land on exactly one page, else the build stops),
 - the command-line reference, the ``--help`` of every command and sub-command as argparse
   prints it,
@@ -21,6 +21,8 @@ import time
 from pathlib import Path
 
 import rsm_api
+import rsm_guide
+from rsm_guide import place_sections, readme_sections
 from sphinx.errors import ExtensionError
 from sphinx.util import logging
 
@@ -29,66 +31,11 @@ DOCS = Path(__file__).resolve().parents[1]
 ROOT = DOCS.parent
 OUT = DOCS / "_generated"
 
-#: Guide pages: (file, title, README section headings that start with these words).
-GUIDE = [
-    ("quickstart", "Install and quick start", ["Quick start", "Python"]),
-    ("command-line", "Working on the command line", ["The command line"]),
-    ("designs", "Designs", ["Designs", "Categoric factors", "Designs beyond the classics"]),
-    ("fitting", "Fitting models", ["Fit and optimise", "Any model", "Beyond the fit", "Pass/fail and count",
-                                   "Screening:", "Screening with a definitive screening design"]),
-    ("optimisation", "Optimisation and prediction", ["Prediction under uncertainty", "Mean and spread from replicates"]),
-    ("mixtures", "Mixtures", ["Mixture designs", "Mixtures: Scheffé", "Blocked mixtures", "Mixture study"]),
-    ("split-plot", "Split-plot experiments", ["Split-plot study", "Split-split-plot and strip-plot", "Split-plot analysis",
-                                              "Power by simulation"]),
-    ("design-space", "Design space", ["Design space"]),
-    ("gp", "Gaussian processes and the next runs", ["Computer experiments"]),
-    ("reports", "Reports", ["Interactive report", "Reports (static sections)"]),
-    ("paper", "The paper reproduction and its physics", ["Physics", "Known gaps"]),
-    ("surrogate", "The surrogate: virtual runs and calibration", ["Virtual runs and calibration",
-                                                                  "Surrogate calibration"]),
-    ("development", "Layout, documentation, tests and licence", ["Layout", "Documentation", "Tests and benchmarks",
-                                                        "License"]),
-]
-
-FENCE = re.compile(r"^```")
-HEADING = re.compile(r"^(#{2,4}) (.*)$")
-
-
 def _write(path: Path, text: str) -> None:
     """Write ``text`` unless the file holds it already (keeps incremental builds incremental)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     if not path.exists() or path.read_text(encoding="utf-8") != text:
         path.write_text(text, encoding="utf-8")
-
-
-def readme_sections(text: str) -> tuple[str, list[tuple[str, list[str]]]]:
-    """The README's introduction and its ``##``/``###`` sections, fenced code left alone.
-
-    Parameters
-    ----------
-    text : str
-        The README.
-
-    Returns
-    -------
-    tuple
-        The introduction (after the title, before the first section) and a list of
-        ``(heading, lines)``, the lines without the heading.
-    """
-    intro: list[str] = []
-    out: list[tuple[str, list[str]]] = []
-    fenced = False
-    for line in text.splitlines()[1:]:
-        if FENCE.match(line):
-            fenced = not fenced
-        m = None if fenced else HEADING.match(line)
-        if m:
-            out.append((m.group(2), []))
-        elif out:
-            out[-1][1].append(line)
-        else:
-            intro.append(line)
-    return "\n".join(intro), out
 
 
 def _relink(line: str) -> str:
@@ -97,7 +44,8 @@ def _relink(line: str) -> str:
 
 
 def write_guide() -> list[str]:
-    """Write the guide pages from the README.
+    """Write the guide pages from the README (:func:`rsm_guide.place_sections` decides which
+    section goes on which page and stops the build on one it cannot place).
 
     Returns
     -------
@@ -106,22 +54,16 @@ def write_guide() -> list[str]:
     """
     intro, sections = readme_sections((ROOT / "README.md").read_text(encoding="utf-8"))
     _write(OUT / "intro.md", intro.strip() + "\n")
-    placed: dict[str, str] = {}
-    for page, title, starts in GUIDE:
+    try:
+        pages = place_sections(sections)
+    except ValueError as exc:
+        raise ExtensionError(f"{exc} (the page map is GUIDE in {rsm_guide.__file__})") from None
+    for page, title, placed in pages:
         body = [f"# {title}", ""]
-        for start in starts:
-            hits = [(h, lines) for h, lines in sections if h == start] or [
-                (h, lines) for h, lines in sections if h.startswith(start)]
-            if len(hits) != 1:
-                raise ExtensionError(f"guide page {page!r}: {len(hits)} README sections start with {start!r}")
-            heading, lines = hits[0]
-            placed[heading] = page
+        for heading, lines in placed:
             body += [f"## {heading}", ""] + [_relink(line) for line in lines] + [""]
         _write(OUT / "guide" / f"{page}.md", "\n".join(body).rstrip() + "\n")
-    left = [h for h, _ in sections if h not in placed]
-    if left:
-        raise ExtensionError(f"README sections on no guide page (add them to GUIDE in {__file__}): {left}")
-    return [page for page, _, _ in GUIDE]
+    return [page for page, _, _ in pages]
 
 
 def _parsers(parser: argparse.ArgumentParser, prog: str) -> list[tuple[str, argparse.ArgumentParser]]:

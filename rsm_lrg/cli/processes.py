@@ -22,7 +22,7 @@ import signal
 import sys
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Coroutine, Iterator
 from typing import Any
 
 __all__ = ["Terminated", "handle_signals", "pending_signal", "settle", "process_pool", "close_pool", "stop_children",
@@ -295,7 +295,7 @@ def connect_scheduler(address: str, timeout: float = DEFAULT_SCHEDULER_TIMEOUT):
                 await asyncio.wait_for(r.close_rpc(), 5)
 
     try:
-        asyncio.run(probe())
+        _run_coroutine(probe)
     except TimeoutError:
         raise InputError(f"--scheduler {_show(address)}: no answer within {timeout:g} s "
                          f"(--scheduler-timeout); is a Dask scheduler listening there?") from None
@@ -318,6 +318,32 @@ def connect_scheduler(address: str, timeout: float = DEFAULT_SCHEDULER_TIMEOUT):
         raise InputError(f"--scheduler {_show(address)}: no worker joined within {timeout:g} s "
                          f"(--scheduler-timeout; {type(exc).__name__})") from None
     return client
+
+
+def _run_coroutine(make: Callable[[], Coroutine[Any, Any, None]]) -> None:
+    """Run the coroutine ``make()`` to its end, from a thread of its own when this thread already
+    runs an event loop (a notebook's cell, an async caller), where ``asyncio.run`` refuses;
+    whatever it raises is raised here."""
+    import asyncio
+
+    try:
+        asyncio.get_running_loop()
+    except RuntimeError:
+        asyncio.run(make())
+        return
+    failed: list[BaseException] = []
+
+    def target() -> None:
+        try:
+            asyncio.run(make())
+        except BaseException as exc:  # handed to the caller's thread
+            failed.append(exc)
+
+    worker = threading.Thread(target=target, name="rsm-lrg-scheduler-probe", daemon=True)
+    worker.start()
+    worker.join()
+    if failed:
+        raise failed[0]
 
 
 def _reachable(address: str, timeout: float) -> bool:

@@ -308,6 +308,30 @@ def test_a_server_that_is_not_dask_is_named_as_such(reply):
     assert "not a Dask scheduler" in msg or "no answer within 5 s" in msg, msg
 
 
+def test_a_scheduler_is_probed_from_inside_a_running_event_loop():
+    # a notebook runs its cells inside an event loop, where asyncio.run refuses: the probe runs
+    # from a thread of its own there, so a silent server is named for what it does (it was
+    # "... (RuntimeError: asyncio.run() cannot be called from a running event loop)")
+    pytest.importorskip("distributed")
+    import asyncio
+
+    from rsm_lrg.cli.processes import connect_scheduler
+
+    srv = _Server(None)
+
+    async def cell() -> str:
+        with pytest.raises(InputError) as err:
+            connect_scheduler(f"tcp://127.0.0.1:{srv.port}", timeout=2)
+        return str(err.value)
+
+    try:
+        msg = asyncio.run(cell())
+    finally:
+        srv.close()
+    assert "RuntimeError" not in msg, msg
+    assert "no answer within 2 s" in msg or "does not speak Dask's protocol" in msg, msg
+
+
 def test_an_empty_scheduler_is_refused_not_run_locally(tmp_path):
     pytest.importorskip("distributed")
     d = pd.read_csv(TABLE4)[FACTORS]

@@ -252,6 +252,36 @@ def _fo_modal_sum(coef: np.ndarray, mu: np.ndarray, t: np.ndarray, out: np.ndarr
         out[j] = acc
 
 
+def _fo_scaled(kk: np.ndarray, sc: np.ndarray, a: np.ndarray) -> None:
+    # a = diag(sc) K diag(sc), then made exactly symmetric ((x + y) / 2 is the same sum either way)
+    n = kk.shape[0]
+    for i in range(n):
+        for j in range(n):
+            a[i, j] = sc[i] * kk[i, j] * sc[j]
+    for i in range(n):
+        for j in range(i):
+            h = 0.5 * (a[i, j] + a[j, i])
+            a[i, j] = h
+            a[j, i] = h
+
+
+def _fo_row_responses(mu: np.ndarray, proj: np.ndarray, s_node: float, times: np.ndarray, coef: np.ndarray,
+                      out: np.ndarray, resp: np.ndarray) -> int:
+    # what the row kernels share once a row is decomposed: the check that no mode is zero to
+    # rounding (2: a node set with no loss) and, per source c, the observed node's step response
+    # resp[c] (m,) at times (m,) from the modes mu and the projections proj (column 0 the node)
+    n = mu.shape[0]
+    if not mu[0] > 1e-13 * abs(mu[n - 1]):
+        return 2
+    for c in range(resp.shape[0]):
+        for k in range(n):
+            coef[k] = s_node * proj[k, 0] * proj[k, 1 + c] / mu[k]
+        _fo_modal_sum(coef, mu, times, out)
+        for j in range(times.shape[0]):
+            resp[c, j] = out[j]
+    return 0
+
+
 def _fo_network(k_mat: np.ndarray, cap: np.ndarray, src: np.ndarray, node: int, max_iter: int,
                 mu: np.ndarray, coef: np.ndarray, steady: np.ndarray) -> int:
     # one network K (overwritten), C: its modes mu (ascending) and, per source (columns of
@@ -262,14 +292,7 @@ def _fo_network(k_mat: np.ndarray, cap: np.ndarray, src: np.ndarray, node: int, 
     for i in range(n):
         s[i] = 1.0 / math.sqrt(cap[i])
     a = np.empty((n, n))
-    for i in range(n):
-        for j in range(n):
-            a[i, j] = s[i] * k_mat[i, j] * s[j]
-    for i in range(n):  # exactly symmetric: (x + y) / 2 is the same sum either way
-        for j in range(i):
-            h = 0.5 * (a[i, j] + a[j, i])
-            a[i, j] = h
-            a[j, i] = h
+    _fo_scaled(k_mat, s, a)
     x = np.zeros((n, 1 + ns))
     x[node, 0] = 1.0
     for c in range(ns):
@@ -363,15 +386,10 @@ def _fo_chain_rows(core_d: np.ndarray, core_e: np.ndarray, core_x: np.ndarray, s
         if _fo_ql(d, e, x, max_iter, mu, proj) != 0:
             status[r] = 1
             continue
-        if not mu[0] > 1e-13 * abs(mu[n - 1]):
-            status[r] = 2
+        status[r] = _fo_row_responses(mu, proj, s_hub, times[r], coef, out, resp[r])
+        if status[r] != 0:
             continue
         for c in range(ns):
-            for k in range(n):
-                coef[k] = s_hub * proj[k, 0] * proj[k, 1 + c] / mu[k]
-            _fo_modal_sum(coef, mu, times[r], out)
-            for j in range(times.shape[1]):
-                resp[r, c, j] = out[j]
             for i in range(n):
                 y[i] = x0[i, 1 + c]
             if _fo_tri_solve(d0, e0, y) != 0:
@@ -428,14 +446,7 @@ def _fo_patched_rows(k_base: np.ndarray, c_base: np.ndarray, src_base: np.ndarra
             continue
         for i in range(n):
             sc[i] = 1.0 / math.sqrt(cap[i])
-        for i in range(n):
-            for j in range(n):
-                a[i, j] = sc[i] * kk[i, j] * sc[j]
-        for i in range(n):  # exactly symmetric
-            for j in range(i):
-                h = 0.5 * (a[i, j] + a[j, i])
-                a[i, j] = h
-                a[j, i] = h
+        _fo_scaled(kk, sc, a)
         nd = node[r]
         x[nd, 0] = 1.0
         for i in range(n):
@@ -445,15 +456,9 @@ def _fo_patched_rows(k_base: np.ndarray, c_base: np.ndarray, src_base: np.ndarra
         if _fo_eigen(a, x, max_iter, mu, proj) != 0:
             status[r] = 1
             continue
-        if not mu[0] > 1e-13 * abs(mu[n - 1]):
-            status[r] = 2
+        status[r] = _fo_row_responses(mu, proj, sc[nd], times[r], coef, out, resp[r])
+        if status[r] != 0:
             continue
-        for c in range(ns):
-            for k in range(n):
-                coef[k] = sc[nd] * proj[k, 0] * proj[k, 1 + c] / mu[k]
-            _fo_modal_sum(coef, mu, times[r], out)
-            for j in range(times.shape[1]):
-                resp[r, c, j] = out[j]
         if _fo_solve(kk, b) != 0:  # the steady state K^-1 b, as network_modes and solve_spd solve it
             status[r] = 3
             continue
@@ -461,7 +466,8 @@ def _fo_patched_rows(k_base: np.ndarray, c_base: np.ndarray, src_base: np.ndarra
             steady[r, c] = b[nd, c]
 
 
-_FO_NAMES = ("_fo_solve", "_fo_hypot", "_fo_tridiag", "_fo_ql", "_fo_eigen", "_fo_modal_sum", "_fo_network", "_fo_tri_solve", "_fo_chain_rows",
+_FO_NAMES = ("_fo_solve", "_fo_hypot", "_fo_tridiag", "_fo_ql", "_fo_eigen", "_fo_modal_sum", "_fo_scaled", "_fo_row_responses",
+             "_fo_network", "_fo_tri_solve", "_fo_chain_rows",
              "_fo_patched_rows")
 
 
