@@ -66,6 +66,7 @@ from rsm_lrg.factors import FactorSpace
 from rsm_lrg.optimize.next_runs import suggest
 
 HERE = Path(__file__).parent
+TIE = 1e-12  # medians closer than this (relative, or absolute below 1) are equal
 R_SCRIPT = HERE / "r" / "ego_diceoptim.R"
 
 _A = np.array([[10, 3, 17, 3.5, 1.7, 8], [0.05, 10, 17, 0.1, 8, 14], [3, 3.5, 1.7, 10, 17, 8],
@@ -278,16 +279,24 @@ def summarise(name: str, runs: dict, fstar: float | None) -> dict:
         curves[m] = np.median(regret, axis=0)
     steps = list(range(initial + 1, budget + 1))
     loop = curves["loop"]
-    verdict: dict = {"steps": [steps[0], steps[-1]]}
-    for m, key, better in (("random", "below_random", np.less), ("lhs_quadratic", "below_lhs_quadratic", np.less),
-                           ("diceoptim", "at_most_diceoptim", np.less_equal)):
+    # medians that differ by rounding alone (the same runs' values averaged in another order) are
+    # equal: "below" needs more than TIE, "at most" allows it
+    verdict: dict = {"steps": [steps[0], steps[-1]], "tie_tolerance": TIE}
+
+    def tie(a: float, b: float) -> float:
+        return TIE * max(1.0, abs(a), abs(b))
+
+    for m, key, better in (("random", "below_random", lambda a, b: a < b - tie(a, b)),
+                           ("lhs_quadratic", "below_lhs_quadratic", lambda a, b: a < b - tie(a, b)),
+                           ("diceoptim", "at_most_diceoptim", lambda a, b: a <= b + tie(a, b))):
         if m not in curves:
             continue
         failed = [b for b in steps if not better(loop[b - 1], curves[m][b - 1])]
         verdict[key] = not failed
         verdict[key + "_failed_at"] = failed
     if "diceoptim" in curves:
-        verdict["at_most_diceoptim_at_budget"] = bool(loop[budget - 1] <= curves["diceoptim"][budget - 1])
+        a, b = loop[budget - 1], curves["diceoptim"][budget - 1]
+        verdict["at_most_diceoptim_at_budget"] = bool(a <= b + tie(a, b))
     print(f"\n{name}: {len(factors)} factors, initial {initial}, budget {budget}, {len(seeds)} seeds; "
           f"median simple regret (optimum {fstar:.6g})")
     print("budget " + " ".join(f"{m:>14}" for m in methods))
