@@ -194,12 +194,9 @@ class GPResult:
         c = self.core
         if x.shape[0] * self.n < COMPILED_PAIRS:
             return self._mean_var(x, variance=False)[0]
-        from ..engines.gp_compiled import KERNEL_CODES, kernels, scales
+        from ..engines.gp_compiled import mean
 
-        out = np.empty(x.shape[0])
-        kernels()["mean"](np.ascontiguousarray(x.T, dtype=float), np.ascontiguousarray(self.x.T, dtype=float),
-                          scales(self.length_scales, self.kernel), KERNEL_CODES[self.kernel],
-                          np.ascontiguousarray(c.alpha), out)
+        out = mean(x, self.x, self.length_scales, self.kernel, c.alpha)
         fx, _ = trend_matrix(x, self.trend, self.space.letters)
         return fx @ c.beta + self.variance * out
 
