@@ -292,7 +292,8 @@ def kernels() -> dict[str, Any]:
 def threads(pairs: int) -> int:
     """The Python threads a compiled pass over ``pairs`` pairs of settings runs on: the
     cores this process may use (``os.sched_getaffinity``), at most :data:`MAX_THREADS` (or
-    the environment's ``RSM_LRG_GP_THREADS``), and one per :data:`PAIRS_PER_THREAD` pairs.
+    the environment's ``RSM_LRG_GP_THREADS``), and one per :data:`PAIRS_PER_THREAD` pairs;
+    one inside a task of :func:`run_split` (no threads within threads).
 
     Parameters
     ----------
@@ -304,6 +305,8 @@ def threads(pairs: int) -> int:
     int
         At least 1.
     """
+    if getattr(_INSIDE, "split", False):  # already on one of run_split's threads
+        return 1
     try:
         usable = len(os.sched_getaffinity(0))
     except (AttributeError, OSError):  # not on Linux
@@ -313,6 +316,9 @@ def threads(pairs: int) -> int:
     if given.isdigit() and int(given) > 0:
         cap = int(given)
     return max(1, min(usable, cap, pairs // PAIRS_PER_THREAD))
+
+
+_INSIDE = threading.local()
 
 
 def run_split(task: Callable[[int, int], None], bounds: Sequence[int], count: int) -> None:
@@ -336,11 +342,15 @@ def run_split(task: Callable[[int, int], None], bounds: Sequence[int], count: in
     errors: list[BaseException] = []
 
     def group(t: int) -> None:
+        outer = getattr(_INSIDE, "split", False)
+        _INSIDE.split = True
         try:
             for b in range(cuts[t], cuts[t + 1]):
                 task(bounds[b], bounds[b + 1])
-        except BaseException as exc:  # pragma: no cover - the compiled loops do not raise
+        except BaseException as exc:
             errors.append(exc)
+        finally:
+            _INSIDE.split = outer
 
     others = [threading.Thread(target=group, args=(t,), daemon=True) for t in range(1, count)]
     for th in others:
