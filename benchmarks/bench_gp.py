@@ -17,8 +17,11 @@ wall and CPU time, the search (the likelihood evaluations on the subsample and o
 prediction (``predict_coded``) and the prediction with the kriging sd (``mean_sd``) of
 ``--points`` settings, each with its ratio to the anchor, and the peak memory (tracemalloc
 of the fit and of the predictions; NumPy reports its arrays to it) with the process's peak
-resident size. Times are wall-clock on a shared machine (expect noise of tens of per cent);
-nothing here is asserted.
+resident size, the threads of the compiled passes and of the kriging sd's chunks
+(``rsm_lrg.model.engines.gp_compiled.threads``: the usable cores, at most 8; set
+``RSM_LRG_GP_THREADS`` to change) and the BLAS threads asked for (``OPENBLAS_NUM_THREADS``).
+Times are wall-clock on a shared machine (expect noise of tens of per cent); nothing here is
+asserted.
 """
 
 from __future__ import annotations
@@ -36,6 +39,7 @@ import numpy as np
 import pandas as pd
 
 import rsm_lrg
+from rsm_lrg.model.engines import gp_compiled
 from rsm_lrg.model.pipelines import gp as gp_pipeline
 
 _A = np.array([[10, 3, 17, 3.5, 1.7, 8], [0.05, 10, 17, 0.1, 8, 14], [3, 3.5, 1.7, 10, 17, 8],
@@ -113,9 +117,11 @@ def main(argv=None) -> int:
                      "predict_mean_sd_s": with_sd, "predict_mean_sd_per_anchor": with_sd / anchor,
                      "fit_peak_mib": fit_peak / 2 ** 20, "predict_peak_mib": pred_peak / 2 ** 20,
                      "max_rss_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
-                     "load": os.getloadavg()[0]})
+                     "load": os.getloadavg()[0], "gp_threads": gp_compiled.threads(args.points * n),
+                     "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS", "(OpenBLAS default)")})
         r = rows[-1]
-        print(f"{n} runs x 6 factors (load {r['load']:.1f}): anchor (one Cholesky) {anchor:.3f} s wall, "
+        print(f"{n} runs x 6 factors (load {r['load']:.1f}, {r['gp_threads']} GP threads, BLAS threads "
+              f"{r['blas_threads']}): anchor (one Cholesky) {anchor:.3f} s wall, "
               f"{anchor_cpu:.3f} s CPU; fit {fit_wall:.2f} s wall ({r['fit_per_anchor']:.0f}x), {fit_cpu:.2f} s CPU "
               f"({r['fit_cpu_per_anchor_cpu']:.0f}x the anchor's CPU), search {r['search']}; {args.points} points: "
               f"mean {mean_only:.3f} s wall, {mean_cpu:.3f} s CPU ({r['predict_mean_per_anchor']:.1f}x), mean + sd "

@@ -4,15 +4,24 @@ cross-correlations accumulated on the fly (never stored), and the trace sums of 
 likelihood's analytic gradient.
 
 Each loop does, pair by pair, the arithmetic of the NumPy code in
-:mod:`rsm_lrg.model.engines.gp_kernels` (the same operations in the same order per pair, the
-exponential from the C library), so the two agree to a few units in the last place
-(``tests/model/engines/test_gp_compiled.py``). The functions below are plain Python until
+:mod:`rsm_lrg.model.engines.gp_kernels` (the same operations in the same order per pair), so
+the two agree to a unit or two in the last place (``tests/model/engines/test_gp_compiled.py``).
+The runs' correlation matrix (the likelihood's) takes its exponential from the C library and
+equals the NumPy code bit for bit; the predictions' loops (:func:`cross`, :func:`mean`) lay the
+runs out contiguously for one setting at a time and take a vectorised exponential
+(:func:`_exp_row`, fdlibm's algorithm, within one unit in the last place of the C library's),
+which makes them several times faster. The functions below are plain Python until
 :func:`kernels` compiles them (once per process; numba keeps the machine code on disk).
 Settings are passed transposed, ``(k, n)``, so that the loop over runs reads memory in order.
-The loops run on one thread: numba's parallel layers are not safe here (GNU OpenMP ends a
-child forked after the parent used it, so a GP predicted before ``--workers`` forks its pool
-would end its workers; the workqueue layer aborts when two threads call in at once, as Dask's
-threads may), and CPU time, not wall time, is what a busy two-core machine has to spare.
+
+Threads: numba's parallel layers are not safe here (GNU OpenMP ends a child forked after the
+parent used it, so a GP predicted before ``--workers`` forks its pool would end its workers;
+the workqueue layer aborts when two threads call in at once, as Dask's threads may). Instead
+the loops are compiled ``nogil`` and :func:`run_split` runs blocks of rows on a few plain
+Python threads (:func:`threads`: the usable cores, at most :data:`MAX_THREADS`), joined before
+it returns, so no thread outlives a call and a later fork is safe. Every number is computed
+by one thread in a fixed order (a point's sum, or a block's partial sums added in block order),
+so the results are the same on any number of threads.
 
 Kernel codes: 0 ``gauss``, 1 ``matern52``, 2 ``matern32``.
 """
@@ -20,16 +29,47 @@ Kernel codes: 0 ``gauss``, 1 ``matern52``, 2 ``matern32``.
 from __future__ import annotations
 
 import math
+import os
+import threading
+from collections.abc import Callable, Sequence
 from functools import lru_cache
 from typing import Any
 
 import numpy as np
 
-__all__ = ["KERNEL_CODES", "kernels", "scales"]
+__all__ = ["KERNEL_CODES", "MAX_THREADS", "PAIRS_PER_THREAD", "GRADIENT_BLOCK_ROWS", "EXP_CLAMP", "TILE", "kernels",
+           "scales", "threads", "run_split", "cross", "symmetric", "mean", "gradient_sums"]
 
 #: The kernels' codes in the compiled loops.
 KERNEL_CODES = {"gauss": 0, "matern52": 1, "matern32": 2}
 _ROOT = {1: math.sqrt(5.0), 2: math.sqrt(3.0)}
+#: At most this many threads per compiled pass (fewer where the process may use fewer cores).
+MAX_THREADS = 8
+#: A compiled pass takes one thread per this many pairs of settings (below, one thread).
+PAIRS_PER_THREAD = 1 << 18
+#: Rows of a block of the gradient's sums (the blocks, and so the numbers, do not depend on
+#: the thread count).
+GRADIENT_BLOCK_ROWS = 64
+#: Runs per tile of the predictions' loops (their five scratch rows fit the first-level cache).
+TILE = 512
+#: Beyond this argument ``exp(-t)`` leaves the normal numbers; the vectorised exponential
+#: hands such pairs to the C library.
+EXP_CLAMP = 708.0
+# fdlibm e_exp.c: ln 2 in two parts (k ln2_hi exact for |k| < 2^20), the rational
+# approximation's coefficients; 1.5 * 2^52 rounds to an integer; the exponent bias
+_INVLN2 = 1.44269504088896338700e+00
+_LN2HI = 6.93147180369123816490e-01
+_LN2LO = 1.90821492927058770002e-10
+_P1 = 1.66666666666666019037e-01
+_P2 = -2.77777777770155933842e-03
+_P3 = 6.61375632143793436117e-05
+_P4 = -1.65339022054652515390e-06
+_P5 = 4.13813679705723846039e-08
+_SHIFT = 6755399441055744.0
+_BIAS = 1023 << 52
+_EXP_CLAMP = EXP_CLAMP
+_THIRD = 1.0 / 3.0
+_TILE = TILE
 
 
 def scales(theta: np.ndarray, kernel: str) -> np.ndarray:
@@ -75,7 +115,7 @@ def _pair(x1t: Any, i: int, x2t: Any, l: int, c: Any, code: int) -> float:
 
 
 def _cross(x1t: Any, x2t: Any, c: Any, code: int, out: Any) -> None:
-    """``out[i, l] = k(x1[i], x2[l])``."""
+    """``out[i, l] = k(x1[i], x2[l])`` (the exponential from the C library)."""
     m = x1t.shape[1]
     n = x2t.shape[1]
     for i in range(m):
@@ -83,40 +123,130 @@ def _cross(x1t: Any, x2t: Any, c: Any, code: int, out: Any) -> None:
             out[i, l] = _pair(x1t, i, x2t, l, c, code)
 
 
-def _symmetric(xt: Any, c: Any, code: int, out: Any) -> None:
-    """``out[i, l] = k(x[i], x[l])``: the lower triangle computed, the upper mirrored, ones on
-    the diagonal."""
-    n = xt.shape[1]
-    for i in range(n):
+def _symmetric_rows(xt: Any, c: Any, code: int, out: Any, start: int, stop: int) -> None:
+    """Rows ``start:stop`` of ``out[i, l] = k(x[i], x[l])``: the lower triangle computed, the
+    upper mirrored (row ``i`` fills column ``i`` above the diagonal, which no other row
+    writes), one on the diagonal."""
+    for i in range(start, stop):
         for l in range(i):
             out[i, l] = _pair(xt, i, xt, l, c, code)
         out[i, i] = 1.0
-    for i in range(n):
         for l in range(i):
             out[l, i] = out[i, l]
 
 
-def _mean(x1t: Any, x2t: Any, c: Any, code: int, weights: Any, out: Any) -> None:
-    """``out[i] = sum_l k(x1[i], x2[l]) weights[l]``, in the order of ``l``."""
-    m = x1t.shape[1]
+def _exp_row(m: int, buf: Any, bufi: Any) -> None:
+    """``buf[2, l] * buf[4, l] = exp(-min(buf[0, l], EXP_CLAMP))`` for ``l < m``, in loops the
+    compiler vectorises: Cody & Waite's reduction ``x = k ln 2 + r`` and the rational
+    approximation of ``exp(r)`` of fdlibm's ``e_exp.c`` (Sun Microsystems 1993; error below
+    one unit in the last place, as the C library's), the scale ``2^k`` built from its bits.
+    ``buf[2]`` receives ``exp(r)``, ``buf[3]`` the shifted ``k`` (read as integers through
+    ``bufi``), ``buf[4]`` the scale (written as integers through ``bufi``)."""
+    t = buf[0]
+    y = buf[2]
+    kd = buf[3]
+    for l in range(m):
+        x = -min(t[l], _EXP_CLAMP)
+        k = x * _INVLN2 + _SHIFT  # k rounded to the nearest integer, in the low bits
+        kf = k - _SHIFT
+        hi = x - kf * _LN2HI
+        lo = kf * _LN2LO
+        r = hi - lo
+        rr = r * r
+        cc = r - rr * (_P1 + rr * (_P2 + rr * (_P3 + rr * (_P4 + rr * _P5))))
+        y[l] = 1.0 - ((lo - (r * cc) / (2.0 - cc)) - hi)
+        kd[l] = k
+    ki = bufi[3]
+    sb = bufi[4]
+    for l in range(m):
+        sb[l] = (ki[l] << 52) + _BIAS  # 2^k: the exponent field k + 1023 (k >= -1022)
+
+
+def _tile(x1t: Any, i: int, x2t: Any, l0: int, l1: int, c: Any, code: int, buf: Any, bufi: Any) -> None:
+    """``buf[2, l - l0] = k(x1[i], x2[l])`` for the runs ``l0 <= l < l1`` (a tile of at most
+    :data:`TILE` runs, so that the scratch rows stay in the first-level cache): per factor one
+    pass over the runs (contiguous), then one vectorised exponential. The operations of
+    :func:`_pair`, but the exponential's (within one unit in the last place of the C
+    library's; the C library's where the argument is beyond :data:`EXP_CLAMP`) and Matérn
+    5/2's ``a / 3`` taken as ``a * (1 / 3)`` (a division per factor and pair cost a third of
+    the loop): a unit or two in the last place of each correlation."""
+    k = x1t.shape[0]
+    m = l1 - l0
+    total = buf[0]
+    poly = buf[1]
+    for l in range(m):
+        total[l] = 0.0
+        poly[l] = 1.0
+    for j in range(k):
+        xi = x1t[j, i]
+        cj = c[j]
+        row = x2t[j, l0:l1]
+        if code == 0:
+            for l in range(m):
+                h = (xi - row[l]) / cj
+                total[l] += h * h
+        elif code == 1:
+            for l in range(m):
+                a = abs(xi - row[l]) * cj
+                total[l] += a
+                poly[l] *= 1.0 + a * (1.0 + a * _THIRD)
+        else:
+            for l in range(m):
+                a = abs(xi - row[l]) * cj
+                total[l] += a
+                poly[l] *= 1.0 + a
+    if code == 0:
+        for l in range(m):
+            total[l] = total[l] * 0.5  # exp(total * -0.5): the same number
+            poly[l] = 1.0
+    _exp_row(m, buf, bufi)
+    y = buf[2]
+    scale = buf[4]
+    for l in range(m):
+        y[l] = (y[l] * scale[l]) * poly[l]
+    for l in range(m):
+        if total[l] > _EXP_CLAMP:  # beyond the normal numbers: the C library's
+            y[l] = math.exp(-total[l]) * poly[l]
+
+
+def _cross_rows(x1t: Any, x2t: Any, c: Any, code: int, out: Any, start: int, stop: int, buf: Any,
+                bufi: Any) -> None:
+    """Rows ``start:stop`` of ``out[i, l] = k(x1[i], x2[l])`` (:func:`_tile`)."""
     n = x2t.shape[1]
-    for i in range(m):
+    for i in range(start, stop):
+        for l0 in range(0, n, _TILE):
+            l1 = min(n, l0 + _TILE)
+            _tile(x1t, i, x2t, l0, l1, c, code, buf, bufi)
+            for l in range(l1 - l0):
+                out[i, l0 + l] = buf[2, l]
+
+
+def _mean_rows(x1t: Any, x2t: Any, c: Any, code: int, weights: Any, out: Any, start: int, stop: int, buf: Any,
+               bufi: Any) -> None:
+    """``out[i] = sum_l k(x1[i], x2[l]) weights[l]`` for ``i`` in ``start:stop``, in the order
+    of ``l`` (:func:`_tile`)."""
+    n = x2t.shape[1]
+    for i in range(start, stop):
         acc = 0.0
-        for l in range(n):
-            acc += _pair(x1t, i, x2t, l, c, code) * weights[l]
+        for l0 in range(0, n, _TILE):
+            l1 = min(n, l0 + _TILE)
+            _tile(x1t, i, x2t, l0, l1, c, code, buf, bufi)
+            y = buf[2]
+            for l in range(l1 - l0):
+                acc += y[l] * weights[l0 + l]
         out[i] = acc
 
 
-def _gradient_sums(xt: Any, c: Any, code: int, R: Any, minv: Any, w: Any, kappa: float, out: Any) -> float:
-    """Over the pairs ``i > l``: ``out[j] = sum g_il R_il dlogR_il/dlog theta_j`` with
-    ``g = kappa w_i w_l - minv_il`` (``minv``'s lower triangle read); returns
-    ``sum g_il R_il`` over the same pairs."""
+def _gradient_block(xt: Any, c: Any, code: int, R: Any, minv: Any, w: Any, kappa: float, start: int, stop: int,
+                    out: Any) -> None:
+    """Over the pairs ``i > l`` with ``start <= i < stop``: ``out[j] = sum g_il R_il
+    dlogR_il/dlog theta_j`` for ``j < k`` and ``out[k] = sum g_il R_il``, with ``g = kappa
+    w_i w_l - minv_il`` (``minv``'s lower triangle read)."""
     k = xt.shape[0]
-    n = xt.shape[1]
-    for j in range(k):
+    for j in range(k + 1):
         out[j] = 0.0
     total = 0.0
-    for i in range(n):
+    for i in range(start, stop):
         wi = kappa * w[i]
         for l in range(i):
             g = (wi * w[l] - minv[i, l]) * R[i, l]
@@ -131,26 +261,263 @@ def _gradient_sums(xt: Any, c: Any, code: int, R: Any, minv: Any, w: Any, kappa:
                         out[j] += g * (a * a * (1.0 + a) / (3.0 * (1.0 + a + a * a / 3.0)))
                     else:
                         out[j] += g * (a * a / (1.0 + a))
-    return total
+    out[k] = total
 
 
-_LOOPS = ("_pair", "_symmetric", "_gradient_sums", "_cross", "_mean")  # the callee first
+_LOOPS = ("_pair", "_symmetric_rows", "_gradient_block", "_exp_row", "_tile", "_cross_rows",
+          "_mean_rows")  # the callees first
 
 
 @lru_cache(maxsize=1)
 def kernels() -> dict[str, Any]:
-    """Compile the loops (once per process; numba caches the machine code on disk).
+    """Compile the loops (once per process; numba caches the machine code on disk). They hold
+    no lock and no Python object (``nogil``), so that several Python threads run them at once.
 
     Returns
     -------
     dict
-        ``{"cross", "symmetric", "mean", "gradient_sums"}`` to the compiled functions; their
-        arguments are those of the functions of the same names with a leading underscore.
+        ``{"symmetric_rows", "gradient_block", "cross_rows", "mean_rows", "exp_row"}`` to the
+        compiled functions; their arguments are those of the functions of the same names with
+        a leading underscore.
     """
     import numba
 
     g = globals()
-    jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
+    jit = numba.njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
     for name in _LOOPS:
         g[name] = jit(g[name])
-    return {name.lstrip("_"): g[name] for name in _LOOPS if name != "_pair"}
+    return {name.lstrip("_"): g[name] for name in _LOOPS if name not in ("_pair", "_tile")}
+
+
+def threads(pairs: int) -> int:
+    """The Python threads a compiled pass over ``pairs`` pairs of settings runs on: the
+    cores this process may use (``os.sched_getaffinity``), at most :data:`MAX_THREADS` (or
+    the environment's ``RSM_LRG_GP_THREADS``), and one per :data:`PAIRS_PER_THREAD` pairs;
+    one inside a task of :func:`run_split` (no threads within threads).
+
+    Parameters
+    ----------
+    pairs : int
+        Pairs of settings the pass computes.
+
+    Returns
+    -------
+    int
+        At least 1.
+    """
+    if getattr(_INSIDE, "split", False):  # already on one of run_split's threads
+        return 1
+    try:
+        usable = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # not on Linux
+        usable = os.cpu_count() or 1
+    cap = MAX_THREADS
+    given = os.environ.get("RSM_LRG_GP_THREADS", "").strip()
+    if given.isdigit() and int(given) > 0:
+        cap = int(given)
+    return max(1, min(usable, cap, pairs // PAIRS_PER_THREAD))
+
+
+_INSIDE = threading.local()
+
+
+def run_split(task: Callable[[int, int], None], bounds: Sequence[int], count: int) -> None:
+    """Run ``task(bounds[b], bounds[b + 1])`` for every block ``b``, the blocks dealt in
+    ``count`` contiguous groups to as many threads (the caller's thread takes the first).
+    Every thread has ended when this returns (so a later ``fork`` copies none), and an
+    exception in one is raised here.
+
+    Parameters
+    ----------
+    task : callable
+        ``task(start, stop)``, a compiled ``nogil`` loop over rows ``start:stop``.
+    bounds : sequence of int
+        Block boundaries, increasing; the blocks do not depend on ``count``.
+    count : int
+        Threads to use.
+    """
+    blocks = len(bounds) - 1
+    count = max(1, min(int(count), blocks))
+    cuts = [round(t * blocks / count) for t in range(count + 1)]
+    errors: list[BaseException] = []
+
+    def group(t: int) -> None:
+        outer = getattr(_INSIDE, "split", False)
+        _INSIDE.split = True
+        try:
+            for b in range(cuts[t], cuts[t + 1]):
+                task(bounds[b], bounds[b + 1])
+        except BaseException as exc:
+            errors.append(exc)
+        finally:
+            _INSIDE.split = outer
+
+    others = [threading.Thread(target=group, args=(t,), daemon=True) for t in range(1, count)]
+    for th in others:
+        th.start()
+    group(0)
+    for th in others:
+        th.join()
+    if errors:
+        raise errors[0]
+
+
+def _row_blocks(m: int, count: int) -> list[int]:
+    """``count`` nearly equal blocks of rows ``0:m``."""
+    return [round(t * m / count) for t in range(count + 1)]
+
+
+def _scratch() -> tuple[np.ndarray, np.ndarray]:
+    buf = np.empty((5, TILE))
+    return buf, buf.view(np.int64)
+
+
+def cross(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
+    """The correlation matrix ``R[i, l] = k(x1[i], x2[l])``, rows computed on :func:`threads`
+    threads (each entry by one thread; the same numbers on any number of threads).
+
+    Parameters
+    ----------
+    x1, x2 : (m, k) and (n, k) ndarray
+        Settings [coded units].
+    theta : (k,) ndarray
+        Length-scales [coded units].
+    kernel : str
+        One of the keys of :data:`KERNEL_CODES`.
+
+    Returns
+    -------
+    (m, n) ndarray
+    """
+    fn = kernels()["cross_rows"]
+    m, n = x1.shape[0], x2.shape[0]
+    out = np.empty((m, n))
+    x1t, x2t = np.ascontiguousarray(x1.T, dtype=float), np.ascontiguousarray(x2.T, dtype=float)
+    c, code = scales(theta, kernel), KERNEL_CODES[kernel]
+    count = threads(m * n)
+
+    def task(start: int, stop: int) -> None:
+        buf, bufi = _scratch()
+        fn(x1t, x2t, c, code, out, start, stop, buf, bufi)
+
+    run_split(task, _row_blocks(m, count), count)
+    return out
+
+
+def symmetric(x: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
+    """The correlation matrix ``R[i, l] = k(x[i], x[l])`` (the lower triangle computed with the
+    C library's exponential, the upper mirrored), rows on :func:`threads` threads in blocks of
+    nearly equal pairs.
+
+    Parameters
+    ----------
+    x : (n, k) ndarray
+        Settings [coded units].
+    theta : (k,) ndarray
+        Length-scales [coded units].
+    kernel : str
+        One of the keys of :data:`KERNEL_CODES`.
+
+    Returns
+    -------
+    (n, n) ndarray
+    """
+    fn = kernels()["symmetric_rows"]
+    n = x.shape[0]
+    out = np.empty((n, n))
+    xt = np.ascontiguousarray(x.T, dtype=float)
+    c, code = scales(theta, kernel), KERNEL_CODES[kernel]
+    count = threads(n * n // 2)
+    run_split(lambda start, stop: fn(xt, c, code, out, start, stop), _triangle_blocks(n, count), count)
+    return out
+
+
+def _triangle_blocks(n: int, count: int) -> list[int]:
+    """``count`` blocks of the rows of a lower triangle with nearly equal pairs each."""
+    return [int(round(n * math.sqrt(t / count))) for t in range(count + 1)]
+
+
+def mean(points: np.ndarray, runs: np.ndarray, theta: np.ndarray, kernel: str, weights: np.ndarray) -> np.ndarray:
+    """``sum_l k(points[i], runs[l]) weights[l]`` for every point, the cross-correlations
+    never stored; points on :func:`threads` threads, each point's sum by one thread in the
+    order of ``l`` (the same numbers on any number of threads).
+
+    Parameters
+    ----------
+    points : (m, k) ndarray
+        Settings [coded units].
+    runs : (n, k) ndarray
+        The runs' settings [coded units].
+    theta : (k,) ndarray
+        Length-scales [coded units].
+    kernel : str
+        One of the keys of :data:`KERNEL_CODES`.
+    weights : (n,) ndarray
+        Weight of each run.
+
+    Returns
+    -------
+    (m,) ndarray
+    """
+    fn = kernels()["mean_rows"]
+    m, n = points.shape[0], runs.shape[0]
+    out = np.empty(m)
+    x1t, x2t = np.ascontiguousarray(points.T, dtype=float), np.ascontiguousarray(runs.T, dtype=float)
+    c, code, w = scales(theta, kernel), KERNEL_CODES[kernel], np.ascontiguousarray(weights, dtype=float)
+    count = threads(m * n)
+
+    def task(start: int, stop: int) -> None:
+        buf, bufi = _scratch()
+        fn(x1t, x2t, c, code, w, out, start, stop, buf, bufi)
+
+    run_split(task, _row_blocks(m, count), count)
+    return out
+
+
+def gradient_sums(x: np.ndarray, theta: np.ndarray, kernel: str, R: np.ndarray, minv: np.ndarray, w: np.ndarray,
+                  kappa: float, out: np.ndarray) -> float:
+    """The likelihood gradient's sums over the pairs of runs ``i > l``: ``out[j] = sum g_il
+    R_il d log R_il / d log theta_j``, ``g = kappa w_i w_l - minv_il``. The rows are cut into
+    blocks of :data:`GRADIENT_BLOCK_ROWS` whatever the thread count, each block's partial sums
+    are kept and added in block order: the same numbers on any number of threads.
+
+    Parameters
+    ----------
+    x : (n, k) ndarray
+        Coded settings.
+    theta : (k,) ndarray
+        Length-scales [coded units].
+    kernel : str
+        One of the keys of :data:`KERNEL_CODES`.
+    R : (n, n) ndarray
+        Correlation matrix.
+    minv : (n, n) ndarray
+        Lower triangle of the covariance's inverse.
+    w : (n,) ndarray
+        ``M^-1 z``.
+    kappa : float
+        Weight of ``w w'``.
+    out : (k,) ndarray
+        Receives the sums per factor.
+
+    Returns
+    -------
+    float
+        ``sum g_il R_il`` over the same pairs.
+    """
+    fn = kernels()["gradient_block"]
+    n, k = x.shape
+    xt = np.ascontiguousarray(x.T, dtype=float)
+    c, code = scales(theta, kernel), KERNEL_CODES[kernel]
+    minv = np.ascontiguousarray(minv)
+    bounds = list(range(0, n, GRADIENT_BLOCK_ROWS)) + [n]
+    parts = np.zeros((len(bounds) - 1, k + 1))
+    first = {b: i for i, b in enumerate(bounds[:-1])}
+    kap = float(kappa)
+    run_split(lambda start, stop: fn(xt, c, code, R, minv, w, kap, start, stop, parts[first[start]]), bounds,
+              threads(n * n // 2))
+    total = np.zeros(k + 1)
+    for part in parts:  # in block order
+        total += part
+    out[:] = total[:k]
+    return float(total[k])

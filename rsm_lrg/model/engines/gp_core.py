@@ -73,7 +73,7 @@ def inverse_lower(chol: np.ndarray) -> np.ndarray:
 
 def gradient_sums(x: np.ndarray, theta: np.ndarray, kernel: str, R: np.ndarray, minv: np.ndarray, w: np.ndarray,
                   kappa: float, out: np.ndarray) -> float:
-    """The likelihood gradient's sums over the pairs of runs ``i > l`` in one compiled pass:
+    """The likelihood gradient's sums over the pairs of runs ``i > l`` in compiled blocks of rows:
     ``out[j] = sum g_il R_il d log R_il / d log theta_j`` with ``g = kappa w_i w_l - minv_il``.
 
     Parameters
@@ -100,11 +100,9 @@ def gradient_sums(x: np.ndarray, theta: np.ndarray, kernel: str, R: np.ndarray, 
     float
         ``sum g_il R_il`` over the same pairs.
     """
-    from .gp_compiled import KERNEL_CODES, kernels, scales
+    from .gp_compiled import gradient_sums as compiled_sums
 
-    xt = np.ascontiguousarray(x.T, dtype=float)
-    return float(kernels()["gradient_sums"](xt, scales(theta, kernel), KERNEL_CODES[kernel], R,
-                                            np.ascontiguousarray(minv), w, float(kappa), out))
+    return compiled_sums(x, theta, kernel, R, minv, w, kappa, out)
 
 
 @dataclass(frozen=True)

@@ -85,17 +85,11 @@ def correlation(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) 
 
 
 def _compiled_correlation(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
-    from .gp_compiled import KERNEL_CODES, kernels, scales
+    from . import gp_compiled
 
-    fns = kernels()
-    out = np.empty((x1.shape[0], x2.shape[0]))
-    c, code = scales(theta, kernel), KERNEL_CODES[kernel]
-    x1t = np.ascontiguousarray(x1.T, dtype=float)
     if x1 is x2:
-        fns["symmetric"](x1t, c, code, out)
-    else:
-        fns["cross"](x1t, np.ascontiguousarray(x2.T, dtype=float), c, code, out)
-    return out
+        return gp_compiled.symmetric(x1, theta, kernel)
+    return gp_compiled.cross(x1, x2, theta, kernel)
 
 
 def log_derivative_theta(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str, j: int) -> np.ndarray:

@@ -194,30 +194,39 @@ class GPResult:
         c = self.core
         if x.shape[0] * self.n < COMPILED_PAIRS:
             return self._mean_var(x, variance=False)[0]
-        from ..engines.gp_compiled import KERNEL_CODES, kernels, scales
+        from ..engines.gp_compiled import mean
 
-        out = np.empty(x.shape[0])
-        kernels()["mean"](np.ascontiguousarray(x.T, dtype=float), np.ascontiguousarray(self.x.T, dtype=float),
-                          scales(self.length_scales, self.kernel), KERNEL_CODES[self.kernel],
-                          np.ascontiguousarray(c.alpha), out)
+        out = mean(x, self.x, self.length_scales, self.kernel, c.alpha)
         fx, _ = trend_matrix(x, self.trend, self.space.letters)
         return fx @ c.beta + self.variance * out
 
     def _mean_var(self, x: np.ndarray, variance: bool = True) -> tuple[np.ndarray, np.ndarray]:
-        mean = np.empty(x.shape[0])
-        var = np.zeros(x.shape[0])
+        """Mean and kriging variance at coded settings, by chunks of :data:`PREDICT_CHUNK`
+        points; with the variance (an O(n²) triangular solve per point, which releases the
+        GIL) the chunks run on :func:`~rsm_lrg.model.engines.gp_compiled.threads` threads, each
+        chunk's numbers computed by one thread as on one."""
+        from ..engines.gp_compiled import run_split, threads
+
+        m = x.shape[0]
+        mean = np.empty(m)
+        var = np.zeros(m)
         c = self.core
-        for s in range(0, x.shape[0], PREDICT_CHUNK):
-            xs = x[s:s + PREDICT_CHUNK]
+
+        def chunk(s: int, e: int) -> None:
+            xs = x[s:e]
             r = self._cross(xs)
             fx, _ = trend_matrix(xs, self.trend, self.space.letters)
-            mean[s:s + PREDICT_CHUNK] = fx @ c.beta + r @ c.alpha
+            mean[s:e] = fx @ c.beta + r @ c.alpha
             if not variance:
-                continue
+                return
             v = solve_triangular(c.chol, r.T, lower=True, check_finite=False)  # L^-1 r (n x m)
             u = fx.T - c.ft.T @ v
             w = solve_triangular(c.r_f, u, lower=False, trans="T", check_finite=False)
-            var[s:s + PREDICT_CHUNK] = self.variance - np.sum(v * v, axis=0) + np.sum(w * w, axis=0)
+            var[s:e] = self.variance - np.sum(v * v, axis=0) + np.sum(w * w, axis=0)
+
+        bounds = list(range(0, m, PREDICT_CHUNK)) + [m]
+        count = threads(m * self.n) if variance and len(bounds) > 2 else 1
+        run_split(chunk, bounds, count)
         return mean, np.maximum(var, 0.0)
 
     @property

@@ -28,9 +28,13 @@ def test_compiled_correlation_equals_numpy(kernel, monkeypatch):
     fast_sym, fast_cross = correlation(x, x, theta, kernel), correlation(xn, x, theta, kernel)
     _numpy_only(monkeypatch)
     slow_sym, slow_cross = correlation(x, x, theta, kernel), correlation(xn, x, theta, kernel)
-    # the same operations per pair: equal to a few units in the last place (here bit for bit)
-    np.testing.assert_allclose(fast_sym, slow_sym, rtol=4e-16, atol=1e-300)
-    np.testing.assert_allclose(fast_cross, slow_cross, rtol=4e-16, atol=1e-300)
+    # the runs' matrix (the likelihood's): the same operations per pair, bit for bit
+    assert np.array_equal(fast_sym, slow_sym)
+    # the predictions': the vectorised exponential (within an ulp of the C library's) and
+    # a * (1/3) for a / 3: a few units in the last place, and not all bit for bit
+    np.testing.assert_allclose(fast_cross, slow_cross, rtol=2e-15, atol=1e-300)
+    if kernel == "matern52":
+        assert not np.array_equal(fast_cross, slow_cross)
     assert np.array_equal(fast_sym, fast_sym.T) and np.all(np.diag(fast_sym) == 1.0)
 
 
@@ -107,3 +111,94 @@ def test_subsample_search_polished_on_every_run(big_fit):
     assert best == pytest.approx(r.log_likelihood, rel=1e-7)  # sigma2 R vs R: the same to conditioning
     for d in np.vstack([np.eye(2), -np.eye(2)]) * 0.01:
         assert -lik(np.log(r.length_scales) + d)[0] <= best + 1e-9
+
+
+def test_vectorised_exponential_within_an_ulp_of_the_exact_one():
+    import math
+
+    import mpmath
+
+    from rsm_lrg.model.engines import gp_compiled
+
+    fns = gp_compiled.kernels()
+    rng = np.random.default_rng(8)
+    t = np.concatenate([[0.0, 5e-324, 1e-300, 1e-17, 0.5 * math.log(2), math.log(2), 700.0, 708.0],
+                        rng.uniform(0, 1e-3, 200), rng.uniform(0, 40, 2000), rng.uniform(0, 708, 500)])
+    buf = np.empty((5, t.size))
+    buf[0] = t
+    fns["exp_row"](t.size, buf, buf.view(np.int64))
+    got = buf[2] * buf[4]
+    lib = np.array([math.exp(-v) for v in t])
+    assert np.max(np.abs(got - lib) / lib) <= 2.3e-16  # both within an ulp of the exact value
+    mpmath.mp.dps = 40
+    worst = max(abs(float((mpmath.mpf(g) - mpmath.exp(-mpmath.mpf(v))) / mpmath.exp(-mpmath.mpf(v))))
+                for g, v in zip(got[::5], t[::5]))
+    assert worst <= 1.2e-16
+
+
+def test_correlations_beyond_the_normal_numbers_take_the_c_library(monkeypatch):
+    rng = np.random.default_rng(9)
+    x = rng.uniform(-1, 1, (300, 2))
+    xn = rng.uniform(-1, 1, (250, 2))
+    theta = np.array([2e-3, 3e-3])  # most pairs' exponents beyond 708: tiny or zero correlations
+    fast = correlation(xn, x, theta, "matern32")
+    _numpy_only(monkeypatch)
+    slow = correlation(xn, x, theta, "matern32")
+    assert np.sum(slow == 0.0) > 1000 and np.array_equal(fast == 0.0, slow == 0.0)
+    np.testing.assert_allclose(fast, slow, rtol=2e-15, atol=0)
+
+
+@pytest.mark.parametrize("kernel", KERNELS)
+def test_the_same_numbers_on_any_number_of_threads(kernel, monkeypatch):
+    import threading
+
+    from rsm_lrg.model.engines import gp_compiled
+
+    rng = np.random.default_rng(10)
+    x = rng.uniform(-1, 1, (300, 3))
+    pts = rng.uniform(-1, 1, (257, 3))
+    theta = np.array([0.4, 0.8, 1.5])
+    w = rng.standard_normal(300)
+    monkeypatch.setattr(gp_compiled, "PAIRS_PER_THREAD", 1)
+    monkeypatch.setattr(gp_compiled.os, "sched_getaffinity", lambda pid: set(range(4)), raising=False)
+    R = correlation(x, x, theta, kernel)
+    minv = np.linalg.inv(R + 1e-2 * np.eye(300))
+    before = threading.active_count()
+    got = {}
+    for count in ("1", "3"):
+        monkeypatch.setenv("RSM_LRG_GP_THREADS", count)
+        assert gp_compiled.threads(10 ** 6) == int(count)
+        sums = np.empty(3)
+        total = gp_compiled.gradient_sums(x, theta, kernel, R, minv, w, 0.7, sums)
+        got[count] = (gp_compiled.mean(pts, x, theta, kernel, w), gp_compiled.cross(pts, x, theta, kernel),
+                      gp_compiled.symmetric(x, theta, kernel), sums, total)
+        assert threading.active_count() == before  # every thread joined: a later fork copies none
+    for a, b in zip(got["1"], got["3"]):
+        assert np.array_equal(a, b)
+    assert np.array_equal(got["1"][2], R)
+    # the mean: each point's sum in the order of the runs
+    np.testing.assert_allclose(got["1"][0], got["1"][1] @ w, rtol=0,
+                               atol=2 * 300 * np.finfo(float).eps * float(np.max(np.abs(got["1"][1]) @ np.abs(w))))
+
+
+def test_kriging_sd_chunks_on_threads_give_the_same_numbers(big_fit_small, monkeypatch):
+    from rsm_lrg.model.engines import gp_compiled
+    from rsm_lrg.model.results import gp_result
+
+    pts = np.random.default_rng(12).uniform(-1, 1, (700, 2))
+    monkeypatch.setattr(gp_result, "PREDICT_CHUNK", 100)
+    monkeypatch.setattr(gp_compiled, "PAIRS_PER_THREAD", 1)
+    monkeypatch.setattr(gp_compiled.os, "sched_getaffinity", lambda pid: set(range(4)), raising=False)
+    monkeypatch.setenv("RSM_LRG_GP_THREADS", "1")
+    one = big_fit_small.mean_sd(pts)
+    monkeypatch.setenv("RSM_LRG_GP_THREADS", "3")
+    three = big_fit_small.mean_sd(pts)
+    assert np.array_equal(one[0], three[0]) and np.array_equal(one[1], three[1])
+
+
+@pytest.fixture(scope="module")
+def big_fit_small():
+    rng = np.random.default_rng(13)
+    df = pd.DataFrame({"a": rng.uniform(0, 1, 120), "b": rng.uniform(0, 1, 120)})
+    df["y"] = np.sin(6 * df.a) * np.cos(3 * df.b)
+    return fit_gp(df, "y", length_scales=[0.4, 0.6])
