@@ -139,6 +139,13 @@ def _dd_add(ah: np.ndarray, al: np.ndarray, bh: np.ndarray, bl: np.ndarray) -> _
     return _quick_two_sum(s, e)
 
 
+def _dd_add_d(ah: np.ndarray, al: np.ndarray, b: np.ndarray) -> _DD:
+    """``(ah + al) + b`` for a double ``b``: :func:`_dd_add` with ``bl = 0`` (the same roundings,
+    the steps on the zero part left out; ``+ 0.0`` keeps the sign of a zero as they leave it)."""
+    s, e = _two_sum(ah, b)
+    return _quick_two_sum(s, (e + al) + 0.0)
+
+
 def _dd_mul(ah: np.ndarray, al: np.ndarray, bh: np.ndarray, bl: np.ndarray) -> _DD:
     p, e = _two_prod(ah, bh)
     e = e + (ah * bl + al * bh)
@@ -178,40 +185,65 @@ def _row_slices(A: np.ndarray, bits: int, count: int) -> list[np.ndarray]:
     return out
 
 
-def _exact_product(A: np.ndarray, B: np.ndarray) -> _DD:
+def _slice_bits(k: int) -> tuple[int, int]:
+    """``(bits, count)`` of the slices for an exact product with inner dimension ``k``."""
+    bits = (53 - max(1, math.ceil(math.log2(max(k, 2))))) // 2
+    return bits, -(-108 // bits)
+
+
+def _left_slices(A: np.ndarray) -> list[np.ndarray]:
+    """The row slices of ``A`` that :func:`_exact_product` cuts (for a left factor used in
+    several products: cut once)."""
+    bits, count = _slice_bits(A.shape[1])
+    return _row_slices(A, bits, count)
+
+
+def _exact_product(A: np.ndarray, B: np.ndarray, sa: list[np.ndarray] | None = None) -> _DD:
     """``A @ B`` (doubles, inner dimension k at most 2^15) as a double-double pair, to about
     2^-106 of ``|A| |B|``: rows of ``A`` and columns of ``B`` are cut into slices of
-    ``bits = (53 - ceil(log2 k)) // 2`` bits (:func:`_row_slices`), so that each entry of a
-    product of two slices is a sum of k integers below ``2^(2 bits)`` times one power of two,
-    exact in double precision; those products are added in double-double."""
-    k = A.shape[1]
-    bits = (53 - max(1, math.ceil(math.log2(max(k, 2))))) // 2
-    count = -(-108 // bits)
-    sa = _row_slices(A, bits, count)
-    sb = [S.T for S in _row_slices(np.ascontiguousarray(B.T), bits, count)]
-    ch = np.zeros((A.shape[0], B.shape[1]))
-    cl = np.zeros_like(ch)
-    zero = np.zeros_like(ch)
+    ``bits = (53 - ceil(log2 k)) // 2`` bits (:func:`_row_slices`; ``sa``: those of ``A``,
+    already cut by :func:`_left_slices`), so that each entry of a product of two slices is a
+    sum of k integers below ``2^(2 bits)`` times one power of two, exact in double precision
+    (in any order of summation, so all the products come from one matrix product of the
+    stacked slices); those products are added in double-double."""
+    bits, count = _slice_bits(A.shape[1])
+    if sa is None:
+        sa = _row_slices(A, bits, count)
+    sb = _row_slices(np.ascontiguousarray(B.T), bits, count)
+    m, q = A.shape[0], B.shape[1]
+    P = (np.concatenate(sa) if len(sa) > 1 else sa[0]) @ (np.concatenate(sb).T if len(sb) > 1 else sb[0].T)
+    ch = cl = None
     for s in range(len(sa)):
         for t in range(len(sb)):
             if s + t <= count - 1:
-                ch, cl = _dd_add(ch, cl, sa[s] @ sb[t], zero)  # exact
+                block = P[s * m:(s + 1) * m, t * q:(t + 1) * q]  # exact
+                if ch is None:
+                    ch, cl = block + 0.0, np.zeros((m, q))
+                else:
+                    assert cl is not None
+                    ch, cl = _dd_add_d(ch, cl, block)
+    assert ch is not None and cl is not None
     return ch, cl
 
 
-def _dd_matmul(Ah: np.ndarray, Al: np.ndarray, Bh: np.ndarray, Bl: np.ndarray) -> _DD:
+def _dd_matmul(Ah: np.ndarray, Al: np.ndarray, Bh: np.ndarray, Bl: np.ndarray,
+               sa: list[np.ndarray] | None = None) -> _DD:
     """``(Ah + Al) @ (Bh + Bl)`` in double-double: the product of the high parts exact
-    (:func:`_exact_product`, in blocks of 2^15 of the inner dimension), the cross terms in
+    (:func:`_exact_product`, in blocks of 2^15 of the inner dimension; ``sa`` the slices of
+    ``Ah`` from :func:`_left_slices` when it has at most 2^15 columns), the cross terms in
     double precision (they are 2^-53 smaller), ``Al @ Bl`` dropped."""
     k = Ah.shape[1]
-    ch = np.zeros((Ah.shape[0], Bh.shape[1]))
-    cl = np.zeros_like(ch)
-    for s in range(0, max(k, 1), _MAX_INNER):
-        e = min(k, s + _MAX_INNER)
-        ph, pl = _exact_product(Ah[:, s:e], Bh[s:e])
-        ch, cl = _dd_add(ch, cl, ph, pl)
+    if k <= _MAX_INNER:
+        ch, cl = _exact_product(Ah, Bh, sa)
+    else:
+        ch = np.zeros((Ah.shape[0], Bh.shape[1]))
+        cl = np.zeros_like(ch)
+        for s in range(0, k, _MAX_INNER):
+            e = min(k, s + _MAX_INNER)
+            ph, pl = _exact_product(Ah[:, s:e], Bh[s:e])
+            ch, cl = _dd_add(ch, cl, ph, pl)
     cross = Ah @ Bl + Al @ Bh
-    return _dd_add(ch, cl, cross, np.zeros_like(cross))
+    return _dd_add_d(ch, cl, cross)
 
 
 def _gram(Ah: np.ndarray, Al: np.ndarray) -> _DD:
@@ -451,40 +483,57 @@ def _basis_change(lay: _Layout, centre: np.ndarray, scale: np.ndarray,
     the shift) the monomials the expansion adds, named as columns are (third value)."""
     index = {key: i for i, key in enumerate(lay.keys)}
     extra: list[tuple] = []
-    entries: list[tuple[tuple, int, Fraction]] = []
-    cs = [Fraction(float(c)) for c in centre]
-    hs = [Fraction(float(h)) for h in scale]
+    # exact rationals as (numerator, denominator) pairs of integers, not reduced (Fraction's
+    # gcd at every step costs more than the whole rest): a double c is cn / cd exactly
+    entries: list[tuple[tuple, int, int, int]] = []
+    cs = [float(c).as_integer_ratio() for c in centre]
+    hs = [float(h).as_integer_ratio() for h in scale]
+    powers: dict[tuple[int, int], list[tuple[int, int, int]]] = {}
+
+    def expand(f: int, e: int) -> list[tuple[int, int, int]]:
+        """``((x - c_f) / h_f)^e`` as ``[(m, num, den)]``: the coefficient of ``x^m``."""
+        if (f, e) not in powers:
+            (cn, cd), (hn, hd) = cs[f], hs[f]
+            lows = range(e + 1) if cn != 0 else (e,)
+            powers[(f, e)] = [(m, comb(e, m) * (-cn) ** (e - m) * hd ** e, cd ** (e - m) * hn ** e) for m in lows]
+        return powers[(f, e)]
+
     for j, key in enumerate(lay.keys):
         if key[0] == "b":
-            entries.append((key, j, Fraction(1)))
+            entries.append((key, j, 1, 1))
             continue
         _, npw, sig = key
-        parts: list[tuple[tuple[int, ...], Fraction]] = [((), Fraction(1))]
+        parts: list[tuple[tuple[int, ...], int, int]] = [((), 1, 1)]
         for f, e in enumerate(npw):
-            new = []
-            for pw, v in parts:
-                lows = range(e + 1) if cs[f] != 0 else (e,)
-                for m in lows:
-                    new.append((pw + (m,), v * comb(e, m) * (-cs[f]) ** (e - m) / hs[f] ** e))
-            parts = new
-        for pw, v in parts:
+            if not e:
+                parts = [(pw + (0,), num, den) for pw, num, den in parts]
+                continue
+            parts = [(pw + (m,), num * a, den * b) for pw, num, den in parts for m, a, b in expand(f, e)]
+        for pw, num, den in parts:
             k = ("t", pw, sig)
             if k not in index and k not in extra:
                 extra.append(k)
-            entries.append((k, j, v))
+            entries.append((k, j, num, den))
     extra.sort(key=lambda k: (sum(k[1]), len(k[2]), [-e for e in k[1]], k[2]))
     for k in extra:
         index[k] = len(index)
     q, p = len(index), lay.p
     Mh = np.zeros((q, p))
     Ml = np.zeros((q, p))
-    acc: dict[tuple[int, int], Fraction] = {}
-    for k, j, v in entries:
-        acc[(index[k], j)] = acc.get((index[k], j), Fraction(0)) + v
-    for (i, j), v in acc.items():
-        hi = float(v)
+    acc: dict[tuple[int, int], tuple[int, int]] = {}
+    for k, j, num, den in entries:
+        at = (index[k], j)
+        if at in acc:
+            n0, d0 = acc[at]
+            num, den = n0 * den + num * d0, d0 * den
+        acc[at] = (num, den)
+    for (i, j), (num, den) in acc.items():
+        if den < 0:
+            num, den = -num, -den
+        hi = num / den  # correctly rounded (as float(Fraction(num, den)))
+        a, b = hi.as_integer_ratio()
         Mh[i, j] = hi
-        Ml[i, j] = float(v - Fraction(hi))
+        Ml[i, j] = (num * b - a * den) / (den * b)
     levels = {f: lv for t in lay.terms for f, lv in t.cat}
     return Mh, Ml, tuple(_monomial_name(k[1], k[2], letters, levels) for k in extra)
 
@@ -624,8 +673,9 @@ def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray
     xh, xl = np.zeros(p), np.zeros(p)
     prev = math.inf
     stalled = 0
+    sg = _left_slices(Gh) if Gh.shape[1] <= _MAX_INNER else None
     for it in range(1, max_iter + 1):
-        gh, gl = _dd_matmul(Gh, Gl, xh[:, None], xl[:, None])
+        gh, gl = _dd_matmul(Gh, Gl, xh[:, None], xl[:, None], sg)
         rh, _ = _dd_add(bh, bl, -gh[:, 0], -gl[:, 0])
         d = P(rh)
         xh, xl = _dd_add(xh, xl, d, np.zeros(p))
@@ -651,8 +701,9 @@ def _refine_inverse(Gh: np.ndarray, Gl: np.ndarray, P: Callable[[np.ndarray], np
     zero = np.zeros((p, p))
     prev = math.inf
     stalled = 0
+    sg = _left_slices(Gh) if Gh.shape[1] <= _MAX_INNER else None
     for _ in range(max_iter):
-        gh, gl = _dd_matmul(Gh, Gl, ch, cl)
+        gh, gl = _dd_matmul(Gh, Gl, ch, cl, sg)
         eh, _ = _dd_add(eye, zero, -gh, -gl)
         d = P(eh)
         ch, cl = _dd_add(ch, cl, d, zero)
