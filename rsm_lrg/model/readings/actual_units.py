@@ -169,20 +169,22 @@ _MAX_INNER = 1 << 15
 
 def _row_slices(A: np.ndarray, bits: int, count: int) -> list[np.ndarray]:
     """``A`` (r x k) as a sum of slices ``S_1 + S_2 + ...`` (at most ``count``; the rest,
-    below ``2^-(count*bits)`` of each row's largest entry, dropped): row ``i`` of ``S_s`` holds
-    integer multiples of ``2^(e_i - s*bits)`` below ``2^(e_i - (s-1)*bits)`` in magnitude,
-    ``2^e_i`` bounding the row (every step is exact)."""
+    below ``2^-(count*bits)`` of each row's largest entry, dropped; trailing zero slices left
+    out): row ``i`` of ``S_s`` holds integer multiples of ``2^(e_i - s*bits)`` below
+    ``2^(e_i - (s-1)*bits)`` in magnitude, ``2^e_i`` bounding the row (every step is exact).
+    ``S_1 + ... + S_s`` is ``A`` rounded (to nearest, ties to even) to multiples of
+    ``2^(e_i - s*bits)``: rounding the rest of the coarser slices at a finer grid shifts by a
+    multiple of an even number of grid steps, which leaves the rounding (and its ties) as it is;
+    so all the slices come from one rounding of ``A`` at every grid."""
     _, e = np.frexp(np.max(np.abs(A), axis=1, initial=0.0))
-    rest = A.copy()
-    out = []
-    for s in range(1, count + 1):
-        g = (e - s * bits)[:, None]
-        S = np.ldexp(np.rint(np.ldexp(rest, -g)), g)
-        out.append(S)
-        rest -= S
-        if not rest.any():
-            break
-    return out
+    g = e[None, :, None] - (bits * np.arange(1, count + 1))[:, None, None]
+    S = np.ldexp(A[None], -g)  # (count, r, k): A at each grid, then the differences
+    np.rint(S, out=S)
+    np.ldexp(S, g, out=S)
+    np.subtract(S[1:], S[:-1], out=S[1:])
+    nz = np.flatnonzero(S.reshape(count, -1).any(axis=1))
+    used = int(nz[-1]) + 1 if nz.size else 1
+    return list(S[:used])
 
 
 def _slice_bits(k: int) -> tuple[int, int]:
