@@ -35,10 +35,11 @@ import math
 import re
 from collections.abc import Sequence
 from numbers import Number
+from types import SimpleNamespace
 from typing import Any
 
 __all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_g", "format_sci", "format_p", "format_f",
-           "format_cell", "clean_anova", "anova_rows", "unicode_number", "is_missing"]
+           "format_cell", "clean_anova", "anova_rows", "unicode_number", "is_missing", "table_records"]
 
 #: Relative size at or below which a value is round-off and shown as 0.
 ROUND_OFF = 1e-12
@@ -240,6 +241,29 @@ def format_cell(x) -> str:
     return format_number(x, 6)
 
 
+def table_records(frame) -> list[SimpleNamespace]:
+    """The rows of a small DataFrame as records with one attribute per column (as
+    ``itertuples(index=False)`` gives them: Python scalars), read column by column (a
+    namedtuple class per call and a cell look-up per value cost more than a summary's text).
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        A table whose column names are identifiers (an ANOVA: ``source, sum_sq, df, ...``).
+
+    Returns
+    -------
+    list of types.SimpleNamespace
+        One record per row, in order.
+
+    >>> import pandas as pd
+    >>> [(r.source, r.df) for r in table_records(pd.DataFrame({"source": ["A", "B"], "df": [1, 2]}))]
+    [('A', 1), ('B', 2)]
+    """
+    cols = {str(c): frame[c].tolist() for c in frame.columns}
+    return [SimpleNamespace(**dict(zip(cols, vals))) for vals in zip(*cols.values())]
+
+
 def clean_anova(anova):
     """A copy of an ANOVA DataFrame (``source, sum_sq, df, mean_sq, f, p``) as it is shown:
     sums of squares and mean squares that are round-off against the corrected total
@@ -250,17 +274,27 @@ def clean_anova(anova):
     notebook show the same numbers.
     """
     a = anova.copy()
-    tot = a.loc[a["source"].isin(("Cor Total", "Uncor Total")), "sum_sq"]  # corrected, or without an intercept
-    scale = float(tot.iloc[0]) if len(tot) else float(a["sum_sq"].abs().max())
-    for i in a.index:
-        ss = a.at[i, "sum_sq"]
-        if clean(ss, scale) == 0.0 and not is_missing(ss):
-            a.at[i, "sum_sq"] = 0.0
-            if not is_missing(a.at[i, "mean_sq"]):
-                a.at[i, "mean_sq"] = 0.0
-            if not is_missing(a.at[i, "f"]):
-                a.at[i, "f"] = 0.0
-                a.at[i, "p"] = 1.0
+    sources, ss = a["source"].tolist(), a["sum_sq"].tolist()  # a small frame: plain lists, not cell look-ups
+    tot = [v for src, v in zip(sources, ss) if src in ("Cor Total", "Uncor Total")]  # corrected, or no intercept
+    scale = float(tot[0]) if tot else float(a["sum_sq"].abs().max())
+    rows = [i for i, v in enumerate(ss) if not is_missing(v) and clean(v, scale) == 0.0]
+    if not rows:
+        return a
+    ms, f = a["mean_sq"].tolist(), a["f"].tolist()
+    changes = {"sum_sq": rows, "mean_sq": [i for i in rows if not is_missing(ms[i])],
+               "f": [i for i in rows if not is_missing(f[i])]}
+    changes["p"] = changes["f"]
+    for col, at in changes.items():
+        if not at:
+            continue
+        value = 1.0 if col == "p" else 0.0
+        if a[col].dtype.kind == "f":
+            arr = a[col].to_numpy(copy=True)
+            arr[at] = value
+            a[col] = arr
+        else:
+            for i in at:
+                a.at[a.index[i], col] = value
     return a
 
 

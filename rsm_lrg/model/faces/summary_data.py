@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from ...present import format_f, format_number
+from ...present import format_f, format_number, table_records
 
 __all__ = ["SummaryData", "summary_data", "ALPHA", "ALPHA_INSIGNIFICANT"]
 
@@ -88,7 +88,8 @@ def summary_data(result: Any) -> SummaryData:
              + ("" if result.intercept or mixture else "; no intercept: the model row and total are uncorrected"))
     title = result.reading.anova_title or title  # a REML fit's: its Kenward-Roger tests
     anova = result.anova
-    rows = {r.source: r for r in anova.itertuples(index=False)}
+    records = table_records(anova)
+    rows = {r.source: r for r in records}
     notes: list[str] = []
     m = rows.get("Model")
     if m is not None and _finite(m.p):
@@ -96,7 +97,7 @@ def summary_data(result: Any) -> SummaryData:
         notes.append(f"The Model F-value of {format_f(m.f)} implies the model {verdict}. There is "
                      f"{_chance(m.p)} chance that an F-value this large could occur due to noise.")
     names = {t.name for t in result.model_terms}
-    terms = [r for r in anova.itertuples(index=False) if r.source in names]
+    terms = [r for r in records if r.source in names]
     sig = tuple(str(r.source) for r in terms if _finite(r.p) and r.p < ALPHA)
     if terms and any(_finite(r.p) for r in terms):
         notes.append(f"P-values less than {ALPHA:.4f} indicate model terms are significant. In this case "
