@@ -939,6 +939,7 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
         Zh, Zl = _rows(lay, xc, xlc, bc, c, h, numeric)
         return Zh, Zl, ylc
 
+    kept: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] | None = []  # one chunk: its rows for pass 2
     for xc, yc, bc, xlc, ylc in chunks():
         if xc.shape[1] != kf or yc.size != xc.shape[0]:
             raise ValueError(f"a chunk of {xc.shape} factor values and {yc.size} responses does not fit")
@@ -947,6 +948,7 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
         if not xc.shape[0]:
             continue
         Zh, Zl, ylc = model_rows(xc, yc, bc, xlc, ylc)
+        kept = [(yc, Zh, Zl, ylc)] if kept == [] else None
         Ah = np.column_stack([Zh, yc])
         Al = np.column_stack([Zl, ylc])
         for s in range(0, Ah.shape[0], _MAX_INNER):
@@ -991,10 +993,15 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
 
     # pass 2: the residuals in double-double
     rss_parts: list[float] = []
-    for xc, yc, bc, xlc, ylc in chunks():
-        if not xc.shape[0]:
-            continue
-        Zh, Zl, ylc = model_rows(xc, yc, bc, xlc, ylc)
+    def pass_rows() -> Iterable[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+        if kept:  # the one chunk's rows, already built
+            yield from kept
+            return
+        for xc, yc, bc, xlc, ylc in chunks():
+            if xc.shape[0]:
+                yield (yc, *model_rows(xc, yc, bc, xlc, ylc))
+
+    for yc, Zh, Zl, ylc in pass_rows():
         fh, fl = _dd_matmul(Zh, Zl, zh[:, None], zl[:, None])
         rh, rl = _dd_add(yc, ylc, -fh[:, 0], -fl[:, 0])
         rss_parts.append(float(np.sum(rh * rh)) + 2.0 * float(np.sum(rh * rl)))
