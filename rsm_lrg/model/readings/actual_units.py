@@ -90,7 +90,7 @@ import numpy as np
 from ...factors import letters_for
 from ...terms import Term, effect_codes, term_name
 
-__all__ = ["ActualSolution", "solve_actual", "solve_actual_chunks", "is_closed_under_shift", "shiftable_factors",
+__all__ = ["ActualSolution", "DeferredActual", "solve_actual", "solve_actual_deferred", "solve_actual_chunks", "is_closed_under_shift", "shiftable_factors",
            "decimal_correction", "CHUNK_ROWS", "DECIMAL_DIGITS"]
 
 #: Rows of the model matrix built at a time (the exact products split a chunk into blocks of
@@ -665,6 +665,46 @@ class ActualSolution:
     converged: bool
 
 
+class DeferredActual:
+    """The solve of :func:`solve_actual_deferred` before the change of basis: the residual sum
+    of squares and standard deviation (what a fit's statistics need) are computed; the
+    coefficients and standard errors in actual units, :meth:`solution`, on the first call
+    (the exact change of basis and ``M (Z'Z)^-1 M'``; the same numbers as
+    :func:`solve_actual`).
+
+    Attributes
+    ----------
+    rss : float
+        Residual sum of squares [response units^2].
+    sigma : float
+        Residual standard deviation (NaN without residual degrees of freedom) [response units].
+    n, df_resid : int
+    iterations : int
+        Refinement steps of the coefficients.
+    converged : bool
+        As :attr:`ActualSolution.converged`.
+    """
+
+    def __init__(self, *, rss: float, sigma: float, n: int, df_resid: int, iterations: int, converged: bool,
+                 finish: Callable[[], ActualSolution]) -> None:
+        self.rss, self.sigma, self.n, self.df_resid = rss, sigma, n, df_resid
+        self.iterations, self.converged = iterations, converged
+        self._finish: Callable[[], ActualSolution] | None = finish
+        self._solution: ActualSolution | None = None
+
+    def solution(self) -> ActualSolution:
+        """The whole solution (computed once).
+
+        Returns
+        -------
+        ActualSolution
+        """
+        if self._solution is None:
+            assert self._finish is not None
+            self._solution, self._finish = self._finish(), None
+        return self._solution
+
+
 def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray,
                   P: Callable[[np.ndarray], np.ndarray], max_iter: int = 40) -> tuple[_DD, int, bool]:
     """Solve ``G x = b`` (double-double ``G``, ``b``) by iterative refinement with the
@@ -777,6 +817,33 @@ def solve_actual(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, 
                  decimal_inputs: bool = True, centre: Sequence[float] | None = None,
                  scale: Sequence[float] | None = None, block_names: Sequence[str] | None = None,
                  basis: str = "actual", letters: Sequence[str] | None = None) -> ActualSolution:
+    """:func:`solve_actual_deferred` (the same parameters) carried through the change of basis:
+    the whole :class:`ActualSolution`.
+
+    Parameters
+    ----------
+    x_actual, y, terms, intercept, blocks, n_blocks, chunk_rows, decimal_inputs, centre, scale, block_names, basis, letters
+        As for :func:`solve_actual_deferred`.
+
+    Returns
+    -------
+    ActualSolution
+
+    Raises
+    ------
+    ValueError
+        As :func:`solve_actual_deferred`.
+    """
+    return solve_actual_deferred(x_actual, y, terms, intercept=intercept, blocks=blocks, n_blocks=n_blocks,
+                                 chunk_rows=chunk_rows, decimal_inputs=decimal_inputs, centre=centre, scale=scale,
+                                 block_names=block_names, basis=basis, letters=letters).solution()
+
+
+def solve_actual_deferred(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, intercept: bool = True,
+                          blocks: np.ndarray | None = None, n_blocks: int = 1, chunk_rows: int = CHUNK_ROWS,
+                          decimal_inputs: bool = True, centre: Sequence[float] | None = None,
+                          scale: Sequence[float] | None = None, block_names: Sequence[str] | None = None,
+                          basis: str = "actual", letters: Sequence[str] | None = None) -> DeferredActual:
     """Least squares of ``y`` on the model's columns evaluated at the actual (uncoded) factor
     values, to the accuracy of the data (see the module docstring).
 
@@ -818,7 +885,10 @@ def solve_actual(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, 
 
     Returns
     -------
-    ActualSolution
+    DeferredActual
+        The residual sum of squares and standard deviation now; the coefficients and standard
+        errors in actual units (the change of basis) when :meth:`DeferredActual.solution` is
+        called (a summary needs only the first).
 
     Raises
     ------
@@ -867,14 +937,15 @@ def solve_actual_chunks(chunks: Chunks, terms: Sequence[Term], *, intercept: boo
             yield xa, ya, bc, None, None
 
     return _solve(wrapped, terms, intercept=intercept, n_blocks=n_blocks, decimal_inputs=decimal_inputs,
-                  centre=centre, scale=scale, block_names=block_names, k=None, basis=basis, letters=letters)
+                  centre=centre, scale=scale, block_names=block_names, k=None, basis=basis,
+                  letters=letters).solution()
 
 
 def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None,
                                                   np.ndarray | None]]],
            terms: Sequence[Term], *, intercept: bool, n_blocks: int, decimal_inputs: bool,
            centre: Sequence[float] | None, scale: Sequence[float] | None, block_names: Sequence[str] | None,
-           k: int | None, basis: str, letters: Sequence[str] | None) -> ActualSolution:
+           k: int | None, basis: str, letters: Sequence[str] | None) -> DeferredActual:
     if basis not in ("actual", "coded"):
         raise ValueError(f"basis must be 'actual' or 'coded', not {basis!r}")
     if not terms and not intercept:
@@ -1009,21 +1080,25 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     df = n - p
     sigma = math.sqrt(rss / df) if df > 0 else math.nan
 
-    # back to actual units: b = M z, cov = M C M'
-    Mh, Ml, extra = _basis_change(lay, c, h, letters_for(kf) if letters is None else list(letters))
-    ah, _ = _dd_matmul(Mh, Ml, zh[:, None], zl[:, None])
-    mch, mcl = _dd_matmul(Mh, Ml, ch, cl)
-    vh, vl = _dd_mul(mch, mcl, Mh, Ml)
-    var_a, _ = _dd_sum_rows(vh, vl)
-    var_z = np.diag(ch)
-    se_a = sigma * np.sqrt(np.maximum(var_a, 0.0))
-    se_z = sigma * np.sqrt(np.maximum(var_z, 0.0))
-    names = lay.names
-    return ActualSolution(
-        names=names, extra=extra,
-        coefficients={nm: float(v) for nm, v in zip(names + extra, ah[:, 0])},
-        std_errors={nm: float(v) for nm, v in zip(names + extra, se_a)},
-        coded_coefficients={nm: float(v) for nm, v in zip(names, zh)},
-        coded_std_errors={nm: float(v) for nm, v in zip(names, se_z)},
-        centre=tuple(float(v) for v in c), scale=tuple(float(v) for v in h),
-        sigma=sigma, rss=rss, n=n, df_resid=df, iterations=iters, converged=conv and conv_c)
+    def finish() -> ActualSolution:
+        # back to actual units: b = M z, cov = M C M'
+        Mh, Ml, extra = _basis_change(lay, c, h, letters_for(kf) if letters is None else list(letters))
+        ah, _ = _dd_matmul(Mh, Ml, zh[:, None], zl[:, None])
+        mch, mcl = _dd_matmul(Mh, Ml, ch, cl)
+        vh, vl = _dd_mul(mch, mcl, Mh, Ml)
+        var_a, _ = _dd_sum_rows(vh, vl)
+        var_z = np.diag(ch)
+        se_a = sigma * np.sqrt(np.maximum(var_a, 0.0))
+        se_z = sigma * np.sqrt(np.maximum(var_z, 0.0))
+        names = lay.names
+        return ActualSolution(
+            names=names, extra=extra,
+            coefficients={nm: float(v) for nm, v in zip(names + extra, ah[:, 0])},
+            std_errors={nm: float(v) for nm, v in zip(names + extra, se_a)},
+            coded_coefficients={nm: float(v) for nm, v in zip(names, zh)},
+            coded_std_errors={nm: float(v) for nm, v in zip(names, se_z)},
+            centre=tuple(float(v) for v in c), scale=tuple(float(v) for v in h),
+            sigma=sigma, rss=rss, n=n, df_resid=df, iterations=iters, converged=conv and conv_c)
+
+    return DeferredActual(rss=rss, sigma=sigma, n=n, df_resid=df, iterations=iters, converged=conv and conv_c,
+                          finish=finish)

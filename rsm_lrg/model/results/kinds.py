@@ -93,6 +93,9 @@ class ReadFit(Protocol):
     def anova(self) -> Any: ...
 
     @property
+    def actual_deferred(self) -> Any: ...
+
+    @property
     def actual_solution(self) -> Any: ...
 
 
@@ -543,7 +546,7 @@ class LeastSquaresReading:
         ls, s = r.least_squares, r.sums
         if ls.pass_sums is None:
             raise ValueError("the fit's statistics need the second pass over the rows")
-        sol = r.actual_solution  # its residual sum of squares is exact to the data's digits (NIST StRD)
+        sol = r.actual_deferred  # its residual sum of squares is exact to the data's digits (NIST StRD)
         ss_res = float(sol.rss) if sol is not None and math.isfinite(sol.rss) else ls.ss_res
         return fit_statistics(n=ls.n, mean=ls.ybar, fitted_range=ls.pass_sums.fitted_max - ls.pass_sums.fitted_min,
                               ss_res=ss_res, df_res=ls.df_resid, ss_total=s["ss_total"], ss_block=s["ss_block"],
