@@ -39,7 +39,8 @@ from types import SimpleNamespace
 from typing import Any
 
 __all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_g", "format_sci", "format_p", "format_f",
-           "format_cell", "clean_anova", "anova_rows", "unicode_number", "is_missing", "table_records"]
+           "format_cell", "clean_anova", "anova_rows", "unicode_number", "is_missing", "table_records",
+           "clean_anova_records"]
 
 #: Relative size at or below which a value is round-off and shown as 0.
 ROUND_OFF = 1e-12
@@ -275,15 +276,10 @@ def clean_anova(anova):
     """
     a = anova.copy()
     sources, ss = a["source"].tolist(), a["sum_sq"].tolist()  # a small frame: plain lists, not cell look-ups
-    tot = [v for src, v in zip(sources, ss) if src in ("Cor Total", "Uncor Total")]  # corrected, or no intercept
-    scale = float(tot[0]) if tot else float(a["sum_sq"].abs().max())
-    rows = [i for i, v in enumerate(ss) if not is_missing(v) and clean(v, scale) == 0.0]
-    if not rows:
-        return a
-    ms, f = a["mean_sq"].tolist(), a["f"].tolist()
-    changes = {"sum_sq": rows, "mean_sq": [i for i in rows if not is_missing(ms[i])],
-               "f": [i for i in rows if not is_missing(f[i])]}
-    changes["p"] = changes["f"]
+    scale = _anova_scale(sources, ss)
+    if scale is None:
+        scale = float(a["sum_sq"].abs().max())
+    changes = _round_off_cells(ss, a["mean_sq"].tolist(), a["f"].tolist(), scale)
     for col, at in changes.items():
         if not at:
             continue
@@ -296,6 +292,55 @@ def clean_anova(anova):
             for i in at:
                 a.at[a.index[i], col] = value
     return a
+
+
+def _anova_scale(sources: list, ss: list) -> float | None:
+    """The corrected (or, without an intercept, uncorrected) total sum of squares, None without a total row."""
+    tot = [v for src, v in zip(sources, ss) if src in ("Cor Total", "Uncor Total")]
+    return float(tot[0]) if tot else None
+
+
+def _round_off_cells(ss: list, ms: list, f: list, scale: float) -> dict[str, list[int]]:
+    """The rows whose sum of squares is round-off against ``scale``: ``{column: row numbers}`` of
+    the cells :func:`clean_anova` sets (``sum_sq``, ``mean_sq`` to 0 where not missing; ``f`` to
+    0 and ``p`` to 1 where F is not missing)."""
+    rows = [i for i, v in enumerate(ss) if not is_missing(v) and clean(v, scale) == 0.0]
+    out = {"sum_sq": rows, "mean_sq": [i for i in rows if not is_missing(ms[i])],
+           "f": [i for i in rows if not is_missing(f[i])]}
+    out["p"] = out["f"]
+    return out
+
+
+def clean_anova_records(rows: list[dict]) -> list[dict]:
+    """:func:`clean_anova` on the rows of an ANOVA before it is a DataFrame (dicts with the keys
+    ``source, sum_sq, df, mean_sq, f, p``): the same cells set, in place.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The ANOVA's rows, in order.
+
+    Returns
+    -------
+    list of dict
+        ``rows``, cleaned.
+
+    >>> rows = [{"source": "A", "sum_sq": 1e-30, "df": 1, "mean_sq": 1e-30, "f": 1e-25, "p": 0.9},
+    ...         {"source": "Cor Total", "sum_sq": 2.0, "df": 1, "mean_sq": float("nan"), "f": float("nan"),
+    ...          "p": float("nan")}]
+    >>> [(r["sum_sq"], r["f"], r["p"]) for r in clean_anova_records(rows)][0]
+    (0.0, 0.0, 1.0)
+    """
+    sources, ss = [r["source"] for r in rows], [r["sum_sq"] for r in rows]
+    scale = _anova_scale(sources, ss)
+    if scale is None:
+        sizes = [abs(v) for v in ss if v == v]  # as pandas' max: NaN left out
+        scale = float(max(sizes)) if sizes else math.nan
+    changes = _round_off_cells(ss, [r["mean_sq"] for r in rows], [r["f"] for r in rows], scale)
+    for col, at in changes.items():
+        for i in at:
+            rows[i][col] = 1.0 if col == "p" else 0.0
+    return rows
 
 
 def anova_rows(anova, *, style: str = "unicode") -> list[list[str]]:

@@ -100,6 +100,16 @@ class EquationTerm:
     diff: tuple = ()
 
 
+def _coefficient_columns(result) -> dict:
+    """``term`` (names) and the coefficient columns of a fit, from ``coefficient_columns``
+    (no DataFrame, no actual units) where the result has it, else from its ``coefficients``."""
+    cols = getattr(result, "coefficient_columns", None)
+    if cols is not None:
+        return cols
+    co = result.coefficients
+    return {"term": co.index.tolist(), **{c: co[c].to_numpy() for c in co.columns}}
+
+
 def equation_terms(result, units: str = "coded", level=None) -> list[EquationTerm]:
     """The terms of the fitted equation in ``"coded"`` or ``"actual"`` units — the one rule
     every equation writer uses (issue 10, item 4).
@@ -125,7 +135,8 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
 
     if units not in ("coded", "actual"):
         raise ValueError(f"units must be 'coded' or 'actual', not {units!r}")
-    coded = {k: float(v) for k, v in zip(result.coefficients.index.tolist(), result.coefficients["coded"].tolist())}
+    co = _coefficient_columns(result)
+    coded = {k: float(v) for k, v in zip(co["term"], co["coded"].tolist())}
     big = max((abs(v) for v in coded.values() if math.isfinite(v)), default=0.0)
     coded = {k: (0.0 if abs(v) <= ROUND_OFF * big else v) for k, v in coded.items()}
     letters = result.space.letters
@@ -264,10 +275,11 @@ def format_summary(result) -> str:
         out.extend(_SECTIONS[section](result, sd))  # or the Kenward-Roger tests and variance components
     out.append("Coefficients in terms of coded factors (95 % CI)")
     rows = []
-    cscale = float(result.coefficients["coded"].abs().max())
-    co = result.coefficients
-    for name, b, se, lo, hi, vif, p in zip(co.index.tolist(), *(co[c].tolist() for c in
-                                                                 ("coded", "std_error", "ci_low", "ci_high", "vif", "p"))):
+    coded_all = _coefficient_columns(result)["coded"].tolist()
+    cscale = max((abs(v) for v in coded_all if v == v), default=math.nan)  # as pandas' max: NaN left out
+    co = _coefficient_columns(result)
+    for name, b, se, lo, hi, vif, p in zip(co["term"], *(co[c].tolist() for c in
+                                                         ("coded", "std_error", "ci_low", "ci_high", "vif", "p"))):
         rows.append([name, format_g(_clean(b, cscale)), format_g(se), format_g(lo), format_g(hi),
                      (f"{vif:.2f}" if vif == vif else ""), _p(p)])
     out.append(text_table(["Term", "Estimate", "Std Error", "95% CI Low", "95% CI High", "VIF", "p-value"], rows))

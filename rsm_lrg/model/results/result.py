@@ -303,10 +303,11 @@ class FitResult:
         return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None)).tolist()))
 
     @cached_property
-    def coefficients(self) -> pd.DataFrame:
-        """Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``."""
-        import pandas as pd
-
+    def coefficient_columns(self) -> dict[str, Any]:
+        """The columns of :attr:`coefficients` but ``actual`` (which needs the change of basis to
+        actual units), as arrays: ``term`` (the names, a list), ``coded, std_error, t, p,
+        ci_low, ci_high, vif`` and, for a REML fit, ``den_df`` (what the text summary prints,
+        without building a DataFrame)."""
         from ..contract.statistics import stdtr, stdtrit  # the t and F tails without importing SciPy
 
         ls, tidx = self.least_squares, self.term_index
@@ -325,14 +326,26 @@ class FitResult:
         # of X'X, so none for a GLS fit
         vif = (np.r_[np.nan, ls.vif(tidx[1:])] if self.intercept and not form.kenward_roger
                else np.full(b_t.size, np.nan))
-        cols = column_names(self.terms)
+        out: dict[str, Any] = {"term": column_names(self.terms), "coded": b_t, "std_error": se, "t": tval, "p": pval,
+                               "ci_low": b_t - tq * se_t, "ci_high": b_t + tq * se_t, "vif": vif}
+        if form.kenward_roger:
+            out["den_df"] = df
+        return out
+
+    @cached_property
+    def coefficients(self) -> pd.DataFrame:
+        """Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``."""
+        import pandas as pd
+
+        c = self.coefficient_columns
+        cols = c["term"]
         actual = self.actual_coefficients
         frame = pd.DataFrame(
-            {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se_t,
-             "ci_high": b_t + tq * se_t, "vif": vif, "actual": [actual.get(nm, 0.0) for nm in cols]},
+            {"coded": c["coded"], "std_error": c["std_error"], "t": c["t"], "p": c["p"], "ci_low": c["ci_low"],
+             "ci_high": c["ci_high"], "vif": c["vif"], "actual": [actual.get(nm, 0.0) for nm in cols]},
             index=pd.Index(cols, name="term"))
-        if form.kenward_roger:
-            frame["den_df"] = df
+        if "den_df" in c:
+            frame["den_df"] = c["den_df"]
         return frame
 
     @cached_property
