@@ -131,6 +131,11 @@ def format_number(x, digits: int = 4, *, style: str = "unicode", trim: bool = Tr
         return str(int(xf))  # exact: a whole number below 1e15 is exact in a float
     if xf == 0.0:
         return "0" if trim else f"{0.0:.{max(digits - 1, 0)}f}"
+    return _format_float(xf, digits, style, trim)
+
+
+def _format_float(xf: float, digits: int, style: str, trim: bool) -> str:
+    """:func:`format_number` of a finite, non-zero float."""
     a = abs(xf)
     sign = "-" if xf < 0 else ""
     r = float(f"{a:.{max(digits, 1) - 1}e}")  # rounded to the significant figures first
@@ -158,6 +163,10 @@ def format_g(x, digits: int = 4, *, trim: bool = False) -> str:
     """
     if isinstance(x, str):  # a categoric level, shown as it is
         return x
+    if type(x) is float:  # the usual case: the checks below, for a float
+        if x == 0:
+            return "0"
+        return _format_float(x, digits, "ascii", trim) if math.isfinite(x) else ""
     if x is None or is_missing(x):
         return ""
     x = float(x)
