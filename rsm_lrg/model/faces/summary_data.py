@@ -52,6 +52,9 @@ class SummaryData:
         Predicted R², PRESS, Adeq Precision.
     statistics_notes : tuple of str
         Design-Expert's sentences on Predicted vs Adjusted R² and adequate precision.
+    anova_records : tuple
+        The ANOVA's rows as records (:func:`rsm_lrg.present.table_records`), for the faces
+        that read them row by row.
     """
 
     anova_title: str
@@ -60,6 +63,7 @@ class SummaryData:
     significant_terms: tuple[str, ...]
     statistics: tuple[tuple[str, float, str], ...]
     statistics_notes: tuple[str, ...]
+    anova_records: tuple = ()
 
 
 def _chance(p: float) -> str:
@@ -141,4 +145,4 @@ def summary_data(result: Any) -> SummaryData:
         snotes.append(f"Adeq Precision measures the signal-to-noise ratio; a ratio greater than {ADEQUATE_PRECISION:g} "
                       f"is desirable. The ratio of {format_number(s.adeq_precision, 5)} {ok}.")
     return SummaryData(anova_title=title, anova=anova, anova_notes=tuple(notes), significant_terms=sig,
-                       statistics=stats, statistics_notes=tuple(snotes))
+                       statistics=stats, statistics_notes=tuple(snotes), anova_records=tuple(records))

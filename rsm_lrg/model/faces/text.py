@@ -21,10 +21,12 @@ def _p(p) -> str:
     return format_p(p, style="ascii")
 
 
-def format_anova(result, alpha: float = 0.05) -> str:
-    """The ANOVA (Type III partial sums of squares) like Table 5, with significance notes."""
+def format_anova(result, alpha: float = 0.05, records=None) -> str:
+    """The ANOVA (Type III partial sums of squares) like Table 5, with significance notes
+    (``records``: the rows of ``result.anova`` as :func:`rsm_lrg.present.table_records` gives
+    them, when already read)."""
     rows = []
-    records = table_records(result.anova)
+    records = table_records(result.anova) if records is None else records
     total = [r.sum_sq for r in records if r.source in TOTAL_ROWS]
     scale = float(total[0]) if total else 0.0
     for r in records:
@@ -220,7 +222,7 @@ def _equation_lines(result, units: str, level) -> str:
 
 def _anova_lines(result, sd) -> list[str]:
     """The least-squares ANOVA with its title and notes."""
-    return [sd.anova_title, format_anova(result), "", *sd.anova_notes, ""]
+    return [sd.anova_title, format_anova(result, records=sd.anova_records or None), "", *sd.anova_notes, ""]
 
 
 def _statistics_lines(result, sd) -> list[str]:
