@@ -29,7 +29,7 @@ import math
 import os
 import re
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any, BinaryIO
 
@@ -487,15 +487,15 @@ _FLOAT_COLUMNS: contextvars.ContextVar[dict | None] = contextvars.ContextVar("fl
 
 
 @contextlib.contextmanager
-def remembered_float_columns():
+def remembered_float_columns() -> Iterator[None]:
     """Inside the block, :func:`float_column` converts and checks each column of a frame once
     (the checks of one fit read the same factor columns four times; the frames are not changed
     in between). Nested blocks share the outer one's memory.
 
-    Returns
-    -------
-    contextlib.AbstractContextManager
-        The block.
+    Yields
+    ------
+    None
+        Inside the block.
     """
     if _FLOAT_COLUMNS.get() is not None:
         yield

@@ -20,7 +20,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...present import clean_anova_records
-
 from ..build.terms import block_contrasts
 from ..engines.least_squares import least_squares, partial_ss
 
