@@ -666,11 +666,15 @@ class ActualSolution:
 
 
 class DeferredActual:
-    """The solve of :func:`solve_actual_deferred` before the change of basis: the residual sum
-    of squares and standard deviation (what a fit's statistics need) are computed; the
-    coefficients and standard errors in actual units, :meth:`solution`, on the first call
-    (the exact change of basis and ``M (Z'Z)^-1 M'``; the same numbers as
-    :func:`solve_actual`).
+    """The solve of :func:`solve_actual_deferred` before the change of basis: the coefficients
+    in the basis ``Z``, the residual sum of squares and standard deviation (what a fit's
+    statistics need) are computed; the coefficients and standard errors in actual units,
+    :meth:`solution`, on the first call (the exact change of basis and ``M (Z'Z)^-1 M'``). When
+    the coefficients' refinement met its strict criterion (the last correction at most
+    ``2^-104`` of them: the double-double floor) the inverse ``(Z'Z)^-1`` is refined then too
+    (with the double-double Cholesky factor if the double one does not converge, as the whole
+    solve does); the coefficients cannot move by more than that floor whatever preconditioner
+    refines them, so they are kept.
 
     Attributes
     ----------
@@ -682,7 +686,8 @@ class DeferredActual:
     iterations : int
         Refinement steps of the coefficients.
     converged : bool
-        As :attr:`ActualSolution.converged`.
+        The coefficients' refinement converged (:attr:`ActualSolution.converged` also asks it
+        of the inverse).
     """
 
     def __init__(self, *, rss: float, sigma: float, n: int, df_resid: int, iterations: int, converged: bool,
@@ -706,10 +711,12 @@ class DeferredActual:
 
 
 def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray,
-                  P: Callable[[np.ndarray], np.ndarray], max_iter: int = 40) -> tuple[_DD, int, bool]:
+                  P: Callable[[np.ndarray], np.ndarray], max_iter: int = 40) -> tuple[_DD, int, bool, bool]:
     """Solve ``G x = b`` (double-double ``G``, ``b``) by iterative refinement with the
     approximate inverse ``P`` (a function of a vector or matrix): ``x <- x + P (b - G x)``,
-    the residual in double-double."""
+    the residual in double-double. Returns the solution, the steps, whether it converged and
+    whether it did so strictly (the last correction at most ``2^-104`` of the solution; else
+    the corrections stalled, below ``2^-60`` of it when converged)."""
     p = Gh.shape[0]
     w = np.sqrt(np.abs(np.diag(Gh)))
     xh, xl = np.zeros(p), np.zeros(p)
@@ -724,14 +731,14 @@ def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray
         size = float(np.max(w * np.abs(d)))
         whole = float(np.max(w * np.abs(xh)))
         if size <= 2.0 ** -104 * whole:
-            return (xh, xl), it, True
+            return (xh, xl), it, True, True
         # at the double-double floor the corrections stop shrinking: done when they are far
         # below what the double result can show
         stalled = stalled + 1 if size > 0.25 * prev else 0
         if stalled >= 2:
-            return (xh, xl), it, size <= 2.0 ** -60 * whole
+            return (xh, xl), it, size <= 2.0 ** -60 * whole, False
         prev = size
-    return (xh, xl), max_iter, False
+    return (xh, xl), max_iter, False, False
 
 
 def _refine_inverse(Gh: np.ndarray, Gl: np.ndarray, P: Callable[[np.ndarray], np.ndarray], start: _DD,
@@ -1039,16 +1046,16 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     d = 1.0 / np.sqrt(diag)
     Gs = (Zh_ * d[:, None]) * d[None, :]
     zero_p = np.zeros((p, p))
-    conv = False
+    conv = strict = False
+    P0: np.ndarray | None = None
     try:
         Linv = np.linalg.inv(np.linalg.cholesky(Gs))
         P0 = (Linv.T @ Linv) * d[:, None] * d[None, :]
-        (zh, zl), iters, conv = _refine_solve(Zh_, Zl_, bh, bl, lambda r: P0 @ r)
-        (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, lambda r: P0 @ r, (P0, zero_p))
     except np.linalg.LinAlgError:
         pass
-    if not (conv and conv_c):
-        # kappa(Z)^2 u >~ 1: the inverse from a Cholesky factor in double-double instead
+
+    def fallback() -> tuple[Callable[[np.ndarray], np.ndarray], _DD]:
+        """kappa(Z)^2 u >~ 1: the preconditioner from a Cholesky factor in double-double."""
         d2 = np.exp2(np.round(np.log2(d)))  # powers of two: the scaling stays exact
         D = d2[:, None] * d2[None, :]
         Ph, Pl = _dd_inverse_spd(Zh_ * D, Zl_ * D, lay.names)
@@ -1059,8 +1066,33 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
             out, _ = _dd_matmul(Ph, Pl, r2, np.zeros_like(r2))
             return out[:, 0] if r.ndim == 1 else out
 
-        (zh, zl), iters, conv = _refine_solve(Zh_, Zl_, bh, bl, apply)
-        (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, apply, (Ph, Pl))
+        return apply, (Ph, Pl)
+
+    if P0 is not None:
+        P0_ = P0
+        (zh, zl), iters, conv, strict = _refine_solve(Zh_, Zl_, bh, bl, lambda r: P0_ @ r)
+    if conv and strict:
+        # the coefficients are at the double-double floor (the last correction below 2^-104 of
+        # them): no other preconditioner would move them, so the inverse (the standard errors)
+        # waits for the change of basis, which a fit's statistics do not need
+        def inverse() -> tuple[np.ndarray, np.ndarray, bool]:
+            (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, lambda r: P0_ @ r, (P0_, zero_p))
+            if not conv_c:
+                apply, start = fallback()
+                (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, apply, start)
+            return ch, cl, conv_c
+    else:
+        conv_c = False
+        if P0 is not None:
+            (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, lambda r: P0_ @ r, (P0_, zero_p))
+        if not (conv and conv_c):
+            apply, start = fallback()
+            (zh, zl), iters, conv, _ = _refine_solve(Zh_, Zl_, bh, bl, apply)
+            (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, apply, start)
+        done = (ch, cl, conv_c)
+
+        def inverse() -> tuple[np.ndarray, np.ndarray, bool]:
+            return done
 
     # pass 2: the residuals in double-double
     rss_parts: list[float] = []
@@ -1081,6 +1113,7 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     sigma = math.sqrt(rss / df) if df > 0 else math.nan
 
     def finish() -> ActualSolution:
+        ch, cl, conv_c = inverse()
         # back to actual units: b = M z, cov = M C M'
         Mh, Ml, extra = _basis_change(lay, c, h, letters_for(kf) if letters is None else list(letters))
         ah, _ = _dd_matmul(Mh, Ml, zh[:, None], zl[:, None])
@@ -1100,5 +1133,4 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
             centre=tuple(float(v) for v in c), scale=tuple(float(v) for v in h),
             sigma=sigma, rss=rss, n=n, df_resid=df, iterations=iters, converged=conv and conv_c)
 
-    return DeferredActual(rss=rss, sigma=sigma, n=n, df_resid=df, iterations=iters, converged=conv and conv_c,
-                          finish=finish)
+    return DeferredActual(rss=rss, sigma=sigma, n=n, df_resid=df, iterations=iters, converged=conv, finish=finish)
