@@ -696,6 +696,7 @@ class DeferredActual:
         self.iterations, self.converged = iterations, converged
         self._finish: Callable[[], ActualSolution] | None = finish
         self._solution: ActualSolution | None = None
+        self._error: str | None = None
 
     def solution(self) -> ActualSolution:
         """The whole solution (computed once).
@@ -703,11 +704,26 @@ class DeferredActual:
         Returns
         -------
         ActualSolution
+
+        Raises
+        ------
+        ValueError
+            The inverse cannot be formed (the columns are dependent to double-double precision).
         """
         if self._solution is None:
-            assert self._finish is not None
+            if self._finish is None:
+                raise ValueError(self._error or "the actual-units solution was not kept")
             self._solution, self._finish = self._finish(), None
         return self._solution
+
+    def __getstate__(self) -> dict:
+        # the rest of the solve is a closure over the Gram matrix: finished before pickling (a fit
+        # sent to a worker process), so that what travels is the solution itself
+        try:
+            self.solution()
+        except ValueError as exc:
+            self._finish, self._error = None, str(exc)
+        return {k: v for k, v in self.__dict__.items() if k != "_finish"} | {"_finish": None}
 
 
 def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray,
