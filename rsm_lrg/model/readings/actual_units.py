@@ -90,8 +90,8 @@ import numpy as np
 from ...factors import letters_for
 from ...terms import Term, effect_codes, term_name
 
-__all__ = ["ActualSolution", "DeferredActual", "solve_actual", "solve_actual_deferred", "solve_actual_chunks", "is_closed_under_shift", "shiftable_factors",
-           "decimal_correction", "CHUNK_ROWS", "DECIMAL_DIGITS"]
+__all__ = ["ActualSolution", "DeferredActual", "solve_actual", "solve_actual_deferred", "solve_actual_chunks",
+           "is_closed_under_shift", "shiftable_factors", "decimal_correction", "CHUNK_ROWS", "DECIMAL_DIGITS"]
 
 #: Rows of the model matrix built at a time (the exact products split a chunk into blocks of
 #: at most 2^15 rows anyway).
