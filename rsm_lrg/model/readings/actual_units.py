@@ -83,6 +83,7 @@ import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import lru_cache
 from math import comb
 
 import numpy as np
@@ -387,6 +388,13 @@ def shiftable_factors(terms: Sequence[Term], *, intercept: bool = True) -> tuple
     >>> shiftable_factors([parse_term(t, "AB") for t in ("A", "A^2B")]), shiftable_factors([parse_term("A", "A")], intercept=False)
     ((False, False), (False,))
     """
+    return _shiftable(tuple(terms), bool(intercept))
+
+
+@lru_cache(maxsize=256)
+def _shiftable(terms: tuple[Term, ...], intercept: bool) -> tuple[bool, ...]:
+    """:func:`shiftable_factors` of a tuple of terms (remembered: a fit and its actual-units
+    solve ask twice)."""
     rest = _model_terms(terms, intercept)
     if not terms:
         return ()
