@@ -408,7 +408,7 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
             continue
         low, high = levels
         if low is None:
-            col = float_column(data, name)
+            col = float_column(data, name).to_numpy()  # finite floats (checked): NumPy's min and max
             low, high = float(col.min()), float(col.max())
             if not low < high:
                 raise ValueError(f"factor column {quote_value(str(name))} is constant ({low:g}); "
