@@ -29,14 +29,14 @@ import math
 import os
 import re
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any, BinaryIO
 
 __all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "open_input", "check_output",
            "output_transaction", "output_stream", "register_input", "committing", "read_table", "read_table_as",
            "read_stdin_bytes", "read_toml", "check_nesting", "toml_value", "write_output", "dump_json", "to_jsonable",
-           "numeric_column", "float_column", "check_number_kinds",
+           "numeric_column", "float_column", "remembered_float_columns", "check_number_kinds",
            "is_empty_cell", "cell_error", "COMMA_NUMBER"]
 
 
@@ -482,6 +482,31 @@ def check_number_kinds(col, name: str) -> None:
                              "response is a real number")
 
 
+#: ``{(id(frame), name): (frame, column)}`` while :func:`remembered_float_columns` is active.
+_FLOAT_COLUMNS: contextvars.ContextVar[dict | None] = contextvars.ContextVar("float_columns", default=None)
+
+
+@contextlib.contextmanager
+def remembered_float_columns() -> Iterator[None]:
+    """Inside the block, :func:`float_column` converts and checks each column of a frame once
+    (the checks of one fit read the same factor columns four times; the frames are not changed
+    in between). Nested blocks share the outer one's memory.
+
+    Yields
+    ------
+    None
+        Inside the block.
+    """
+    if _FLOAT_COLUMNS.get() is not None:
+        yield
+        return
+    token = _FLOAT_COLUMNS.set({})
+    try:
+        yield
+    finally:
+        _FLOAT_COLUMNS.reset(token)
+
+
 def float_column(data, name: str):
     """The column ``name`` as floats, or a ValueError naming the first bad row (1-based):
     an empty cell, text, a truth value or a complex number (:func:`check_number_kinds`).
@@ -498,6 +523,18 @@ def float_column(data, name: str):
     numpy.ndarray
         The column as floats.
     """
+    memo = _FLOAT_COLUMNS.get()
+    if memo is not None:
+        seen = memo.get((id(data), name))
+        if seen is not None and seen[0] is data:  # the frame itself is kept, so its id is not reused
+            return seen[1]
+        out = _float_column(data, name)
+        memo[(id(data), name)] = (data, out)
+        return out
+    return _float_column(data, name)
+
+
+def _float_column(data, name: str):
     import numpy as np
     import pandas as pd
 
@@ -508,7 +545,9 @@ def float_column(data, name: str):
         arr = col.to_numpy(dtype=float, na_value=np.nan)
         finite = np.isfinite(arr)
         if finite.all():
-            return col.astype(float)
+            # floats already: the column itself under pandas 3, which copies on write (the caller
+            # cannot change ``data`` through it, and the copy would cost more than the check)
+            return col if col.dtype == np.float64 and pd.__version__ >= "3" else col.astype(float)
         i = int(np.flatnonzero(~finite)[0])
         raise cell_error(name, i + 1, col.iloc[i])
     check_number_kinds(col, name)

@@ -35,10 +35,12 @@ import math
 import re
 from collections.abc import Sequence
 from numbers import Number
+from types import SimpleNamespace
 from typing import Any
 
 __all__ = ["ROUND_OFF", "DASH", "clean", "format_number", "format_g", "format_sci", "format_p", "format_f",
-           "format_cell", "clean_anova", "anova_rows", "unicode_number", "is_missing"]
+           "format_cell", "clean_anova", "anova_rows", "unicode_number", "is_missing", "table_records",
+           "clean_anova_records"]
 
 #: Relative size at or below which a value is round-off and shown as 0.
 ROUND_OFF = 1e-12
@@ -129,6 +131,11 @@ def format_number(x, digits: int = 4, *, style: str = "unicode", trim: bool = Tr
         return str(int(xf))  # exact: a whole number below 1e15 is exact in a float
     if xf == 0.0:
         return "0" if trim else f"{0.0:.{max(digits - 1, 0)}f}"
+    return _format_float(xf, digits, style, trim)
+
+
+def _format_float(xf: float, digits: int, style: str, trim: bool) -> str:
+    """:func:`format_number` of a finite, non-zero float."""
     a = abs(xf)
     sign = "-" if xf < 0 else ""
     r = float(f"{a:.{max(digits, 1) - 1}e}")  # rounded to the significant figures first
@@ -156,6 +163,10 @@ def format_g(x, digits: int = 4, *, trim: bool = False) -> str:
     """
     if isinstance(x, str):  # a categoric level, shown as it is
         return x
+    if type(x) is float:  # the usual case: the checks below, for a float
+        if x == 0:
+            return "0"
+        return _format_float(x, digits, "ascii", trim) if math.isfinite(x) else ""
     if x is None or is_missing(x):
         return ""
     x = float(x)
@@ -240,6 +251,29 @@ def format_cell(x) -> str:
     return format_number(x, 6)
 
 
+def table_records(frame) -> list[SimpleNamespace]:
+    """The rows of a small DataFrame as records with one attribute per column (as
+    ``itertuples(index=False)`` gives them: Python scalars), read column by column (a
+    namedtuple class per call and a cell look-up per value cost more than a summary's text).
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        A table whose column names are identifiers (an ANOVA: ``source, sum_sq, df, ...``).
+
+    Returns
+    -------
+    list of types.SimpleNamespace
+        One record per row, in order.
+
+    >>> import pandas as pd
+    >>> [(r.source, r.df) for r in table_records(pd.DataFrame({"source": ["A", "B"], "df": [1, 2]}))]
+    [('A', 1), ('B', 2)]
+    """
+    cols = {str(c): frame[c].tolist() for c in frame.columns}
+    return [SimpleNamespace(**dict(zip(cols, vals))) for vals in zip(*cols.values())]
+
+
 def clean_anova(anova):
     """A copy of an ANOVA DataFrame (``source, sum_sq, df, mean_sq, f, p``) as it is shown:
     sums of squares and mean squares that are round-off against the corrected total
@@ -250,18 +284,72 @@ def clean_anova(anova):
     notebook show the same numbers.
     """
     a = anova.copy()
-    tot = a.loc[a["source"].isin(("Cor Total", "Uncor Total")), "sum_sq"]  # corrected, or without an intercept
-    scale = float(tot.iloc[0]) if len(tot) else float(a["sum_sq"].abs().max())
-    for i in a.index:
-        ss = a.at[i, "sum_sq"]
-        if clean(ss, scale) == 0.0 and not is_missing(ss):
-            a.at[i, "sum_sq"] = 0.0
-            if not is_missing(a.at[i, "mean_sq"]):
-                a.at[i, "mean_sq"] = 0.0
-            if not is_missing(a.at[i, "f"]):
-                a.at[i, "f"] = 0.0
-                a.at[i, "p"] = 1.0
+    sources, ss = a["source"].tolist(), a["sum_sq"].tolist()  # a small frame: plain lists, not cell look-ups
+    scale = _anova_scale(sources, ss)
+    if scale is None:
+        scale = float(a["sum_sq"].abs().max())
+    changes = _round_off_cells(ss, a["mean_sq"].tolist(), a["f"].tolist(), scale)
+    for col, at in changes.items():
+        if not at:
+            continue
+        value = 1.0 if col == "p" else 0.0
+        if a[col].dtype.kind == "f":
+            arr = a[col].to_numpy(copy=True)
+            arr[at] = value
+            a[col] = arr
+        else:
+            for i in at:
+                a.at[a.index[i], col] = value
     return a
+
+
+def _anova_scale(sources: list, ss: list) -> float | None:
+    """The corrected (or, without an intercept, uncorrected) total sum of squares, None without a total row."""
+    tot = [v for src, v in zip(sources, ss) if src in ("Cor Total", "Uncor Total")]
+    return float(tot[0]) if tot else None
+
+
+def _round_off_cells(ss: list, ms: list, f: list, scale: float) -> dict[str, list[int]]:
+    """The rows whose sum of squares is round-off against ``scale``: ``{column: row numbers}`` of
+    the cells :func:`clean_anova` sets (``sum_sq``, ``mean_sq`` to 0 where not missing; ``f`` to
+    0 and ``p`` to 1 where F is not missing)."""
+    rows = [i for i, v in enumerate(ss) if not is_missing(v) and clean(v, scale) == 0.0]
+    out = {"sum_sq": rows, "mean_sq": [i for i in rows if not is_missing(ms[i])],
+           "f": [i for i in rows if not is_missing(f[i])]}
+    out["p"] = out["f"]
+    return out
+
+
+def clean_anova_records(rows: list[dict]) -> list[dict]:
+    """:func:`clean_anova` on the rows of an ANOVA before it is a DataFrame (dicts with the keys
+    ``source, sum_sq, df, mean_sq, f, p``): the same cells set, in place.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The ANOVA's rows, in order.
+
+    Returns
+    -------
+    list of dict
+        ``rows``, cleaned.
+
+    >>> rows = [{"source": "A", "sum_sq": 1e-30, "df": 1, "mean_sq": 1e-30, "f": 1e-25, "p": 0.9},
+    ...         {"source": "Cor Total", "sum_sq": 2.0, "df": 1, "mean_sq": float("nan"), "f": float("nan"),
+    ...          "p": float("nan")}]
+    >>> [(r["sum_sq"], r["f"], r["p"]) for r in clean_anova_records(rows)][0]
+    (0.0, 0.0, 1.0)
+    """
+    sources, ss = [r["source"] for r in rows], [r["sum_sq"] for r in rows]
+    scale = _anova_scale(sources, ss)
+    if scale is None:
+        sizes = [abs(v) for v in ss if v == v]  # as pandas' max: NaN left out
+        scale = float(max(sizes)) if sizes else math.nan
+    changes = _round_off_cells(ss, [r["mean_sq"] for r in rows], [r["f"] for r in rows], scale)
+    for col, at in changes.items():
+        for i in at:
+            rows[i][col] = 1.0 if col == "p" else 0.0
+    return rows
 
 
 def anova_rows(anova, *, style: str = "unicode") -> list[list[str]]:

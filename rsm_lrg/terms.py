@@ -31,6 +31,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -248,9 +249,10 @@ class Term:
             m *= len(levels) - 1
         return m
 
-    @property
+    @cached_property
     def numeric_powers(self) -> tuple[int, ...]:
-        """``powers`` with the categoric factors set to 0 (the numeric monomial)."""
+        """``powers`` with the categoric factors set to 0 (the numeric monomial; computed once:
+        a fit and its summary ask for it some ninety times)."""
         cats = {i for i, _ in self.cat}
         return tuple(0 if i in cats else p for i, p in enumerate(self.powers))
 

@@ -204,3 +204,18 @@ def test_a_file_appearing_meanwhile_is_not_clobbered_without_force(tmp_path):
     with output_transaction():
         write_output(b, "B", force=True)
     assert b.read_text() == "B"
+
+
+def test_remembered_float_columns_converts_a_column_once_inside_the_block():
+    import pandas as pd
+
+    from rsm_lrg.io import float_column, remembered_float_columns
+
+    df = pd.DataFrame({"a": [1, 2, 3], "b": [0.5, 1.5, 2.5]})
+    with remembered_float_columns():
+        first = float_column(df, "a")
+        assert float_column(df, "a") is first
+        other = df.copy()
+        assert float_column(other, "a") is not first  # another frame, its own conversion
+    assert float_column(df, "a") is not first  # outside the block: converted anew
+    assert first.tolist() == [1.0, 2.0, 3.0] and first.dtype == float

@@ -83,3 +83,19 @@ def test_clean_anova_zeroes_round_off_rows_only():
         assert (a.loc[src, "sum_sq"], a.loc[src, "mean_sq"], a.loc[src, "f"], a.loc[src, "p"]) == (0, 0, 0, 1)
     keep = [s for s in raw.index if s not in ("AB", "BC")]
     pd.testing.assert_frame_equal(a.loc[keep], raw.loc[keep])
+
+
+def test_clean_anova_records_is_clean_anova_before_the_frame():
+    from rsm_lrg.present import clean_anova_records, table_records
+
+    nan = float("nan")
+    rows = [{"source": "Model", "sum_sq": 1.0, "df": 3, "mean_sq": 0.33, "f": 9.0, "p": 0.01},
+            {"source": "AB", "sum_sq": 2.5e-34, "df": 1, "mean_sq": 2.5e-34, "f": 7e-30, "p": 0.99},
+            {"source": "BC", "sum_sq": -1e-20, "df": 1, "mean_sq": nan, "f": nan, "p": nan},
+            {"source": "Residual", "sum_sq": 0.1, "df": 4, "mean_sq": 0.025, "f": nan, "p": nan},
+            {"source": "Cor Total", "sum_sq": 1.1, "df": 8, "mean_sq": nan, "f": nan, "p": nan}]
+    want = clean_anova(pd.DataFrame(rows))
+    got = pd.DataFrame(clean_anova_records([dict(r) for r in rows]))
+    pd.testing.assert_frame_equal(got, want, check_exact=True)
+    assert want.loc[1, "p"] == 1.0 and want.loc[2, "sum_sq"] == 0.0 and want.loc[2, "f"] != want.loc[2, "f"]
+    assert [(r.source, r.df) for r in table_records(want)] == [(r["source"], r["df"]) for r in rows]

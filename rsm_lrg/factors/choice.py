@@ -8,7 +8,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from .columns import COLUMNS_LEFT_OUT, Note, constant_number, infer_items, is_bookkeeping
+from ..io import float_column
+from .columns import COLUMNS_LEFT_OUT, Note, column_dtypes, constant_number, infer_items, is_bookkeeping
 from .space import FactorSpace, inferred_space
 from .values import name_list, quote_value
 
@@ -157,10 +158,18 @@ def _blend_total(data, space: FactorSpace) -> float | None:
     names = [f.name for f in space.factors]
     if len(names) < 2 or any(f.kind != "numeric" for f in space.factors) or len(data) == 0:
         return None
-    try:
-        x = data[names].to_numpy(dtype=float)
-    except (TypeError, ValueError):
-        return None
+    x = None
+    dtypes = column_dtypes(data)
+    if dtypes is not None and all(dtypes[n].kind in "fiu" for n in names):
+        try:  # number columns: as float_column reads them (once per fit inside remembered_float_columns)
+            x = np.column_stack([float_column(data, n).to_numpy(dtype=float) for n in names])
+        except ValueError:  # a value that is not finite: as below
+            x = None
+    if x is None:
+        try:
+            x = data[names].to_numpy(dtype=float)
+        except (TypeError, ValueError):
+            return None
     if not np.isfinite(x).all() or (x < 0).any():
         return None
     sums = x.sum(axis=1)

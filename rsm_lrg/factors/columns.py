@@ -22,7 +22,7 @@ from .values import name_list, quote_value
 
 __all__ = ["BOOKKEEPING", "CODED_COLUMN_PREFIX", "PAIR_RTOL", "DESIGN_CODED", "COLUMNS_LEFT_OUT", "Note",
            "is_bookkeeping", "design_factors", "infer_items", "constant_number",
-           "check_frame", "check_label_column"]
+           "check_frame", "check_label_column", "column_dtypes"]
 
 #: Column names that are never factors (case-insensitive).
 BOOKKEEPING = frozenset({"run", "order", "std", "std_order", "run_order"})
@@ -238,6 +238,25 @@ def check_label_column(data, name: str) -> None:
                              "(a number or a text)") from None
 
 
+def column_dtypes(data) -> dict | None:
+    """``{column: dtype}`` of a frame whose column names are unique (one look-up of the
+    dtypes instead of a column built per name), else None (a repeated name selects a frame).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The table.
+
+    Returns
+    -------
+    dict or None
+        The dtype of each column.
+    """
+    if not data.columns.is_unique:
+        return None
+    return dict(zip(data.columns, data.dtypes))
+
+
 def _check_text_columns(data, exclude) -> None:
     """A text column that holds numbers is a typo or a locale problem (``1,234``), not a
     label: a ValueError names the column and the row. Nor is a column of numbers that pandas
@@ -245,8 +264,9 @@ def _check_text_columns(data, exclude) -> None:
     numbers) left out as text without a word: refused, naming it."""
     import pandas as pd
 
+    dtypes = column_dtypes(data)
     for c in data.columns:
-        if c in exclude or is_bookkeeping(c) or pd.api.types.is_numeric_dtype(data[c]):
+        if c in exclude or is_bookkeeping(c) or pd.api.types.is_numeric_dtype(dtypes[c] if dtypes else data[c]):
             continue
         col = data[c]
         if isinstance(col.dtype, pd.CategoricalDtype):
@@ -358,10 +378,12 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
     if factors is None:
         how = "numeric"
         _check_text_columns(data, exclude)
+        dtypes = column_dtypes(data)
         names = [
             c for c in cols
             if c not in exclude and not is_bookkeeping(c) and str(c).lower() != "block"
-            and pd.api.types.is_numeric_dtype(data[c]) and not pd.api.types.is_bool_dtype(data[c])
+            and pd.api.types.is_numeric_dtype(dtypes[c] if dtypes else data[c])
+            and not pd.api.types.is_bool_dtype(dtypes[c] if dtypes else data[c])
         ]
         constant = [n for n in names if _constant_number(data[n])]  # left out with a note (choose_factors)
         items: list[Any] = [("numeric", n, None, None) for n in names if n not in constant]  # names, never specs
@@ -386,7 +408,7 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
             continue
         low, high = levels
         if low is None:
-            col = float_column(data, name)
+            col = float_column(data, name).to_numpy()  # finite floats (checked): NumPy's min and max
             low, high = float(col.min()), float(col.max())
             if not low < high:
                 raise ValueError(f"factor column {quote_value(str(name))} is constant ({low:g}); "

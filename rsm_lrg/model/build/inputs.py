@@ -13,7 +13,7 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...factors import FactorSpace, quote_value
-from ...io import float_column
+from ...io import float_column, remembered_float_columns
 from .data import CHUNK_ROWS, prepare
 from .terms import Term, column_names, model_matrix, model_terms, n_columns, parse_term
 from .transform import Transform
@@ -335,15 +335,16 @@ def model_inputs(data: Any, response: str, factors: Any = None, block: str | Non
         from .data import response_values
 
         tr.check(response_values(data, response)[0], response)  # NaN (not run) passes; rows as in the file
-    # columns, factors (inferred from a design's coded columns when not given), runs
-    # without a response left out, notes on everything left out (rsm_lrg.model.build.data)
-    prep = prepare(data, response, factors, block, exclude=exclude)  # exclude: random-effect columns
-    data, space, y = prep.data, prep.space, prep.y
-    if origin:
-        space = origin_coding(space)
-    coded = space.encode(data)
-    keys = coded.to_numpy(dtype=float)  # rounded coding: settings equal to round-off are one setting
-    x = unrounded_coding(space, data, keys)
+    with remembered_float_columns():  # each factor column converted and checked once, not four times
+        # columns, factors (inferred from a design's coded columns when not given), runs
+        # without a response left out, notes on everything left out (rsm_lrg.model.build.data)
+        prep = prepare(data, response, factors, block, exclude=exclude)  # exclude: random-effect columns
+        data, space, y = prep.data, prep.space, prep.y
+        if origin:
+            space = origin_coding(space)
+        coded = space.encode(data)
+        keys = coded.to_numpy(dtype=float)  # rounded coding: settings equal to round-off are one setting
+        x = unrounded_coding(space, data, keys)
     for j, f in enumerate(space.factors):
         if np.unique(keys[:, j]).size < 2:
             raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")

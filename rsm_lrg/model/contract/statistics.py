@@ -220,9 +220,12 @@ def _ibeta_tails(a: float, b: float, x: float, y: float) -> tuple[float, float]:
 
 def _elementwise(f):
     """``f`` on floats, applied elementwise (NumPy broadcasting); a NumPy float for scalars."""
-    uf = np.frompyfunc(f, f.__code__.co_argcount, 1)
+    nargs = f.__code__.co_argcount
+    uf = np.frompyfunc(f, nargs, 1)
 
     def g(*args):
+        if len(args) == nargs and all(type(a) is float or type(a) is int or type(a) is np.float64 for a in args):
+            return np.float64(f(*(float(a) for a in args)))  # one value: what the ufunc gives it, without the arrays
         with np.errstate(all="ignore"):  # the scalar code handles infinities itself
             out = np.asarray(uf(*(np.asarray(a, dtype=float) for a in args)), dtype=float)
         return out[()] if out.ndim == 0 else out

@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from ...present import format_f, format_number
+from ...present import format_f, format_number, table_records
 
 __all__ = ["SummaryData", "summary_data", "ALPHA", "ALPHA_INSIGNIFICANT"]
 
@@ -52,6 +52,9 @@ class SummaryData:
         Predicted R², PRESS, Adeq Precision.
     statistics_notes : tuple of str
         Design-Expert's sentences on Predicted vs Adjusted R² and adequate precision.
+    anova_records : tuple
+        The ANOVA's rows as records (:func:`rsm_lrg.present.table_records`), for the faces
+        that read them row by row.
     """
 
     anova_title: str
@@ -60,6 +63,7 @@ class SummaryData:
     significant_terms: tuple[str, ...]
     statistics: tuple[tuple[str, float, str], ...]
     statistics_notes: tuple[str, ...]
+    anova_records: tuple = ()
 
 
 def _chance(p: float) -> str:
@@ -88,7 +92,8 @@ def summary_data(result: Any) -> SummaryData:
              + ("" if result.intercept or mixture else "; no intercept: the model row and total are uncorrected"))
     title = result.reading.anova_title or title  # a REML fit's: its Kenward-Roger tests
     anova = result.anova
-    rows = {r.source: r for r in anova.itertuples(index=False)}
+    records = table_records(anova)
+    rows = {r.source: r for r in records}
     notes: list[str] = []
     m = rows.get("Model")
     if m is not None and _finite(m.p):
@@ -96,7 +101,7 @@ def summary_data(result: Any) -> SummaryData:
         notes.append(f"The Model F-value of {format_f(m.f)} implies the model {verdict}. There is "
                      f"{_chance(m.p)} chance that an F-value this large could occur due to noise.")
     names = {t.name for t in result.model_terms}
-    terms = [r for r in anova.itertuples(index=False) if r.source in names]
+    terms = [r for r in records if r.source in names]
     sig = tuple(str(r.source) for r in terms if _finite(r.p) and r.p < ALPHA)
     if terms and any(_finite(r.p) for r in terms):
         notes.append(f"P-values less than {ALPHA:.4f} indicate model terms are significant. In this case "
@@ -140,4 +145,4 @@ def summary_data(result: Any) -> SummaryData:
         snotes.append(f"Adeq Precision measures the signal-to-noise ratio; a ratio greater than {ADEQUATE_PRECISION:g} "
                       f"is desirable. The ratio of {format_number(s.adeq_precision, 5)} {ok}.")
     return SummaryData(anova_title=title, anova=anova, anova_notes=tuple(notes), significant_terms=sig,
-                       statistics=stats, statistics_notes=tuple(snotes))
+                       statistics=stats, statistics_notes=tuple(snotes), anova_records=tuple(records))

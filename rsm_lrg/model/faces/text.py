@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ...present import ROUND_OFF, format_g, format_p, text_table
+from ...present import ROUND_OFF, format_g, format_p, table_records, text_table
 from ...present import clean as _clean
 from ..readings.anova import TOTAL_ROWS
 from .summary_data import summary_data
@@ -21,12 +21,15 @@ def _p(p) -> str:
     return format_p(p, style="ascii")
 
 
-def format_anova(result, alpha: float = 0.05) -> str:
-    """The ANOVA (Type III partial sums of squares) like Table 5, with significance notes."""
+def format_anova(result, alpha: float = 0.05, records=None) -> str:
+    """The ANOVA (Type III partial sums of squares) like Table 5, with significance notes
+    (``records``: the rows of ``result.anova`` as :func:`rsm_lrg.present.table_records` gives
+    them, when already read)."""
     rows = []
-    total = result.anova.loc[result.anova["source"].isin(TOTAL_ROWS), "sum_sq"]
-    scale = float(total.iloc[0]) if len(total) else 0.0
-    for r in result.anova.itertuples(index=False):
+    records = table_records(result.anova) if records is None else records
+    total = [r.sum_sq for r in records if r.source in TOTAL_ROWS]
+    scale = float(total[0]) if total else 0.0
+    for r in records:
         mark = ""
         if r.p == r.p and r.source not in ("Residual", "Pure Error", "Block", *TOTAL_ROWS):
             if r.source == "Lack of Fit":
@@ -99,6 +102,16 @@ class EquationTerm:
     diff: tuple = ()
 
 
+def _coefficient_columns(result) -> dict:
+    """``term`` (names) and the coefficient columns of a fit, from ``coefficient_columns``
+    (no DataFrame, no actual units) where the result has it, else from its ``coefficients``."""
+    cols = getattr(result, "coefficient_columns", None)
+    if cols is not None:
+        return cols
+    co = result.coefficients
+    return {"term": co.index.tolist(), **{c: co[c].to_numpy() for c in co.columns}}
+
+
 def equation_terms(result, units: str = "coded", level=None) -> list[EquationTerm]:
     """The terms of the fitted equation in ``"coded"`` or ``"actual"`` units — the one rule
     every equation writer uses (issue 10, item 4).
@@ -124,7 +137,8 @@ def equation_terms(result, units: str = "coded", level=None) -> list[EquationTer
 
     if units not in ("coded", "actual"):
         raise ValueError(f"units must be 'coded' or 'actual', not {units!r}")
-    coded = {k: float(v) for k, v in zip(result.coefficients.index, result.coefficients["coded"])}
+    co = _coefficient_columns(result)
+    coded = {k: float(v) for k, v in zip(co["term"], co["coded"].tolist())}
     big = max((abs(v) for v in coded.values() if math.isfinite(v)), default=0.0)
     coded = {k: (0.0 if abs(v) <= ROUND_OFF * big else v) for k, v in coded.items()}
     letters = result.space.letters
@@ -208,7 +222,7 @@ def _equation_lines(result, units: str, level) -> str:
 
 def _anova_lines(result, sd) -> list[str]:
     """The least-squares ANOVA with its title and notes."""
-    return [sd.anova_title, format_anova(result), "", *sd.anova_notes, ""]
+    return [sd.anova_title, format_anova(result, records=sd.anova_records or None), "", *sd.anova_notes, ""]
 
 
 def _statistics_lines(result, sd) -> list[str]:
@@ -263,10 +277,13 @@ def format_summary(result) -> str:
         out.extend(_SECTIONS[section](result, sd))  # or the Kenward-Roger tests and variance components
     out.append("Coefficients in terms of coded factors (95 % CI)")
     rows = []
-    cscale = float(result.coefficients["coded"].abs().max())
-    for name, r in result.coefficients.iterrows():
-        rows.append([name, format_g(_clean(r["coded"], cscale)), format_g(r["std_error"]), format_g(r["ci_low"]),
-                     format_g(r["ci_high"]), (f"{r['vif']:.2f}" if r["vif"] == r["vif"] else ""), _p(r["p"])])
+    coded_all = _coefficient_columns(result)["coded"].tolist()
+    cscale = max((abs(v) for v in coded_all if v == v), default=math.nan)  # as pandas' max: NaN left out
+    co = _coefficient_columns(result)
+    for name, b, se, lo, hi, vif, p in zip(co["term"], *(co[c].tolist() for c in
+                                                         ("coded", "std_error", "ci_low", "ci_high", "vif", "p"))):
+        rows.append([name, format_g(_clean(b, cscale)), format_g(se), format_g(lo), format_g(hi),
+                     (f"{vif:.2f}" if vif == vif else ""), _p(p)])
     out.append(text_table(["Term", "Estimate", "Std Error", "95% CI Low", "95% CI High", "VIF", "p-value"], rows))
     multi = {k: v for k, v in (getattr(result, "term_vif", None) or {}).items()
              if next(t for t in result.terms if t.name == k).df > 1}

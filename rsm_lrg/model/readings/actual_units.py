@@ -83,6 +83,7 @@ import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import lru_cache
 from math import comb
 
 import numpy as np
@@ -90,8 +91,8 @@ import numpy as np
 from ...factors import letters_for
 from ...terms import Term, effect_codes, term_name
 
-__all__ = ["ActualSolution", "solve_actual", "solve_actual_chunks", "is_closed_under_shift", "shiftable_factors",
-           "decimal_correction", "CHUNK_ROWS", "DECIMAL_DIGITS"]
+__all__ = ["ActualSolution", "DeferredActual", "solve_actual", "solve_actual_deferred", "solve_actual_chunks",
+           "is_closed_under_shift", "shiftable_factors", "decimal_correction", "CHUNK_ROWS", "DECIMAL_DIGITS"]
 
 #: Rows of the model matrix built at a time (the exact products split a chunk into blocks of
 #: at most 2^15 rows anyway).
@@ -139,6 +140,13 @@ def _dd_add(ah: np.ndarray, al: np.ndarray, bh: np.ndarray, bl: np.ndarray) -> _
     return _quick_two_sum(s, e)
 
 
+def _dd_add_d(ah: np.ndarray, al: np.ndarray, b: np.ndarray) -> _DD:
+    """``(ah + al) + b`` for a double ``b``: :func:`_dd_add` with ``bl = 0`` (the same roundings,
+    the steps on the zero part left out; ``+ 0.0`` keeps the sign of a zero as they leave it)."""
+    s, e = _two_sum(ah, b)
+    return _quick_two_sum(s, (e + al) + 0.0)
+
+
 def _dd_mul(ah: np.ndarray, al: np.ndarray, bh: np.ndarray, bl: np.ndarray) -> _DD:
     p, e = _two_prod(ah, bh)
     e = e + (ah * bl + al * bh)
@@ -162,56 +170,83 @@ _MAX_INNER = 1 << 15
 
 def _row_slices(A: np.ndarray, bits: int, count: int) -> list[np.ndarray]:
     """``A`` (r x k) as a sum of slices ``S_1 + S_2 + ...`` (at most ``count``; the rest,
-    below ``2^-(count*bits)`` of each row's largest entry, dropped): row ``i`` of ``S_s`` holds
-    integer multiples of ``2^(e_i - s*bits)`` below ``2^(e_i - (s-1)*bits)`` in magnitude,
-    ``2^e_i`` bounding the row (every step is exact)."""
+    below ``2^-(count*bits)`` of each row's largest entry, dropped; trailing zero slices left
+    out): row ``i`` of ``S_s`` holds integer multiples of ``2^(e_i - s*bits)`` below
+    ``2^(e_i - (s-1)*bits)`` in magnitude, ``2^e_i`` bounding the row (every step is exact).
+    ``S_1 + ... + S_s`` is ``A`` rounded (to nearest, ties to even) to multiples of
+    ``2^(e_i - s*bits)``: rounding the rest of the coarser slices at a finer grid shifts by a
+    multiple of an even number of grid steps, which leaves the rounding (and its ties) as it is;
+    so all the slices come from one rounding of ``A`` at every grid."""
     _, e = np.frexp(np.max(np.abs(A), axis=1, initial=0.0))
-    rest = A.copy()
-    out = []
-    for s in range(1, count + 1):
-        g = (e - s * bits)[:, None]
-        S = np.ldexp(np.rint(np.ldexp(rest, -g)), g)
-        out.append(S)
-        rest -= S
-        if not rest.any():
-            break
-    return out
+    g = e[None, :, None] - (bits * np.arange(1, count + 1))[:, None, None]
+    S = np.ldexp(A[None], -g)  # (count, r, k): A at each grid, then the differences
+    np.rint(S, out=S)
+    np.ldexp(S, g, out=S)
+    np.subtract(S[1:], S[:-1], out=S[1:])
+    nz = np.flatnonzero(S.reshape(count, -1).any(axis=1))
+    used = int(nz[-1]) + 1 if nz.size else 1
+    return list(S[:used])
 
 
-def _exact_product(A: np.ndarray, B: np.ndarray) -> _DD:
+def _slice_bits(k: int) -> tuple[int, int]:
+    """``(bits, count)`` of the slices for an exact product with inner dimension ``k``."""
+    bits = (53 - max(1, math.ceil(math.log2(max(k, 2))))) // 2
+    return bits, -(-108 // bits)
+
+
+def _left_slices(A: np.ndarray) -> list[np.ndarray]:
+    """The row slices of ``A`` that :func:`_exact_product` cuts (for a left factor used in
+    several products: cut once)."""
+    bits, count = _slice_bits(A.shape[1])
+    return _row_slices(A, bits, count)
+
+
+def _exact_product(A: np.ndarray, B: np.ndarray, sa: list[np.ndarray] | None = None) -> _DD:
     """``A @ B`` (doubles, inner dimension k at most 2^15) as a double-double pair, to about
     2^-106 of ``|A| |B|``: rows of ``A`` and columns of ``B`` are cut into slices of
-    ``bits = (53 - ceil(log2 k)) // 2`` bits (:func:`_row_slices`), so that each entry of a
-    product of two slices is a sum of k integers below ``2^(2 bits)`` times one power of two,
-    exact in double precision; those products are added in double-double."""
-    k = A.shape[1]
-    bits = (53 - max(1, math.ceil(math.log2(max(k, 2))))) // 2
-    count = -(-108 // bits)
-    sa = _row_slices(A, bits, count)
-    sb = [S.T for S in _row_slices(np.ascontiguousarray(B.T), bits, count)]
-    ch = np.zeros((A.shape[0], B.shape[1]))
-    cl = np.zeros_like(ch)
-    zero = np.zeros_like(ch)
+    ``bits = (53 - ceil(log2 k)) // 2`` bits (:func:`_row_slices`; ``sa``: those of ``A``,
+    already cut by :func:`_left_slices`), so that each entry of a product of two slices is a
+    sum of k integers below ``2^(2 bits)`` times one power of two, exact in double precision
+    (in any order of summation, so all the products come from one matrix product of the
+    stacked slices); those products are added in double-double."""
+    bits, count = _slice_bits(A.shape[1])
+    if sa is None:
+        sa = _row_slices(A, bits, count)
+    sb = _row_slices(np.ascontiguousarray(B.T), bits, count)
+    m, q = A.shape[0], B.shape[1]
+    P = (np.concatenate(sa) if len(sa) > 1 else sa[0]) @ (np.concatenate(sb).T if len(sb) > 1 else sb[0].T)
+    ch = cl = None
     for s in range(len(sa)):
         for t in range(len(sb)):
             if s + t <= count - 1:
-                ch, cl = _dd_add(ch, cl, sa[s] @ sb[t], zero)  # exact
+                block = P[s * m:(s + 1) * m, t * q:(t + 1) * q]  # exact
+                if ch is None:
+                    ch, cl = block + 0.0, np.zeros((m, q))
+                else:
+                    assert cl is not None
+                    ch, cl = _dd_add_d(ch, cl, block)
+    assert ch is not None and cl is not None
     return ch, cl
 
 
-def _dd_matmul(Ah: np.ndarray, Al: np.ndarray, Bh: np.ndarray, Bl: np.ndarray) -> _DD:
+def _dd_matmul(Ah: np.ndarray, Al: np.ndarray, Bh: np.ndarray, Bl: np.ndarray,
+               sa: list[np.ndarray] | None = None) -> _DD:
     """``(Ah + Al) @ (Bh + Bl)`` in double-double: the product of the high parts exact
-    (:func:`_exact_product`, in blocks of 2^15 of the inner dimension), the cross terms in
+    (:func:`_exact_product`, in blocks of 2^15 of the inner dimension; ``sa`` the slices of
+    ``Ah`` from :func:`_left_slices` when it has at most 2^15 columns), the cross terms in
     double precision (they are 2^-53 smaller), ``Al @ Bl`` dropped."""
     k = Ah.shape[1]
-    ch = np.zeros((Ah.shape[0], Bh.shape[1]))
-    cl = np.zeros_like(ch)
-    for s in range(0, max(k, 1), _MAX_INNER):
-        e = min(k, s + _MAX_INNER)
-        ph, pl = _exact_product(Ah[:, s:e], Bh[s:e])
-        ch, cl = _dd_add(ch, cl, ph, pl)
+    if k <= _MAX_INNER:
+        ch, cl = _exact_product(Ah, Bh, sa)
+    else:
+        ch = np.zeros((Ah.shape[0], Bh.shape[1]))
+        cl = np.zeros_like(ch)
+        for s in range(0, k, _MAX_INNER):
+            e = min(k, s + _MAX_INNER)
+            ph, pl = _exact_product(Ah[:, s:e], Bh[s:e])
+            ch, cl = _dd_add(ch, cl, ph, pl)
     cross = Ah @ Bl + Al @ Bh
-    return _dd_add(ch, cl, cross, np.zeros_like(cross))
+    return _dd_add_d(ch, cl, cross)
 
 
 def _gram(Ah: np.ndarray, Al: np.ndarray) -> _DD:
@@ -353,6 +388,13 @@ def shiftable_factors(terms: Sequence[Term], *, intercept: bool = True) -> tuple
     >>> shiftable_factors([parse_term(t, "AB") for t in ("A", "A^2B")]), shiftable_factors([parse_term("A", "A")], intercept=False)
     ((False, False), (False,))
     """
+    return _shiftable(tuple(terms), bool(intercept))
+
+
+@lru_cache(maxsize=256)
+def _shiftable(terms: tuple[Term, ...], intercept: bool) -> tuple[bool, ...]:
+    """:func:`shiftable_factors` of a tuple of terms (remembered: a fit and its actual-units
+    solve ask twice)."""
     rest = _model_terms(terms, intercept)
     if not terms:
         return ()
@@ -451,40 +493,57 @@ def _basis_change(lay: _Layout, centre: np.ndarray, scale: np.ndarray,
     the shift) the monomials the expansion adds, named as columns are (third value)."""
     index = {key: i for i, key in enumerate(lay.keys)}
     extra: list[tuple] = []
-    entries: list[tuple[tuple, int, Fraction]] = []
-    cs = [Fraction(float(c)) for c in centre]
-    hs = [Fraction(float(h)) for h in scale]
+    # exact rationals as (numerator, denominator) pairs of integers, not reduced (Fraction's
+    # gcd at every step costs more than the whole rest): a double c is cn / cd exactly
+    entries: list[tuple[tuple, int, int, int]] = []
+    cs = [float(c).as_integer_ratio() for c in centre]
+    hs = [float(h).as_integer_ratio() for h in scale]
+    powers: dict[tuple[int, int], list[tuple[int, int, int]]] = {}
+
+    def expand(f: int, e: int) -> list[tuple[int, int, int]]:
+        """``((x - c_f) / h_f)^e`` as ``[(m, num, den)]``: the coefficient of ``x^m``."""
+        if (f, e) not in powers:
+            (cn, cd), (hn, hd) = cs[f], hs[f]
+            lows = range(e + 1) if cn != 0 else (e,)
+            powers[(f, e)] = [(m, comb(e, m) * (-cn) ** (e - m) * hd ** e, cd ** (e - m) * hn ** e) for m in lows]
+        return powers[(f, e)]
+
     for j, key in enumerate(lay.keys):
         if key[0] == "b":
-            entries.append((key, j, Fraction(1)))
+            entries.append((key, j, 1, 1))
             continue
         _, npw, sig = key
-        parts: list[tuple[tuple[int, ...], Fraction]] = [((), Fraction(1))]
+        parts: list[tuple[tuple[int, ...], int, int]] = [((), 1, 1)]
         for f, e in enumerate(npw):
-            new = []
-            for pw, v in parts:
-                lows = range(e + 1) if cs[f] != 0 else (e,)
-                for m in lows:
-                    new.append((pw + (m,), v * comb(e, m) * (-cs[f]) ** (e - m) / hs[f] ** e))
-            parts = new
-        for pw, v in parts:
+            if not e:
+                parts = [(pw + (0,), num, den) for pw, num, den in parts]
+                continue
+            parts = [(pw + (m,), num * a, den * b) for pw, num, den in parts for m, a, b in expand(f, e)]
+        for pw, num, den in parts:
             k = ("t", pw, sig)
             if k not in index and k not in extra:
                 extra.append(k)
-            entries.append((k, j, v))
+            entries.append((k, j, num, den))
     extra.sort(key=lambda k: (sum(k[1]), len(k[2]), [-e for e in k[1]], k[2]))
     for k in extra:
         index[k] = len(index)
     q, p = len(index), lay.p
     Mh = np.zeros((q, p))
     Ml = np.zeros((q, p))
-    acc: dict[tuple[int, int], Fraction] = {}
-    for k, j, v in entries:
-        acc[(index[k], j)] = acc.get((index[k], j), Fraction(0)) + v
-    for (i, j), v in acc.items():
-        hi = float(v)
+    acc: dict[tuple[int, int], tuple[int, int]] = {}
+    for k, j, num, den in entries:
+        at = (index[k], j)
+        if at in acc:
+            n0, d0 = acc[at]
+            num, den = n0 * den + num * d0, d0 * den
+        acc[at] = (num, den)
+    for (i, j), (num, den) in acc.items():
+        if den < 0:
+            num, den = -num, -den
+        hi = num / den  # correctly rounded (as float(Fraction(num, den)))
+        a, b = hi.as_integer_ratio()
         Mh[i, j] = hi
-        Ml[i, j] = float(v - Fraction(hi))
+        Ml[i, j] = (num * b - a * den) / (den * b)
     levels = {f: lv for t in lay.terms for f, lv in t.cat}
     return Mh, Ml, tuple(_monomial_name(k[1], k[2], letters, levels) for k in extra)
 
@@ -614,32 +673,96 @@ class ActualSolution:
     converged: bool
 
 
+class DeferredActual:
+    """The solve of :func:`solve_actual_deferred` before the change of basis: the coefficients
+    in the basis ``Z``, the residual sum of squares and standard deviation (what a fit's
+    statistics need) are computed; the coefficients and standard errors in actual units,
+    :meth:`solution`, on the first call (the exact change of basis and ``M (Z'Z)^-1 M'``). When
+    the coefficients' refinement met its strict criterion (the last correction at most
+    ``2^-104`` of them: the double-double floor) the inverse ``(Z'Z)^-1`` is refined then too
+    (with the double-double Cholesky factor if the double one does not converge, as the whole
+    solve does); the coefficients cannot move by more than that floor whatever preconditioner
+    refines them, so they are kept.
+
+    Attributes
+    ----------
+    rss : float
+        Residual sum of squares [response units^2].
+    sigma : float
+        Residual standard deviation (NaN without residual degrees of freedom) [response units].
+    n, df_resid : int
+    iterations : int
+        Refinement steps of the coefficients.
+    converged : bool
+        The coefficients' refinement converged (:attr:`ActualSolution.converged` also asks it
+        of the inverse).
+    """
+
+    def __init__(self, *, rss: float, sigma: float, n: int, df_resid: int, iterations: int, converged: bool,
+                 finish: Callable[[], ActualSolution]) -> None:
+        self.rss, self.sigma, self.n, self.df_resid = rss, sigma, n, df_resid
+        self.iterations, self.converged = iterations, converged
+        self._finish: Callable[[], ActualSolution] | None = finish
+        self._solution: ActualSolution | None = None
+        self._error: str | None = None
+
+    def solution(self) -> ActualSolution:
+        """The whole solution (computed once).
+
+        Returns
+        -------
+        ActualSolution
+
+        Raises
+        ------
+        ValueError
+            The inverse cannot be formed (the columns are dependent to double-double precision).
+        """
+        if self._solution is None:
+            if self._finish is None:
+                raise ValueError(self._error or "the actual-units solution was not kept")
+            self._solution, self._finish = self._finish(), None
+        return self._solution
+
+    def __getstate__(self) -> dict:
+        # the rest of the solve is a closure over the Gram matrix: finished before pickling (a fit
+        # sent to a worker process), so that what travels is the solution itself
+        try:
+            self.solution()
+        except ValueError as exc:
+            self._finish, self._error = None, str(exc)
+        return {k: v for k, v in self.__dict__.items() if k != "_finish"} | {"_finish": None}
+
+
 def _refine_solve(Gh: np.ndarray, Gl: np.ndarray, bh: np.ndarray, bl: np.ndarray,
-                  P: Callable[[np.ndarray], np.ndarray], max_iter: int = 40) -> tuple[_DD, int, bool]:
+                  P: Callable[[np.ndarray], np.ndarray], max_iter: int = 40) -> tuple[_DD, int, bool, bool]:
     """Solve ``G x = b`` (double-double ``G``, ``b``) by iterative refinement with the
     approximate inverse ``P`` (a function of a vector or matrix): ``x <- x + P (b - G x)``,
-    the residual in double-double."""
+    the residual in double-double. Returns the solution, the steps, whether it converged and
+    whether it did so strictly (the last correction at most ``2^-104`` of the solution; else
+    the corrections stalled, below ``2^-60`` of it when converged)."""
     p = Gh.shape[0]
     w = np.sqrt(np.abs(np.diag(Gh)))
     xh, xl = np.zeros(p), np.zeros(p)
     prev = math.inf
     stalled = 0
+    sg = _left_slices(Gh) if Gh.shape[1] <= _MAX_INNER else None
     for it in range(1, max_iter + 1):
-        gh, gl = _dd_matmul(Gh, Gl, xh[:, None], xl[:, None])
+        gh, gl = _dd_matmul(Gh, Gl, xh[:, None], xl[:, None], sg)
         rh, _ = _dd_add(bh, bl, -gh[:, 0], -gl[:, 0])
         d = P(rh)
         xh, xl = _dd_add(xh, xl, d, np.zeros(p))
         size = float(np.max(w * np.abs(d)))
         whole = float(np.max(w * np.abs(xh)))
         if size <= 2.0 ** -104 * whole:
-            return (xh, xl), it, True
+            return (xh, xl), it, True, True
         # at the double-double floor the corrections stop shrinking: done when they are far
         # below what the double result can show
         stalled = stalled + 1 if size > 0.25 * prev else 0
         if stalled >= 2:
-            return (xh, xl), it, size <= 2.0 ** -60 * whole
+            return (xh, xl), it, size <= 2.0 ** -60 * whole, False
         prev = size
-    return (xh, xl), max_iter, False
+    return (xh, xl), max_iter, False, False
 
 
 def _refine_inverse(Gh: np.ndarray, Gl: np.ndarray, P: Callable[[np.ndarray], np.ndarray], start: _DD,
@@ -651,8 +774,9 @@ def _refine_inverse(Gh: np.ndarray, Gl: np.ndarray, P: Callable[[np.ndarray], np
     zero = np.zeros((p, p))
     prev = math.inf
     stalled = 0
+    sg = _left_slices(Gh) if Gh.shape[1] <= _MAX_INNER else None
     for _ in range(max_iter):
-        gh, gl = _dd_matmul(Gh, Gl, ch, cl)
+        gh, gl = _dd_matmul(Gh, Gl, ch, cl, sg)
         eh, _ = _dd_add(eye, zero, -gh, -gl)
         d = P(eh)
         ch, cl = _dd_add(ch, cl, d, zero)
@@ -724,6 +848,33 @@ def solve_actual(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, 
                  decimal_inputs: bool = True, centre: Sequence[float] | None = None,
                  scale: Sequence[float] | None = None, block_names: Sequence[str] | None = None,
                  basis: str = "actual", letters: Sequence[str] | None = None) -> ActualSolution:
+    """:func:`solve_actual_deferred` (the same parameters) carried through the change of basis:
+    the whole :class:`ActualSolution`.
+
+    Parameters
+    ----------
+    x_actual, y, terms, intercept, blocks, n_blocks, chunk_rows, decimal_inputs, centre, scale, block_names, basis, letters
+        As for :func:`solve_actual_deferred`.
+
+    Returns
+    -------
+    ActualSolution
+
+    Raises
+    ------
+    ValueError
+        As :func:`solve_actual_deferred`.
+    """
+    return solve_actual_deferred(x_actual, y, terms, intercept=intercept, blocks=blocks, n_blocks=n_blocks,
+                                 chunk_rows=chunk_rows, decimal_inputs=decimal_inputs, centre=centre, scale=scale,
+                                 block_names=block_names, basis=basis, letters=letters).solution()
+
+
+def solve_actual_deferred(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, intercept: bool = True,
+                          blocks: np.ndarray | None = None, n_blocks: int = 1, chunk_rows: int = CHUNK_ROWS,
+                          decimal_inputs: bool = True, centre: Sequence[float] | None = None,
+                          scale: Sequence[float] | None = None, block_names: Sequence[str] | None = None,
+                          basis: str = "actual", letters: Sequence[str] | None = None) -> DeferredActual:
     """Least squares of ``y`` on the model's columns evaluated at the actual (uncoded) factor
     values, to the accuracy of the data (see the module docstring).
 
@@ -765,7 +916,10 @@ def solve_actual(x_actual: np.ndarray, y: np.ndarray, terms: Sequence[Term], *, 
 
     Returns
     -------
-    ActualSolution
+    DeferredActual
+        The residual sum of squares and standard deviation now; the coefficients and standard
+        errors in actual units (the change of basis) when :meth:`DeferredActual.solution` is
+        called (a summary needs only the first).
 
     Raises
     ------
@@ -814,14 +968,15 @@ def solve_actual_chunks(chunks: Chunks, terms: Sequence[Term], *, intercept: boo
             yield xa, ya, bc, None, None
 
     return _solve(wrapped, terms, intercept=intercept, n_blocks=n_blocks, decimal_inputs=decimal_inputs,
-                  centre=centre, scale=scale, block_names=block_names, k=None, basis=basis, letters=letters)
+                  centre=centre, scale=scale, block_names=block_names, k=None, basis=basis,
+                  letters=letters).solution()
 
 
 def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None,
                                                   np.ndarray | None]]],
            terms: Sequence[Term], *, intercept: bool, n_blocks: int, decimal_inputs: bool,
            centre: Sequence[float] | None, scale: Sequence[float] | None, block_names: Sequence[str] | None,
-           k: int | None, basis: str, letters: Sequence[str] | None) -> ActualSolution:
+           k: int | None, basis: str, letters: Sequence[str] | None) -> DeferredActual:
     if basis not in ("actual", "coded"):
         raise ValueError(f"basis must be 'actual' or 'coded', not {basis!r}")
     if not terms and not intercept:
@@ -886,6 +1041,7 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
         Zh, Zl = _rows(lay, xc, xlc, bc, c, h, numeric)
         return Zh, Zl, ylc
 
+    kept: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] | None = []  # one chunk: its rows for pass 2
     for xc, yc, bc, xlc, ylc in chunks():
         if xc.shape[1] != kf or yc.size != xc.shape[0]:
             raise ValueError(f"a chunk of {xc.shape} factor values and {yc.size} responses does not fit")
@@ -894,6 +1050,7 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
         if not xc.shape[0]:
             continue
         Zh, Zl, ylc = model_rows(xc, yc, bc, xlc, ylc)
+        kept = [(yc, Zh, Zl, ylc)] if kept == [] else None
         Ah = np.column_stack([Zh, yc])
         Al = np.column_stack([Zl, ylc])
         for s in range(0, Ah.shape[0], _MAX_INNER):
@@ -913,16 +1070,16 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     d = 1.0 / np.sqrt(diag)
     Gs = (Zh_ * d[:, None]) * d[None, :]
     zero_p = np.zeros((p, p))
-    conv = False
+    conv = strict = False
+    P0: np.ndarray | None = None
     try:
         Linv = np.linalg.inv(np.linalg.cholesky(Gs))
         P0 = (Linv.T @ Linv) * d[:, None] * d[None, :]
-        (zh, zl), iters, conv = _refine_solve(Zh_, Zl_, bh, bl, lambda r: P0 @ r)
-        (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, lambda r: P0 @ r, (P0, zero_p))
     except np.linalg.LinAlgError:
         pass
-    if not (conv and conv_c):
-        # kappa(Z)^2 u >~ 1: the inverse from a Cholesky factor in double-double instead
+
+    def fallback() -> tuple[Callable[[np.ndarray], np.ndarray], _DD]:
+        """kappa(Z)^2 u >~ 1: the preconditioner from a Cholesky factor in double-double."""
         d2 = np.exp2(np.round(np.log2(d)))  # powers of two: the scaling stays exact
         D = d2[:, None] * d2[None, :]
         Ph, Pl = _dd_inverse_spd(Zh_ * D, Zl_ * D, lay.names)
@@ -933,15 +1090,45 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
             out, _ = _dd_matmul(Ph, Pl, r2, np.zeros_like(r2))
             return out[:, 0] if r.ndim == 1 else out
 
-        (zh, zl), iters, conv = _refine_solve(Zh_, Zl_, bh, bl, apply)
-        (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, apply, (Ph, Pl))
+        return apply, (Ph, Pl)
+
+    if P0 is not None:
+        P0_ = P0
+        (zh, zl), iters, conv, strict = _refine_solve(Zh_, Zl_, bh, bl, lambda r: P0_ @ r)
+    if conv and strict:
+        # the coefficients are at the double-double floor (the last correction below 2^-104 of
+        # them): no other preconditioner would move them, so the inverse (the standard errors)
+        # waits for the change of basis, which a fit's statistics do not need
+        def inverse() -> tuple[np.ndarray, np.ndarray, bool]:
+            (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, lambda r: P0_ @ r, (P0_, zero_p))
+            if not conv_c:
+                apply, start = fallback()
+                (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, apply, start)
+            return ch, cl, conv_c
+    else:
+        conv_c = False
+        if P0 is not None:
+            (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, lambda r: P0_ @ r, (P0_, zero_p))
+        if not (conv and conv_c):
+            apply, start = fallback()
+            (zh, zl), iters, conv, _ = _refine_solve(Zh_, Zl_, bh, bl, apply)
+            (ch, cl), conv_c = _refine_inverse(Zh_, Zl_, apply, start)
+        done = (ch, cl, conv_c)
+
+        def inverse() -> tuple[np.ndarray, np.ndarray, bool]:
+            return done
 
     # pass 2: the residuals in double-double
     rss_parts: list[float] = []
-    for xc, yc, bc, xlc, ylc in chunks():
-        if not xc.shape[0]:
-            continue
-        Zh, Zl, ylc = model_rows(xc, yc, bc, xlc, ylc)
+    def pass_rows() -> Iterable[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+        if kept:  # the one chunk's rows, already built
+            yield from kept
+            return
+        for xc, yc, bc, xlc, ylc in chunks():
+            if xc.shape[0]:
+                yield (yc, *model_rows(xc, yc, bc, xlc, ylc))
+
+    for yc, Zh, Zl, ylc in pass_rows():
         fh, fl = _dd_matmul(Zh, Zl, zh[:, None], zl[:, None])
         rh, rl = _dd_add(yc, ylc, -fh[:, 0], -fl[:, 0])
         rss_parts.append(float(np.sum(rh * rh)) + 2.0 * float(np.sum(rh * rl)))
@@ -949,21 +1136,25 @@ def _solve(chunks: Callable[[], Iterable[tuple[np.ndarray, np.ndarray, np.ndarra
     df = n - p
     sigma = math.sqrt(rss / df) if df > 0 else math.nan
 
-    # back to actual units: b = M z, cov = M C M'
-    Mh, Ml, extra = _basis_change(lay, c, h, letters_for(kf) if letters is None else list(letters))
-    ah, _ = _dd_matmul(Mh, Ml, zh[:, None], zl[:, None])
-    mch, mcl = _dd_matmul(Mh, Ml, ch, cl)
-    vh, vl = _dd_mul(mch, mcl, Mh, Ml)
-    var_a, _ = _dd_sum_rows(vh, vl)
-    var_z = np.diag(ch)
-    se_a = sigma * np.sqrt(np.maximum(var_a, 0.0))
-    se_z = sigma * np.sqrt(np.maximum(var_z, 0.0))
-    names = lay.names
-    return ActualSolution(
-        names=names, extra=extra,
-        coefficients={nm: float(v) for nm, v in zip(names + extra, ah[:, 0])},
-        std_errors={nm: float(v) for nm, v in zip(names + extra, se_a)},
-        coded_coefficients={nm: float(v) for nm, v in zip(names, zh)},
-        coded_std_errors={nm: float(v) for nm, v in zip(names, se_z)},
-        centre=tuple(float(v) for v in c), scale=tuple(float(v) for v in h),
-        sigma=sigma, rss=rss, n=n, df_resid=df, iterations=iters, converged=conv and conv_c)
+    def finish() -> ActualSolution:
+        ch, cl, conv_c = inverse()
+        # back to actual units: b = M z, cov = M C M'
+        Mh, Ml, extra = _basis_change(lay, c, h, letters_for(kf) if letters is None else list(letters))
+        ah, _ = _dd_matmul(Mh, Ml, zh[:, None], zl[:, None])
+        mch, mcl = _dd_matmul(Mh, Ml, ch, cl)
+        vh, vl = _dd_mul(mch, mcl, Mh, Ml)
+        var_a, _ = _dd_sum_rows(vh, vl)
+        var_z = np.diag(ch)
+        se_a = sigma * np.sqrt(np.maximum(var_a, 0.0))
+        se_z = sigma * np.sqrt(np.maximum(var_z, 0.0))
+        names = lay.names
+        return ActualSolution(
+            names=names, extra=extra,
+            coefficients={nm: float(v) for nm, v in zip(names + extra, ah[:, 0])},
+            std_errors={nm: float(v) for nm, v in zip(names + extra, se_a)},
+            coded_coefficients={nm: float(v) for nm, v in zip(names, zh)},
+            coded_std_errors={nm: float(v) for nm, v in zip(names, se_z)},
+            centre=tuple(float(v) for v in c), scale=tuple(float(v) for v in h),
+            sigma=sigma, rss=rss, n=n, df_resid=df, iterations=iters, converged=conv and conv_c)
+
+    return DeferredActual(rss=rss, sigma=sigma, n=n, df_resid=df, iterations=iters, converged=conv, finish=finish)

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...present import clean_anova_records
 from ..build.terms import block_contrasts
 from ..engines.least_squares import least_squares, partial_ss
 
@@ -159,7 +160,8 @@ TOTAL_ROWS = ("Cor Total", TOTAL_UNCORRECTED)
 
 
 def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, ss_res, df_res,
-                ss_total, df_total, pe: PureError | None, term_df=None, total_label: str = "Cor Total"):
+                ss_total, df_total, pe: PureError | None, term_df=None, total_label: str = "Cor Total",
+                clean: bool = False):
     """Assemble the Design-Expert ANOVA rows (a DataFrame with :data:`ANOVA_COLUMNS`).
 
     F of a term or of the model is its mean square over the residual mean square; F of
@@ -186,4 +188,6 @@ def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, 
             rows.append(_row("Lack of Fit", lof["ss"], lof["df"], lof["ms"], lof["f"], lof["p"]))
         rows.append(_row("Pure Error", pe.ss, pe.df, pe.ss / pe.df))
     rows.append(_row(total_label, ss_total, df_total))
+    if clean:  # round-off rows as shown (rsm_lrg.present.clean_anova), before the frame is built
+        clean_anova_records(rows)
     return pd.DataFrame(rows, columns=ANOVA_COLUMNS)

@@ -17,7 +17,6 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
-from ...present import clean_anova
 from ..build.terms import term_columns
 from ..contract.statistics import FitStatistics, fit_statistics
 from ..readings.actual import actual_coefficients
@@ -93,6 +92,9 @@ class ReadFit(Protocol):
     def anova(self) -> Any: ...
 
     @property
+    def actual_deferred(self) -> Any: ...
+
+    @property
     def actual_solution(self) -> Any: ...
 
 
@@ -162,12 +164,12 @@ class PolynomialForm:
         n, nb = ls.n, r.n_blocks
         # Sums of squares that are round-off against the total (e.g. 2.5e-34 for a term whose
         # coefficient is zero by symmetry) are stored as 0 with F 0 and p 1, as every face shows them.
-        return clean_anova(anova_table(
+        return anova_table(
             term_names=[t.name for t in r.model_terms], term_ss=s["term_ss"], ss_model=s["ss_model"],
             df_model=s["df_model"], ss_block=s["ss_block"], df_block=nb - 1, ss_res=ls.ss_res, df_res=ls.df_resid,
             ss_total=s["ss_total"], df_total=n - 1 if r.intercept else n, pe=r.pure_error,
             term_df=[t.df for t in r.model_terms],
-            total_label="Cor Total" if r.intercept else TOTAL_UNCORRECTED))
+            total_label="Cor Total" if r.intercept else TOTAL_UNCORRECTED, clean=True)
 
     def test_contrasts(self, r: ReadFit) -> list[tuple[str, np.ndarray]]:
         """The hypotheses a REML fit tests, one per model term: all its columns zero.
@@ -295,10 +297,10 @@ class ScheffeForm(PolynomialForm):
             Columns ``source, sum_sq, df, mean_sq, f, p``.
         """
         s, ls = r.sums, r.least_squares
-        return clean_anova(anova_table(
+        return anova_table(
             term_names=s["names"], term_ss=s["term_ss"], ss_model=s["ss_model"], df_model=s["df_model"],
             ss_block=s["ss_block"], df_block=r.n_blocks - 1, ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"],
-            df_total=ls.n - 1, pe=r.pure_error, term_df=s["term_df"], total_label="Cor Total"))
+            df_total=ls.n - 1, pe=r.pure_error, term_df=s["term_df"], total_label="Cor Total", clean=True)
 
     def test_contrasts(self, r: ReadFit) -> list[tuple[str, np.ndarray]]:
         """The hypotheses a REML fit of a Scheffé model tests, as the mixture ANOVA's rows:
@@ -543,7 +545,7 @@ class LeastSquaresReading:
         ls, s = r.least_squares, r.sums
         if ls.pass_sums is None:
             raise ValueError("the fit's statistics need the second pass over the rows")
-        sol = r.actual_solution  # its residual sum of squares is exact to the data's digits (NIST StRD)
+        sol = r.actual_deferred  # its residual sum of squares is exact to the data's digits (NIST StRD)
         ss_res = float(sol.rss) if sol is not None and math.isfinite(sol.rss) else ls.ss_res
         return fit_statistics(n=ls.n, mean=ls.ybar, fitted_range=ls.pass_sums.fitted_max - ls.pass_sums.fitted_min,
                               ss_res=ss_res, df_res=ls.df_resid, ss_total=s["ss_total"], ss_block=s["ss_block"],

@@ -110,7 +110,8 @@ class FitResult:
     vif, actual``), ``anova`` (Table 5 layout), ``statistics``, ``stationary_point``,
     ``fitted``, ``residuals``, ``hat``, ``cov_unscaled``, ``sigma2``, ``df_resid``,
     ``pure_error``, ``block_effects``, ``actual_coefficients``, ``actual_std_errors``,
-    ``term_vif``, ``notes``, ``actual_solution``, ``design_matrix``, ``ols`` (statsmodels, built lazily),
+    ``term_vif``, ``notes``, ``actual_deferred``, ``actual_solution``, ``design_matrix``,
+    ``ols`` (statsmodels, built lazily),
     ``tests`` (the Kenward–Roger tests of a REML fit).
     """
 
@@ -222,13 +223,13 @@ class FitResult:
         return tuple(self.input_notes) + self.reading.notes(self)
 
     @cached_property
-    def actual_solution(self) -> Any:
-        """The model solved in actual units to the accuracy of the data
-        (:func:`rsm_lrg.model.readings.actual_units.solve_actual`: exact Gram matrix, refinement in
-        double-double, an exact change of basis), or None for a Dask fit (no per-run data)
-        or when that solve refuses the data (the exact expansion of the coded coefficients
-        is used then)."""
-        from ..readings.actual_units import is_closed_under_shift, solve_actual
+    def actual_deferred(self) -> Any:
+        """The model solved in actual units to the accuracy of the data up to the change of
+        basis (:func:`rsm_lrg.model.readings.actual_units.solve_actual_deferred`: exact Gram
+        matrix, refinement in double-double; its ``rss`` is what the statistics use), or None
+        for a Dask fit (no per-run data), a mixture or REML fit, or when that solve refuses the
+        data."""
+        from ..readings.actual_units import is_closed_under_shift, solve_actual_deferred
 
         if (self.coded is None or self.y is None or not self.form.solves_in_actual_units
                 or not self.reading.solves_in_actual_units):
@@ -238,7 +239,7 @@ class FitResult:
         nb = self.n_blocks
         blocks = block_codes(self.data, self.block)[0] if self.block is not None and nb > 1 else None
         try:
-            return solve_actual(
+            return solve_actual_deferred(
                 x, np.asarray(self.y, dtype=float), self.terms, intercept=self.intercept, blocks=blocks, n_blocks=nb,
                 decimal_inputs=self.transform.identity,  # a transformed response is not the file's decimals
                 centre=[f.center if f.kind == "numeric" else 0.0 for f in self.space.factors],
@@ -246,6 +247,21 @@ class FitResult:
                 block_names=list(self.column_names[1:nb]),
                 basis="actual" if is_closed_under_shift(self.terms, intercept=self.intercept) else "coded",
                 letters=self.space.letters)
+        except ValueError:
+            return None
+
+    @cached_property
+    def actual_solution(self) -> Any:
+        """The model solved in actual units to the accuracy of the data
+        (:func:`rsm_lrg.model.readings.actual_units.solve_actual`: exact Gram matrix, refinement in
+        double-double, an exact change of basis; :attr:`actual_deferred` carried through the
+        change of basis), or None for a Dask fit (no per-run data) or when that solve refuses
+        the data (the exact expansion of the coded coefficients is used then)."""
+        deferred = self.actual_deferred
+        if deferred is None:
+            return None
+        try:
+            return deferred.solution()
         except ValueError:
             return None
 
@@ -287,10 +303,11 @@ class FitResult:
         return dict(zip(names, np.sqrt(np.clip(np.diag(cov), 0.0, None)).tolist()))
 
     @cached_property
-    def coefficients(self) -> pd.DataFrame:
-        """Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``."""
-        import pandas as pd
-
+    def coefficient_columns(self) -> dict[str, Any]:
+        """The columns of :attr:`coefficients` but ``actual`` (which needs the change of basis to
+        actual units), as arrays: ``term`` (the names, a list), ``coded, std_error, t, p,
+        ci_low, ci_high, vif`` and, for a REML fit, ``den_df`` (what the text summary prints,
+        without building a DataFrame)."""
         from ..contract.statistics import stdtr, stdtrit  # the t and F tails without importing SciPy
 
         ls, tidx = self.least_squares, self.term_index
@@ -309,14 +326,26 @@ class FitResult:
         # of X'X, so none for a GLS fit
         vif = (np.r_[np.nan, ls.vif(tidx[1:])] if self.intercept and not form.kenward_roger
                else np.full(b_t.size, np.nan))
-        cols = column_names(self.terms)
+        out: dict[str, Any] = {"term": column_names(self.terms), "coded": b_t, "std_error": se, "t": tval, "p": pval,
+                               "ci_low": b_t - tq * se_t, "ci_high": b_t + tq * se_t, "vif": vif}
+        if form.kenward_roger:
+            out["den_df"] = df
+        return out
+
+    @cached_property
+    def coefficients(self) -> pd.DataFrame:
+        """Index = term name; columns ``coded, std_error, t, p, ci_low, ci_high, vif, actual``."""
+        import pandas as pd
+
+        c = self.coefficient_columns
+        cols = c["term"]
         actual = self.actual_coefficients
         frame = pd.DataFrame(
-            {"coded": b_t, "std_error": se, "t": tval, "p": pval, "ci_low": b_t - tq * se_t,
-             "ci_high": b_t + tq * se_t, "vif": vif, "actual": [actual.get(nm, 0.0) for nm in cols]},
+            {"coded": c["coded"], "std_error": c["std_error"], "t": c["t"], "p": c["p"], "ci_low": c["ci_low"],
+             "ci_high": c["ci_high"], "vif": c["vif"], "actual": [actual.get(nm, 0.0) for nm in cols]},
             index=pd.Index(cols, name="term"))
-        if form.kenward_roger:
-            frame["den_df"] = df
+        if "den_df" in c:
+            frame["den_df"] = c["den_df"]
         return frame
 
     @cached_property
