@@ -19,7 +19,7 @@ from scipy.linalg import solve_triangular
 
 from .gp_kernels import correlation
 
-__all__ = ["KrigingCore", "kriging_core", "cholesky_jitter", "inverse_lower", "gradient_sums", "JITTERS",
+__all__ = ["KrigingCore", "kriging_core", "cholesky_jitter", "inverse_lower", "JITTERS",
            "POTRI_RUNS"]
 
 #: Relative jitters tried, in order, when a Cholesky factorisation fails.
@@ -69,40 +69,6 @@ def inverse_lower(chol: np.ndarray) -> np.ndarray:
     if info != 0:
         raise np.linalg.LinAlgError(f"dpotri failed (info {info})")
     return np.asarray(inv).T
-
-
-def gradient_sums(x: np.ndarray, theta: np.ndarray, kernel: str, R: np.ndarray, minv: np.ndarray, w: np.ndarray,
-                  kappa: float, out: np.ndarray) -> float:
-    """The likelihood gradient's sums over the pairs of runs ``i > l`` in compiled blocks of rows:
-    ``out[j] = sum g_il R_il d log R_il / d log theta_j`` with ``g = kappa w_i w_l - minv_il``.
-
-    Parameters
-    ----------
-    x : (n, k) ndarray
-        Coded settings.
-    theta : (k,) ndarray
-        Length-scales [coded units].
-    kernel : str
-        Kernel name.
-    R : (n, n) ndarray
-        Correlation matrix.
-    minv : (n, n) ndarray
-        Lower triangle of the covariance's inverse (:func:`inverse_lower`).
-    w : (n,) ndarray
-        ``M^-1 z``.
-    kappa : float
-        Weight of ``w w'`` (``1 / sigma2`` when the variance is concentrated out, else 1).
-    out : (k,) ndarray
-        Receives the sums per factor.
-
-    Returns
-    -------
-    float
-        ``sum g_il R_il`` over the same pairs.
-    """
-    from .gp_compiled import gradient_sums as compiled_sums
-
-    return compiled_sums(x, theta, kernel, R, minv, w, kappa, out)
 
 
 @dataclass(frozen=True)

@@ -55,7 +55,8 @@ import numpy as np
 from scipy.linalg import solve_triangular
 
 from ...errors import ParameterError
-from ..engines.gp_core import KrigingCore, cholesky_jitter, gls, gradient_sums, inverse_lower, kriging_core
+from ..engines.gp_compiled import gradient_sums
+from ..engines.gp_core import KrigingCore, cholesky_jitter, gls, inverse_lower, kriging_core
 from ..engines.gp_kernels import COMPILED_PAIRS, KERNELS, correlation, log_derivative_theta
 from ..engines.gp_trend import TRENDS, trend_matrix, trend_size
 from ..results.gp_result import GPResult
