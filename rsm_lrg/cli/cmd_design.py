@@ -8,7 +8,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from .errors import option_error
+from .errors import about_options, option_error
 from .options import add_force, add_reader_options, whole_number
 
 NAME = "design"
@@ -277,19 +277,14 @@ def _split_plot_parser(sub: Any) -> None:
 def _strip_plot(args: argparse.Namespace) -> Any:
     """Build the strip-plot design; bad input is an InputError naming the option."""
     from ..design.multi_stratum import strip_plot
-    from ..io import InputError
 
     space = _space(args)
-    try:
+    with about_options(options=_DESIGN_OPTIONS, default="--factor"):
         return strip_plot(space, args.row_factor, args.column_factor, args.rows, args.columns, model=args.model,
                           criterion=args.criterion,
                           variance_ratios={"strip_row": args.row_variance_ratio,
                                            "strip_column": args.column_variance_ratio},
                           seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
-    except InputError:
-        raise
-    except ValueError as exc:
-        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
 
 
 def _split_split_plot(args: argparse.Namespace) -> Any:
@@ -304,16 +299,12 @@ def _split_split_plot(args: argparse.Namespace) -> Any:
     if args.constraint:
         raise InputError("--constraint: not available for a split-split-plot design (--very-hard-to-change)")
     space = _space(args)
-    try:
+    with about_options(options=_DESIGN_OPTIONS, default="--factor"):
         return split_split_plot(space, args.very_hard_to_change, args.hard_to_change, args.whole_plots,
                                 args.subplots, args.runs, model=args.model, criterion=args.criterion,
                                 variance_ratios={"whole_plot": args.variance_ratio,
                                                  "subplot": args.subplot_variance_ratio},
                                 seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
-    except InputError:
-        raise
-    except ValueError as exc:
-        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
 
 
 def _split_plot_ccd_parser(sub: Any) -> None:
@@ -341,17 +332,12 @@ def _split_plot_ccd_parser(sub: Any) -> None:
 def _split_plot_ccd(args: argparse.Namespace) -> Any:
     """Build the split-plot CCD; bad input is an InputError naming the option."""
     from ..design.split_plot import split_plot_ccd
-    from ..io import InputError
 
     space = _space(args)
-    try:
+    with about_options(options=_DESIGN_OPTIONS, default="--factor"):
         return split_plot_ccd(space, args.hard_to_change, alpha=args.alpha,
                               center_whole_plots=args.center_whole_plots, seed=args.seed,
                               randomize=not args.no_randomize)
-    except InputError:
-        raise
-    except ValueError as exc:
-        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
 
 
 def _split_plot(args: argparse.Namespace) -> Any:
@@ -367,14 +353,10 @@ def _split_plot(args: argparse.Namespace) -> Any:
                          "with --very-hard-to-change")
     space = _space(args)
     cons = _constraints(args, space)
-    try:
+    with about_options(options=_DESIGN_OPTIONS, default="--factor"):
         return split_plot(space, args.hard_to_change, args.whole_plots, args.runs, model=args.model,
                           criterion=args.criterion, variance_ratio=args.variance_ratio, constraints=cons,
                           seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
-    except InputError:
-        raise
-    except ValueError as exc:
-        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
 
 
 def _mixture_parsers(sub) -> None:
@@ -563,7 +545,7 @@ def _mixture(args):
     if process:
         _space(args)  # a bad process factor is named (--factor) before the design is built
     randomize = not args.no_randomize and not process  # a crossed design is randomised once crossed
-    try:
+    with about_options(options=_DESIGN_OPTIONS, default="--component", catch=(TypeError, ValueError)):
         if args.kind == "optimal":
             from ..design.mixture_optimal import mixture_optimal
 
@@ -589,10 +571,6 @@ def _mixture(args):
         if process:
             design = cross_process(design, process, seed=args.seed, randomize=not args.no_randomize)
         return design
-    except InputError:
-        raise
-    except (TypeError, ValueError) as exc:
-        raise option_error(exc, options=_DESIGN_OPTIONS, default="--component") from None
 
 
 def _block_sizes(text: str | None) -> int | list[int] | None:
@@ -661,7 +639,7 @@ def _new_kind(args):
                            seed=args.seed, starts=args.starts, randomize=randomize)
         except ValueError as exc:
             raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
-    try:
+    with about_options(options=_DESIGN_OPTIONS, default="--factor"):
         if args.kind == "definitive-screening":
             from ..design.screening import definitive_screening
 
@@ -686,10 +664,6 @@ def _new_kind(args):
             return latin_hypercube(space, args.runs, criterion=args.criterion, constraints=cons, seed=args.seed,
                                    randomize=randomize)
         return sobol(space, args.runs, constraints=cons, seed=args.seed, randomize=randomize)
-    except InputError:
-        raise
-    except ValueError as exc:
-        raise option_error(exc, options=_DESIGN_OPTIONS, default="--factor") from None
 
 
 def _augment(args, out) -> int:
@@ -728,14 +702,10 @@ def _augment(args, out) -> int:
     cons = None
     if args.constraint:
         cons = _constraints(args, design.factors)
-    try:
+    with about_options(options=_DESIGN_OPTIONS, default="--method"):
         aug = augment(design, args.method, model=args.model, criterion=args.criterion, runs=args.runs,
                       alpha=alpha, center=args.center, fold=args.fold, new_block=args.new_block,
                       constraints=cons, seed=args.seed, starts=args.starts, randomize=not args.no_randomize)
-    except InputError:
-        raise
-    except ValueError as exc:
-        raise option_error(exc, options=_DESIGN_OPTIONS, default="--method") from None
     new = aug.to_frame()
     new = new[new["std_order"] > design.n_runs]
     old = df.copy()

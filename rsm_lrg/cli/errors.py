@@ -5,7 +5,7 @@ option by its ``parameter`` attribute (no message tables), :func:`about_file` an
 from __future__ import annotations
 
 import argparse
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 
 from ..io import STDIN_NAME, InputError, quote_user_value
@@ -47,6 +47,31 @@ def about_response(response: str, several: bool):
         if quote_user_value(response) in str(exc):
             raise
         raise ValueError(f"response {quote_user_value(response)}: {exc}") from None
+
+
+@contextmanager
+def about_options(*, options: Mapping[str, str] | None = None, default: str | None = None,
+                  catch: tuple[type[Exception], ...] = (ValueError,)) -> Iterator[None]:
+    """Re-raise a library error (of the types ``catch``) as the InputError :func:`option_error`
+    makes of it, naming its option; an InputError passes as it is.
+
+    Parameters
+    ----------
+    options, default
+        As for :func:`option_error`.
+    catch : tuple of exception types
+        The errors to name (ValueError and its kin by default).
+
+    Yields
+    ------
+    None
+    """
+    try:
+        yield
+    except InputError:
+        raise
+    except catch as exc:
+        raise option_error(exc, options=options, default=default) from None
 
 
 #: The command-line option of each library parameter an error names
