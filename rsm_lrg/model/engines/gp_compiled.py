@@ -389,16 +389,23 @@ def cross(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) -> np.
     -------
     (m, n) ndarray
     """
-    fn = kernels()["cross_rows"]
-    m, n = x1.shape[0], x2.shape[0]
-    out = np.empty((m, n))
+    return _tiled_rows("cross_rows", x1, x2, theta, kernel, np.empty((x1.shape[0], x2.shape[0])))
+
+
+def _tiled_rows(name: str, x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str, out: np.ndarray,
+                *inputs: np.ndarray) -> np.ndarray:
+    """Run the compiled tile loop ``name`` (``fn(x1', x2', scales, code, *inputs, out, start, stop,
+    scratch...)``) over the rows of ``x1`` against every row of ``x2``, in nearly equal blocks of
+    rows on :func:`threads` threads, each thread with its own scratch; ``out`` filled and returned."""
+    fn = kernels()[name]
+    m = x1.shape[0]
     x1t, x2t = np.ascontiguousarray(x1.T, dtype=float), np.ascontiguousarray(x2.T, dtype=float)
     c, code = scales(theta, kernel), KERNEL_CODES[kernel]
-    count = threads(m * n)
+    count = threads(m * x2.shape[0])
 
     def task(start: int, stop: int) -> None:
         buf, bufi = _scratch()
-        fn(x1t, x2t, c, code, out, start, stop, buf, bufi)
+        fn(x1t, x2t, c, code, *inputs, out, start, stop, buf, bufi)
 
     run_split(task, _row_blocks(m, count), count)
     return out
@@ -459,19 +466,8 @@ def mean(points: np.ndarray, runs: np.ndarray, theta: np.ndarray, kernel: str, w
     -------
     (m,) ndarray
     """
-    fn = kernels()["mean_rows"]
-    m, n = points.shape[0], runs.shape[0]
-    out = np.empty(m)
-    x1t, x2t = np.ascontiguousarray(points.T, dtype=float), np.ascontiguousarray(runs.T, dtype=float)
-    c, code, w = scales(theta, kernel), KERNEL_CODES[kernel], np.ascontiguousarray(weights, dtype=float)
-    count = threads(m * n)
-
-    def task(start: int, stop: int) -> None:
-        buf, bufi = _scratch()
-        fn(x1t, x2t, c, code, w, out, start, stop, buf, bufi)
-
-    run_split(task, _row_blocks(m, count), count)
-    return out
+    return _tiled_rows("mean_rows", points, runs, theta, kernel, np.empty(points.shape[0]),
+                       np.ascontiguousarray(weights, dtype=float))
 
 
 def gradient_sums(x: np.ndarray, theta: np.ndarray, kernel: str, R: np.ndarray, minv: np.ndarray, w: np.ndarray,
