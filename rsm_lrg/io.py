@@ -547,7 +547,7 @@ def _float_column(data, name: str):
         if finite.all():
             # floats already: the column itself under pandas 3, which copies on write (the caller
             # cannot change ``data`` through it, and the copy would cost more than the check)
-            return col if col.dtype == np.float64 and pd.__version__ >= "3" else col.astype(float)
+            return col if col.dtype == np.float64 and int(pd.__version__.split(".")[0]) >= 3 else col.astype(float)
         i = int(np.flatnonzero(~finite)[0])
         raise cell_error(name, i + 1, col.iloc[i])
     check_number_kinds(col, name)

@@ -277,9 +277,8 @@ def format_summary(result) -> str:
         out.extend(_SECTIONS[section](result, sd))  # or the Kenward-Roger tests and variance components
     out.append("Coefficients in terms of coded factors (95 % CI)")
     rows = []
-    coded_all = _coefficient_columns(result)["coded"].tolist()
-    cscale = max((abs(v) for v in coded_all if v == v), default=math.nan)  # as pandas' max: NaN left out
     co = _coefficient_columns(result)
+    cscale = max((abs(v) for v in co["coded"].tolist() if v == v), default=math.nan)  # as pandas' max: NaN left out
     for name, b, se, lo, hi, vif, p in zip(co["term"], *(co[c].tolist() for c in
                                                          ("coded", "std_error", "ci_low", "ci_high", "vif", "p"))):
         rows.append([name, format_g(_clean(b, cscale)), format_g(se), format_g(lo), format_g(hi),
