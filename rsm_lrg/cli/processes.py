@@ -132,7 +132,8 @@ def handle_signals(restore: bool = True) -> Iterator[None]:
     try:
         yield
     finally:
-        sys.unraisablehook = hook
+        if restore:  # the program's own run keeps it to its exit, as it keeps the handlers
+            sys.unraisablehook = hook
         for sig, handler in old.items() if restore else ():
             try:
                 signal.signal(sig, handler)
@@ -141,13 +142,14 @@ def handle_signals(restore: bool = True) -> Iterator[None]:
 
 
 def _quiet_signal_exceptions(hook: Any) -> Any:
-    """An ``unraisablehook`` that says nothing of the exception a signal raised where Python
-    cannot raise it (an at-fork callback, a finalizer: "Exception ignored in ..."): the signal
-    is recorded (:func:`pending_signal`), its workers are gone and ``main`` reports it in its
-    one line. Anything else goes to ``hook``."""
+    """An ``unraisablehook`` that says nothing once a signal has come: the exception its handler
+    raised where Python cannot raise it (an at-fork callback, a finalizer), or one that the cut
+    left behind (a ``multiprocessing`` finalizer interrupted half-built, whose call then fails
+    with ``AttributeError: '_key'``), is an echo of the signal, which ``main`` reports in its
+    one line, its workers gone. Without a signal, anything goes to ``hook``."""
 
     def quiet(unraisable: Any) -> None:
-        if isinstance(unraisable.exc_value, (Terminated, KeyboardInterrupt)) and _PENDING:
+        if _PENDING:
             return
         hook(unraisable)
 
