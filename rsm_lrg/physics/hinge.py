@@ -475,18 +475,17 @@ LEAF_TABLE_MAX_RATIO = 200.0
 
 def leaf_force_table(step: float = 0.01) -> tuple[np.ndarray, float]:
     """The force law ψ(r) = r·φ(r) of a leaf with held ends (F = K·y·ψ(δ/y)) tabulated for the
-    stage integrator: coefficients of a C² cubic spline, shape (n, 4), on r_i = i·``step`` up to
+    stage integrator: coefficients of a C² cubic spline (not-a-knot ends, :mod:`.spline`; SciPy's
+    ``CubicSpline`` to about 1e-15), shape (n, 4), on r_i = i·``step`` up to
     :data:`LEAF_TABLE_MAX_RATIO`: on [r_i, r_i + step] ``ψ = c0 + c1·t + c2·t² + c3·t³``,
     t = r − r_i. ψ is odd in r (the spline is built on the mirrored points, so its end condition
     at 0 is the symmetric one); its error against :func:`leaf_stiffening` is below 1e-9 relative
     (``tests/physics/test_leaf_beam_column.py``)."""
-    from scipy.interpolate import CubicSpline
+    from .spline import not_a_knot_coefficients
 
     r = np.arange(0.0, LEAF_TABLE_MAX_RATIO + 0.5 * step, step)
-    r[1:] = r[1:]
     psi = r * np.atleast_1d(leaf_stiffening(r))
     x = np.concatenate([-r[:0:-1], r])
     yv = np.concatenate([-psi[:0:-1], psi])
-    cs = CubicSpline(x, yv)
-    c = cs.c[:, len(r) - 1:]
+    c = not_a_knot_coefficients(x, yv)[:, len(r) - 1:]
     return np.ascontiguousarray(c[::-1].T), float(step)

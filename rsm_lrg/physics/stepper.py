@@ -10,7 +10,7 @@ put while stuck until ``|F_h + C_n·ẋ_ws| > µ_s·F_z`` (Eq. 2). The stage's p
 its kinks into segments on which the stage moves on a polynomial (constant acceleration for
 the trapezoid, constant jerk for S-curve strokes), so the right-hand side is smooth inside a
 segment. Each segment is crossed in equal steps of the explicit Runge-Kutta method of order 8
-of Dormand & Prince (DOP853's tableau, taken from :class:`scipy.integrate.DOP853`) with
+of Dormand & Prince (DOP853's tableau, :mod:`.dop853`, SciPy's numbers) with
 ``ω·Δt ≤ h``, ω the hinge's tangent angular frequency at a bound of the deflection; a stop
 (ẋ_rf reaching 0) is located inside a step by the Illinois variant of regula falsi on the
 Runge-Kutta step's own length, and a breakaway (``|F_h + C_n·ẋ_ws| = µ_s·F_z``, the frame at
@@ -405,12 +405,13 @@ def _kernel() -> Any:
     """Compile (once per process; numba caches the machine code on disk) and return the
     equal-step reference kernel."""
     import numba
-    from scipy.integrate import DOP853
+
+    from . import dop853
 
     g = globals()
-    g["_FK_A"] = np.ascontiguousarray(DOP853.A[:12, :12], dtype=float)
-    g["_FK_B"] = np.ascontiguousarray(DOP853.B[:12], dtype=float)
-    g["_FK_C"] = np.ascontiguousarray(DOP853.C[:12], dtype=float)
+    g["_FK_A"] = np.ascontiguousarray(dop853.A[:12, :12], dtype=float)
+    g["_FK_B"] = np.ascontiguousarray(dop853.B[:12], dtype=float)
+    g["_FK_C"] = np.ascontiguousarray(dop853.C[:12], dtype=float)
     jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
     for name in _FK_NAMES:  # callees first (the shared helpers once, by whichever kernel comes first)
         if not hasattr(g[name], "py_func"):
@@ -424,7 +425,7 @@ def _kernel() -> Any:
 # pickles with a per-process id, so a closure calling other compiled closures (as the
 # equal-step kernel of :func:`_kernel` does) is compiled anew in every process instead of
 # loaded from the cache. The tableau (DOP853's 12 stages, the FSAL stage and the 3 stages of its
-# dense output, Hairer et al. II.10, from :class:`scipy.integrate.DOP853`) is filled in before
+# dense output, Hairer et al. II.10, from :mod:`.dop853`) is filled in before
 # the first compilation.
 _AK_A = np.zeros((16, 16))
 _AK_B = np.zeros(12)
@@ -803,19 +804,20 @@ _AK_NAMES = ("_settled", "_falsi_point", "_illinois", "_put_row", "_ak_hinge_f",
 def _adaptive_kernel() -> Any:
     """Compile (once per process; numba caches the machine code on disk) and return the kernel."""
     import numba
-    from scipy.integrate import DOP853
+
+    from . import dop853
 
     g = globals()
     A = np.zeros((16, 16))
-    A[:12, :12] = DOP853.A
-    A[12, :12] = DOP853.B
-    A[13:, :] = DOP853.A_EXTRA
+    A[:12, :12] = dop853.A[:12, :12]
+    A[12, :12] = dop853.B
+    A[13:, :] = dop853.A[13:]
     g["_AK_A"] = np.ascontiguousarray(A)
-    g["_AK_B"] = np.ascontiguousarray(DOP853.B, dtype=float)
-    g["_AK_C"] = np.ascontiguousarray(np.concatenate([DOP853.C, [1.0], DOP853.C_EXTRA]), dtype=float)
-    g["_AK_E3"] = np.ascontiguousarray(DOP853.E3, dtype=float)
-    g["_AK_E5"] = np.ascontiguousarray(DOP853.E5, dtype=float)
-    g["_AK_D"] = np.ascontiguousarray(DOP853.D, dtype=float)
+    g["_AK_B"] = np.ascontiguousarray(dop853.B, dtype=float)
+    g["_AK_C"] = np.ascontiguousarray(np.concatenate([dop853.C[:12], [1.0], dop853.C[13:]]), dtype=float)
+    g["_AK_E3"] = np.ascontiguousarray(dop853.E3, dtype=float)
+    g["_AK_E5"] = np.ascontiguousarray(dop853.E5, dtype=float)
+    g["_AK_D"] = np.ascontiguousarray(dop853.D, dtype=float)
     jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
     for name in _AK_NAMES:  # callees first (the shared helpers once, by whichever kernel comes first)
         if not hasattr(g[name], "py_func"):
