@@ -40,6 +40,17 @@ version manager's shim on ``PATH`` (pyenv's adds a bash start-up of its own).
     python benchmarks/bench_cli.py --floor       # also the bare imports of numpy, pandas, scipy
     python benchmarks/bench_cli.py --in-process  # also fit + summary() in one process, against R's
     python benchmarks/bench_cli.py --root /tmp/old-checkout   # `python -m rsm_lrg` of another commit
+    python benchmarks/bench_cli.py --simulate    # simulate's start-up on a 1-row design instead
+    python benchmarks/bench_cli.py --simulate --root /tmp/old-checkout   # ... against another commit's
+
+``--simulate`` (issue 37, item 6: "``simulate``'s start-up a fraction of a second") times, alternately
+and instead of the fit, ``python -m rsm_lrg simulate ROW.csv --seed 1 -o OUT.csv`` on a design of one
+row (Table 4's first run: 0.3 mm, 40 mm, 0.4 m/s, 30 m/s²), with ``--root`` the same command from
+that checkout (the previous implementation, in the same rounds), and the anchors ``python -c
+"import numpy"``, ``python -c "import numpy, pandas"`` and the stage integrator's numba start-up
+alone (importing numba and loading one cached kernel, what a simulated row needs today). It
+prints the medians, the ratio simulate / ``import numpy`` (median of per-round ratios) and, with
+``--root``, new / old.
 """
 
 from __future__ import annotations
@@ -93,17 +104,74 @@ FLOOR = {
 ENV = dict(os.environ)
 
 
-def run_once(cmd: list[str]) -> tuple[float, float]:
-    """(wall, cpu) seconds of one child process (its whole tree)."""
+def run_once(cmd: list[str], cwd: Path | None = None) -> tuple[float, float]:
+    """(wall, cpu) seconds of one child process (its whole tree), run in ``cwd`` (default ROOT)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    proc = subprocess.run(cmd, cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    proc = subprocess.run(cmd, cwd=cwd or ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode != 0:
         raise SystemExit(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.decode()[-500:]}")
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     return wall, cpu
+
+
+#: ``--simulate``'s anchors: the interpreter with numpy (the floor of any command), with pandas too,
+#: and what numba costs before a first simulated row (its import and one kernel from its disk cache).
+SIMULATE_ANCHORS = {
+    "python -c 'import numpy'": "import numpy",
+    "python -c 'import numpy, pandas'": "import numpy, pandas",
+    "numba + one cached kernel": "from rsm_lrg.physics import leafcore; leafcore.leaf_parts(1.0)",
+}
+
+
+def simulate_startup(rounds: int, old_root: Path | None) -> dict:
+    """``--simulate``: CPU and wall seconds of ``simulate`` on a 1-row design (this checkout and,
+    with ``old_root``, that one's) against the anchors, alternating, medians and ratios."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        design = Path(tmp) / "row.csv"
+        head, first = (ROOT / DATA).read_text().splitlines()[:2]
+        cols = head.split(",")
+        keep = [cols.index(c) for c in ("thickness_m", "stroke_m", "velocity_m_s", "acceleration_m_s2")]
+        design.write_text(",".join(cols[i] for i in keep) + "\n"
+                          + ",".join(first.split(",")[i] for i in keep) + "\n")
+        sim = [sys.executable, "-m", "rsm_lrg", "simulate", str(design), "--seed", "1", "-o",
+               str(Path(tmp) / "runs.csv"), "--force"]
+        cmds: dict[str, tuple[list[str], Path]] = {"simulate, 1 row": (sim, ROOT)}
+        if old_root is not None:
+            cmds["simulate, 1 row (--root)"] = (sim, old_root)
+        for name, code in SIMULATE_ANCHORS.items():
+            cmds[name] = ([sys.executable, "-c", code], ROOT)
+        for cmd, cwd in cmds.values():  # warm-up: page cache, .pyc files, numba's cache
+            run_once(cmd, cwd)
+        times: dict[str, dict[str, list[float]]] = {k: {"wall": [], "cpu": []} for k in cmds}
+        for _ in range(rounds):
+            for name, (cmd, cwd) in cmds.items():
+                w, c = run_once(cmd, cwd)
+                times[name]["wall"].append(w)
+                times[name]["cpu"].append(c)
+    med = {k: {m: statistics.median(v[m]) for m in ("wall", "cpu")} for k, v in times.items()}
+    print(f"simulate start-up: {rounds} rounds, {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}; "
+          f"medians [s]" + (f"; --root {old_root}" if old_root else ""))
+    print(f"{'command':34s} {'wall':>8s} {'cpu':>8s}")
+    for k, v in med.items():
+        print(f"{k:34s} {v['wall']:8.3f} {v['cpu']:8.3f}")
+    out: dict = {"rounds": rounds, "median_s": med}
+    anchor = "python -c 'import numpy'"
+    for k in ("simulate, 1 row", "simulate, 1 row (--root)"):
+        if k in times:
+            ratio = statistics.median(a / b for a, b in zip(times[k]["cpu"], times[anchor]["cpu"]))
+            out[f"ratio {k} / import numpy"] = ratio
+            print(f"{k} / import numpy: CPU {ratio:.2f}x (median of per-round ratios)")
+    if old_root is not None:
+        ratio = statistics.median(a / b for a, b in zip(times["simulate, 1 row"]["cpu"],
+                                                        times["simulate, 1 row (--root)"]["cpu"]))
+        out["ratio new / old"] = ratio
+        print(f"simulate, 1 row, this checkout / --root: CPU {ratio:.2f}x (median of per-round ratios)")
+    return out
 
 
 def in_process(rounds: int, fits: int = 50) -> dict:
@@ -156,12 +224,20 @@ def main() -> int:
                     help="also time fit + summary() inside one process against R's rsm() + summary() in one R process")
     ap.add_argument("--floor", action="store_true",
                     help="also time bare imports of numpy, pandas and scipy (the floor under any fit)")
+    ap.add_argument("--simulate", action="store_true",
+                    help="instead, time simulate's start-up on a 1-row design against `import numpy` "
+                         "(and, with --root, against that checkout's simulate)")
     args = ap.parse_args()
+    if not args.no_bytecode:
+        ENV.pop("PYTHONDONTWRITEBYTECODE", None)
+    if args.simulate:
+        out = simulate_startup(args.repeat, Path(args.root).resolve() if args.root else None)
+        if args.json:
+            Path(args.json).write_text(json.dumps(out, indent=2) + "\n")
+        return 0
     global ROOT
     if args.root:
         ROOT = Path(args.root).resolve()
-    if not args.no_bytecode:
-        ENV.pop("PYTHONDONTWRITEBYTECODE", None)
     cmds = commands(other_root=bool(args.root))
     if args.floor:
         cmds |= {k: [sys.executable, "-c", code] for k, code in FLOOR.items()}
