@@ -133,7 +133,9 @@ _KERNEL_NAMES = ("_lc_poly", "_lc_parts", "_lc_ratio", "_lc_psi", "_lc_solve", "
 
 @lru_cache(maxsize=1)
 def _kernels() -> Any:
-    import numba
+    from .jit import import_numba
+
+    numba = import_numba()
 
     jit = numba.njit(cache=True, error_model="numpy")
     g = globals()

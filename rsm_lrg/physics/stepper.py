@@ -404,9 +404,10 @@ _FK_NAMES = ("_settled", "_falsi_point", "_illinois", "_put_row", "_fk_hinge_f",
 def _kernel() -> Any:
     """Compile (once per process; numba caches the machine code on disk) and return the
     equal-step reference kernel."""
-    import numba
-
     from . import dop853
+    from .jit import import_numba
+
+    numba = import_numba()
 
     g = globals()
     g["_FK_A"] = np.ascontiguousarray(dop853.A[:12, :12], dtype=float)
@@ -803,9 +804,10 @@ _AK_NAMES = ("_settled", "_falsi_point", "_illinois", "_put_row", "_ak_hinge_f",
 @lru_cache(maxsize=1)
 def _adaptive_kernel() -> Any:
     """Compile (once per process; numba caches the machine code on disk) and return the kernel."""
-    import numba
-
     from . import dop853
+    from .jit import import_numba
+
+    numba = import_numba()
 
     g = globals()
     A = np.zeros((16, 16))

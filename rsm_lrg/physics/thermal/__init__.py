@@ -8,13 +8,37 @@
 - :mod:`.summary`   ``thermal_summary``: the numbers the paper reports (Section 3.1, Fig. 5)
 """
 
-from .fv import FVSystem, SteadyResult, TransientResult, time_to_fraction
+from typing import TYPE_CHECKING, Any
+
 from .geometry import ASSUMPTIONS, GuideGeometry, VoxelModel, voxelise
 from .network import ThermalNetwork, fin_conductance, network_response, network_rise
-from .summary import PAPER_STEADY_RISE_K, ThermalSummary, thermal_summary
+
+if TYPE_CHECKING:
+    from .fv import FVSystem, SteadyResult, TransientResult, time_to_fraction
+    from .summary import PAPER_STEADY_RISE_K, ThermalSummary, thermal_summary
+
+#: Names of the finite-volume solver and the summary, imported on first use: they need
+#: ``scipy.sparse`` (about 0.2 s of CPU), which the surrogate's network (``rsm-lrg simulate``)
+#: does not.
+_LAZY = {"FVSystem": ".fv", "SteadyResult": ".fv", "TransientResult": ".fv", "time_to_fraction": ".fv",
+         "PAPER_STEADY_RISE_K": ".summary", "ThermalSummary": ".summary", "thermal_summary": ".summary"}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        from importlib import import_module
+
+        value = getattr(import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = [
     "ASSUMPTIONS", "FVSystem", "GuideGeometry", "PAPER_STEADY_RISE_K", "SteadyResult",
     "ThermalNetwork", "ThermalSummary", "TransientResult", "VoxelModel", "fin_conductance",
     "network_response", "network_rise", "thermal_summary", "time_to_fraction", "voxelise",
 ]
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

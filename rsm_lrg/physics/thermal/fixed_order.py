@@ -474,7 +474,9 @@ _FO_NAMES = ("_fo_solve", "_fo_hypot", "_fo_tridiag", "_fo_ql", "_fo_eigen", "_f
 @lru_cache(maxsize=1)
 def _kernels() -> dict[str, Any]:
     """Compile the kernels (once per process; numba caches the machine code on disk)."""
-    import numba
+    from ..jit import import_numba
+
+    numba = import_numba()
 
     g = globals()
     jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
