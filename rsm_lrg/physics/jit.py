@@ -12,6 +12,19 @@ check finds it and the package is imported only if something asks for it. Nothin
 a compiled ``np.dot`` still gets SciPy's BLAS from that module, and a later ``import
 scipy.linalg`` imports the package as usual (``tests/physics/test_jit.py``). Where SciPy is
 missing, laid out differently or fails to load that way, numba is imported as it always was.
+
+**A few rows without numba.** numba's start-up (its import and its first kernel from the disk
+cache, about 0.9 s of CPU) is most of a one-row ``simulate``. Inside :func:`few_rows` with at
+most :data:`INTERPRETED_MAX_ROWS` rows, and while numba is not imported, the kernels run as plain
+Python (:func:`run_kernel`: the same functions numba compiles, called as they are) and the leaf's
+root solves as NumPy (:func:`.leafcore.parameter_for_load`'s vectorised twin, the table of
+40,001 of them in about 0.09 s). Their results are the compiled ones bit for bit
+(``tests/physics/test_jit.py`` compares every column of ``simulate``): numba compiles with
+``fastmath`` off, so every ``+``, ``*``, ``/`` and ``sqrt`` is one IEEE-754 operation in both,
+``tanh``, ``cosh``, ``expm1`` and ``pow`` are the C library's in both, and the kernels write
+``x * x`` where numba would turn ``x ** 2`` into that product. Python raises where compiled code
+returns inf or nan (a division by zero): the kernel's arrays are then put back and the compiled
+kernel runs. A row costs 0.3 s or more this way, so a design of more than one row runs compiled.
 """
 
 from __future__ import annotations
@@ -20,9 +33,23 @@ import importlib.machinery
 import importlib.util
 import os
 import sys
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from types import ModuleType
+from typing import Any
 
-__all__ = ["import_numba"]
+import numpy as np
+
+__all__ = ["import_numba", "few_rows", "interpreted", "run_kernel", "INTERPRETED_MAX_ROWS"]
+
+#: Rows of a batch up to which :func:`few_rows` runs the kernels without numba (when numba is not
+#: imported yet): interpreted, a row's stage dynamics and rig network cost about 0.3 s of CPU for
+#: Table 4's first row and 0.63 s a row on average over the 107 rows of the bit-for-bit check
+#: (whose unsettled rows run 40 cycles), against about 0.9 s for numba's start-up.
+INTERPRETED_MAX_ROWS = 1
+
+_INTERPRETED: ContextVar[bool] = ContextVar("rsm_lrg_physics_interpreted", default=False)
 
 _CYTHON_BLAS = "scipy.linalg.cython_blas"
 
@@ -61,3 +88,66 @@ def import_numba() -> ModuleType:
     import numba
 
     return numba
+
+
+@contextmanager
+def few_rows(rows: int) -> Iterator[None]:
+    """Inside, the kernels run without numba when ``rows`` is at most
+    :data:`INTERPRETED_MAX_ROWS` and numba is not imported (the same numbers; see the module
+    docstring).
+
+    Parameters
+    ----------
+    rows : int
+        Rows of the batch about to be evaluated.
+
+    Returns
+    -------
+    context manager
+        Sets the choice for the calls made inside it (this thread or task only).
+    """
+    token = _INTERPRETED.set(rows <= INTERPRETED_MAX_ROWS and "numba" not in sys.modules)
+    try:
+        yield
+    finally:
+        _INTERPRETED.reset(token)
+
+
+def interpreted() -> bool:
+    """Whether a kernel called now runs without numba (inside :func:`few_rows`, numba not
+    imported).
+
+    Returns
+    -------
+    bool
+    """
+    return _INTERPRETED.get() and "numba" not in sys.modules
+
+
+def run_kernel(python: Callable[..., Any], compiled: Callable[[], Callable[..., Any]], *args: Any) -> Any:
+    """Call a kernel: ``python(*args)`` when :func:`interpreted`, else ``compiled()(*args)``.
+
+    Parameters
+    ----------
+    python : callable
+        The kernel's Python function (what numba compiles).
+    compiled : callable
+        Returns the compiled kernel (compiling or loading it on the first call).
+    *args
+        The kernel's arguments; arrays it writes are put back as they were if the Python call
+        raises (where compiled code would return inf or nan), before the compiled kernel runs.
+
+    Returns
+    -------
+    object
+        What the kernel returns.
+    """
+    if interpreted():
+        saved = [(a, a.copy()) for a in args if isinstance(a, np.ndarray)]
+        try:
+            with np.errstate(all="ignore"):
+                return python(*args)
+        except (ArithmeticError, ValueError, IndexError):
+            for a, copy in saved:
+                np.copyto(a, copy)
+    return compiled()(*args)

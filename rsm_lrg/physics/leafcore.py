@@ -144,21 +144,137 @@ def _kernels() -> Any:
     return g["_lc_solve"], g["_lc_parts_arr"]
 
 
+# The same computations in NumPy, for a few rows without numba (:mod:`.jit`): every element takes
+# the compiled kernel's operations in its order (``u ** 3`` is numba's ``u * (u * u)``, ``u ** 4``
+# its ``(u * u) * (u * u)``; ``tanh`` and ``cosh`` the C library's, element by element, as in the
+# kernel: NumPy's own may differ in the last bit), so the results are the compiled ones bit for bit.
+_TANH = np.frompyfunc(math.tanh, 1, 1)
+_COSH = np.frompyfunc(math.cosh, 1, 1)
+
+
+def _np_poly(c: tuple[float, ...], x: np.ndarray) -> np.ndarray:
+    out = np.full(x.shape, c[-1])
+    for i in range(len(c) - 2, -1, -1):
+        out = out * x + c[i]
+    return out
+
+
+def _np_parts(u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    s, d, t = np.empty(u.shape), np.empty(u.shape), np.empty(u.shape)
+    small = u < 0.2
+    us = u[small]
+    u2 = us * us
+    s[small], d[small], t[small] = _np_poly(_S, u2), _np_poly(_D, u2), _np_poly(_T, u2)
+    big = ~small
+    ub = u[big]
+    th = _TANH(ub).astype(float)
+    ch = _COSH(np.minimum(ub, 350.0)).astype(float)
+    u2 = ub * ub
+    s[big] = 3.0 * (ub - th) / (ub * u2)
+    d[big] = (1.0 + 0.5 / (ch * ch) - 1.5 * th / ub) / (u2 * u2)
+    t[big] = th / ub
+    return s, d, t
+
+
+def _np_value(u: np.ndarray, which: int) -> np.ndarray:
+    s, dq, _ = _np_parts(u)
+    root = np.sqrt(2.0 / (27.0 * dq))
+    return u * s * root if which == 0 else u * root
+
+
+def _np_solve(target: np.ndarray, which: int) -> np.ndarray:
+    # _lc_solve on every element at once: the elements still searching are carried along
+    t = target
+    n = t.shape[0]
+    out = np.empty(n)
+    lo = np.zeros(n)
+    hi = 1.5 * t + 1e-300
+    grow = np.arange(n)
+    for _ in range(200):
+        if grow.size == 0:
+            break
+        grow = grow[_np_value(hi[grow], which) < t[grow]]
+        hi[grow] = 2.0 * hi[grow] + 1.0
+    zero = np.flatnonzero(~(t > 0.0))
+    if zero.size:  # bisection
+        lz, hz = lo[zero], hi[zero]
+        for _ in range(90):
+            mid = 0.5 * (lz + hz)
+            below = _np_value(mid, which) < t[zero]
+            lz, hz = np.where(below, mid, lz), np.where(below, hz, mid)
+        out[zero] = 0.5 * (lz + hz)
+    idx = np.flatnonzero(t > 0.0)
+    tt = t[idx]
+    lo, hi = lo[idx], hi[idx]
+    flo = -tt
+    fhi = _np_value(hi, which) - tt
+    side = np.zeros(idx.size, dtype=np.int64)
+    res = 0.5 * (lo + hi)
+    live = np.arange(idx.size)
+    for _ in range(200):  # Illinois regula falsi
+        if live.size == 0:
+            break
+        a, b, fa, fb = lo[live], hi[live], flo[live], fhi[live]
+        hit = fb == 0.0
+        res[live[hit]] = b[hit]
+        keep = ~hit
+        live, a, b, fa, fb = live[keep], a[keep], b[keep], fa[keep], fb[keep]
+        mid = (a * fb - b * fa) / (fb - fa)
+        outside = ~((mid > a) & (mid < b))
+        mid = np.where(outside, 0.5 * (a + b), mid)
+        stuck = outside & ~((mid > a) & (mid < b))
+        res[live[stuck]] = mid[stuck]
+        keep = ~stuck
+        live, a, b, fa, fb, mid = live[keep], a[keep], b[keep], fa[keep], fb[keep], mid[keep]
+        fm = _np_value(mid, which) - tt[live]
+        hit = fm == 0.0
+        res[live[hit]] = mid[hit]
+        keep = ~hit
+        live, a, b, fa, fb, mid, fm = live[keep], a[keep], b[keep], fa[keep], fb[keep], mid[keep], fm[keep]
+        sd = side[live]
+        neg = fm < 0.0
+        fb = np.where(neg & (sd == -1), fb * 0.5, fb)
+        fa = np.where(~neg & (sd == 1), fa * 0.5, fa)
+        a, fa = np.where(neg, mid, a), np.where(neg, fm, fa)
+        b, fb = np.where(neg, b, mid), np.where(neg, fb, fm)
+        side[live] = np.where(neg, -1, 1)
+        lo[live], hi[live], flo[live], fhi[live] = a, b, fa, fb
+        res[live] = 0.5 * (a + b)
+        live = live[~(b - a <= 4e-16 * b)]
+    out[idx] = res
+    return out
+
+
+def _solve(a: np.ndarray, which: int) -> np.ndarray:
+    from .jit import interpreted
+
+    flat = np.ascontiguousarray(a.ravel())
+    if interpreted():
+        with np.errstate(all="ignore"):
+            return _np_solve(flat, which).reshape(a.shape)
+    return _kernels()[0](flat, which).reshape(a.shape)
+
+
 def leaf_parts(u: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """S(u), D(u)/u⁴ and tanh(u)/u for u ≥ 0 (arrays of u's shape)."""
+    from .jit import interpreted
+
     a = np.asarray(u, dtype=float)
-    s, d, t = _kernels()[1](np.ascontiguousarray(a.ravel()))
+    flat = np.ascontiguousarray(a.ravel())
+    if interpreted():
+        with np.errstate(all="ignore"):
+            s, d, t = _np_parts(flat)
+    else:
+        s, d, t = _kernels()[1](flat)
     return s.reshape(a.shape), d.reshape(a.shape), t.reshape(a.shape)
 
 
 def tension_parameter(ratio: Any) -> np.ndarray:
     """u ≥ 0 with δ/y = ``ratio`` (bracketed Illinois regula falsi to machine precision, element by
     element)."""
-    a = np.abs(np.asarray(ratio, dtype=float))
-    return _kernels()[0](np.ascontiguousarray(a.ravel()), 0).reshape(a.shape)
+    return _solve(np.abs(np.asarray(ratio, dtype=float)), 0)
 
 
 def parameter_for_load(q: Any) -> np.ndarray:
     """u ≥ 0 with (δ/y)·φ = ``q`` = F/(K·y) (bracketed Illinois regula falsi, element by element)."""
-    a = np.abs(np.asarray(q, dtype=float))
-    return _kernels()[0](np.ascontiguousarray(a.ravel()), 1).reshape(a.shape)
+    return _solve(np.abs(np.asarray(q, dtype=float)), 1)

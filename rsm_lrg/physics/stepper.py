@@ -73,6 +73,7 @@ import numpy as np
 
 from . import motion
 from .hinge import LEAF_TABLE_MAX_RATIO, leaf_force_table
+from .jit import run_kernel
 
 __all__ = ["integrate_rows", "stage_segments", "leaf_psi", "leaf_dpsi", "MAX_SEGMENTS"]
 
@@ -227,8 +228,9 @@ def _fk_herm_max(z0: float, d0: float, z1: float, d1: float, dt: float) -> float
     for i in range(nr):
         r = roots[i]
         if 0.0 < r < 1.0:
-            h00 = (1.0 + 2.0 * r) * (1.0 - r) ** 2
-            h10 = r * (1.0 - r) ** 2
+            w1 = 1.0 - r
+            h00 = (1.0 + 2.0 * r) * (w1 * w1)  # (1 - r)**2 as numba computes it: the same in Python
+            h10 = r * (w1 * w1)
             h01 = r * r * (3.0 - 2.0 * r)
             h11 = r * r * (r - 1.0)
             p = h00 * z0 + h10 * dt * d0 + h01 * z1 + h11 * dt * d1
@@ -426,14 +428,23 @@ def _kernel() -> Any:
 # pickles with a per-process id, so a closure calling other compiled closures (as the
 # equal-step kernel of :func:`_kernel` does) is compiled anew in every process instead of
 # loaded from the cache. The tableau (DOP853's 12 stages, the FSAL stage and the 3 stages of its
-# dense output, Hairer et al. II.10, from :mod:`.dop853`) is filled in before
-# the first compilation.
-_AK_A = np.zeros((16, 16))
-_AK_B = np.zeros(12)
-_AK_C = np.zeros(16)
-_AK_E3 = np.zeros(13)
-_AK_E5 = np.zeros(13)
-_AK_D = np.zeros((4, 16))
+# dense output, Hairer et al. II.10, from :mod:`.dop853`) is filled in at
+# import (below).
+def _extended_tableau() -> tuple[np.ndarray, ...]:
+    from . import dop853
+
+    A = np.zeros((16, 16))
+    A[:12, :12] = dop853.A[:12, :12]
+    A[12, :12] = dop853.B
+    A[13:, :] = dop853.A[13:]
+    return (np.ascontiguousarray(A), np.ascontiguousarray(dop853.B, dtype=float),
+            np.ascontiguousarray(np.concatenate([dop853.C[:12], [1.0], dop853.C[13:]]), dtype=float),
+            np.ascontiguousarray(dop853.E3, dtype=float), np.ascontiguousarray(dop853.E5, dtype=float),
+            np.ascontiguousarray(dop853.D, dtype=float))
+
+
+# filled here (not at the first compilation): the kernel also runs uncompiled for a few rows (.jit)
+_AK_A, _AK_B, _AK_C, _AK_E3, _AK_E5, _AK_D = _extended_tableau()
 
 
 def _ak_hinge_f(z: float, k: float, y: float, tab: np.ndarray, inv_step: float, step: float, rmax: float) -> float:
@@ -472,8 +483,9 @@ def _ak_herm(z0: float, d0: float, z1: float, d1: float, dt: float) -> tuple[flo
     for q in range(2):
         r = r0 if q == 0 else r1
         if 0.0 < r < 1.0:
-            h00 = (1.0 + 2.0 * r) * (1.0 - r) ** 2
-            h10 = r * (1.0 - r) ** 2
+            w1 = 1.0 - r
+            h00 = (1.0 + 2.0 * r) * (w1 * w1)  # (1 - r)**2 as numba computes it: the same in Python
+            h10 = r * (w1 * w1)
             h01 = r * r * (3.0 - 2.0 * r)
             h11 = r * r * (r - 1.0)
             p = h00 * z0 + h10 * dt * d0 + h01 * z1 + h11 * dt * d1
@@ -661,8 +673,9 @@ def _ak_run(s: np.ndarray, dw: np.ndarray, k: np.ndarray, c: np.ndarray, m: np.n
                         e5b += _AK_E5[i] * K[i, 1]
                         e3a += _AK_E3[i] * K[i, 0]
                         e3b += _AK_E3[i] * K[i, 1]
-                    e5 = (e5a / sc0) ** 2 + (e5b / sc1) ** 2
-                    e3 = (e3a / sc0) ** 2 + (e3b / sc1) ** 2
+                    q5a, q5b, q3a, q3b = e5a / sc0, e5b / sc1, e3a / sc0, e3b / sc1
+                    e5 = q5a * q5a + q5b * q5b  # x**2 as numba computes it (x*x): the same in Python
+                    e3 = q3a * q3a + q3b * q3b
                     err = 0.0
                     if e5 > 0.0 or e3 > 0.0:
                         err = tau * e5 / math.sqrt((e5 + 0.01 * e3) * 2.0)
@@ -804,22 +817,11 @@ _AK_NAMES = ("_settled", "_falsi_point", "_illinois", "_put_row", "_ak_hinge_f",
 @lru_cache(maxsize=1)
 def _adaptive_kernel() -> Any:
     """Compile (once per process; numba caches the machine code on disk) and return the kernel."""
-    from . import dop853
     from .jit import import_numba
 
     numba = import_numba()
 
     g = globals()
-    A = np.zeros((16, 16))
-    A[:12, :12] = dop853.A[:12, :12]
-    A[12, :12] = dop853.B
-    A[13:, :] = dop853.A[13:]
-    g["_AK_A"] = np.ascontiguousarray(A)
-    g["_AK_B"] = np.ascontiguousarray(dop853.B, dtype=float)
-    g["_AK_C"] = np.ascontiguousarray(np.concatenate([dop853.C[:12], [1.0], dop853.C[13:]]), dtype=float)
-    g["_AK_E3"] = np.ascontiguousarray(dop853.E3, dtype=float)
-    g["_AK_E5"] = np.ascontiguousarray(dop853.E5, dtype=float)
-    g["_AK_D"] = np.ascontiguousarray(dop853.D, dtype=float)
     jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
     for name in _AK_NAMES:  # callees first (the shared helpers once, by whichever kernel comes first)
         if not hasattr(g[name], "py_func"):
@@ -852,9 +854,10 @@ def integrate_rows(s: np.ndarray, v: np.ndarray, a: np.ndarray, dw: np.ndarray, 
     tab, step = _table()
     out = np.zeros((len(s), 7))  # 5: steps (adaptive), 6: cycles integrated
     rmax = LEAF_TABLE_MAX_RATIO * (1 - 1e-12)
-    if method == "adaptive":
-        _adaptive_kernel()(s, dw, k, c, m, fs, fk, cv, y, omega, *segs, tab, step, rmax, float(h), 1.0,
-                           float(h_max), float(tol), int(n_cycles), int(max_cycles), float(rtol), out)
+    if method == "adaptive":  # uncompiled for a few rows while numba is not loaded (.jit: the same numbers)
+        run_kernel(getattr(_ak_run, "py_func", _ak_run), _adaptive_kernel, s, dw, k, c, m, fs, fk, cv, y, omega,
+                   *segs, tab, step, rmax, float(h), 1.0, float(h_max), float(tol), int(n_cycles), int(max_cycles),
+                   float(rtol), out)
     elif method == "fixed":
         _kernel()(s, dw, k, c, m, fs, fk, cv, y, omega, *segs, tab, step, rmax, float(h), int(n_cycles),
                   int(max_cycles), float(rtol), out)

@@ -426,6 +426,15 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     dict of numpy arrays: ``tcr_c_per_min``, ``temperature_rise_k``, ``steady_rise_k``,
     ``wear_volume_m3_per_h``, ``sliding_distance_m_per_cycle``, ``heat_w``, ``cycle_time_s``.
     """
+    from ..physics.jit import few_rows
+
+    with few_rows(arrays.n):  # one or two rows: the kernels without numba's start-up (same numbers)
+        return _evaluate_rows(arrays, params=params, calibration=calibration, row_start=row_start, seed=seed,
+                              noise_sd=noise_sd, duration_min=duration_min, memo=memo)
+
+
+def _evaluate_rows(arrays, *, params, calibration, row_start: int, seed: int, noise_sd: float,
+                   duration_min: float, memo: bool) -> dict:
     from ..physics import dynamics, heat, hinge, wear
     from ..physics.params import LRGParams, param_names
     from .noise import reading_noise

@@ -82,6 +82,17 @@ def _fo_hypot(x: float, y: float) -> float:
     big = ax if ax > ay else ay
     if 1e-150 < big < 1e150:
         return math.sqrt(x * x + y * y)
+    return _fo_hypot_far(x, y)
+
+
+def _fo_hypot_far(x: float, y: float) -> float:
+    # uncompiled (a few rows, rsm_lrg.physics.jit): Python's math.hypot is its own algorithm, not
+    # the C library's hypot that the compiled kernel calls, so the kernel is handed back to numba
+    # (run_kernel puts its arrays back and runs it compiled); compiled, this is _fo_hypot_c
+    raise ArithmeticError("hypot outside [1e-150, 1e150]: run compiled")
+
+
+def _fo_hypot_c(x: float, y: float) -> float:
     return math.hypot(x, y)
 
 
@@ -480,9 +491,19 @@ def _kernels() -> dict[str, Any]:
 
     g = globals()
     jit = numba.njit(cache=True, fastmath=False, error_model="numpy")
+    g["_fo_hypot_far"] = jit(_fo_hypot_c)  # the C library's hypot, as math.hypot compiles
     for name in _FO_NAMES:  # callees first
         g[name] = jit(g[name])
     return {name: g[name] for name in _FO_NAMES}
+
+
+def _run(name: str, *args: Any) -> Any:
+    """Call the kernel ``name``: compiled, or as Python for a few rows while numba is not loaded
+    (:mod:`rsm_lrg.physics.jit`; the same numbers)."""
+    from ..jit import run_kernel
+
+    f = globals()[name]
+    return run_kernel(getattr(f, "py_func", f), lambda: _kernels()[name], *args)
 
 
 _MESSAGES = {1: "the QL iteration did not converge", 2: "the network has no path to ambient (all h = 0): "
@@ -513,7 +534,7 @@ def solve_spd(a, b) -> np.ndarray:
     if x.shape != (a.shape[0],):
         raise ValueError(f"solve_spd needs a square matrix and a matching vector, got {a.shape} and {x.shape}")
     x2 = np.ascontiguousarray(x[:, None])
-    if _kernels()["_fo_solve"](a, x2) != 0:
+    if _run("_fo_solve", a, x2) != 0:
         raise ValueError("solve_spd: " + _MESSAGES[3])
     return x2[:, 0].copy()
 
@@ -546,7 +567,7 @@ def _decompose(a: np.ndarray, x: np.ndarray, max_iter: int) -> tuple[np.ndarray,
     n = a.shape[0]
     values = np.empty(n)
     proj = np.empty((n, x.shape[1]))
-    if _kernels()["_fo_eigen"](a.copy(), np.ascontiguousarray(x, dtype=float).copy(), int(max_iter), values,
+    if _run("_fo_eigen", a.copy(), np.ascontiguousarray(x, dtype=float).copy(), int(max_iter), values,
                                proj) != 0:
         raise ValueError("symmetric_eigen: " + _MESSAGES[1])
     return values, proj
@@ -580,7 +601,7 @@ def modal_sum(coef, mu, times_s) -> np.ndarray:
     """
     t = np.asarray(times_s, dtype=float)
     out = np.empty(t.size)
-    _kernels()["_fo_modal_sum"](np.ascontiguousarray(coef, dtype=float), np.ascontiguousarray(mu, dtype=float),
+    _run("_fo_modal_sum", np.ascontiguousarray(coef, dtype=float), np.ascontiguousarray(mu, dtype=float),
                                 np.ascontiguousarray(t.reshape(-1)), out)
     return out.reshape(t.shape)
 
@@ -599,7 +620,7 @@ def network_modes(k_mat, capacity, sources, node: int = 0, *, max_iter: int = 60
     if cap.shape != (n,) or src.ndim != 2 or src.shape[0] != n or not np.all(cap > 0):
         raise ValueError("network_modes needs positive capacities and sources of the matrix's order")
     mu, coef, steady = np.empty(n), np.empty((n, src.shape[1])), np.empty(src.shape[1])
-    status = _kernels()["_fo_network"](k_mat, cap, src, int(node), int(max_iter), mu, coef, steady)
+    status = _run("_fo_network", k_mat, cap, src, int(node), int(max_iter), mu, coef, steady)
     if status:
         raise ValueError(_MESSAGES[status])
     return mu, coef, steady
@@ -642,7 +663,7 @@ def chain_network(k_core, c_core, core_sources) -> ChainNetwork:
     a = np.ascontiguousarray(0.5 * (a + a.T))
     x = np.ascontiguousarray(s[:, None] * src)
     d, e = np.empty(nc), np.empty(nc)
-    _kernels()["_fo_tridiag"](a, x, d, e)
+    _run("_fo_tridiag", a, x, d, e)
     return ChainNetwork(d, e, x, float(s[0]))
 
 
@@ -675,7 +696,7 @@ def chain_rows(core: ChainNetwork, k_diag, k_link, capacity, chain_sources, time
     bad_cap = np.flatnonzero(~np.all(cc > 0, axis=1))
     if bad_cap.size:
         raise RowError(int(bad_cap[0]), "a heat capacity is not positive")
-    _kernels()["_fo_chain_rows"](core.core_d, core.core_e, core.core_x, core.s_hub, kd, ko, cc, src, t,
+    _run("_fo_chain_rows", core.core_d, core.core_e, core.core_x, core.s_hub, kd, ko, cc, src, t,
                                  int(max_iter), resp, steady, status)
     bad = np.flatnonzero(status)
     if bad.size:
@@ -761,7 +782,7 @@ def patched_rows(k_base, c_base, src_base, k_pos, k_add, c_pos, c_add, s_pos, s_
     resp = np.zeros((rows, ns, t.shape[1]))
     steady = np.zeros((rows, ns))
     status = np.zeros(rows, dtype=np.int64)
-    _kernels()["_fo_patched_rows"](kb, cb, sb, kp, ka, cp, ca, sp, sa, nd, t, int(max_iter), resp, steady, status)
+    _run("_fo_patched_rows", kb, cb, sb, kp, ka, cp, ca, sp, sa, nd, t, int(max_iter), resp, steady, status)
     bad = np.flatnonzero(status)
     if bad.size:
         raise RowError(int(bad[0]), _MESSAGES[int(status[bad[0]])])
