@@ -15,7 +15,9 @@ missing, laid out differently or fails to load that way, numba is imported as it
 
 **A few rows without numba.** numba's start-up (its import and its first kernel from the disk
 cache, about 0.9 s of CPU) is most of a one-row ``simulate``. Inside :func:`few_rows` with at
-most :data:`INTERPRETED_MAX_ROWS` rows, and while numba is not imported, the kernels run as plain
+most :data:`INTERPRETED_MAX_ROWS` rows, while numba is not imported and for the first such batch
+of a process only (a process that goes on row after row pays numba's start-up once, not the
+interpreted cost every time), the kernels run as plain
 Python (:func:`run_kernel`: the same functions numba compiles, called as they are) and the leaf's
 root solves as NumPy (:func:`.leafcore.parameter_for_load`'s vectorised twin, the table of
 40,001 of them in about 0.09 s). Their results are the compiled ones bit for bit
@@ -50,6 +52,16 @@ __all__ = ["import_numba", "few_rows", "interpreted", "run_kernel", "INTERPRETED
 INTERPRETED_MAX_ROWS = 1
 
 _INTERPRETED: ContextVar[bool] = ContextVar("rsm_lrg_physics_interpreted", default=False)
+
+#: Set by the first batch run interpreted: the next ones run compiled, so that a process that
+#: evaluates row after row (a loop of one-row ``simulate`` calls) pays numba's start-up once
+#: instead of the interpreted cost on every row.
+_SPENT = False
+
+
+def _spend() -> None:
+    global _SPENT
+    _SPENT = True
 
 _CYTHON_BLAS = "scipy.linalg.cython_blas"
 
@@ -93,8 +105,8 @@ def import_numba() -> ModuleType:
 @contextmanager
 def few_rows(rows: int) -> Iterator[None]:
     """Inside, the kernels run without numba when ``rows`` is at most
-    :data:`INTERPRETED_MAX_ROWS` and numba is not imported (the same numbers; see the module
-    docstring).
+    :data:`INTERPRETED_MAX_ROWS`, numba is not imported and no batch of this process ran so
+    before (the same numbers; see the module docstring).
 
     Parameters
     ----------
@@ -106,7 +118,10 @@ def few_rows(rows: int) -> Iterator[None]:
     context manager
         Sets the choice for the calls made inside it (this thread or task only).
     """
-    token = _INTERPRETED.set(rows <= INTERPRETED_MAX_ROWS and "numba" not in sys.modules)
+    use = rows <= INTERPRETED_MAX_ROWS and "numba" not in sys.modules and not _SPENT
+    if use:
+        _spend()
+    token = _INTERPRETED.set(use)
     try:
         yield
     finally:

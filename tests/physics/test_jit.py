@@ -146,8 +146,10 @@ def test_interpreted_kernels_equal_the_compiled_ones_bit_for_bit(tmp_path):
         "jit.INTERPRETED_MAX_ROWS = 100\n"
         "from rsm_lrg.surrogate import simulate\n"
         f"d = pd.read_csv({str(path)!r})\n"
-        "res = [simulate(d, seed=3, progress=False, calibration=c).select_dtypes('number').to_numpy().tolist() "
-        "for c in ('default', None)]\n"
+        "res = []\n"
+        "for c in ('default', None):\n"
+        "    jit._SPENT = False  # each call interpreted (a process runs only its first batch so)\n"
+        "    res.append(simulate(d, seed=3, progress=False, calibration=c).select_dtypes('number').to_numpy().tolist())\n"
         "print(json.dumps({'numba': 'numba' in sys.modules, 'res': res}))\n")
     assert out["numba"] is False
     for got, want in zip(out["res"], compiled):
@@ -226,3 +228,16 @@ def test_a_hypot_beyond_the_plain_formula_runs_compiled():
     assert out["plain"] == 5.0
     hypot = fixed_order._kernels()["_fo_hypot"]
     assert out["far"] == [hypot(3e200, 4e200), hypot(1e-160, 7e-161)]
+
+
+def test_only_the_first_small_batch_of_a_process_runs_interpreted():
+    # a process evaluating row after row pays numba's start-up once, not the interpreted cost per row
+    out = _run(
+        "import json, sys\n"
+        "from rsm_lrg.physics.jit import few_rows, interpreted\n"
+        "seen = []\n"
+        "for rows in (2, 1, 1):\n"
+        "    with few_rows(rows):\n"
+        "        seen.append(interpreted())\n"
+        "print(json.dumps(seen))\n")
+    assert out == [False, True, False]
