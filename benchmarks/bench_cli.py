@@ -47,8 +47,9 @@ version manager's shim on ``PATH`` (pyenv's adds a bash start-up of its own).
 and instead of the fit, ``python -m rsm_lrg simulate ROW.csv --seed 1 -o OUT.csv`` on a design of one
 row (Table 4's first run: 0.3 mm, 40 mm, 0.4 m/s, 30 m/s²), with ``--root`` the same command from
 that checkout (the previous implementation, in the same rounds), and the anchors ``python -c
-"import numpy"``, ``python -c "import numpy, pandas"`` and the stage integrator's numba start-up
-alone (importing numba and loading one cached kernel, what a simulated row needs today). It
+"import numpy"``, ``python -c "import numpy, pandas"`` and numba's start-up alone (importing numba
+and loading one cached kernel: what a design of more than one row pays; a one-row batch runs its
+kernels uncompiled, ``rsm_lrg.physics.jit``). It
 prints the medians, the ratio simulate / ``import numpy`` (median of per-round ratios) and, with
 ``--root``, new / old.
 """
