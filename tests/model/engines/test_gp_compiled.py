@@ -30,12 +30,48 @@ def test_compiled_correlation_equals_numpy(kernel, monkeypatch):
     slow_sym, slow_cross = correlation(x, x, theta, kernel), correlation(xn, x, theta, kernel)
     # the runs' matrix (the likelihood's): the same operations per pair, bit for bit
     assert np.array_equal(fast_sym, slow_sym)
-    # the predictions': the vectorised exponential (within an ulp of the C library's) and
-    # a * (1/3) for a / 3: a few units in the last place, and not all bit for bit
-    np.testing.assert_allclose(fast_cross, slow_cross, rtol=2e-15, atol=1e-300)
-    if kernel == "matern52":
-        assert not np.array_equal(fast_cross, slow_cross)
+    # the predictions': scaled coordinates, fused multiply-adds, the vectorised exponential
+    # (within an ulp of the C library's): the exponent t of each pair carries a rounding of a
+    # few t eps in either code, so each correlation is within 2 (1 + t) eps (relative) of the
+    # exact one, as NumPy's is; against 40-digit values on 600 pairs
+    import mpmath
+
+    eps = np.finfo(float).eps
+    expo = _exponents(xn, x, theta, kernel)
+    assert np.all(np.abs(fast_cross - slow_cross) <= 4 * (1 + expo) * eps * slow_cross)
+    assert not np.array_equal(fast_cross, slow_cross)
+    mpmath.mp.dps = 40
+    pick = np.random.default_rng(4).choice(fast_cross.size, 600, replace=False)
+    for f in pick:
+        i, l = divmod(int(f), x.shape[0])
+        exact = _exact_correlation(xn[i], x[l], theta, kernel)
+        for got in (fast_cross[i, l], slow_cross[i, l]):
+            assert abs(got - exact) <= 2 * (1 + expo[i, l]) * eps * exact
     assert np.array_equal(fast_sym, fast_sym.T) and np.all(np.diag(fast_sym) == 1.0)
+
+
+def _exponents(x1, x2, theta, kernel):
+    """The exponent of each pair's exponential (sum of |h| sqrt(5) / theta, or of h^2 / (2 theta^2))."""
+    h = np.abs(x1[:, None, :] - x2[None, :, :]) / theta
+    if kernel == "gauss":
+        return 0.5 * np.sum(h * h, axis=2)
+    return np.sqrt(5.0 if kernel == "matern52" else 3.0) * np.sum(h, axis=2)
+
+
+def _exact_correlation(a, b, theta, kernel):
+    """The correlation of settings a and b in 40-digit arithmetic (Roustant et al. 2012, Table 1)."""
+    import mpmath
+
+    total, poly = mpmath.mpf(0), mpmath.mpf(1)
+    for aj, bj, tj in zip(a, b, theta):
+        h = abs(mpmath.mpf(float(aj)) - mpmath.mpf(float(bj))) / mpmath.mpf(float(tj))
+        if kernel == "gauss":
+            total += h * h / 2
+            continue
+        s = mpmath.sqrt(5 if kernel == "matern52" else 3) * h
+        total += s
+        poly *= 1 + s + s * s / 3 if kernel == "matern52" else 1 + s
+    return float(mpmath.exp(-total) * poly)
 
 
 @pytest.mark.parametrize("kernel", KERNELS)
@@ -145,7 +181,13 @@ def test_correlations_beyond_the_normal_numbers_take_the_c_library(monkeypatch):
     _numpy_only(monkeypatch)
     slow = correlation(xn, x, theta, "matern32")
     assert np.sum(slow == 0.0) > 1000 and np.array_equal(fast == 0.0, slow == 0.0)
-    np.testing.assert_allclose(fast, slow, rtol=2e-15, atol=0)
+    expo = _exponents(xn, x, theta, "matern32")
+    assert np.any((expo > 708) & (slow > 0))  # pairs the C library's exponential took
+    # exp(-t) below the normal numbers keeps fewer bits: an absolute unit of the subnormals
+    # (times the Matérn polynomial) added to the relative bound
+    poly = np.prod(1.0 + np.sqrt(3.0) * np.abs(xn[:, None, :] - x[None, :, :]) / theta, axis=2)
+    tiny = np.nextafter(0.0, 1.0)
+    assert np.all(np.abs(fast - slow) <= 4 * (1 + expo) * np.finfo(float).eps * slow + 4 * tiny * poly)
 
 
 @pytest.mark.parametrize("kernel", KERNELS)
