@@ -147,6 +147,20 @@ def test_subsample_search_polished_on_every_run(big_fit):
     assert best == pytest.approx(r.log_likelihood, rel=1e-7)  # sigma2 R vs R: the same to conditioning
     for d in np.vstack([np.eye(2), -np.eye(2)]) * 0.01:
         assert -lik(np.log(r.length_scales) + d)[0] <= best + 1e-9
+    # the result's factorisation (the polish's last one, scaled by the variance) is the one of
+    # its hyper-parameters
+    from rsm_lrg.model.engines.gp_core import kriging_core
+
+    # (the two factors of this ill-conditioned matrix differ by rounding; what they give does not)
+    want = kriging_core(r.x, r.y, np.ones((r.n, 1)), r.kernel, r.length_scales, r.variance, r.nugget)
+    sigma = r.variance * correlation(r.x, r.x, r.length_scales, r.kernel) + r.nugget * np.eye(r.n)
+    np.testing.assert_allclose(r.core.chol @ r.core.chol.T, sigma, rtol=0, atol=1e-13 * r.variance)
+    assert r.core.logdet == pytest.approx(want.logdet, rel=1e-7)  # as above: the same to conditioning
+    assert r.core.quad == pytest.approx(want.quad, rel=1e-7)
+    pts = np.random.default_rng(3).uniform(-1, 1, (50, 2))
+    cross = r.variance * correlation(pts, r.x, r.length_scales, r.kernel)
+    np.testing.assert_allclose(r.predict_coded(pts), want.beta[0] + cross @ want.alpha, rtol=0,
+                               atol=1e-9 * float(np.ptp(r.y)))
 
 
 def test_vectorised_exponential_within_an_ulp_of_the_exact_one():
@@ -188,6 +202,12 @@ def test_correlations_beyond_the_normal_numbers_take_the_c_library(monkeypatch):
     poly = np.prod(1.0 + np.sqrt(3.0) * np.abs(xn[:, None, :] - x[None, :, :]) / theta, axis=2)
     tiny = np.nextafter(0.0, 1.0)
     assert np.all(np.abs(fast - slow) <= 4 * (1 + expo) * np.finfo(float).eps * slow + 4 * tiny * poly)
+    # the mean takes the same correlations (the tiles with such pairs finished before the sums)
+    from rsm_lrg.model.engines import gp_compiled
+
+    w = rng.standard_normal(300)
+    np.testing.assert_allclose(gp_compiled.mean(xn, x, theta, "matern32", w), fast @ w, rtol=0,
+                               atol=2 * 300 * np.finfo(float).eps * float(np.max(np.abs(fast) @ np.abs(w))))
 
 
 @pytest.mark.parametrize("kernel", KERNELS)
