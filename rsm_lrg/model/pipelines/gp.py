@@ -27,7 +27,12 @@ JSON's ``gp.search`` say so. There, each start's search ends after an iteration 
 less than :data:`SEARCH_GAIN` in log-likelihood and the polish after one that gains less than
 :data:`POLISH_GAIN` (L-BFGS-B's relative ``ftol`` would otherwise spend O(n³) evaluations on
 the likelihood's rounding noise); at most :data:`MULTISTART_RUNS` runs nothing changes. Bounds: a length-scale between
-1e-3 and 10 times the factor's coded range in the data; ``g`` between 1e-10 and 10.
+1e-3 and 10 times the factor's coded range in the data; ``g`` between 1e-10 and 10. The
+result keeps the Cholesky factor of the optimiser's last evaluation when that was at the
+optimum (:meth:`ProfileLikelihood.factor_at`) instead of factorising again; with the variance
+concentrated out, above :data:`MULTISTART_RUNS` runs the factor of ``sigma2 A`` is that of
+``A`` scaled (:meth:`~rsm_lrg.model.engines.gp_core.KrigingCore.scaled`, O(n²)), below it is
+factorised anew as before.
 
 The nugget: ``nugget="estimate"`` for noisy data; a number fixes it [response units²];
 ``None`` (the default) estimates it when the data hold runs at the same setting (a
