@@ -182,8 +182,10 @@ def _tile(x1s: Any, i: int, x2s: Any, l0: int, l1: int, c: Any, code: int, buf: 
     the C library's where the argument is beyond :data:`EXP_CLAMP`). Per factor ``d`` the
     scaled difference ``(x1_j - x2_j) c_j``: ``gauss`` adds ``d^2`` to the exponent; Matérn 3/2 adds
     ``a = |d|`` and multiplies the factor ``1 + a``; Matérn 5/2 adds ``a`` and multiplies
-    ``(a + 3/2)^2 + 3/4 = 3 (1 + a + a^2/3)`` (``post = 3^-kp`` restores the scale; a padded
-    factor adds 0 and multiplies exactly 1, or 3). Returns how many exponents are beyond
+    ``(a + 3/2)^2 + 3/4 = 3 (1 + a + a^2/3)``, each pass's product times ``2^-5`` (exact; the
+    products stay within ``27/32`` of ``prod (1 + a + a^2/3)``, so they overflow no sooner) and
+    ``post = 32^(kp/3) / 3^kp`` restoring the scale; a padded factor adds 0 and multiplies
+    exactly 1, or 3). Returns how many exponents are beyond
     :data:`EXP_CLAMP`; :func:`_finish` puts the correlations in ``buf[2]``."""
     kp = x1s.shape[0]
     m = l1 - l0
@@ -222,7 +224,7 @@ def _tile(x1s: Any, i: int, x2s: Any, l0: int, l1: int, c: Any, code: int, buf: 
                     u1 = a1 + 1.5
                     u2 = a2 + 1.5
                     total[l] = a0 + a1 + a2
-                    poly[l] = (u0 * u0 + 0.75) * (u1 * u1 + 0.75) * (u2 * u2 + 0.75)
+                    poly[l] = ((u0 * u0 + 0.75) * (u1 * u1 + 0.75) * (u2 * u2 + 0.75)) * 0.03125
             else:
                 for l in range(m):
                     a0 = abs(x0 - r0[l]) * c0
@@ -232,7 +234,7 @@ def _tile(x1s: Any, i: int, x2s: Any, l0: int, l1: int, c: Any, code: int, buf: 
                     u1 = a1 + 1.5
                     u2 = a2 + 1.5
                     total[l] = total[l] + a0 + a1 + a2
-                    poly[l] = poly[l] * ((u0 * u0 + 0.75) * (u1 * u1 + 0.75) * (u2 * u2 + 0.75))
+                    poly[l] = poly[l] * (((u0 * u0 + 0.75) * (u1 * u1 + 0.75) * (u2 * u2 + 0.75)) * 0.03125)
         else:
             if j == 0:
                 for l in range(m):
@@ -489,7 +491,7 @@ def prediction_layout(x: np.ndarray, theta: np.ndarray, kernel: str) -> tuple[np
     for Matérn 5/2, ``sqrt(3) / theta`` for Matérn 3/2, ``1 / (sqrt(2) theta)`` for ``gauss``,
     1 for a padded factor), so that a pair's exponent is a sum of ``|d|`` or ``d^2`` over the
     scaled differences ``d = (x_j - x'_j) c_j``; and the factor ``post`` that the loops'
-    products carry (``3^-kp`` for Matérn 5/2, else 1). The differences are taken before the
+    products carry (``32^(kp/3) / 3^kp`` for Matérn 5/2, else 1). The differences are taken before the
     scaling, so that each exponent's rounding stays relative to the exponent.
 
     Parameters
@@ -518,7 +520,7 @@ def prediction_layout(x: np.ndarray, theta: np.ndarray, kernel: str) -> tuple[np
     xs[:k] = np.asarray(x, dtype=float).T
     c = np.ones(kp)
     c[:k] = 1.0 / (math.sqrt(2.0) * theta) if code == 0 else _ROOT[code] / theta
-    return xs, c, (3.0 ** -kp if code == 1 else 1.0)
+    return xs, c, (2.0 ** (5 * (kp // 3)) / 3.0 ** kp if code == 1 else 1.0)
 
 
 def _tiled_rows(name: str, x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str, out: np.ndarray,

@@ -264,3 +264,23 @@ def big_fit_small():
     df = pd.DataFrame({"a": rng.uniform(0, 1, 120), "b": rng.uniform(0, 1, 120)})
     df["y"] = np.sin(6 * df.a) * np.cos(3 * df.b)
     return fit_gp(df, "y", length_scales=[0.4, 0.6])
+
+
+def test_matern52_on_many_factors_stays_finite():
+    # 240 factors with exponents near 708: each factor's polynomial near 26, their product
+    # near 1e330 in the (a + 3/2)^2 + 3/4 form without the loops' 2^-5 per pass
+    from rsm_lrg.model.engines import gp_compiled
+
+    rng = np.random.default_rng(13)
+    x, pts = rng.uniform(-1, 1, (40, 240)), rng.uniform(-1, 1, (30, 240))
+    theta = np.full(240, 0.5)
+    expo = _exponents(pts, x, theta, "matern52")
+    assert expo.min() < 708 < expo.max()
+    fast = gp_compiled.cross(pts, x, theta, "matern52")
+    slow = correlation(pts, x, theta, "matern52")  # NumPy's (too few pairs for the loops)
+    assert np.all(np.isfinite(fast)) and np.array_equal(fast == 0, slow == 0)
+    assert np.all(np.abs(fast - slow) <= 4 * (1 + expo) * np.finfo(float).eps * slow)
+    w = rng.standard_normal(40)
+    np.testing.assert_allclose(gp_compiled.mean(pts, x, theta, "matern52", w), slow @ w, rtol=0,
+                               atol=(2 * 40 + 4 * (1 + expo.max())) * np.finfo(float).eps
+                               * float(np.max(np.abs(slow) @ np.abs(w))))
