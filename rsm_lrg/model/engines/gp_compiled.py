@@ -3,19 +3,19 @@ thousands of runs: the kernel's correlation matrix, the kriging mean at new sett
 cross-correlations accumulated on the fly (never stored), and the trace sums of the
 likelihood's analytic gradient.
 
-The likelihood's loops (the runs' correlation matrix, the gradient's sums) do, pair by pair,
-the arithmetic of the NumPy code in :mod:`rsm_lrg.model.engines.gp_kernels` (the same
-operations in the same order, the exponential from the C library): the runs' matrix equals
-the NumPy code bit for bit. The predictions' loops (:func:`cross`, :func:`mean`) are written
-for the vector units instead (:func:`_tile`): the runs laid out contiguously per factor
-(:func:`prediction_layout`), three factors per pass over a tile of runs with no branch per
-pair, Matérn 5/2's polynomial as ``(a + 3/2)^2 + 3/4``, a vectorised exponential
-(:func:`_exp_row`, fdlibm's algorithm, within one unit in the last place of the C library's)
-and fused multiply-adds; each point's mean sums its terms in :data:`LANES` partial sums. Each
-correlation is then within ``2 (1 + t)`` units of ``eps`` (relative) of the exact value, ``t``
-the pair's exponent, as NumPy's is (``tests/model/engines/test_gp_compiled.py``). The functions below are plain Python until :func:`kernels`
-compiles them (once per process; numba keeps the machine code on disk). Settings are passed
-transposed, ``(k, n)``, so that the loop over runs reads memory in order.
+The correlation matrices (the runs', :func:`symmetric`, and the predictions', :func:`cross`,
+:func:`mean`) are computed by loops written for the vector units (:func:`_tile`): the runs laid
+out contiguously per factor (:func:`prediction_layout`), three factors per pass over a tile of
+runs with no branch per pair, Matérn 5/2's polynomial as ``(a + 3/2)^2 + 3/4``, a vectorised
+exponential (:func:`_exp_row`, fdlibm's algorithm, within one unit in the last place of the C
+library's) and fused multiply-adds; each point's mean sums its terms in :data:`LANES` partial
+sums. Each correlation is then within ``2 (1 + t)`` units of ``eps`` (relative) of the exact
+value, ``t`` the pair's exponent, as the NumPy code's in
+:mod:`rsm_lrg.model.engines.gp_kernels` is (``tests/model/engines/test_gp_compiled.py``). The
+gradient's sums (:func:`gradient_sums`) do, pair by pair, the NumPy code's arithmetic. The
+functions below are plain Python until :func:`kernels` compiles them (once per process; numba
+keeps the machine code on disk). Settings are passed transposed, ``(k, n)``, so that the loop
+over runs reads memory in order.
 
 Threads: numba's parallel layers are not safe here (GNU OpenMP ends a child forked after the
 parent used it, so a GP predicted before ``--workers`` forks its pool would end its workers;
@@ -73,6 +73,7 @@ _BIAS = 1023 << 52
 _EXP_CLAMP = EXP_CLAMP
 _THIRD = 1.0 / 3.0
 _TILE = TILE
+_MIRROR = 64  # side of the blocks the runs' matrix is mirrored by
 #: Partial sums of each point's kriging mean (the terms dealt by run index modulo this).
 LANES = 8
 _LANES = LANES
@@ -98,47 +99,6 @@ def scales(theta: np.ndarray, kernel: str) -> np.ndarray:
     if code == 0:
         return np.ascontiguousarray(theta, dtype=float)
     return np.array([_ROOT[code] / float(t) for t in theta])
-
-
-def _pair(x1t: Any, i: int, x2t: Any, l: int, c: Any, code: int) -> float:
-    """The correlation of ``x1[i]`` and ``x2[l]``."""
-    k = x1t.shape[0]
-    total = 0.0
-    if code == 0:
-        for j in range(k):
-            h = (x1t[j, i] - x2t[j, l]) / c[j]
-            total += h * h
-        return math.exp(total * -0.5)
-    poly = 1.0
-    for j in range(k):
-        a = abs(x1t[j, i] - x2t[j, l]) * c[j]
-        total += a
-        if code == 1:
-            poly *= 1.0 + a * (1.0 + a / 3.0)
-        else:
-            poly *= 1.0 + a
-    return math.exp(-total) * poly
-
-
-def _cross(x1t: Any, x2t: Any, c: Any, code: int, out: Any) -> None:
-    """``out[i, l] = k(x1[i], x2[l])`` (the exponential from the C library)."""
-    m = x1t.shape[1]
-    n = x2t.shape[1]
-    for i in range(m):
-        for l in range(n):
-            out[i, l] = _pair(x1t, i, x2t, l, c, code)
-
-
-def _symmetric_rows(xt: Any, c: Any, code: int, out: Any, start: int, stop: int) -> None:
-    """Rows ``start:stop`` of ``out[i, l] = k(x[i], x[l])``: the lower triangle computed, the
-    upper mirrored (row ``i`` fills column ``i`` above the diagonal, which no other row
-    writes), one on the diagonal."""
-    for i in range(start, stop):
-        for l in range(i):
-            out[i, l] = _pair(xt, i, xt, l, c, code)
-        out[i, i] = 1.0
-        for l in range(i):
-            out[l, i] = out[i, l]
 
 
 def _exp_row(m: int, buf: Any, bufi: Any) -> int:
@@ -287,6 +247,28 @@ def _cross_rows(x1s: Any, x2s: Any, c: Any, code: int, post: float, out: Any, st
                 out[i, l0 + l] = y[l] * post
 
 
+def _symmetric_rows(xs: Any, c: Any, code: int, post: float, out: Any, start: int, stop: int, buf: Any,
+                    bufi: Any) -> None:
+    """Rows ``start:stop`` of ``out[i, l] = k(x[i], x[l])`` (:func:`_tile` against the runs
+    before ``i``): the lower triangle computed, the upper mirrored in square blocks of
+    :data:`_MIRROR` (rows ``start:stop`` fill columns ``start:stop`` above the diagonal, which
+    no other block of rows writes), one on the diagonal."""
+    for i in range(start, stop):
+        for l0 in range(0, i, _TILE):
+            l1 = min(i, l0 + _TILE)
+            _finish(l1 - l0, code, _tile(xs, i, xs, l0, l1, c, code, buf, bufi), buf)
+            y = buf[2]
+            for l in range(l1 - l0):
+                out[i, l0 + l] = y[l] * post
+        out[i, i] = 1.0
+    for i0 in range(start, stop, _MIRROR):  # the mirror by square blocks (in cache both ways)
+        i1 = min(stop, i0 + _MIRROR)
+        for l0 in range(0, i1, _MIRROR):
+            for i in range(i0, i1):
+                for l in range(l0, min(l0 + _MIRROR, i)):
+                    out[l, i] = out[i, l]
+
+
 def _mean_rows(x1s: Any, x2s: Any, c: Any, code: int, post: float, weights: Any, out: Any, start: int, stop: int,
                buf: Any, bufi: Any) -> None:
     """``out[i] = sum_l k(x1[i], x2[l]) weights[l]`` for ``i`` in ``start:stop`` (:func:`_tile`):
@@ -353,11 +335,11 @@ def _gradient_block(xt: Any, c: Any, code: int, R: Any, minv: Any, w: Any, kappa
     out[k] = total
 
 
-_LOOPS = ("_pair", "_symmetric_rows", "_gradient_block", "_exp_row", "_tile", "_finish",
-          "_cross_rows", "_mean_rows")  # the callees first
-#: The predictions' loops, compiled with fused multiply-adds (``a * b + c`` rounded once; the
-#: runs' matrix and the gradient keep NumPy's separate roundings, bit for bit).
-_FUSED = ("_exp_row", "_tile", "_finish", "_cross_rows", "_mean_rows")
+_LOOPS = ("_gradient_block", "_exp_row", "_tile", "_finish", "_symmetric_rows", "_cross_rows",
+          "_mean_rows")  # the callees first
+#: The correlation loops, compiled with fused multiply-adds (``a * b + c`` rounded once; the
+#: gradient's sums keep NumPy's separate roundings).
+_FUSED = ("_exp_row", "_tile", "_finish", "_symmetric_rows", "_cross_rows", "_mean_rows")
 
 
 @lru_cache(maxsize=1)
@@ -379,7 +361,7 @@ def kernels() -> dict[str, Any]:
     fused = numba.njit(cache=True, fastmath={"contract"}, error_model="numpy", nogil=True)
     for name in _LOOPS:
         g[name] = (fused if name in _FUSED else jit)(g[name])
-    return {name.lstrip("_"): g[name] for name in _LOOPS if name not in ("_pair", "_tile", "_finish")}
+    return {name.lstrip("_"): g[name] for name in _LOOPS if name not in ("_tile", "_finish")}
 
 
 def threads(pairs: int) -> int:
@@ -545,9 +527,9 @@ def _tiled_rows(name: str, x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, ke
 
 
 def symmetric(x: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
-    """The correlation matrix ``R[i, l] = k(x[i], x[l])`` (the lower triangle computed with the
-    C library's exponential, the upper mirrored), rows on :func:`threads` threads in blocks of
-    nearly equal pairs.
+    """The correlation matrix ``R[i, l] = k(x[i], x[l])`` (the lower triangle computed by the
+    predictions' tiles, the upper mirrored, ones on the diagonal), rows on :func:`threads`
+    threads in blocks of nearly equal pairs.
 
     Parameters
     ----------
@@ -565,10 +547,15 @@ def symmetric(x: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
     fn = kernels()["symmetric_rows"]
     n = x.shape[0]
     out = np.empty((n, n))
-    xt = np.ascontiguousarray(x.T, dtype=float)
-    c, code = scales(theta, kernel), KERNEL_CODES[kernel]
+    xs, c, post = prediction_layout(x, theta, kernel)
+    code = KERNEL_CODES[kernel]
     count = threads(n * n // 2)
-    run_split(lambda start, stop: fn(xt, c, code, out, start, stop), _triangle_blocks(n, count), count)
+
+    def task(start: int, stop: int) -> None:
+        buf, bufi = _scratch()
+        fn(xs, c, code, post, out, start, stop, buf, bufi)
+
+    run_split(task, _triangle_blocks(n, count), count)
     return out
 
 
