@@ -3,16 +3,19 @@ thousands of runs: the kernel's correlation matrix, the kriging mean at new sett
 cross-correlations accumulated on the fly (never stored), and the trace sums of the
 likelihood's analytic gradient.
 
-Each loop does, pair by pair, the arithmetic of the NumPy code in
-:mod:`rsm_lrg.model.engines.gp_kernels` (the same operations in the same order per pair), so
-the two agree to a unit or two in the last place (``tests/model/engines/test_gp_compiled.py``).
-The runs' correlation matrix (the likelihood's) takes its exponential from the C library and
-equals the NumPy code bit for bit; the predictions' loops (:func:`cross`, :func:`mean`) lay the
-runs out contiguously for one setting at a time and take a vectorised exponential
-(:func:`_exp_row`, fdlibm's algorithm, within one unit in the last place of the C library's),
-which makes them several times faster. The functions below are plain Python until
-:func:`kernels` compiles them (once per process; numba keeps the machine code on disk).
-Settings are passed transposed, ``(k, n)``, so that the loop over runs reads memory in order.
+The correlation matrices (the runs', :func:`symmetric`, and the predictions', :func:`cross`,
+:func:`mean`) are computed by loops written for the vector units (:func:`_tile`): the runs laid
+out contiguously per factor (:func:`prediction_layout`), three factors per pass over a tile of
+runs with no branch per pair, Matérn 5/2's polynomial as ``(a + 3/2)^2 + 3/4``, a vectorised
+exponential (:func:`_exp_row`, fdlibm's algorithm, within one unit in the last place of the C
+library's) and fused multiply-adds; each point's mean sums its terms in :data:`LANES` partial
+sums. Each correlation is then within ``2 (1 + t)`` units of ``eps`` (relative) of the exact
+value, ``t`` the pair's exponent, as the NumPy code's in
+:mod:`rsm_lrg.model.engines.gp_kernels` is (``tests/model/engines/test_gp_compiled.py``). The
+gradient's sums (:func:`gradient_sums`) do, pair by pair, the NumPy code's arithmetic. The
+functions below are plain Python until :func:`kernels` compiles them (once per process; numba
+keeps the machine code on disk). Settings are passed transposed, ``(k, n)``, so that the loop
+over runs reads memory in order.
 
 Threads: numba's parallel layers are not safe here (GNU OpenMP ends a child forked after the
 parent used it, so a GP predicted before ``--workers`` forks its pool would end its workers;
@@ -37,8 +40,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["KERNEL_CODES", "MAX_THREADS", "PAIRS_PER_THREAD", "GRADIENT_BLOCK_ROWS", "EXP_CLAMP", "TILE", "kernels",
-           "scales", "threads", "run_split", "cross", "symmetric", "mean", "gradient_sums"]
+__all__ = ["KERNEL_CODES", "MAX_THREADS", "PAIRS_PER_THREAD", "GRADIENT_BLOCK_ROWS", "EXP_CLAMP", "TILE", "LANES",
+           "kernels", "scales", "prediction_layout", "threads", "run_split", "cross", "symmetric", "mean", "gradient_sums"]
 
 #: The kernels' codes in the compiled loops.
 KERNEL_CODES = {"gauss": 0, "matern52": 1, "matern32": 2}
@@ -70,6 +73,10 @@ _BIAS = 1023 << 52
 _EXP_CLAMP = EXP_CLAMP
 _THIRD = 1.0 / 3.0
 _TILE = TILE
+_MIRROR = 64  # side of the blocks the runs' matrix is mirrored by
+#: Partial sums of each point's kriging mean (the terms dealt by run index modulo this).
+LANES = 8
+_LANES = LANES
 
 
 def scales(theta: np.ndarray, kernel: str) -> np.ndarray:
@@ -94,59 +101,22 @@ def scales(theta: np.ndarray, kernel: str) -> np.ndarray:
     return np.array([_ROOT[code] / float(t) for t in theta])
 
 
-def _pair(x1t: Any, i: int, x2t: Any, l: int, c: Any, code: int) -> float:
-    """The correlation of ``x1[i]`` and ``x2[l]``."""
-    k = x1t.shape[0]
-    total = 0.0
-    if code == 0:
-        for j in range(k):
-            h = (x1t[j, i] - x2t[j, l]) / c[j]
-            total += h * h
-        return math.exp(total * -0.5)
-    poly = 1.0
-    for j in range(k):
-        a = abs(x1t[j, i] - x2t[j, l]) * c[j]
-        total += a
-        if code == 1:
-            poly *= 1.0 + a * (1.0 + a / 3.0)
-        else:
-            poly *= 1.0 + a
-    return math.exp(-total) * poly
-
-
-def _cross(x1t: Any, x2t: Any, c: Any, code: int, out: Any) -> None:
-    """``out[i, l] = k(x1[i], x2[l])`` (the exponential from the C library)."""
-    m = x1t.shape[1]
-    n = x2t.shape[1]
-    for i in range(m):
-        for l in range(n):
-            out[i, l] = _pair(x1t, i, x2t, l, c, code)
-
-
-def _symmetric_rows(xt: Any, c: Any, code: int, out: Any, start: int, stop: int) -> None:
-    """Rows ``start:stop`` of ``out[i, l] = k(x[i], x[l])``: the lower triangle computed, the
-    upper mirrored (row ``i`` fills column ``i`` above the diagonal, which no other row
-    writes), one on the diagonal."""
-    for i in range(start, stop):
-        for l in range(i):
-            out[i, l] = _pair(xt, i, xt, l, c, code)
-        out[i, i] = 1.0
-        for l in range(i):
-            out[l, i] = out[i, l]
-
-
-def _exp_row(m: int, buf: Any, bufi: Any) -> None:
+def _exp_row(m: int, buf: Any, bufi: Any) -> int:
     """``buf[2, l] * buf[4, l] = exp(-min(buf[0, l], EXP_CLAMP))`` for ``l < m``, in loops the
     compiler vectorises: Cody & Waite's reduction ``x = k ln 2 + r`` and the rational
     approximation of ``exp(r)`` of fdlibm's ``e_exp.c`` (Sun Microsystems 1993; error below
     one unit in the last place, as the C library's), the scale ``2^k`` built from its bits.
     ``buf[2]`` receives ``exp(r)``, ``buf[3]`` the shifted ``k`` (read as integers through
-    ``bufi``), ``buf[4]`` the scale (written as integers through ``bufi``)."""
+    ``bufi``), ``buf[4]`` the scale (written as integers through ``bufi``). Returns how many
+    arguments were beyond :data:`EXP_CLAMP` (counted in the same vectorised loop)."""
     t = buf[0]
     y = buf[2]
     kd = buf[3]
+    beyond = 0
     for l in range(m):
-        x = -min(t[l], _EXP_CLAMP)
+        tl = t[l]
+        beyond += tl > _EXP_CLAMP
+        x = -min(tl, _EXP_CLAMP)
         k = x * _INVLN2 + _SHIFT  # k rounded to the nearest integer, in the low bits
         kf = k - _SHIFT
         hi = x - kf * _LN2HI
@@ -160,81 +130,182 @@ def _exp_row(m: int, buf: Any, bufi: Any) -> None:
     sb = bufi[4]
     for l in range(m):
         sb[l] = (ki[l] << 52) + _BIAS  # 2^k: the exponent field k + 1023 (k >= -1022)
+    return beyond
 
 
-def _tile(x1t: Any, i: int, x2t: Any, l0: int, l1: int, c: Any, code: int, buf: Any, bufi: Any) -> None:
-    """``buf[2, l - l0] = k(x1[i], x2[l])`` for the runs ``l0 <= l < l1`` (a tile of at most
-    :data:`TILE` runs, so that the scratch rows stay in the first-level cache): per factor one
-    pass over the runs (contiguous), then one vectorised exponential. The operations of
-    :func:`_pair`, but the exponential's (within one unit in the last place of the C
-    library's; the C library's where the argument is beyond :data:`EXP_CLAMP`) and Matérn
-    5/2's ``a / 3`` taken as ``a * (1 / 3)`` (a division per factor and pair cost a third of
-    the loop): a unit or two in the last place of each correlation."""
-    k = x1t.shape[0]
+def _tile(x1s: Any, i: int, x2s: Any, l0: int, l1: int, c: Any, code: int, buf: Any, bufi: Any) -> int:
+    """The parts of ``k(x1[i], x2[l]) / post`` for the runs ``l0 <= l < l1`` (a tile of at
+    most :data:`TILE` runs, so that the scratch rows stay in the first-level cache), from the
+    layout of :func:`prediction_layout` (``x1s``, ``x2s``: transposed settings, factors padded
+    with zeros to a multiple of three; ``c`` their scales). Three factors per pass over the
+    runs (contiguous, no branch per pair), then one vectorised exponential (:func:`_exp_row`;
+    the C library's where the argument is beyond :data:`EXP_CLAMP`). Per factor ``d`` the
+    scaled difference ``(x1_j - x2_j) c_j``: ``gauss`` adds ``d^2`` to the exponent; Matérn 3/2 adds
+    ``a = |d|`` and multiplies the factor ``1 + a``; Matérn 5/2 adds ``a`` and multiplies
+    ``(a + 3/2)^2 + 3/4 = 3 (1 + a + a^2/3)``, each pass's product times ``2^-5`` (exact; the
+    products stay within ``27/32`` of ``prod (1 + a + a^2/3)``, so they overflow no sooner) and
+    ``post = 32^(kp/3) / 3^kp`` restoring the scale; a padded factor adds 0 and multiplies
+    exactly 1, or 3). Returns how many exponents are beyond
+    :data:`EXP_CLAMP`; :func:`_finish` puts the correlations in ``buf[2]``."""
+    kp = x1s.shape[0]
     m = l1 - l0
     total = buf[0]
     poly = buf[1]
-    for l in range(m):
-        total[l] = 0.0
-        poly[l] = 1.0
-    for j in range(k):
-        xi = x1t[j, i]
-        cj = c[j]
-        row = x2t[j, l0:l1]
+    for j in range(0, kp, 3):
+        x0 = x1s[j, i]
+        x1 = x1s[j + 1, i]
+        x2 = x1s[j + 2, i]
+        r0 = x2s[j, l0:l1]
+        r1 = x2s[j + 1, l0:l1]
+        r2 = x2s[j + 2, l0:l1]
+        c0 = c[j]
+        c1 = c[j + 1]
+        c2 = c[j + 2]
         if code == 0:
-            for l in range(m):
-                h = (xi - row[l]) / cj
-                total[l] += h * h
+            if j == 0:
+                for l in range(m):
+                    d0 = (x0 - r0[l]) * c0
+                    d1 = (x1 - r1[l]) * c1
+                    d2 = (x2 - r2[l]) * c2
+                    total[l] = d0 * d0 + d1 * d1 + d2 * d2
+            else:
+                for l in range(m):
+                    d0 = (x0 - r0[l]) * c0
+                    d1 = (x1 - r1[l]) * c1
+                    d2 = (x2 - r2[l]) * c2
+                    total[l] = total[l] + d0 * d0 + d1 * d1 + d2 * d2
         elif code == 1:
-            for l in range(m):
-                a = abs(xi - row[l]) * cj
-                total[l] += a
-                poly[l] *= 1.0 + a * (1.0 + a * _THIRD)
+            if j == 0:
+                for l in range(m):
+                    a0 = abs(x0 - r0[l]) * c0
+                    a1 = abs(x1 - r1[l]) * c1
+                    a2 = abs(x2 - r2[l]) * c2
+                    u0 = a0 + 1.5
+                    u1 = a1 + 1.5
+                    u2 = a2 + 1.5
+                    total[l] = a0 + a1 + a2
+                    poly[l] = ((u0 * u0 + 0.75) * (u1 * u1 + 0.75) * (u2 * u2 + 0.75)) * 0.03125
+            else:
+                for l in range(m):
+                    a0 = abs(x0 - r0[l]) * c0
+                    a1 = abs(x1 - r1[l]) * c1
+                    a2 = abs(x2 - r2[l]) * c2
+                    u0 = a0 + 1.5
+                    u1 = a1 + 1.5
+                    u2 = a2 + 1.5
+                    total[l] = total[l] + a0 + a1 + a2
+                    poly[l] = poly[l] * (((u0 * u0 + 0.75) * (u1 * u1 + 0.75) * (u2 * u2 + 0.75)) * 0.03125)
         else:
-            for l in range(m):
-                a = abs(xi - row[l]) * cj
-                total[l] += a
-                poly[l] *= 1.0 + a
-    if code == 0:
-        for l in range(m):
-            total[l] = total[l] * 0.5  # exp(total * -0.5): the same number
-            poly[l] = 1.0
-    _exp_row(m, buf, bufi)
+            if j == 0:
+                for l in range(m):
+                    a0 = abs(x0 - r0[l]) * c0
+                    a1 = abs(x1 - r1[l]) * c1
+                    a2 = abs(x2 - r2[l]) * c2
+                    total[l] = a0 + a1 + a2
+                    poly[l] = (1.0 + a0) * (1.0 + a1) * (1.0 + a2)
+            else:
+                for l in range(m):
+                    a0 = abs(x0 - r0[l]) * c0
+                    a1 = abs(x1 - r1[l]) * c1
+                    a2 = abs(x2 - r2[l]) * c2
+                    total[l] = total[l] + a0 + a1 + a2
+                    poly[l] = poly[l] * ((1.0 + a0) * (1.0 + a1) * (1.0 + a2))
+    return _exp_row(m, buf, bufi)
+
+
+def _finish(m: int, code: int, beyond: int, buf: Any) -> None:
+    """``buf[2, l] = k`` of the pairs of a tile from :func:`_tile`'s parts (the exponential's
+    ``exp(r)`` and ``2^k``, the product of the factors' polynomials), the C library's
+    exponential where the exponent is beyond :data:`EXP_CLAMP` (``beyond`` of them, from
+    :func:`_tile`)."""
+    total = buf[0]
+    poly = buf[1]
     y = buf[2]
     scale = buf[4]
-    for l in range(m):
-        y[l] = (y[l] * scale[l]) * poly[l]
-    for l in range(m):
-        if total[l] > _EXP_CLAMP:  # beyond the normal numbers: the C library's
-            y[l] = math.exp(-total[l]) * poly[l]
+    if code == 0:
+        for l in range(m):
+            y[l] = y[l] * scale[l]
+    else:
+        for l in range(m):
+            y[l] = (y[l] * scale[l]) * poly[l]
+    if beyond:  # beyond the normal numbers: the C library's
+        for l in range(m):
+            if total[l] > _EXP_CLAMP:
+                y[l] = math.exp(-total[l]) * (1.0 if code == 0 else poly[l])
 
 
-def _cross_rows(x1t: Any, x2t: Any, c: Any, code: int, out: Any, start: int, stop: int, buf: Any,
+def _cross_rows(x1s: Any, x2s: Any, c: Any, code: int, post: float, out: Any, start: int, stop: int, buf: Any,
                 bufi: Any) -> None:
     """Rows ``start:stop`` of ``out[i, l] = k(x1[i], x2[l])`` (:func:`_tile`)."""
-    n = x2t.shape[1]
+    n = x2s.shape[1]
     for i in range(start, stop):
         for l0 in range(0, n, _TILE):
             l1 = min(n, l0 + _TILE)
-            _tile(x1t, i, x2t, l0, l1, c, code, buf, bufi)
-            for l in range(l1 - l0):
-                out[i, l0 + l] = buf[2, l]
-
-
-def _mean_rows(x1t: Any, x2t: Any, c: Any, code: int, weights: Any, out: Any, start: int, stop: int, buf: Any,
-               bufi: Any) -> None:
-    """``out[i] = sum_l k(x1[i], x2[l]) weights[l]`` for ``i`` in ``start:stop``, in the order
-    of ``l`` (:func:`_tile`)."""
-    n = x2t.shape[1]
-    for i in range(start, stop):
-        acc = 0.0
-        for l0 in range(0, n, _TILE):
-            l1 = min(n, l0 + _TILE)
-            _tile(x1t, i, x2t, l0, l1, c, code, buf, bufi)
+            _finish(l1 - l0, code, _tile(x1s, i, x2s, l0, l1, c, code, buf, bufi), buf)
             y = buf[2]
             for l in range(l1 - l0):
-                acc += y[l] * weights[l0 + l]
-        out[i] = acc
+                out[i, l0 + l] = y[l] * post
+
+
+def _symmetric_rows(xs: Any, c: Any, code: int, post: float, out: Any, start: int, stop: int, buf: Any,
+                    bufi: Any) -> None:
+    """Rows ``start:stop`` of ``out[i, l] = k(x[i], x[l])`` (:func:`_tile` against the runs
+    before ``i``): the lower triangle computed, the upper mirrored in square blocks of
+    :data:`_MIRROR` (rows ``start:stop`` fill columns ``start:stop`` above the diagonal, which
+    no other block of rows writes), one on the diagonal."""
+    for i in range(start, stop):
+        for l0 in range(0, i, _TILE):
+            l1 = min(i, l0 + _TILE)
+            _finish(l1 - l0, code, _tile(xs, i, xs, l0, l1, c, code, buf, bufi), buf)
+            y = buf[2]
+            for l in range(l1 - l0):
+                out[i, l0 + l] = y[l] * post
+        out[i, i] = 1.0
+    for i0 in range(start, stop, _MIRROR):  # the mirror by square blocks (in cache both ways)
+        i1 = min(stop, i0 + _MIRROR)
+        for l0 in range(0, i1, _MIRROR):
+            for i in range(i0, i1):
+                for l in range(l0, min(l0 + _MIRROR, i)):
+                    out[l, i] = out[i, l]
+
+
+def _mean_rows(x1s: Any, x2s: Any, c: Any, code: int, post: float, weights: Any, out: Any, start: int, stop: int,
+               buf: Any, bufi: Any) -> None:
+    """``out[i] = sum_l k(x1[i], x2[l]) weights[l]`` for ``i`` in ``start:stop`` (:func:`_tile`):
+    the terms dealt to :data:`LANES` partial sums by ``l mod LANES`` (a vectorised loop), the
+    lanes then added in order; a fixed order, whatever the threads."""
+    n = x2s.shape[1]
+    acc = np.empty(_LANES)
+    poly = buf[1]
+    y = buf[2]
+    scale = buf[4]
+    for i in range(start, stop):
+        for q in range(_LANES):
+            acc[q] = 0.0
+        for l0 in range(0, n, _TILE):
+            l1 = min(n, l0 + _TILE)
+            m = l1 - l0
+            w = weights[l0:l1]
+            whole = m // _LANES
+            beyond = _tile(x1s, i, x2s, l0, l1, c, code, buf, bufi)
+            if beyond or code == 0:
+                _finish(m, code, beyond, buf)
+                for b in range(whole):
+                    for q in range(_LANES):
+                        acc[q] += y[b * _LANES + q] * w[b * _LANES + q]
+                for l in range(whole * _LANES, m):
+                    acc[l - whole * _LANES] += y[l] * w[l]
+            else:  # the same operations, _finish's product taken in the loop
+                for b in range(whole):
+                    for q in range(_LANES):
+                        l = b * _LANES + q
+                        acc[q] += ((y[l] * scale[l]) * poly[l]) * w[l]
+                for l in range(whole * _LANES, m):
+                    acc[l - whole * _LANES] += ((y[l] * scale[l]) * poly[l]) * w[l]
+        total = 0.0
+        for q in range(_LANES):
+            total += acc[q]
+        out[i] = total * post
 
 
 def _gradient_block(xt: Any, c: Any, code: int, R: Any, minv: Any, w: Any, kappa: float, start: int, stop: int,
@@ -264,8 +335,11 @@ def _gradient_block(xt: Any, c: Any, code: int, R: Any, minv: Any, w: Any, kappa
     out[k] = total
 
 
-_LOOPS = ("_pair", "_symmetric_rows", "_gradient_block", "_exp_row", "_tile", "_cross_rows",
+_LOOPS = ("_gradient_block", "_exp_row", "_tile", "_finish", "_symmetric_rows", "_cross_rows",
           "_mean_rows")  # the callees first
+#: The correlation loops, compiled with fused multiply-adds (``a * b + c`` rounded once; the
+#: gradient's sums keep NumPy's separate roundings).
+_FUSED = ("_exp_row", "_tile", "_finish", "_symmetric_rows", "_cross_rows", "_mean_rows")
 
 
 @lru_cache(maxsize=1)
@@ -284,9 +358,10 @@ def kernels() -> dict[str, Any]:
 
     g = globals()
     jit = numba.njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
+    fused = numba.njit(cache=True, fastmath={"contract"}, error_model="numpy", nogil=True)
     for name in _LOOPS:
-        g[name] = jit(g[name])
-    return {name.lstrip("_"): g[name] for name in _LOOPS if name not in ("_pair", "_tile")}
+        g[name] = (fused if name in _FUSED else jit)(g[name])
+    return {name.lstrip("_"): g[name] for name in _LOOPS if name not in ("_tile", "_finish")}
 
 
 def threads(pairs: int) -> int:
@@ -392,29 +467,69 @@ def cross(x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str) -> np.
     return _tiled_rows("cross_rows", x1, x2, theta, kernel, np.empty((x1.shape[0], x2.shape[0])))
 
 
+def prediction_layout(x: np.ndarray, theta: np.ndarray, kernel: str) -> tuple[np.ndarray, np.ndarray, float]:
+    """Settings as the predictions' loops read them: transposed, ``(kp, n)``, padded with rows
+    of zeros to ``kp``, a multiple of three factors; the factors' scales (``sqrt(5) / theta``
+    for Matérn 5/2, ``sqrt(3) / theta`` for Matérn 3/2, ``1 / (sqrt(2) theta)`` for ``gauss``,
+    1 for a padded factor), so that a pair's exponent is a sum of ``|d|`` or ``d^2`` over the
+    scaled differences ``d = (x_j - x'_j) c_j``; and the factor ``post`` that the loops'
+    products carry (``32^(kp/3) / 3^kp`` for Matérn 5/2, else 1). The differences are taken before the
+    scaling, so that each exponent's rounding stays relative to the exponent.
+
+    Parameters
+    ----------
+    x : (n, k) ndarray
+        Settings [coded units].
+    theta : (k,) ndarray
+        Length-scales [coded units].
+    kernel : str
+        One of the keys of :data:`KERNEL_CODES`.
+
+    Returns
+    -------
+    xs : (kp, n) ndarray
+        Transposed, padded settings [coded units], C order.
+    c : (kp,) ndarray
+        Scale of each factor [1/coded unit].
+    post : float
+        Multiplier of the loops' correlations [-].
+    """
+    code = KERNEL_CODES[kernel]
+    theta = np.asarray(theta, dtype=float)
+    k = theta.size
+    kp = 3 * max(1, -(-k // 3))
+    xs = np.zeros((kp, x.shape[0]))
+    xs[:k] = np.asarray(x, dtype=float).T
+    c = np.ones(kp)
+    c[:k] = 1.0 / (math.sqrt(2.0) * theta) if code == 0 else _ROOT[code] / theta
+    return xs, c, (2.0 ** (5 * (kp // 3)) / 3.0 ** kp if code == 1 else 1.0)
+
+
 def _tiled_rows(name: str, x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, kernel: str, out: np.ndarray,
                 *inputs: np.ndarray) -> np.ndarray:
-    """Run the compiled tile loop ``name`` (``fn(x1', x2', scales, code, *inputs, out, start, stop,
-    scratch...)``) over the rows of ``x1`` against every row of ``x2``, in nearly equal blocks of
-    rows on :func:`threads` threads, each thread with its own scratch; ``out`` filled and returned."""
+    """Run the compiled tile loop ``name`` (``fn(x1s, x2s, c, code, post, *inputs, out, start, stop,
+    scratch...)``, :func:`prediction_layout`) over the rows of ``x1`` against every row of ``x2``,
+    in nearly equal blocks of rows on :func:`threads` threads, each thread with its own scratch;
+    ``out`` filled and returned."""
     fn = kernels()[name]
     m = x1.shape[0]
-    x1t, x2t = np.ascontiguousarray(x1.T, dtype=float), np.ascontiguousarray(x2.T, dtype=float)
-    c, code = scales(theta, kernel), KERNEL_CODES[kernel]
+    x1s, c, post = prediction_layout(x1, theta, kernel)
+    x2s, _, _ = prediction_layout(x2, theta, kernel)
+    code = KERNEL_CODES[kernel]
     count = threads(m * x2.shape[0])
 
     def task(start: int, stop: int) -> None:
         buf, bufi = _scratch()
-        fn(x1t, x2t, c, code, *inputs, out, start, stop, buf, bufi)
+        fn(x1s, x2s, c, code, post, *inputs, out, start, stop, buf, bufi)
 
     run_split(task, _row_blocks(m, count), count)
     return out
 
 
 def symmetric(x: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
-    """The correlation matrix ``R[i, l] = k(x[i], x[l])`` (the lower triangle computed with the
-    C library's exponential, the upper mirrored), rows on :func:`threads` threads in blocks of
-    nearly equal pairs.
+    """The correlation matrix ``R[i, l] = k(x[i], x[l])`` (the lower triangle computed by the
+    predictions' tiles, the upper mirrored, ones on the diagonal), rows on :func:`threads`
+    threads in blocks of nearly equal pairs.
 
     Parameters
     ----------
@@ -432,10 +547,15 @@ def symmetric(x: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
     fn = kernels()["symmetric_rows"]
     n = x.shape[0]
     out = np.empty((n, n))
-    xt = np.ascontiguousarray(x.T, dtype=float)
-    c, code = scales(theta, kernel), KERNEL_CODES[kernel]
+    xs, c, post = prediction_layout(x, theta, kernel)
+    code = KERNEL_CODES[kernel]
     count = threads(n * n // 2)
-    run_split(lambda start, stop: fn(xt, c, code, out, start, stop), _triangle_blocks(n, count), count)
+
+    def task(start: int, stop: int) -> None:
+        buf, bufi = _scratch()
+        fn(xs, c, code, post, out, start, stop, buf, bufi)
+
+    run_split(task, _triangle_blocks(n, count), count)
     return out
 
 

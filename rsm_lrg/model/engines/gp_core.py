@@ -19,7 +19,7 @@ from scipy.linalg import solve_triangular
 
 from .gp_kernels import correlation
 
-__all__ = ["KrigingCore", "kriging_core", "cholesky_jitter", "inverse_lower", "JITTERS",
+__all__ = ["KrigingCore", "kriging_core", "core_from_cholesky", "cholesky_jitter", "inverse_lower", "JITTERS",
            "POTRI_RUNS"]
 
 #: Relative jitters tried, in order, when a Cholesky factorisation fails.
@@ -40,9 +40,10 @@ def cholesky_jitter(m: np.ndarray, scale: float) -> tuple[np.ndarray, float]:
 
 
 #: From this many runs on, :func:`inverse_lower` inverts by LAPACK ``dpotri`` (a third of the
-#: work of solving against the identity); below, by two triangular solves, which OpenBLAS
-#: threads better for small matrices on busy cores.
-POTRI_RUNS = 500
+#: work of solving against the identity); below, by two triangular solves (the fits on fewer
+#: runs keep their numbers). On 300 runs ``dpotri`` took 2.2 ms of CPU against 4.9 ms for the
+#: solves on one OpenBLAS thread, 2.1 against 9.5 ms on two (the subsample's evaluations).
+POTRI_RUNS = 300
 
 
 def inverse_lower(chol: np.ndarray) -> np.ndarray:
@@ -104,6 +105,26 @@ class KrigingCore:
     quad: float
     logdet: float
 
+    def scaled(self, s: float) -> KrigingCore:
+        """The factorisation of ``s Sigma`` (``s > 0``) from this one, in O(n²) instead of a
+        new Cholesky factorisation: ``L`` and ``L^-1 F`` scaled by ``sqrt(s)`` and
+        ``1/sqrt(s)``, ``alpha`` and ``quad`` divided by ``s``, ``log det`` raised by
+        ``n log s``; the trend coefficients and the relative jitter unchanged.
+
+        Parameters
+        ----------
+        s : float
+            Positive multiplier of the covariance [-].
+
+        Returns
+        -------
+        KrigingCore
+        """
+        root = float(np.sqrt(s))
+        return KrigingCore(chol=self.chol * root, jitter=self.jitter, beta=self.beta, alpha=self.alpha / s,
+                           ft=self.ft / root, r_f=self.r_f / root, quad=self.quad / s,
+                           logdet=self.logdet + self.alpha.size * float(np.log(s)))
+
     @property
     def log_likelihood(self) -> float:
         """``-(n log 2 pi + log det Sigma + quad) / 2``: at the maximum-likelihood variance
@@ -133,7 +154,29 @@ def kriging_core(x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, theta
     sigma = variance * R
     sigma[np.diag_indices_from(sigma)] += nugget
     chol, jit = cholesky_jitter(sigma, variance)
+    return core_from_cholesky(chol, jit, F, y)
+
+
+def core_from_cholesky(chol: np.ndarray, jitter: float, F: np.ndarray, y: np.ndarray) -> KrigingCore:
+    """The kriging core from a Cholesky factor already computed (as :func:`kriging_core` computes
+    it: ``cholesky_jitter(variance R + nugget I, variance)``): the GLS trend and the weights.
+
+    Parameters
+    ----------
+    chol : (n, n) ndarray
+        Lower Cholesky factor of ``Sigma`` (+ jitter).
+    jitter : float
+        Relative jitter in ``chol``.
+    F : (n, p) ndarray
+        Trend matrix.
+    y : (n,) ndarray
+        Responses.
+
+    Returns
+    -------
+    KrigingCore
+    """
     beta, ft, r_f, z = gls(chol, F, y)
     alpha = solve_triangular(chol, z, lower=True, trans="T", check_finite=False)
-    return KrigingCore(chol=chol, jitter=jit, beta=beta, alpha=alpha, ft=ft, r_f=r_f, quad=float(z @ z),
+    return KrigingCore(chol=chol, jitter=jitter, beta=beta, alpha=alpha, ft=ft, r_f=r_f, quad=float(z @ z),
                        logdet=float(2.0 * np.sum(np.log(np.diag(chol)))))

@@ -27,7 +27,12 @@ JSON's ``gp.search`` say so. There, each start's search ends after an iteration 
 less than :data:`SEARCH_GAIN` in log-likelihood and the polish after one that gains less than
 :data:`POLISH_GAIN` (L-BFGS-B's relative ``ftol`` would otherwise spend O(n³) evaluations on
 the likelihood's rounding noise); at most :data:`MULTISTART_RUNS` runs nothing changes. Bounds: a length-scale between
-1e-3 and 10 times the factor's coded range in the data; ``g`` between 1e-10 and 10.
+1e-3 and 10 times the factor's coded range in the data; ``g`` between 1e-10 and 10. The
+result keeps the Cholesky factor of the optimiser's last evaluation when that was at the
+optimum (:meth:`ProfileLikelihood.factor_at`) instead of factorising again; with the variance
+concentrated out, above :data:`MULTISTART_RUNS` runs the factor of ``sigma2 A`` is that of
+``A`` scaled (:meth:`~rsm_lrg.model.engines.gp_core.KrigingCore.scaled`, O(n²)), below it is
+factorised anew as before.
 
 The nugget: ``nugget="estimate"`` for noisy data; a number fixes it [response units²];
 ``None`` (the default) estimates it when the data hold runs at the same setting (a
@@ -56,7 +61,7 @@ from scipy.linalg import solve_triangular
 
 from ...errors import ParameterError
 from ..engines.gp_compiled import gradient_sums
-from ..engines.gp_core import KrigingCore, cholesky_jitter, gls, inverse_lower, kriging_core
+from ..engines.gp_core import KrigingCore, cholesky_jitter, core_from_cholesky, gls, inverse_lower, kriging_core
 from ..engines.gp_kernels import COMPILED_PAIRS, KERNELS, correlation, log_derivative_theta
 from ..engines.gp_trend import TRENDS, trend_matrix, trend_size
 from ..results.gp_result import GPResult
@@ -135,6 +140,27 @@ class ProfileLikelihood:
         self.scale = scale  # sigma2 when fixed (not concentrated)
         self.noise = noise  # g or tau2 fixed, or "estimate"
         self.k = x.shape[1]
+        self._last: tuple[np.ndarray, np.ndarray, float] | None = None
+
+    def factor_at(self, p: np.ndarray) -> tuple[np.ndarray, float] | None:
+        """The Cholesky factor of ``M`` and its relative jitter if the latest evaluation was at
+        ``p`` (the optimiser's last point usually is), else None.
+
+        Parameters
+        ----------
+        p : ndarray
+            Free parameters.
+
+        Returns
+        -------
+        tuple or None
+            ``(chol, jitter)``, as :func:`~rsm_lrg.model.engines.gp_core.cholesky_jitter`
+            returns them.
+        """
+        last = self._last
+        if last is None or not np.array_equal(last[0], p):
+            return None
+        return last[1], last[2]
 
     def unpack(self, p: np.ndarray) -> tuple[np.ndarray, float, float]:
         """``(theta, a, b)`` of ``M = a R + b I``."""
@@ -160,11 +186,13 @@ class ProfileLikelihood:
         R = correlation(x, x, theta, self.kernel)
         m = a * R
         m[np.diag_indices_from(m)] += b
+        self._last = None
         try:
-            chol, _ = cholesky_jitter(m, a)
+            chol, jit = cholesky_jitter(m, a)
             beta, ft, r_f, z = gls(chol, self.F, self.y)
         except (np.linalg.LinAlgError, ValueError):
             return 1e300, np.zeros_like(p)
+        self._last = (np.array(p, dtype=float), chol, jit)
         quad = float(z @ z)
         logdet = 2.0 * float(np.sum(np.log(np.diag(chol))))
         if self.concentrated:
@@ -322,13 +350,17 @@ def estimate(x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, *, length
     else:
         p = np.zeros(0)
     theta, a, b = lik.unpack(p)
+    done = lik.factor_at(p)  # the optimiser's last evaluation: its factor, not a new one
     if concentrated:  # sigma2 = z' A^-1 z / n at the optimum
-        core = kriging_core(x, y, F, kernel, theta, 1.0, b)
+        core = core_from_cholesky(*done, F, y) if done else kriging_core(x, y, F, kernel, theta, 1.0, b)
         s2 = core.quad / y.size
         sigma2, tau2 = s2, b * s2
+        # Sigma = sigma2 A: above MULTISTART_RUNS runs the factor scaled (O(n²)); below,
+        # factorised anew as before (the same numbers as earlier versions)
+        core = core.scaled(s2) if y.size > MULTISTART_RUNS else kriging_core(x, y, F, kernel, theta, sigma2, tau2)
     else:
         sigma2, tau2 = a, b
-    core = kriging_core(x, y, F, kernel, theta, sigma2, tau2)
+        core = core_from_cholesky(*done, F, y) if done else kriging_core(x, y, F, kernel, theta, sigma2, tau2)
     return Estimate(theta=np.asarray(theta, dtype=float), variance=float(sigma2), nugget=float(tau2), core=core,
                     estimated=estimated, starts=used, search=info)
 

@@ -36,3 +36,39 @@ def test_gls_trend_and_aliased_columns():
     assert c.logdet == pytest.approx(np.linalg.slogdet(S)[1], rel=1e-12)
     with pytest.raises(ValueError, match="aliased"):
         kriging_core(x, y, np.column_stack([F, 2 * F[:, 1]]), "matern52", np.array([0.7]), 2.0, 0.1)
+
+
+def test_scaled_core_equals_the_factorisation_of_the_scaled_covariance():
+    rng = np.random.default_rng(6)
+    x = rng.uniform(-1, 1, (60, 2))
+    y = np.sin(3 * x[:, 0]) + x[:, 1]
+    F = np.column_stack([np.ones(60), x])
+    theta = np.array([0.6, 1.1])
+    one = kriging_core(x, y, F, "matern32", theta, 1.0, 1e-3)
+    s = 7.3
+    got, want = one.scaled(s), kriging_core(x, y, F, "matern32", theta, s, s * 1e-3)
+    for name in ("chol", "beta", "alpha", "ft", "r_f"):
+        np.testing.assert_allclose(getattr(got, name), getattr(want, name), rtol=1e-10,
+                                   atol=1e-12 * np.max(np.abs(getattr(want, name))))
+    assert got.quad == pytest.approx(want.quad, rel=1e-10)
+    assert got.logdet == pytest.approx(want.logdet, rel=1e-12)
+    assert got.log_likelihood == pytest.approx(want.log_likelihood, rel=1e-12)
+    assert got.jitter == one.jitter == 0.0
+
+
+def test_core_from_cholesky_is_kriging_core_bit_for_bit():
+    from rsm_lrg.model.engines.gp_core import core_from_cholesky
+    from rsm_lrg.model.engines.gp_kernels import correlation
+
+    rng = np.random.default_rng(7)
+    x = rng.uniform(-1, 1, (30, 2))
+    y = x[:, 0] ** 2 - x[:, 1]
+    F = np.ones((30, 1))
+    theta = np.array([0.5, 0.9])
+    sigma = 2.0 * correlation(x, x, theta, "gauss")
+    sigma[np.diag_indices_from(sigma)] += 1e-4
+    chol, jit = cholesky_jitter(sigma, 2.0)
+    got, want = core_from_cholesky(chol, jit, F, y), kriging_core(x, y, F, "gauss", theta, 2.0, 1e-4)
+    for name in ("chol", "beta", "alpha", "ft", "r_f"):
+        assert np.array_equal(getattr(got, name), getattr(want, name))
+    assert (got.quad, got.logdet, got.jitter) == (want.quad, want.logdet, want.jitter)
