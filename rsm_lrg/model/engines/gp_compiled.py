@@ -515,15 +515,20 @@ def _tiled_rows(name: str, x1: np.ndarray, x2: np.ndarray, theta: np.ndarray, ke
     m = x1.shape[0]
     x1s, c, post = prediction_layout(x1, theta, kernel)
     x2s, _, _ = prediction_layout(x2, theta, kernel)
-    code = KERNEL_CODES[kernel]
     count = threads(m * x2.shape[0])
+    _on_threads(fn, (x1s, x2s, c, KERNEL_CODES[kernel], post, *inputs, out), _row_blocks(m, count), count)
+    return out
+
+
+def _on_threads(fn: Any, args: tuple, blocks: list[int], count: int) -> None:
+    """``fn(*args, start, stop, scratch...)`` for each block ``blocks[t]:blocks[t + 1]`` of rows,
+    on ``count`` threads (:func:`run_split`), each thread with its own scratch."""
 
     def task(start: int, stop: int) -> None:
         buf, bufi = _scratch()
-        fn(x1s, x2s, c, code, post, *inputs, out, start, stop, buf, bufi)
+        fn(*args, start, stop, buf, bufi)
 
-    run_split(task, _row_blocks(m, count), count)
-    return out
+    run_split(task, blocks, count)
 
 
 def symmetric(x: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
@@ -548,14 +553,8 @@ def symmetric(x: np.ndarray, theta: np.ndarray, kernel: str) -> np.ndarray:
     n = x.shape[0]
     out = np.empty((n, n))
     xs, c, post = prediction_layout(x, theta, kernel)
-    code = KERNEL_CODES[kernel]
     count = threads(n * n // 2)
-
-    def task(start: int, stop: int) -> None:
-        buf, bufi = _scratch()
-        fn(xs, c, code, post, out, start, stop, buf, bufi)
-
-    run_split(task, _triangle_blocks(n, count), count)
+    _on_threads(fn, (xs, c, KERNEL_CODES[kernel], post, out), _triangle_blocks(n, count), count)
     return out
 
 
