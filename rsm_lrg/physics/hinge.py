@@ -476,7 +476,7 @@ LEAF_TABLE_MAX_RATIO = 200.0
 def leaf_force_table(step: float = 0.01) -> tuple[np.ndarray, float]:
     """The force law ψ(r) = r·φ(r) of a leaf with held ends (F = K·y·ψ(δ/y)) tabulated for the
     stage integrator: coefficients of a C² cubic spline (not-a-knot ends, :mod:`.spline`; SciPy's
-    ``CubicSpline`` to about 1e-15), shape (n, 4), on r_i = i·``step`` up to
+    ``CubicSpline`` bit for bit), shape (n, 4), on r_i = i·``step`` up to
     :data:`LEAF_TABLE_MAX_RATIO`: on [r_i, r_i + step] ``ψ = c0 + c1·t + c2·t² + c3·t³``,
     t = r − r_i. ψ is odd in r (the spline is built on the mirrored points, so its end condition
     at 0 is the symmetric one); its error against :func:`leaf_stiffening` is below 1e-9 relative
