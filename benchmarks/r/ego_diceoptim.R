@@ -10,7 +10,10 @@
 # hartmann6 (functions below, as in bench_ego.py) or surrogate, whose values come from a
 # Python process over two FIFOs (a line "x1,...,xk" written to FIFO_IN, the value read back
 # from FIFO_OUT). A seed whose EGO stops with an error (a singular covariance matrix) keeps
-# the evaluations made before it; the script prints how many.
+# the evaluations made before it; the script prints how many. R's random numbers (km's start,
+# genoud's population) are seeded by set.seed(seed + EGO_R_SEED_OFFSET), the environment
+# variable defaulting to 0: another offset runs the same reference with other draws, which
+# measures how much its median owes to them.
 suppressPackageStartupMessages({library(DiceKriging); library(DiceOptim)})
 args <- commandArgs(trailingOnly = TRUE)
 problem <- args[1]; init <- read.csv(args[2]); nsteps <- as.integer(args[3]); out_path <- args[4]
@@ -39,11 +42,12 @@ if (problem == "surrogate") {
 xcols <- grep("^x", names(init), value = TRUE)
 bounds <- read.csv(sub("\\.csv$", "_bounds.csv", args[2]))
 lower <- as.numeric(bounds$low); upper <- as.numeric(bounds$high)
+r_offset <- as.integer(Sys.getenv("EGO_R_SEED_OFFSET", "0"))
 rows <- list()
 for (s in unique(init$seed)) {
   d <- init[init$seed == s, ]
   X <- d[, xcols, drop = FALSE]; y <- d$y
-  set.seed(s)
+  set.seed(s + r_offset)
   res <- tryCatch({
     m <- km(~1, design = X, response = y, covtype = "matern5_2", control = list(trace = FALSE))
     e <- EGO.nsteps(m, fun, nsteps, lower, upper, kmcontrol = list(control = list(trace = FALSE)))
