@@ -428,7 +428,7 @@ def evaluate_rows(arrays, *, params=None, calibration=None, row_start: int = 0, 
     """
     from ..physics.jit import few_rows
 
-    with few_rows(arrays.n):  # one or two rows: the kernels without numba's start-up (same numbers)
+    with few_rows(arrays.n):  # a one-row batch: the kernels without numba's start-up (same numbers)
         return _evaluate_rows(arrays, params=params, calibration=calibration, row_start=row_start, seed=seed,
                               noise_sd=noise_sd, duration_min=duration_min, memo=memo)
 
