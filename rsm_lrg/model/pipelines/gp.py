@@ -61,7 +61,8 @@ from scipy.linalg import solve_triangular
 
 from ...errors import ParameterError
 from ..engines.gp_compiled import gradient_sums
-from ..engines.gp_core import KrigingCore, cholesky_jitter, core_from_cholesky, gls, inverse_lower, kriging_core
+from ..engines.gp_core import (KrigingCore, cholesky_in_place, cholesky_jitter, core_from_cholesky, gls, inverse_lower,
+                               kriging_core)
 from ..engines.gp_kernels import COMPILED_PAIRS, KERNELS, correlation, log_derivative_theta
 from ..engines.gp_trend import TRENDS, trend_matrix, trend_size
 from ..results.gp_result import GPResult
@@ -82,7 +83,7 @@ MULTISTART_RUNS = 300
 POLISHED = 1
 #: The polish on every run ends after an iteration that raises the log-likelihood by less than
 #: this (the evaluations beyond it moved it by less than 1e-10 on 2,000 runs).
-POLISH_GAIN = 1e-9
+POLISH_GAIN = 1e-7
 #: The same rule for each start's search on the subsample, whose best optimum is polished
 #: afterwards (307 evaluations on the subsample became 227 on 2,000 runs of Hartmann-6, the
 #: polished likelihood unchanged).
@@ -188,7 +189,16 @@ class ProfileLikelihood:
         m[np.diag_indices_from(m)] += b
         self._last = None
         try:
-            chol, jit = cholesky_jitter(m, a)
+            # above MULTISTART_RUNS runs (the polish on every run) factorised in place, no copy;
+            # below, as before (the subsample's and small designs' numbers unchanged)
+            factor = cholesky_in_place(m) if n > MULTISTART_RUNS else None
+            if factor is not None:
+                chol, jit = factor, 0.0
+            else:
+                if n > MULTISTART_RUNS:  # not positive definite: m was overwritten
+                    m = a * R
+                    m[np.diag_indices_from(m)] += b
+                chol, jit = cholesky_jitter(m, a)
             beta, ft, r_f, z = gls(chol, self.F, self.y)
         except (np.linalg.LinAlgError, ValueError):
             return 1e300, np.zeros_like(p)
