@@ -41,7 +41,8 @@ from typing import Any
 import numpy as np
 
 __all__ = ["KERNEL_CODES", "MAX_THREADS", "PAIRS_PER_THREAD", "GRADIENT_BLOCK_ROWS", "EXP_CLAMP", "TILE", "LANES",
-           "kernels", "scales", "prediction_layout", "cores", "threads", "run_split", "cross", "symmetric", "mean", "gradient_sums"]
+           "kernels", "scales", "prediction_layout", "cores", "threads", "run_split", "cross", "symmetric", "mean",
+           "gradient_sums"]
 
 #: The kernels' codes in the compiled loops.
 KERNEL_CODES = {"gauss": 0, "matern52": 1, "matern32": 2}
@@ -347,8 +348,8 @@ _COMPILING = threading.Lock()
 
 def kernels() -> dict[str, Any]:
     """Compile the loops (once per process, under a lock: two threads asking first, as Dask's
-    threads may, compile once; numba caches the machine code on disk). They hold no lock and no Python object (``nogil``), so that several
-    Python threads run them at once.
+    threads may, compile once; numba caches the machine code on disk). They hold no lock and
+    no Python object (``nogil``), so that several Python threads run them at once.
 
     Returns
     -------
