@@ -41,7 +41,8 @@ from typing import Any
 import numpy as np
 
 __all__ = ["KERNEL_CODES", "MAX_THREADS", "PAIRS_PER_THREAD", "GRADIENT_BLOCK_ROWS", "EXP_CLAMP", "TILE", "LANES",
-           "kernels", "scales", "prediction_layout", "threads", "run_split", "cross", "symmetric", "mean", "gradient_sums"]
+           "kernels", "scales", "prediction_layout", "cores", "threads", "run_split", "cross", "symmetric", "mean",
+           "gradient_sums"]
 
 #: The kernels' codes in the compiled loops.
 KERNEL_CODES = {"gauss": 0, "matern52": 1, "matern32": 2}
@@ -342,10 +343,13 @@ _LOOPS = ("_gradient_block", "_exp_row", "_tile", "_finish", "_symmetric_rows", 
 _FUSED = ("_exp_row", "_tile", "_finish", "_symmetric_rows", "_cross_rows", "_mean_rows")
 
 
-@lru_cache(maxsize=1)
+_COMPILING = threading.Lock()
+
+
 def kernels() -> dict[str, Any]:
-    """Compile the loops (once per process; numba caches the machine code on disk). They hold
-    no lock and no Python object (``nogil``), so that several Python threads run them at once.
+    """Compile the loops (once per process, under a lock: two threads asking first, as Dask's
+    threads may, compile once; numba caches the machine code on disk). They hold no lock and
+    no Python object (``nogil``), so that several Python threads run them at once.
 
     Returns
     -------
@@ -354,6 +358,12 @@ def kernels() -> dict[str, Any]:
         compiled functions; their arguments are those of the functions of the same names with
         a leading underscore.
     """
+    with _COMPILING:
+        return _compiled()
+
+
+@lru_cache(maxsize=1)
+def _compiled() -> dict[str, Any]:
     import numba
 
     g = globals()
@@ -380,6 +390,19 @@ def threads(pairs: int) -> int:
     int
         At least 1.
     """
+    return max(1, min(cores(), pairs // PAIRS_PER_THREAD))
+
+
+def cores() -> int:
+    """The threads a parallel step of the GP engine may use: the cores this process may use
+    (``os.sched_getaffinity``), at most :data:`MAX_THREADS` or the environment's
+    ``RSM_LRG_GP_THREADS``; 1 inside a task of :func:`run_split` (no threads within threads).
+
+    Returns
+    -------
+    int
+        At least 1.
+    """
     if getattr(_INSIDE, "split", False):  # already on one of run_split's threads
         return 1
     try:
@@ -390,7 +413,7 @@ def threads(pairs: int) -> int:
     given = os.environ.get("RSM_LRG_GP_THREADS", "").strip()
     if given.isdigit() and int(given) > 0:
         cap = int(given)
-    return max(1, min(usable, cap, pairs // PAIRS_PER_THREAD))
+    return max(1, min(usable, cap))
 
 
 _INSIDE = threading.local()

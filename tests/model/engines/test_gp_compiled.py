@@ -284,3 +284,27 @@ def test_matern52_on_many_factors_stays_finite():
     np.testing.assert_allclose(gp_compiled.mean(pts, x, theta, "matern52", w), slow @ w, rtol=0,
                                atol=(2 * 40 + 4 * (1 + expo.max())) * np.finfo(float).eps
                                * float(np.max(np.abs(slow) @ np.abs(w))))
+
+
+def test_two_threads_asking_first_compile_once():
+    # a fresh process: two threads call kernels() at the same moment (Dask's threads may); the
+    # compilation runs under a lock (without it the second thread jitted the first's dispatchers)
+    import subprocess
+    import sys
+
+    code = (
+        "import threading\n"
+        "from rsm_lrg.model.engines import gp_compiled\n"
+        "go = threading.Barrier(2)\n"
+        "got = []\n"
+        "def ask():\n"
+        "    go.wait()\n"
+        "    got.append(gp_compiled.kernels())\n"
+        "ts = [threading.Thread(target=ask) for _ in range(2)]\n"
+        "[t.start() for t in ts]\n"
+        "[t.join() for t in ts]\n"
+        "assert len(got) == 2 and got[0] is got[1], got\n"
+        "print('ok')\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr[-2000:]

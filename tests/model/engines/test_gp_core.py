@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from rsm_lrg.model.engines.gp_core import cholesky_jitter, kriging_core
+from rsm_lrg.model.engines.gp_core import cholesky_in_place, cholesky_jitter, kriging_core
 
 
 def test_no_jitter_when_the_matrix_factorises():
@@ -19,6 +19,23 @@ def test_smallest_jitter_that_works_is_used_and_reported():
     np.testing.assert_allclose(L @ L.T, m + 4e-12 * np.eye(3), rtol=1e-10)
     with pytest.raises(np.linalg.LinAlgError):
         cholesky_jitter(-np.eye(2), 1.0)
+
+
+def test_cholesky_in_place_is_numpys_factor_to_rounding_in_the_same_memory():
+    rng = np.random.default_rng(4)
+    a = rng.standard_normal((40, 40))
+    m = a @ a.T + 40 * np.eye(40)
+    want = np.linalg.cholesky(m)
+    work = m.copy()
+    got = cholesky_in_place(work)
+    assert got is work  # no copy
+    assert np.all(np.triu(got, 1) == 0.0)  # a lower factor, the upper triangle zeroed
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-13 * np.max(np.abs(want)))
+    np.testing.assert_allclose(got @ got.T, m, rtol=1e-14, atol=1e-12)
+    assert cholesky_in_place(np.ones((3, 3))) is None  # singular: None, the caller rebuilds
+    assert cholesky_in_place(-np.eye(2)) is None
+    with pytest.raises(ValueError, match="C-contiguous"):
+        cholesky_in_place(np.asfortranarray(m))
 
 
 def test_gls_trend_and_aliased_columns():

@@ -236,3 +236,59 @@ def test_many_runs_search_starts_on_a_subsample():
     f, g = lik(p)
     assert r.core.jitter == 0.0 and -f == pytest.approx(r.log_likelihood, abs=1e-8)
     assert np.max(np.abs(g)) < 1e-3  # every parameter inside its bounds here
+
+
+def _noisy_330():
+    rng = np.random.default_rng(5)
+    n = 330
+    d = pd.DataFrame({"a": rng.uniform(0, 1, n), "b": rng.uniform(0, 1, n), "c": rng.uniform(0, 1, n)})
+    d["y"] = np.sin(6 * d.a) * np.cos(3 * d.b) + d.c ** 2 + rng.normal(0, 0.02, n)
+    return d
+
+
+def test_polish_on_all_runs_keeps_the_previous_optimum(monkeypatch):
+    # above MULTISTART_RUNS the polish factorises in place (SciPy dpotrf) and stops after an
+    # iteration gaining < POLISH_GAIN = 1e-7 (was numpy.linalg.cholesky and 1e-9): on this
+    # seeded, well-conditioned case (condition number 1.2e7) the log-likelihood is the previous
+    # release's (680.5096239010596 with eecc25c, 15 evaluations on all runs; now 14) to 1e-6,
+    # the old stop rule gains nothing that matters, and an independent factorisation at the
+    # estimates (kriging_core: numpy.linalg.cholesky) gives the same likelihood
+    from rsm_lrg.model.engines.gp_core import kriging_core
+    from rsm_lrg.model.pipelines import gp as gp_pipeline
+
+    d = _noisy_330()
+    factors = ["a=0:1", "b=0:1", "c=0:1"]
+    r = rsm_lrg.fit(d, "y", factors=factors, model="gp", nugget="estimate", seed=1)
+    assert r.search["subsample"] == gp_pipeline.MULTISTART_RUNS and r.search["evaluations_all"] > 0
+    previous = 680.5096239010596
+    assert r.log_likelihood >= previous - 1e-6
+    assert r.log_likelihood == pytest.approx(previous, abs=1e-6)
+    again = kriging_core(r.x, r.y, np.ones((r.n, 1)), "matern52", r.length_scales, r.variance, r.nugget)
+    assert again.log_likelihood == pytest.approx(r.log_likelihood, abs=1e-8)
+    monkeypatch.setattr(gp_pipeline, "POLISH_GAIN", 1e-9)
+    tight = rsm_lrg.fit(d, "y", factors=factors, model="gp", nugget="estimate", seed=1)
+    assert tight.search["evaluations_all"] >= r.search["evaluations_all"]
+    assert r.log_likelihood >= tight.log_likelihood - 1e-8
+
+
+def test_polish_likelihood_rebuilds_a_singular_matrix_before_the_jitter():
+    # in place, a failed factorisation overwrites the matrix: it is rebuilt and the jitter
+    # ladder of cholesky_jitter runs on it, as below MULTISTART_RUNS
+    from rsm_lrg.model.engines.gp_core import kriging_core
+    from rsm_lrg.model.pipelines.gp import MULTISTART_RUNS
+
+    rng = np.random.default_rng(2)
+    half = (MULTISTART_RUNS + 20) // 2
+    x = rng.uniform(-1, 1, (half, 2))
+    x = np.vstack([x, x])  # every setting twice: R is singular, no nugget
+    y = np.r_[np.sin(3 * x[:half, 0]), np.sin(3 * x[:half, 0])] + x[:, 1]
+    F = np.ones((x.shape[0], 1))
+    lik = ProfileLikelihood(x, y, F, "matern52", theta=None, concentrated=True, scale=None, noise=0.0)
+    p = np.log([0.7, 1.3])
+    f, g = lik(p)
+    chol, jit = lik.factor_at(p)
+    assert jit > 0 and np.all(np.isfinite(g))
+    ref = kriging_core(x, y, F, "matern52", np.exp(p), 1.0, 0.0)  # numpy.linalg.cholesky and the ladder
+    assert ref.jitter == jit
+    n = y.size
+    assert -f == pytest.approx(-0.5 * (n * np.log(2 * np.pi * ref.quad / n) + ref.logdet + n), abs=1e-9)
