@@ -20,7 +20,7 @@ Bayesian-optimisation benchmarks do: the loop's Latin hypercube of ``initial`` r
 same budget of evaluations:
 
 * ``loop``: the loop's own steps, in process (what ``rsm-lrg loop --batch 1`` does round by
-  round: the initial design, then ``fit(..., model="gp", seed)`` and
+  round: the initial design, then ``fit(..., model="gp", seed, length_scale_bounds=LOOP_THETA_BOUNDS)`` and
   ``suggest(model, goal, 1, criterion="ei", seed=seed + round)`` on all runs so far);
 * ``diceoptim``: ``km(~1, covtype="matern5_2")`` on the same initial design and
   ``EGO.nsteps`` for the rest of the budget (``benchmarks/r/ego_diceoptim.R``, DiceOptim's
@@ -69,6 +69,7 @@ import pandas as pd
 import rsm_lrg
 from rsm_lrg.design.spacefill import latin_hypercube
 from rsm_lrg.factors import FactorSpace
+from rsm_lrg.model.pipelines.gp import LOOP_THETA_BOUNDS
 from rsm_lrg.optimize.next_runs import suggest
 
 HERE = Path(__file__).parent
@@ -133,7 +134,7 @@ def run_loop(factors: dict, fun, x0: np.ndarray, budget: int, seed: int) -> np.n
     while y.size < budget:
         data = pd.DataFrame(X, columns=names)
         data["y"] = y
-        model = rsm_lrg.fit(data, "y", factors=specs, model="gp", seed=seed)
+        model = rsm_lrg.fit(data, "y", factors=specs, model="gp", seed=seed, length_scale_bounds=LOOP_THETA_BOUNDS)
         s = suggest(model, "minimize", 1, criterion="ei", seed=seed + r)
         xn = s.design.actual[names].to_numpy(dtype=float)
         X = np.vstack([X, xn])

@@ -12,7 +12,8 @@ from .options import add_data_response, add_factor_options, add_force, add_json
 NAME = "suggest"
 HELP = "fit a Gaussian process and choose the next runs (expected improvement); write them as a design CSV"
 DESCRIPTION = (
-    "Fit a Gaussian process to the runs (as 'rsm-lrg fit --model gp') and choose --runs new settings "
+    "Fit a Gaussian process to the runs (as 'rsm-lrg fit --model gp', but its length-scales at most 2 "
+    "times each factor's range by default, R DiceKriging km's bound, as the loop's) and choose --runs new settings "
     "inside the factor box (--bound, --constraint) by --criterion: ei (expected improvement, the "
     "default; for noisy runs measured from the best predicted mean at the runs), pi (probability of "
     "improvement), lcb (confidence bound, mean -+ 2 sd) or variance (pure exploration). A batch is "
@@ -44,7 +45,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="tighter limits for a factor in actual units (repeatable)")
     parser.add_argument("--constraint", action="append", default=None, metavar="EXPR",
                         help="an inequality on the factors in actual units the new runs must satisfy (repeatable)")
-    add_gp_options(parser)
+    add_gp_options(parser, loop_bounds=True)
     parser.add_argument("-o", "--output", required=True, metavar="NEXT.csv", help="the design CSV of the new runs")
     add_json(parser)
     add_force(parser)
@@ -58,7 +59,7 @@ def run(args: argparse.Namespace) -> int:
 
     data = read_input(args)
     with about_file(args.data):
-        result = fit(data, args.response, factors=args.factor, model="gp", **gp_keywords(args))
+        result = fit(data, args.response, factors=args.factor, model="gp", **gp_keywords(args, loop_bounds=True))
         s = suggest(result, args.goal, args.runs, criterion=args.criterion, bounds=args.bound,
                     constraints=args.constraint, seed=0 if args.seed is None else args.seed)
     write_output(args.output, s.design.csv_text(), force=args.force)

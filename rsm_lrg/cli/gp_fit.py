@@ -1,5 +1,5 @@
 """``rsm-lrg fit --model gp``: the Gaussian-process options of ``fit`` (``--kernel``,
-``--trend``, ``--nugget``, ``--seed``) and the run of a GP fit (text or ``--json``)."""
+``--trend``, ``--nugget``, ``--seed``, ``--length-scale-bounds``) and the run of a GP fit (text or ``--json``)."""
 
 from __future__ import annotations
 
@@ -38,8 +38,30 @@ def _seed(text: str) -> int:
     return v
 
 
-def add_gp_options(parser: argparse.ArgumentParser) -> None:
-    """``--kernel``, ``--trend``, ``--nugget`` and ``--seed`` (with ``--model gp``)."""
+def _bounds(text: str) -> tuple[float, float]:
+    lo_text, sep, hi_text = text.partition(":")
+    try:
+        lo, hi = float(lo_text), float(hi_text)
+    except ValueError:
+        lo = hi = math.nan
+    if not sep or not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+        raise argparse.ArgumentTypeError(f"expected LOW:HIGH, two finite numbers with 0 < LOW < HIGH, got "
+                                         f"{quote_user_value(text)}")
+    return lo, hi
+
+
+def add_gp_options(parser: argparse.ArgumentParser, *, loop_bounds: bool = False) -> None:
+    """``--kernel``, ``--trend``, ``--nugget``, ``--seed`` and ``--length-scale-bounds`` (with
+    ``--model gp``).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    loop_bounds : bool
+        The command chooses runs (``suggest``): its length-scale bounds default to the loop's,
+        :data:`rsm_lrg.model.pipelines.gp.LOOP_THETA_BOUNDS` (see :func:`gp_keywords`).
+    """
     g = parser.add_argument_group("Gaussian process (with --model gp)")
     g.add_argument("--kernel", default=None, choices=list(KERNEL_CHOICES),
                    help="correlation kernel, one length-scale per factor on the coded factors (default matern52)")
@@ -50,6 +72,11 @@ def add_gp_options(parser: argparse.ArgumentParser) -> None:
                         "share a setting, else 0 (the model interpolates the runs)")
     g.add_argument("--seed", default=None, type=_seed, metavar="S",
                    help="seed of the likelihood's starting points (default 0)")
+    g.add_argument("--length-scale-bounds", default=None, type=_bounds, metavar="LOW:HIGH",
+                   help="bounds of the estimated length-scales, as multiples of each factor's coded range in the "
+                        + ("data (default 0.001:2, as the loop's; the upper one is R DiceKriging km's default)"
+                           if loop_bounds else "data (default 0.001:10; 0.001:2 has R DiceKriging km's default upper "
+                                               "bound, which loop and suggest use)"))
 
 
 def _refuse(args: argparse.Namespace) -> None:
@@ -71,15 +98,36 @@ def check_gp_options(args: argparse.Namespace, *, on: bool | None = None, flag: 
         on = getattr(args, "model", None) in GP_MODELS
     if on:
         return
-    for opt, attr in (("--kernel", "kernel"), ("--trend", "trend"), ("--nugget", "nugget"), ("--seed", "seed")):
+    for opt, attr in (("--kernel", "kernel"), ("--trend", "trend"), ("--nugget", "nugget"), ("--seed", "seed"),
+                      ("--length-scale-bounds", "length_scale_bounds")):
         if getattr(args, attr, None) is not None:
             raise InputError(f"{opt}: only with {flag} (a Gaussian process)")
 
 
-def gp_keywords(args: argparse.Namespace) -> dict:
-    """The ``kernel=``, ``trend=``, ``nugget=``, ``seed=`` keywords of ``rsm_lrg.fit`` from the options."""
+def gp_keywords(args: argparse.Namespace, *, loop_bounds: bool = False) -> dict:
+    """The ``kernel=``, ``trend=``, ``nugget=``, ``seed=``, ``length_scale_bounds=`` keywords of
+    ``rsm_lrg.fit`` from the options.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options.
+    loop_bounds : bool
+        Without ``--length-scale-bounds``, the loop's bounds
+        (:data:`rsm_lrg.model.pipelines.gp.LOOP_THETA_BOUNDS`) instead of ``fit``'s default.
+
+    Returns
+    -------
+    dict
+        Keywords of :func:`rsm_lrg.fit`.
+    """
+    bounds = getattr(args, "length_scale_bounds", None)
+    if bounds is None and loop_bounds:
+        from ..model.pipelines.gp import LOOP_THETA_BOUNDS
+
+        bounds = LOOP_THETA_BOUNDS
     return {"kernel": args.kernel or "matern52", "trend": args.trend or "constant", "nugget": args.nugget,
-            "seed": 0 if args.seed is None else args.seed}
+            "seed": 0 if args.seed is None else args.seed, "length_scale_bounds": bounds}
 
 
 def run_gp(args: argparse.Namespace) -> int:

@@ -371,9 +371,12 @@ class Study:
 
     def _fit(self, data: Any) -> Any:
         from ..model import fit
+        from ..model.pipelines.gp import LOOP_THETA_BOUNDS
 
+        # km's upper length-scale bound (2 x the range), as DiceOptim's EGO: see LOOP_THETA_BOUNDS
         return fit(data[[*self.names, self.opts.response]], self.opts.response, factors=self.opts.factors,
-                   model="gp", kernel=self.opts.kernel, trend=self.opts.trend, seed=self.opts.seed)
+                   model="gp", kernel=self.opts.kernel, trend=self.opts.trend, seed=self.opts.seed,
+                   length_scale_bounds=LOOP_THETA_BOUNDS)
 
     def _design(self, r: int, done: int) -> tuple[str, dict]:
         """Round ``r``'s design CSV (made, or read back) and what the round records."""

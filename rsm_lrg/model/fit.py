@@ -63,7 +63,8 @@ def fit(  # type: ignore[overload-overlap]  # "gp" is also a str: the first matc
         hard_to_change: str | Sequence[str] | None = ...,
         random_effects: Sequence[str] | None = ..., kernel: str = ..., trend: str = ...,
         nugget: float | str | None = ..., length_scales: Sequence[float] | None = ..., variance: float | None = ...,
-        seed: int | None = ..., family: None = ..., link: None = ..., trials: None = ...) -> GPResult: ...
+        seed: int | None = ..., length_scale_bounds: tuple[float, float] | None = ..., family: None = ...,
+        link: None = ..., trials: None = ...) -> GPResult: ...
 @overload
 def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = ..., block: str | None = ...,
         model: str | ModelSpec = ..., *, terms: TermsArg = ..., intercept: bool = ...,
@@ -72,7 +73,8 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         random_block: str | None = ..., hard_to_change: str | Sequence[str] | None = ...,
         random_effects: Sequence[str] | None = ..., kernel: str = ...,
         trend: str = ..., nugget: float | str | None = ..., length_scales: Sequence[float] | None = ...,
-        variance: float | None = ..., seed: int | None = ..., family: str | Family, link: str | None = ...,
+        variance: float | None = ..., seed: int | None = ...,
+        length_scale_bounds: tuple[float, float] | None = ..., family: str | Family, link: str | None = ...,
         trials: str | None = ...) -> GLMResult: ...
 @overload
 def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = ..., block: str | None = ...,
@@ -82,7 +84,8 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         random_block: str | None = ..., hard_to_change: str | Sequence[str] | None = ...,
         random_effects: Sequence[str] | None = ..., kernel: str = ...,
         trend: str = ..., nugget: float | str | None = ..., length_scales: Sequence[float] | None = ...,
-        variance: float | None = ..., seed: int | None = ..., family: None = ..., link: None = ...,
+        variance: float | None = ..., seed: int | None = ...,
+        length_scale_bounds: tuple[float, float] | None = ..., family: None = ..., link: None = ...,
         trials: None = ...) -> FitResult: ...
 def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = None, block: str | None = None,
         model: str | ModelSpec = "quadratic", *, terms: TermsArg = None, intercept: bool = True,
@@ -91,7 +94,8 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         random_block: str | None = None, hard_to_change: str | Sequence[str] | None = None,
         random_effects: Sequence[str] | None = None, kernel: str = "matern52",
         trend: str = "constant", nugget: float | str | None = None, length_scales: Sequence[float] | None = None,
-        variance: float | None = None, seed: int | None = 0, family: str | Family | None = None,
+        variance: float | None = None, seed: int | None = 0,
+        length_scale_bounds: tuple[float, float] | None = None, family: str | Family | None = None,
         link: str | None = None, trials: str | None = None) -> FitResult | GPResult | GLMResult:
     """Fit a response-surface model by OLS in coded units (paper Eq. 19, Table 5), a Gaussian
     process (``model="gp"``, :func:`rsm_lrg.model.pipelines.gp.fit_gp`) or a generalised linear model
@@ -180,6 +184,12 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         ``"quadratic"``), nugget (``None``, ``"estimate"`` or a value), fixed
         hyper-parameters and the seed of the likelihood's starting points
         (:func:`rsm_lrg.model.pipelines.gp.fit_gp`).
+    length_scale_bounds : (float, float), optional
+        With ``model="gp"`` only: bounds of the estimated length-scales as multiples of each
+        factor's coded range in the data; ``None``: 1e-3 and 10
+        (:data:`~rsm_lrg.model.pipelines.gp.THETA_BOUNDS`). ``(1e-3, 2.0)``
+        (:data:`~rsm_lrg.model.pipelines.gp.LOOP_THETA_BOUNDS`, R ``DiceKriging::km``'s
+        default upper bound) is what ``rsm-lrg loop`` and ``rsm-lrg suggest`` fit with.
     family : {"binomial", "poisson"}, optional
         A generalised linear model of a 0/1 response, successes of ``trials``, or a count,
         fitted by maximum likelihood (:func:`rsm_lrg.model.pipelines.glm.fit_glm`; returns a
@@ -206,13 +216,16 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
     import pandas as pd
 
     if isinstance(model, str) and model.strip().lower() == "gp":  # the Gaussian-process engine
-        from .pipelines.gp import fit_gp, refuse_options
+        from .pipelines.gp import THETA_BOUNDS, fit_gp, refuse_options
 
         refuse_options(block=block, terms=terms, intercept=intercept, transform=transform, reduce=reduce,
                        components=components, whole_plot=whole_plot, random_block=random_block, dask=is_dask(data),
                        random_effects=random_effects)
         return fit_gp(data, response, factors, kernel=kernel, trend=trend, nugget=nugget,
-                      length_scales=length_scales, variance=variance, seed=seed)
+                      length_scales=length_scales, variance=variance, seed=seed,
+                      length_scale_bounds=THETA_BOUNDS if length_scale_bounds is None else length_scale_bounds)
+    if length_scale_bounds is not None:  # a Gaussian process's option: never ignored silently
+        raise SpecError("length_scale_bounds", "length_scale_bounds: only with model='gp' (a Gaussian process)")
     spec = ModelSpec.build(model, terms=terms, intercept=intercept, transform=transform,
                            transform_constant=transform_constant, reduce=reduce)
     if family is not None or link is not None or trials is not None:  # a GLM (rsm_lrg.model.pipelines.glm)

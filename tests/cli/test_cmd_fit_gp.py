@@ -32,6 +32,21 @@ def test_json_output(capsys):
     assert -1.0 < d["loo"]["q2"] <= 1.0
 
 
+def test_length_scale_bounds(capsys):
+    # km's bounds (2 x the range): theta_x2 stops at km's bound, 3.88566 (tests/model/r/gp.R); the
+    # default bounds (10 x the range) let it rise to a higher likelihood
+    out = {}
+    for given in ([], ["--length-scale-bounds", "0.001:2"]):
+        assert main(["fit", BRANIN, "--response", "y", "--model", "gp", "--factor", "x1=-5:10", "--factor", "x2=0:15",
+                     "--kernel", "gauss", "--trend", "quadratic", *given, "--json", "-"]) == 0
+        out[bool(given)] = json.loads(capsys.readouterr().out)["gp"]
+    assert out[True]["search"]["length_scale_bounds"] == [0.001, 2.0]
+    assert out[False]["search"]["length_scale_bounds"] == [0.001, 10.0]
+    assert out[True]["length_scales"]["coded"]["x2"] == pytest.approx(3.8856585726669608, rel=1e-9)
+    assert out[False]["length_scales"]["coded"]["x2"] > 4.5
+    assert out[False]["log_likelihood"] > out[True]["log_likelihood"] + 0.4
+
+
 def test_fixed_nugget_value(capsys):
     assert main(["fit", HART, "--response", "y", "--model", "gp", "--nugget", "0.01", "--json", "-"]) == 0
     d = json.loads(capsys.readouterr().out)
@@ -44,6 +59,11 @@ def test_fixed_nugget_value(capsys):
     (["--model", "gp", "--kernel", "exp"], "--kernel"),
     (["--model", "gp", "--trend", "cubic"], "--trend"),
     (["--model", "gp", "--seed", "-2"], "--seed"),
+    (["--model", "gp", "--length-scale-bounds", "2:1"], "--length-scale-bounds"),
+    (["--model", "gp", "--length-scale-bounds", "0:1"], "--length-scale-bounds"),
+    (["--model", "gp", "--length-scale-bounds", "0.1"], "--length-scale-bounds"),
+    (["--model", "gp", "--length-scale-bounds", "0.1:inf"], "--length-scale-bounds"),
+    (["--model", "quadratic", "--length-scale-bounds", "0.1:2"], "--length-scale-bounds"),
     (["--kernel", "gauss"], "--kernel"),
     (["--model", "quadratic", "--nugget", "estimate"], "--nugget"),
     (["--model", "gp", "--block", "x1"], "--block"),

@@ -38,6 +38,16 @@ def test_json_and_criterion(tmp_path, capsys):
     assert d["runs"][0]["x1"] + d["runs"][0]["x2"] <= 10 + 1e-6
 
 
+def test_the_loops_length_scale_bounds_by_default(tmp_path, capsys):
+    # suggest is one step of the loop: km's upper bound (2 x the range) unless told otherwise
+    got = {}
+    for given in ([], ["--length-scale-bounds", "0.001:10"]):
+        assert main(["suggest", BRANIN, "--response", "y", *FACTORS, "--goal", "minimize", "-o",
+                     str(tmp_path / "n.csv"), "--force", "--json", "-", *given]) == 0
+        got[bool(given)] = json.loads(capsys.readouterr().out)["model"]["gp"]["search"]["length_scale_bounds"]
+    assert got == {False: [0.001, 2.0], True: [0.001, 10.0]}
+
+
 @pytest.mark.parametrize("args, option", [
     (["--goal", "sideways"], "--goal"),
     (["--runs", "0"], "--runs"),
@@ -45,6 +55,7 @@ def test_json_and_criterion(tmp_path, capsys):
     (["--bound", "x1=3:1"], "--bound"),
     (["--model", "quadratic"], "--model"),
     (["--nugget", "-2"], "--nugget"),
+    (["--length-scale-bounds", "1:1"], "--length-scale-bounds"),
 ])
 def test_bad_input_is_one_error_line(args, option, tmp_path, capsys):
     rc = main(["suggest", BRANIN, "--response", "y", *FACTORS, *args, "-o", str(tmp_path / "n.csv")])

@@ -108,7 +108,9 @@ class GPResult:
     starts : int
         Starting points of the likelihood's maximisation.
     search : dict
-        How the maximum was searched (``subsample``, ``polished``, likelihood evaluations;
+        How the maximum was searched (``length_scale_bounds``: the bounds of the estimated
+        length-scales as multiples of each factor's coded range, ``None`` when they were given;
+        ``subsample``, ``polished``, likelihood evaluations;
         :class:`rsm_lrg.model.pipelines.gp.Estimate`); empty when nothing was estimated.
     seed : int or None
     notes : tuple of str

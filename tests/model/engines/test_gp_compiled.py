@@ -135,7 +135,8 @@ def test_mean_only_prediction_equals_the_chunked_one(big_fit):
 @pytest.mark.slow  # a fit on 340 runs
 def test_subsample_search_polished_on_every_run(big_fit):
     r = big_fit
-    assert r.search == {"subsample": MULTISTART_RUNS, "polished": 1, "evaluations_subsample": r.search[
+    assert r.search == {"length_scale_bounds": [1e-3, 10.0], "subsample": MULTISTART_RUNS, "polished": 1,
+                        "evaluations_subsample": r.search[
         "evaluations_subsample"], "evaluations_all": r.search["evaluations_all"]}
     assert r.search["evaluations_subsample"] > 0 and r.search["evaluations_all"] > 0
     assert any("random subsample of 300 runs and the best polished on all 340" in s for s in r.notes)

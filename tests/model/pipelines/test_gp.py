@@ -183,11 +183,41 @@ def test_to_dict_and_summary(hartmann_fit):
     ({"length_scales": [1.0, -2.0]}, "length_scales"), ({"variance": 0.0}, "variance"),
     ({"block": "x1"}, "block"), ({"transform": "log"}, "transform"), ({"terms": "A B"}, "terms"),
     ({"reduce": True}, "reduce"), ({"components": ["x1", "x2"]}, "components"),
+    ({"length_scale_bounds": (2.0, 1.0)}, "length_scale_bounds"), ({"length_scale_bounds": (0.0, 1.0)},
+                                                                    "length_scale_bounds"),
+    ({"length_scale_bounds": (0.1, np.inf)}, "length_scale_bounds"), ({"length_scale_bounds": 2.0},
+                                                                       "length_scale_bounds"),
+    ({"length_scale_bounds": ("a", 2)}, "length_scale_bounds"),
 ])
 def test_bad_options_name_their_parameter(branin, kw, parameter):
     with pytest.raises(ParameterError) as e:
         rsm_lrg.fit(branin, "y", factors=BRANIN, model="gp", **kw)
     assert e.value.parameter == parameter
+
+
+def test_length_scale_bounds_hold_and_are_recorded(branin, hartmann):
+    # bounds that exclude the usual starting box: every start and the optimum inside them
+    r = rsm_lrg.fit(branin, "y", factors=BRANIN, model="gp", length_scale_bounds=(0.01, 0.05))
+    span = np.ptp(r.x, axis=0)
+    assert np.all(r.length_scales >= 0.01 * span * (1 - 1e-12)) and np.all(r.length_scales <= 0.05 * span * (1 + 1e-12))
+    assert r.search["length_scale_bounds"] == [0.01, 0.05]
+    assert r.to_dict()["gp"]["search"]["length_scale_bounds"] == [0.01, 0.05]
+    # on these runs the likelihood's maximum lies inside (0.01, 2) x the range: the same fit
+    inner = rsm_lrg.fit(hartmann, "y", factors=HART, model="gp", nugget="estimate", length_scale_bounds=(0.01, 2.0))
+    wide = rsm_lrg.fit(hartmann, "y", factors=HART, model="gp", nugget="estimate")
+    assert np.all(wide.length_scales < 2.0 * np.ptp(wide.x, axis=0))
+    np.testing.assert_allclose(inner.length_scales, wide.length_scales, rtol=1e-5)
+    # fixed length-scales: no bounds used
+    fixed = rsm_lrg.fit(branin, "y", factors=BRANIN, model="gp", length_scales=[1.0, 2.0], variance=1e4)
+    assert fixed.search == {}
+
+
+def test_length_scale_bounds_only_with_a_gp(branin):
+    from rsm_lrg.model.build.spec import SpecError
+
+    with pytest.raises(SpecError) as e:
+        rsm_lrg.fit(branin, "y", factors=BRANIN, model="quadratic", length_scale_bounds=(0.01, 2.0))
+    assert e.value.parameter == "length_scale_bounds"
 
 
 def test_categoric_factor_refused(branin):

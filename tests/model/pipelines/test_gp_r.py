@@ -10,6 +10,10 @@ with 100 new points, none tuned on).
   the log-likelihood equals ``logLik`` to 1e-9 absolute.
 * With the hyper-parameters estimated, the concentrated log-likelihood is at least
   ``km``'s (the best of 20 seeded runs of its L-BFGS-B) minus 1e-6.
+* With km's own length-scale bounds (``LOOP_THETA_BOUNDS``: at most 2 x the design's range,
+  ``covParametersBounds``; the loop's), the estimates are km's: the length-scales to 1e-5
+  relative (where km stops at its bound, to rounding) and the log-likelihood to 1e-6; with the
+  default bounds (10 x the range) the likelihood rises above km's where km stops at its bound.
 """
 
 from pathlib import Path
@@ -19,6 +23,7 @@ import pandas as pd
 import pytest
 
 import rsm_lrg
+from rsm_lrg.model.pipelines.gp import LOOP_THETA_BOUNDS
 
 HERE = Path(__file__).parents[1] / "r"
 CASES = {  # case: (data set, kernel, trend, nugget estimated)
@@ -71,3 +76,23 @@ def test_estimated_likelihood_at_least_km(case):
                     nugget="estimate" if nugget else None)
     assert r.estimated == {"length_scales": True, "variance": True, "nugget": nugget}
     assert r.log_likelihood >= float(e["loglik"]) - 1e-6
+
+
+@pytest.mark.parametrize("case", [pytest.param(c, marks=pytest.mark.slow) if c.startswith("surrogate") else c
+                                  for c in CASES])
+def test_with_kms_bounds_the_estimates_are_kms(case):
+    runs, _, factors, kernel, trend, nugget, e, theta = _case(case)
+    r = rsm_lrg.fit(runs, "y", factors=factors, model="gp", kernel=kernel, trend=trend,
+                    nugget="estimate" if nugget else None, length_scale_bounds=LOOP_THETA_BOUNDS)
+    assert r.search["length_scale_bounds"] == [1e-3, 2.0]
+    np.testing.assert_allclose(r.length_scales, theta, rtol=1e-5)
+    assert r.log_likelihood == pytest.approx(float(e["loglik"]), abs=1e-6)
+    upper = LOOP_THETA_BOUNDS[1] * np.ptp(r.x, axis=0)
+    at_bound = np.isclose(theta, upper, rtol=1e-12)
+    np.testing.assert_allclose(r.length_scales[at_bound], upper[at_bound], rtol=1e-14)
+    wide = rsm_lrg.fit(runs, "y", factors=factors, model="gp", kernel=kernel, trend=trend,
+                       nugget="estimate" if nugget else None)
+    if at_bound.any():  # the bound held km back: beyond it the likelihood is higher
+        assert wide.log_likelihood > float(e["loglik"]) + 1e-4
+    else:
+        assert wide.log_likelihood == pytest.approx(float(e["loglik"]), abs=1e-6)
