@@ -8,7 +8,7 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
-from .gp_fit import KERNEL_CHOICES, TREND_CHOICES
+from .gp_fit import KERNEL_CHOICES, TREND_CHOICES, length_scale_bounds
 from .options import add_json, number, whole_number
 
 if TYPE_CHECKING:
@@ -67,6 +67,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the GP's correlation kernel (default matern52)")
     parser.add_argument("--trend", default="constant", choices=list(TREND_CHOICES),
                         help="the GP's trend (default constant)")
+    parser.add_argument("--length-scale-bounds", default=None, type=length_scale_bounds, metavar="LOW:HIGH",
+                        help="bounds of the GP's estimated length-scales, as multiples of each factor's coded range "
+                             "in the runs (default 0.001:2, R DiceKriging km's upper bound, as 'suggest'; a resumed "
+                             "study keeps its own: 0.001:10 for a study begun before this option)")
     parser.add_argument("--no-progress", action="store_true", help="no progress line per round on stderr")
     parser.add_argument("-o", "--output", required=True, metavar="STUDY_DIR",
                         help="the study directory (made when missing; an existing study is resumed)")
@@ -149,7 +153,9 @@ def _options(args: argparse.Namespace) -> LoopOptions:
     del kind, target
     return LoopOptions(factors=list(args.factor), response=args.response, goal=args.goal.strip().lower(),
                        budget=args.budget, initial=initial, batch=args.batch, seed=args.seed, evaluator=evaluator,
-                       ei_tol=args.ei_tol, kernel=args.kernel, trend=args.trend, workers=args.workers,
+                       ei_tol=args.ei_tol, kernel=args.kernel, trend=args.trend,
+                       length_scale_bounds=None if args.length_scale_bounds is None else list(args.length_scale_bounds),
+                       workers=args.workers,
                        timeout=args.evaluate_timeout, progress=not args.no_progress)
 
 

@@ -8,7 +8,7 @@ import math
 
 from ..io import InputError, quote_user_value
 
-__all__ = ["GP_MODELS", "add_gp_options", "check_gp_options", "gp_keywords", "run_gp"]
+__all__ = ["GP_MODELS", "add_gp_options", "check_gp_options", "gp_keywords", "length_scale_bounds", "run_gp"]
 
 #: The ``--model`` value of a Gaussian process.
 GP_MODELS = ("gp",)
@@ -38,7 +38,20 @@ def _seed(text: str) -> int:
     return v
 
 
-def _bounds(text: str) -> tuple[float, float]:
+def length_scale_bounds(text: str) -> tuple[float, float]:
+    """``--length-scale-bounds LOW:HIGH``: two finite numbers, ``0 < LOW < HIGH`` (multiples of
+    each factor's coded range in the data; an ``argparse`` type).
+
+    Parameters
+    ----------
+    text : str
+        The option's value.
+
+    Returns
+    -------
+    (float, float)
+        ``(LOW, HIGH)``.
+    """
     lo_text, sep, hi_text = text.partition(":")
     try:
         lo, hi = float(lo_text), float(hi_text)
@@ -72,7 +85,7 @@ def add_gp_options(parser: argparse.ArgumentParser, *, loop_bounds: bool = False
                         "share a setting, else 0 (the model interpolates the runs)")
     g.add_argument("--seed", default=None, type=_seed, metavar="S",
                    help="seed of the likelihood's starting points (default 0)")
-    g.add_argument("--length-scale-bounds", default=None, type=_bounds, metavar="LOW:HIGH",
+    g.add_argument("--length-scale-bounds", default=None, type=length_scale_bounds, metavar="LOW:HIGH",
                    help="bounds of the estimated length-scales, as multiples of each factor's coded range in the "
                         + ("data (default 0.001:2, as the loop's; the upper one is R DiceKriging km's default)"
                            if loop_bounds else "data (default 0.001:10; 0.001:2 has R DiceKriging km's default upper "

@@ -48,7 +48,10 @@ FORMAT = "rsm-lrg loop study"
 VERSION = 1
 #: Options that fix what the study computes: a resumed study must be given the same values.
 compared_options = ("factors", "response", "goal", "budget", "initial", "batch", "seed", "evaluator",
-                    "ei_tol", "kernel", "trend")
+                    "ei_tol", "kernel", "trend", "length_scale_bounds")
+#: What a study's manifest written before an option existed stands for: the GP's length-scale
+#: bounds were then ``fit``'s (``THETA_BOUNDS``, 1e-3 and 10 times the range).
+_BEFORE_OPTION = {"length_scale_bounds": [1e-3, 10.0]}
 _TMP_PREFIX = ".rsm-lrg-loop."
 
 
@@ -67,6 +70,9 @@ class LoopOptions:
     ei_tol: float
     kernel: str
     trend: str
+    #: The GP's length-scale bounds, multiples of each factor's range (``--length-scale-bounds``);
+    #: None: a new study takes ``LOOP_THETA_BOUNDS`` (R ``km``'s upper bound), a resumed one its own.
+    length_scale_bounds: list[float] | None = None
     workers: int = 1
     timeout: float = 600.0
     progress: bool = True
@@ -326,6 +332,10 @@ class Study:
                 raise InputError(f"-o/--output {root}: a directory that is not an rsm-lrg loop study (no "
                                  f"{MANIFEST}) and not empty; give a new or empty directory")
         if not manifest.exists():
+            if self.opts.length_scale_bounds is None:
+                from ..model.pipelines.gp import LOOP_THETA_BOUNDS
+
+                self.opts.length_scale_bounds = list(LOOP_THETA_BOUNDS)
             root.mkdir(parents=True, exist_ok=True)
             self._save()
             return False
@@ -335,7 +345,9 @@ class Study:
             raise InputError(f"{manifest}: not a readable study manifest ({type(exc).__name__})") from None
         if not isinstance(old, dict) or old.get("format") != FORMAT or not isinstance(old.get("options"), dict):
             raise InputError(f"{manifest}: not an rsm-lrg loop study manifest")
-        was = old["options"]
+        was = dict(_BEFORE_OPTION, **old["options"])
+        if self.opts.length_scale_bounds is None:  # not given: the study's own
+            self.opts.length_scale_bounds = was["length_scale_bounds"]
         now = self.opts.recorded()
         for key in compared_options:
             if json.loads(json.dumps(now[key])) != was.get(key):
@@ -371,12 +383,16 @@ class Study:
 
     def _fit(self, data: Any) -> Any:
         from ..model import fit
-        from ..model.pipelines.gp import LOOP_THETA_BOUNDS
 
-        # km's upper length-scale bound (2 x the range), as DiceOptim's EGO: see LOOP_THETA_BOUNDS
+        # by default km's upper length-scale bound (2 x the range), as DiceOptim's EGO: LOOP_THETA_BOUNDS
+        bounds = self.opts.length_scale_bounds  # resolved by open(): given, the study's, or LOOP_THETA_BOUNDS
+        if bounds is None:
+            from ..model.pipelines.gp import LOOP_THETA_BOUNDS
+
+            bounds = list(LOOP_THETA_BOUNDS)
         return fit(data[[*self.names, self.opts.response]], self.opts.response, factors=self.opts.factors,
                    model="gp", kernel=self.opts.kernel, trend=self.opts.trend, seed=self.opts.seed,
-                   length_scale_bounds=LOOP_THETA_BOUNDS)
+                   length_scale_bounds=(float(bounds[0]), float(bounds[1])))
 
     def _design(self, r: int, done: int) -> tuple[str, dict]:
         """Round ``r``'s design CSV (made, or read back) and what the round records."""
@@ -545,7 +561,8 @@ def _shown(v: Any) -> str:
 
 _OPTION_OF = {"factors": "--factor", "response": "--response", "goal": "--goal", "budget": "--budget",
               "initial": "--initial", "batch": "--batch", "seed": "--seed", "evaluator": "--surrogate/--evaluate",
-              "ei_tol": "--ei-tol", "kernel": "--kernel", "trend": "--trend"}
+              "ei_tol": "--ei-tol", "kernel": "--kernel", "trend": "--trend",
+              "length_scale_bounds": "--length-scale-bounds"}
 
 
 def run_study(root: Path, opts: LoopOptions) -> dict:

@@ -116,6 +116,38 @@ def test_finds_the_minimum_within_the_budget(tmp_path, script, capsys, monkeypat
     assert "--budget" in line and "differs" in line
 
 
+def test_length_scale_bounds_are_the_studys(tmp_path, script, capsys, monkeypatch):
+    # a new study takes km's upper bound (0.001:2) unless told otherwise and records it; resumed
+    # without the option it keeps its own, with another one it is refused naming the option; a
+    # study begun before the option existed (no key in study.json) was fitted with 0.001:10
+    monkeypatch.setenv("LOOP_LOG", str(tmp_path / "log.txt"))
+
+    def run(study, budget, *extra):
+        return main(["loop", *BOX, "--budget", str(budget), "--initial", "6", "--ei-tol", "0", "--evaluate",
+                     _evaluate(script), "-o", str(study), "--no-progress", "--json", "-", *extra])
+
+    def used(study, r):
+        return json.loads((study / f"round_{r:03d}" / "model.json").read_text())["gp"]["search"]["length_scale_bounds"]
+
+    a, b = tmp_path / "a", tmp_path / "b"
+    assert run(a, 7) == 0 and run(b, 7, "--length-scale-bounds", "0.001:10") == 0
+    capsys.readouterr()
+    options = {s: json.loads((s / "study.json").read_text())["options"]["length_scale_bounds"] for s in (a, b)}
+    assert options == {a: [0.001, 2.0], b: [0.001, 10.0]}
+    assert used(a, 1) == [0.001, 2.0] and used(b, 1) == [0.001, 10.0]
+    line = error_line(capsys, run(a, 7, "--length-scale-bounds", "0.001:10"))
+    assert "--length-scale-bounds" in line and "differs" in line
+    man = json.loads((b / "study.json").read_text())  # as a study of the previous release wrote it
+    del man["options"]["length_scale_bounds"]
+    (b / "study.json").write_text(json.dumps(man))
+    assert run(b, 7) == 0 and run(b, 7, "--length-scale-bounds", "0.001:10") == 0  # read back
+    assert json.loads((b / "study.json").read_text())["options"]["length_scale_bounds"] == [0.001, 10.0]
+    capsys.readouterr()
+    line = error_line(capsys, run(b, 7, "--length-scale-bounds", "0.001:2"))
+    assert "--length-scale-bounds" in line and "'[0.001, 10.0]' there" in line
+    assert len((tmp_path / "log.txt").read_text().splitlines()) == 14  # 7 runs a study, none repeated
+
+
 @pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGTERM])
 def test_killed_mid_round_resumes_without_repeating(tmp_path, script, sig):
     log, hang = tmp_path / "log.txt", tmp_path / "hang"
