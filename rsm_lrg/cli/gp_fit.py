@@ -52,15 +52,17 @@ def length_scale_bounds(text: str) -> tuple[float, float]:
     (float, float)
         ``(LOW, HIGH)``.
     """
+    from ..errors import ParameterError
+    from ..model.pipelines.gp import check_length_scale_bounds  # the library's check, the option's words
+
     lo_text, sep, hi_text = text.partition(":")
     try:
-        lo, hi = float(lo_text), float(hi_text)
-    except ValueError:
-        lo = hi = math.nan
-    if not sep or not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
-        raise argparse.ArgumentTypeError(f"expected LOW:HIGH, two finite numbers with 0 < LOW < HIGH, got "
-                                         f"{quote_user_value(text)}")
-    return lo, hi
+        if sep:
+            return check_length_scale_bounds((lo_text, hi_text))
+    except ParameterError:
+        pass
+    raise argparse.ArgumentTypeError(f"expected LOW:HIGH, two finite numbers with 0 < LOW < HIGH, got "
+                                     f"{quote_user_value(text)}")
 
 
 def add_gp_options(parser: argparse.ArgumentParser, *, loop_bounds: bool = False) -> None:

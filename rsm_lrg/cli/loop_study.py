@@ -385,11 +385,8 @@ class Study:
         from ..model import fit
 
         # by default km's upper length-scale bound (2 x the range), as DiceOptim's EGO: LOOP_THETA_BOUNDS
-        bounds = self.opts.length_scale_bounds  # resolved by open(): given, the study's, or LOOP_THETA_BOUNDS
-        if bounds is None:
-            from ..model.pipelines.gp import LOOP_THETA_BOUNDS
-
-            bounds = list(LOOP_THETA_BOUNDS)
+        bounds = self.opts.length_scale_bounds
+        assert bounds is not None  # resolved by open(): given, the study's, or LOOP_THETA_BOUNDS
         return fit(data[[*self.names, self.opts.response]], self.opts.response, factors=self.opts.factors,
                    model="gp", kernel=self.opts.kernel, trend=self.opts.trend, seed=self.opts.seed,
                    length_scale_bounds=(float(bounds[0]), float(bounds[1])))

@@ -79,7 +79,7 @@ from ..engines.gp_kernels import COMPILED_PAIRS, KERNELS, correlation, log_deriv
 from ..engines.gp_trend import TRENDS, trend_matrix, trend_size
 from ..results.gp_result import GPResult
 
-__all__ = ["fit_gp", "refuse_options", "estimate", "ProfileLikelihood", "Estimate", "GP_STARTS", "THETA_BOUNDS",
+__all__ = ["fit_gp", "refuse_options", "estimate", "check_length_scale_bounds", "ProfileLikelihood", "Estimate", "GP_STARTS", "THETA_BOUNDS",
            "LOOP_THETA_BOUNDS",
            "NUGGET_RATIO_BOUNDS", "MULTISTART_RUNS", "POLISHED", "POLISH_GAIN",
            "SEARCH_GAIN"]
@@ -410,8 +410,24 @@ def estimate(x: np.ndarray, y: np.ndarray, F: np.ndarray, kernel: str, *, length
                     estimated=estimated, starts=used, search=info)
 
 
-def _length_scale_bounds(value: Any) -> tuple[float, float]:
-    """``(low, high)`` checked: two finite numbers, ``0 < low < high``."""
+def check_length_scale_bounds(value: Any) -> tuple[float, float]:
+    """``length_scale_bounds`` checked (:func:`fit_gp`; ``--length-scale-bounds`` too).
+
+    Parameters
+    ----------
+    value : pair of numbers
+        ``(low, high)``, multiples of each factor's coded range in the data.
+
+    Returns
+    -------
+    (float, float)
+        ``(low, high)`` as floats: finite, ``0 < low < high``.
+
+    Raises
+    ------
+    ParameterError
+        Anything else (``parameter`` is ``"length_scale_bounds"``).
+    """
     try:
         lo, hi = (float(v) for v in value)
     except (TypeError, ValueError):
@@ -499,7 +515,7 @@ def fit_gp(data: Any, response: str, factors: Any = None, *, kernel: str = "mate
     elif isinstance(nugget, str):
         nugget = "estimate"
     var = None if variance is None else _positive("variance", variance)
-    bounds = _length_scale_bounds(length_scale_bounds)
+    bounds = check_length_scale_bounds(length_scale_bounds)
     inp = model_inputs(data, response, factors)
     space = inp.space
     if space.has_categoric:
