@@ -36,7 +36,7 @@ from typing import Any, BinaryIO
 __all__ = ["InputError", "quote_user_value", "show_path", "read_input_bytes", "open_input", "check_output",
            "output_transaction", "output_stream", "register_input", "committing", "read_table", "read_table_as",
            "read_stdin_bytes", "read_toml", "check_nesting", "toml_value", "write_output", "dump_json", "to_jsonable",
-           "numeric_column", "float_column", "remembered_float_columns", "check_number_kinds",
+           "numeric_column", "float_column", "float_values", "remembered_float_columns", "check_number_kinds",
            "is_empty_cell", "cell_error", "COMMA_NUMBER"]
 
 
@@ -532,6 +532,37 @@ def float_column(data, name: str):
         memo[(id(data), name)] = (data, out)
         return out
     return _float_column(data, name)
+
+
+def float_values(data, name: str):
+    """The column ``name`` as a float64 array, checked as :func:`float_column` checks it, of a
+    DataFrame or of a :class:`rsm_lrg.table.ColumnTable` (whose columns are numbers already:
+    only their finiteness is checked, and no pandas is imported).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame or rsm_lrg.table.ColumnTable
+        The table.
+    name : str
+        The column.
+
+    Returns
+    -------
+    numpy.ndarray
+        1-D float64.
+    """
+    import numpy as np
+
+    from .table import is_column_table
+
+    if is_column_table(data):
+        arr = np.asarray(data[name], dtype=float)
+        finite = np.isfinite(arr)
+        if not finite.all():
+            i = int(np.flatnonzero(~finite)[0])
+            raise cell_error(name, i + 1, arr[i])
+        return arr
+    return float_column(data, name).to_numpy(dtype=float)
 
 
 def _float_column(data, name: str):

@@ -254,11 +254,12 @@ def format_cell(x) -> str:
 def table_records(frame) -> list[SimpleNamespace]:
     """The rows of a small DataFrame as records with one attribute per column (as
     ``itertuples(index=False)`` gives them: Python scalars), read column by column (a
-    namedtuple class per call and a cell look-up per value cost more than a summary's text).
+    namedtuple class per call and a cell look-up per value cost more than a summary's text);
+    rows given as a list of dicts (an ANOVA's rows) become records as they are.
 
     Parameters
     ----------
-    frame : pandas.DataFrame
+    frame : pandas.DataFrame or list of dict
         A table whose column names are identifiers (an ANOVA: ``source, sum_sq, df, ...``).
 
     Returns
@@ -270,6 +271,8 @@ def table_records(frame) -> list[SimpleNamespace]:
     >>> [(r.source, r.df) for r in table_records(pd.DataFrame({"source": ["A", "B"], "df": [1, 2]}))]
     [('A', 1), ('B', 2)]
     """
+    if isinstance(frame, list):
+        return [SimpleNamespace(**row) for row in frame]
     cols = {str(c): frame[c].tolist() for c in frame.columns}
     return [SimpleNamespace(**dict(zip(cols, vals))) for vals in zip(*cols.values())]
 

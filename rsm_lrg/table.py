@@ -96,6 +96,31 @@ class ColumnTable:
         idx = np.asarray(rows, dtype=np.intp)
         return ColumnTable({k: v[idx] for k, v in self._cols.items()})
 
+    def to_numpy(self, dtype: Any = None) -> np.ndarray:
+        """The columns side by side, as ``DataFrame.to_numpy``.
+
+        Parameters
+        ----------
+        dtype : numpy dtype, optional
+            The array's dtype (default: the columns' common type).
+
+        Returns
+        -------
+        numpy.ndarray (rows, columns)
+            A new array.
+        """
+        return np.column_stack(list(self._cols.values())).astype(dtype if dtype is not None else
+                                                                 np.result_type(*self._cols.values()))
+
+    def copy(self) -> ColumnTable:
+        """The table itself: it is read-only, so a copy would change nothing (as ``DataFrame.copy``).
+
+        Returns
+        -------
+        ColumnTable
+        """
+        return self
+
     def to_frame(self) -> Any:
         """The same table as a ``pandas.DataFrame`` (imports pandas).
 

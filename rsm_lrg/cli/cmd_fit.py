@@ -182,7 +182,10 @@ def run(args: argparse.Namespace) -> int:
                                    "random_effect", "dispersion") if getattr(args, o, None)]
         if unsupported:
             raise ValueError(f"{args.data}: --{unsupported[0].replace('_', '-')} is not available when fitting several files")
-    data = many[0] if many is not None else read_input(args)
+    # a plain CSV file is read into a ColumnTable, without pandas (rsm_lrg.table), when nothing
+    # after the fit reads the runs as a DataFrame (per-run diagnostics, the report, the spread model)
+    data = many[0] if many is not None else read_input(
+        args, column_table=not (args.diagnostics or args.report or args.dispersion))
     with about_file(args.data), _about_files(many, args):
         result = fit(data, args.response, factors=args.factor, block=args.block, model=model_spec(args),
                      components=args.component, **random_effect(args))

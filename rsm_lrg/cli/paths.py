@@ -182,17 +182,19 @@ def _samefile(a, b) -> bool:
         return False
 
 
-def read_input(args: argparse.Namespace, path=None):
+def read_input(args: argparse.Namespace, path=None, *, column_table: bool = False):
     """The table ``path`` (default ``args.data``) read with the command's ``--sep``,
     ``--decimal`` and ``--sheet``. Unless it was plain comma-separated CSV, what was read
     (format, separator and whether detected, decimal mark, sheet) is added to
     ``args.notes_at_end``: ``rsm-lrg`` prints them as ``note:`` lines on stderr when the command
-    succeeds (after an error only the one ``error:`` line is printed)."""
+    succeeds (after an error only the one ``error:`` line is printed). With ``column_table``
+    a CSV file of plain numbers comes back as a :class:`rsm_lrg.table.ColumnTable`, read
+    without pandas (:func:`rsm_lrg.io.read_table_as`); any other file as a DataFrame."""
     from ..io import read_table_as
 
     path = args.data if path is None else path
     df, how = read_table_as(path, sep=getattr(args, "sep", None), decimal=getattr(args, "decimal", "."),
-                            sheet=getattr(args, "sheet", None))
+                            sheet=getattr(args, "sheet", None), **({"column_table": True} if column_table else {}))  # TEMP
     if how is not None and (not how.plain or str(path) == "-"):
         name = STDIN_NAME if str(path) == "-" else str(path)
         notes = getattr(args, "notes_at_end", None)

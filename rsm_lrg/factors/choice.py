@@ -8,8 +8,9 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from ..io import float_column
-from .columns import COLUMNS_LEFT_OUT, Note, column_dtypes, constant_number, infer_items, is_bookkeeping
+from ..io import float_values
+from ..table import is_column_table
+from .columns import COLUMNS_LEFT_OUT, Note, column_dtypes, column_kind, constant_number, infer_items, is_bookkeeping
 from .space import FactorSpace, inferred_space
 from .values import name_list, quote_value
 
@@ -99,8 +100,6 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
     -------
     FactorChoice
     """
-    import pandas as pd
-
     exclude = set(exclude)
     cols = list(data.columns)
     if isinstance(factors, FactorSpace):
@@ -112,7 +111,7 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
         space = inferred_space(how, items)
     used = set(space.names) | exclude
     unused = [c for c in cols if c not in used and not is_bookkeeping(c)]
-    text = [c for c in unused if not pd.api.types.is_numeric_dtype(data[c])]
+    text = [c for c in unused if column_kind(data, c) == "other"]
     notes = []
     if how == "design":
         pairs = [f"{f.letter} {f.name} ({cc})" for f, cc in zip(space.factors, coded_used)]
@@ -122,7 +121,7 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
         notes.append(f"Factors taken to be the numeric columns: {name_list([f'{f.letter} {f.name}' for f in space])} "
                      "(name other factors with --factor).")
     for f in space.factors if how == "given" else ():
-        if f.kind == "categoric" and f.name in data.columns and pd.api.types.is_numeric_dtype(data[f.name]):
+        if f.kind == "categoric" and f.name in data.columns and column_kind(data, f.name) != "other":
             notes.append(f"Categoric factor {quote_value(str(f.name))} is read from a column of numbers: its levels "
                          f"are the numbers, written {name_list(list(f.levels))} (whole numbers without .0, others "
                          "to 15 digits); codes that differ only in their text (1.0 and 1) are one level.")
@@ -162,10 +161,12 @@ def _blend_total(data, space: FactorSpace) -> float | None:
     dtypes = column_dtypes(data)
     if dtypes is not None and all(dtypes[n].kind in "fiu" for n in names):
         try:  # number columns: as float_column reads them (once per fit inside remembered_float_columns)
-            x = np.column_stack([float_column(data, n).to_numpy(dtype=float) for n in names])
+            x = np.column_stack([float_values(data, n) for n in names])
         except ValueError:  # a value that is not finite: as below
             x = None
     if x is None:
+        if is_column_table(data):
+            return None  # a value that is not finite
         try:
             x = data[names].to_numpy(dtype=float)
         except (TypeError, ValueError):

@@ -15,14 +15,15 @@ from typing import Any
 
 import numpy as np
 
-from ..io import COMMA_NUMBER, cell_error, float_column, is_empty_cell
+from ..io import COMMA_NUMBER, cell_error, float_column, float_values, is_empty_cell
+from ..table import is_column_table
 from .factor import check_factor_name, level_text
 from .spec import given_items
 from .values import name_list, quote_value
 
 __all__ = ["BOOKKEEPING", "CODED_COLUMN_PREFIX", "PAIR_RTOL", "DESIGN_CODED", "COLUMNS_LEFT_OUT", "Note",
            "is_bookkeeping", "design_factors", "infer_items", "constant_number",
-           "check_frame", "check_label_column", "column_dtypes"]
+           "check_frame", "check_label_column", "column_dtypes", "column_kind"]
 
 #: Column names that are never factors (case-insensitive).
 BOOKKEEPING = frozenset({"run", "order", "std", "std_order", "run_order"})
@@ -135,31 +136,30 @@ def design_factors(data, coded: list, exclude: set) -> tuple[list, list]:
     tuple of list
         ``([(name, low, high)], [coded column])``.
     """
-    import pandas as pd
-
     cols = list(data.columns)
     last = max(cols.index(c) for c in coded)
     cand = [c for c in cols if c not in exclude and not is_bookkeeping(c) and str(c).lower() != "block"
-            and pd.api.types.is_numeric_dtype(data[c]) and not pd.api.types.is_bool_dtype(data[c])]
+            and column_kind(data, c) == "number"]
     # the design writes the actual columns right after the coded ones, in the same order:
     # those are tried first, so column order settles any tie
     order = [c for c in cand if cols.index(c) > last] + [c for c in cand if cols.index(c) < last]
     used: set = set()
     out = []
     for cc in coded:
-        if not pd.api.types.is_numeric_dtype(data[cc]) and not pd.api.types.is_bool_dtype(data[cc]):
+        if column_kind(data, cc) == "other":
             # a categoric factor: its coded column holds the level (Design-Expert's layout), the
             # same text as its actual column; levels in order of first appearance in std_order
             levels_of = _design_categoric(data, cc, cols, last, exclude, used)
             used.add(levels_of[0])
             out.append(levels_of)
             continue
-        cv = float_column(data, cc).to_numpy(dtype=float)
+        cv = float_values(data, cc)
         match: tuple | None = None
         for name in order:
             if name in used:
                 continue
-            levels = _pair_levels(cv, data[name].to_numpy(dtype=float, na_value=np.nan))
+            levels = _pair_levels(cv, np.asarray(data[name], dtype=float) if is_column_table(data)
+                                  else data[name].to_numpy(dtype=float, na_value=np.nan))
             if levels is not None:
                 match = (name, *levels)
                 break
@@ -252,9 +252,40 @@ def column_dtypes(data) -> dict | None:
     dict or None
         The dtype of each column.
     """
+    if is_column_table(data):  # names unique, numbers only
+        return {c: data[c].dtype for c in data.columns}
     if not data.columns.is_unique:
         return None
     return dict(zip(data.columns, data.dtypes))
+
+
+def column_kind(data, name, dtypes: dict | None = None) -> str:
+    """What a column holds for the factor choice: ``"number"``, ``"bool"`` (truth values) or
+    ``"other"`` (text, mixed objects, categories), by its dtype; every column of a
+    :class:`~rsm_lrg.table.ColumnTable` is a number column (pandas is not imported for it).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame or rsm_lrg.table.ColumnTable
+        The table.
+    name : str
+        The column.
+    dtypes : dict, optional
+        :func:`column_dtypes` of ``data`` (a look-up instead of building the column).
+
+    Returns
+    -------
+    str
+        ``"number"``, ``"bool"`` or ``"other"``.
+    """
+    if is_column_table(data):
+        return "number"
+    import pandas as pd
+
+    what = dtypes[name] if dtypes else data[name]
+    if pd.api.types.is_bool_dtype(what):
+        return "bool"
+    return "number" if pd.api.types.is_numeric_dtype(what) else "other"
 
 
 def _check_text_columns(data, exclude) -> None:
@@ -262,11 +293,13 @@ def _check_text_columns(data, exclude) -> None:
     label: a ValueError names the column and the row. Nor is a column of numbers that pandas
     does not hold as numbers (Python objects with a number among them, a ``Categorical`` of
     numbers) left out as text without a word: refused, naming it."""
+    if is_column_table(data):
+        return  # numbers only
     import pandas as pd
 
     dtypes = column_dtypes(data)
     for c in data.columns:
-        if c in exclude or is_bookkeeping(c) or pd.api.types.is_numeric_dtype(dtypes[c] if dtypes else data[c]):
+        if c in exclude or is_bookkeeping(c) or column_kind(data, c, dtypes) != "other":
             continue
         col = data[c]
         if isinstance(col.dtype, pd.CategoricalDtype):
@@ -307,6 +340,8 @@ def _constant_number(col) -> bool:
 
 
 def _is_number_column(col) -> bool:
+    if isinstance(col, np.ndarray) and col.dtype.kind in "iuf":  # a ColumnTable's column
+        return True
     import pandas as pd
 
     if pd.api.types.is_bool_dtype(col):
@@ -367,8 +402,6 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
     coded_columns : list of str
         With ``how == "design"``: the coded column of each factor; else empty.
     """
-    import pandas as pd
-
     cols = list(data.columns)
     coded_cols = [c for c in cols if DESIGN_CODED.match(str(c))]
     if factors is None and coded_cols:
@@ -382,8 +415,7 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
         names = [
             c for c in cols
             if c not in exclude and not is_bookkeeping(c) and str(c).lower() != "block"
-            and pd.api.types.is_numeric_dtype(dtypes[c] if dtypes else data[c])
-            and not pd.api.types.is_bool_dtype(dtypes[c] if dtypes else data[c])
+            and column_kind(data, c, dtypes) == "number"
         ]
         constant = [n for n in names if _constant_number(data[n])]  # left out with a note (choose_factors)
         items: list[Any] = [("numeric", n, None, None) for n in names if n not in constant]  # names, never specs
@@ -408,7 +440,7 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
             continue
         low, high = levels
         if low is None:
-            col = float_column(data, name).to_numpy()  # finite floats (checked): NumPy's min and max
+            col = float_values(data, name)  # finite floats (checked): NumPy's min and max
             low, high = float(col.min()), float(col.max())
             if not low < high:
                 raise ValueError(f"factor column {quote_value(str(name))} is constant ({low:g}); "

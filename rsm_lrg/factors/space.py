@@ -10,7 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from ..io import float_column, is_empty_cell
+from ..io import float_values, is_empty_cell
+from ..table import ColumnTable, is_column_table
 from .columns import infer_items
 from .component import MixtureComponent
 from .factor import CategoricFactor, Factor, letters_for, level_text
@@ -250,12 +251,14 @@ class FactorSpace:
         numpy.ndarray or pandas.DataFrame
             The coded settings (a frame keyed by letter for a frame).
         """
+        if is_column_table(actual):  # a plain CSV file read without pandas: a table keyed by letter
+            return ColumnTable({f.letter: encode_column(actual, f) for f in self.factors})
+        if isinstance(actual, Mapping):
+            return {f.letter: f.encode(actual[f.name]) for f in self.factors}
         import pandas as pd
 
         if isinstance(actual, pd.DataFrame):
             return pd.DataFrame({f.letter: encode_column(actual, f) for f in self.factors}, index=actual.index)
-        if isinstance(actual, Mapping):
-            return {f.letter: f.encode(actual[f.name]) for f in self.factors}
         a = np.asarray(actual, dtype=object if self.has_categoric else float)
         cols = [f.encode(a[..., i] if f.kind == "categoric" else np.asarray(a[..., i], dtype=float))
                 for i, f in enumerate(self.factors)]
@@ -311,7 +314,7 @@ def encode_column(data, f) -> np.ndarray:
         The coded column(s).
     """
     if f.kind == "numeric":
-        return f.encode(float_column(data, f.name).to_numpy())
+        return f.encode(float_values(data, f.name))
     col = data[f.name]
     lut = {v: float(i) for i, v in enumerate(f.levels)}
     out = np.empty(len(col))

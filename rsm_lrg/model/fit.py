@@ -42,6 +42,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from ..factors import FactorSpace
+    from ..table import ColumnTable
     from .build.transform import Transform
     from .choice.dsd import TwoStage
     from .choice.reduce import Reduction
@@ -56,7 +57,7 @@ __all__ = ["fit", "fit_transformed", "FitResult", "actual_coefficients", "actual
 
 @overload
 def fit(  # type: ignore[overload-overlap]  # "gp" is also a str: the first match wins
-        data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = ..., block: str | None = ..., *,
+        data: pd.DataFrame | dd.DataFrame | ColumnTable, response: str, factors: FactorsArg = ..., block: str | None = ..., *,
         model: Literal["gp"], terms: TermsArg = ..., intercept: bool = ..., transform: str | Transform | None = ...,
         transform_constant: float = ..., reduce: ReduceArg = ..., chunk_rows: int = ...,
         components: Sequence[str] | None = ..., whole_plot: str | None = ..., random_block: str | None = ...,
@@ -66,7 +67,7 @@ def fit(  # type: ignore[overload-overlap]  # "gp" is also a str: the first matc
         seed: int | None = ..., length_scale_bounds: tuple[float, float] | None = ..., family: None = ...,
         link: None = ..., trials: None = ...) -> GPResult: ...
 @overload
-def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = ..., block: str | None = ...,
+def fit(data: pd.DataFrame | dd.DataFrame | ColumnTable, response: str, factors: FactorsArg = ..., block: str | None = ...,
         model: str | ModelSpec = ..., *, terms: TermsArg = ..., intercept: bool = ...,
         transform: str | Transform | None = ..., transform_constant: float = ..., reduce: ReduceArg = ...,
         chunk_rows: int = ..., components: Sequence[str] | None = ..., whole_plot: str | None = ...,
@@ -77,7 +78,7 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         length_scale_bounds: tuple[float, float] | None = ..., family: str | Family, link: str | None = ...,
         trials: str | None = ...) -> GLMResult: ...
 @overload
-def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = ..., block: str | None = ...,
+def fit(data: pd.DataFrame | dd.DataFrame | ColumnTable, response: str, factors: FactorsArg = ..., block: str | None = ...,
         model: str | ModelSpec = ..., *, terms: TermsArg = ..., intercept: bool = ...,
         transform: str | Transform | None = ..., transform_constant: float = ..., reduce: ReduceArg = ...,
         chunk_rows: int = ..., components: Sequence[str] | None = ..., whole_plot: str | None = ...,
@@ -87,7 +88,7 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         variance: float | None = ..., seed: int | None = ...,
         length_scale_bounds: tuple[float, float] | None = ..., family: None = ..., link: None = ...,
         trials: None = ...) -> FitResult: ...
-def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = None, block: str | None = None,
+def fit(data: pd.DataFrame | dd.DataFrame | ColumnTable, response: str, factors: FactorsArg = None, block: str | None = None,
         model: str | ModelSpec = "quadratic", *, terms: TermsArg = None, intercept: bool = True,
         transform: str | Transform | None = None, transform_constant: float = 0.0, reduce: ReduceArg = None,
         chunk_rows: int = CHUNK_ROWS, components: Sequence[str] | None = None, whole_plot: str | None = None,
@@ -103,9 +104,12 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
 
     Parameters
     ----------
-    data : pandas.DataFrame or dask.dataframe.DataFrame
+    data : pandas.DataFrame, dask.dataframe.DataFrame or rsm_lrg.table.ColumnTable
         One row per run. A Dask DataFrame is fitted partition by partition without being
         collected (:mod:`rsm_lrg.model.pipelines.dask_fit`; the result holds no per-run arrays).
+        A :class:`~rsm_lrg.table.ColumnTable` (a plain CSV file read without pandas) is fitted
+        as it is by least squares (the result's ``data`` is that table); the other engines
+        (a GP, a GLM, a mixture, random effects, a reduction) are given it as a DataFrame.
     response : str
         Response column (e.g. ``"tcr_c_per_min"`` [°C/min]).
     factors : None, sequence or FactorSpace
@@ -213,15 +217,21 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
         a :class:`~rsm_lrg.model.build.spec.SpecError` (a ValueError whose ``option`` names the
         argument).
     """
-    import pandas as pd
+    from ..table import is_column_table
 
+    table: Any = data  # a DataFrame, a Dask DataFrame or a ColumnTable (rsm_lrg.table)
+    plain = is_column_table(table)  # a plain CSV file read without pandas
+    if plain and not _ols_polynomial(model, family, link, trials, components, whole_plot, random_block,
+                                     random_effects):
+        table = table.to_frame()  # the other engines read a DataFrame
+        plain = False
     if isinstance(model, str) and model.strip().lower() == "gp":  # the Gaussian-process engine
         from .pipelines.gp import THETA_BOUNDS, fit_gp, refuse_options
 
         refuse_options(block=block, terms=terms, intercept=intercept, transform=transform, reduce=reduce,
-                       components=components, whole_plot=whole_plot, random_block=random_block, dask=is_dask(data),
+                       components=components, whole_plot=whole_plot, random_block=random_block, dask=is_dask(table),
                        random_effects=random_effects)
-        return fit_gp(data, response, factors, kernel=kernel, trend=trend, nugget=nugget,
+        return fit_gp(table, response, factors, kernel=kernel, trend=trend, nugget=nugget,
                       length_scales=length_scales, variance=variance, seed=seed,
                       length_scale_bounds=THETA_BOUNDS if length_scale_bounds is None else length_scale_bounds)
     if length_scale_bounds is not None:  # a Gaussian process's option: never ignored silently
@@ -231,10 +241,10 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
     if family is not None or link is not None or trials is not None:  # a GLM (rsm_lrg.model.pipelines.glm)
         from .pipelines.glm import fit_glm
 
-        return fit_glm(data, response, factors, spec=spec, family_name=family, link=link, trials=trials, block=block,
+        return fit_glm(table, response, factors, spec=spec, family_name=family, link=link, trials=trials, block=block,
                        components=components,
                        random_effect=whole_plot or random_block or (list(random_effects) if random_effects else None))
-    if is_dask(data):  # fitted partition by partition, never collected; OLS only
+    if is_dask(table):  # fitted partition by partition, never collected; OLS only
         for option, given in (("whole_plot", whole_plot), ("random_block", random_block),
                               ("random_effects", random_effects), ("hard_to_change", hard_to_change)):
             if given is not None:  # a REML fit needs every run in memory: never an OLS fit instead
@@ -244,18 +254,23 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
             raise SpecError("model", "a mixture model is fitted from one in-memory table, not several files")
         from .pipelines.dask_fit import fit_dask
 
-        return fit_dask(data, response, factors=factors, block=block, spec=spec, chunk_rows=chunk_rows)
+        return fit_dask(table, response, factors=factors, block=block, spec=spec, chunk_rows=chunk_rows)
     hard = _hard_names(hard_to_change, whole_plot)
     if random_effects is not None:
-        return _fit_several(data, response, factors, block, spec, whole_plot, random_block, random_effects,
+        return _fit_several(table, response, factors, block, spec, whole_plot, random_block, random_effects,
                             components, hard)
     if whole_plot is not None or random_block is not None:
-        return _fit_mixed(data, response, factors, block, spec, whole_plot, random_block, components, hard)
-    if not isinstance(data, pd.DataFrame):
-        raise TypeError("data must be a pandas DataFrame")
+        return _fit_mixed(table, response, factors, block, spec, whole_plot, random_block, components, hard)
+    if not plain:
+        import pandas as pd
+
+        if not isinstance(table, pd.DataFrame):
+            raise TypeError("table must be a pandas DataFrame")
+    elif spec.mixture or spec.reduce is not None:  # read from a DataFrame (rsm_lrg.model.choice)
+        table = table.to_frame()
     if components is not None or spec.mixture:
-        return _fit_mixture(data, response, components, factors, block, spec, chunk_rows)
-    inp = model_inputs(data, response, factors, block, transform=spec.transform, origin=not spec.intercept)
+        return _fit_mixture(table, response, components, factors, block, spec, chunk_rows)
+    inp = model_inputs(table, response, factors, block, transform=spec.transform, origin=not spec.intercept)
     reduction = None
     if spec.reduce is not None:
         from dataclasses import replace
@@ -269,6 +284,16 @@ def fit(data: pd.DataFrame | dd.DataFrame, response: str, factors: FactorsArg = 
                             "backward elimination removed every term: no factor explains the response "
                             + (f"(alpha_out {reduction.alpha_out:g})" if reduction.criterion == "p" else "(AICc)"))
     return fit_inputs(inp, response, spec, chunk_rows=chunk_rows, reduction=reduction)
+
+
+def _ols_polynomial(model: Any, family: Any, link: Any, trials: Any, components: Any, whole_plot: Any,
+                    random_block: Any, random_effects: Any) -> bool:
+    """Whether a fit is made by least squares of a polynomial or a term list (no GP, GLM,
+    mixture or random effect): the fit that reads a :class:`~rsm_lrg.table.ColumnTable` as it
+    is; the others are given it as a DataFrame."""
+    gp = isinstance(model, str) and model.strip().lower() == "gp"
+    return not gp and all(v is None for v in (family, link, trials, components, whole_plot, random_block,
+                                               random_effects))
 
 
 def _fit_mixture(data: pd.DataFrame, response: str, components: Sequence[str] | None, factors: FactorsArg,

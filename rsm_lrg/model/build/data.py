@@ -31,7 +31,8 @@ import numpy as np
 from ...factors import FactorChoice, FactorSpace, choose_factors, quote_value
 from ...factors.columns import check_frame
 from ...factors.space import encode_column
-from ...io import cell_error, check_number_kinds, float_column
+from ...io import cell_error, check_number_kinds, float_values
+from ...table import is_column_table, take_rows
 
 __all__ = ["PreparedData", "prepare", "response_values", "CHUNK_ROWS"]
 
@@ -81,7 +82,10 @@ def columns_text(data) -> str:
 
 
 def empty_cells(col) -> np.ndarray:
-    """Mask of the empty cells of a column: missing, or text of blanks only (vectorised)."""
+    """Mask of the empty cells of a column: missing, or text of blanks only (vectorised); a
+    column of a :class:`~rsm_lrg.table.ColumnTable` (a NumPy array of numbers): its NaNs."""
+    if isinstance(col, np.ndarray) and col.dtype.kind in "iuf":
+        return np.isnan(col) if col.dtype.kind == "f" else np.zeros(col.shape, dtype=bool)
     import pandas as pd
 
     if pd.api.types.is_numeric_dtype(col) or pd.api.types.is_bool_dtype(col):
@@ -95,6 +99,13 @@ def response_values(data, response: str) -> tuple[np.ndarray, np.ndarray]:
 
     A cell that is neither empty nor a finite number is a ValueError naming its row (1-based).
     """
+    if is_column_table(data):  # numbers already (rsm_lrg.table)
+        col_values = np.asarray(data[response], dtype=float)
+        empty = np.isnan(col_values)
+        bad_rows = np.flatnonzero(~empty & ~np.isfinite(col_values))
+        if bad_rows.size:
+            raise cell_error(response, int(bad_rows[0]) + 1, col_values[bad_rows[0]])
+        return col_values, empty
     import pandas as pd
 
     col = data[response]
@@ -187,16 +198,17 @@ def prepare(data, response: str, factors=None, block: str | None = None, *,
         Unknown columns, an empty or non-numeric factor cell, an empty block cell, a
         response cell that is not a number (each naming the 1-based row), no response at all.
     """
-    import pandas as pd
+    if not is_column_table(data):  # a plain CSV file read without pandas passes as it is
+        import pandas as pd
 
-    if not isinstance(data, pd.DataFrame):
-        raise TypeError("data must be a pandas DataFrame")
+        if not isinstance(data, pd.DataFrame):
+            raise TypeError("data must be a pandas DataFrame")
     check_frame(data, [response] + ([block] if block is not None else []))
     check_response_block(data, response, block)
     exclude = [response] + ([block] if block is not None else []) + [c for c in exclude if c in data.columns]
     choice = choose_factors(data, factors, exclude=exclude)
     for f in choice.space.factors:  # every row, the runs left out too: errors name the input row
-        float_column(data, f.name) if f.kind == "numeric" else encode_column(data, f)
+        float_values(data, f.name) if f.kind == "numeric" else encode_column(data, f)
     if block is not None:
         empty_b = np.flatnonzero(empty_cells(data[block]))
         if empty_b.size:
@@ -207,13 +219,14 @@ def prepare(data, response: str, factors=None, block: str | None = None, *,
         raise ValueError(f"response column {quote_value(str(response))} is empty on every row: there is nothing to fit")
     if empty.any():
         rows = tuple(int(i) + 1 for i in np.flatnonzero(empty))
-        omitted = data.iloc[np.flatnonzero(empty)].copy()
-        used = data.iloc[np.flatnonzero(~empty)].reset_index(drop=True)
+        omitted = data.iloc[np.flatnonzero(empty)].copy() if not is_column_table(data) else data.take(
+            np.flatnonzero(empty))  # index = position in the input
+        used = take_rows(data, np.flatnonzero(~empty))
         y = y[~empty]
         k = len(rows)
         notes.append(f"{k} run{'s' if k > 1 else ''} without a response left out of the fit (not run): "
                      f"row{'s' if k > 1 else ''} {_rows(rows)}.")
     else:
-        rows, omitted, used = (), data.iloc[:0].copy(), data
+        rows, omitted, used = (), (data.take([]) if is_column_table(data) else data.iloc[:0].copy()), data
     return PreparedData(data=used, y=np.asarray(y, dtype=float), space=choice.space, choice=choice,
                         omitted_rows=rows, omitted_data=omitted, notes=tuple(notes))

@@ -13,7 +13,8 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...factors import FactorSpace, quote_value
-from ...io import float_column, remembered_float_columns
+from ...io import float_column, float_values, remembered_float_columns
+from ...table import is_column_table
 from .data import CHUNK_ROWS, prepare
 from .terms import Term, column_names, model_matrix, model_terms, n_columns, parse_term
 from .transform import Transform
@@ -24,6 +25,12 @@ __all__ = ["coded_points", "ModelInputs", "model_inputs", "block_codes", "chosen
 
 def block_codes(data, block: str):
     """Integer codes 0..b-1 (levels sorted), keys "B1".., level labels."""
+    if is_column_table(data):  # numbers, none empty (rsm_lrg.table)
+        labels = np.asarray(data[block], dtype=float)
+        levels = np.unique(labels)
+        codes = np.searchsorted(levels, labels)
+        shown: list[int | float | str] = [int(v) if float(v).is_integer() else float(v) for v in levels]
+        return _block_keys(block, codes, levels, shown)
     import pandas as pd
 
     col = data[block]
@@ -35,12 +42,18 @@ def block_codes(data, block: str):
         labels = num.to_numpy(dtype=float)
         levels = np.unique(labels)
         codes = np.searchsorted(levels, labels)
-        shown: list[int | float | str] = [int(v) if float(v).is_integer() else float(v) for v in levels]
+        shown = [int(v) if float(v).is_integer() else float(v) for v in levels]
     else:
         labels = col.astype(str).str.strip().to_numpy()
         levels = np.unique(labels)
         codes = np.searchsorted(levels, labels)
         shown = [str(v) for v in levels]
+    return _block_keys(block, codes, levels, shown)
+
+
+def _block_keys(block: str, codes: np.ndarray, levels: np.ndarray, shown: list) -> tuple:
+    """:func:`block_codes`' result from the codes and the sorted levels, or the error of a
+    single level."""
     if len(levels) < 2:
         raise ValueError(f"block column {quote_value(block)} has a single level ({quote_value(shown[0])}); "
                          "a block column needs at least two")
@@ -209,7 +222,7 @@ def unrounded_coding(space: FactorSpace, data: Any, coded: np.ndarray) -> np.nda
     x = np.array(coded, dtype=float, copy=True)
     for j, f in enumerate(space.factors):
         if f.kind == "numeric":
-            v = float_column(data, f.name).to_numpy(dtype=float)
+            v = float_values(data, f.name)
             x[:, j] = ((v - f.low) - (f.high - v)) / (f.high - f.low)
     return x
 
@@ -326,10 +339,11 @@ def model_inputs(data: Any, response: str, factors: Any = None, block: str | Non
     ``x / M`` with ``M`` the larger magnitude of its low and high level, so that the model
     passes through the origin of the actual units (as R's ``lm(y ~ 0 + x)``); a coding about
     the centre would hide an intercept in the actual units."""
-    import pandas as pd
+    if not is_column_table(data):  # a plain CSV file read without pandas passes as it is
+        import pandas as pd
 
-    if not isinstance(data, pd.DataFrame):
-        raise TypeError("data must be a pandas DataFrame")
+        if not isinstance(data, pd.DataFrame):
+            raise TypeError("data must be a pandas DataFrame")
     tr = transform if transform is not None else Transform()
     if not tr.identity and response in data.columns:
         from .data import response_values
@@ -346,7 +360,7 @@ def model_inputs(data: Any, response: str, factors: Any = None, block: str | Non
         keys = coded.to_numpy(dtype=float)  # rounded coding: settings equal to round-off are one setting
         x = unrounded_coding(space, data, keys)
     for j, f in enumerate(space.factors):
-        if np.unique(keys[:, j]).size < 2:
+        if np.all(keys[:, j] == keys[0, j]):  # one setting (np.unique would load numpy.ma: 20 ms at start-up)
             raise ValueError(f"factor column {f.name!r} is constant; a factor needs at least two levels")
     y_response = y
     if not tr.identity:

@@ -40,8 +40,9 @@ class SummaryData:
     ----------
     anova_title : str
         ``"ANOVA for the quadratic model (partial sum of squares - Type III)"``.
-    anova : pandas.DataFrame
-        The ANOVA (round-off cleaned once, :func:`rsm_lrg.present.clean_anova`).
+    anova : list of dict
+        The ANOVA's rows, ``{source, sum_sq, df, mean_sq, f, p}`` each (round-off cleaned
+        once, :func:`rsm_lrg.present.clean_anova`; ``result.anova`` is the same as a DataFrame).
     anova_notes : tuple of str
         Design-Expert's sentences on the model, the terms and lack of fit, then the fit's
         own notes (why there is no lack-of-fit test, blocks, ...).
@@ -91,7 +92,7 @@ def summary_data(result: Any) -> SummaryData:
                 if mixture else " (partial sum of squares - Type III)")
              + ("" if result.intercept or mixture else "; no intercept: the model row and total are uncorrected"))
     title = result.reading.anova_title or title  # a REML fit's: its Kenward-Roger tests
-    anova = result.anova
+    anova = result.anova_rows
     records = table_records(anova)
     rows = {r.source: r for r in records}
     notes: list[str] = []

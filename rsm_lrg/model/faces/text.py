@@ -23,10 +23,10 @@ def _p(p) -> str:
 
 def format_anova(result, alpha: float = 0.05, records=None) -> str:
     """The ANOVA (Type III partial sums of squares) like Table 5, with significance notes
-    (``records``: the rows of ``result.anova`` as :func:`rsm_lrg.present.table_records` gives
+    (``records``: the rows of ``result.anova_rows`` as :func:`rsm_lrg.present.table_records` gives
     them, when already read)."""
     rows = []
-    records = table_records(result.anova) if records is None else records
+    records = table_records(result.anova_rows) if records is None else records
     total = [r.sum_sq for r in records if r.source in TOTAL_ROWS]
     scale = float(total[0]) if total else 0.0
     for r in records:

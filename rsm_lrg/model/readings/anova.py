@@ -16,6 +16,7 @@ Montgomery & Anderson-Cook, *Response Surface Methodology*, 3rd ed., Sec. 2.7 an
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -23,7 +24,7 @@ from ...present import clean_anova_records
 from ..build.terms import block_contrasts
 from ..engines.least_squares import least_squares, partial_ss
 
-__all__ = ["partial_ss", "pure_error", "PureError", "anova_table", "lack_of_fit", "f_test", "ANOVA_COLUMNS",
+__all__ = ["partial_ss", "pure_error", "PureError", "anova_table", "anova_rows", "lack_of_fit", "f_test", "ANOVA_COLUMNS",
            "TOTAL_UNCORRECTED", "TOTAL_ROWS"]
 
 #: Columns of :attr:`FitResult.anova`.
@@ -66,6 +67,15 @@ def _group_means(groups: np.ndarray, values: np.ndarray, n_groups: int) -> np.nd
     return np.column_stack(cols)[groups] if cols else values.copy()
 
 
+def _factorize(values: np.ndarray) -> tuple[np.ndarray, int]:
+    """Codes 0..u-1 of the distinct values in order of first appearance, and u (as
+    ``pandas.factorize`` numbers them; 0.0 and -0.0 are one value). The values are finite."""
+    uniq, first, inverse = np.unique(values, return_index=True, return_inverse=True)
+    rank = np.empty(uniq.size, dtype=np.int64)
+    rank[np.argsort(first, kind="stable")] = np.arange(uniq.size)
+    return rank[inverse.ravel()], int(uniq.size)
+
+
 def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None) -> PureError:
     """Pure error: the residual of the model with one mean per distinct factor setting
     (plus the block effects, when blocked).
@@ -95,8 +105,6 @@ def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None
     PureError
         The pure-error SS [response units²] and its df.
     """
-    import pandas as pd
-
     keys = np.asarray(keys, dtype=float)
     y = np.asarray(y, dtype=float)
     if keys.ndim == 1:
@@ -105,8 +113,8 @@ def pure_error(keys: np.ndarray, y: np.ndarray, blocks: np.ndarray | None = None
     # column, folding the codes so far with the next column's (the key stays below n)
     groups = np.zeros(keys.shape[0], dtype=np.int64)
     for j in range(keys.shape[1]):
-        codes, uniq = pd.factorize(keys[:, j])
-        groups = pd.factorize(groups * len(uniq) + codes)[0]
+        codes, n_unique = _factorize(keys[:, j])
+        groups = _factorize(groups * n_unique + codes)[0]
     n_groups = int(groups.max()) + 1 if groups.size else 0
     yt = y - _group_means(groups, y, n_groups)
     block_df = 0
@@ -159,17 +167,35 @@ TOTAL_UNCORRECTED = "Uncor Total"
 TOTAL_ROWS = ("Cor Total", TOTAL_UNCORRECTED)
 
 
-def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, ss_res, df_res,
-                ss_total, df_total, pe: PureError | None, term_df=None, total_label: str = "Cor Total",
-                clean: bool = False):
-    """Assemble the Design-Expert ANOVA rows (a DataFrame with :data:`ANOVA_COLUMNS`).
+def anova_table(**rows) -> Any:
+    """The Design-Expert ANOVA as a DataFrame with :data:`ANOVA_COLUMNS`: the rows of
+    :func:`anova_rows` (same keywords).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per source.
+    """
+    import pandas as pd
+
+    return pd.DataFrame(anova_rows(**rows), columns=ANOVA_COLUMNS)
+
+
+def anova_rows(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, ss_res, df_res,
+               ss_total, df_total, pe: PureError | None, term_df=None, total_label: str = "Cor Total",
+               clean: bool = False) -> list[dict]:
+    """Assemble the Design-Expert ANOVA rows: ``{source, sum_sq, df, mean_sq, f, p}`` each
+    (:data:`ANOVA_COLUMNS`, Python numbers; :func:`anova_table` makes them a DataFrame).
 
     F of a term or of the model is its mean square over the residual mean square; F of
     lack of fit is MS(lack of fit) / MS(pure error). Numbers that do not apply are NaN
     (``null`` in JSON).
-    """
-    import pandas as pd
 
+    Returns
+    -------
+    list of dict
+        Model, the terms, Block, Residual, Lack of Fit, Pure Error, the total, as apply.
+    """
     ms_res = ss_res / df_res if df_res > 0 else np.nan
 
     def test(ss, df):
@@ -188,6 +214,6 @@ def anova_table(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, 
             rows.append(_row("Lack of Fit", lof["ss"], lof["df"], lof["ms"], lof["f"], lof["p"]))
         rows.append(_row("Pure Error", pe.ss, pe.df, pe.ss / pe.df))
     rows.append(_row(total_label, ss_total, df_total))
-    if clean:  # round-off rows as shown (rsm_lrg.present.clean_anova), before the frame is built
+    if clean:  # round-off rows as shown (rsm_lrg.present.clean_anova), before any frame is built
         clean_anova_records(rows)
-    return pd.DataFrame(rows, columns=ANOVA_COLUMNS)
+    return rows

@@ -20,7 +20,7 @@ import numpy as np
 from ..build.terms import term_columns
 from ..contract.statistics import FitStatistics, fit_statistics
 from ..readings.actual import actual_coefficients
-from ..readings.anova import TOTAL_UNCORRECTED, PureError, anova_table
+from ..readings.anova import ANOVA_COLUMNS, TOTAL_UNCORRECTED, PureError, anova_rows
 from ..readings.canonical import StationaryPoint, canonical_analysis
 
 if TYPE_CHECKING:
@@ -92,6 +92,9 @@ class ReadFit(Protocol):
     def anova(self) -> Any: ...
 
     @property
+    def anova_rows(self) -> list[dict]: ...
+
+    @property
     def actual_deferred(self) -> Any: ...
 
     @property
@@ -147,8 +150,8 @@ class PolynomialForm:
         return {"ss_block": ss_block, "ss_model": ss_model, "ss_total": ss_total, "df_model": int(mcols.size),
                 "groups": groups, "term_ss": [ls.partial_ss(tidx[g]) for g in groups]}
 
-    def anova(self, r: ReadFit) -> pd.DataFrame:
-        """The Design-Expert ANOVA of a least-squares fit (Table 5 layout).
+    def anova_rows(self, r: ReadFit) -> list[dict]:
+        """The Design-Expert ANOVA of a least-squares fit (Table 5 layout), as rows.
 
         Parameters
         ----------
@@ -157,14 +160,15 @@ class PolynomialForm:
 
         Returns
         -------
-        pandas.DataFrame
-            Columns ``source, sum_sq, df, mean_sq, f, p``.
+        list of dict
+            ``{source, sum_sq, df, mean_sq, f, p}`` per row
+            (:func:`~rsm_lrg.model.readings.anova.anova_rows`).
         """
         s, ls = r.sums, r.least_squares
         n, nb = ls.n, r.n_blocks
         # Sums of squares that are round-off against the total (e.g. 2.5e-34 for a term whose
         # coefficient is zero by symmetry) are stored as 0 with F 0 and p 1, as every face shows them.
-        return anova_table(
+        return anova_rows(
             term_names=[t.name for t in r.model_terms], term_ss=s["term_ss"], ss_model=s["ss_model"],
             df_model=s["df_model"], ss_block=s["ss_block"], df_block=nb - 1, ss_res=ls.ss_res, df_res=ls.df_resid,
             ss_total=s["ss_total"], df_total=n - 1 if r.intercept else n, pe=r.pure_error,
@@ -283,7 +287,7 @@ class ScheffeForm(PolynomialForm):
             return mixture_sums(r.least_squares, r.terms, block_codes(r.data, r.block)[0], r.y)
         return mixture_sums(r.least_squares, r.terms)
 
-    def anova(self, r: ReadFit) -> pd.DataFrame:
+    def anova_rows(self, r: ReadFit) -> list[dict]:
         """Design-Expert's mixture ANOVA: Linear Mixture, the non-linear terms, Cor Total.
 
         Parameters
@@ -293,11 +297,11 @@ class ScheffeForm(PolynomialForm):
 
         Returns
         -------
-        pandas.DataFrame
-            Columns ``source, sum_sq, df, mean_sq, f, p``.
+        list of dict
+            ``{source, sum_sq, df, mean_sq, f, p}`` per row.
         """
         s, ls = r.sums, r.least_squares
-        return anova_table(
+        return anova_rows(
             term_names=s["names"], term_ss=s["term_ss"], ss_model=s["ss_model"], df_model=s["df_model"],
             ss_block=s["ss_block"], df_block=r.n_blocks - 1, ss_res=ls.ss_res, df_res=ls.df_resid, ss_total=s["ss_total"],
             df_total=ls.n - 1, pe=r.pure_error, term_df=s["term_df"], total_label="Cor Total", clean=True)
@@ -501,8 +505,27 @@ class LeastSquaresReading:
         Returns
         -------
         pandas.DataFrame
+            :meth:`anova_rows` as a frame (columns ``source, sum_sq, df, mean_sq, f, p``).
         """
-        return r.form.anova(r)
+        import pandas as pd
+
+        return pd.DataFrame(r.anova_rows, columns=ANOVA_COLUMNS)
+
+    def anova_rows(self, r: ReadFit) -> list[dict]:
+        """The ANOVA of the model's form, as rows (what the JSON and the text read; no
+        pandas.DataFrame is built for them).
+
+        Parameters
+        ----------
+        r : FitResult
+            The fit.
+
+        Returns
+        -------
+        list of dict
+            ``{source, sum_sq, df, mean_sq, f, p}`` per row.
+        """
+        return r.form.anova_rows(r)
 
     def notes(self, r: ReadFit) -> tuple:
         """The fit's own remarks (lack of fit, saturation, an exact fit).
@@ -600,7 +623,7 @@ class LeastSquaresReading:
         return {"anova": [
             {"source": row["source"], "sum_sq": json_number(row["sum_sq"]), "df": int(row["df"]), "mean_sq": json_number(row["mean_sq"]),
              "f": json_number(row["f"]), "p": json_number(row["p"])}
-            for row in r.anova.to_dict(orient="records")]}
+            for row in r.anova_rows]}
 
     def add_run_columns(self, r: ReadFit, frame: pd.DataFrame) -> None:
         """Add the reading's own per-run columns to the diagnostics table (none).
@@ -688,6 +711,21 @@ class REMLReading:
         None
         """
         return None
+
+    def anova_rows(self, r: ReadFit) -> list[dict]:
+        """:meth:`anova` as rows (``DataFrame.to_dict(orient="records")``).
+
+        Parameters
+        ----------
+        r : FitResult
+            The fit.
+
+        Returns
+        -------
+        list of dict
+            One dict per term.
+        """
+        return r.anova.to_dict(orient="records")
 
     def anova(self, r: ReadFit) -> pd.DataFrame:
         """One row per term with its Kenward–Roger test (``df`` the numerator df, ``den_df``

@@ -22,7 +22,8 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...factors import FactorSpace
-from ...io import float_column
+from ...io import float_values
+from ...table import column_values
 from ..build.goals import parse_goal
 from ..build.inputs import block_codes, coded_points, model_rows, unrounded_coding
 from ..build.spec import ModelSpec, ReduceSpec
@@ -218,6 +219,18 @@ class FitResult:
         return self.reading.anova(self)
 
     @cached_property
+    def anova_rows(self) -> list[dict]:
+        """:attr:`anova` as rows, ``{source, sum_sq, df, mean_sq, f, p}`` each (Python numbers;
+        what the JSON and the text summary read, without building a DataFrame).
+
+        Returns
+        -------
+        list of dict
+            One dict per row of the ANOVA, in order.
+        """
+        return self.reading.anova_rows(self)
+
+    @cached_property
     def notes(self) -> tuple:
         """Remarks for the text output: ``input_notes`` first, then the fit's own."""
         return tuple(self.input_notes) + self.reading.notes(self)
@@ -234,8 +247,8 @@ class FitResult:
         if (self.coded is None or self.y is None or not self.form.solves_in_actual_units
                 or not self.reading.solves_in_actual_units):
             return None  # mixture, REML: the exact change of basis of the coded coefficients
-        x = np.column_stack([self.coded[f.letter].to_numpy(dtype=float) if f.kind == "categoric"
-                             else float_column(self.data, f.name).to_numpy(dtype=float) for f in self.space.factors])
+        x = np.column_stack([np.asarray(column_values(self.coded, f.letter), dtype=float) if f.kind == "categoric"
+                             else float_values(self.data, f.name) for f in self.space.factors])
         nb = self.n_blocks
         blocks = block_codes(self.data, self.block)[0] if self.block is not None and nb > 1 else None
         try:
@@ -664,7 +677,7 @@ class FitResult:
         for f in self.space.factors:
             if f.kind == "categoric":
                 continue
-            col = np.zeros(0) if self.coded is None else np.abs(self.coded[f.letter].to_numpy(dtype=float))
+            col = np.zeros(0) if self.coded is None else np.abs(np.asarray(column_values(self.coded, f.letter), dtype=float))
             out[f.letter] = max(1.0, float(np.max(col, initial=0.0)))
         return out
 
@@ -912,7 +925,8 @@ class FitResult:
         dict
             The ``fit --json`` document: plain Python, NaN where JSON writes ``null``.
         """
-        coef = self.coefficients
+        coef = self.coefficient_columns  # the table's columns (no pandas.DataFrame built for the JSON)
+        terms = coef["term"]
         out: dict[str, Any] = {
             "response": self.response,
             "n": self.n,
@@ -920,10 +934,10 @@ class FitResult:
             "block": self.block,
             "factors": self.space.to_list(),
             "coefficients": {
-                "coded": {k: json_number(v) for k, v in coef["coded"].items()},
+                "coded": {k: json_number(v) for k, v in zip(terms, coef["coded"])},
                 "actual": {k: json_number(v) for k, v in self.actual_coefficients.items()},
             },
-            "std_errors": {"coded": {k: json_number(v) for k, v in coef["std_error"].items()}},
+            "std_errors": {"coded": {k: json_number(v) for k, v in zip(terms, coef["std_error"])}},
         }
         if self.actual_std_errors is not None:
             out["std_errors"]["actual"] = {k: json_number(v) for k, v in self.actual_std_errors.items()}
