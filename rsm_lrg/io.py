@@ -261,14 +261,19 @@ def read_table(path, *, sep: str | None = None, decimal: str = ".", sheet: str |
     return read_table_as(path, sep=sep, decimal=decimal, sheet=sheet)[0]
 
 
-def read_table_as(path, *, sep: str | None = None, decimal: str = ".", sheet: str | None = None):
+def read_table_as(path, *, sep: str | None = None, decimal: str = ".", sheet: str | None = None,
+                  column_table: bool = False):
     """:func:`read_table` that also returns what it read: ``(DataFrame, ReadAs)`` (a
-    :class:`rsm_lrg.readers.ReadAs`; ``None`` for a DataFrame given)."""
-    import pandas as pd
+    :class:`rsm_lrg.readers.ReadAs`; ``None`` for a DataFrame given).
 
+    With ``column_table=True`` a plain CSV file of numbers (:func:`rsm_lrg.readers.parse_plain_csv`,
+    standard input too) is read without pandas, into a :class:`rsm_lrg.table.ColumnTable` of the
+    same columns, dtypes and values, after the same checks (and limits); any other input is read
+    as without it, into a DataFrame, with the same errors."""
     from . import readers
 
-    if isinstance(path, pd.DataFrame):
+    pd = sys.modules.get("pandas")  # a DataFrame given means pandas is imported; else none is imported here
+    if pd is not None and isinstance(path, pd.DataFrame):
         return path, None
     stdin = str(path) == "-"
     p = Path(STDIN_NAME if stdin else path)
@@ -302,6 +307,10 @@ def read_table_as(path, *, sep: str | None = None, decimal: str = ".", sheet: st
                                          f"{MAX_ROWS} and {MAX_COLUMNS}")
         else:
             _check_table_shape(p, raw)
+            plain = readers.parse_plain_csv(raw, sep=sep, decimal=decimal) if column_table else None
+            if plain is not None:
+                readers.check_control_characters(plain[0])  # the names: numbers hold no control character
+                return plain
             df, how = readers.parse_csv(raw, sep=sep, decimal=decimal)
         readers.check_control_characters(df)  # names and levels are printed: never a terminal command
         return df, how

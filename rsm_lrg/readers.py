@@ -31,8 +31,10 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     import pandas as pd
 
+    from .table import ColumnTable
+
 __all__ = ["TableError", "ReadAs", "SEPARATORS", "DECIMALS", "FORMATS", "detect_format", "detect_separator",
-           "parse_csv", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes",
+           "parse_csv", "parse_plain_csv", "PLAIN_MAX_BYTES", "parse_xlsx", "parse_parquet", "check_columns", "separator_name", "xlsx_bytes",
            "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_parquet_chunks", "keep_coded_text",
            "LEADING_ZERO", "check_control_characters", "CONTROL_CHARACTERS",
            "column_name_problem", "check_column_names", "row_of_line"]
@@ -283,6 +285,166 @@ def parse_csv(raw: bytes, *, sep: str | None = None, decimal: str = ".") -> tupl
     return df, ReadAs("csv", use, decimal, detected)
 
 
+# --- plain CSV, read without pandas --------------------------------------------------------
+
+#: The largest CSV file (bytes) :func:`parse_plain_csv` reads; a larger one is left to pandas,
+#: whose C parser is then quicker than reading it here costs beyond pandas' import (about 0.5 s).
+PLAIN_MAX_BYTES = 1 << 20
+
+#: A cell of a plain CSV file: a whole number without a leading zero (``0``, ``-12``) or a
+#: decimal (``0.4``, ``30.``, ``-1.25e-3``); ASCII digits only, no ``+`` before the number.
+_PLAIN_NUMBER = re.compile(r"-?(?:0|[1-9][0-9]*)(?:\.[0-9]*)?(?:[eE][-+]?[0-9]{1,3})?")
+#: The most a whole-number cell may be in a plain file: every such number converts to a double
+#: exactly (a column holding decimals too is float64, as pandas makes it).
+_PLAIN_INT_MAX = 2**53
+
+
+def _same_double_as_pandas(cell: str) -> bool:
+    """Whether pandas' C parser, in every version read (``>= 2.0``), gives ``float(cell)``.
+
+    Since pandas 3.1 it parses with fast_float, correctly rounded as ``float`` is. Before, its
+    default converter (``precise_xstrtod``, "high") keeps the first 17 digits of the mantissa
+    (leading zeros counted; the rest are dropped, not rounded), makes of them the integer ``D``
+    (digit by digit, ``D = 10 D + d`` in doubles, or in 64-bit integers and then converted) and
+    multiplies or divides ``D`` by the tabled double ``10**|k|`` (``k`` the exponent written less
+    the digits kept after the point). That is ``float``'s correctly rounded value when:
+
+    - the digits dropped are zeros (then ``D 10**k`` is the decimal written);
+    - ``D`` and each step to it are doubles exactly: ``D`` less its trailing zeros is at most
+      ``2**53`` (so are all its prefixes), and each trailing zero's ``10 D`` is a double;
+    - ``|k| <= 22``, so ``10**|k|`` is a double exactly (``5**22 < 2**53``).
+
+    Then pandas makes one IEEE operation on exact operands, rounded once to nearest: the
+    correctly rounded decimal (Clinger's fast path), which ``float`` gives.
+    """
+    mantissa, _, exp = cell.lstrip("-").lower().partition("e")
+    whole, _, frac = mantissa.partition(".")
+    digits = whole + frac
+    kept, dropped = digits[:17], digits[17:]
+    if len(whole) > 17 or dropped.strip("0"):
+        return False
+    if not -22 <= (int(exp) if exp else 0) - (len(kept) - len(whole)) <= 22:
+        return False
+    significant = kept.rstrip("0") or "0"
+    value = int(significant)
+    if value > _PLAIN_INT_MAX:
+        return False
+    for _ in range(len(kept) - len(significant)):
+        value *= 10
+        if int(float(value)) != value:
+            return False
+    return True
+
+
+def _plain_column(cells: list[str]) -> Any:
+    """The column ``pandas.read_csv`` makes of ``cells`` (int64 when every cell is a whole
+    number, else float64), or None when a cell is not a plain number (:func:`parse_plain_csv`)."""
+    import numpy as np
+
+    match = _PLAIN_NUMBER.fullmatch
+    if not all(map(match, cells)):
+        return None
+    joined = "".join(cells)
+    if "." not in joined and "e" not in joined and "E" not in joined:  # whole numbers: int64
+        values = list(map(int, cells))
+        if max(map(abs, values)) > _PLAIN_INT_MAX:
+            return None
+        return np.array(values, dtype=np.int64)
+    if "-0" in cells:  # a whole -0 is 0 in an all-whole chunk of a long file, -0.0 in a decimal one
+        return None
+    if "e" in joined or "E" in joined or max(map(len, cells)) > 15:  # else at most 15 digits, k in [-15, 0]
+        if not all(map(_same_double_as_pandas, cells)):
+            return None
+    return np.fromiter(map(float, cells), dtype=np.float64, count=len(cells))
+
+
+def parse_plain_csv(raw: bytes, *, sep: str | None = None, decimal: str = ".") -> tuple[ColumnTable, ReadAs] | None:
+    """Read a plain CSV file of numbers without pandas: the table :func:`parse_csv` would read,
+    as a :class:`rsm_lrg.table.ColumnTable`, or None when the file is not plain (the caller then
+    reads it with :func:`parse_csv`, which reads it or says what is wrong).
+
+    Plain is: at most :data:`PLAIN_MAX_BYTES`; UTF-8 (a byte-order mark allowed); no quote
+    character, no NUL; lines ended by ``\\n`` or ``\\r\\n`` (the last may lack it), no blank
+    line; the decimal mark ``.``; the separator given, or detected as :func:`parse_csv` detects
+    it; a header of at least two names, each printable, non-empty, without spaces around it, not
+    ``Unnamed:...``, none repeated, accepted by :func:`check_column_names`; at least one data
+    row, each with as many fields as the header; every cell a number, ASCII digits: a whole
+    number without a leading zero, at most ``2**53`` in size (``0``, ``-12``), or a decimal
+    (``0.4``, ``30.``, ``-1.25e-3``, an exponent of at most three digits) that pandas converts
+    as ``float`` does in every version (at most 15 digits and no exponent; else at most 17
+    digits but zeros, at most ``2**53`` without its trailing zeros, a power of ten of at most
+    22 in size; a whole ``-0`` among decimals is not plain). A column of whole numbers is ``int64``, any other ``float64``: the dtypes and,
+    bit for bit, the values of ``pandas.read_csv``.
+
+    Parameters
+    ----------
+    raw : bytes
+        The file's content.
+    sep : str, optional
+        One of :data:`SEPARATORS`; detected when None (:func:`detect_separator`).
+    decimal : str
+        The decimal mark; only ``"."`` is plain.
+
+    Returns
+    -------
+    (ColumnTable, ReadAs) or None
+        The table and what it was read as (the :class:`ReadAs` of :func:`parse_csv`), or None.
+
+    >>> t, how = parse_plain_csv(b"x,y\\n-1,0.5\\n1,2.25\\n")
+    >>> t["x"].dtype.name, t["y"].tolist(), how.sep
+    ('int64', [0.5, 2.25], ',')
+    >>> parse_plain_csv(b"x,y\\n01,0.5\\n") is None  # a code: text to parse_csv
+    True
+    """
+    from .table import ColumnTable  # numpy: imported here, not with the module
+
+    if decimal != "." or (sep is not None and sep not in SEPARATORS) or len(raw) > PLAIN_MAX_BYTES:
+        return None
+    if b'"' in raw or b"\x00" in raw or raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return None
+    body = text.replace("\r\n", "\n") if "\r" in text else text
+    if "\r" in body:
+        return None
+    lines = body.split("\n")
+    if lines[-1] == "":
+        lines.pop()
+    if len(lines) < 2:
+        return None
+    if sep is None:
+        try:
+            use = detect_separator(text, decimal)
+        except TableError:
+            return None
+    else:
+        use = sep
+    names = lines[0].split(use)
+    ncol = len(names)
+    if ncol < 2 or len(set(names)) != ncol:
+        return None
+    for name in names:
+        if not name or not name.isprintable() or name != name.strip() or name.startswith("Unnamed:"):
+            return None
+    try:
+        check_column_names(names)
+    except TableError:
+        return None
+    rows = lines[1:]
+    if any(line.count(use) != ncol - 1 for line in rows):
+        return None
+    cells = use.join(rows).split(use)
+    columns = {}
+    for j, name in enumerate(names):
+        col = _plain_column(cells[j::ncol])
+        if col is None:
+            return None
+        columns[name] = col
+    return ColumnTable(columns), ReadAs("csv", use, decimal, sep is None)
+
+
 #: A cell that is a whole number written with a leading zero (``01``, ``-007``): a code.
 LEADING_ZERO = r"^\s*[+-]?0\d+\s*$"
 
@@ -415,7 +577,7 @@ def check_column_names(names: Any) -> None:
 CONTROL_CHARACTERS = "[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]"
 
 
-def check_control_characters(df: pd.DataFrame) -> None:
+def check_control_characters(df: pd.DataFrame | ColumnTable) -> None:
     """Refuse a table whose column names hold a control character (any: tab and line breaks
     included) or whose text cells hold one of :data:`CONTROL_CHARACTERS`: :class:`TableError`
     naming the column and the 1-based data row, the character escaped.
@@ -426,10 +588,16 @@ def check_control_characters(df: pd.DataFrame) -> None:
     ... except TableError as exc:
     ...     print(str(exc)[:52])
     column 'a', row 2 holds a control character ('\\x1b')
+
+    A :class:`rsm_lrg.table.ColumnTable` (numbers only) has its names checked, without pandas.
     """
-    import pandas as pd
+    from .table import ColumnTable
 
     check_column_names(df.columns)
+    if isinstance(df, ColumnTable):
+        return
+    import pandas as pd
+
     cells = re.compile(CONTROL_CHARACTERS)
     for c in df.columns:
         col = df[c]
