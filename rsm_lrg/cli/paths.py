@@ -194,7 +194,7 @@ def read_input(args: argparse.Namespace, path=None, *, column_table: bool = Fals
 
     path = args.data if path is None else path
     df, how = read_table_as(path, sep=getattr(args, "sep", None), decimal=getattr(args, "decimal", "."),
-                            sheet=getattr(args, "sheet", None), **({"column_table": True} if column_table else {}))  # TEMP
+                            sheet=getattr(args, "sheet", None), column_table=column_table)
     if how is not None and (not how.plain or str(path) == "-"):
         name = STDIN_NAME if str(path) == "-" else str(path)
         notes = getattr(args, "notes_at_end", None)

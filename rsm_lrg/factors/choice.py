@@ -78,7 +78,7 @@ def choose_factors(data, factors: Any = None, *, exclude: Iterable[str] = ()) ->
 
     Parameters
     ----------
-    data : pandas.DataFrame
+    data : pandas.DataFrame or rsm_lrg.table.ColumnTable
     factors : None, sequence or FactorSpace
         ``None`` infers the factors:
 

@@ -124,7 +124,7 @@ def design_factors(data, coded: list, exclude: set) -> tuple[list, list]:
 
     Parameters
     ----------
-    data : pandas.DataFrame
+    data : pandas.DataFrame or rsm_lrg.table.ColumnTable
         The table.
     coded : list of str
         The coded columns (``coded_A``, ...).
@@ -244,7 +244,7 @@ def column_dtypes(data) -> dict | None:
 
     Parameters
     ----------
-    data : pandas.DataFrame
+    data : pandas.DataFrame or rsm_lrg.table.ColumnTable
         The table.
 
     Returns
@@ -385,7 +385,7 @@ def infer_items(data, factors: Any, exclude: set) -> tuple[str, list, list]:
 
     Parameters
     ----------
-    data : pandas.DataFrame
+    data : pandas.DataFrame or rsm_lrg.table.ColumnTable
         The table.
     factors : object
         The factors as given, or ``None`` to infer them.

@@ -242,14 +242,14 @@ class FactorSpace:
 
         Parameters
         ----------
-        actual : array_like, mapping or pandas.DataFrame
+        actual : array_like, mapping, pandas.DataFrame or rsm_lrg.table.ColumnTable
             Settings in actual units: an (n, k) array in factor order, ``{name: value}`` or a
-            frame with the factor columns.
+            table with the factor columns.
 
         Returns
         -------
-        numpy.ndarray or pandas.DataFrame
-            The coded settings (a frame keyed by letter for a frame).
+        numpy.ndarray, dict, pandas.DataFrame or rsm_lrg.table.ColumnTable
+            The coded settings (a table of the same kind keyed by letter for a table).
         """
         if is_column_table(actual):  # a plain CSV file read without pandas: a table keyed by letter
             return ColumnTable({f.letter: encode_column(actual, f) for f in self.factors})
@@ -303,7 +303,7 @@ def encode_column(data, f) -> np.ndarray:
 
     Parameters
     ----------
-    data : pandas.DataFrame
+    data : pandas.DataFrame or rsm_lrg.table.ColumnTable
         The table.
     f : FactorLike
         The factor.

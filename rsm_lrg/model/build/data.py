@@ -49,7 +49,7 @@ class PreparedData:
 
     Attributes
     ----------
-    data : pandas.DataFrame
+    data : pandas.DataFrame or rsm_lrg.table.ColumnTable
         The rows used (every row when none is left out; else a copy, index 0..n-1).
     y : ndarray
         Response of the rows used [response units].
@@ -59,7 +59,7 @@ class PreparedData:
         How the factors were chosen and which columns were left out.
     omitted_rows : tuple of int
         1-based data rows left out because their response cell is empty ("not run").
-    omitted_data : pandas.DataFrame
+    omitted_data : pandas.DataFrame or rsm_lrg.table.ColumnTable
         Those rows as given (index = 0-based position in the input).
     notes : tuple of str
         The sentences for the user (factor choice, columns left out, runs left out).
@@ -176,7 +176,7 @@ def prepare(data, response: str, factors=None, block: str | None = None, *,
 
     Parameters
     ----------
-    data : pandas.DataFrame
+    data : pandas.DataFrame or rsm_lrg.table.ColumnTable
         One row per run.
     response : str
         Response column; an empty cell leaves its run out of the fit.

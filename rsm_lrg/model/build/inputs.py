@@ -126,8 +126,8 @@ class ModelInputs:
     ----------
     prep : PreparedData
     space : FactorSpace
-    coded : pandas.DataFrame
-        Coded settings, columns = letters.
+    coded : pandas.DataFrame or rsm_lrg.table.ColumnTable
+        Coded settings, columns = letters (a ColumnTable for a ColumnTable's fit).
     x : (n, k) ndarray
         The coded settings as an array, unrounded (the model matrix is built from it).
     y : (n,) ndarray
