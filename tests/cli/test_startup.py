@@ -10,9 +10,10 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-# (pyarrow is not listed: pandas imports it by itself whenever it is installed)
-HEAVY = ("scipy", "statsmodels", "matplotlib", "dask", "jinja2", "charset_normalizer", "rsm_lrg.optimize",
-         "rsm_lrg.report")
+# a plain CSV file of numbers is read into a ColumnTable without pandas (nor pyarrow, which
+# pandas imports whenever it is installed): issue 37, item 6
+HEAVY = ("pandas", "pyarrow", "scipy", "statsmodels", "matplotlib", "dask", "jinja2", "charset_normalizer",
+         "rsm_lrg.optimize", "rsm_lrg.report")
 THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
 
 
@@ -33,12 +34,29 @@ FIT = ["fit", "data/table4.csv", "--response", "tcr_c_per_min"]
 
 @pytest.mark.slow
 @pytest.mark.parametrize("extra", [[], ["--json", "-"]])
-def test_fit_loads_no_scipy_statsmodels_matplotlib(extra):
+def test_fit_loads_no_pandas_scipy_statsmodels_matplotlib(extra):
     # the regression core uses numpy's LAPACK and its own t/F tails (model.statistics);
-    # statsmodels (result.ols), scipy and matplotlib are for other commands and options
+    # statsmodels (result.ols), scipy and matplotlib are for other commands and options; a
+    # plain file is read and fitted without pandas (rsm_lrg.table)
     rc, heavy, _ = _run_fit(FIT + extra)
     assert rc == 0
     assert heavy == []
+
+
+def test_a_file_that_is_not_plain_is_read_by_pandas_and_fitted_alike(tmp_path):
+    # a quoted header name is no plain CSV: the same fit through pandas, the same output
+    text = (ROOT / "data" / "table4.csv").read_text()
+    quoted = tmp_path / "quoted.csv"
+    quoted.write_text(text.replace("thickness_m", '"thickness_m"', 1))
+    rc, heavy, _ = _run_fit(["fit", str(quoted), "--response", "tcr_c_per_min", "--json", "-"])
+    assert rc == 0 and "pandas" in heavy
+    outs = []
+    for path in (str(ROOT / "data" / "table4.csv"), str(quoted)):
+        out = subprocess.run([sys.executable, "-m", "rsm_lrg", "fit", path, "--response", "tcr_c_per_min", "--json",
+                              "-"], capture_output=True, text=True, cwd=ROOT, timeout=120)
+        assert out.returncode == 0, out.stderr
+        outs.append(out.stdout)
+    assert outs[0] == outs[1]
 
 
 @pytest.mark.slow
