@@ -366,8 +366,8 @@ def parse_plain_csv(raw: bytes, *, sep: str | None = None, decimal: str = ".") -
     reads it with :func:`parse_csv`, which reads it or says what is wrong).
 
     Plain is: at most :data:`PLAIN_MAX_BYTES`; UTF-8 (a byte-order mark allowed); no quote
-    character, no NUL; lines ended by ``\\n`` or ``\\r\\n`` (the last may lack it), no blank
-    line; the decimal mark ``.``; the separator given, or detected as :func:`parse_csv` detects
+    character, no NUL; lines ended by ``\\n`` or ``\\r\\n`` (the last may lack it; empty lines
+    after the header are skipped, as pandas skips them); the decimal mark ``.``; the separator given, or detected as :func:`parse_csv` detects
     it; a header of at least two names, each printable, non-empty, without spaces around it, not
     ``Unnamed:...``, none repeated, accepted by :func:`check_column_names`; at least one data
     row, each with as many fields as the header; every cell a number, ASCII digits: a whole
@@ -413,9 +413,8 @@ def parse_plain_csv(raw: bytes, *, sep: str | None = None, decimal: str = ".") -
     if "\r" in body:
         return None
     lines = body.split("\n")
-    if lines[-1] == "":
-        lines.pop()
-    if len(lines) < 2:
+    rows = [line for line in lines[1:] if line]  # empty lines are skipped, as pandas does
+    if not rows:
         return None
     if sep is None:
         try:
@@ -435,7 +434,6 @@ def parse_plain_csv(raw: bytes, *, sep: str | None = None, decimal: str = ".") -
         check_column_names(names)
     except TableError:
         return None
-    rows = lines[1:]
     if any(line.count(use) != ncol - 1 for line in rows):
         return None
     cells = use.join(rows).split(use)

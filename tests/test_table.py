@@ -112,8 +112,10 @@ def csv_files(draw):
     data = [draw(st.lists(draw(columns), min_size=n, max_size=n)) for _ in header]
     sep = draw(st.sampled_from([",", ";", "\t"]))
     end = draw(st.sampled_from(["\n", "\r\n"]))
-    rows = [header, *zip(*data)]
-    text = end.join(sep.join(r) for r in rows) + (end if draw(st.booleans()) else "")
+    lines = [sep.join(r) for r in [header, *zip(*data)]]
+    for _ in range(draw(st.sampled_from([0, 0, 0, 1, 2]))):  # empty lines, skipped by pandas (after the header)
+        lines.insert(draw(st.integers(0 if draw(st.integers(0, 9)) == 0 else 1, len(lines))), "")
+    text = end.join(lines) + (end if draw(st.booleans()) else "")
     bom = b"\xef\xbb\xbf" if draw(st.integers(0, 9)) == 0 else b""
     return bom + text.encode(), draw(st.sampled_from([None, sep]))
 
@@ -249,8 +251,9 @@ def test_the_fast_path_limits(tmp_path):
 @pytest.mark.parametrize("raw", [
     b"x,y\n01,2\n",                 # a code with a leading zero: text
     b"x,y\n1,\n",                   # an empty cell
-    b"x,y\n1,2\n\n3,4\n",           # a blank line within
-    b"x,y\n1,2\n\n",                # one after the last row
+    b"\nx,y\n1,2\n",                # an empty line before the header
+    b"x,y\n\n\n",                   # only empty lines below it
+    b"x,y\n1,2\n \n",               # a line of a space
     b"x, y\n1,2\n",                 # a space before a name
     b"x,y\n 1,2\n",                 # a space before a number
     b'"x",y\n1,2\n',                # a quote
@@ -277,6 +280,9 @@ def test_not_plain(raw):
 
 
 def test_plain_forms():
+    t, _ = parse_plain_csv(b"x,y\r\n1,2\r\n\r\n3,4.5\r\n\r\n")  # empty lines skipped, as pandas does
+    assert t.shape == (2, 2) and t["x"].tolist() == [1, 3] and t["y"].tolist() == [2.0, 4.5]
+    _agree(b"x,y\r\n1,2\r\n\r\n3,4.5\r\n\r\n")
     t, how = parse_plain_csv(b"\xef\xbb\xbfa b;y\r\n-1;0.5\r\n2;-1.25e-3")
     assert how.sep == ";" and how.sep_detected and t.columns == ("a b", "y")
     assert t["a b"].tolist() == [-1, 2] and t["y"].tolist() == [0.5, -0.00125]
