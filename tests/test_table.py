@@ -335,18 +335,30 @@ def test_read_table_as_column_table(tmp_path, monkeypatch):
     assert isinstance(got, pd.DataFrame) and got["lot"].tolist() == ["01", "02"]
 
 
-@pytest.mark.parametrize("raw", [
-    b"x,x\n1,2\n", b"x,y\n1,2,3\n", b"x,y\n", b"x\n1\n", b"x;y\n1,5;2\n", b"caf\xc3\xa9,cafe\xcc\x81\n1,2\n",
-    b",".join(b"c%d" % i for i in range(MAX_COLUMNS + 1)) + b"\n" + b",".join(b"1" for _ in range(MAX_COLUMNS + 1)),
+@pytest.mark.parametrize(("raw", "kw"), [
+    (b"x,x\n1,2\n", {}), (b"x,y\n1,2,3\n", {}), (b"x,y\n", {}), (b"x,y\n\n", {}), (b"x\n1\n", {}),
+    (b"x;y\n1,5;2\n", {}), (b"caf\xc3\xa9,cafe\xcc\x81\n1,2\n", {}), (b"x,y\x1b\n1,2\n", {}),
+    (b"x,y\n1,2\n", {"sep": ";"}), (b"x,y\n1,2\n", {"sep": ","}), (b"x;y\n1;2\n", {"sep": ";", "decimal": ";"}),
+    (b"x,y\n1,2\n", {"sep": "x"}), (b"x,y\n1,2\n", {"decimal": ","}), (b"x,y\n1,2\n", {"sheet": "Runs"}),
+    (b",".join(b"c%d" % i for i in range(MAX_COLUMNS + 1)) + b"\n" + b",".join(b"1" for _ in range(MAX_COLUMNS + 1)),
+     {}),
+    (b"x,y\n" + b"1," + b"1" * (2 << 20) + b"\n", {}),  # a line past the limit (and past PLAIN_MAX_BYTES)
 ])
-def test_read_table_as_column_table_same_errors(tmp_path, raw):
-    p = tmp_path / "bad.csv"
+def test_read_table_as_column_table_same_result(tmp_path, raw, kw):
+    """The same error for a bad file, or the same table (a DataFrame when it is not plain)."""
+    p = tmp_path / "t.csv"
     p.write_bytes(raw)
-    with pytest.raises(InputError) as plain_exc:
-        read_table_as(p, column_table=True)
-    with pytest.raises(InputError) as frame_exc:
-        read_table_as(p)
-    assert str(plain_exc.value) == str(frame_exc.value)
+    try:
+        plain = read_table_as(p, column_table=True, **kw)
+    except InputError as exc:
+        with pytest.raises(InputError) as frame_exc:
+            read_table_as(p, **kw)
+        assert str(exc) == str(frame_exc.value)
+        return
+    frame = read_table_as(p, **kw)
+    assert plain[1] == frame[1]
+    got = plain[0].to_frame() if isinstance(plain[0], ColumnTable) else plain[0]
+    pd.testing.assert_frame_equal(got, frame[0])
 
 
 def test_read_table_as_column_table_limits(tmp_path, monkeypatch):
