@@ -112,8 +112,10 @@ def csv_files(draw):
     data = [draw(st.lists(draw(columns), min_size=n, max_size=n)) for _ in header]
     sep = draw(st.sampled_from([",", ";", "\t"]))
     end = draw(st.sampled_from(["\n", "\r\n"]))
-    rows = [header, *zip(*data)]
-    text = end.join(sep.join(r) for r in rows) + (end if draw(st.booleans()) else "")
+    lines = [sep.join(r) for r in [header, *zip(*data)]]
+    for _ in range(draw(st.sampled_from([0, 0, 0, 1, 2]))):  # empty lines, skipped by pandas (after the header)
+        lines.insert(draw(st.integers(0 if draw(st.integers(0, 9)) == 0 else 1, len(lines))), "")
+    text = end.join(lines) + (end if draw(st.booleans()) else "")
     bom = b"\xef\xbb\xbf" if draw(st.integers(0, 9)) == 0 else b""
     return bom + text.encode(), draw(st.sampled_from([None, sep]))
 
@@ -121,6 +123,8 @@ def csv_files(draw):
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(csv_files())
 def test_plain_reads_what_pandas_reads_bit_for_bit(case):
+    """Random files, plain or nearly: whenever the plain reader takes one, parse_csv reads the
+    same table; whenever parse_csv refuses one, the plain reader left it."""
     raw, sep = case
     _agree(raw, sep=sep)
 
@@ -227,9 +231,9 @@ def test_the_rule_against_pandas_before_3_1():
 def test_the_fast_path_limits(tmp_path):
     """Cells at the edges of "plain": each either read as pandas reads it or left to pandas,
     and the ones pandas' pre-3.1 converter truncates or rounds twice are left to it."""
-    plain = {"0.4", "-1.25e-3", "30.", "1.e5", "-0.0", "123456789012345.6", "900719925474099.2", "9007199254740992.0", "1e22",
-             "1.00000000000000000", "0.50000000000000000000", "-12.500000000000000000e-3",
-             "1e-22", "123e-22", "1.5E+3", "-12", "9007199254740992"}
+    plain = {"0.4", "-1.25e-3", "30.", "1.e5", "-0.0", "123456789012345.6", "900719925474099.2",
+             "9007199254740992.0", "1e22", "1.00000000000000000", "0.50000000000000000000",
+             "-12.500000000000000000e-3", "1e-22", "123e-22", "1.5E+3", "-12", "9007199254740992"}
     left = {"0.30000000000000004",  # 18 digits with its leading 0: the 18th is dropped before 3.1
             "9007199254740993.0", "12345678901234567.8", "1e23", "1e-23", "0.1e-22", "5e-324",
             "1.7976931348623157e308", "9007199254740993", "-9007199254740993", "1e1000",
@@ -247,8 +251,9 @@ def test_the_fast_path_limits(tmp_path):
 @pytest.mark.parametrize("raw", [
     b"x,y\n01,2\n",                 # a code with a leading zero: text
     b"x,y\n1,\n",                   # an empty cell
-    b"x,y\n1,2\n\n3,4\n",           # a blank line within
-    b"x,y\n1,2\n\n",                # one after the last row
+    b"\nx,y\n1,2\n",                # an empty line before the header
+    b"x,y\n\n\n",                   # only empty lines below it
+    b"x,y\n1,2\n \n",               # a line of a space
     b"x, y\n1,2\n",                 # a space before a name
     b"x,y\n 1,2\n",                 # a space before a number
     b'"x",y\n1,2\n',                # a quote
@@ -275,6 +280,9 @@ def test_not_plain(raw):
 
 
 def test_plain_forms():
+    t, _ = parse_plain_csv(b"x,y\r\n1,2\r\n\r\n3,4.5\r\n\r\n")  # empty lines skipped, as pandas does
+    assert t.shape == (2, 2) and t["x"].tolist() == [1, 3] and t["y"].tolist() == [2.0, 4.5]
+    _agree(b"x,y\r\n1,2\r\n\r\n3,4.5\r\n\r\n")
     t, how = parse_plain_csv(b"\xef\xbb\xbfa b;y\r\n-1;0.5\r\n2;-1.25e-3")
     assert how.sep == ";" and how.sep_detected and t.columns == ("a b", "y")
     assert t["a b"].tolist() == [-1, 2] and t["y"].tolist() == [0.5, -0.00125]
@@ -327,18 +335,30 @@ def test_read_table_as_column_table(tmp_path, monkeypatch):
     assert isinstance(got, pd.DataFrame) and got["lot"].tolist() == ["01", "02"]
 
 
-@pytest.mark.parametrize("raw", [
-    b"x,x\n1,2\n", b"x,y\n1,2,3\n", b"x,y\n", b"x\n1\n", b"x;y\n1,5;2\n", b"caf\xc3\xa9,cafe\xcc\x81\n1,2\n",
-    b",".join(b"c%d" % i for i in range(MAX_COLUMNS + 1)) + b"\n" + b",".join(b"1" for _ in range(MAX_COLUMNS + 1)),
+@pytest.mark.parametrize(("raw", "kw"), [
+    (b"x,x\n1,2\n", {}), (b"x,y\n1,2,3\n", {}), (b"x,y\n", {}), (b"x,y\n\n", {}), (b"x\n1\n", {}),
+    (b"x;y\n1,5;2\n", {}), (b"caf\xc3\xa9,cafe\xcc\x81\n1,2\n", {}), (b"x,y\x1b\n1,2\n", {}),
+    (b"x,y\n1,2\n", {"sep": ";"}), (b"x,y\n1,2\n", {"sep": ","}), (b"x;y\n1;2\n", {"sep": ";", "decimal": ";"}),
+    (b"x,y\n1,2\n", {"sep": "x"}), (b"x,y\n1,2\n", {"decimal": ","}), (b"x,y\n1,2\n", {"sheet": "Runs"}),
+    (b",".join(b"c%d" % i for i in range(MAX_COLUMNS + 1)) + b"\n" + b",".join(b"1" for _ in range(MAX_COLUMNS + 1)),
+     {}),
+    (b"x,y\n" + b"1," + b"1" * (2 << 20) + b"\n", {}),  # a line past the limit (and past PLAIN_MAX_BYTES)
 ])
-def test_read_table_as_column_table_same_errors(tmp_path, raw):
-    p = tmp_path / "bad.csv"
+def test_read_table_as_column_table_same_result(tmp_path, raw, kw):
+    """The same error for a bad file, or the same table (a DataFrame when it is not plain)."""
+    p = tmp_path / "t.csv"
     p.write_bytes(raw)
-    with pytest.raises(InputError) as plain_exc:
-        read_table_as(p, column_table=True)
-    with pytest.raises(InputError) as frame_exc:
-        read_table_as(p)
-    assert str(plain_exc.value) == str(frame_exc.value)
+    try:
+        plain = read_table_as(p, column_table=True, **kw)
+    except InputError as exc:
+        with pytest.raises(InputError) as frame_exc:
+            read_table_as(p, **kw)
+        assert str(exc) == str(frame_exc.value)
+        return
+    frame = read_table_as(p, **kw)
+    assert plain[1] == frame[1]
+    got = plain[0].to_frame() if isinstance(plain[0], ColumnTable) else plain[0]
+    pd.testing.assert_frame_equal(got, frame[0])
 
 
 def test_read_table_as_column_table_limits(tmp_path, monkeypatch):
