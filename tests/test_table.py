@@ -369,3 +369,37 @@ def test_read_table_as_column_table_limits(tmp_path, monkeypatch):
     monkeypatch.setattr(rio, "MAX_ROWS", 10)
     with pytest.raises(InputError, match="11 data rows, more than the limit of 10"):
         read_table_as(p, column_table=True)
+
+
+# -- the ColumnTable itself (rsm_lrg.table) ------------------------------------------------------
+def test_column_table_holds_read_only_number_columns():
+    from rsm_lrg.table import ColumnTable, column_names, column_values, n_rows, take_rows
+
+    t = ColumnTable({"a": [1, 2, 3], "b": np.array([0.5, -0.0, 2.0])})
+    assert t.shape == (3, 2) and len(t) == 3 and n_rows(t) == 3 and column_names(t) == ["a", "b"]
+    assert t["a"].dtype == np.int64 and t["b"].dtype == np.float64
+    with pytest.raises(ValueError):
+        t["b"][0] = 1.0  # read-only: a fit cannot change the file's numbers
+    assert t.copy() is t
+    sub = take_rows(t, [2, 0])
+    assert column_values(sub, "a").tolist() == [3, 1] and column_values(sub, "b").tolist() == [2.0, 0.5]
+    assert t.to_numpy().dtype == np.float64 and t.to_numpy(dtype=float).shape == (3, 2)
+    frame = t.to_frame()
+    assert list(frame.columns) == ["a", "b"] and frame["a"].dtype == np.int64
+    assert np.array_equal(frame["b"].to_numpy().view(np.int64), t["b"].view(np.int64))  # -0.0 kept
+    assert take_rows(frame, [2, 0])["a"].tolist() == [3, 1]  # the same helpers read a DataFrame
+    assert column_values(frame, "b").tolist() == [0.5, -0.0, 2.0]
+
+
+@pytest.mark.parametrize("cols, what", [
+    ({}, "at least one column"),
+    ({"a": [1, 2], "b": [1.0]}, "different lengths"),
+    ({"a": ["x", "y"]}, "int64 or float64"),
+    ({"a": [[1, 2]]}, "1-D"),
+    ({"a": [True, False]}, "int64 or float64"),
+])
+def test_column_table_refuses_what_it_cannot_hold(cols, what):
+    from rsm_lrg.table import ColumnTable
+
+    with pytest.raises(ValueError, match=what):
+        ColumnTable(cols)
