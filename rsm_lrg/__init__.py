@@ -41,6 +41,7 @@ _LAZY = {
     "load_mixture_etch": "rsm_lrg.datasets",
     "load_cake_split_plot": "rsm_lrg.datasets",
     "read_table": "rsm_lrg.io",
+    "ColumnTable": "rsm_lrg.table",
 }
 
 
