@@ -36,7 +36,8 @@ if TYPE_CHECKING:
 __all__ = ["TableError", "ReadAs", "SEPARATORS", "DECIMALS", "FORMATS", "detect_format", "detect_separator",
            "parse_csv", "parse_plain_csv", "PLAIN_MAX_BYTES", "parse_xlsx", "parse_parquet", "check_columns",
            "separator_name", "xlsx_bytes",
-           "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_parquet_chunks", "keep_coded_text",
+           "count_rows", "csv_chunks", "parquet_chunks", "write_csv_chunks", "write_csv_columns", "write_parquet_chunks",
+           "keep_coded_text",
            "LEADING_ZERO", "check_control_characters", "CONTROL_CHARACTERS",
            "column_name_problem", "check_column_names", "row_of_line"]
 
@@ -1045,6 +1046,53 @@ def write_csv_chunks(fh: Any, frames: Any, *, float_format: str = "%.10g") -> in
                            lineterminator="\n").encode("utf-8"))
         rows += len(df)
     return rows
+
+
+def write_csv_columns(fh: Any, names: list[str], columns: dict, *, float_format: str = "%.10g") -> int:
+    """Write a table of NumPy columns as CSV to the binary file ``fh`` without pandas: the bytes
+    :func:`write_csv_chunks` writes of the same table as a DataFrame (``to_csv`` with
+    ``float_format``: whole numbers as they are, floats by ``float_format`` and NaN as an empty
+    cell, truth values ``True``/``False``, quoted where the CSV dialect needs it).
+
+    Parameters
+    ----------
+    fh : binary file
+        Where the CSV goes.
+    names : list of str
+        The header, in column order.
+    columns : dict of str to numpy.ndarray
+        One 1-D array per name (int, float or bool), all of one length.
+    float_format : str
+        The ``%`` format of a float cell.
+
+    Returns
+    -------
+    int
+        The rows written.
+
+    Raises
+    ------
+    TableError
+        A column that is not whole numbers, floats or truth values.
+    """
+    cells: list[list[str]] = []
+    for name in names:
+        values = columns[name]
+        kind = values.dtype.kind
+        if kind == "b":
+            cells.append(["True" if v else "False" for v in values.tolist()])
+        elif kind in "iu":
+            cells.append([str(v) for v in values.tolist()])
+        elif kind == "f":
+            cells.append(["" if v != v else float_format % v for v in values.tolist()])
+        else:
+            raise TableError(f"column {name!r} holds {values.dtype} values, not numbers")
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(names)
+    writer.writerows(zip(*cells))
+    fh.write(buf.getvalue().encode("utf-8"))
+    return len(cells[0]) if cells else 0
 
 
 def write_parquet_chunks(fh: Any, frames: Any) -> int:

@@ -391,3 +391,28 @@ def test_a_utf16_header_of_too_many_columns_is_refused_before_parsing(tmp_path):
     (tmp_path / "wide.csv").write_bytes(text.encode("utf-16-le"))
     with pytest.raises(InputError, match="the header has 3000 columns, more than the limit of 1000"):
         read_table(tmp_path / "wide.csv")
+
+
+# -- write_csv_columns: a table of NumPy columns written without pandas ----------------------------
+@pytest.mark.parametrize("seed", range(40))
+def test_write_csv_columns_writes_what_pandas_writes(seed):
+    from rsm_lrg.readers import write_csv_chunks, write_csv_columns
+
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 30))
+    f = rng.normal(size=n) * 10.0 ** rng.integers(-300, 300, size=n)
+    for value, share in ((np.nan, 0.1), (np.inf, 0.05), (-np.inf, 0.05), (-0.0, 0.05), (0.1 + 0.2, 0.05)):
+        f[rng.random(n) < share] = value
+    cols = {"whole": rng.integers(-2**53, 2**53, size=n), "a, b": f, 'say "x"': rng.random(n) < 0.5,
+            "rounded": np.round(rng.normal(size=n), 3)}
+    mine, theirs = io.BytesIO(), io.BytesIO()
+    assert write_csv_columns(mine, list(cols), cols) == n
+    write_csv_chunks(theirs, [pd.DataFrame(cols)])
+    assert mine.getvalue() == theirs.getvalue()
+
+
+def test_write_csv_columns_refuses_text():
+    from rsm_lrg.readers import TableError, write_csv_columns
+
+    with pytest.raises(TableError, match="not numbers"):
+        write_csv_columns(io.BytesIO(), ["x"], {"x": np.array(["a"], dtype=object)})

@@ -178,11 +178,14 @@ def run(args) -> int:
     import sys
     from pathlib import Path
 
+    import numpy as np
+
     from ..io import InputError, check_output, write_output
     from ..physics.params import LRGParams, parse_assignments
-    from ..surrogate.execute import DEFAULT_NOISE_SD, MAX_NOISE_SD, simulate
+    from ..surrogate.execute import DEFAULT_NOISE_SD, MAX_NOISE_SD, simulate, simulate_columns
     from ..surrogate.noise import resolve_seed
     from ..surrogate.runs import check_duration
+    from ..table import is_column_table
     from .paths import read_input
 
     out_path = Path(args.output)
@@ -213,8 +216,9 @@ def run(args) -> int:
             raise InputError(f"--param: {exc}") from None
     calibration = _calibration(args)
     streamed = _open_stream(args)
-    if streamed is None:
-        design = read_input(args, args.design)
+    parquet = out_path.suffix.lower() in (".parquet", ".pq")
+    if streamed is None:  # a plain CSV design is read (and its runs written as CSV) without pandas
+        design = read_input(args, args.design, column_table=not parquet)
     else:  # read, run and written piece by piece
         how, design, pieces, source = streamed
         args.notes_at_end = [f"read {args.design}: {how.describe()}, {args.chunk_rows:,} rows at a time"]
@@ -246,7 +250,6 @@ def run(args) -> int:
         from .. import readers
         from ..surrogate.stream import StreamTally, simulate_chunks
 
-        parquet = out_path.suffix.lower() in (".parquet", ".pq")
         tally = StreamTally()
         import contextlib
 
@@ -255,18 +258,28 @@ def run(args) -> int:
         with about_file(args.design), cluster_failures(args.scheduler if client is not None else None,
                                                       args.workers if executor is not None and client is None
                                                       else None), watch:
-            if streamed is None:
+            plain: tuple[list[str], dict] | None = None
+            if streamed is None and is_column_table(design):  # the columns, no DataFrame
+                names, added = simulate_columns(design, seed=seed, noise_sd=noise, duration_min=args.duration_min,
+                                                executor=executor, calibration=calibration, params=params,
+                                                progress=args.progress)
+                plain = (names, {**dict(zip(names, (design[c] for c in design.columns))), **added})
+                frames: Iterable[Any] = []
+            elif streamed is None:
                 runs = simulate(design, seed=seed, noise_sd=noise, duration_min=args.duration_min,
                                 executor=executor, calibration=calibration, params=params,
                                 progress=args.progress)
-                frames: Iterable[Any] = [runs]
+                frames = [runs]
             else:
                 frames = simulate_chunks(pieces, seed=seed, noise_sd=noise, duration_min=args.duration_min,
                                          executor=executor, calibration=calibration, params=params, tally=tally)
             writer = readers.write_parquet_chunks if parquet else readers.write_csv_chunks
             try:
                 def fill(fh: BinaryIO) -> None:
-                    writer(fh, frames)
+                    if plain is not None:
+                        readers.write_csv_columns(fh, *plain)
+                    else:
+                        writer(fh, frames)
 
                 write_output(out_path, fill, force=args.force)
             except readers.TableError as exc:
@@ -283,9 +296,15 @@ def run(args) -> int:
             with contextlib.suppress(Exception):
                 client.close(timeout=5)
     if streamed is None:
-        yields = runs["hinge_yields"].to_numpy(dtype=bool) if "hinge_yields" in runs.columns else []
-        tally = StreamTally(len(runs), int(sum(yields)), [i + 1 for i in range(len(runs)) if yields[i]][:10]
-                            if len(yields) else [], [str(c) for c in runs.columns])
+        if plain is not None:
+            out_names, out_columns = plain
+            n_runs = len(design)
+        else:
+            out_names, out_columns, n_runs = [str(c) for c in runs.columns], runs, len(runs)
+        yields = (np.asarray(out_columns["hinge_yields"], dtype=bool) if "hinge_yields" in out_names
+                  else np.zeros(0, dtype=bool))
+        tally = StreamTally(n_runs, int(yields.sum()), [int(i) + 1 for i in np.flatnonzero(yields)[:10]],
+                            out_names)
     note = f" (noise seed drawn: rerun with --seed {seed} to repeat)" if drawn else ""
     print(f"simulate: {tally.rows} runs -> {out_path}{note}", file=sys.stderr)
     names = [str(c) for c in design.columns]

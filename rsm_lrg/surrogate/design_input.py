@@ -83,6 +83,17 @@ def _bad_row(col, values, mask, rule: str) -> ValueError:
 
 
 def _float_column(df, name: str, allow_empty=None) -> np.ndarray:
+    from ..table import is_column_table
+
+    if is_column_table(df):  # numbers already, none empty (a plain CSV file read without pandas)
+        num = np.asarray(df[name], dtype=float)
+        bad_rows = np.flatnonzero(~np.isfinite(num))
+        if bad_rows.size:
+            from ..io import quote_user_value
+
+            i = int(bad_rows[0])
+            raise ValueError(f"column {name!r}, row {i + 1}: holds {quote_user_value(num[i])}, not a finite number")
+        return num
     import pandas as pd
 
     raw = df[name]
@@ -126,10 +137,15 @@ def read_design_arrays(df, params=None) -> DesignArrays:
 
     Parameters
     ----------
-    df : pandas.DataFrame
+    df : pandas.DataFrame or rsm_lrg.table.ColumnTable
         One row per virtual run (see the module docstring for the columns).
     params : rsm_lrg.physics.params.LRGParams, optional
         Base parameters, for the limits that depend on them (the stroke must fit on the rail).
+
+    Returns
+    -------
+    DesignArrays
+        The checked columns [SI] and the stage of each row.
 
     Raises
     ------
@@ -137,8 +153,6 @@ def read_design_arrays(df, params=None) -> DesignArrays:
         A required column is missing, or a value is empty, not a number or out of range;
         the message names the column and the 1-based data row.
     """
-    import pandas as pd
-
     from ..physics.params import (
         LEAF_TOO_THICK,
         OFF_THE_RAIL,
@@ -148,9 +162,15 @@ def read_design_arrays(df, params=None) -> DesignArrays:
         off_the_rail,
         param_names,
     )
+    from ..table import is_column_table
 
-    if not isinstance(df, pd.DataFrame):
-        raise TypeError(f"the design must be a pandas DataFrame, not {type(df).__name__}")
+    if is_column_table(df) and "stage" in df.columns:
+        df = df.to_frame()  # a stage column of numbers: refused below as a DataFrame's is, in the same words
+    if not is_column_table(df):
+        import pandas as pd
+
+        if not isinstance(df, pd.DataFrame):
+            raise TypeError(f"the design must be a pandas DataFrame, not {type(df).__name__}")
     if df.shape[0] == 0:
         raise ValueError("the design has no rows")
     p = params if params is not None else LRGParams()

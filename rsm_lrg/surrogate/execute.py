@@ -22,7 +22,7 @@ from .design_input import EXTRA_OUTPUT_COLUMNS, OUTPUT_COLUMNS, read_design_arra
 from .noise import resolve_seed
 from .progress import progress_bar
 
-__all__ = ["simulate", "DEFAULT_NOISE_SD", "DEFAULT_BATCH_ROWS", "MAX_NOISE_SD"]
+__all__ = ["simulate", "simulate_columns", "DEFAULT_NOISE_SD", "DEFAULT_BATCH_ROWS", "MAX_NOISE_SD"]
 
 #: Default reading noise [°C], per thermocouple reading. Table 4's three centre runs
 #: (0.034, 0.033, 0.034 °C/min) have a standard deviation of 5.77e-4 °C/min; over 50 min
@@ -113,6 +113,43 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
     """
     import pandas as pd
 
+    if not isinstance(design, pd.DataFrame) and hasattr(design, "to_frame"):
+        design = design.to_frame()  # a rsm_lrg.design.Design, or a ColumnTable
+    names, result = simulate_columns(design, seed, noise_sd, duration_min, executor, calibration=calibration,
+                                     params=params, batch_rows=batch_rows, progress=progress, row_start=row_start)
+    out = design.copy()
+    out.columns = names[:out.shape[1]]
+    for k in names[out.shape[1]:]:
+        out[k] = result[k]
+    out.attrs.clear()
+    return out
+
+
+def simulate_columns(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min: float = 50.0,
+                     executor: Executor | None = None, *, calibration="default", params=None,
+                     batch_rows: int | None = None, progress: bool | None = None,
+                     row_start: int = 0) -> tuple[list[str], dict[str, np.ndarray]]:
+    """The work of :func:`simulate` without its table: the names of the output's columns and the
+    columns the surrogate computed, for a DataFrame or a :class:`rsm_lrg.table.ColumnTable`
+    design (a plain CSV file read without pandas; ``rsm-lrg simulate`` writes it out without
+    pandas, :func:`rsm_lrg.readers.write_csv_columns`).
+
+    Parameters
+    ----------
+    design : pandas.DataFrame or rsm_lrg.table.ColumnTable
+        As for :func:`simulate`.
+    seed, noise_sd, duration_min, executor, calibration, params, batch_rows, progress, row_start
+        As for :func:`simulate`.
+
+    Returns
+    -------
+    names : list of str
+        Every column of the output in order: the design's (a name the surrogate writes renamed
+        ``NAME_input``), then the surrogate's.
+    columns : dict of str to numpy.ndarray
+        The surrogate's columns (``tcr_c_per_min`` [°C/min] ... ``hinge_yields``), one value per
+        design row.
+    """
     from ..physics.params import LRGParams
     from .calibrate import resolve_calibration
     from .runs import check_duration
@@ -127,8 +164,6 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
         params = LRGParams()
     elif not isinstance(params, LRGParams):
         raise TypeError(f"params must be an LRGParams, not {type(params).__name__}")
-    if not isinstance(design, pd.DataFrame) and hasattr(design, "to_frame"):
-        design = design.to_frame()  # a rsm_lrg.design.Design
     cal = resolve_calibration(calibration)
     if cal is not None:
         _check_no_conflict(params, cal.parameter_values())
@@ -174,17 +209,9 @@ def simulate(design, seed=None, noise_sd: float = DEFAULT_NOISE_SD, duration_min
         bar.close()
 
     result = {k: np.concatenate([pieces[s][k] for s in starts]) for k in pieces[starts[0]]}
-    out = design.copy()
-    out.columns = [str(c) for c in out.columns]
-    rename = {c: f"{c}_input" for c in out.columns if c in result}
-    out = out.rename(columns=rename)
-    for k in OUTPUT_COLUMNS:
-        out[k] = result[k]
-    for k, v in result.items():
-        if k not in OUTPUT_COLUMNS:
-            out[k] = v
-    out.attrs.clear()
-    return out
+    inputs = [f"{c}_input" if c in result else c for c in names]
+    added = list(OUTPUT_COLUMNS) + [k for k in result if k not in OUTPUT_COLUMNS]
+    return inputs + added, {k: result[k] for k in added}
 
 
 def _check_no_conflict(params, cal_values: dict) -> None:

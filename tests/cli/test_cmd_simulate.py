@@ -124,3 +124,44 @@ def test_scheduler_gives_the_same_file_as_one_process(design_csv, tmp_path):
         r = run("simulate", str(design_csv), "--seed", "8", "--scheduler", cluster.scheduler_address, "-o", str(dask))
     assert r.returncode == 0, r.stderr
     assert one.read_bytes() == dask.read_bytes()
+
+
+def _plain_and_quoted(tmp_path):
+    """Table 4 as it is (plain: read without pandas) and with one header name quoted (not plain:
+    read by pandas), the same table."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "data" / "table4.csv").read_text()
+    plain, quoted = tmp_path / "plain.csv", tmp_path / "quoted.csv"
+    plain.write_text(text)
+    quoted.write_text(text.replace("order", '"order"', 1))
+    return plain, quoted
+
+
+def test_a_plain_design_runs_without_pandas_and_writes_the_same_file(tmp_path):
+    plain, quoted = _plain_and_quoted(tmp_path)
+    code = ("import sys, io, contextlib\nfrom rsm_lrg.cli import main\n"
+            "with contextlib.redirect_stderr(io.StringIO()):\n"
+            f"    rc = main(['simulate', {str(plain)!r}, '--seed', '3', '-o', {str(tmp_path / 'a.csv')!r}])\n"
+            "print(rc, 'pandas' in sys.modules, 'pyarrow' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["0", "False", "False"]
+    r = run("simulate", str(quoted), "--seed", "3", "-o", str(tmp_path / "b.csv"))
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
+    a = run("simulate", str(plain), "--seed", "3", "-o", str(tmp_path / "c.csv"))
+    assert a.stderr.replace("c.csv", "b.csv").replace(str(plain), str(quoted)) == r.stderr  # the same notes
+    assert (tmp_path / "c.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
+
+
+def test_a_plain_design_with_a_stage_of_numbers_is_refused_in_the_same_words(tmp_path):
+    plain, quoted = _plain_and_quoted(tmp_path)
+    for p in (plain, quoted):
+        p.write_text(p.read_text().replace("tcr_c_per_min", "stage", 1))
+    a = run("simulate", str(plain), "--seed", "3", "-o", str(tmp_path / "a.csv"))
+    b = run("simulate", str(quoted), "--seed", "3", "-o", str(tmp_path / "b.csv"))
+    assert a.returncode == b.returncode == 2
+    assert a.stderr.replace(str(plain), "D") == b.stderr.replace(str(quoted), "D")
+    assert "column 'stage', row 1" in a.stderr
+    assert not (tmp_path / "a.csv").exists()

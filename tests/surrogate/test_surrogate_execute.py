@@ -226,3 +226,20 @@ def test_rows_anywhere_in_the_physical_ranges_are_finite_or_refused(seed):
         assert "steps per cycle" in str(exc) or "row 1" in str(exc) or "leaf model" in str(exc), exc
         return
     assert np.isfinite(out[OUT].to_numpy()).all()
+
+
+def test_a_column_table_design_gives_the_dataframe_design_runs():
+    # a plain CSV file read without pandas (rsm_lrg.table): the same runs, columns and names
+    from rsm_lrg.surrogate.execute import simulate_columns
+    from rsm_lrg.table import ColumnTable
+
+    df = pd.DataFrame({"run": [1, 2, 3], "thickness_m": [3e-4, 5e-4, 1e-4], "stroke_m": [0.05, 0.04, 0.06],
+                       "velocity_m_s": [0.5, 0.4, 0.6], "acceleration_m_s2": [30, 20, 40], "heat_w": [1.0, 2.0, 3.0]})
+    table = ColumnTable({c: df[c].to_numpy() for c in df.columns})
+    a = simulate(df, seed=5)
+    b = simulate(table, seed=5)
+    pd.testing.assert_frame_equal(a, b)
+    names, added = simulate_columns(table, seed=5)
+    assert names == list(a.columns) and "heat_w_input" in names
+    for k, v in added.items():
+        assert np.array_equal(v, a[k].to_numpy(), equal_nan=True)
