@@ -13,6 +13,12 @@ Usage::
     python benchmarks/bench_ego.py --problems hartmann6 --seeds 10 --seed-start 11 --part ours --json h2.json
     python benchmarks/bench_ego.py --problems hartmann6 --seeds 20 --part r --json hr.json
     python benchmarks/bench_ego.py --merge h1.json h2.json hr.json --json hartmann6.json
+    # other draws of the loop and of DiceOptim on the same initial designs, pooled:
+    python benchmarks/bench_ego.py --problems branin --part ours --json b0.json
+    python benchmarks/bench_ego.py --problems branin --part loop --loop-draw-offset 1000 --json b1.json
+    python benchmarks/bench_ego.py --problems branin --part r --r-seed-offset 0 --json r0.json
+    python benchmarks/bench_ego.py --problems branin --part r --r-seed-offset 1000 --json r1.json
+    python benchmarks/bench_ego.py --merge b0.json b1.json r0.json r1.json --json branin_pooled.json
 
 Protocol. Every sequential method starts from the same initial design per seed, as standard
 Bayesian-optimisation benchmarks do: the loop's Latin hypercube of ``initial`` runs
@@ -50,6 +56,22 @@ maximises EI by ``genoud`` with a small population, so its runs depend on R's ra
 (``set.seed(seed + --r-seed-offset)``), not only on the initial design: ``--part r
 --r-seed-offset 1000`` runs the same reference with other draws. On Branin (8 runs, 20 seeds)
 its median regret at budget 12 was 1.81, 2.02, 3.13 and 2.64 with offsets 0, 1000, 2000, 3000.
+The loop has random numbers of its own too (the GP's multistart, the EI optimiser's starts):
+``--loop-draw-offset K`` seeds them by ``seed + K`` (the fit) and ``seed + K + round``
+(suggest) on the same initial design (``latin_hypercube(space, initial, seed)``); 0, the
+default, is the single-draw protocol above. ``--part loop`` runs the loop alone (random search
+and LHS + quadratic do not depend on the draw). Each seed's traces record their
+``loop_draw_offset`` / ``r_seed_offset``.
+
+Pooled draws. ``--merge`` of files that hold the same seeds with other draws keeps every draw
+(a file's offsets, 0 where a file predates them) and summarises the pool: per method the median
+regret over all (seed, draw) traces (20 seeds x 4 draws: 80 per step), the verdicts on these
+medians (steps ``initial + 1 .. budget`` as above), each draw's own median, and per step the
+loop against DiceOptim seed by seed: each seed's regret averaged over its draws, the seeds
+where each is ahead and the two-sided Wilcoxon signed-rank p (``scipy.stats.wilcoxon``; seeds
+that tie left out), so that a difference of medians can be told from the draws' noise. Every
+seed must hold the same draws of a method. The README's pooled table: 4 draws of each (loop
+offsets 0, 1000, 2000, 3000; R offsets 0, 1000, 2000, 3000), 20 seeds, fixed before the runs.
 """
 
 from __future__ import annotations
