@@ -13,6 +13,12 @@ Usage::
     python benchmarks/bench_ego.py --problems hartmann6 --seeds 10 --seed-start 11 --part ours --json h2.json
     python benchmarks/bench_ego.py --problems hartmann6 --seeds 20 --part r --json hr.json
     python benchmarks/bench_ego.py --merge h1.json h2.json hr.json --json hartmann6.json
+    # other draws of the loop and of DiceOptim on the same initial designs, pooled:
+    python benchmarks/bench_ego.py --problems branin --part ours --json b0.json
+    python benchmarks/bench_ego.py --problems branin --part loop --loop-draw-offset 1000 --json b1.json
+    python benchmarks/bench_ego.py --problems branin --part r --r-seed-offset 0 --json r0.json
+    python benchmarks/bench_ego.py --problems branin --part r --r-seed-offset 1000 --json r1.json
+    python benchmarks/bench_ego.py --merge b0.json b1.json r0.json r1.json --json branin_pooled.json
 
 Protocol. Every sequential method starts from the same initial design per seed, as standard
 Bayesian-optimisation benchmarks do: the loop's Latin hypercube of ``initial`` runs
@@ -50,6 +56,22 @@ maximises EI by ``genoud`` with a small population, so its runs depend on R's ra
 (``set.seed(seed + --r-seed-offset)``), not only on the initial design: ``--part r
 --r-seed-offset 1000`` runs the same reference with other draws. On Branin (8 runs, 20 seeds)
 its median regret at budget 12 was 1.81, 2.02, 3.13 and 2.64 with offsets 0, 1000, 2000, 3000.
+The loop has random numbers of its own too (the GP's multistart, the EI optimiser's starts):
+``--loop-draw-offset K`` seeds them by ``seed + K`` (the fit) and ``seed + K + round``
+(suggest) on the same initial design (``latin_hypercube(space, initial, seed)``); 0, the
+default, is the single-draw protocol above. ``--part loop`` runs the loop alone (random search
+and LHS + quadratic do not depend on the draw). Each seed's traces record their
+``loop_draw_offset`` / ``r_seed_offset``.
+
+Pooled draws. ``--merge`` of files that hold the same seeds with other draws keeps every draw
+(a file's offsets, 0 where a file predates them) and summarises the pool: per method the median
+regret over all (seed, draw) traces (20 seeds x 4 draws: 80 per step), the verdicts on these
+medians (steps ``initial + 1 .. budget`` as above), each draw's own median, and per step the
+loop against DiceOptim seed by seed: each seed's regret averaged over its draws, the seeds
+where each is ahead and the two-sided Wilcoxon signed-rank p (``scipy.stats.wilcoxon``; seeds
+that tie left out), so that a difference of medians can be told from the draws' noise. Every
+seed must hold the same draws of a method. The README's pooled table: 4 draws of each (loop
+offsets 0, 1000, 2000, 3000; R offsets 0, 1000, 2000, 3000), 20 seeds, fixed before the runs.
 """
 
 from __future__ import annotations
@@ -124,8 +146,11 @@ def initial_design(factors: dict, n: int, seed: int) -> np.ndarray:
     return d.actual[list(factors)].to_numpy(dtype=float)
 
 
-def run_loop(factors: dict, fun, x0: np.ndarray, budget: int, seed: int) -> np.ndarray:
-    """The loop's steps in process (batch 1): the responses in order of evaluation."""
+def run_loop(factors: dict, fun, x0: np.ndarray, budget: int, seed: int, draw_offset: int = 0) -> np.ndarray:
+    """The loop's steps in process (batch 1): the responses in order of evaluation. The loop's
+    own random numbers (the GP's multistart, the EI optimiser's starts) are seeded by
+    ``seed + draw_offset`` (the fit) and ``seed + draw_offset + round`` (suggest); the initial
+    design ``x0`` is given."""
     names = list(factors)
     specs = [f"{n}={lo!r}:{hi!r}" for n, (lo, hi) in factors.items()]
     X = x0.copy()
@@ -134,8 +159,9 @@ def run_loop(factors: dict, fun, x0: np.ndarray, budget: int, seed: int) -> np.n
     while y.size < budget:
         data = pd.DataFrame(X, columns=names)
         data["y"] = y
-        model = rsm_lrg.fit(data, "y", factors=specs, model="gp", seed=seed, length_scale_bounds=LOOP_THETA_BOUNDS)
-        s = suggest(model, "minimize", 1, criterion="ei", seed=seed + r)
+        model = rsm_lrg.fit(data, "y", factors=specs, model="gp", seed=seed + draw_offset,
+                            length_scale_bounds=LOOP_THETA_BOUNDS)
+        s = suggest(model, "minimize", 1, criterion="ei", seed=seed + draw_offset + r)
         xn = s.design.actual[names].to_numpy(dtype=float)
         X = np.vstack([X, xn])
         y = np.r_[y, fun(xn)]
@@ -250,15 +276,19 @@ def surrogate_optimum(extra: list) -> float:
     return float(min(np.min(y), r.fun, *extra))
 
 
-def one_seed(name: str, seed: int) -> dict:
-    """The initial design and the traces of ``loop``, ``random``, ``random_uniform`` and
-    ``lhs_quadratic``."""
+def one_seed(name: str, seed: int, draw_offset: int = 0, loop_only: bool = False) -> dict:
+    """The initial design and the traces of ``loop`` (its random numbers drawn with
+    ``draw_offset``, see :func:`run_loop`), ``random``, ``random_uniform`` and ``lhs_quadratic``
+    (``loop_only``: the loop's alone)."""
     factors, fun, _, initial, budget = PROBLEMS[name]
     x0 = initial_design(factors, initial, seed)
     t0 = time.perf_counter()
-    loop = run_loop(factors, fun, x0, budget, seed)
+    loop = run_loop(factors, fun, x0, budget, seed, draw_offset)
     t_loop = time.perf_counter() - t0
-    return {"x0": x0.tolist(), "y0": loop[:initial].tolist(), "loop": loop.tolist(),
+    if loop_only:
+        return {"x0": x0.tolist(), "y0": loop[:initial].tolist(), "loop": loop.tolist(), "loop_s": t_loop,
+                "loop_draw_offset": draw_offset}
+    return {"x0": x0.tolist(), "y0": loop[:initial].tolist(), "loop": loop.tolist(), "loop_draw_offset": draw_offset,
             "random": run_random(factors, fun, loop[:initial], budget, seed).tolist(),
             "random_uniform": run_random_uniform(factors, fun, budget, seed).tolist(),
             "lhs_quadratic": run_lhs_quadratic(factors, fun, budget, initial, seed).tolist(), "loop_s": t_loop}
@@ -271,21 +301,78 @@ def initial_runs(name: str, seed: int) -> dict:
     return {"x0": x0.tolist(), "y0": fun(x0).tolist()}
 
 
+#: the methods whose runs depend on their own random numbers beyond the initial design, and the
+#: key of a seed's traces that names the draw (``--loop-draw-offset``, ``--r-seed-offset``)
+DRAWN = {"loop": "loop_draw_offset", "diceoptim": "r_seed_offset"}
+METHODS = ("loop", "diceoptim", "random", "lhs_quadratic", "random_uniform")
+
+
+def seed_draws(run: dict, method: str) -> dict:
+    """``{draw offset: trace}`` of ``method`` in one seed's traces: the draws ``--merge``
+    gathered (``run["draws"]``), else the one trace there is (offset as recorded, 0 in files
+    written before the offsets were)."""
+    if method in run.get("draws", {}):
+        return {int(k): v for k, v in run["draws"][method].items()}
+    return {int(run.get(DRAWN.get(method, ""), 0) or 0): run[method]}
+
+
+def regret_per_seed(runs: dict, method: str, budget: int, fstar: float) -> tuple[list, np.ndarray]:
+    """The draw offsets of ``method`` and its simple regret per seed, draw and budget step, an
+    array (seeds, draws, budget) (``lhs_quadratic``'s traces are already best-per-budget). Every
+    seed must hold the same draws."""
+    seeds = sorted(runs)
+    per = [seed_draws(runs[s], method) for s in seeds]
+    offsets = sorted(per[0])
+    for s, d in zip(seeds, per):
+        if sorted(d) != offsets:
+            raise SystemExit(f"{method}: seed {s} has draws {sorted(d)}, seed {seeds[0]} {offsets}: "
+                             "pool the same draws for every seed")
+    out = np.empty((len(seeds), len(offsets), budget))
+    for i, d in enumerate(per):
+        for j, k in enumerate(offsets):
+            y = np.asarray(d[k], dtype=float)
+            out[i, j] = (y[:budget] if method == "lhs_quadratic" else best_so_far(y, budget)) - fstar
+    return offsets, out
+
+
+def pooled_median(regret: np.ndarray) -> np.ndarray:
+    """Median regret per budget step over all (seed, draw) traces of ``regret`` (seeds, draws,
+    budget): 20 seeds x 4 draws are 80 traces per step."""
+    return np.median(regret.reshape(-1, regret.shape[-1]), axis=0)
+
+
+def paired_wilcoxon(a: np.ndarray, b: np.ndarray, tie: float = TIE) -> dict:
+    """Seed-by-seed comparison of two methods per budget step: each seed's regret averaged over
+    its draws (``a``, ``b``: (seeds, draws, budget), the same seeds in the same order), then the
+    Wilcoxon signed-rank test (two-sided, ``scipy.stats.wilcoxon``; seeds with equal means, to
+    ``tie`` relative, are left out). ``p`` is None at a step where every seed ties."""
+    from scipy.stats import wilcoxon
+
+    ma, mb = a.mean(axis=1), b.mean(axis=1)
+    res: dict = {"a_ahead": [], "b_ahead": [], "p": []}
+    for t in range(ma.shape[1]):
+        d = ma[:, t] - mb[:, t]
+        nz = np.abs(d) > tie * np.maximum(1.0, np.maximum(np.abs(ma[:, t]), np.abs(mb[:, t])))
+        res["a_ahead"].append(int(np.sum(nz & (d < 0))))
+        res["b_ahead"].append(int(np.sum(nz & (d > 0))))
+        res["p"].append(float(wilcoxon(d[nz]).pvalue) if nz.any() else None)
+    return res
+
+
 def summarise(name: str, runs: dict, fstar: float | None) -> dict:
-    """Median simple regret per method and budget, and the verdicts."""
+    """Median simple regret per method and budget over all (seed, draw) traces, the verdicts on
+    them, and, when the loop or DiceOptim holds several draws, each draw's median and the
+    seed-by-seed comparison of the two (mean over draws, Wilcoxon)."""
     factors, _, _, initial, budget = PROBLEMS[name]
     seeds = sorted(runs)
-    methods = [m for m in ("loop", "diceoptim", "random", "lhs_quadratic", "random_uniform")
-               if all(m in runs[s] for s in seeds)]
+    methods = [m for m in METHODS if all(m in runs[s] or m in runs[s].get("draws", {}) for s in seeds)]
     if fstar is None:
-        fstar = surrogate_optimum([float(np.nanmin(runs[s][m])) for s in seeds for m in methods])
-    curves = {}
+        fstar = surrogate_optimum([float(np.nanmin(t)) for s in seeds for m in methods
+                                   for t in seed_draws(runs[s], m).values()])
+    curves, regret, draws = {}, {}, {}
     for m in methods:
-        if m == "lhs_quadratic":
-            regret = np.array([runs[s][m] for s in seeds], dtype=float) - fstar
-        else:
-            regret = np.array([best_so_far(np.asarray(runs[s][m], dtype=float), budget) for s in seeds]) - fstar
-        curves[m] = np.median(regret, axis=0)
+        draws[m], regret[m] = regret_per_seed(runs, m, budget, fstar)
+        curves[m] = pooled_median(regret[m])
     steps = list(range(initial + 1, budget + 1))
     loop = curves["loop"]
     # medians that differ by rounding alone (the same runs' values averaged in another order) are
@@ -306,18 +393,45 @@ def summarise(name: str, runs: dict, fstar: float | None) -> dict:
     if "diceoptim" in curves:
         a, b = loop[budget - 1], curves["diceoptim"][budget - 1]
         verdict["at_most_diceoptim_at_budget"] = bool(a <= b + tie(a, b))
-    print(f"\n{name}: {len(factors)} factors, initial {initial}, budget {budget}, {len(seeds)} seeds; "
-          f"median simple regret (optimum {fstar:.6g})")
+    ndraws = {m: len(draws[m]) for m in methods if m in DRAWN}
+    pooled = any(n > 1 for n in ndraws.values())
+    print(f"\n{name}: {len(factors)} factors, initial {initial}, budget {budget}, {len(seeds)} seeds"
+          + "".join(f", {m} {n} draw{'s' * (n > 1)} {draws[m]}" for m, n in ndraws.items())
+          + f"; median simple regret{' over all (seed, draw) traces' * pooled} (optimum {fstar:.6g})")
     print("budget " + " ".join(f"{m:>14}" for m in methods))
     for b in range(initial, budget + 1):
         print(f"{b:6d} " + " ".join(f"{curves[m][b - 1]:14.4g}" for m in methods))
+    out = {"initial": initial, "budget": budget, "seeds": len(seeds), "optimum": fstar,
+           "draws": {m: draws[m] for m in ndraws},
+           "median_regret": {m: [float(v) for v in c] for m, c in curves.items()}, "verdict": verdict}
+    if pooled:
+        cols = [(m, j, k) for m in ndraws for j, k in enumerate(draws[m])]
+        print("median per draw: budget " + " ".join(f"{m + '@' + str(k):>14}" for m, _, k in cols))
+        for b in range(initial, budget + 1):
+            print(f"{b:23d} " + " ".join(f"{np.median(regret[m][:, j, b - 1]):14.4g}" for m, j, _ in cols))
+        out["median_regret_per_draw"] = {m: {str(k): [float(v) for v in np.median(regret[m][:, j], axis=0)]
+                                             for j, k in enumerate(draws[m])} for m in ndraws}
+    if "diceoptim" in regret:
+        pw = paired_wilcoxon(regret["loop"], regret["diceoptim"])
+        print("loop vs DiceOptim, seed by seed (each seed's regret averaged over its draws): "
+              "seeds where each is ahead, Wilcoxon signed-rank p (two-sided)")
+        print("budget   loop ahead  DiceOptim ahead          p")
+        for b in steps:
+            p = pw["p"][b - 1]
+            print(f"{b:6d} {pw['a_ahead'][b - 1]:12d} {pw['b_ahead'][b - 1]:16d} "
+                  + (f"{p:10.3g}" if p is not None else f"{'(all tie)':>10}"))
+        out["loop_vs_diceoptim"] = {"loop_ahead": pw["a_ahead"], "diceoptim_ahead": pw["b_ahead"],
+                                    "wilcoxon_p": pw["p"]}
     print(f"verdict: {verdict}", flush=True)
-    return {"initial": initial, "budget": budget, "seeds": len(seeds), "optimum": fstar,
-            "median_regret": {m: [float(v) for v in c] for m, c in curves.items()}, "verdict": verdict}
+    return out
 
 
 def _merge(paths: list) -> dict:
-    """The traces of several ``--json`` files, per problem and seed (later files add methods)."""
+    """The traces of several ``--json`` files, per problem and seed (later files add methods, and
+    the same method from a later file replaces it). The loop's and DiceOptim's traces are also
+    kept per draw (their ``loop_draw_offset``, ``r_seed_offset``; 0 in files that predate them)
+    under ``"draws"``, which :func:`summarise` pools; files with the same seeds and other draws
+    are pooled, not replaced."""
     traces: dict = {}
     for path in paths:
         data = json.loads(Path(path).read_text())
@@ -326,7 +440,12 @@ def _merge(paths: list) -> dict:
                 seed = traces.setdefault(name, {}).setdefault(int(s), {})
                 if "y0" in seed and "y0" in v and not np.array_equal(seed["y0"], v["y0"]):
                     raise SystemExit(f"{path}: {name} seed {s} has another initial design")
-                seed.update(v)
+                for m, key in DRAWN.items():
+                    if m in v:
+                        seed.setdefault("draws", {}).setdefault(m, {})[str(int(v.get(key, 0) or 0))] = v[m]
+                seed.update({k: x for k, x in v.items() if k != "draws"})
+                for m, dd in v.get("draws", {}).items():  # a file that was merged itself
+                    seed.setdefault("draws", {}).setdefault(m, {}).update(dd)
     return traces
 
 
@@ -335,8 +454,9 @@ def main(argv=None) -> int:
     ap.add_argument("--seeds", type=int, default=20, help="how many seeds")
     ap.add_argument("--seed-start", type=int, default=1, help="the first seed (a slice of seeds)")
     ap.add_argument("--problems", nargs="+", default=list(PROBLEMS), choices=list(PROBLEMS))
-    ap.add_argument("--part", choices=["all", "ours", "r"], default="all",
-                    help="ours: loop, random and LHS + quadratic; r: R DiceOptim only; all: both")
+    ap.add_argument("--part", choices=["all", "ours", "loop", "r"], default="all",
+                    help="ours: loop, random and LHS + quadratic; loop: the loop alone (another draw of it, "
+                         "see --loop-draw-offset); r: R DiceOptim only; all: ours and r")
     ap.add_argument("--no-r", action="store_true", help="leave out R DiceOptim (same as --part ours)")
     ap.add_argument("--r-only", metavar="TRACES", default=None,
                     help="add R DiceOptim to the traces of an earlier --json (its initial designs) and summarise")
@@ -345,15 +465,23 @@ def main(argv=None) -> int:
     ap.add_argument("--r-seed-offset", type=int, default=0,
                     help="seed R's random numbers (km's start, genoud) by seed + this (default 0): the "
                          "same DiceOptim reference with other draws")
+    ap.add_argument("--loop-draw-offset", type=int, default=0,
+                    help="seed the loop's own random numbers (the GP's multistart, EI's starts) by seed + "
+                         "this (fit) and seed + this + round (suggest) (default 0): the same loop on the same "
+                         "initial designs with other draws; the other methods are unaffected")
     ap.add_argument("--jobs", type=int, default=1, help="seeds run in parallel processes")
     ap.add_argument("--json", default=None, help="write the traces and the summary here")
     args = ap.parse_args(argv)
     part = "ours" if args.no_r else args.part
     seeds = range(args.seed_start, args.seed_start + args.seeds)
+    # the draws this run made (per seed too, in its traces, where --merge reads them)
+    offsets = {"loop_draw_offset": args.loop_draw_offset if part in ("all", "ours", "loop") else None,
+               "r_seed_offset": args.r_seed_offset if part in ("all", "r") else None}
 
     if args.merge:
         traces = _merge(args.merge)
         part = "ours"  # nothing new to run
+        offsets = {"loop_draw_offset": None, "r_seed_offset": None}  # the summary lists the draws
     elif args.r_only:
         traces = _merge([args.r_only])
         part = "r"
@@ -363,13 +491,13 @@ def main(argv=None) -> int:
         from concurrent.futures import ProcessPoolExecutor
 
         traces = {name: {} for name in args.problems}
-        tasks = [(name, s) for name in args.problems for s in seeds]
+        tasks = [(name, s, args.loop_draw_offset, part == "loop") for name in args.problems for s in seeds]
         t0 = time.perf_counter()
         with ProcessPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-            for (name, s), res in zip(tasks, pool.map(one_seed, *zip(*tasks))):
+            for (name, s, _, _), res in zip(tasks, pool.map(one_seed, *zip(*tasks))):
                 traces[name][s] = res
                 if args.json:  # what is done so far, should the run be cut short
-                    Path(args.json).write_text(json.dumps({"traces": traces}))
+                    Path(args.json).write_text(json.dumps({**offsets, "traces": traces}))
                 print(f"{name} seed {s}: loop best {min(res['loop']):.6g}, loop {res['loop_s']:.1f} s "
                       f"({time.perf_counter() - t0:.0f} s)", flush=True)
     summary = {}
@@ -380,13 +508,15 @@ def main(argv=None) -> int:
                        for s, r in runs.items()}
             for s, y in run_diceoptim(name, factors, fun, designs, budget,
                                          args.r_seed_offset).items():
+                runs[s].get("draws", {}).pop("diceoptim", None)  # this draw replaces the file's
                 runs[s]["diceoptim"] = y.tolist()
+                runs[s]["r_seed_offset"] = args.r_seed_offset
             if args.json:
-                Path(args.json).write_text(json.dumps({"traces": traces}))
+                Path(args.json).write_text(json.dumps({**offsets, "traces": traces}))
         if any("loop" in r for r in runs.values()):
             summary[name] = summarise(name, runs, fstar)
     if args.json:
-        Path(args.json).write_text(json.dumps({"summary": summary, "traces": traces}, indent=1))
+        Path(args.json).write_text(json.dumps({**offsets, "summary": summary, "traces": traces}, indent=1))
     return 0
 
 if __name__ == "__main__":
