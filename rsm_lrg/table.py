@@ -24,7 +24,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["ColumnTable", "column_names", "column_values", "take_rows", "n_rows", "is_column_table"]
+__all__ = ["ColumnTable", "column_names", "column_values", "take_rows", "n_rows", "is_column_table",
+           "check_table"]
 
 
 class ColumnTable:
@@ -146,6 +147,27 @@ def is_column_table(data: Any) -> bool:
     bool
     """
     return isinstance(data, ColumnTable)
+
+
+def check_table(data: Any) -> None:
+    """The data of an in-memory fit: a ``pandas.DataFrame`` or a :class:`ColumnTable` (pandas is
+    imported only to tell the rest apart).
+
+    Parameters
+    ----------
+    data : object
+
+    Returns
+    -------
+    None
+        Raises ``TypeError("data must be a pandas DataFrame")`` for anything else.
+    """
+    if isinstance(data, ColumnTable):
+        return
+    import pandas as pd
+
+    if not isinstance(data, pd.DataFrame):
+        raise TypeError("data must be a pandas DataFrame")
 
 
 def column_names(data: Any) -> list[str]:

@@ -217,14 +217,12 @@ def fit(data: pd.DataFrame | dd.DataFrame | ColumnTable, response: str, factors:
         a :class:`~rsm_lrg.model.build.spec.SpecError` (a ValueError whose ``option`` names the
         argument).
     """
-    from ..table import is_column_table
+    from ..table import check_table, is_column_table
 
-    table: Any = data  # a DataFrame, a Dask DataFrame or a ColumnTable (rsm_lrg.table)
-    plain = is_column_table(table)  # a plain CSV file read without pandas
-    if plain and not _ols_polynomial(model, family, link, trials, components, whole_plot, random_block,
-                                     random_effects):
+    table: Any = data  # a DataFrame, a Dask DataFrame or a ColumnTable (a plain CSV file read without pandas)
+    if is_column_table(table) and not _ols_polynomial(model, family, link, trials, components, whole_plot,
+                                                      random_block, random_effects):
         table = table.to_frame()  # the other engines read a DataFrame
-        plain = False
     if isinstance(model, str) and model.strip().lower() == "gp":  # the Gaussian-process engine
         from .pipelines.gp import THETA_BOUNDS, fit_gp, refuse_options
 
@@ -261,12 +259,8 @@ def fit(data: pd.DataFrame | dd.DataFrame | ColumnTable, response: str, factors:
                             components, hard)
     if whole_plot is not None or random_block is not None:
         return _fit_mixed(table, response, factors, block, spec, whole_plot, random_block, components, hard)
-    if not plain:
-        import pandas as pd
-
-        if not isinstance(table, pd.DataFrame):
-            raise TypeError("table must be a pandas DataFrame")
-    elif spec.mixture or spec.reduce is not None:  # read from a DataFrame (rsm_lrg.model.choice)
+    check_table(table)
+    if is_column_table(table) and (spec.mixture or spec.reduce is not None):  # read from a DataFrame
         table = table.to_frame()
     if components is not None or spec.mixture:
         return _fit_mixture(table, response, components, factors, block, spec, chunk_rows)

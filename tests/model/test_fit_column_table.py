@@ -116,3 +116,8 @@ def test_a_fit_of_a_column_table_imports_no_pandas():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     assert out.returncode == 0, out.stderr
+
+
+def test_anything_else_is_refused_as_before():
+    with pytest.raises(TypeError, match="^data must be a pandas DataFrame$"):
+        rsm_lrg.fit({"x": [1, 2, 3], "y": [1.0, 2.0, 4.0]}, "y")

@@ -32,7 +32,7 @@ from ...factors import FactorChoice, FactorSpace, choose_factors, quote_value
 from ...factors.columns import check_frame
 from ...factors.space import encode_column
 from ...io import cell_error, check_number_kinds, float_values
-from ...table import is_column_table, take_rows
+from ...table import check_table, is_column_table, take_rows
 
 __all__ = ["PreparedData", "prepare", "response_values", "CHUNK_ROWS"]
 
@@ -198,11 +198,7 @@ def prepare(data, response: str, factors=None, block: str | None = None, *,
         Unknown columns, an empty or non-numeric factor cell, an empty block cell, a
         response cell that is not a number (each naming the 1-based row), no response at all.
     """
-    if not is_column_table(data):  # a plain CSV file read without pandas passes as it is
-        import pandas as pd
-
-        if not isinstance(data, pd.DataFrame):
-            raise TypeError("data must be a pandas DataFrame")
+    check_table(data)
     check_frame(data, [response] + ([block] if block is not None else []))
     check_response_block(data, response, block)
     exclude = [response] + ([block] if block is not None else []) + [c for c in exclude if c in data.columns]

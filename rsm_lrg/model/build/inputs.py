@@ -14,7 +14,7 @@ import numpy as np
 from ...errors import ParameterError
 from ...factors import FactorSpace, quote_value
 from ...io import float_column, float_values, remembered_float_columns
-from ...table import is_column_table
+from ...table import check_table, is_column_table
 from .data import CHUNK_ROWS, prepare
 from .terms import Term, column_names, model_matrix, model_terms, n_columns, parse_term
 from .transform import Transform
@@ -27,33 +27,19 @@ def block_codes(data, block: str):
     """Integer codes 0..b-1 (levels sorted), keys "B1".., level labels."""
     if is_column_table(data):  # numbers, none empty (rsm_lrg.table)
         labels = np.asarray(data[block], dtype=float)
-        levels = np.unique(labels)
-        codes = np.searchsorted(levels, labels)
-        shown: list[int | float | str] = [int(v) if float(v).is_integer() else float(v) for v in levels]
-        return _block_keys(block, codes, levels, shown)
-    import pandas as pd
-
-    col = data[block]
-    if col.isna().any():
-        i = int(np.flatnonzero(col.isna().to_numpy())[0])
-        raise ValueError(f"block column {quote_value(block)}, row {i + 1}: is empty")
-    num = pd.to_numeric(col, errors="coerce")
-    if not num.isna().any():
-        labels = num.to_numpy(dtype=float)
-        levels = np.unique(labels)
-        codes = np.searchsorted(levels, labels)
-        shown = [int(v) if float(v).is_integer() else float(v) for v in levels]
     else:
-        labels = col.astype(str).str.strip().to_numpy()
-        levels = np.unique(labels)
-        codes = np.searchsorted(levels, labels)
-        shown = [str(v) for v in levels]
-    return _block_keys(block, codes, levels, shown)
+        import pandas as pd
 
-
-def _block_keys(block: str, codes: np.ndarray, levels: np.ndarray, shown: list) -> tuple:
-    """:func:`block_codes`' result from the codes and the sorted levels, or the error of a
-    single level."""
+        col = data[block]
+        if col.isna().any():
+            i = int(np.flatnonzero(col.isna().to_numpy())[0])
+            raise ValueError(f"block column {quote_value(block)}, row {i + 1}: is empty")
+        num = pd.to_numeric(col, errors="coerce")
+        labels = num.to_numpy(dtype=float) if not num.isna().any() else col.astype(str).str.strip().to_numpy()
+    levels = np.unique(labels)
+    codes = np.searchsorted(levels, labels)
+    shown: list[int | float | str] = ([int(v) if float(v).is_integer() else float(v) for v in levels]
+                                      if labels.dtype.kind == "f" else [str(v) for v in levels])
     if len(levels) < 2:
         raise ValueError(f"block column {quote_value(block)} has a single level ({quote_value(shown[0])}); "
                          "a block column needs at least two")
@@ -339,11 +325,7 @@ def model_inputs(data: Any, response: str, factors: Any = None, block: str | Non
     ``x / M`` with ``M`` the larger magnitude of its low and high level, so that the model
     passes through the origin of the actual units (as R's ``lm(y ~ 0 + x)``); a coding about
     the centre would hide an intercept in the actual units."""
-    if not is_column_table(data):  # a plain CSV file read without pandas passes as it is
-        import pandas as pd
-
-        if not isinstance(data, pd.DataFrame):
-            raise TypeError("data must be a pandas DataFrame")
+    check_table(data)
     tr = transform if transform is not None else Transform()
     if not tr.identity and response in data.columns:
         from .data import response_values

@@ -167,9 +167,13 @@ TOTAL_UNCORRECTED = "Uncor Total"
 TOTAL_ROWS = ("Cor Total", TOTAL_UNCORRECTED)
 
 
-def anova_table(**rows) -> Any:
-    """The Design-Expert ANOVA as a DataFrame with :data:`ANOVA_COLUMNS`: the rows of
-    :func:`anova_rows` (same keywords).
+def anova_table(rows: list[dict]) -> Any:
+    """The Design-Expert ANOVA as a DataFrame with :data:`ANOVA_COLUMNS`.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows of :func:`anova_rows`.
 
     Returns
     -------
@@ -178,7 +182,7 @@ def anova_table(**rows) -> Any:
     """
     import pandas as pd
 
-    return pd.DataFrame(anova_rows(**rows), columns=ANOVA_COLUMNS)
+    return pd.DataFrame(rows, columns=ANOVA_COLUMNS)
 
 
 def anova_rows(*, term_names, term_ss, ss_model, df_model, ss_block, df_block, ss_res, df_res,

@@ -20,7 +20,7 @@ import numpy as np
 from ..build.terms import term_columns
 from ..contract.statistics import FitStatistics, fit_statistics
 from ..readings.actual import actual_coefficients
-from ..readings.anova import ANOVA_COLUMNS, TOTAL_UNCORRECTED, PureError, anova_rows
+from ..readings.anova import TOTAL_UNCORRECTED, PureError, anova_rows, anova_table
 from ..readings.canonical import StationaryPoint, canonical_analysis
 
 if TYPE_CHECKING:
@@ -507,9 +507,7 @@ class LeastSquaresReading:
         pandas.DataFrame
             :meth:`anova_rows` as a frame (columns ``source, sum_sq, df, mean_sq, f, p``).
         """
-        import pandas as pd
-
-        return pd.DataFrame(r.anova_rows, columns=ANOVA_COLUMNS)
+        return anova_table(r.anova_rows)
 
     def anova_rows(self, r: ReadFit) -> list[dict]:
         """The ANOVA of the model's form, as rows (what the JSON and the text read; no

@@ -43,7 +43,7 @@ def test_anova_table_is_the_rows_as_a_frame():
     kw = dict(term_names=["A", "B"], term_ss=[4.0, 1e-40], ss_model=4.0, df_model=2, ss_block=0.0, df_block=0,
               ss_res=2.0, df_res=5, ss_total=6.0, df_total=7, pe=None, clean=True)
     rows = anova_rows(**kw)
-    frame = anova_table(**kw)
+    frame = anova_table(rows)
     assert json.dumps(frame.to_dict(orient="records")) == json.dumps(rows)  # NaN where F and p do not apply
     assert [r["source"] for r in rows] == ["Model", "A", "B", "Residual", "Cor Total"]
     assert rows[2]["sum_sq"] == 0.0 and rows[2]["p"] == 1.0  # round-off cleaned as every face shows it
