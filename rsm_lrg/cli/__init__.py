@@ -48,7 +48,7 @@ import sys
 import warnings
 
 from .paths import claim_standard_output, input_paths, mark_outputs, planned_outputs
-from .processes import Terminated, handle_signals, pending_signal, settle, stop_children
+from .processes import Terminated, ask_one_blas_thread, handle_signals, pending_signal, settle, stop_children
 from .specs import check_option_specs
 
 __all__ = ["main", "build_parser", "UsageError"]
@@ -304,21 +304,16 @@ def _leave(status: int) -> None:
 #: Commands that choose their BLAS thread count themselves (``fit`` keeps the threads for a
 #: large input, see ``cmd_fit``).
 OWN_THREADS = ("fit",)
-_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
 
 
 def _one_blas_thread(argv: list[str]) -> None:
-    """Ask for one BLAS thread before NumPy is loaded, for every command but those of
-    :data:`OWN_THREADS`: their matrices are small (a design search's are p x p, p <= 120;
-    R's reference BLAS is single-threaded too), and OpenBLAS's threads cost CPU time at
-    start-up and spin between the many small products of an exchange. Nothing is changed when
-    the user set a thread count or when NumPy is already loaded (``main()`` called in-process).
-    Processes started by a command (``simulate --workers``) inherit it."""
-    if "numpy" in sys.modules or any(v in os.environ for v in _THREAD_VARIABLES):
-        return
-    if _chosen_command(argv) in OWN_THREADS:
-        return
-    os.environ["OPENBLAS_NUM_THREADS"] = "1"
+    """Ask for one BLAS thread before NumPy is loaded (:func:`~.processes.ask_one_blas_thread`),
+    for every command but those of :data:`OWN_THREADS`: their matrices are small (a design
+    search's are p x p, p <= 120; R's reference BLAS is single-threaded too), and OpenBLAS's
+    threads cost CPU time at start-up and spin between the many small products of an
+    exchange. Processes started by a command (``simulate --workers``) inherit it."""
+    if _chosen_command(argv) not in OWN_THREADS:
+        ask_one_blas_thread()
 
 
 def _main(argv: list[str] | None) -> int:

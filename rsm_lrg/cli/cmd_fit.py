@@ -18,6 +18,7 @@ from .options import (
     add_random_effect_options,
 )
 from .paths import print_notes
+from .processes import ask_one_blas_thread
 from .specs import model_spec
 
 NAME = "fit"
@@ -108,31 +109,31 @@ def _many_files(path: str, args: argparse.Namespace):
     return ddf, files, notes
 
 
-#: A single input file up to this size [bytes] is fitted with one BLAS thread (see :func:`_one_blas_thread`).
+#: A single input file up to this size [bytes] is fitted with one BLAS thread (see
+#: :func:`one_blas_thread_if_small`).
 SMALL_INPUT_BYTES = 4_000_000
-_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
 
 
-def _one_blas_thread(path: str) -> None:
-    """Ask for one BLAS thread before NumPy is loaded when the input is one small file.
+def one_blas_thread_if_small(path: str) -> None:
+    """Ask for one BLAS thread before NumPy is loaded when the input is one small file
+    (:func:`~.processes.ask_one_blas_thread`: nothing changes when the user set a thread count
+    or NumPy is already loaded, as for ``main()`` called in-process).
 
     OpenBLAS starts a thread per core when NumPy is imported, and those threads cost about
     0.2 s of CPU time in a process that lives for one second, while a fit of a few thousand
     runs gains nothing from them (its matrices are too small for threaded BLAS; R's own BLAS
-    is single-threaded). Large inputs keep the threads, and nothing is changed when the user
-    set a thread count, or when NumPy is already loaded (``main()`` called in-process).
+    is single-threaded). A Gaussian process on 2,000 runs, whose n x n factorisations are the
+    largest a fit makes, took longer with two threads on the shared 2-core machine (9.1–9.3 s
+    wall against 8.2–8.6 s, ``benchmarks/bench_gp.py``). Large inputs keep the threads.
     """
     import os
-    import sys
 
-    if "numpy" in sys.modules or any(v in os.environ for v in _THREAD_VARIABLES):
-        return
     try:
         small = os.path.isfile(path) and os.path.getsize(path) <= SMALL_INPUT_BYTES
     except OSError:
         return
     if small:
-        os.environ["OPENBLAS_NUM_THREADS"] = "1"
+        ask_one_blas_thread()
 
 
 @contextmanager
@@ -159,7 +160,7 @@ def _about_files(many, args: argparse.Namespace):
 
 
 def run(args: argparse.Namespace) -> int:
-    _one_blas_thread(str(args.data))
+    one_blas_thread_if_small(str(args.data))
     check_gp_options(args)
     if args.dispersion and (args.model in GP_MODELS or wants_glm(args)):
         from ..io import InputError

@@ -27,10 +27,23 @@ from typing import Any
 
 __all__ = ["Terminated", "handle_signals", "pending_signal", "settle", "process_pool", "close_pool", "stop_children",
            "child_processes", "kill_children", "connect_scheduler",
-           "scheduler_lost", "pool_lost", "DEFAULT_SCHEDULER_TIMEOUT"]
+           "scheduler_lost", "pool_lost", "DEFAULT_SCHEDULER_TIMEOUT", "THREAD_VARIABLES", "ask_one_blas_thread"]
 
 #: Seconds a Dask scheduler has to answer (``--scheduler-timeout``).
 DEFAULT_SCHEDULER_TIMEOUT = 60.0
+
+#: The environment variables by which a user chooses the BLAS libraries' thread counts.
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
+
+
+def ask_one_blas_thread() -> bool:
+    """Ask OpenBLAS for one thread (``OPENBLAS_NUM_THREADS=1``), which takes effect only before
+    NumPy is loaded: nothing is changed, and False returned, when NumPy is already loaded or the
+    user set one of :data:`THREAD_VARIABLES`. Processes started later inherit it."""
+    if "numpy" in sys.modules or any(v in os.environ for v in THREAD_VARIABLES):
+        return False
+    os.environ["OPENBLAS_NUM_THREADS"] = "1"
+    return True
 
 _HANDLED = ("SIGTERM", "SIGHUP")
 

@@ -68,14 +68,20 @@ def test_small_input_uses_one_blas_thread_unless_the_user_chose():
     assert _run_fit(FIT, {"OPENBLAS_NUM_THREADS": "2"})[2] == "2"
 
 
+def test_other_commands_use_one_blas_thread_unless_the_user_chose():
+    rc, _, threads = _run_fit(["datasets"])
+    assert (rc, threads) == (0, "1")
+    assert _run_fit(["datasets"], {"MKL_NUM_THREADS": "2"})[2] is None
+
+
 def test_large_input_keeps_blas_threads(tmp_path):
     from rsm_lrg.cli.cmd_fit import SMALL_INPUT_BYTES
 
     big = tmp_path / "big.csv"
     with open(big, "wb") as fh:  # only its size is looked at before NumPy is loaded
         fh.truncate(SMALL_INPUT_BYTES + 1)
-    code = ("import os\nfrom rsm_lrg.cli.cmd_fit import _one_blas_thread\n"
-            f"_one_blas_thread({str(big)!r})\nprint(os.environ.get('OPENBLAS_NUM_THREADS'))")
+    code = ("import os\nfrom rsm_lrg.cli.cmd_fit import one_blas_thread_if_small\n"
+            f"one_blas_thread_if_small({str(big)!r})\nprint(os.environ.get('OPENBLAS_NUM_THREADS'))")
     env = {k: v for k, v in os.environ.items() if k not in THREADS}
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, env=env, timeout=60)
     assert out.returncode == 0, out.stderr
