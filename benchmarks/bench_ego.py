@@ -359,6 +359,23 @@ def paired_wilcoxon(a: np.ndarray, b: np.ndarray, tie: float = TIE) -> dict:
     return res
 
 
+def rank_sum(a: np.ndarray, b: np.ndarray) -> dict:
+    """Comparison of two methods per budget step whose runs are not paired by seed (LHS +
+    quadratic draws a fresh design per budget; the loop starts from the seed's initial design):
+    each seed's regret averaged over its draws (``a``, ``b``: (seeds, draws, budget)), then the
+    medians and the two-sided Mann–Whitney U test (``scipy.stats.mannwhitneyu``, exact where it
+    can be). ``p`` is None at a step where the two samples are one constant or a trace holds no
+    value yet (before the initial design is complete)."""
+    from scipy.stats import mannwhitneyu
+
+    ma, mb = a.mean(axis=1), b.mean(axis=1)
+    res: dict = {"p": []}
+    for t in range(ma.shape[1]):
+        both = np.concatenate([ma[:, t], mb[:, t]])
+        res["p"].append(None if not np.all(np.isfinite(both)) or np.ptp(both) == 0.0 else float(mannwhitneyu(ma[:, t], mb[:, t], alternative="two-sided").pvalue))
+    return res
+
+
 def summarise(name: str, runs: dict, fstar: float | None) -> dict:
     """Median simple regret per method and budget over all (seed, draw) traces, the verdicts on
     them, and, when the loop or DiceOptim holds several draws, each draw's median and the
@@ -422,6 +439,14 @@ def summarise(name: str, runs: dict, fstar: float | None) -> dict:
                   + (f"{p:10.3g}" if p is not None else f"{'(all tie)':>10}"))
         out["loop_vs_diceoptim"] = {"loop_ahead": pw["a_ahead"], "diceoptim_ahead": pw["b_ahead"],
                                     "wilcoxon_p": pw["p"]}
+    if "lhs_quadratic" in regret:
+        rs = rank_sum(regret["loop"], regret["lhs_quadratic"])
+        behind = [b for b in steps if b in verdict.get("below_lhs_quadratic_failed_at", [])]
+        print("loop vs LHS + quadratic (not paired: each seed's regret averaged over its draws), "
+              "two-sided Mann-Whitney p at the steps where the loop is not below: "
+              + (", ".join(f"{b}: {rs['p'][b - 1]:.3g}" if rs["p"][b - 1] is not None else f"{b}: (all tie)"
+                           for b in behind) or "none"))
+        out["loop_vs_lhs_quadratic"] = {"mann_whitney_p": rs["p"]}
     print(f"verdict: {verdict}", flush=True)
     return out
 

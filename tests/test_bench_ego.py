@@ -68,7 +68,29 @@ def test_merge_pools_the_draws_and_compares_seed_by_seed(bench, tmp_path, capsys
     assert cmp["loop_ahead"][8:] == [5] * 12 and cmp["diceoptim_ahead"][8:] == [0] * 12
     assert cmp["wilcoxon_p"][8:] == pytest.approx([0.0625] * 12)
     assert s["verdict"]["at_most_diceoptim"] is True and s["verdict"]["below_random"] is True
-    assert "loop@1000" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "loop@1000" in printed
+    # the loop is below LHS + quadratic (regret 100) at every step: no step to test is listed
+    assert "at the steps where the loop is not below: none" in printed
+    assert s["loop_vs_lhs_quadratic"]["mann_whitney_p"][8] < 1e-2
+
+
+def test_rank_sum_compares_the_seeds_means_unpaired(bench):
+    from scipy.stats import mannwhitneyu
+
+    rng = np.random.default_rng(3)
+    a = rng.random((20, 4, 3))  # the loop: 4 draws, averaged per seed
+    b = rng.random((20, 1, 3)) + np.array([0.0, 0.3, 1.5])  # LHS + quadratic: one draw
+    p = bench.rank_sum(a, b)["p"]
+    for t in range(3):
+        assert p[t] == pytest.approx(mannwhitneyu(a[:, :, t].mean(axis=1), b[:, 0, t]).pvalue, rel=1e-12)
+    assert p[2] < 1e-6 < p[0]  # samples a whole unit apart are told apart
+    # the mean over draws, not their pooling: seeds whose draws average to b's values tie exactly
+    q = rng.integers(0, 1000, (20, 1, 3)) / 8.0  # exact in binary: the means are exact too
+    c = np.concatenate([q - 1.0, q + 1.0], axis=1)
+    assert bench.rank_sum(c, q)["p"] == pytest.approx([1.0] * 3)
+    assert bench.rank_sum(np.zeros((5, 2, 1)), np.zeros((5, 1, 1)))["p"] == [None]
+    assert bench.rank_sum(np.zeros((5, 2, 1)), np.full((5, 1, 1), np.nan))["p"] == [None]
 
 
 def test_merge_refuses_draws_that_differ_between_seeds(bench, tmp_path):
