@@ -122,9 +122,9 @@ def one_blas_thread_if_small(path: str) -> None:
     OpenBLAS starts a thread per core when NumPy is imported, and those threads cost about
     0.2 s of CPU time in a process that lives for one second, while a fit of a few thousand
     runs gains nothing from them (its matrices are too small for threaded BLAS; R's own BLAS
-    is single-threaded). A Gaussian process on 2,000 runs, whose n x n factorisations are the
-    largest a fit makes, took longer with two threads on the shared 2-core machine (9.1–9.3 s
-    wall against 8.2–8.6 s, ``benchmarks/bench_gp.py``). Large inputs keep the threads.
+    is single-threaded). Even a Gaussian process on 2,000 runs, whose n x n factorisations are
+    the largest a fit makes, was no quicker with two threads on the shared 2-core machine (the
+    README's speed of the Gaussian process). Large inputs keep the threads.
     """
     import os
 
