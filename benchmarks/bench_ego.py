@@ -363,16 +363,19 @@ def rank_sum(a: np.ndarray, b: np.ndarray) -> dict:
     """Comparison of two methods per budget step whose runs are not paired by seed (LHS +
     quadratic draws a fresh design per budget; the loop starts from the seed's initial design):
     each seed's regret averaged over its draws (``a``, ``b``: (seeds, draws, budget)), then the
-    medians and the two-sided Mann–Whitney U test (``scipy.stats.mannwhitneyu``, exact where it
-    can be). ``p`` is None at a step where the two samples are one constant or a trace holds no
-    value yet (before the initial design is complete)."""
+    two-sided Mann–Whitney U test of the two samples of seeds (``scipy.stats.mannwhitneyu``,
+    exact where it can be). ``p`` is None at a step where the two samples are one constant or a
+    trace holds no value yet (before the initial design is complete)."""
     from scipy.stats import mannwhitneyu
 
     ma, mb = a.mean(axis=1), b.mean(axis=1)
     res: dict = {"p": []}
     for t in range(ma.shape[1]):
         both = np.concatenate([ma[:, t], mb[:, t]])
-        res["p"].append(None if not np.all(np.isfinite(both)) or np.ptp(both) == 0.0 else float(mannwhitneyu(ma[:, t], mb[:, t], alternative="two-sided").pvalue))
+        if not np.all(np.isfinite(both)) or np.ptp(both) == 0.0:
+            res["p"].append(None)
+        else:
+            res["p"].append(float(mannwhitneyu(ma[:, t], mb[:, t], alternative="two-sided").pvalue))
     return res
 
 

@@ -24,8 +24,9 @@ With ``--sklearn`` (when scikit-learn is installed; it is not a dependency) the 
 coded units, are also fitted by scikit-learn's ``GaussianProcessRegressor`` with one start
 (``n_restarts_optimizer=0``): a Matérn 5/2 kernel with one length-scale per factor (bounds
 0.001–20) times a constant, ``normalize_y=True`` in place of the constant trend, ``alpha=1e-10``
-(the maintained library the issue names; its model differs from ours in the trend only, so its
-log-likelihood is not comparable, its time is).
+(the maintained library the issue names; its model differs from ours in the trend, taken out
+by ``normalize_y``, and in the length-scales' bounds, so its log-likelihood is not comparable,
+its time is).
 Times are wall-clock on a shared machine (expect noise of tens of per cent); nothing here is
 asserted.
 """

@@ -45,6 +45,7 @@ def ask_one_blas_thread() -> bool:
     os.environ["OPENBLAS_NUM_THREADS"] = "1"
     return True
 
+
 _HANDLED = ("SIGTERM", "SIGHUP")
 
 
