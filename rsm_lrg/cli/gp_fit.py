@@ -106,16 +106,18 @@ def _refuse(args: argparse.Namespace) -> None:
             raise InputError(f"{opt}: not available with --model gp (a Gaussian process)")
 
 
-def check_gp_options(args: argparse.Namespace, *, on: bool | None = None, flag: str = "--model gp") -> None:
+def check_gp_options(args: argparse.Namespace, *, on: bool | None = None, flag: str = "--model gp",
+                     keep: tuple[str, ...] = ()) -> None:
     """The GP options given without ``--model gp`` (``on`` false; default: ``args.model`` is
-    not ``gp``) are an error naming the option and ``flag``."""
+    not ``gp``) are an error naming the option and ``flag``; ``keep`` names the attributes a
+    command uses without a GP as well (``suggest``'s ``seed``)."""
     if on is None:
         on = getattr(args, "model", None) in GP_MODELS
     if on:
         return
     for opt, attr in (("--kernel", "kernel"), ("--trend", "trend"), ("--nugget", "nugget"), ("--seed", "seed"),
                       ("--length-scale-bounds", "length_scale_bounds")):
-        if getattr(args, attr, None) is not None:
+        if attr not in keep and getattr(args, attr, None) is not None:
             raise InputError(f"{opt}: only with {flag} (a Gaussian process)")
 
 

@@ -48,12 +48,29 @@ def test_the_loops_length_scale_bounds_by_default(tmp_path, capsys):
     assert got == {False: [0.001, 2.0], True: [0.001, 10.0]}
 
 
+def test_a_polynomial_suggests_runs_that_fit_reads_back(tmp_path, capsys):
+    # --model quadratic: the least-squares fit's standard error in place of the kriging sd; the
+    # runs are a design CSV that a fit of the runs plus these reads
+    out = tmp_path / "next.csv"
+    assert main(["suggest", BRANIN, "--response", "y", *FACTORS, "--model", "quadratic", "--criterion", "variance",
+                 "--runs", "2", "--seed", "3", "-o", str(out), "--json", "-"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["model"]["model"] == "quadratic" and len(d["runs"]) == 2
+    assert any("Wynn 1970" in n for n in d["notes"])
+    runs = pd.read_csv(out)
+    assert list(runs.columns) == ["std_order", "run_order", "coded_A", "coded_B", "x1", "x2"]
+    # the prediction variance of a quadratic on a box is largest at a corner
+    assert set(runs["coded_A"].abs().round(9)) == {1.0} and set(runs["coded_B"].abs().round(9)) == {1.0}
+
+
 @pytest.mark.parametrize("args, option", [
     (["--goal", "sideways"], "--goal"),
     (["--runs", "0"], "--runs"),
     (["--criterion", "qei"], "--criterion"),
     (["--bound", "x1=3:1"], "--bound"),
-    (["--model", "quadratic"], "--model"),
+    (["--model", "quartic"], "--model"),
+    (["--model", "quadratic", "--kernel", "gauss"], "--kernel"),
+    (["--model", "quadratic", "--length-scale-bounds", "0.01:2"], "--length-scale-bounds"),
     (["--nugget", "-2"], "--nugget"),
     (["--length-scale-bounds", "1:1"], "--length-scale-bounds"),
 ])

@@ -98,11 +98,116 @@ def test_noisy_runs_use_the_predicted_incumbent():
 
 def test_refusals(branin_fit):
     d = pd.read_csv(DATA / "gp_branin.csv")
-    with pytest.raises(ParameterError) as e:
-        suggest(rsm_lrg.fit(d, "y", factors=BRANIN), "minimize")
+    # a polynomial with no residual degrees of freedom (6 terms, 6 runs): no standard error
+    with pytest.raises(ParameterError, match="no residual variance") as e:
+        suggest(rsm_lrg.fit(d.iloc[:6], "y", factors=BRANIN, model="quadratic"), "minimize")
     assert e.value.parameter == "model"
+    # a categoric factor: the search is over a box of numeric factors
+    c = d.assign(kind=np.where(np.arange(len(d)) % 2 == 0, "p", "q"))
+    with pytest.raises(ParameterError, match="'kind' is categoric") as e:
+        suggest(rsm_lrg.fit(c, "y", factors=[*BRANIN, "kind"], model="linear"), "minimize")
+    assert e.value.parameter == "model"
+    etch = pd.read_csv(Path(__file__).parents[2] / "data" / "mixture_etch.csv")
+    with pytest.raises(ParameterError, match="'x1' is a mixture component"):
+        suggest(rsm_lrg.fit(etch, "erate", components=["x1", "x2", "x3"], model="mixture-quadratic"), "maximize")
     for kw, name in (({"criterion": "qei"}, "criterion"), ({"runs": 0}, "runs"), ({"goal": "up"}, "goal")):
         args = {"goal": "minimize", **kw}
         with pytest.raises(ParameterError) as e:
             suggest(branin_fit, **args)
         assert e.value.parameter == name
+
+
+# -- a polynomial through the prediction contract (PolynomialEmulator) ------------------------
+
+def _noisy_quadratic(seed=4, reps=2):
+    """A replicated 3^2 factorial of a bowl with its minimum at coded (0.3, -0.2), and noise."""
+    rng = np.random.default_rng(seed)
+    a = np.tile(np.repeat([-1.0, 0.0, 1.0], 3), reps)
+    b = np.tile(np.tile([-1.0, 0.0, 1.0], 3), reps)
+    y = (a - 0.3) ** 2 + 0.5 * (b + 0.2) ** 2 + 0.2 * a * b + rng.normal(0.0, 0.05, a.size)
+    return pd.DataFrame({"a": 50 + 10 * a, "b": 2 + b, "y": y}), ["a=40:60", "b=1:3"]
+
+
+def test_polynomial_emulator_is_the_fits_prediction_and_least_squares_refit():
+    from rsm_lrg.optimize.next_runs import PolynomialEmulator
+    from rsm_lrg.terms import design_matrix
+
+    d, factors = _noisy_quadratic()
+    fit = rsm_lrg.fit(d, "y", factors=factors, model="quadratic")
+    em = PolynomialEmulator(fit)
+    pts = np.random.default_rng(1).uniform(-1, 1, (25, 2))
+    m, sd = em.mean_sd(pts)
+    p = fit.predict(pts, coded=True)
+    assert m == pytest.approx(p["predicted"].to_numpy(), rel=1e-12, abs=1e-12)
+    assert sd == pytest.approx(p["se_fit"].to_numpy(), rel=1e-12)
+    # two extra runs by recursive least squares equal a least-squares refit of the augmented
+    # model matrix (numpy.linalg.lstsq), the residual variance held at the fit's
+    new = np.array([[0.5, -0.5], [-0.8, 0.9]])
+    vals = np.array([0.7, 1.9])
+    em2 = em.with_runs(new, vals)
+    X = np.vstack([design_matrix(em.x, fit.terms), design_matrix(new, fit.terms)])
+    yy = np.r_[d["y"].to_numpy(), vals]
+    beta = np.linalg.lstsq(X, yy, rcond=None)[0]
+    F = design_matrix(pts, fit.terms)
+    m2, sd2 = em2.mean_sd(pts)
+    s2 = fit.interval_form.s2_residual
+    assert m2 == pytest.approx(F @ beta, rel=1e-10, abs=1e-12)
+    assert sd2 == pytest.approx(np.sqrt(s2 * np.einsum("ij,jk,ik->i", F, np.linalg.inv(X.T @ X), F)), rel=1e-10)
+    assert em.mean_sd(pts)[1] == pytest.approx(sd, rel=0, abs=0)  # the first emulator is unchanged
+    assert em2.x.shape == (em.x.shape[0] + 2, 2)
+
+
+def test_polynomial_ei_reaches_the_criterions_maximum():
+    d, factors = _noisy_quadratic()
+    fit = rsm_lrg.fit(d, "y", factors=factors, model="quadratic")
+    s = suggest(fit, "minimize", seed=2)
+    from rsm_lrg.optimize.next_runs import PolynomialEmulator
+
+    em = PolynomialEmulator(fit)
+    # the incumbent is the best predicted mean at the runs (noisy runs)
+    assert s.incumbent == pytest.approx(float(np.min(fit.predict(em.x, coded=True)["predicted"])), rel=1e-12)
+    g = np.linspace(-1, 1, 401)
+    grid = np.column_stack([np.repeat(g, g.size), np.tile(g, g.size)])
+    m, sd = em.mean_sd(grid)
+    top = criterion_values(m, sd, "minimize", None, s.incumbent, "ei").max()
+    assert s.table["criterion"].iloc[0] >= top * (1 - 1e-9)
+    # EI on a well-determined bowl picks near the fitted minimum (the stationary point)
+    x0 = s.design.coded_runs[0]
+    assert np.hypot(*(x0 - grid[np.argmin(m)])) < 0.05
+    assert any("standard error of the mean" in n for n in s.notes)
+
+
+def test_polynomial_variance_batch_is_wynns_sequential_d_optimal_augmentation():
+    from rsm_lrg.terms import design_matrix
+
+    d, factors = _noisy_quadratic(reps=1)
+    fit = rsm_lrg.fit(d, "y", factors=factors, model="quadratic")
+    s = suggest(fit, "minimize", runs=3, criterion="variance", seed=5)
+    # independently: add, one at a time, the grid point of largest x'(X'X)^-1 x (Wynn 1970),
+    # with the residual variance held
+    g = np.linspace(-1, 1, 201)
+    grid = np.column_stack([np.repeat(g, g.size), np.tile(g, g.size)])
+    X = design_matrix(np.column_stack([(d["a"] - 50) / 10, d["b"] - 2]).astype(float), fit.terms)
+    F = design_matrix(grid, fit.terms)
+    s2 = fit.interval_form.s2_residual
+    for i in range(3):
+        var = s2 * np.einsum("ij,jk,ik->i", F, np.linalg.inv(X.T @ X), F)
+        assert s.table["criterion"].iloc[i] == pytest.approx(var.max(), rel=1e-9)
+        xi = s.design.coded_runs[i]
+        X = np.vstack([X, design_matrix(xi[None, :], fit.terms)])
+    assert any("Wynn 1970" in n for n in s.notes)
+
+
+def test_polynomial_with_a_transform_reads_the_goal_on_the_models_scale():
+    d, factors = _noisy_quadratic()
+    d["y"] = np.exp(d["y"])
+    fit = rsm_lrg.fit(d, "y", factors=factors, model="quadratic", transform="log")
+    s = suggest(fit, "maximize", criterion="lcb", seed=1)
+    assert s.goal == ("maximize", None)
+    assert any("on the model's scale (log)" in n for n in s.notes)
+    # lcb for a maximisation is m + 2 sd on log y: its maximum over the box, at a grid's best or above
+    from rsm_lrg.optimize.next_runs import PolynomialEmulator
+
+    g = np.linspace(-1, 1, 201)
+    m, sd = PolynomialEmulator(fit).mean_sd(np.column_stack([np.repeat(g, g.size), np.tile(g, g.size)]))
+    assert s.table["criterion"].iloc[0] >= (m + 2 * sd).max() - 1e-9
