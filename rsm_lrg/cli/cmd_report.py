@@ -125,6 +125,22 @@ def _gp_spec(args: argparse.Namespace, opts: argparse.Namespace) -> str:
     return "gp"
 
 
+def _gp_against_polynomials(data, fits: dict, specs: list, responses: list, notes: list) -> dict:
+    """Per response fitted by a GP: the polynomial orders' PRESS beside its leave-one-out on the
+    same runs (the page's table); where no polynomial can be fitted to the runs, a note says why."""
+    from ..model.choice.loo_compare import compare_with_polynomials
+
+    out = {}
+    for r, spec in zip(responses, specs):
+        if spec != "gp":
+            continue
+        try:
+            out[r] = compare_with_polynomials(data, fits[r])
+        except ValueError as exc:
+            notes.append(f"{r}: no leave-one-out comparison with the polynomials: {exc}")
+    return out
+
+
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -182,9 +198,10 @@ def run(args: argparse.Namespace) -> int:
         else:
             from ..report.interactive import write_interactive_report
 
+            loo = _gp_against_polynomials(data, fits, specs, responses, notes)
             path = write_interactive_report(fits, out, force=args.force, title=args.title, goals=goals,
                                             limits=limits, source_name=str(args.data), start=args.hold,
-                                            static=args.static, optima=optima, region=region)
+                                            static=args.static, optima=optima, region=region, loo=loo)
     print_notes(notes)  # the report shows them too
     print(f"wrote {path}")
     return 0

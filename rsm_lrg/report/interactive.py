@@ -460,9 +460,10 @@ def _start(data: dict, start: str) -> None:
 
 def interactive_context(results, *, goals=None, limits=None, labels=None, title: str | None = None,
                         source_name: str | None = None, confidence: float = 0.95, tables: bool = True,
-                        start: str = "center", static: bool = False, optima=None, region=None) -> dict:
+                        start: str = "center", static: bool = False, optima=None, region=None,
+                        loo=None) -> dict:
     """Everything the interactive page shows (plain values), the scripts not included;
-    ``optima`` and ``region`` as for :func:`interactive_html`."""
+    ``optima``, ``region`` and ``loo`` as for :func:`interactive_html`."""
     from .fit_report import data_table, run_numbers
 
     specs = _as_specs(results, goals, limits, labels)
@@ -511,6 +512,7 @@ def interactive_context(results, *, goals=None, limits=None, labels=None, title:
         "static": bool(static),
         "mixture": mixture,
         "effects": _effects_rows(mixture) if mixture else [],
+        "loo": [{"response": str(r), **c.to_dict()} for r, c in (loo or {}).items()],
     }
 
 
@@ -528,7 +530,7 @@ def _effects_rows(mixture: dict) -> list[dict]:
 
 def interactive_html(results, *, goals=None, limits=None, labels=None, title: str | None = None,
                      source_name: str | None = None, confidence: float = 0.95, tables: bool = True,
-                     start: str = "center", static: bool = False, optima=None, region=None) -> str:
+                     start: str = "center", static: bool = False, optima=None, region=None, loo=None) -> str:
     """The interactive report of one or several fitted responses (a string).
 
     Parameters
@@ -563,6 +565,10 @@ def interactive_html(results, *, goals=None, limits=None, labels=None, title: st
         The region the page keeps to (:func:`rsm_lrg.report.region.region_data`: ``report
         --constraint/--bound``): "deepest inside every limit" and the overlay's shading stay
         inside it; pass ``optima`` found inside it too.
+    loo : mapping, optional
+        ``{response: LooComparison}`` (:func:`rsm_lrg.model.choice.loo_compare.compare_with_polynomials`):
+        a Gaussian process's leave-one-out beside the polynomial orders' PRESS on the same runs,
+        shown in the summary (``rsm-lrg report --model gp`` gives it).
 
     Returns
     -------
@@ -571,8 +577,7 @@ def interactive_html(results, *, goals=None, limits=None, labels=None, title: st
     """
     ctx = interactive_context(results, goals=goals, limits=limits, labels=labels, title=title,
                               source_name=source_name, confidence=confidence, tables=tables, start=start,
-                              optima=optima,
-                              static=static, region=region)
+                              optima=optima, static=static, region=region, loo=loo)
     return _render(ctx)
 
 

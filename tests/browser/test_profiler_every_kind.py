@@ -156,3 +156,31 @@ def test_page_static_section_and_optimize_agree_at_the_optimum(chromium, kinds, 
     np.testing.assert_allclose(got, ref[list(COLS)].to_numpy(dtype=float), rtol=RTOL)
     np.testing.assert_allclose(d["ci"] + d["pi"], ref[["ci_low", "ci_high", "pi_low", "pi_high"]].to_numpy(dtype=float),
                                rtol=1e-9)
+
+
+def test_gp_page_shows_its_leave_one_out_beside_the_polynomials(chromium, kinds, tmp_path):
+    """Issue 33, item 4: the GP's page puts its leave-one-out beside the polynomials' PRESS,
+    readable on a desktop and a phone (the table scrolls inside its frame, not the page)."""
+    from rsm_lrg.model.choice.loo_compare import compare_with_polynomials
+
+    fit = kinds["gp"]
+    cmp = compare_with_polynomials(pd.read_csv(R / "gp_branin.csv"), fit)
+    path = write_interactive_report({fit.response: fit}, tmp_path / "loo.html", loo={fit.response: cmp})
+    for width in (1280, 375):
+        ctx = chromium.new_context(viewport={"width": width, "height": 800}, offline=True)
+        try:
+            page = ctx.new_page()
+            errors: list = []
+            page.on("pageerror", lambda e, errors=errors: errors.append(str(e)))
+            page.goto(path.resolve().as_uri(), wait_until="load")
+            assert page.locator("table.loo-comparison").is_visible()
+            rows = page.evaluate("() => [...document.querySelectorAll('table.loo-comparison tbody tr')]"
+                                 ".map(tr => [...tr.cells].map(c => c.textContent.trim()))")
+            assert [r[0] for r in rows] == list(cmp.table["model"])
+            assert [r[4] for r in rows if r[4]] == ["Smallest PRESS"] and rows[-1][4] == "Smallest PRESS"
+            right = page.evaluate("() => document.querySelector('table.loo-comparison').closest('.table-wrap')"
+                                  ".getBoundingClientRect().right")
+            assert right <= width
+            assert errors == []
+        finally:
+            ctx.close()

@@ -32,6 +32,29 @@ def test_report_of_table4(tmp_path, capsys):
     assert rc == 2 and len(err) == 1 and err[0].startswith("error:") and "--force" in err[0]
 
 
+def test_gp_report_puts_its_leave_one_out_beside_the_polynomials(tmp_path, capsys):
+    # issue 33, item 4: the page shows fit-summary --gp's comparison, the same numbers
+    import json
+    from pathlib import Path
+
+    from rsm_lrg.report.html import fmt_num
+
+    branin = str(Path(__file__).parents[1] / "model" / "r" / "gp_branin.csv")
+    factors = ["--factor", "x1=-5:10", "--factor", "x2=0:15"]
+    assert main(["fit-summary", branin, "--response", "y", *factors, "--gp", "--json", "-"]) == 0
+    want = json.loads(capsys.readouterr().out)["loo_comparison"]
+    out = tmp_path / "gp.html"
+    assert main(["report", branin, "--response", "y", *factors, "--model", "gp", "-o", str(out)]) == 0
+    page = unescape(out.read_text(encoding="utf-8"))
+    table = re.search(r'<table class="data loo-comparison">(.*?)</table>', page, re.S).group(1)
+    rows = [[re.sub(r"<[^>]+>", "", c).strip() for c in re.findall(r"<td[^>]*>(.*?)</td>", tr, re.S)]
+            for tr in re.findall(r"<tr>(.*?)</tr>", table, re.S) if "<td" in tr]
+    assert [r[0] for r in rows] == [m["model"] for m in want["models"]]
+    for r, m in zip(rows, want["models"]):
+        assert r[1:4] == [fmt_num(m["press"]), fmt_num(m["pred_r2"]), fmt_num(m["rmse"])]
+        assert (r[4] == "Smallest PRESS") == (m["model"] == want["best"])
+
+
 def test_bad_column_is_one_error_line(tmp_path):
     out = subprocess.run(
         [sys.executable, "-m", "rsm_lrg", "report", str(data_path("table4.csv")), "--response", "nope",

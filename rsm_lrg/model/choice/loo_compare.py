@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["LooComparison", "compare_loo"]
+__all__ = ["LooComparison", "compare_loo", "compare_with_polynomials"]
 
 
 def _f(v: Any) -> float | None:
@@ -82,3 +82,29 @@ def compare_loo(summary: Any, gp: Any) -> LooComparison:
     ok = table[~table["aliased"] & np.isfinite(table["press"])]
     best = str(ok.loc[ok["press"].idxmin(), "model"])
     return LooComparison(table=table, best=best)
+
+
+def compare_with_polynomials(data: Any, gp: Any) -> LooComparison:
+    """The polynomial orders fitted to the runs of a GP (its factors, their ranges and coding,
+    its response), their PRESS beside the GP's closed-form leave-one-out (:func:`compare_loo`):
+    what ``rsm-lrg report --model gp`` shows, as ``fit-summary --gp`` prints.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The runs the GP was fitted to.
+    gp : GPResult
+
+    Returns
+    -------
+    LooComparison
+
+    Raises
+    ------
+    ValueError
+        When not even the linear polynomial can be fitted to the runs, or they are not the GP's.
+    """
+    from .summary import fit_summary
+
+    factors = [f"{f.name}={f.low!r}:{f.high!r}" for f in gp.space.factors]
+    return compare_loo(fit_summary(data, gp.response, factors=factors), gp)

@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 import rsm_lrg
-from rsm_lrg.model.choice.loo_compare import compare_loo
+from rsm_lrg.model.choice.loo_compare import compare_loo, compare_with_polynomials
 
 DATA = Path(__file__).parents[1] / "r" / "gp_branin.csv"
 BRANIN = ["x1=-5:10", "x2=0:15"]
@@ -39,3 +39,15 @@ def test_other_runs_refused():
     gp = rsm_lrg.fit(d.head(15), "y", factors=BRANIN, model="gp")
     with pytest.raises(ValueError, match="same runs"):
         compare_loo(s, gp)
+
+
+def test_compare_with_polynomials_fits_them_on_the_gps_factors():
+    # the GP's factors and ranges, not the columns' own: the same table as fit_summary with them
+    d = pd.read_csv(DATA)
+    gp = rsm_lrg.fit(d, "y", factors=BRANIN, model="gp")
+    got = compare_with_polynomials(d, gp)
+    want = compare_loo(rsm_lrg.fit_summary(d, "y", factors=BRANIN), gp)
+    pd.testing.assert_frame_equal(got.table, want.table)
+    assert got.best == want.best
+    with pytest.raises(ValueError, match="same runs"):
+        compare_with_polynomials(d.head(15), gp)
