@@ -444,7 +444,7 @@ def summarise(name: str, runs: dict, fstar: float | None) -> dict:
                                     "wilcoxon_p": pw["p"]}
     if "lhs_quadratic" in regret:
         rs = rank_sum(regret["loop"], regret["lhs_quadratic"])
-        behind = [b for b in steps if b in verdict.get("below_lhs_quadratic_failed_at", [])]
+        behind = verdict.get("below_lhs_quadratic_failed_at", [])
         print("loop vs LHS + quadratic (not paired: each seed's regret averaged over its draws), "
               "two-sided Mann-Whitney p at the steps where the loop is not below: "
               + (", ".join(f"{b}: {rs['p'][b - 1]:.3g}" if rs["p"][b - 1] is not None else f"{b}: (all tie)"

@@ -99,8 +99,8 @@ class PolynomialEmulator:
     x : (n, k) ndarray
         The coded runs (and the runs added by :meth:`with_runs`).
     y : (n,) ndarray
-        The predicted means at them [model-scale units] (the runs are noisy: the incumbent is
-        the best of these).
+        Their responses on the model's scale (and the values given to :meth:`with_runs`); the
+        runs are noisy, so the incumbent is the best predicted mean at ``x``, not the best ``y``.
     nugget : float
         The variance of a new run, ``σ²`` or ``σ²_g + σ²`` [model-scale units²].
 
@@ -112,8 +112,6 @@ class PolynomialEmulator:
     """
 
     def __init__(self, fit: Any) -> None:
-        from ..terms import design_matrix
-
         form = getattr(fit, "interval_form", None)
         if form is None or not hasattr(fit, "coded_runs"):
             raise ParameterError("model", "suggest takes a Gaussian process or a polynomial fitted by least squares "
@@ -135,10 +133,15 @@ class PolynomialEmulator:
         self.response = fit.response
         self.nugget = s2
         self.x = np.asarray(fit.coded_runs()[fit.space.letters], dtype=float)
-        self._rows = lambda X: design_matrix(np.atleast_2d(np.asarray(X, dtype=float)), fit.terms)
+        self.y = np.asarray(fit.y, dtype=float)
         self._cov = cov
         self._shift = np.zeros(cov.shape[0])  # the coefficients' change from runs added, b - b_fit
-        self.y = self.mean_sd(self.x)[0]
+
+    def _rows(self, X: np.ndarray) -> np.ndarray:
+        """The model rows ``f(x)'`` of coded settings (the fit's terms)."""
+        from ..terms import design_matrix
+
+        return design_matrix(np.atleast_2d(np.asarray(X, dtype=float)), self.fit.terms)
 
     def mean_sd(self, coded_points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Predicted mean on the model's scale and its standard error at an (m, k) array of coded
